@@ -1,0 +1,33 @@
+// slc: the command-line tool. Bad input exits with status 2 and one line on stderr.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "commands/commands.hpp"
+#include "slc/core/error.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{"slc: moving interfaces by semi-Lagrangian contouring (J. Strain, JCP 2001)"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "slc 0.1.0");
+    slc::cli::add_distance_command(app);
+    slc::cli::add_render_command(app);
+    slc::cli::add_tree_command(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // Help and version are "errors" with exit code 0; a real parse error exits 2.
+        if (e.get_exit_code() == 0) return app.exit(e);
+        fmt::print(stderr, "slc: {}\n", e.what());
+        return 2;
+    } catch (const slc::InvalidInput& e) {
+        fmt::print(stderr, "slc: {}\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "slc: error: {}\n", e.what());
+        return 1;
+    }
+    return 0;
+}

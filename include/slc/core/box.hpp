@@ -1,0 +1,42 @@
+// Box: an axis-aligned rectangle, used for the computational domain (a square) and for tree cells.
+#pragma once
+
+#include <algorithm>
+
+#include "slc/core/vec2.hpp"
+
+namespace slc {
+
+/// The closed rectangle [lo.x, hi.x] × [lo.y, hi.y].
+struct Box {
+    Vec2 lo;
+    Vec2 hi;
+
+    /// The square [−b, b]², the paper's standard domain.
+    static constexpr Box centered_square(double b) { return {{-b, -b}, {b, b}}; }
+
+    constexpr double width() const { return hi.x - lo.x; }
+    constexpr double height() const { return hi.y - lo.y; }
+    constexpr Vec2 center() const { return {0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y)}; }
+    constexpr bool contains(Vec2 p) const {
+        return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y;
+    }
+    constexpr bool contains(const Box& b) const {
+        return b.lo.x >= lo.x && b.hi.x <= hi.x && b.lo.y >= lo.y && b.hi.y <= hi.y;
+    }
+    constexpr bool overlaps(const Box& b) const {
+        return b.lo.x <= hi.x && b.hi.x >= lo.x && b.lo.y <= hi.y && b.hi.y >= lo.y;
+    }
+    /// The box grown by m on every side.
+    constexpr Box inflated(double m) const { return {{lo.x - m, lo.y - m}, {hi.x + m, hi.y + m}}; }
+    /// The point of the box nearest p.
+    constexpr Vec2 clamp(Vec2 p) const {
+        return {std::clamp(p.x, lo.x, hi.x), std::clamp(p.y, lo.y, hi.y)};
+    }
+    friend constexpr bool operator==(const Box&, const Box&) = default;
+};
+
+/// Euclidean distance from p to the box (zero inside).
+inline double distance(const Box& b, Vec2 p) { return distance(b.clamp(p), p); }
+
+}  // namespace slc

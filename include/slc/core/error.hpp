@@ -1,0 +1,40 @@
+// Errors: InvalidInput for bad input at a public entry point, and SLC_ASSERT for broken invariants.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace slc {
+
+/// Bad input at a public entry point. The message names the parameter and the value, in one line,
+/// so that the command-line tool can print it as it is and exit with status 2.
+class InvalidInput : public std::runtime_error {
+public:
+    explicit InvalidInput(const std::string& what) : std::runtime_error(what) {}
+};
+
+/// A computation that could not be completed for a reason that lies in the data (an ill-posed
+/// contour, a curve leaving the domain), reported with the time and place.
+class NumericalFailure : public std::runtime_error {
+public:
+    explicit NumericalFailure(const std::string& what) : std::runtime_error(what) {}
+};
+
+namespace detail {
+[[noreturn]] void assertion_failed(const char* condition, const char* invariant, const char* file,
+                                   int line);
+}  // namespace detail
+
+}  // namespace slc
+
+/// Checks an invariant of the library (not of the user's input) in debug and test builds.
+#if defined(SLC_ENABLE_ASSERTS) || !defined(NDEBUG)
+#define SLC_ASSERT(cond, invariant)                                                    \
+    do {                                                                               \
+        if (!(cond)) ::slc::detail::assertion_failed(#cond, invariant, __FILE__, __LINE__); \
+    } while (false)
+#else
+#define SLC_ASSERT(cond, invariant) \
+    do {                            \
+    } while (false)
+#endif

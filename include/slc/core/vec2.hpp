@@ -1,0 +1,36 @@
+// Vec2: a point or vector of the plane, and the few kernels on it that every module uses.
+#pragma once
+
+#include <cmath>
+
+namespace slc {
+
+/// A point or a vector in the plane, by value.
+struct Vec2 {
+    double x = 0.0;
+    double y = 0.0;
+
+    constexpr Vec2& operator+=(Vec2 o) { x += o.x; y += o.y; return *this; }
+    constexpr Vec2& operator-=(Vec2 o) { x -= o.x; y -= o.y; return *this; }
+    constexpr Vec2& operator*=(double s) { x *= s; y *= s; return *this; }
+    friend constexpr bool operator==(Vec2, Vec2) = default;
+};
+
+constexpr Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+constexpr Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+constexpr Vec2 operator-(Vec2 a) { return {-a.x, -a.y}; }
+constexpr Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
+constexpr Vec2 operator*(Vec2 a, double s) { return {s * a.x, s * a.y}; }
+constexpr Vec2 operator/(Vec2 a, double s) { return {a.x / s, a.y / s}; }
+
+constexpr double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+/// The z-component of a × b: positive when b lies counterclockwise of a.
+constexpr double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+/// a rotated a quarter turn counterclockwise, (x, y)^⊥ = (−y, x) as in the paper's §3.1.
+constexpr Vec2 perp(Vec2 a) { return {-a.y, a.x}; }
+constexpr double norm2(Vec2 a) { return dot(a, a); }
+inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+inline double distance(Vec2 a, Vec2 b) { return norm(a - b); }
+inline bool is_finite(Vec2 a) { return std::isfinite(a.x) && std::isfinite(a.y); }
+
+}  // namespace slc

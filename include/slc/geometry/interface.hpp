@@ -1,0 +1,76 @@
+// Interface: the moving curve Γ as a finite set of closed oriented polygons (DESIGN §2), stored
+// flat so that trees and batches can index its vertices and segments by one number.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "slc/core/vec2.hpp"
+
+namespace slc {
+
+/// Segment i of an interface: from vertex i to the next vertex of the same curve.
+struct Segment {
+    Vec2 a;
+    Vec2 b;
+};
+
+/// A set of closed polygons ("curves"). Vertex i and segment i share an index: segment i joins
+/// vertex i to next(i). Curves are counterclockwise around their inside, holes clockwise, so the
+/// outside (signed distance > 0) lies to the right of each segment.
+///
+/// Invariants: every curve has at least 3 vertices. Validation of the geometry (finite, no
+/// crossings, orientation) is separate: see validate.hpp.
+class Interface {
+public:
+    Interface() = default;
+    /// Builds from a list of curves, each a list of vertices, the closing segment implicit.
+    /// Throws InvalidInput if a curve has fewer than 3 vertices.
+    explicit Interface(const std::vector<std::vector<Vec2>>& curves);
+
+    std::size_t curve_count() const { return offsets_.size() - 1; }
+    /// Number of vertices, which is also the number of segments.
+    std::size_t size() const { return points_.size(); }
+    bool empty() const { return points_.empty(); }
+
+    Vec2 point(std::size_t i) const { return points_[i]; }
+    std::span<const Vec2> points() const { return points_; }
+    /// The vertices of curve c, in order.
+    std::span<const Vec2> curve(std::size_t c) const {
+        return std::span<const Vec2>(points_).subspan(offsets_[c], offsets_[c + 1] - offsets_[c]);
+    }
+    /// Index of the first vertex of curve c; offsets()[curve_count()] == size().
+    std::span<const std::size_t> offsets() const { return offsets_; }
+
+    /// The curve holding vertex i.
+    std::size_t curve_of(std::size_t i) const { return curve_index_[i]; }
+    /// The next and previous vertex of the same curve, cyclically.
+    std::size_t next(std::size_t i) const {
+        return i + 1 == offsets_[curve_index_[i] + 1] ? offsets_[curve_index_[i]] : i + 1;
+    }
+    std::size_t prev(std::size_t i) const {
+        return i == offsets_[curve_index_[i]] ? offsets_[curve_index_[i] + 1] - 1 : i - 1;
+    }
+    Segment segment(std::size_t i) const { return {points_[i], points_[next(i)]}; }
+
+    /// Reverses the order of the vertices of curve c (flips its orientation).
+    void reverse_curve(std::size_t c);
+
+    /// The curves as nested lists, the inverse of the constructor.
+    std::vector<std::vector<Vec2>> curves() const;
+
+private:
+    std::vector<Vec2> points_;
+    std::vector<std::size_t> offsets_{0};
+    std::vector<std::size_t> curve_index_;
+};
+
+/// Signed area enclosed by one closed polygon: positive when counterclockwise (shoelace formula).
+double signed_area(std::span<const Vec2> curve);
+/// Total enclosed area of the interface: the sum of signed areas (holes, clockwise, subtract).
+double area(const Interface& curves);
+/// Total length of all curves.
+double length(const Interface& curves);
+
+}  // namespace slc

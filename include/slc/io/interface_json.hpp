@@ -1,0 +1,35 @@
+// Interface files (DESIGN §6): {"time": 0.0, "curves": [{"points": [[x, y], ...]}, ...]}.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "slc/core/vec2.hpp"
+#include "slc/geometry/interface.hpp"
+
+namespace slc {
+
+/// The content of an interface file before validation (see prepare_interface).
+struct InterfaceFile {
+    double time = 0.0;  ///< "time", 0 when absent
+    std::vector<std::vector<Vec2>> curves;
+};
+
+/// Parses interface JSON text. `source` names the input in messages (a file name).
+/// Throws InvalidInput, one line naming the source and what is wrong: not JSON, no "curves"
+/// array, a curve without "points", a point that is not two numbers, a non-finite "time".
+InterfaceFile parse_interface_json(const std::string& text, const std::string& source);
+
+/// Reads and parses an interface file; a missing or unreadable file is InvalidInput too.
+InterfaceFile read_interface_json(const std::filesystem::path& path);
+
+/// The interface as JSON text, coordinates with 17 significant digits (round-trips exactly).
+std::string interface_json(const Interface& curves, double time);
+
+/// Writes text to path atomically: to a temporary file in the same folder, then renamed over
+/// path, so that a reader never sees a partial file. Creates missing parent folders. Throws
+/// InvalidInput when the folder cannot be written.
+void write_file_atomic(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace slc

@@ -1,0 +1,20 @@
+// Point files for `slc distance`: one "x,y" per line, an optional header line "x,y".
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "slc/core/vec2.hpp"
+
+namespace slc {
+
+/// Parses CSV text of points. Blank lines are skipped; a first line "x,y" is a header.
+/// Throws InvalidInput naming the source and line: wrong number of columns, a non-number,
+/// a non-finite value.
+std::vector<Vec2> parse_points_csv(const std::string& text, const std::string& source);
+
+/// Reads and parses a points file; a missing file is InvalidInput.
+std::vector<Vec2> read_points_csv(const std::filesystem::path& path);
+
+}  // namespace slc

@@ -1,0 +1,71 @@
+// Pictures of interfaces, trees and fields in the style of the paper's figures, drawn with cairo
+// as SVG or PNG (chosen by the file extension).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "slc/core/box.hpp"
+#include "slc/core/vec2.hpp"
+#include "slc/geometry/interface.hpp"
+
+namespace slc {
+
+/// An RGBA colour, components in [0, 1].
+struct Color {
+    double r = 0.0, g = 0.0, b = 0.0, a = 1.0;
+};
+
+/// A qualitative palette for successive interfaces in one picture (legend order).
+Color palette_color(std::size_t i);
+
+/// Scalar samples on a uniform nx × ny grid of cell centres covering box, row-major from the
+/// bottom-left (values[j * nx + i] at x = lo.x + (i + ½) w / nx, y = lo.y + (j + ½) h / ny).
+struct ScalarGrid {
+    Box box;
+    int nx = 0;
+    int ny = 0;
+    std::vector<double> values;
+};
+
+/// A picture: axes with ticks around the view box, layers drawn in the order added, a legend of
+/// the labelled layers, an optional colour bar for a field and a title.
+class Figure {
+public:
+    /// view: the region of the plane shown (kept square-aspect). Throws InvalidInput if empty.
+    explicit Figure(Box view, std::string title = {});
+
+    /// A scalar field as a colour image, with a colour bar labelled `label`. diverging: a
+    /// blue–white–red map symmetric about 0 (for signed distance); else a sequential map.
+    void add_field(const ScalarGrid& field, const std::string& label, bool diverging);
+    /// Outlines of boxes (quadtree cells), thin lines.
+    void add_boxes(std::span<const Box> boxes, Color color, double line_width = 0.4);
+    /// Edges of triangles given by vertex indices.
+    void add_triangles(std::span<const Vec2> vertices,
+                       std::span<const std::array<std::uint32_t, 3>> triangles, Color color,
+                       double line_width = 0.3);
+    /// Every curve of an interface, closed, with a legend entry `label` (none if empty).
+    void add_curves(const Interface& curves, const std::string& label, Color color,
+                    double line_width = 1.5);
+    /// Dots at points (for instance the vertices of a curve).
+    void add_points(std::span<const Vec2> points, Color color, double radius = 1.5);
+    /// Arrows from at[i] along vec[i] * scale (plane units).
+    void add_arrows(std::span<const Vec2> at, std::span<const Vec2> vec, double scale, Color color);
+
+    /// Writes the picture; the extension (.svg or .png) picks the format, else InvalidInput.
+    /// Written atomically (write_file_atomic semantics).
+    void save(const std::filesystem::path& path) const;
+
+private:
+    struct Layer;
+    Box view_;
+    std::string title_;
+    std::vector<std::shared_ptr<Layer>> layers_;
+};
+
+}  // namespace slc

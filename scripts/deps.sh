@@ -1,0 +1,17 @@
+# Sourced by the other scripts: installs the Debian packages the project needs when missing.
+slc_packages=(cmake ninja-build g++ pkg-config libcli11-dev nlohmann-json3-dev libfmt-dev
+              libcairo2-dev libgtest-dev libgmock-dev libbenchmark-dev clang-format)
+
+slc_install_deps() {
+  local missing=()
+  for p in "${slc_packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "installing: ${missing[*]}" >&2
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+}
