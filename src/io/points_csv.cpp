@@ -1,1 +1,114 @@
-// placeholder
+// Point files for `slc distance` (DESIGN §6): one "x,y" per line, an optional header "x,y", blank
+// lines, CRLF line ends and spaces around the numbers allowed; everything else is an error that
+// names the file and the line.
+#include "slc/io/points_csv.hpp"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string_view>
+#include <system_error>
+
+#include "slc/core/error.hpp"
+
+namespace slc {
+namespace {
+
+std::string_view trim(std::string_view s) {
+    constexpr std::string_view blanks = " \t\r\f\v";
+    const std::size_t first = s.find_first_not_of(blanks);
+    if (first == std::string_view::npos) return {};
+    return s.substr(first, s.find_last_not_of(blanks) - first + 1);
+}
+
+/// The fields of a line between commas, each trimmed.
+std::vector<std::string_view> split_fields(std::string_view line) {
+    std::vector<std::string_view> fields;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = line.find(',', start);
+        fields.push_back(trim(line.substr(start, comma - start)));
+        if (comma == std::string_view::npos) return fields;
+        start = comma + 1;
+    }
+}
+
+bool is_header(const std::vector<std::string_view>& fields) {
+    auto is = [](std::string_view f, char c) {
+        return f.size() == 1 && (f[0] == c || f[0] == c - 'a' + 'A');
+    };
+    return fields.size() == 2 && is(fields[0], 'x') && is(fields[1], 'y');
+}
+
+/// One coordinate: the whole field must be a finite number (an optional leading '+' allowed).
+double parse_coordinate(std::string_view field, const char* name, const std::string& place) {
+    std::string_view digits = field;
+    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-') digits.remove_prefix(1);
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (ec == std::errc::result_out_of_range) {
+        throw InvalidInput(
+            fmt::format("{}: {} = \"{}\" is out of the range of a double", place, name, field));
+    }
+    if (ec != std::errc{} || end != digits.data() + digits.size()) {
+        throw InvalidInput(fmt::format("{}: {} = \"{}\" is not a number", place, name, field));
+    }
+    if (!std::isfinite(value)) {
+        throw InvalidInput(fmt::format("{}: {} = \"{}\" is not finite", place, name, field));
+    }
+    return value;
+}
+
+std::string read_text_file(const std::filesystem::path& path) {
+    auto fail = [&](int err) {
+        return InvalidInput(fmt::format("cannot read {}: {}", path.string(),
+                                        std::generic_category().message(err)));
+    };
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                         &std::fclose);
+    if (!file) throw fail(errno);
+    std::string text;
+    char buffer[1 << 16];
+    std::size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
+    if (std::ferror(file.get())) throw fail(errno);
+    return text;
+}
+
+}  // namespace
+
+std::vector<Vec2> parse_points_csv(const std::string& text, const std::string& source) {
+    std::string_view rest = text;
+    if (rest.starts_with("\xEF\xBB\xBF")) rest.remove_prefix(3);  // a UTF-8 byte-order mark
+    std::vector<Vec2> points;
+    bool first_content = true;
+    for (std::size_t line_number = 1; !rest.empty(); ++line_number) {
+        const std::size_t newline = rest.find('\n');
+        const std::string_view line = trim(rest.substr(0, newline));
+        rest = newline == std::string_view::npos ? std::string_view{} : rest.substr(newline + 1);
+        if (line.empty()) continue;
+
+        const std::vector<std::string_view> fields = split_fields(line);
+        const bool header = first_content && is_header(fields);
+        first_content = false;
+        if (header) continue;
+        const std::string place = fmt::format("{}, line {}", source, line_number);
+        if (fields.size() != 2) {
+            throw InvalidInput(
+                fmt::format("{}: expected 2 columns x,y, got {}", place, fields.size()));
+        }
+        points.push_back({parse_coordinate(fields[0], "x", place),
+                          parse_coordinate(fields[1], "y", place)});
+    }
+    return points;
+}
+
+std::vector<Vec2> read_points_csv(const std::filesystem::path& path) {
+    return parse_points_csv(read_text_file(path), path.string());
+}
+
+}  // namespace slc

@@ -1,1 +1,706 @@
-// placeholder
+// Pictures of interfaces, trees and fields drawn with cairo in the style of a journal figure: the
+// square view box on a square plot with ticks, a thin frame, an optional title, a legend of the
+// labelled curves and a colour bar for a field, written atomically as SVG or PNG.
+#include "slc/io/render.hpp"
+
+#include <cairo-svg.h>
+#include <cairo.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <variant>
+
+#include "slc/core/error.hpp"
+#include "slc/io/interface_json.hpp"
+
+namespace slc {
+namespace {
+
+// Page layout in pixels of the SVG (points) and of the PNG before its 2x scale.
+constexpr double plot_size = 560.0;      // edge of the square plot area
+constexpr double min_left_margin = 80.0;  // room for y tick labels and the "y" axis label
+constexpr double right_margin = 30.0;     // room for half of the last x tick label
+constexpr double top_margin = 20.0;
+constexpr double title_room = 34.0;  // added to the top margin when there is a title
+constexpr double bottom_margin = 60.0;
+constexpr double side_gap = 24.0;  // between the plot and the legend / colour-bar column
+constexpr double min_side_width = 150.0;
+constexpr double tick_length = 5.0;
+constexpr double label_gap = 4.0;  // between a tick and its label
+constexpr double font_size = 13.0;
+constexpr double title_font_size = 16.0;
+constexpr double legend_row = 20.0;
+constexpr double legend_sample = 28.0;  // length of the line sample of a legend entry
+constexpr double legend_pad = 8.0;
+constexpr double colorbar_width = 16.0;
+constexpr double colorbar_max_height = 300.0;
+constexpr double png_scale = 2.0;  // PNG pixels per layout pixel, for sharp lines and text
+constexpr int max_ticks = 7;
+const char* const font_family = "DejaVu Sans";
+
+struct FieldLayer {
+    ScalarGrid grid;
+    std::string label;
+    bool diverging = false;
+};
+struct BoxesLayer {
+    std::vector<Box> boxes;
+    Color color;
+    double line_width = 0.0;
+};
+struct TrianglesLayer {
+    std::vector<Vec2> vertices;
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    Color color;
+    double line_width = 0.0;
+};
+struct CurvesLayer {
+    Interface curves;
+    std::string label;
+    Color color;
+    double line_width = 0.0;
+};
+struct PointsLayer {
+    std::vector<Vec2> points;
+    Color color;
+    double radius = 0.0;
+};
+struct ArrowsLayer {
+    std::vector<Vec2> at;
+    std::vector<Vec2> vec;
+    double scale = 0.0;
+    Color color;
+};
+using LayerItem = std::variant<FieldLayer, BoxesLayer, TrianglesLayer, CurvesLayer, PointsLayer,
+                               ArrowsLayer>;
+using Layers = std::vector<const LayerItem*>;
+
+template <class... F>
+struct Overloaded : F... {
+    using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+constexpr Color rgb(int hex) {
+    return {((hex >> 16) & 0xff) / 255.0, ((hex >> 8) & 0xff) / 255.0, (hex & 0xff) / 255.0, 1.0};
+}
+
+// ColorBrewer RdBu (7 classes), blue for negative; and viridis at 9 anchors. Both are
+// interpolated linearly between anchors, the colour bar with the same stops.
+constexpr std::array<Color, 7> diverging_map = {rgb(0x2166ac), rgb(0x67a9cf), rgb(0xd1e5f0),
+                                                rgb(0xf7f7f7), rgb(0xfddbc7), rgb(0xef8a62),
+                                                rgb(0xb2182b)};
+constexpr std::array<Color, 9> sequential_map = {
+    rgb(0x440154), rgb(0x472d7b), rgb(0x3b528b), rgb(0x2c728e), rgb(0x21918c),
+    rgb(0x28ae80), rgb(0x5ec962), rgb(0xaddc30), rgb(0xfde725)};
+
+std::span<const Color> color_map(bool diverging) {
+    if (diverging) return diverging_map;
+    return sequential_map;
+}
+
+/// The map's colour at t in [0, 1].
+Color map_color(std::span<const Color> anchors, double t) {
+    const double s = std::clamp(t, 0.0, 1.0) * static_cast<double>(anchors.size() - 1);
+    const std::size_t i = std::min(static_cast<std::size_t>(s), anchors.size() - 2);
+    const double f = s - static_cast<double>(i);
+    const Color& a = anchors[i];
+    const Color& b = anchors[i + 1];
+    return {a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b), 1.0};
+}
+
+/// The values mapped to the two ends of the colour map: ±max|v| when diverging, else min, max.
+struct FieldRange {
+    double lo = 0.0;
+    double hi = 1.0;
+    double t(double v) const { return (v - lo) / (hi - lo); }
+};
+
+FieldRange field_range(const FieldLayer& field) {
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -lo;
+    for (const double v : field.grid.values) {
+        if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    if (lo > hi) return {-1.0, 1.0};  // no finite value at all
+    if (field.diverging) {
+        const double m = std::max(std::abs(lo), std::abs(hi));
+        return m > 0.0 ? FieldRange{-m, m} : FieldRange{-1.0, 1.0};
+    }
+    if (lo == hi) return {lo - 0.5, hi + 0.5};
+    return {lo, hi};
+}
+
+// ---- numbers and text -------------------------------------------------------------------------
+
+/// A typographic minus sign in place of a leading hyphen.
+std::string with_minus(std::string s) {
+    if (!s.empty() && s[0] == '-') s.replace(0, 1, "\u2212");
+    return s;
+}
+
+/// Tick values i·step in [lo, hi], step 1, 2 or 5 × 10^e, the finest giving at most max_ticks.
+struct Ticks {
+    std::vector<double> values;
+    std::vector<std::string> labels;
+};
+
+Ticks nice_ticks(double lo, double hi) {
+    const double range = hi - lo;
+    int e = static_cast<int>(std::floor(std::log10(range))) - 2;
+    for (;; ++e) {
+        for (const int m : {1, 2, 5}) {
+            const double step = m * std::pow(10.0, e);
+            const double first = std::ceil(lo / step);
+            const double last = std::floor(hi / step);
+            if (last - first + 1 > max_ticks) continue;
+            Ticks ticks;
+            const int decimals = std::max(0, -e);
+            for (double i = first; i <= last; i += 1.0) {
+                const double v = std::abs(i) < 0.5 ? 0.0 : i * step;  // never "-0"
+                ticks.values.push_back(v);
+                ticks.labels.push_back(with_minus(fmt::format("{:.{}f}", v, decimals)));
+            }
+            return ticks;
+        }
+    }
+}
+
+void set_font(cairo_t* cr, double size, bool bold = false, bool italic = false) {
+    cairo_select_font_face(cr, font_family,
+                           italic ? CAIRO_FONT_SLANT_ITALIC : CAIRO_FONT_SLANT_NORMAL,
+                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, size);
+}
+
+double text_width(cairo_t* cr, const std::string& s) {
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, s.c_str(), &e);
+    return e.x_advance;
+}
+
+/// Draws s with its box anchored at (x, y): ax = 0, ½, 1 puts x at its left, centre or right;
+/// ay the same from the top of a digit to the baseline, so labels line up on their digits.
+void draw_text(cairo_t* cr, const std::string& s, double x, double y, double ax, double ay) {
+    cairo_text_extents_t digit;
+    cairo_text_extents(cr, "0", &digit);
+    const double cap = -digit.y_bearing;
+    cairo_move_to(cr, x - ax * text_width(cr, s), y - ay * cap + cap);
+    cairo_show_text(cr, s.c_str());
+}
+
+void set_color(cairo_t* cr, Color c) { cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a); }
+
+// ---- layout -----------------------------------------------------------------------------------
+
+/// Where things go on the page, and the map from the plane to it (y up).
+struct Page {
+    Box view;
+    double width = 0.0;
+    double height = 0.0;
+    double plot_x = 0.0;  // top-left corner of the plot square
+    double plot_y = 0.0;
+    double side_x = 0.0;  // left edge of the legend / colour-bar column
+    bool has_side = false;
+    Ticks x_ticks;
+    Ticks y_ticks;
+
+    double scale() const { return plot_size / view.width(); }
+    Vec2 to_page(Vec2 p) const {
+        return {plot_x + (p.x - view.lo.x) * scale(), plot_y + (view.hi.y - p.y) * scale()};
+    }
+};
+
+const FieldLayer* last_field(const Layers& layers) {
+    const FieldLayer* field = nullptr;
+    for (const LayerItem* item : layers) {
+        if (const auto* f = std::get_if<FieldLayer>(item)) field = f;
+    }
+    return field;
+}
+
+std::vector<const CurvesLayer*> legend_entries(const Layers& layers) {
+    std::vector<const CurvesLayer*> entries;
+    for (const LayerItem* item : layers) {
+        const auto* c = std::get_if<CurvesLayer>(item);
+        if (c != nullptr && !c->label.empty()) entries.push_back(c);
+    }
+    return entries;
+}
+
+/// The labels of a colour bar: top, bottom, and 0 in between when it lies inside the range.
+std::vector<std::pair<double, std::string>> colorbar_labels(const FieldRange& range) {
+    auto label = [](double v) { return with_minus(fmt::format("{:.3g}", v)); };
+    std::vector<std::pair<double, std::string>> labels = {{range.hi, label(range.hi)},
+                                                          {range.lo, label(range.lo)}};
+    // 0 only where it does not crowd the end labels (at least 8% of the bar away).
+    const double t0 = range.t(0.0);
+    if (t0 > 0.08 && t0 < 0.92) labels.emplace_back(0.0, "0");
+    return labels;
+}
+
+/// Width the side column needs for the legend and the colour bar.
+double side_width(cairo_t* cr, const Layers& layers) {
+    double w = min_side_width;
+    set_font(cr, font_size);
+    for (const CurvesLayer* c : legend_entries(layers)) {
+        w = std::max(w, 3 * legend_pad + legend_sample + text_width(cr, c->label));
+    }
+    if (const FieldLayer* field = last_field(layers)) {
+        w = std::max(w, text_width(cr, field->label));
+        for (const auto& [v, s] : colorbar_labels(field_range(*field))) {
+            w = std::max(w, colorbar_width + tick_length + label_gap + text_width(cr, s));
+        }
+    }
+    return w;
+}
+
+Page layout(cairo_t* cr, const Box& view, const std::string& title, const Layers& layers) {
+    Page page;
+    page.view = view;
+    page.x_ticks = nice_ticks(view.lo.x, view.hi.x);
+    page.y_ticks = nice_ticks(view.lo.y, view.hi.y);
+    set_font(cr, font_size);
+    double y_label_width = 0.0;
+    for (const std::string& s : page.y_ticks.labels) {
+        y_label_width = std::max(y_label_width, text_width(cr, s));
+    }
+    // tick, gap, widest label, gap, the axis name "y" (about one em), margin
+    page.plot_x = std::max(min_left_margin,
+                           tick_length + label_gap + y_label_width + 2.5 * font_size + 8.0);
+    page.plot_y = top_margin + (title.empty() ? 0.0 : title_room);
+    page.height = std::ceil(page.plot_y + plot_size + bottom_margin);
+    page.has_side = last_field(layers) != nullptr || !legend_entries(layers).empty();
+    if (page.has_side) {
+        page.side_x = page.plot_x + plot_size + side_gap;
+        page.width = std::ceil(page.side_x + side_width(cr, layers) + legend_pad);
+    } else {
+        page.width = std::ceil(page.plot_x + plot_size + right_margin);
+    }
+    return page;
+}
+
+// ---- layers -----------------------------------------------------------------------------------
+
+using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
+using ContextPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
+
+/// The field as an image, one pixel per sample, top row = highest y; NaN transparent.
+SurfacePtr field_image(const FieldLayer& field) {
+    const ScalarGrid& g = field.grid;
+    SurfacePtr image(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, g.nx, g.ny),
+                     &cairo_surface_destroy);
+    cairo_surface_flush(image.get());
+    unsigned char* data = cairo_image_surface_get_data(image.get());
+    const int stride = cairo_image_surface_get_stride(image.get());
+    const FieldRange range = field_range(field);
+    const std::span<const Color> map = color_map(field.diverging);
+    for (int j = 0; j < g.ny; ++j) {
+        auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(g.ny - 1 - j) * stride);
+        for (int i = 0; i < g.nx; ++i) {
+            const double v = g.values[static_cast<std::size_t>(j) * g.nx + i];
+            if (!std::isfinite(v)) {
+                row[i] = 0;  // premultiplied transparent
+                continue;
+            }
+            const Color c = map_color(map, range.t(v));
+            auto byte = [](double x) { return static_cast<std::uint32_t>(std::lround(255.0 * x)); };
+            row[i] = 0xff000000u | byte(c.r) << 16 | byte(c.g) << 8 | byte(c.b);
+        }
+    }
+    cairo_surface_mark_dirty(image.get());
+    return image;
+}
+
+void draw_field(cairo_t* cr, const Page& page, const FieldLayer& field) {
+    const SurfacePtr image = field_image(field);
+    const Vec2 top_left = page.to_page({field.grid.box.lo.x, field.grid.box.hi.y});
+    cairo_save(cr);
+    cairo_translate(cr, top_left.x, top_left.y);
+    cairo_scale(cr, field.grid.box.width() * page.scale() / field.grid.nx,
+                field.grid.box.height() * page.scale() / field.grid.ny);
+    cairo_set_source_surface(cr, image.get(), 0.0, 0.0);
+    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+    cairo_rectangle(cr, 0.0, 0.0, field.grid.nx, field.grid.ny);
+    cairo_fill(cr);
+    cairo_restore(cr);
+}
+
+void draw_boxes(cairo_t* cr, const Page& page, const BoxesLayer& layer) {
+    for (const Box& b : layer.boxes) {
+        const Vec2 p = page.to_page({b.lo.x, b.hi.y});
+        cairo_rectangle(cr, p.x, p.y, b.width() * page.scale(), b.height() * page.scale());
+    }
+    set_color(cr, layer.color);
+    cairo_set_line_width(cr, layer.line_width);
+    cairo_stroke(cr);
+}
+
+void draw_triangles(cairo_t* cr, const Page& page, const TrianglesLayer& layer) {
+    for (const auto& t : layer.triangles) {
+        for (int k = 0; k < 3; ++k) {
+            const Vec2 p = page.to_page(layer.vertices[t[k]]);
+            k == 0 ? cairo_move_to(cr, p.x, p.y) : cairo_line_to(cr, p.x, p.y);
+        }
+        cairo_close_path(cr);
+    }
+    set_color(cr, layer.color);
+    cairo_set_line_width(cr, layer.line_width);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    cairo_stroke(cr);
+}
+
+void draw_curves(cairo_t* cr, const Page& page, const CurvesLayer& layer) {
+    for (std::size_t c = 0; c < layer.curves.curve_count(); ++c) {
+        bool first = true;
+        for (const Vec2 v : layer.curves.curve(c)) {
+            if (!is_finite(v)) continue;  // a broken curve is still drawn, without that vertex
+            const Vec2 p = page.to_page(v);
+            first ? cairo_move_to(cr, p.x, p.y) : cairo_line_to(cr, p.x, p.y);
+            first = false;
+        }
+        if (!first) cairo_close_path(cr);
+    }
+    set_color(cr, layer.color);
+    cairo_set_line_width(cr, layer.line_width);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+    cairo_stroke(cr);
+}
+
+void draw_points(cairo_t* cr, const Page& page, const PointsLayer& layer) {
+    for (const Vec2 v : layer.points) {
+        if (!is_finite(v)) continue;
+        const Vec2 p = page.to_page(v);
+        cairo_new_sub_path(cr);
+        cairo_arc(cr, p.x, p.y, layer.radius, 0.0, 2.0 * M_PI);
+    }
+    set_color(cr, layer.color);
+    cairo_fill(cr);
+}
+
+/// Arrows with a filled head whose size is fixed on the page, shrunk on short arrows.
+void draw_arrows(cairo_t* cr, const Page& page, const ArrowsLayer& layer) {
+    constexpr double head_length = 7.0;
+    constexpr double head_half_width = 2.8;
+    cairo_new_path(cr);
+    std::vector<std::array<Vec2, 3>> heads;
+    for (std::size_t i = 0; i < layer.at.size(); ++i) {
+        const Vec2 tail = page.to_page(layer.at[i]);
+        const Vec2 tip = page.to_page(layer.at[i] + layer.scale * layer.vec[i]);
+        const double len = distance(tail, tip);
+        if (!(len > 1e-3) || !std::isfinite(len)) continue;  // nothing to see, or not finite
+        const Vec2 dir = (tip - tail) / len;
+        const double h = std::min(head_length, 0.4 * len);
+        const Vec2 base = tip - h * dir;
+        const Vec2 side = (h / head_length) * head_half_width * perp(dir);
+        heads.push_back({tip, base + side, base - side});
+        cairo_move_to(cr, tail.x, tail.y);
+        cairo_line_to(cr, base.x + 0.3 * h * dir.x, base.y + 0.3 * h * dir.y);
+    }
+    set_color(cr, layer.color);
+    cairo_set_line_width(cr, 1.0);
+    cairo_stroke(cr);
+    for (const auto& [a, b, c] : heads) {
+        cairo_move_to(cr, a.x, a.y);
+        cairo_line_to(cr, b.x, b.y);
+        cairo_line_to(cr, c.x, c.y);
+        cairo_close_path(cr);
+    }
+    cairo_fill(cr);
+}
+
+void draw_layers(cairo_t* cr, const Page& page, const Layers& layers) {
+    cairo_save(cr);
+    cairo_rectangle(cr, page.plot_x, page.plot_y, plot_size, plot_size);
+    cairo_clip(cr);
+    for (const LayerItem* item : layers) {
+        std::visit(Overloaded{[&](const FieldLayer& l) { draw_field(cr, page, l); },
+                              [&](const BoxesLayer& l) { draw_boxes(cr, page, l); },
+                              [&](const TrianglesLayer& l) { draw_triangles(cr, page, l); },
+                              [&](const CurvesLayer& l) { draw_curves(cr, page, l); },
+                              [&](const PointsLayer& l) { draw_points(cr, page, l); },
+                              [&](const ArrowsLayer& l) { draw_arrows(cr, page, l); }},
+                   *item);
+    }
+    cairo_restore(cr);
+}
+
+// ---- frame, axes, legend, colour bar ------------------------------------------------------------
+
+void draw_axes(cairo_t* cr, const Page& page) {
+    const double bottom = page.plot_y + plot_size;
+    cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+    cairo_set_line_width(cr, 1.0);
+    cairo_rectangle(cr, page.plot_x, page.plot_y, plot_size, plot_size);
+    set_font(cr, font_size);
+    for (std::size_t i = 0; i < page.x_ticks.values.size(); ++i) {
+        const double x = page.to_page({page.x_ticks.values[i], 0.0}).x;
+        cairo_move_to(cr, x, bottom);
+        cairo_line_to(cr, x, bottom + tick_length);
+        draw_text(cr, page.x_ticks.labels[i], x, bottom + tick_length + label_gap, 0.5, 0.0);
+    }
+    double widest = 0.0;
+    for (std::size_t i = 0; i < page.y_ticks.values.size(); ++i) {
+        const double y = page.to_page({0.0, page.y_ticks.values[i]}).y;
+        cairo_move_to(cr, page.plot_x, y);
+        cairo_line_to(cr, page.plot_x - tick_length, y);
+        draw_text(cr, page.y_ticks.labels[i], page.plot_x - tick_length - label_gap, y, 1.0, 0.5);
+        widest = std::max(widest, text_width(cr, page.y_ticks.labels[i]));
+    }
+    cairo_stroke(cr);
+    set_font(cr, font_size + 1.0, false, true);
+    draw_text(cr, "x", page.plot_x + 0.5 * plot_size, bottom + tick_length + 3.5 * font_size, 0.5,
+              0.5);
+    draw_text(cr, "y", page.plot_x - tick_length - label_gap - widest - font_size,
+              page.plot_y + 0.5 * plot_size, 0.5, 0.5);
+}
+
+void draw_title(cairo_t* cr, const Page& page, const std::string& title) {
+    if (title.empty()) return;
+    cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+    set_font(cr, title_font_size);
+    draw_text(cr, title, page.plot_x + 0.5 * plot_size, page.plot_y - 0.5 * title_room, 0.5, 0.5);
+}
+
+/// The legend at the top of the side column; returns its bottom edge.
+double draw_legend(cairo_t* cr, const Page& page, const Layers& layers) {
+    const std::vector<const CurvesLayer*> entries = legend_entries(layers);
+    if (entries.empty()) return page.plot_y;
+    set_font(cr, font_size);
+    double text = 0.0;
+    for (const CurvesLayer* c : entries) text = std::max(text, text_width(cr, c->label));
+    const double w = 3 * legend_pad + legend_sample + text;
+    const double h = 2 * legend_pad + legend_row * static_cast<double>(entries.size());
+    cairo_rectangle(cr, page.side_x + 0.5, page.plot_y + 0.5, w, h);
+    cairo_set_source_rgb(cr, 0.75, 0.75, 0.75);
+    cairo_set_line_width(cr, 1.0);
+    cairo_stroke(cr);
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        const double y = page.plot_y + legend_pad + legend_row * (static_cast<double>(i) + 0.5);
+        const double x = page.side_x + legend_pad;
+        cairo_move_to(cr, x, y);
+        cairo_line_to(cr, x + legend_sample, y);
+        set_color(cr, entries[i]->color);
+        cairo_set_line_width(cr, entries[i]->line_width);
+        cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+        cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+        draw_text(cr, entries[i]->label, x + legend_sample + legend_pad, y, 0.0, 0.5);
+    }
+    return page.plot_y + h;
+}
+
+/// A vertical colour bar below the legend: the label above, the range's values at the right.
+void draw_colorbar(cairo_t* cr, const Page& page, const FieldLayer& field, double top) {
+    const FieldRange range = field_range(field);
+    const double bar_top = top + 1.8 * font_size;
+    const double height = std::min(colorbar_max_height, page.plot_y + plot_size - bar_top);
+    const double x = page.side_x;
+    cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+    set_font(cr, font_size);
+    draw_text(cr, field.label, x, top, 0.0, 0.0);
+
+    const std::span<const Color> map = color_map(field.diverging);
+    cairo_pattern_t* gradient = cairo_pattern_create_linear(0.0, bar_top + height, 0.0, bar_top);
+    for (std::size_t i = 0; i < map.size(); ++i) {
+        const Color& c = map[i];
+        cairo_pattern_add_color_stop_rgb(
+            gradient, static_cast<double>(i) / static_cast<double>(map.size() - 1), c.r, c.g, c.b);
+    }
+    cairo_rectangle(cr, x, bar_top, colorbar_width, height);
+    cairo_set_source(cr, gradient);
+    cairo_fill_preserve(cr);
+    cairo_pattern_destroy(gradient);
+    cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+    cairo_set_line_width(cr, 0.8);
+    for (const auto& [v, s] : colorbar_labels(range)) {
+        const double y = bar_top + height * (1.0 - range.t(v));
+        cairo_move_to(cr, x + colorbar_width, y);
+        cairo_line_to(cr, x + colorbar_width + tick_length, y);
+        draw_text(cr, s, x + colorbar_width + tick_length + label_gap, y, 0.0, 0.5);
+    }
+    cairo_stroke(cr);
+}
+
+void render(cairo_t* cr, const Page& page, const Layers& layers, const std::string& title) {
+    cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
+    cairo_paint(cr);
+    draw_layers(cr, page, layers);
+    draw_axes(cr, page);
+    draw_title(cr, page, title);
+    const double legend_bottom = draw_legend(cr, page, layers);
+    if (const FieldLayer* field = last_field(layers)) {
+        const bool has_legend = legend_bottom > page.plot_y;
+        draw_colorbar(cr, page, *field, has_legend ? legend_bottom + 2.0 * font_size : page.plot_y);
+    }
+}
+
+// ---- output -----------------------------------------------------------------------------------
+
+cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
+    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+    return CAIRO_STATUS_SUCCESS;
+}
+
+Page measured_layout(const Box& view, const std::string& title, const Layers& layers) {
+    const SurfacePtr scratch(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1),
+                             &cairo_surface_destroy);
+    const ContextPtr cr(cairo_create(scratch.get()), &cairo_destroy);
+    return layout(cr.get(), view, title, layers);
+}
+
+void check(cairo_status_t status, const std::filesystem::path& path) {
+    if (status != CAIRO_STATUS_SUCCESS) {
+        throw InvalidInput(
+            fmt::format("cannot draw {}: {}", path.string(), cairo_status_to_string(status)));
+    }
+}
+
+std::string svg_bytes(const Page& page, const Layers& layers, const std::string& title,
+                      const std::filesystem::path& path) {
+    std::string bytes;
+    const SurfacePtr surface(
+        cairo_svg_surface_create_for_stream(&append_bytes, &bytes, page.width, page.height),
+        &cairo_surface_destroy);
+    {
+        const ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
+        render(cr.get(), page, layers, title);
+        check(cairo_status(cr.get()), path);
+    }
+    cairo_surface_finish(surface.get());
+    check(cairo_surface_status(surface.get()), path);
+    return bytes;
+}
+
+std::string png_bytes(const Page& page, const Layers& layers, const std::string& title,
+                      const std::filesystem::path& path) {
+    const SurfacePtr surface(
+        cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(png_scale * page.width),
+                                   static_cast<int>(png_scale * page.height)),
+        &cairo_surface_destroy);
+    {
+        const ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
+        cairo_scale(cr.get(), png_scale, png_scale);
+        render(cr.get(), page, layers, title);
+        check(cairo_status(cr.get()), path);
+    }
+    std::string bytes;
+    check(cairo_surface_write_to_png_stream(surface.get(), &append_bytes, &bytes), path);
+    return bytes;
+}
+
+void check_positive(double v, const char* what) {
+    if (!(v > 0.0) || !std::isfinite(v)) {
+        throw InvalidInput(fmt::format("{} must be positive and finite, got {}", what, v));
+    }
+}
+
+}  // namespace
+
+struct Figure::Layer {
+    LayerItem item;
+};
+
+Color palette_color(std::size_t i) {
+    // Tableau 10 without its yellow and grey, which are too faint on white.
+    static constexpr std::array<Color, 8> palette = {rgb(0x4e79a7), rgb(0xf28e2b), rgb(0xe15759),
+                                                     rgb(0x76b7b2), rgb(0x59a14f), rgb(0xb07aa1),
+                                                     rgb(0x9c755f), rgb(0xff9da7)};
+    return palette[i % palette.size()];
+}
+
+Figure::Figure(Box view, std::string title) : title_(std::move(title)) {
+    const double w = view.width();
+    const double h = view.height();
+    if (!is_finite(view.lo) || !is_finite(view.hi) || w < 0.0 || h < 0.0 || std::max(w, h) <= 0.0) {
+        throw InvalidInput(fmt::format("figure view box [{}, {}] x [{}, {}] is empty", view.lo.x,
+                                       view.hi.x, view.lo.y, view.hi.y));
+    }
+    // Square aspect: the shorter side grows about the centre.
+    const double half = 0.5 * std::max(w, h);
+    const Vec2 c = view.center();
+    view_ = {{c.x - half, c.y - half}, {c.x + half, c.y + half}};
+}
+
+void Figure::add_field(const ScalarGrid& field, const std::string& label, bool diverging) {
+    if (field.nx <= 0 || field.ny <= 0 ||
+        field.values.size() != static_cast<std::size_t>(field.nx) * field.ny) {
+        throw InvalidInput(fmt::format("field {}: a {} x {} grid needs {} values, got {}", label,
+                                       field.nx, field.ny,
+                                       std::max(field.nx, 0) * std::max(field.ny, 0),
+                                       field.values.size()));
+    }
+    check_positive(field.box.width(), "field box width");
+    check_positive(field.box.height(), "field box height");
+    layers_.push_back(std::make_shared<Layer>(Layer{FieldLayer{field, label, diverging}}));
+}
+
+void Figure::add_boxes(std::span<const Box> boxes, Color color, double line_width) {
+    check_positive(line_width, "line width");
+    layers_.push_back(std::make_shared<Layer>(
+        Layer{BoxesLayer{{boxes.begin(), boxes.end()}, color, line_width}}));
+}
+
+void Figure::add_triangles(std::span<const Vec2> vertices,
+                           std::span<const std::array<std::uint32_t, 3>> triangles, Color color,
+                           double line_width) {
+    check_positive(line_width, "line width");
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        for (const std::uint32_t v : triangles[t]) {
+            if (v >= vertices.size()) {
+                throw InvalidInput(fmt::format("triangle {} has vertex {}, but there are only {}",
+                                               t, v, vertices.size()));
+            }
+        }
+    }
+    layers_.push_back(std::make_shared<Layer>(
+        Layer{TrianglesLayer{{vertices.begin(), vertices.end()},
+                             {triangles.begin(), triangles.end()},
+                             color,
+                             line_width}}));
+}
+
+void Figure::add_curves(const Interface& curves, const std::string& label, Color color,
+                        double line_width) {
+    check_positive(line_width, "line width");
+    layers_.push_back(std::make_shared<Layer>(Layer{CurvesLayer{curves, label, color, line_width}}));
+}
+
+void Figure::add_points(std::span<const Vec2> points, Color color, double radius) {
+    check_positive(radius, "point radius");
+    layers_.push_back(
+        std::make_shared<Layer>(Layer{PointsLayer{{points.begin(), points.end()}, color, radius}}));
+}
+
+void Figure::add_arrows(std::span<const Vec2> at, std::span<const Vec2> vec, double scale,
+                        Color color) {
+    if (at.size() != vec.size()) {
+        throw InvalidInput(
+            fmt::format("arrows: {} positions but {} vectors", at.size(), vec.size()));
+    }
+    if (!std::isfinite(scale)) throw InvalidInput(fmt::format("arrow scale must be finite, got {}", scale));
+    layers_.push_back(std::make_shared<Layer>(
+        Layer{ArrowsLayer{{at.begin(), at.end()}, {vec.begin(), vec.end()}, scale, color}}));
+}
+
+void Figure::save(const std::filesystem::path& path) const {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if (ext != ".svg" && ext != ".png") {
+        throw InvalidInput(fmt::format("cannot save {}: the picture must end in .svg or .png",
+                                       path.string()));
+    }
+    Layers layers;
+    for (const auto& layer : layers_) layers.push_back(&layer->item);
+    const Page page = measured_layout(view_, title_, layers);
+    write_file_atomic(path, ext == ".svg" ? svg_bytes(page, layers, title_, path)
+                                          : png_bytes(page, layers, title_, path));
+}
+
+}  // namespace slc

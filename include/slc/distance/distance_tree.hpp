@@ -1,0 +1,70 @@
+// DistanceTree: exact signed distance F and a nearest point of Γ anywhere, fast (paper §1.3).
+//
+// A quadtree over the domain in which a cell is split (to depth L) while its edge exceeds its
+// distance to Γ, then 2:1 balanced. Every cell lists the segments that meet its concentric triple
+// (the 3×3 block of same-size cells around it). A query starts in the leaf holding x and climbs
+// ancestors, keeping the nearest segment of their lists, until the box of half-width m (the best
+// distance so far) around x lies inside the cell's triple: every segment nearer than m meets that
+// box and so is on the list, which makes the answer exact. The root lists every segment.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "slc/core/box.hpp"
+#include "slc/geometry/interface.hpp"
+#include "slc/geometry/segment.hpp"
+#include "slc/tree/quadtree.hpp"
+#include "slc/tree/triangulation.hpp"
+
+namespace slc {
+
+class DistanceTree {
+public:
+    struct Options {
+        int depth = 8;             ///< L: deepest level of the tree
+        bool triangulate = true;   ///< build the triangulation and its vertices' nearest points
+    };
+
+    /// Builds the tree for curves inside domain (a square). The tree refers to curves, which must
+    /// outlive it and stay unchanged. Throws InvalidInput for an empty interface, a domain that is
+    /// not a square, or a depth outside 0..Quadtree::max_supported_depth.
+    /// Cost O(N log N) time and memory for N segments of similar size.
+    DistanceTree(const Interface& curves, Box domain, Options options);
+
+    /// Signed closest point of Γ to x (any x, also outside the domain): distance exact to
+    /// rounding; sign right at corners (pseudo-normal at vertices); 0 on Γ. O(log N) near Γ.
+    ClosestPoint closest_point(Vec2 x) const;
+
+    /// closest_point for a batch, on all worker threads; out.size() == xs.size(). The answer for
+    /// each point does not depend on the thread count.
+    void closest_points(std::span<const Vec2> xs, std::span<ClosestPoint> out) const;
+    std::vector<ClosestPoint> closest_points(std::span<const Vec2> xs) const;
+    /// Signed distances F for a batch, on all worker threads.
+    std::vector<double> signed_distances(std::span<const Vec2> xs) const;
+
+    const Interface& curves() const { return *curves_; }
+    const Quadtree& tree() const { return tree_; }
+    /// The triangulation of the balanced tree (empty unless Options::triangulate).
+    const Triangulation& triangulation() const { return mesh_; }
+    /// Signed closest point of every triangulation vertex: the vertices' pointers to their
+    /// nearest segments, which make the nearest-point extension O(1) there.
+    std::span<const ClosestPoint> vertex_closest_points() const { return vertex_nearest_; }
+    /// Segments listed by cell c: those meeting its concentric triple, in increasing order.
+    std::span<const std::uint32_t> cell_segments(std::size_t c) const {
+        return std::span<const std::uint32_t>(segments_).subspan(offsets_[c], offsets_[c + 1] - offsets_[c]);
+    }
+
+private:
+    void build_lists(std::vector<std::vector<std::uint32_t>>& lists);
+
+    const Interface* curves_;
+    Quadtree tree_;
+    std::vector<std::uint32_t> offsets_;   ///< CSR: segments of cell c are [offsets_[c], offsets_[c+1])
+    std::vector<std::uint32_t> segments_;
+    Triangulation mesh_;
+    std::vector<ClosestPoint> vertex_nearest_;
+};
+
+}  // namespace slc

@@ -1,0 +1,114 @@
+// Quadtree: the square cells of the distance tree (paper §1.3, Fig. 2a) and of the contouring
+// tree (§2.1), with 2:1 balancing. The tree holds only structure; owners keep per-cell data in
+// arrays indexed by cell number.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "slc/core/box.hpp"
+
+namespace slc {
+
+/// A quadtree over a square root box. Cells are numbered in creation order: the root is 0 and
+/// the four children of a cell are consecutive, (low x, low y), (high x, low y), (low x, high y),
+/// (high x, high y). A cell at level l has integer coordinates (ix, iy) in [0, 2^l)².
+class Quadtree {
+public:
+    static constexpr std::uint32_t no_cell = 0xffffffffu;
+    /// Deepest level supported: integer vertex keys of the triangulation need 2·(level + 1) bits.
+    static constexpr int max_supported_depth = 30;
+
+    struct Cell {
+        std::uint32_t parent = no_cell;
+        std::uint32_t first_child = no_cell;  ///< no_cell for a leaf
+        std::uint32_t ix = 0;
+        std::uint32_t iy = 0;
+        int level = 0;
+    };
+
+    /// A single root cell covering root, which must be a square of positive size, and cells
+    /// never deeper than max_depth (0..max_supported_depth). Throws InvalidInput otherwise.
+    Quadtree(Box root, int max_depth);
+
+    std::size_t size() const { return cells_.size(); }
+    const Cell& cell(std::size_t c) const { return cells_[c]; }
+    bool is_leaf(std::size_t c) const { return cells_[c].first_child == no_cell; }
+    int max_depth() const { return max_depth_; }
+    /// Deepest level of any existing cell.
+    int depth() const { return depth_; }
+    const Box& root_box() const { return root_; }
+    /// Edge length of a cell at the given level.
+    double edge(int level) const { return edges_[static_cast<std::size_t>(level)]; }
+    Box box(std::size_t c) const;
+    /// The cell's concentric triple: the 3×3 block of same-size cells around it (§1.3).
+    Box triple(std::size_t c) const { return box(c).inflated(edge(cells_[c].level)); }
+
+    /// Splits leaf c into four children, appended at the end. Precondition: c is a leaf above
+    /// max_depth. Returns the index of the first child.
+    std::uint32_t split(std::size_t c);
+
+    /// The leaf containing p; points outside the root box are first moved to its nearest point.
+    /// On a shared edge the cell on the high side wins. O(depth).
+    std::uint32_t leaf_at(Vec2 p) const;
+
+    /// The cell at (level, ix, iy), or the deepest existing cell containing it; no_cell when
+    /// (ix, iy) lies outside [0, 2^level)². O(level).
+    std::uint32_t find(int level, std::int64_t ix, std::int64_t iy) const;
+
+    /// Splits leaves until every two leaves that share part of an edge differ by at most one
+    /// level. Calls on_split(c) after each split, in order. Cost O(cells · depth).
+    template <class OnSplit>
+    void balance(OnSplit&& on_split);
+    void balance() {
+        balance([](std::size_t) {});
+    }
+
+    /// True when every two edge-adjacent leaves differ by at most one level.
+    bool is_balanced() const;
+
+    /// All leaves, in increasing cell number.
+    std::vector<std::uint32_t> leaves() const;
+
+private:
+    /// Leaves that must be split so that leaf c has no edge neighbour coarser than level − 1.
+    void collect_coarse_neighbours(std::size_t c, std::vector<std::uint32_t>& out) const;
+
+    Box root_;
+    int max_depth_ = 0;
+    int depth_ = 0;
+    std::vector<double> edges_;
+    std::vector<Cell> cells_;
+};
+
+template <class OnSplit>
+void Quadtree::balance(OnSplit&& on_split) {
+    // Work from the finest level to the coarsest: a leaf at level l forces its edge neighbours
+    // to exist down to level l − 1; splits only create cells above level l, which are handled
+    // when their own level comes up.
+    std::vector<std::vector<std::uint32_t>> by_level(static_cast<std::size_t>(max_depth_) + 1);
+    for (std::uint32_t c : leaves()) by_level[static_cast<std::size_t>(cells_[c].level)].push_back(c);
+    std::vector<std::uint32_t> coarse;
+    for (int level = depth_; level >= 2; --level) {
+        auto& list = by_level[static_cast<std::size_t>(level)];
+        for (std::size_t k = 0; k < list.size(); ++k) {
+            if (!is_leaf(list[k])) continue;
+            for (;;) {  // a neighbour may need several splits
+                coarse.clear();
+                collect_coarse_neighbours(list[k], coarse);
+                if (coarse.empty()) break;
+                for (std::uint32_t n : coarse) {
+                    if (!is_leaf(n)) continue;
+                    const std::uint32_t first = split(n);
+                    on_split(n);
+                    for (std::uint32_t ch = first; ch < first + 4; ++ch)
+                        by_level[static_cast<std::size_t>(cells_[ch].level)].push_back(ch);
+                }
+            }
+        }
+    }
+}
+
+}  // namespace slc

@@ -1,0 +1,145 @@
+// DistanceTree: building the tree and its segment lists, and the climbing closest-point query.
+#include "slc/distance/distance_tree.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+
+namespace slc {
+namespace {
+
+/// Relative growth of a triple before testing segments against it: a segment that misses the
+/// triple only by rounding still makes the list, which can only lengthen the list, never make a
+/// query inexact.
+constexpr double triple_slack = 1e-12;
+
+/// True if the closed segment meets the closed box (separating-axis test: bounding boxes, then
+/// the segment's line against the box corners).
+bool meets(Segment s, const Box& b) {
+    if (std::max(s.a.x, s.b.x) < b.lo.x || std::min(s.a.x, s.b.x) > b.hi.x ||
+        std::max(s.a.y, s.b.y) < b.lo.y || std::min(s.a.y, s.b.y) > b.hi.y) {
+        return false;
+    }
+    const Vec2 d = s.b - s.a;
+    const double c0 = cross(d, b.lo - s.a);
+    const double c1 = cross(d, Vec2{b.hi.x, b.lo.y} - s.a);
+    const double c2 = cross(d, b.hi - s.a);
+    const double c3 = cross(d, Vec2{b.lo.x, b.hi.y} - s.a);
+    const bool all_left = c0 > 0 && c1 > 0 && c2 > 0 && c3 > 0;
+    const bool all_right = c0 < 0 && c1 < 0 && c2 < 0 && c3 < 0;
+    return !all_left && !all_right;
+}
+
+/// Euclidean distance between a segment and a box: zero if they meet, else attained at a vertex
+/// of one of the two convex sets.
+double distance(Segment s, const Box& b) {
+    if (meets(s, b)) return 0.0;
+    double d2 = std::min(norm2(b.clamp(s.a) - s.a), norm2(b.clamp(s.b) - s.b));
+    const Vec2 corners[4] = {b.lo, {b.hi.x, b.lo.y}, b.hi, {b.lo.x, b.hi.y}};
+    for (Vec2 q : corners) d2 = std::min(d2, closest_point(s, q).distance2);
+    return std::sqrt(d2);
+}
+
+}  // namespace
+
+DistanceTree::DistanceTree(const Interface& curves, Box domain, Options options)
+    : curves_(&curves), tree_(domain, options.depth) {
+    if (curves.empty()) throw InvalidInput("distance tree: the interface is empty");
+    std::vector<std::vector<std::uint32_t>> lists(1);
+    lists[0].resize(curves.size());
+    std::iota(lists[0].begin(), lists[0].end(), 0u);
+    build_lists(lists);
+
+    offsets_.reserve(lists.size() + 1);
+    offsets_.push_back(0);
+    for (const auto& list : lists) {
+        segments_.insert(segments_.end(), list.begin(), list.end());
+        offsets_.push_back(static_cast<std::uint32_t>(segments_.size()));
+    }
+    if (options.triangulate) {
+        mesh_ = triangulate(tree_);
+        vertex_nearest_ = closest_points(mesh_.vertices);
+    }
+}
+
+void DistanceTree::build_lists(std::vector<std::vector<std::uint32_t>>& lists) {
+    const Interface& curves = *curves_;
+    auto list_children = [&](std::size_t c, std::uint32_t first) {
+        lists.resize(tree_.size());
+        for (std::uint32_t k = first; k < first + 4; ++k) {
+            const Box t = tree_.triple(k).inflated(triple_slack * tree_.edge(tree_.cell(k).level));
+            for (std::uint32_t s : lists[c])
+                if (meets(curves.segment(s), t)) lists[k].push_back(s);
+        }
+    };
+    // Cells are appended breadth-first, so one pass in index order refines level by level:
+    // split a cell while its edge exceeds its distance to Γ (§1.3, Eq. 6). Only segments on the
+    // cell's list can be that near, since the triple holds every point within one edge.
+    for (std::size_t c = 0; c < tree_.size(); ++c) {
+        const int level = tree_.cell(c).level;
+        if (level == tree_.max_depth()) continue;
+        const Box b = tree_.box(c);
+        const double h = tree_.edge(level);
+        bool near = false;
+        for (std::uint32_t s : lists[c]) {
+            if (distance(curves.segment(s), b) < h) {
+                near = true;
+                break;
+            }
+        }
+        if (near) list_children(c, tree_.split(c));
+    }
+    tree_.balance([&](std::size_t c) { list_children(c, tree_.cell(c).first_child); });
+}
+
+ClosestPoint DistanceTree::closest_point(Vec2 x) const {
+    const Interface& curves = *curves_;
+    std::uint32_t c = tree_.leaf_at(x);
+    double best = std::numeric_limits<double>::infinity();
+    ClosestPoint result;
+    for (;;) {
+        for (std::uint32_t s : cell_segments(c)) {
+            const SegmentPoint p = slc::closest_point(curves.segment(s), x);
+            if (p.distance2 < best || (p.distance2 == best && s < result.segment)) {
+                best = p.distance2;
+                result.point = p.point;
+                result.segment = s;
+                result.t = p.t;
+            }
+        }
+        if (best < std::numeric_limits<double>::infinity()) {
+            const double m = std::sqrt(best);
+            const Box reach{{x.x - m, x.y - m}, {x.x + m, x.y + m}};
+            if (tree_.triple(c).contains(reach)) break;
+        }
+        if (c == 0) break;  // the root lists every segment
+        c = tree_.cell(c).parent;
+    }
+    const double d = std::sqrt(best);
+    result.distance = d == 0.0 ? 0.0 : side_of(curves, result.segment, result.t, x) * d;
+    return result;
+}
+
+void DistanceTree::closest_points(std::span<const Vec2> xs, std::span<ClosestPoint> out) const {
+    SLC_ASSERT(xs.size() == out.size(), "one answer per query point");
+    parallel_for(xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]); });
+}
+
+std::vector<ClosestPoint> DistanceTree::closest_points(std::span<const Vec2> xs) const {
+    std::vector<ClosestPoint> out(xs.size());
+    closest_points(xs, out);
+    return out;
+}
+
+std::vector<double> DistanceTree::signed_distances(std::span<const Vec2> xs) const {
+    std::vector<double> out(xs.size());
+    parallel_for(xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]).distance; });
+    return out;
+}
+
+}  // namespace slc

@@ -1,0 +1,96 @@
+// Quadtree structure, point location and the 2:1 balance check.
+#include "slc/tree/quadtree.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "slc/core/error.hpp"
+
+namespace slc {
+
+Quadtree::Quadtree(Box root, int max_depth) : root_(root), max_depth_(max_depth) {
+    const double w = root.width();
+    if (!(w > 0.0) || !std::isfinite(w) || root.height() != w) {
+        throw InvalidInput(fmt::format("tree root must be a square of positive size, got [{}, {}]x[{}, {}]",
+                                       root.lo.x, root.hi.x, root.lo.y, root.hi.y));
+    }
+    if (max_depth < 0 || max_depth > max_supported_depth) {
+        throw InvalidInput(fmt::format("tree depth must be between 0 and {}, got {}",
+                                       max_supported_depth, max_depth));
+    }
+    edges_.resize(static_cast<std::size_t>(max_depth) + 1);
+    for (int l = 0; l <= max_depth; ++l) edges_[static_cast<std::size_t>(l)] = std::ldexp(w, -l);
+    cells_.push_back(Cell{});
+}
+
+Box Quadtree::box(std::size_t c) const {
+    const Cell& cell = cells_[c];
+    const double h = edge(cell.level);
+    const Vec2 lo{root_.lo.x + cell.ix * h, root_.lo.y + cell.iy * h};
+    return {lo, {lo.x + h, lo.y + h}};
+}
+
+std::uint32_t Quadtree::split(std::size_t c) {
+    SLC_ASSERT(is_leaf(c) && cells_[c].level < max_depth_, "only leaves above the depth limit split");
+    const auto first = static_cast<std::uint32_t>(cells_.size());
+    const Cell parent = cells_[c];
+    cells_[c].first_child = first;
+    for (std::uint32_t k = 0; k < 4; ++k) {
+        cells_.push_back(Cell{static_cast<std::uint32_t>(c), no_cell, 2 * parent.ix + (k & 1u),
+                              2 * parent.iy + (k >> 1), parent.level + 1});
+    }
+    if (parent.level + 1 > depth_) depth_ = parent.level + 1;
+    return first;
+}
+
+std::uint32_t Quadtree::leaf_at(Vec2 p) const {
+    p = root_.clamp(p);
+    std::uint32_t c = 0;
+    while (!is_leaf(c)) {
+        const Vec2 mid = box(c).center();
+        c = cells_[c].first_child + (p.x >= mid.x ? 1u : 0u) + (p.y >= mid.y ? 2u : 0u);
+    }
+    return c;
+}
+
+std::uint32_t Quadtree::find(int level, std::int64_t ix, std::int64_t iy) const {
+    const std::int64_t n = std::int64_t{1} << level;
+    if (ix < 0 || iy < 0 || ix >= n || iy >= n) return no_cell;
+    std::uint32_t c = 0;
+    while (!is_leaf(c) && cells_[c].level < level) {
+        const int shift = level - cells_[c].level - 1;
+        const auto bx = static_cast<std::uint32_t>((ix >> shift) & 1);
+        const auto by = static_cast<std::uint32_t>((iy >> shift) & 1);
+        c = cells_[c].first_child + bx + 2 * by;
+    }
+    return c;
+}
+
+void Quadtree::collect_coarse_neighbours(std::size_t c, std::vector<std::uint32_t>& out) const {
+    const Cell& cell = cells_[c];
+    constexpr int dx[4] = {-1, 1, 0, 0};
+    constexpr int dy[4] = {0, 0, -1, 1};
+    for (int d = 0; d < 4; ++d) {
+        const std::uint32_t n = find(cell.level, std::int64_t{cell.ix} + dx[d], std::int64_t{cell.iy} + dy[d]);
+        if (n != no_cell && cells_[n].level < cell.level - 1) out.push_back(n);
+    }
+}
+
+bool Quadtree::is_balanced() const {
+    std::vector<std::uint32_t> coarse;
+    for (std::uint32_t c : leaves()) {
+        collect_coarse_neighbours(c, coarse);
+        if (!coarse.empty()) return false;
+    }
+    return true;
+}
+
+std::vector<std::uint32_t> Quadtree::leaves() const {
+    std::vector<std::uint32_t> out;
+    for (std::size_t c = 0; c < cells_.size(); ++c)
+        if (is_leaf(c)) out.push_back(static_cast<std::uint32_t>(c));
+    return out;
+}
+
+}  // namespace slc

@@ -1,0 +1,94 @@
+// Tests of the quadtree: point location, lookup by coordinates, and 2:1 balancing.
+#include "slc/tree/quadtree.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "slc/core/error.hpp"
+
+namespace slc {
+namespace {
+
+/// A deliberately unbalanced tree: cells holding any of a few points split to full depth.
+Quadtree graded_tree(int depth, std::mt19937& rng, int points) {
+    Quadtree tree(Box::centered_square(1.0), depth);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int k = 0; k < points; ++k) {
+        const Vec2 p{u(rng), u(rng)};
+        std::uint32_t c = tree.leaf_at(p);
+        while (tree.cell(c).level < depth) {
+            tree.split(c);
+            c = tree.leaf_at(p);
+        }
+    }
+    return tree;
+}
+
+/// Brute force: do two leaves share part of an edge?
+bool share_edge(const Box& a, const Box& b) {
+    const double tol = 1e-15;
+    const bool x_touch = std::abs(a.hi.x - b.lo.x) < tol || std::abs(b.hi.x - a.lo.x) < tol;
+    const bool y_touch = std::abs(a.hi.y - b.lo.y) < tol || std::abs(b.hi.y - a.lo.y) < tol;
+    const bool x_overlap = std::min(a.hi.x, b.hi.x) - std::max(a.lo.x, b.lo.x) > tol;
+    const bool y_overlap = std::min(a.hi.y, b.hi.y) - std::max(a.lo.y, b.lo.y) > tol;
+    return (x_touch && y_overlap) || (y_touch && x_overlap);
+}
+
+TEST(Quadtree, LeafAtReturnsTheLeafContainingThePoint) {
+    std::mt19937 rng(7);
+    const Quadtree tree = graded_tree(8, rng, 5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int k = 0; k < 2000; ++k) {
+        const Vec2 p{u(rng), u(rng)};
+        const std::uint32_t c = tree.leaf_at(p);
+        EXPECT_TRUE(tree.is_leaf(c));
+        EXPECT_TRUE(tree.box(c).contains(p));
+    }
+    EXPECT_TRUE(tree.box(tree.leaf_at({5.0, -7.0})).contains(Vec2{1.0, -1.0}));
+}
+
+TEST(Quadtree, FindReturnsCellOrDeepestAncestor) {
+    std::mt19937 rng(11);
+    const Quadtree tree = graded_tree(6, rng, 3);
+    for (std::size_t c = 0; c < tree.size(); ++c) {
+        const auto& cell = tree.cell(c);
+        EXPECT_EQ(tree.find(cell.level, cell.ix, cell.iy), c);
+    }
+    EXPECT_EQ(tree.find(3, -1, 0), Quadtree::no_cell);
+    EXPECT_EQ(tree.find(3, 0, 8), Quadtree::no_cell);
+}
+
+TEST(Quadtree, BalanceLeavesEdgeNeighboursWithinOneLevel) {
+    for (unsigned seed = 1; seed <= 20; ++seed) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        std::mt19937 rng(seed);
+        Quadtree tree = graded_tree(7, rng, 4);
+        EXPECT_FALSE(tree.is_balanced());
+        std::size_t splits = 0;
+        tree.balance([&](std::size_t c) {
+            EXPECT_FALSE(tree.is_leaf(c));
+            ++splits;
+        });
+        EXPECT_GT(splits, 0u);
+        EXPECT_TRUE(tree.is_balanced());
+        // Brute force over all pairs of leaves.
+        const auto leaves = tree.leaves();
+        for (std::size_t i = 0; i < leaves.size(); ++i) {
+            for (std::size_t j = i + 1; j < leaves.size(); ++j) {
+                if (!share_edge(tree.box(leaves[i]), tree.box(leaves[j]))) continue;
+                EXPECT_LE(std::abs(tree.cell(leaves[i]).level - tree.cell(leaves[j]).level), 1);
+            }
+        }
+    }
+}
+
+TEST(Quadtree, RejectsARootThatIsNotASquareAndDepthsOutOfRange) {
+    EXPECT_THROW(Quadtree(Box{{0, 0}, {1, 2}}, 3), InvalidInput);
+    EXPECT_THROW(Quadtree(Box{{0, 0}, {0, 0}}, 3), InvalidInput);
+    EXPECT_THROW(Quadtree(Box::centered_square(1.0), -1), InvalidInput);
+    EXPECT_THROW(Quadtree(Box::centered_square(1.0), Quadtree::max_supported_depth + 1), InvalidInput);
+}
+
+}  // namespace
+}  // namespace slc
