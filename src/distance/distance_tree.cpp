@@ -50,6 +50,8 @@ double distance(Segment s, const Box& b) {
 DistanceTree::DistanceTree(const Interface& curves, Box domain, Options options)
     : curves_(&curves), tree_(domain, options.depth) {
     if (curves.empty()) throw InvalidInput("distance tree: the interface is empty");
+    segment_ends_.reserve(curves.size());
+    for (std::size_t i = 0; i < curves.size(); ++i) segment_ends_.push_back(curves.segment(i));
     std::vector<std::vector<std::uint32_t>> lists(1);
     lists[0].resize(curves.size());
     std::iota(lists[0].begin(), lists[0].end(), 0u);
@@ -68,13 +70,12 @@ DistanceTree::DistanceTree(const Interface& curves, Box domain, Options options)
 }
 
 void DistanceTree::build_lists(std::vector<std::vector<std::uint32_t>>& lists) {
-    const Interface& curves = *curves_;
     auto list_children = [&](std::size_t c, std::uint32_t first) {
         lists.resize(tree_.size());
         for (std::uint32_t k = first; k < first + 4; ++k) {
             const Box t = tree_.triple(k).inflated(triple_slack * tree_.edge(tree_.cell(k).level));
             for (std::uint32_t s : lists[c])
-                if (meets(curves.segment(s), t)) lists[k].push_back(s);
+                if (meets(segment_ends_[s], t)) lists[k].push_back(s);
         }
     };
     // Cells are appended breadth-first, so one pass in index order refines level by level:
@@ -87,7 +88,7 @@ void DistanceTree::build_lists(std::vector<std::vector<std::uint32_t>>& lists) {
         const double h = tree_.edge(level);
         bool near = false;
         for (std::uint32_t s : lists[c]) {
-            if (distance(curves.segment(s), b) < h) {
+            if (distance(segment_ends_[s], b) < h) {
                 near = true;
                 break;
             }
@@ -98,13 +99,12 @@ void DistanceTree::build_lists(std::vector<std::vector<std::uint32_t>>& lists) {
 }
 
 ClosestPoint DistanceTree::closest_point(Vec2 x) const {
-    const Interface& curves = *curves_;
     std::uint32_t c = tree_.leaf_at(x);
     double best = std::numeric_limits<double>::infinity();
     ClosestPoint result;
     for (;;) {
         for (std::uint32_t s : cell_segments(c)) {
-            const SegmentPoint p = slc::closest_point(curves.segment(s), x);
+            const SegmentPoint p = slc::closest_point(segment_ends_[s], x);
             if (p.distance2 < best || (p.distance2 == best && s < result.segment)) {
                 best = p.distance2;
                 result.point = p.point;
@@ -121,7 +121,7 @@ ClosestPoint DistanceTree::closest_point(Vec2 x) const {
         c = tree_.cell(c).parent;
     }
     const double d = std::sqrt(best);
-    result.distance = d == 0.0 ? 0.0 : side_of(curves, result.segment, result.t, x) * d;
+    result.distance = d == 0.0 ? 0.0 : side_of(*curves_, result.segment, result.t, x) * d;
     return result;
 }
 

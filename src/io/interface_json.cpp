@@ -1,6 +1,6 @@
 // Interface files (DESIGN §6): reading and checking {"time": t, "curves": [{"points": [[x, y],
 // ...]}, ...]} with nlohmann-json, writing it back with 17 significant digits so that a written
-// file reads back bit for bit, and the atomic file write that every output of the tool goes through.
+// file reads back bit for bit, and the atomic file write that every output of the tool uses.
 #include "slc/io/interface_json.hpp"
 
 #include <fmt/format.h>
@@ -143,8 +143,8 @@ std::vector<Vec2> parse_curve(const Json& curve, std::size_t c, const std::strin
         }
         const Vec2 v{point[0].get<double>(), point[1].get<double>()};
         if (!is_finite(v)) {
-            throw InvalidInput(fmt::format("{}: curve {}, point {} has a non-finite coordinate",
-                                           source, c, p));
+            throw InvalidInput(
+                fmt::format("{}: curve {}, point {} has a non-finite coordinate", source, c, p));
         }
         out.push_back(v);
     }
@@ -154,8 +154,8 @@ std::vector<Vec2> parse_curve(const Json& curve, std::size_t c, const std::strin
 /// The whole content of a file, or InvalidInput with the system's reason.
 std::string read_text_file(const std::filesystem::path& path) {
     auto fail = [&](int err) {
-        return InvalidInput(fmt::format("cannot read {}: {}", path.string(),
-                                        std::generic_category().message(err)));
+        return InvalidInput(
+            fmt::format("cannot read {}: {}", path.string(), std::generic_category().message(err)));
     };
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
                                                          &std::fclose);
@@ -185,7 +185,9 @@ InterfaceFile parse_interface_json(const std::string& text, const std::string& s
     InterfaceFile out;
     if (doc.contains("time")) {
         const Json& time = doc["time"];
-        if (!time.is_number()) throw InvalidInput(fmt::format("{}: \"time\" is not a number", source));
+        if (!time.is_number()) {
+            throw InvalidInput(fmt::format("{}: \"time\" is not a number", source));
+        }
         out.time = time.get<double>();
         if (!std::isfinite(out.time)) {
             throw InvalidInput(fmt::format("{}: \"time\" is not finite", source));
@@ -193,7 +195,9 @@ InterfaceFile parse_interface_json(const std::string& text, const std::string& s
     }
     const Json& curves = doc["curves"];
     out.curves.reserve(curves.size());
-    for (std::size_t c = 0; c < curves.size(); ++c) out.curves.push_back(parse_curve(curves[c], c, source));
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+        out.curves.push_back(parse_curve(curves[c], c, source));
+    }
     return out;
 }
 
@@ -238,8 +242,8 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
 
     std::FILE* file = std::fopen(temp.c_str(), "wb");
     if (file == nullptr) throw fail(std::generic_category().message(errno));
-    const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size() &&
-                         std::fflush(file) == 0;
+    const bool written =
+        std::fwrite(text.data(), 1, text.size(), file) == text.size() && std::fflush(file) == 0;
     const int write_error = errno;
     const bool closed = std::fclose(file) == 0;
     if (!written || !closed) {

@@ -65,8 +65,8 @@ double parse_coordinate(std::string_view field, const char* name, const std::str
 
 std::string read_text_file(const std::filesystem::path& path) {
     auto fail = [&](int err) {
-        return InvalidInput(fmt::format("cannot read {}: {}", path.string(),
-                                        std::generic_category().message(err)));
+        return InvalidInput(
+            fmt::format("cannot read {}: {}", path.string(), std::generic_category().message(err)));
     };
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
                                                          &std::fclose);
@@ -101,8 +101,8 @@ std::vector<Vec2> parse_points_csv(const std::string& text, const std::string& s
             throw InvalidInput(
                 fmt::format("{}: expected 2 columns x,y, got {}", place, fields.size()));
         }
-        points.push_back({parse_coordinate(fields[0], "x", place),
-                          parse_coordinate(fields[1], "y", place)});
+        points.push_back(
+            {parse_coordinate(fields[0], "x", place), parse_coordinate(fields[1], "y", place)});
     }
     return points;
 }

@@ -20,7 +20,7 @@ namespace slc {
 namespace {
 
 // Page layout in pixels of the SVG (points) and of the PNG before its 2x scale.
-constexpr double plot_size = 560.0;      // edge of the square plot area
+constexpr double plot_size = 560.0;       // edge of the square plot area
 constexpr double min_left_margin = 80.0;  // room for y tick labels and the "y" axis label
 constexpr double right_margin = 30.0;     // room for half of the last x tick label
 constexpr double top_margin = 20.0;
@@ -37,6 +37,7 @@ constexpr double legend_sample = 28.0;  // length of the line sample of a legend
 constexpr double legend_pad = 8.0;
 constexpr double colorbar_width = 16.0;
 constexpr double colorbar_max_height = 300.0;
+constexpr double colorbar_min_height = 120.0;  // below a long legend the page grows instead
 constexpr double png_scale = 2.0;  // PNG pixels per layout pixel, for sharp lines and text
 constexpr int max_ticks = 7;
 const char* const font_family = "DejaVu Sans";
@@ -74,8 +75,8 @@ struct ArrowsLayer {
     double scale = 0.0;
     Color color;
 };
-using LayerItem = std::variant<FieldLayer, BoxesLayer, TrianglesLayer, CurvesLayer, PointsLayer,
-                               ArrowsLayer>;
+using LayerItem =
+    std::variant<FieldLayer, BoxesLayer, TrianglesLayer, CurvesLayer, PointsLayer, ArrowsLayer>;
 using Layers = std::vector<const LayerItem*>;
 
 template <class... F>
@@ -94,9 +95,9 @@ constexpr Color rgb(int hex) {
 constexpr std::array<Color, 7> diverging_map = {rgb(0x2166ac), rgb(0x67a9cf), rgb(0xd1e5f0),
                                                 rgb(0xf7f7f7), rgb(0xfddbc7), rgb(0xef8a62),
                                                 rgb(0xb2182b)};
-constexpr std::array<Color, 9> sequential_map = {
-    rgb(0x440154), rgb(0x472d7b), rgb(0x3b528b), rgb(0x2c728e), rgb(0x21918c),
-    rgb(0x28ae80), rgb(0x5ec962), rgb(0xaddc30), rgb(0xfde725)};
+constexpr std::array<Color, 9> sequential_map = {rgb(0x440154), rgb(0x472d7b), rgb(0x3b528b),
+                                                 rgb(0x2c728e), rgb(0x21918c), rgb(0x28ae80),
+                                                 rgb(0x5ec962), rgb(0xaddc30), rgb(0xfde725)};
 
 std::span<const Color> color_map(bool diverging) {
     if (diverging) return diverging_map;
@@ -137,9 +138,18 @@ FieldRange field_range(const FieldLayer& field) {
 
 // ---- numbers and text -------------------------------------------------------------------------
 
-/// A typographic minus sign in place of a leading hyphen.
-std::string with_minus(std::string s) {
-    if (!s.empty() && s[0] == '-') s.replace(0, 1, "\u2212");
+/// A number as printed by fmt, made typographic: "-1.5e-05" becomes "−1.5e−5" (minus signs,
+/// no "+" or leading zeros in the exponent).
+std::string typeset(std::string s) {
+    if (const std::size_t e = s.find('e'); e != std::string::npos) {
+        std::size_t digits = e + 1;
+        if (digits < s.size() && s[digits] == '+') s.erase(digits, 1);
+        if (digits < s.size() && s[digits] == '-') ++digits;
+        while (digits + 1 < s.size() && s[digits] == '0') s.erase(digits, 1);
+    }
+    for (std::size_t at = s.find('-'); at != std::string::npos; at = s.find('-', at)) {
+        s.replace(at, 1, "\u2212");
+    }
     return s;
 }
 
@@ -157,23 +167,26 @@ Ticks nice_ticks(double lo, double hi) {
             const double step = m * std::pow(10.0, e);
             const double first = std::ceil(lo / step);
             const double last = std::floor(hi / step);
-            if (last - first + 1 > max_ticks) continue;
+            // NaN or inf when the step underflows: try a larger one.
+            if (!(last - first + 1 <= max_ticks)) continue;
             Ticks ticks;
             const int decimals = std::max(0, -e);
+            const bool scientific = e >= 6 || e <= -6;  // else too many digits
             for (double i = first; i <= last; i += 1.0) {
                 const double v = std::abs(i) < 0.5 ? 0.0 : i * step;  // never "-0"
                 ticks.values.push_back(v);
-                ticks.labels.push_back(with_minus(fmt::format("{:.{}f}", v, decimals)));
+                ticks.labels.push_back(typeset(scientific ? fmt::format("{:g}", v)
+                                                          : fmt::format("{:.{}f}", v, decimals)));
             }
             return ticks;
         }
     }
 }
 
-void set_font(cairo_t* cr, double size, bool bold = false, bool italic = false) {
+void set_font(cairo_t* cr, double size, bool italic = false) {
     cairo_select_font_face(cr, font_family,
                            italic ? CAIRO_FONT_SLANT_ITALIC : CAIRO_FONT_SLANT_NORMAL,
-                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+                           CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, size);
 }
 
@@ -204,8 +217,9 @@ struct Page {
     double height = 0.0;
     double plot_x = 0.0;  // top-left corner of the plot square
     double plot_y = 0.0;
-    double side_x = 0.0;  // left edge of the legend / colour-bar column
-    bool has_side = false;
+    double side_x = 0.0;        // left edge of the legend / colour-bar column
+    double colorbar_top = 0.0;  // top of the colour bar itself; its label sits above
+    double colorbar_height = 0.0;
     Ticks x_ticks;
     Ticks y_ticks;
 
@@ -234,13 +248,18 @@ std::vector<const CurvesLayer*> legend_entries(const Layers& layers) {
 
 /// The labels of a colour bar: top, bottom, and 0 in between when it lies inside the range.
 std::vector<std::pair<double, std::string>> colorbar_labels(const FieldRange& range) {
-    auto label = [](double v) { return with_minus(fmt::format("{:.3g}", v)); };
+    auto label = [](double v) { return typeset(fmt::format("{:.3g}", v + 0.0)); };  // no "-0"
     std::vector<std::pair<double, std::string>> labels = {{range.hi, label(range.hi)},
                                                           {range.lo, label(range.lo)}};
     // 0 only where it does not crowd the end labels (at least 8% of the bar away).
     const double t0 = range.t(0.0);
     if (t0 > 0.08 && t0 < 0.92) labels.emplace_back(0.0, "0");
     return labels;
+}
+
+double legend_height(const Layers& layers) {
+    const std::size_t n = legend_entries(layers).size();
+    return n == 0 ? 0.0 : 2 * legend_pad + legend_row * static_cast<double>(n);
 }
 
 /// Width the side column needs for the legend and the colour bar.
@@ -270,14 +289,23 @@ Page layout(cairo_t* cr, const Box& view, const std::string& title, const Layers
         y_label_width = std::max(y_label_width, text_width(cr, s));
     }
     // tick, gap, widest label, gap, the axis name "y" (about one em), margin
-    page.plot_x = std::max(min_left_margin,
-                           tick_length + label_gap + y_label_width + 2.5 * font_size + 8.0);
+    page.plot_x =
+        std::max(min_left_margin, tick_length + label_gap + y_label_width + 2.5 * font_size + 8.0);
     page.plot_y = top_margin + (title.empty() ? 0.0 : title_room);
-    page.height = std::ceil(page.plot_y + plot_size + bottom_margin);
-    page.has_side = last_field(layers) != nullptr || !legend_entries(layers).empty();
-    if (page.has_side) {
+    const double plot_bottom = page.plot_y + plot_size;
+    // The side column: the legend at the top, the colour bar's label and the bar below it.
+    const double legend = legend_height(layers);
+    double side_bottom = page.plot_y + legend;
+    if (last_field(layers) != nullptr) {
+        page.colorbar_top = side_bottom + (legend > 0.0 ? 2.0 * font_size : 0.0) + 1.8 * font_size;
+        page.colorbar_height = std::max(
+            colorbar_min_height, std::min(colorbar_max_height, plot_bottom - page.colorbar_top));
+        side_bottom = page.colorbar_top + page.colorbar_height + font_size;
+    }
+    page.height = std::ceil(std::max(plot_bottom + bottom_margin, side_bottom + top_margin));
+    if (side_bottom > page.plot_y) {
         page.side_x = page.plot_x + plot_size + side_gap;
-        page.width = std::ceil(page.side_x + side_width(cr, layers) + legend_pad);
+        page.width = std::ceil(page.side_x + side_width(cr, layers) + 2.0 * legend_pad);
     } else {
         page.width = std::ceil(page.plot_x + plot_size + right_margin);
     }
@@ -300,7 +328,8 @@ SurfacePtr field_image(const FieldLayer& field) {
     const FieldRange range = field_range(field);
     const std::span<const Color> map = color_map(field.diverging);
     for (int j = 0; j < g.ny; ++j) {
-        auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(g.ny - 1 - j) * stride);
+        auto* row = reinterpret_cast<std::uint32_t*>(
+            data + static_cast<std::ptrdiff_t>(g.ny - 1 - j) * stride);
         for (int i = 0; i < g.nx; ++i) {
             const double v = g.values[static_cast<std::size_t>(j) * g.nx + i];
             if (!std::isfinite(v)) {
@@ -453,8 +482,8 @@ void draw_axes(cairo_t* cr, const Page& page) {
         widest = std::max(widest, text_width(cr, page.y_ticks.labels[i]));
     }
     cairo_stroke(cr);
-    set_font(cr, font_size + 1.0, false, true);
-    draw_text(cr, "x", page.plot_x + 0.5 * plot_size, bottom + tick_length + 3.5 * font_size, 0.5,
+    set_font(cr, font_size + 1.0, true);
+    draw_text(cr, "x", page.plot_x + 0.5 * plot_size, bottom + tick_length + 3.0 * font_size, 0.5,
               0.5);
     draw_text(cr, "y", page.plot_x - tick_length - label_gap - widest - font_size,
               page.plot_y + 0.5 * plot_size, 0.5, 0.5);
@@ -467,15 +496,15 @@ void draw_title(cairo_t* cr, const Page& page, const std::string& title) {
     draw_text(cr, title, page.plot_x + 0.5 * plot_size, page.plot_y - 0.5 * title_room, 0.5, 0.5);
 }
 
-/// The legend at the top of the side column; returns its bottom edge.
-double draw_legend(cairo_t* cr, const Page& page, const Layers& layers) {
+/// The legend at the top of the side column.
+void draw_legend(cairo_t* cr, const Page& page, const Layers& layers) {
     const std::vector<const CurvesLayer*> entries = legend_entries(layers);
-    if (entries.empty()) return page.plot_y;
+    if (entries.empty()) return;
     set_font(cr, font_size);
     double text = 0.0;
     for (const CurvesLayer* c : entries) text = std::max(text, text_width(cr, c->label));
     const double w = 3 * legend_pad + legend_sample + text;
-    const double h = 2 * legend_pad + legend_row * static_cast<double>(entries.size());
+    const double h = legend_height(layers);
     cairo_rectangle(cr, page.side_x + 0.5, page.plot_y + 0.5, w, h);
     cairo_set_source_rgb(cr, 0.75, 0.75, 0.75);
     cairo_set_line_width(cr, 1.0);
@@ -492,18 +521,17 @@ double draw_legend(cairo_t* cr, const Page& page, const Layers& layers) {
         cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
         draw_text(cr, entries[i]->label, x + legend_sample + legend_pad, y, 0.0, 0.5);
     }
-    return page.plot_y + h;
 }
 
 /// A vertical colour bar below the legend: the label above, the range's values at the right.
-void draw_colorbar(cairo_t* cr, const Page& page, const FieldLayer& field, double top) {
+void draw_colorbar(cairo_t* cr, const Page& page, const FieldLayer& field) {
     const FieldRange range = field_range(field);
-    const double bar_top = top + 1.8 * font_size;
-    const double height = std::min(colorbar_max_height, page.plot_y + plot_size - bar_top);
+    const double bar_top = page.colorbar_top;
+    const double height = page.colorbar_height;
     const double x = page.side_x;
     cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
     set_font(cr, font_size);
-    draw_text(cr, field.label, x, top, 0.0, 0.0);
+    draw_text(cr, field.label, x, bar_top - 0.6 * font_size, 0.0, 1.0);
 
     const std::span<const Color> map = color_map(field.diverging);
     cairo_pattern_t* gradient = cairo_pattern_create_linear(0.0, bar_top + height, 0.0, bar_top);
@@ -533,11 +561,8 @@ void render(cairo_t* cr, const Page& page, const Layers& layers, const std::stri
     draw_layers(cr, page, layers);
     draw_axes(cr, page);
     draw_title(cr, page, title);
-    const double legend_bottom = draw_legend(cr, page, layers);
-    if (const FieldLayer* field = last_field(layers)) {
-        const bool has_legend = legend_bottom > page.plot_y;
-        draw_colorbar(cr, page, *field, has_legend ? legend_bottom + 2.0 * font_size : page.plot_y);
-    }
+    draw_legend(cr, page, layers);
+    if (const FieldLayer* field = last_field(layers)) draw_colorbar(cr, page, *field);
 }
 
 // ---- output -----------------------------------------------------------------------------------
@@ -617,7 +642,7 @@ Color palette_color(std::size_t i) {
 Figure::Figure(Box view, std::string title) : title_(std::move(title)) {
     const double w = view.width();
     const double h = view.height();
-    if (!is_finite(view.lo) || !is_finite(view.hi) || w < 0.0 || h < 0.0 || std::max(w, h) <= 0.0) {
+    if (!std::isfinite(w) || !std::isfinite(h) || w < 0.0 || h < 0.0 || std::max(w, h) <= 0.0) {
         throw InvalidInput(fmt::format("figure view box [{}, {}] x [{}, {}] is empty", view.lo.x,
                                        view.hi.x, view.lo.y, view.hi.y));
     }
@@ -630,10 +655,9 @@ Figure::Figure(Box view, std::string title) : title_(std::move(title)) {
 void Figure::add_field(const ScalarGrid& field, const std::string& label, bool diverging) {
     if (field.nx <= 0 || field.ny <= 0 ||
         field.values.size() != static_cast<std::size_t>(field.nx) * field.ny) {
-        throw InvalidInput(fmt::format("field {}: a {} x {} grid needs {} values, got {}", label,
-                                       field.nx, field.ny,
-                                       std::max(field.nx, 0) * std::max(field.ny, 0),
-                                       field.values.size()));
+        throw InvalidInput(fmt::format(
+            "field {}: a {} x {} grid needs {} values, got {}", label, field.nx, field.ny,
+            std::max(field.nx, 0) * std::max(field.ny, 0), field.values.size()));
     }
     check_positive(field.box.width(), "field box width");
     check_positive(field.box.height(), "field box height");
@@ -658,17 +682,18 @@ void Figure::add_triangles(std::span<const Vec2> vertices,
             }
         }
     }
-    layers_.push_back(std::make_shared<Layer>(
-        Layer{TrianglesLayer{{vertices.begin(), vertices.end()},
-                             {triangles.begin(), triangles.end()},
-                             color,
-                             line_width}}));
+    layers_.push_back(
+        std::make_shared<Layer>(Layer{TrianglesLayer{{vertices.begin(), vertices.end()},
+                                                     {triangles.begin(), triangles.end()},
+                                                     color,
+                                                     line_width}}));
 }
 
 void Figure::add_curves(const Interface& curves, const std::string& label, Color color,
                         double line_width) {
     check_positive(line_width, "line width");
-    layers_.push_back(std::make_shared<Layer>(Layer{CurvesLayer{curves, label, color, line_width}}));
+    layers_.push_back(
+        std::make_shared<Layer>(Layer{CurvesLayer{curves, label, color, line_width}}));
 }
 
 void Figure::add_points(std::span<const Vec2> points, Color color, double radius) {
@@ -683,7 +708,8 @@ void Figure::add_arrows(std::span<const Vec2> at, std::span<const Vec2> vec, dou
         throw InvalidInput(
             fmt::format("arrows: {} positions but {} vectors", at.size(), vec.size()));
     }
-    if (!std::isfinite(scale)) throw InvalidInput(fmt::format("arrow scale must be finite, got {}", scale));
+    if (!std::isfinite(scale))
+        throw InvalidInput(fmt::format("arrow scale must be finite, got {}", scale));
     layers_.push_back(std::make_shared<Layer>(
         Layer{ArrowsLayer{{at.begin(), at.end()}, {vec.begin(), vec.end()}, scale, color}}));
 }
@@ -693,8 +719,8 @@ void Figure::save(const std::filesystem::path& path) const {
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
     if (ext != ".svg" && ext != ".png") {
-        throw InvalidInput(fmt::format("cannot save {}: the picture must end in .svg or .png",
-                                       path.string()));
+        throw InvalidInput(
+            fmt::format("cannot save {}: the picture must end in .svg or .png", path.string()));
     }
     Layers layers;
     for (const auto& layer : layers_) layers.push_back(&layer->item);

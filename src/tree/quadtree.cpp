@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "slc/core/error.hpp"
@@ -45,11 +46,16 @@ std::uint32_t Quadtree::split(std::size_t c) {
 }
 
 std::uint32_t Quadtree::leaf_at(Vec2 p) const {
-    p = root_.clamp(p);
+    // Integer coordinates of p at the deepest level, then a descent that reads one bit of each
+    // per level: no box arithmetic on the way down.
+    const double scale = static_cast<double>(std::uint64_t{1} << depth_) / root_.width();
+    const double top = static_cast<double>((std::uint64_t{1} << depth_) - 1);
+    const auto ix = static_cast<std::uint64_t>(std::clamp((p.x - root_.lo.x) * scale, 0.0, top));
+    const auto iy = static_cast<std::uint64_t>(std::clamp((p.y - root_.lo.y) * scale, 0.0, top));
     std::uint32_t c = 0;
-    while (!is_leaf(c)) {
-        const Vec2 mid = box(c).center();
-        c = cells_[c].first_child + (p.x >= mid.x ? 1u : 0u) + (p.y >= mid.y ? 2u : 0u);
+    for (int shift = depth_ - 1; !is_leaf(c); --shift) {
+        c = cells_[c].first_child + static_cast<std::uint32_t>((ix >> shift) & 1u) +
+            2u * static_cast<std::uint32_t>((iy >> shift) & 1u);
     }
     return c;
 }

@@ -1,8 +1,55 @@
-// slc distance: signed distance and nearest point of each point of a CSV file.
+// slc distance: signed distance and nearest point of Γ for each point of a CSV file.
+#include <fmt/format.h>
+
 #include "commands/commands.hpp"
+#include "commands/common.hpp"
+#include "slc/distance/distance_tree.hpp"
+#include "slc/io/points_csv.hpp"
 
 namespace slc::cli {
-void add_distance_command(CLI::App&) {}
-void add_render_command(CLI::App&) {}
-void add_tree_command(CLI::App&) {}
+namespace {
+
+struct DistanceOptions {
+    std::string initial;
+    std::string points;
+    DomainOptions domain;
+    std::optional<int> depth;
+    int threads = 0;
+};
+
+void run_distance(const DistanceOptions& o) {
+    apply_threads(o.threads);
+    const LoadedInterface in = load_interface(o.initial, o.domain);
+    const std::vector<Vec2> xs = read_points_csv(o.points);
+    const int depth = o.depth.value_or(default_tree_depth(in.curves, in.domain));
+    const DistanceTree tree(in.curves, in.domain, {.depth = depth, .triangulate = false});
+    const std::vector<ClosestPoint> answers = tree.closest_points(xs);
+    std::string out = "x,y,distance,nearest_x,nearest_y\n";
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+        const ClosestPoint& p = answers[i];
+        out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", xs[i].x, xs[i].y, p.distance,
+                           p.point.x, p.point.y);
+    }
+    fmt::print("{}", out);
+}
+
+}  // namespace
+
+void add_distance_command(CLI::App& app) {
+    auto o = std::make_shared<DistanceOptions>();
+    auto* cmd = app.add_subcommand(
+        "distance",
+        "Signed distance (negative inside) and nearest point of the interface for each x,y line of "
+        "a CSV file; prints x,y,distance,nearest_x,nearest_y with 17 significant digits");
+    cmd->add_option("--initial", o->initial, "Interface file (JSON)")->required();
+    cmd->add_option("--points", o->points, "Query points, one x,y per line (optional header x,y)")
+        ->required();
+    add_domain_options(*cmd, o->domain);
+    cmd->add_option("-L,--tree-depth", o->depth,
+                    "Depth L of the distance tree (default: cells about one mean segment wide)")
+        ->check(CLI::Range(0, 30));
+    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+    cmd->callback([o] { run_distance(*o); });
+}
+
 }  // namespace slc::cli

@@ -60,6 +60,7 @@ private:
     void build_lists(std::vector<std::vector<std::uint32_t>>& lists);
 
     const Interface* curves_;
+    std::vector<Segment> segment_ends_;  ///< the segments' endpoints, contiguous for the queries
     Quadtree tree_;
     std::vector<std::uint32_t> offsets_;   ///< CSR: segments of cell c are [offsets_[c], offsets_[c+1])
     std::vector<std::uint32_t> segments_;

@@ -51,7 +51,7 @@ public:
     std::uint32_t split(std::size_t c);
 
     /// The leaf containing p; points outside the root box are first moved to its nearest point.
-    /// On a shared edge the cell on the high side wins. O(depth).
+    /// On a shared edge the cell on the high side wins (to rounding). O(depth).
     std::uint32_t leaf_at(Vec2 p) const;
 
     /// The cell at (level, ix, iy), or the deepest existing cell containing it; no_cell when

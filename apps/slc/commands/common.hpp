@@ -1,0 +1,50 @@
+// Pieces every subcommand shares: reading and validating an interface, resolving the domain,
+// threads, output folders and JSON summaries.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "slc/core/box.hpp"
+#include "slc/geometry/interface.hpp"
+
+namespace slc::cli {
+
+/// The --domain b / --box x0,y0,x1,y1 pair of options.
+struct DomainOptions {
+    std::optional<double> half_width;
+    std::optional<std::string> box;
+};
+
+/// Adds --domain and --box (mutually exclusive) to a subcommand.
+void add_domain_options(CLI::App& cmd, DomainOptions& options);
+
+/// The square domain: from --domain or --box, else the square centred on the curves' bounding
+/// box with half-width 1.5 times its larger half-side (room for the curves to move). Throws
+/// InvalidInput for a non-square box, a non-positive size or non-finite numbers.
+Box resolve_domain(const DomainOptions& options, const std::vector<std::vector<slc::Vec2>>& raw);
+
+/// An interface read from a JSON file, its domain resolved (resolve_domain) and the curves
+/// validated against it. Notes of what validation changed (reoriented curves) go to stderr,
+/// prefixed with the file name.
+struct LoadedInterface {
+    Interface curves;
+    double time = 0.0;
+    Box domain;
+};
+LoadedInterface load_interface(const std::string& path, const DomainOptions& domain);
+
+/// Default distance-tree depth for an interface when none is given: the level whose cells are
+/// about as large as the mean segment, between 2 and 16.
+int default_tree_depth(const Interface& curves, const Box& domain);
+
+/// JSON for a box: [x0, y0, x1, y1].
+nlohmann::json box_json(const Box& b);
+
+/// Applies --threads (0 = all cores).
+void apply_threads(int threads);
+
+}  // namespace slc::cli
