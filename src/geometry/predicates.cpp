@@ -1,1 +1,216 @@
-// placeholder
+// Exact orientation and segment-intersection predicates (Shewchuk, "Adaptive precision
+// floating-point arithmetic and fast robust geometric predicates", 1997). orientation() runs in
+// three tiers, each taken only when the one before cannot decide:
+//   1. a floating-point filter with Shewchuk's a-priori error bound (almost every call ends here);
+//   2. the exact determinant as an expansion: six products split by two_product (std::fma) into
+//      twelve doubles, summed without error by two_sum (Grow-Expansion); the inputs are first
+//      scaled by a power of two so that no product overflows or loses bits to underflow;
+//   3. for inputs whose magnitudes span more than doubles can hold in one expansion (say 1e300
+//      next to 1e-300), the same six products summed exactly in a fixed-point integer.
+// The sign of the determinant never changes under scaling by 2^k, so all tiers agree.
+// NOTE: FMA contraction (-ffp-contract=fast with -mfma) is harmless: only the filter feeds a
+// product into a sum, and fusing there only removes a rounding. -ffast-math would break tiers 1-2.
+#include "slc/geometry/predicates.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace slc {
+
+namespace {
+
+constexpr double epsilon = std::numeric_limits<double>::epsilon() / 2;  // 2^-53, unit roundoff
+
+/// Shewchuk's bound for the filter: |det − det_computed| ≤ ccw_bound_a · detsum.
+constexpr double ccw_bound_a = (3.0 + 16.0 * epsilon) * epsilon;
+
+/// Shewchuk's bound assumes that nothing underflows. A product is safe when it is at least this
+/// large (its rounding is then relative) or when one of its factors is exactly zero...
+constexpr double smallest_safe_product = 2 * std::numeric_limits<double>::min();
+/// ...and the bound itself, ccw_bound_a · detsum, is a normal number above this sum.
+constexpr double smallest_safe_sum = 0x1p-960;
+
+bool is_safe_product(double product, double f, double g) {
+    return f == 0.0 || g == 0.0 || std::abs(product) >= smallest_safe_product;
+}
+
+int sign(double v) { return (v > 0.0) - (v < 0.0); }
+
+/// a + b = s + e exactly (Knuth's two_sum), barring overflow.
+void two_sum(double a, double b, double& s, double& e) {
+    s = a + b;
+    const double bb = s - a;
+    e = (a - (s - bb)) + (b - bb);
+}
+
+/// Stage 1: the sign of the determinant if rounding cannot have changed it, else 0 with
+/// decided = false. Differences never underflow inexactly (a subnormal x − y is exact), so only
+/// the products and overflow need guarding.
+int filtered_orientation(Vec2 a, Vec2 b, Vec2 c, bool& decided) {
+    const double ax = a.x - c.x;
+    const double ay = a.y - c.y;
+    const double bx = b.x - c.x;
+    const double by = b.y - c.y;
+    const double det_left = ax * by;
+    const double det_right = ay * bx;
+    const double det = det_left - det_right;
+    const double det_sum = std::abs(det_left) + std::abs(det_right);
+    decided = true;
+    if (det_sum >= smallest_safe_sum && det_sum <= std::numeric_limits<double>::max() &&
+        is_safe_product(det_left, ax, by) && is_safe_product(det_right, ay, bx) &&
+        std::abs(det) > ccw_bound_a * det_sum) {
+        return sign(det);
+    }
+    // Each product vanishes exactly when one of its differences does (x − y == 0 iff x == y).
+    if ((ax == 0.0 || by == 0.0) && (ay == 0.0 || bx == 0.0)) return 0;
+    decided = false;
+    return 0;
+}
+
+/// Stage 2: the sign of ax·by − ax·cy + bx·cy − bx·ay + cx·ay − cx·by, every product and sum
+/// error-free. Precondition: all nonzero inputs lie in [2^-485, 2^509), so that every product
+/// is below 2^1018 (no overflow in twelve-term sums) and its low part, a multiple of
+/// 2^(2·(-485) − 104) = 2^-1074, is representable.
+int expansion_orientation(Vec2 a, Vec2 b, Vec2 c) {
+    const std::array<std::array<double, 2>, 6> factors = {
+        {{a.x, b.y}, {-a.x, c.y}, {b.x, c.y}, {-b.x, a.y}, {c.x, a.y}, {-c.x, b.y}}};
+    // Grow-Expansion: keep a nonoverlapping expansion (increasing magnitude, zeros allowed) and add
+    // one double at a time.
+    std::array<double, 12> e{};
+    std::size_t length = 0;
+    auto grow = [&](double q) {
+        for (std::size_t i = 0; i < length; ++i) two_sum(q, e[i], q, e[i]);
+        e[length++] = q;
+    };
+    for (const auto& [x, y] : factors) {
+        const double p = x * y;
+        grow(std::fma(x, y, -p));  // two_product: x·y = p + fma(x, y, −p) exactly
+        grow(p);
+    }
+    // The most significant nonzero component carries the sign of the whole sum.
+    for (std::size_t i = length; i-- > 0;) {
+        if (e[i] != 0.0) return sign(e[i]);
+    }
+    return 0;
+}
+
+/// Stage 3: a two's-complement fixed-point integer wide enough for any sum of six products of
+/// finite doubles. A double is m · 2^q with |m| < 2^53 and q in [-1126, 971]; a product is below
+/// 2^(106 + 1942) and a multiple of 2^-2252, so bits [-2304, 2176) hold six of them and a sign.
+class WideInteger {
+public:
+    __extension__ typedef unsigned __int128 Word128;  // __extension__: a GCC/Clang type
+
+    void add_product(double x, double y) {
+        if (x == 0.0 || y == 0.0) return;
+        int qx = 0;
+        int qy = 0;
+        const auto mx = static_cast<std::int64_t>(std::ldexp(std::frexp(x, &qx), 53));
+        const auto my = static_cast<std::int64_t>(std::ldexp(std::frexp(y, &qy), 53));
+        const bool negative = (mx < 0) != (my < 0);
+        const auto magnitude =
+            static_cast<Word128>(mx < 0 ? -mx : mx) * static_cast<Word128>(my < 0 ? -my : my);
+        add_shifted(magnitude, qx + qy - 106 - lowest_bit, negative);
+    }
+
+    int sign() const {
+        if (limbs_.back() >> 63) return -1;
+        return std::any_of(limbs_.begin(), limbs_.end(), [](std::uint64_t l) { return l != 0; });
+    }
+
+private:
+    static constexpr int lowest_bit = -2304;
+    static constexpr std::size_t limb_count = 70;  // 4480 bits from 2^-2304
+
+    /// Adds or subtracts magnitude · 2^shift, carrying through the limbs above.
+    void add_shifted(Word128 magnitude, int shift, bool negative) {
+        const auto limb = static_cast<std::size_t>(shift / 64);
+        const int bit = shift % 64;
+        const auto lo = static_cast<std::uint64_t>(magnitude);
+        const auto hi = static_cast<std::uint64_t>(magnitude >> 64);
+        const std::array<std::uint64_t, 3> words = {
+            lo << bit, bit == 0 ? hi : (hi << bit) | (lo >> (64 - bit)),
+            bit == 0 ? 0 : hi >> (64 - bit)};
+        std::uint64_t carry = 0;  // carry when adding, borrow when subtracting
+        for (std::size_t i = limb; i < limb_count; ++i) {
+            const std::uint64_t w = i - limb < 3 ? words[i - limb] : 0;
+            if (w == 0 && carry == 0 && i - limb >= 3) break;
+            const std::uint64_t old = limbs_[i];
+            if (negative) {
+                limbs_[i] = old - w - carry;
+                carry = (old < w || old - w < carry) ? 1 : 0;
+            } else {
+                limbs_[i] = old + w + carry;
+                carry = (limbs_[i] < old || (carry == 1 && limbs_[i] == old)) ? 1 : 0;
+            }
+        }
+    }
+
+    std::array<std::uint64_t, limb_count> limbs_{};
+};
+
+int wide_orientation(Vec2 a, Vec2 b, Vec2 c) {
+    WideInteger sum;
+    sum.add_product(a.x, b.y);
+    sum.add_product(-a.x, c.y);
+    sum.add_product(b.x, c.y);
+    sum.add_product(-b.x, a.y);
+    sum.add_product(c.x, a.y);
+    sum.add_product(-c.x, b.y);
+    return sum.sign();
+}
+
+/// Stages 2 and 3: scales the inputs by 2^k into the range of expansion_orientation when their
+/// exponents span at most 993 binades, else sums in a WideInteger.
+int exact_orientation(Vec2 a, Vec2 b, Vec2 c) {
+    const std::array<double, 6> v = {a.x, a.y, b.x, b.y, c.x, c.y};
+    int hi = std::numeric_limits<int>::min();
+    int lo = std::numeric_limits<int>::max();
+    for (double x : v) {
+        if (x == 0.0) continue;
+        hi = std::max(hi, std::ilogb(x));
+        lo = std::min(lo, std::ilogb(x));
+    }
+    if (hi == std::numeric_limits<int>::min()) return 0;  // all zero
+    // The allowed binades of expansion_orientation: 2^-485 ≤ |x| < 2^509.
+    constexpr int top = 508;
+    constexpr int bottom = -485;
+    if (hi - lo > top - bottom) return wide_orientation(a, b, c);
+    if (hi <= top && lo >= bottom) return expansion_orientation(a, b, c);
+    // Scaling by a power of two is exact here: every scaled value is a normal double.
+    const int k = top - hi;
+    auto scaled = [k](Vec2 p) { return Vec2{std::ldexp(p.x, k), std::ldexp(p.y, k)}; };
+    return expansion_orientation(scaled(a), scaled(b), scaled(c));
+}
+
+/// p lies in the bounding box of s; with p on the line of s, that means p lies on s.
+bool in_box(Segment s, Vec2 p) {
+    return std::min(s.a.x, s.b.x) <= p.x && p.x <= std::max(s.a.x, s.b.x) &&
+           std::min(s.a.y, s.b.y) <= p.y && p.y <= std::max(s.a.y, s.b.y);
+}
+
+}  // namespace
+
+int orientation(Vec2 a, Vec2 b, Vec2 c) {
+    bool decided = false;
+    const int s = filtered_orientation(a, b, c, decided);
+    return decided ? s : exact_orientation(a, b, c);
+}
+
+bool segments_intersect(Segment s, Segment t) {
+    const int o1 = orientation(s.a, s.b, t.a);
+    const int o2 = orientation(s.a, s.b, t.b);
+    const int o3 = orientation(t.a, t.b, s.a);
+    const int o4 = orientation(t.a, t.b, s.b);
+    // A proper crossing: each segment has the endpoints of the other strictly on both sides.
+    if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+    // Otherwise any common point is an endpoint of one segment lying on the other (this covers
+    // touching, collinear overlap and degenerate segments).
+    return (o1 == 0 && in_box(s, t.a)) || (o2 == 0 && in_box(s, t.b)) ||
+           (o3 == 0 && in_box(t, s.a)) || (o4 == 0 && in_box(t, s.b));
+}
+
+}  // namespace slc
