@@ -108,7 +108,10 @@ void BM_QueryBruteForce(benchmark::State& state) {
 BENCHMARK(BM_BuildTree)->DenseRange(6, 12)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Triangulate)->DenseRange(6, 12)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Extend)->DenseRange(6, 12)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_QueryNearInterface)->RangeMultiplier(10)->Range(1000, 1000000)->Complexity(benchmark::oLogN);
+BENCHMARK(BM_QueryNearInterface)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Complexity(benchmark::oLogN);
 BENCHMARK(BM_QueryBruteForce)->RangeMultiplier(10)->Range(1000, 10000)->Complexity(benchmark::oN);
 
 /// Keeps every run so that the tables can be written after the console report.
@@ -130,8 +133,9 @@ double seconds(const benchmark::BenchmarkReporter::Run& r) {
 void write_table1(const Recorder& rec, const std::string& path) {
     // The paper's Table 1 (450 MHz UltraSPARC II, 2000).
     const std::map<int, std::array<double, 4>> paper = {
-        {6, {1421, 0.04, 0.02, 0}},     {7, {2957, 0.11, 0.05, 0.01}},   {8, {6029, 0.24, 0.11, 0.01}},
-        {9, {12173, 0.57, 0.24, 0.02}}, {10, {24461, 1.24, 0.51, 0.03}}, {11, {49037, 2.81, 1.11, 0.07}},
+        {6, {1421, 0.04, 0.02, 0}},      {7, {2957, 0.11, 0.05, 0.01}},
+        {8, {6029, 0.24, 0.11, 0.01}},   {9, {12173, 0.57, 0.24, 0.02}},
+        {10, {24461, 1.24, 0.51, 0.03}}, {11, {49037, 2.81, 1.11, 0.07}},
         {12, {98189, 6.35, 2.32, 0.14}}};
     std::string md =
         "# Table 1: distance tree, triangulation and extension\n\n"
@@ -148,18 +152,21 @@ void write_table1(const Recorder& rec, const std::string& path) {
         const auto& build = rec.results.at(fmt::format("BM_BuildTree/{}", k));
         const auto& tri = rec.results.at(fmt::format("BM_Triangulate/{}", k));
         const auto& ext = rec.results.at(fmt::format("BM_Extend/{}", k));
-        md += fmt::format("| {} | {:.0f} | {:.0f} | {:.2e} | {} | {:.0f}× | {:.2e} | {} | {:.2e} | {} |\n", k,
-                          build.counters.at("cells").value, p[0], seconds(build), p[1],
-                          p[1] / seconds(build), seconds(tri), p[2], seconds(ext), p[3]);
+        md += fmt::format(
+            "| {} | {:.0f} | {:.0f} | {:.2e} | {} | {:.0f}× | {:.2e} | {} | {:.2e} | {} |\n", k,
+            build.counters.at("cells").value, p[0], seconds(build), p[1], p[1] / seconds(build),
+            seconds(tri), p[2], seconds(ext), p[3]);
     }
-    md += "\n## Signed-distance queries near the interface\n\n"
-          "A circle of N segments, its tree at the depth where cells are about a segment wide, "
-          "4096 points within three cell widths of the circle, one query at a time on one core.\n\n"
-          "| N | tree ns/query | brute force ns/query |\n|---|---|---|\n";
+    md +=
+        "\n## Signed-distance queries near the interface\n\n"
+        "A circle of N segments, its tree at the depth where cells are about a segment wide, "
+        "4096 points within three cell widths of the circle, one query at a time on one core.\n\n"
+        "| N | tree ns/query | brute force ns/query |\n|---|---|---|\n";
     for (int n = 1000; n <= 1000000; n *= 10) {
         const auto& fast = rec.results.at(fmt::format("BM_QueryNearInterface/{}", n));
         const auto it = rec.results.find(fmt::format("BM_QueryBruteForce/{}", n));
-        const std::string slow = it == rec.results.end() ? "" : fmt::format("{:.0f}", seconds(it->second) * 1e9);
+        const std::string slow =
+            it == rec.results.end() ? "" : fmt::format("{:.0f}", seconds(it->second) * 1e9);
         md += fmt::format("| {} | {:.0f} | {} |\n", n, seconds(fast) * 1e9, slow);
     }
     std::ofstream(path) << md;
@@ -187,7 +194,8 @@ int main(int argc, char** argv) {
         for (const char* name : {"BM_BuildTree", "BM_Triangulate", "BM_Extend"})
             complete = complete && recorder.results.count(fmt::format("{}/{}", name, k)) != 0;
     for (int n = 1000; n <= 1000000; n *= 10)
-        complete = complete && recorder.results.count(fmt::format("BM_QueryNearInterface/{}", n)) != 0;
+        complete =
+            complete && recorder.results.count(fmt::format("BM_QueryNearInterface/{}", n)) != 0;
     if (complete) write_table1(recorder, table);
     benchmark::Shutdown();
     return 0;

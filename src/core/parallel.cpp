@@ -22,7 +22,8 @@ std::atomic<int> threads_in_use{all_cores()};
 
 void set_thread_count(int threads) {
     if (threads < 0) {
-        throw InvalidInput(fmt::format("thread count must be 0 (all cores) or more, got {}", threads));
+        throw InvalidInput(
+            fmt::format("thread count must be 0 (all cores) or more, got {}", threads));
     }
     threads_in_use = threads == 0 ? all_cores() : threads;
 }

@@ -12,8 +12,8 @@ namespace slc {
 Interface::Interface(const std::vector<std::vector<Vec2>>& curves) {
     for (std::size_t c = 0; c < curves.size(); ++c) {
         if (curves[c].size() < 3) {
-            throw InvalidInput(fmt::format("curve {} has {} points; a closed curve needs at least 3",
-                                           c, curves[c].size()));
+            throw InvalidInput(fmt::format(
+                "curve {} has {} points; a closed curve needs at least 3", c, curves[c].size()));
         }
         points_.insert(points_.end(), curves[c].begin(), curves[c].end());
         curve_index_.insert(curve_index_.end(), curves[c].size(), c);
@@ -41,7 +41,8 @@ double signed_area(std::span<const Vec2> curve) {
     // the origin.
     double twice = 0.0;
     const Vec2 o = curve.empty() ? Vec2{} : curve[0];
-    for (std::size_t i = 1; i + 1 < curve.size(); ++i) twice += cross(curve[i] - o, curve[i + 1] - o);
+    for (std::size_t i = 1; i + 1 < curve.size(); ++i)
+        twice += cross(curve[i] - o, curve[i + 1] - o);
     return 0.5 * twice;
 }
 

@@ -17,7 +17,8 @@ SegmentPoint closest_point(Segment s, Vec2 x) {
 
 namespace {
 
-/// Outward unit normal of segment i: its direction turned a quarter clockwise (outside on the right).
+/// Outward unit normal of segment i: its direction turned a quarter clockwise (outside on the
+/// right).
 Vec2 outward_normal(const Interface& curves, std::size_t i) {
     const Segment s = curves.segment(i);
     const Vec2 d = s.b - s.a;
@@ -35,7 +36,8 @@ int side_of(const Interface& curves, std::size_t s, double t, Vec2 x) {
         side = -cross(seg.b - seg.a, x - seg.a);
     } else {
         const std::size_t v = t == 0.0 ? s : curves.next(s);
-        const Vec2 pseudo_normal = outward_normal(curves, curves.prev(v)) + outward_normal(curves, v);
+        const Vec2 pseudo_normal =
+            outward_normal(curves, curves.prev(v)) + outward_normal(curves, v);
         side = dot(x - curves.point(v), pseudo_normal);
     }
     return side < 0.0 ? -1 : 1;

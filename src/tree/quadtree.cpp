@@ -13,8 +13,9 @@ namespace slc {
 Quadtree::Quadtree(Box root, int max_depth) : root_(root), max_depth_(max_depth) {
     const double w = root.width();
     if (!(w > 0.0) || !std::isfinite(w) || root.height() != w) {
-        throw InvalidInput(fmt::format("tree root must be a square of positive size, got [{}, {}]x[{}, {}]",
-                                       root.lo.x, root.hi.x, root.lo.y, root.hi.y));
+        throw InvalidInput(
+            fmt::format("tree root must be a square of positive size, got [{}, {}]x[{}, {}]",
+                        root.lo.x, root.hi.x, root.lo.y, root.hi.y));
     }
     if (max_depth < 0 || max_depth > max_supported_depth) {
         throw InvalidInput(fmt::format("tree depth must be between 0 and {}, got {}",
@@ -33,7 +34,8 @@ Box Quadtree::box(std::size_t c) const {
 }
 
 std::uint32_t Quadtree::split(std::size_t c) {
-    SLC_ASSERT(is_leaf(c) && cells_[c].level < max_depth_, "only leaves above the depth limit split");
+    SLC_ASSERT(is_leaf(c) && cells_[c].level < max_depth_,
+               "only leaves above the depth limit split");
     const auto first = static_cast<std::uint32_t>(cells_.size());
     const Cell parent = cells_[c];
     cells_[c].first_child = first;
@@ -78,7 +80,8 @@ void Quadtree::collect_coarse_neighbours(std::size_t c, std::vector<std::uint32_
     constexpr int dx[4] = {-1, 1, 0, 0};
     constexpr int dy[4] = {0, 0, -1, 1};
     for (int d = 0; d < 4; ++d) {
-        const std::uint32_t n = find(cell.level, std::int64_t{cell.ix} + dx[d], std::int64_t{cell.iy} + dy[d]);
+        const std::uint32_t n =
+            find(cell.level, std::int64_t{cell.ix} + dx[d], std::int64_t{cell.iy} + dy[d]);
         if (n != no_cell && cells_[n].level < cell.level - 1) out.push_back(n);
     }
 }

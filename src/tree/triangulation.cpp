@@ -17,17 +17,20 @@ namespace {
 class VertexTable {
 public:
     VertexTable(const Quadtree& tree, Triangulation& mesh)
-        : tree_(tree), mesh_(mesh), shift_(tree.max_depth() + 1),
+        : tree_(tree),
+          mesh_(mesh),
+          shift_(tree.max_depth() + 1),
           step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)) {}
 
     /// The vertex at grid point (gx, gy), created on first use.
     std::uint32_t at(std::uint64_t gx, std::uint64_t gy) {
         const std::uint64_t key = (gx << 32) | gy;
-        auto [it, inserted] = index_.try_emplace(key, static_cast<std::uint32_t>(mesh_.vertices.size()));
+        auto [it, inserted] =
+            index_.try_emplace(key, static_cast<std::uint32_t>(mesh_.vertices.size()));
         if (inserted) {
             const Vec2 lo = tree_.root_box().lo;
-            mesh_.vertices.push_back({lo.x + static_cast<double>(gx) * step_,
-                                      lo.y + static_cast<double>(gy) * step_});
+            mesh_.vertices.push_back(
+                {lo.x + static_cast<double>(gx) * step_, lo.y + static_cast<double>(gy) * step_});
         }
         return it->second;
     }
@@ -45,7 +48,8 @@ private:
 /// True when the neighbour of leaf c across the edge in direction (dx, dy) is finer than c.
 bool has_finer_neighbour(const Quadtree& tree, std::size_t c, int dx, int dy) {
     const auto& cell = tree.cell(c);
-    const std::uint32_t n = tree.find(cell.level, std::int64_t{cell.ix} + dx, std::int64_t{cell.iy} + dy);
+    const std::uint32_t n =
+        tree.find(cell.level, std::int64_t{cell.ix} + dx, std::int64_t{cell.iy} + dy);
     return n != Quadtree::no_cell && tree.cell(n).level == cell.level && !tree.is_leaf(n);
 }
 
@@ -66,7 +70,8 @@ void fan_leaf(const Quadtree& tree, std::size_t c, VertexTable& table, Triangula
     if (has_finer_neighbour(tree, c, 0, 1)) ring[n++] = table.at(x0 + h, y0 + u);
     ring[n++] = table.at(x0, y0 + u);
     if (has_finer_neighbour(tree, c, -1, 0)) ring[n++] = table.at(x0, y0 + h);
-    for (std::size_t k = 0; k < n; ++k) mesh.triangles.push_back({centre, ring[k], ring[(k + 1) % n]});
+    for (std::size_t k = 0; k < n; ++k)
+        mesh.triangles.push_back({centre, ring[k], ring[(k + 1) % n]});
 }
 
 }  // namespace

@@ -25,7 +25,8 @@ inline std::vector<Vec2> random_star(std::mt19937& rng, Vec2 c, double r_lo, dou
         angles.erase(std::unique(angles.begin(), angles.end()), angles.end());
         filled = false;
         for (std::size_t k = 0; k < angles.size(); ++k) {
-            const double next = k + 1 < angles.size() ? angles[k + 1] : angles[0] + 2 * std::numbers::pi;
+            const double next =
+                k + 1 < angles.size() ? angles[k + 1] : angles[0] + 2 * std::numbers::pi;
             if (next - angles[k] > 0.9 * std::numbers::pi) {
                 angles.push_back(0.5 * (angles[k] + next));
                 filled = true;
@@ -51,19 +52,24 @@ inline Interface random_interface(std::mt19937& rng) {
     std::vector<std::vector<Vec2>> curves;
     for (const Vec2 c : slots) {
         switch (kind(rng)) {
-            case 0: break;  // empty slot
-            case 1: curves.push_back(random_star(rng, c, 0.05, 0.45, count(rng))); break;
+            case 0:
+                break;  // empty slot
+            case 1:
+                curves.push_back(random_star(rng, c, 0.05, 0.45, count(rng)));
+                break;
             case 2: {
                 // The outer curve's vertices are at most a quarter turn apart, so its edges stay
                 // farther than 0.3 cos(π/4) > 0.2 from the centre and the hole fits inside.
-                curves.push_back(shapes::polar(c, [&](double) { return radius(rng); }, 8 + count(rng)));
+                curves.push_back(shapes::polar(
+                    c, [&](double) { return radius(rng); }, 8 + count(rng)));
                 auto hole = random_star(rng, c, 0.05, 0.2, count(rng));
                 std::reverse(hole.begin(), hole.end());
                 if (hole.size() >= 3) curves.push_back(hole);
                 break;
             }
             default:
-                curves.push_back(shapes::rectangle(c - Vec2{0.4, 0.2}, c + Vec2{0.3, 0.35}, count(rng) % 6 + 1));
+                curves.push_back(
+                    shapes::rectangle(c - Vec2{0.4, 0.2}, c + Vec2{0.3, 0.35}, count(rng) % 6 + 1));
         }
     }
     if (curves.empty()) curves.push_back(random_star(rng, {0, 0}, 0.2, 0.9, count(rng)));

@@ -15,9 +15,10 @@
 namespace slc::cli {
 
 void add_domain_options(CLI::App& cmd, DomainOptions& options) {
-    auto* domain = cmd.add_option("--domain", options.half_width,
-                                  "Half-width b of the square domain [-b, b]^2 (default: the square "
-                                  "around the curves' bounding box, 1.5 times its larger half-side)");
+    auto* domain =
+        cmd.add_option("--domain", options.half_width,
+                       "Half-width b of the square domain [-b, b]^2 (default: the square "
+                       "around the curves' bounding box, 1.5 times its larger half-side)");
     auto* box = cmd.add_option("--box", options.box, "The square domain as x0,y0,x1,y1");
     domain->excludes(box);
 }
@@ -34,16 +35,20 @@ Box parse_box(const std::string& text) {
             v.push_back(std::stod(field, &used));
             if (used != field.size()) throw std::invalid_argument(field);
         } catch (const std::exception&) {
-            throw InvalidInput(fmt::format("--box must be four numbers x0,y0,x1,y1, got '{}'", text));
+            throw InvalidInput(
+                fmt::format("--box must be four numbers x0,y0,x1,y1, got '{}'", text));
         }
     }
-    if (v.size() != 4) throw InvalidInput(fmt::format("--box must be four numbers x0,y0,x1,y1, got '{}'", text));
+    if (v.size() != 4)
+        throw InvalidInput(fmt::format("--box must be four numbers x0,y0,x1,y1, got '{}'", text));
     const Box b{{v[0], v[1]}, {v[2], v[3]}};
     if (!is_finite(b.lo) || !is_finite(b.hi) || !(b.width() > 0) || !(b.height() > 0)) {
-        throw InvalidInput(fmt::format("--box must have x0 < x1 and y0 < y1, all finite, got '{}'", text));
+        throw InvalidInput(
+            fmt::format("--box must have x0 < x1 and y0 < y1, all finite, got '{}'", text));
     }
     if (std::abs(b.width() - b.height()) > 1e-12 * b.width()) {
-        throw InvalidInput(fmt::format("--box must be a square, got {} wide and {} high", b.width(), b.height()));
+        throw InvalidInput(
+            fmt::format("--box must be a square, got {} wide and {} high", b.width(), b.height()));
     }
     return {b.lo, {b.hi.x, b.lo.y + b.width()}};
 }
@@ -82,7 +87,8 @@ LoadedInterface load_interface(const std::string& path, const DomainOptions& dom
 
 int default_tree_depth(const Interface& curves, const Box& domain) {
     const double mean = length(curves) / static_cast<double>(curves.size());
-    const int level = static_cast<int>(std::ceil(std::log2(domain.width() / std::max(mean, 1e-300))));
+    const int level =
+        static_cast<int>(std::ceil(std::log2(domain.width() / std::max(mean, 1e-300))));
     return std::clamp(level, 2, 16);
 }
 

@@ -27,8 +27,8 @@ void run_distance(const DistanceOptions& o) {
     std::string out = "x,y,distance,nearest_x,nearest_y\n";
     for (std::size_t i = 0; i < xs.size(); ++i) {
         const ClosestPoint& p = answers[i];
-        out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", xs[i].x, xs[i].y, p.distance,
-                           p.point.x, p.point.y);
+        out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", xs[i].x, xs[i].y,
+                           p.distance, p.point.x, p.point.y);
     }
     fmt::print("{}", out);
 }
@@ -48,7 +48,8 @@ void add_distance_command(CLI::App& app) {
     cmd->add_option("-L,--tree-depth", o->depth,
                     "Depth L of the distance tree (default: cells about one mean segment wide)")
         ->check(CLI::Range(0, 30));
-    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
+        ->check(CLI::NonNegativeNumber);
     cmd->callback([o] { run_distance(*o); });
 }
 

@@ -1,4 +1,6 @@
 // slc render: draws interface files in one picture, with axes and a legend of the file names.
+#include "slc/io/render.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -6,7 +8,6 @@
 
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
-#include "slc/io/render.hpp"
 
 namespace slc::cli {
 namespace {
@@ -23,7 +24,8 @@ Box view_around(const std::vector<Interface>& all) {
     Box b{{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
     for (const Interface& curves : all)
         for (const Vec2 p : curves.points())
-            b = {{std::min(b.lo.x, p.x), std::min(b.lo.y, p.y)}, {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y)}};
+            b = {{std::min(b.lo.x, p.x), std::min(b.lo.y, p.y)},
+                 {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y)}};
     const double half = 0.55 * std::max(b.width(), b.height());
     const Vec2 c = b.center();
     return {{c.x - half, c.y - half}, {c.x + half, c.y + half}};
@@ -31,12 +33,14 @@ Box view_around(const std::vector<Interface>& all) {
 
 void run_render(const RenderOptions& o) {
     std::vector<Interface> all;
-    for (const std::string& file : o.files) all.push_back(load_interface(file, DomainOptions{}).curves);
+    for (const std::string& file : o.files)
+        all.push_back(load_interface(file, DomainOptions{}).curves);
     const bool explicit_view = o.view.half_width || o.view.box;
     const Box view = explicit_view ? resolve_domain(o.view, {}) : view_around(all);
     Figure figure(view, o.title);
     for (std::size_t i = 0; i < all.size(); ++i) {
-        figure.add_curves(all[i], std::filesystem::path(o.files[i]).filename().string(), palette_color(i));
+        figure.add_curves(all[i], std::filesystem::path(o.files[i]).filename().string(),
+                          palette_color(i));
     }
     figure.save(o.out);
 }
@@ -45,7 +49,8 @@ void run_render(const RenderOptions& o) {
 
 void add_render_command(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
-    auto* cmd = app.add_subcommand("render", "Draws interface files as SVG or PNG (by the extension of --out)");
+    auto* cmd = app.add_subcommand(
+        "render", "Draws interface files as SVG or PNG (by the extension of --out)");
     cmd->add_option("files", o->files, "Interface files (JSON)")->required();
     cmd->add_option("--out", o->out, "Picture to write: .svg or .png")->required();
     cmd->add_option("--title", o->title, "Title above the picture");

@@ -30,8 +30,10 @@ struct TreeOptions {
 std::vector<std::vector<Vec2>> builtin_shape(const std::string& name) {
     if (name == "propeller") return {shapes::propeller(256)};
     if (name == "circle") return {shapes::circle({0, 0}, 0.6, 128)};
-    if (name == "two-circles") return {shapes::circle({-0.35, 0}, 0.3, 96), shapes::circle({0.35, 0}, 0.3, 96)};
-    throw InvalidInput(fmt::format("unknown shape '{}'; known: propeller, circle, two-circles", name));
+    if (name == "two-circles")
+        return {shapes::circle({-0.35, 0}, 0.3, 96), shapes::circle({0.35, 0}, 0.3, 96)};
+    throw InvalidInput(
+        fmt::format("unknown shape '{}'; known: propeller, circle, two-circles", name));
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -44,20 +46,23 @@ std::vector<Vec2> grid_points(const Box& box, int n) {
     xs.reserve(static_cast<std::size_t>(n) * n);
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i)
-            xs.push_back({box.lo.x + (i + 0.5) * box.width() / n, box.lo.y + (j + 0.5) * box.height() / n});
+            xs.push_back(
+                {box.lo.x + (i + 0.5) * box.width() / n, box.lo.y + (j + 0.5) * box.height() / n});
     return xs;
 }
 
 /// The largest difference between tree and brute-force signed distances at random points.
 nlohmann::json brute_force_check(const DistanceTree& tree, const Box& domain) {
     std::mt19937 rng(2001);
-    std::uniform_real_distribution<double> ux(domain.lo.x, domain.hi.x), uy(domain.lo.y, domain.hi.y);
+    std::uniform_real_distribution<double> ux(domain.lo.x, domain.hi.x),
+        uy(domain.lo.y, domain.hi.y);
     std::vector<Vec2> xs(2000);
     for (Vec2& x : xs) x = {ux(rng), uy(rng)};
     const auto fast = tree.signed_distances(xs);
     double worst = 0.0;
     for (std::size_t i = 0; i < xs.size(); ++i)
-        worst = std::max(worst, std::abs(fast[i] - closest_point_brute_force(tree.curves(), xs[i]).distance));
+        worst = std::max(
+            worst, std::abs(fast[i] - closest_point_brute_force(tree.curves(), xs[i]).distance));
     return {{"points", xs.size()}, {"seed", 2001}, {"max_abs_difference", worst}};
 }
 
@@ -81,14 +86,17 @@ void draw_pictures(const DistanceTree& tree, const Box& domain, const std::files
     for (std::uint32_t c : tree.tree().leaves()) cells.push_back(tree.tree().box(c));
     for (const auto& [name, values] : fields) {
         Figure figure(domain, titles.at(name));
-        figure.add_field(ScalarGrid{domain, n, n, values}, name == "distance" ? "F" : "W_x", name == "distance");
+        figure.add_field(ScalarGrid{domain, n, n, values}, name == "distance" ? "F" : "W_x",
+                         name == "distance");
         figure.add_boxes(cells, Color{0, 0, 0, 0.25});
         figure.add_curves(curves, "interface", Color{0, 0, 0, 1});
         figure.save(dir / (name + ".svg"));
         figure.save(dir / (name + ".png"));
     }
-    Figure figure(domain, fmt::format("Distance tree, depth {}, and its triangulation", tree.tree().max_depth()));
-    figure.add_triangles(tree.triangulation().vertices, tree.triangulation().triangles, Color{0.55, 0.65, 0.85, 1});
+    Figure figure(domain, fmt::format("Distance tree, depth {}, and its triangulation",
+                                      tree.tree().max_depth()));
+    figure.add_triangles(tree.triangulation().vertices, tree.triangulation().triangles,
+                         Color{0.55, 0.65, 0.85, 1});
     figure.add_boxes(cells, Color{0, 0, 0, 1});
     figure.add_curves(curves, "interface", palette_color(1));
     figure.save(dir / "tree.svg");
@@ -105,7 +113,8 @@ void run_tree(const TreeOptions& o) {
         domain = in.domain;
     } else {
         const auto raw = builtin_shape(o.shape);
-        domain = o.domain.half_width || o.domain.box ? resolve_domain(o.domain, raw) : Box::centered_square(1.0);
+        domain = o.domain.half_width || o.domain.box ? resolve_domain(o.domain, raw)
+                                                     : Box::centered_square(1.0);
         curves = prepare_interface(raw, domain).curves;
     }
     const int depth = o.depth.value_or(6);
@@ -115,27 +124,26 @@ void run_tree(const TreeOptions& o) {
     const DistanceTree tree(curves, domain, {.depth = depth, .triangulate = true});
     const double build_s = seconds_since(start);
 
-    nlohmann::json summary = {
-        {"command", "tree"},
-        {"status", "ok"},
-        {"input", o.initial.empty() ? o.shape : o.initial},
-        {"domain", box_json(domain)},
-        {"tree_depth", depth},
-        {"curves", curves.curve_count()},
-        {"segments", curves.size()},
-        {"area", area(curves)},
-        {"length", length(curves)},
-        {"cells", tree.tree().size()},
-        {"leaves", tree.tree().leaves().size()},
-        {"triangles", tree.triangulation().triangles.size()},
-        {"triangulation_vertices", tree.triangulation().vertices.size()},
-        {"build_s", build_s},
-        {"brute_force_check", brute_force_check(tree, domain)}};
+    nlohmann::json summary = {{"command", "tree"},
+                              {"status", "ok"},
+                              {"input", o.initial.empty() ? o.shape : o.initial},
+                              {"domain", box_json(domain)},
+                              {"tree_depth", depth},
+                              {"curves", curves.curve_count()},
+                              {"segments", curves.size()},
+                              {"area", area(curves)},
+                              {"length", length(curves)},
+                              {"cells", tree.tree().size()},
+                              {"leaves", tree.tree().leaves().size()},
+                              {"triangles", tree.triangulation().triangles.size()},
+                              {"triangulation_vertices", tree.triangulation().vertices.size()},
+                              {"build_s", build_s},
+                              {"brute_force_check", brute_force_check(tree, domain)}};
     write_file_atomic(dir / "interface.json", interface_json(curves, 0.0));
     draw_pictures(tree, domain, dir);
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
-    fmt::print("{} cells, {} segments, built in {:.3g} s; wrote {}\n", tree.tree().size(), curves.size(),
-               build_s, (dir / "summary.json").string());
+    fmt::print("{} cells, {} segments, built in {:.3g} s; wrote {}\n", tree.tree().size(),
+               curves.size(), build_s, (dir / "summary.json").string());
 }
 
 }  // namespace
@@ -151,12 +159,17 @@ void add_tree_command(CLI::App& app) {
                                   "A built-in shape in [-1, 1]^2: propeller, circle, two-circles");
     initial->excludes(shape);
     add_domain_options(*cmd, o->domain);
-    cmd->add_option("-L,--tree-depth", o->depth, "Depth L of the distance tree (default 6)")->check(CLI::Range(0, 16));
-    cmd->add_option("--out", o->out, "Output folder: summary.json, interface.json, tree/distance/extension/whitney .svg and .png")
+    cmd->add_option("-L,--tree-depth", o->depth, "Depth L of the distance tree (default 6)")
+        ->check(CLI::Range(0, 16));
+    cmd->add_option("--out", o->out,
+                    "Output folder: summary.json, interface.json, tree/distance/extension/whitney "
+                    ".svg and .png")
         ->required();
-    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
+        ->check(CLI::NonNegativeNumber);
     cmd->callback([o, initial, shape] {
-        if (initial->count() == 0 && shape->count() == 0) throw InvalidInput("give --initial FILE or --shape NAME");
+        if (initial->count() == 0 && shape->count() == 0)
+            throw InvalidInput("give --initial FILE or --shape NAME");
         run_tree(*o);
     });
 }

@@ -29,8 +29,8 @@ namespace detail {
 
 /// Checks an invariant of the library (not of the user's input) in debug and test builds.
 #if defined(SLC_ENABLE_ASSERTS) || !defined(NDEBUG)
-#define SLC_ASSERT(cond, invariant)                                                    \
-    do {                                                                               \
+#define SLC_ASSERT(cond, invariant)                                                         \
+    do {                                                                                    \
         if (!(cond)) ::slc::detail::assertion_failed(#cond, invariant, __FILE__, __LINE__); \
     } while (false)
 #else

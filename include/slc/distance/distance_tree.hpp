@@ -23,8 +23,8 @@ namespace slc {
 class DistanceTree {
 public:
     struct Options {
-        int depth = 8;             ///< L: deepest level of the tree
-        bool triangulate = true;   ///< build the triangulation and its vertices' nearest points
+        int depth = 8;            ///< L: deepest level of the tree
+        bool triangulate = true;  ///< build the triangulation and its vertices' nearest points
     };
 
     /// Builds the tree for curves inside domain (a square). The tree refers to curves, which must
@@ -53,7 +53,8 @@ public:
     std::span<const ClosestPoint> vertex_closest_points() const { return vertex_nearest_; }
     /// Segments listed by cell c: those meeting its concentric triple, in increasing order.
     std::span<const std::uint32_t> cell_segments(std::size_t c) const {
-        return std::span<const std::uint32_t>(segments_).subspan(offsets_[c], offsets_[c + 1] - offsets_[c]);
+        return std::span<const std::uint32_t>(segments_).subspan(offsets_[c],
+                                                                 offsets_[c + 1] - offsets_[c]);
     }
 
 private:
@@ -62,7 +63,8 @@ private:
     const Interface* curves_;
     std::vector<Segment> segment_ends_;  ///< the segments' endpoints, contiguous for the queries
     Quadtree tree_;
-    std::vector<std::uint32_t> offsets_;   ///< CSR: segments of cell c are [offsets_[c], offsets_[c+1])
+    std::vector<std::uint32_t>
+        offsets_;  ///< CSR: segments of cell c are [offsets_[c], offsets_[c+1])
     std::vector<std::uint32_t> segments_;
     Triangulation mesh_;
     std::vector<ClosestPoint> vertex_nearest_;

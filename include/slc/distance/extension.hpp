@@ -18,7 +18,8 @@ namespace slc {
 /// The nearest-point extension at a point whose signed closest point is p: the vertex values of
 /// p's segment interpolated linearly at p. T is double or Vec2. O(1).
 template <class T>
-T nearest_point_extension(const Interface& curves, std::span<const T> values, const ClosestPoint& p) {
+T nearest_point_extension(const Interface& curves, std::span<const T> values,
+                          const ClosestPoint& p) {
     const T& a = values[p.segment];
     const T& b = values[curves.next(p.segment)];
     return (1.0 - p.t) * a + p.t * b;
@@ -51,7 +52,8 @@ public:
             throw InvalidInput("Whitney extension: need one value per interface vertex");
         }
         if (tree.triangulation().triangles.empty()) {
-            throw InvalidInput("Whitney extension: the distance tree was built without triangulation");
+            throw InvalidInput(
+                "Whitney extension: the distance tree was built without triangulation");
         }
         const auto nearest = tree.vertex_closest_points();
         vertex_values_.resize(nearest.size());

@@ -21,8 +21,8 @@ SegmentPoint closest_point(Segment s, Vec2 x);
 
 /// Signed closest point of an interface to a query point x.
 struct ClosestPoint {
-    double distance = 0.0;  ///< signed distance F(x): negative inside, positive outside
-    Vec2 point;             ///< a nearest point of Γ to x
+    double distance = 0.0;    ///< signed distance F(x): negative inside, positive outside
+    Vec2 point;               ///< a nearest point of Γ to x
     std::size_t segment = 0;  ///< the segment holding point
     double t = 0.0;           ///< point = a + t (b − a) on that segment
 };

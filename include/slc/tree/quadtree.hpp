@@ -89,7 +89,8 @@ void Quadtree::balance(OnSplit&& on_split) {
     // to exist down to level l − 1; splits only create cells above level l, which are handled
     // when their own level comes up.
     std::vector<std::vector<std::uint32_t>> by_level(static_cast<std::size_t>(max_depth_) + 1);
-    for (std::uint32_t c : leaves()) by_level[static_cast<std::size_t>(cells_[c].level)].push_back(c);
+    for (std::uint32_t c : leaves())
+        by_level[static_cast<std::size_t>(cells_[c].level)].push_back(c);
     std::vector<std::uint32_t> coarse;
     for (int level = depth_; level >= 2; --level) {
         auto& list = by_level[static_cast<std::size_t>(level)];

@@ -29,9 +29,9 @@ std::vector<Vec2> query_points(const Interface& curves, std::mt19937& rng) {
     for (int k = 0; k < 100; ++k) {
         const std::size_t i = vertex(rng);
         const Segment s = curves.segment(i);
-        xs.push_back(s.a);                                        // on a vertex
-        xs.push_back(s.a + t01(rng) * (s.b - s.a));               // on a segment (to rounding)
-        xs.push_back(s.a + Vec2{tiny(rng), tiny(rng)});           // near a vertex
+        xs.push_back(s.a);                               // on a vertex
+        xs.push_back(s.a + t01(rng) * (s.b - s.a));      // on a segment (to rounding)
+        xs.push_back(s.a + Vec2{tiny(rng), tiny(rng)});  // near a vertex
         xs.push_back(s.a + 0.5 * (s.b - s.a) + Vec2{small(rng), small(rng)});
     }
     return xs;
@@ -42,7 +42,8 @@ TEST(DistanceTree, AgreesWithBruteForceOnRandomInterfaces) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
         std::mt19937 rng(seed);
         const Interface curves = testing::random_interface(rng);
-        const DistanceTree tree(curves, domain, {.depth = 3 + static_cast<int>(seed % 8), .triangulate = false});
+        const DistanceTree tree(curves, domain,
+                                {.depth = 3 + static_cast<int>(seed % 8), .triangulate = false});
         for (const Vec2 x : query_points(curves, rng)) {
             const ClosestPoint fast = tree.closest_point(x);
             const ClosestPoint slow = closest_point_brute_force(curves, x);
@@ -123,7 +124,8 @@ TEST(DistanceTree, CellListsHoldEverySegmentMeetingTheTriple) {
             // A sampled point of the segment inside the triple proves the segment meets it.
             const Segment seg = curves.segment(s);
             bool inside = false;
-            for (int k = 0; k <= 64 && !inside; ++k) inside = t.contains(seg.a + (k / 64.0) * (seg.b - seg.a));
+            for (int k = 0; k <= 64 && !inside; ++k)
+                inside = t.contains(seg.a + (k / 64.0) * (seg.b - seg.a));
             if (inside) {
                 EXPECT_TRUE(std::binary_search(list.begin(), list.end(), s)) << "cell " << c;
             }
@@ -140,7 +142,8 @@ TEST(DistanceTree, CostGrowsAsNLogN) {
         const Interface circle({shapes::circle({0.1, -0.05}, 1.0, n)});
         const DistanceTree tree(circle, domain, {.depth = k - 1, .triangulate = false});
         std::size_t entries = 0;
-        for (std::size_t c = 0; c < tree.tree().size(); ++c) entries += tree.cell_segments(c).size();
+        for (std::size_t c = 0; c < tree.tree().size(); ++c)
+            entries += tree.cell_segments(c).size();
         cells_per_n.push_back(static_cast<double>(tree.tree().size()) / n);
         entries_per_nlogn.push_back(static_cast<double>(entries) / (n * k));
     }

@@ -32,7 +32,8 @@ TEST(NearestPointExtension, MatchesBruteForceNearestPoint) {
         for (Vec2& x : xs) x = {u(rng), u(rng)};
         const auto fast = nearest_point_extension<Vec2>(tree, values, xs);
         for (std::size_t i = 0; i < xs.size(); ++i) {
-            const Vec2 slow = nearest_point_extension<Vec2>(curves, values, closest_point_brute_force(curves, xs[i]));
+            const Vec2 slow = nearest_point_extension<Vec2>(
+                curves, values, closest_point_brute_force(curves, xs[i]));
             EXPECT_EQ(fast[i], slow);
         }
     }

@@ -87,7 +87,8 @@ TEST(Quadtree, RejectsARootThatIsNotASquareAndDepthsOutOfRange) {
     EXPECT_THROW(Quadtree(Box{{0, 0}, {1, 2}}, 3), InvalidInput);
     EXPECT_THROW(Quadtree(Box{{0, 0}, {0, 0}}, 3), InvalidInput);
     EXPECT_THROW(Quadtree(Box::centered_square(1.0), -1), InvalidInput);
-    EXPECT_THROW(Quadtree(Box::centered_square(1.0), Quadtree::max_supported_depth + 1), InvalidInput);
+    EXPECT_THROW(Quadtree(Box::centered_square(1.0), Quadtree::max_supported_depth + 1),
+                 InvalidInput);
 }
 
 }  // namespace

@@ -17,7 +17,8 @@ Quadtree balanced_tree(unsigned seed, int depth, int points) {
     std::uniform_real_distribution<double> u(-2.0, 2.0);
     for (int k = 0; k < points; ++k) {
         const Vec2 p{u(rng), u(rng)};
-        for (std::uint32_t c = tree.leaf_at(p); tree.cell(c).level < depth; c = tree.leaf_at(p)) tree.split(c);
+        for (std::uint32_t c = tree.leaf_at(p); tree.cell(c).level < depth; c = tree.leaf_at(p))
+            tree.split(c);
     }
     tree.balance();
     return tree;
@@ -40,10 +41,9 @@ TEST(Triangulation, IsConformingWithEveryInteriorEdgeInTwoTriangles) {
         const Box root = tree.root_box();
         for (const auto& [edge, count] : uses) {
             const Vec2 a = mesh.vertices[edge.first], b = mesh.vertices[edge.second];
-            const bool on_boundary = (a.x == root.lo.x && b.x == root.lo.x) ||
-                                     (a.x == root.hi.x && b.x == root.hi.x) ||
-                                     (a.y == root.lo.y && b.y == root.lo.y) ||
-                                     (a.y == root.hi.y && b.y == root.hi.y);
+            const bool on_boundary =
+                (a.x == root.lo.x && b.x == root.lo.x) || (a.x == root.hi.x && b.x == root.hi.x) ||
+                (a.y == root.lo.y && b.y == root.lo.y) || (a.y == root.hi.y && b.y == root.hi.y);
             EXPECT_EQ(count, on_boundary ? 1 : 2);
         }
     }
@@ -85,7 +85,8 @@ TEST(Triangulation, VerticesAreCornersAndCentresSharedOnce) {
 
 TEST(Triangulation, RejectsAnUnbalancedTree) {
     Quadtree tree(Box::centered_square(1.0), 6);
-    for (std::uint32_t c = tree.leaf_at({0.1, 0.1}); tree.cell(c).level < 6; c = tree.leaf_at({0.1, 0.1}))
+    for (std::uint32_t c = tree.leaf_at({0.1, 0.1}); tree.cell(c).level < 6;
+         c = tree.leaf_at({0.1, 0.1}))
         tree.split(c);
     EXPECT_THROW(triangulate(tree), InvalidInput);
 }
