@@ -75,13 +75,28 @@ std::uint32_t Quadtree::find(int level, std::int64_t ix, std::int64_t iy) const 
     return c;
 }
 
+std::uint32_t Quadtree::neighbour(std::size_t c, int dx, int dy) const {
+    if (c == 0) return no_cell;
+    const std::uint32_t parent = cells_[c].parent;
+    const std::uint32_t k = static_cast<std::uint32_t>(c) - cells_[parent].first_child;
+    const std::uint32_t bx = k & 1u, by = k >> 1;
+    // Moving within the parent: the neighbour is a sibling.
+    const bool inside_x = dx == 0 || (dx > 0 ? bx == 0 : bx == 1);
+    const bool inside_y = dy == 0 || (dy > 0 ? by == 0 : by == 1);
+    if (inside_x && inside_y)
+        return cells_[parent].first_child + (bx ^ (dx != 0)) + 2 * (by ^ (dy != 0));
+    // Otherwise the parent's neighbour, then its child on our side, if it has children.
+    const std::uint32_t across = neighbour(parent, dx, dy);
+    if (across == no_cell || is_leaf(across)) return across;
+    return cells_[across].first_child + (bx ^ (dx != 0)) + 2 * (by ^ (dy != 0));
+}
+
 void Quadtree::collect_coarse_neighbours(std::size_t c, std::vector<std::uint32_t>& out) const {
     const Cell& cell = cells_[c];
     constexpr int dx[4] = {-1, 1, 0, 0};
     constexpr int dy[4] = {0, 0, -1, 1};
     for (int d = 0; d < 4; ++d) {
-        const std::uint32_t n =
-            find(cell.level, std::int64_t{cell.ix} + dx[d], std::int64_t{cell.iy} + dy[d]);
+        const std::uint32_t n = neighbour(c, dx[d], dy[d]);
         if (n != no_cell && cells_[n].level < cell.level - 1) out.push_back(n);
     }
 }

@@ -20,7 +20,10 @@ public:
         : tree_(tree),
           mesh_(mesh),
           shift_(tree.max_depth() + 1),
-          step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)) {}
+          step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)) {
+        // About 1.6 vertices per cell (corners shared by four cells, one centre each).
+        index_.reserve(2 * tree.size());
+    }
 
     /// The vertex at grid point (gx, gy), created on first use.
     std::uint32_t at(std::uint64_t gx, std::uint64_t gy) {
@@ -47,10 +50,8 @@ private:
 
 /// True when the neighbour of leaf c across the edge in direction (dx, dy) is finer than c.
 bool has_finer_neighbour(const Quadtree& tree, std::size_t c, int dx, int dy) {
-    const auto& cell = tree.cell(c);
-    const std::uint32_t n =
-        tree.find(cell.level, std::int64_t{cell.ix} + dx, std::int64_t{cell.iy} + dy);
-    return n != Quadtree::no_cell && tree.cell(n).level == cell.level && !tree.is_leaf(n);
+    const std::uint32_t n = tree.neighbour(c, dx, dy);
+    return n != Quadtree::no_cell && tree.cell(n).level == tree.cell(c).level && !tree.is_leaf(n);
 }
 
 void fan_leaf(const Quadtree& tree, std::size_t c, VertexTable& table, Triangulation& mesh) {

@@ -58,6 +58,11 @@ public:
     /// (ix, iy) lies outside [0, 2^level)². O(level).
     std::uint32_t find(int level, std::int64_t ix, std::int64_t iy) const;
 
+    /// The cell of the same level as c sharing its edge in direction (dx, dy) ∈ {(±1, 0), (0, ±1)},
+    /// or the deepest existing cell containing that place; no_cell beyond the root box.
+    /// O(1) on average: it climbs only as far as the nearest common ancestor.
+    std::uint32_t neighbour(std::size_t c, int dx, int dy) const;
+
     /// Splits leaves until every two leaves that share part of an edge differ by at most one
     /// level. Calls on_split(c) after each split, in order. Cost O(cells · depth).
     template <class OnSplit>

@@ -59,6 +59,20 @@ TEST(Quadtree, FindReturnsCellOrDeepestAncestor) {
     EXPECT_EQ(tree.find(3, 0, 8), Quadtree::no_cell);
 }
 
+TEST(Quadtree, NeighbourAgreesWithLookupByCoordinates) {
+    std::mt19937 rng(13);
+    const Quadtree tree = graded_tree(7, rng, 6);
+    const int dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
+    for (std::size_t c = 0; c < tree.size(); ++c) {
+        const auto& cell = tree.cell(c);
+        for (int d = 0; d < 4; ++d) {
+            EXPECT_EQ(tree.neighbour(c, dx[d], dy[d]),
+                      tree.find(cell.level, std::int64_t{cell.ix} + dx[d],
+                                std::int64_t{cell.iy} + dy[d]));
+        }
+    }
+}
+
 TEST(Quadtree, BalanceLeavesEdgeNeighboursWithinOneLevel) {
     for (unsigned seed = 1; seed <= 20; ++seed) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
