@@ -1,0 +1,30 @@
+// VertexGeometry: outward unit normals and curvature at the vertices of Γ, what both geometry
+// modules of paper §3 return, and the arc-length weights of the vertices for integrals over Γ
+// (the nonlocal law of paper Eq. 13).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "slc/core/vec2.hpp"
+#include "slc/geometry/interface.hpp"
+
+namespace slc {
+
+/// Geometry of Γ at its vertices, indexed like Interface::points(). Signs as in DESIGN §2:
+/// normals point outward (towards F > 0), N = (cos θ, sin θ); curvature C = −∇·N, so C = −1/R
+/// on a circle of radius R and +1/R on a circular hole.
+struct VertexGeometry {
+    std::vector<Vec2> normals;
+    std::vector<double> curvature;
+};
+
+/// The arc length that belongs to each vertex: half of each of its two segments. Weights of the
+/// trapezoidal rule ∫_Γ g ds ≈ Σ g_i w_i, which is exact for g linear on each segment. O(N).
+std::vector<double> vertex_arc_lengths(const Interface& curves);
+
+/// The arc-length mean Σ g_i w_i / Σ w_i of vertex values g over all of Γ, w the
+/// vertex_arc_lengths, summed in vertex order. Precondition: g.size() == curves.size() > 0.
+double arc_length_mean(const Interface& curves, std::span<const double> g);
+
+}  // namespace slc

@@ -1,0 +1,54 @@
+// The built-in velocity laws by name, with their parameters by name, as the command line gives
+// them (`--velocity NAME --param key=value`, DESIGN §6).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "slc/velocity/velocity.hpp"
+
+namespace slc {
+
+/// Parameter values by name.
+using VelocityParams = std::map<std::string, double>;
+
+/// One parameter of a built-in law.
+struct VelocityParameter {
+    std::string name;
+    std::optional<double> default_value;  ///< nothing when required or computed from others
+    std::string default_text;             ///< the default as shown to a user: "1", "5/(m²−1)"
+    std::string meaning;
+    bool required = false;  ///< the law cannot be built without it
+};
+
+/// A built-in law: its name, what it does, and its parameters.
+struct VelocityInfo {
+    std::string name;
+    std::string summary;
+    std::vector<VelocityParameter> parameters;
+};
+
+/// Every built-in law, in a fixed order: rotation, translation, unit-normal, anisotropic,
+/// curvature, volume-preserving-curvature, vortex.
+const std::vector<VelocityInfo>& velocity_catalog();
+
+/// The built-in law `name` with the given parameters (missing ones take their defaults).
+///   rotation        omega [1], cx [0], cy [0]      u = ω(−(y − cy), x − cx)
+///   translation     ux, uy (both required)         u = (ux, uy)
+///   unit-normal     speed [1]                      u = speed·N
+///   anisotropic     R [−1], m [4], eps [5/(m²−1)]   u = (R + eps·cos(mθ))·N
+///   curvature                                      u = C·N
+///   volume-preserving-curvature                    u = (C − C̄)·N
+///   vortex          period [8]                     LeVeque's single vortex on [0, 1]²
+/// module, when given, replaces the geometry module of the laws that need normals or curvature.
+/// Throws InvalidInput for an unknown law ("unknown velocity 'x'; known: rotation, ..."), an
+/// unknown parameter name (the message lists the law's parameters), a missing required or a
+/// non-finite value, a period <= 0, or eps left to its default with m² = 1.
+std::unique_ptr<VelocityLaw> make_velocity(const std::string& name,
+                                           const VelocityParams& params = {},
+                                           std::optional<GeometryModule> module = std::nullopt);
+
+}  // namespace slc

@@ -1,0 +1,125 @@
+// The built-in velocity laws of the paper's examples (§4.4–4.7 and the single vortex of LeVeque
+// and Rider–Kothe), each a VelocityLaw. Their names and parameters on the command line are in
+// factory.hpp.
+#pragma once
+
+#include "slc/velocity/velocity.hpp"
+
+namespace slc {
+
+/// `rotation`: rigid counterclockwise rotation u = ω (−(y − cy), x − cx) about centre (§4.4).
+class Rotation final : public VelocityLaw {
+public:
+    explicit Rotation(double omega = 1.0, Vec2 centre = {}) : omega_(omega), centre_(centre) {}
+    std::string name() const override { return "rotation"; }
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override;
+    bool is_field() const override { return true; }
+    void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
+
+private:
+    double omega_;
+    Vec2 centre_;
+};
+
+/// `translation`: the constant velocity u = (ux, uy).
+class Translation final : public VelocityLaw {
+public:
+    explicit Translation(Vec2 u) : u_(u) {}
+    std::string name() const override { return "translation"; }
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override;
+    bool is_field() const override { return true; }
+    void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
+
+private:
+    Vec2 u_;
+};
+
+/// `vortex`: LeVeque's time-reversed single vortex on [0, 1]², period T:
+/// u = sin²(πx) sin(2πy) cos(πt/T), v = −sin²(πy) sin(2πx) cos(πt/T). Divergence free; the
+/// flow reverses at t = T/2 and returns every point to its start at t = T.
+class SingleVortex final : public VelocityLaw {
+public:
+    /// Throws InvalidInput unless period > 0.
+    explicit SingleVortex(double period = 8.0);
+    std::string name() const override { return "vortex"; }
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override;
+    bool is_field() const override { return true; }
+    void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
+
+private:
+    double period_;
+};
+
+/// `unit-normal`: constant normal speed, u = s·N (§4.5.1–4.5.2); s > 0 grows the curve.
+/// Normals from the intrinsic module unless told otherwise (the paper's choice for first-order
+/// geometric laws).
+class NormalSpeed final : public VelocityLaw {
+public:
+    explicit NormalSpeed(double speed = 1.0, GeometryModule module = GeometryModule::intrinsic)
+        : speed_(speed), module_(module) {}
+    std::string name() const override { return "unit-normal"; }
+    GeometryNeeds needs() const override { return {.normals = true, .module = module_}; }
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override;
+
+private:
+    double speed_;
+    GeometryModule module_;
+};
+
+/// `anisotropic`: u = v(θ)·N with v = R + ε cos(mθ), θ the normal angle, N = (cos θ, sin θ)
+/// (§4.5.3, Eq. 12; the paper's Wulff-shape runs use R = −1 and ε = 5/(m² − 1)).
+class AnisotropicNormalSpeed final : public VelocityLaw {
+public:
+    AnisotropicNormalSpeed(double r, double m, double eps,
+                           GeometryModule module = GeometryModule::intrinsic)
+        : r_(r), m_(m), eps_(eps), module_(module) {}
+    std::string name() const override { return "anisotropic"; }
+    GeometryNeeds needs() const override { return {.normals = true, .module = module_}; }
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override;
+
+private:
+    double r_, m_, eps_;
+    GeometryModule module_;
+};
+
+/// `curvature`: motion by curvature u = C·N (§4.6), which shrinks a circle as R(t)² = R(0)² − 2t.
+/// Normals and curvature from the embedded module unless told otherwise (the paper's choice for
+/// second-order laws).
+class CurvatureFlow final : public VelocityLaw {
+public:
+    explicit CurvatureFlow(GeometryModule module = GeometryModule::embedded) : module_(module) {}
+    std::string name() const override { return "curvature"; }
+    GeometryNeeds needs() const override {
+        return {.normals = true, .curvature = true, .module = module_};
+    }
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override;
+
+private:
+    GeometryModule module_;
+};
+
+/// `volume-preserving-curvature`: the nonlocal law u = (C − C̄)·N, C̄ the arc-length mean of C
+/// over all components of Γ (§4.7, Eq. 13). The mean normal speed is zero, so the enclosed area
+/// is conserved; small components give their area to large ones. Embedded module by default.
+class VolumePreservingCurvatureFlow final : public VelocityLaw {
+public:
+    explicit VolumePreservingCurvatureFlow(GeometryModule module = GeometryModule::embedded)
+        : module_(module) {}
+    std::string name() const override { return "volume-preserving-curvature"; }
+    GeometryNeeds needs() const override {
+        return {.normals = true, .curvature = true, .module = module_};
+    }
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override;
+
+private:
+    GeometryModule module_;
+};
+
+}  // namespace slc

@@ -1,0 +1,182 @@
+// Velocity laws (DESIGN §3, paper §3 and §4.3 "Velocity(t, Γ)"): the interface a law implements,
+// the call that hands it the vertex geometry it asks for and checks what it returns, and adapters
+// that turn a small callable into a law.
+#pragma once
+
+#include <concepts>
+#include <memory>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "slc/core/parallel.hpp"
+#include "slc/distance/distance_tree.hpp"
+#include "slc/geometry/interface.hpp"
+#include "slc/geometry_modules/embedded.hpp"
+#include "slc/geometry_modules/vertex_geometry.hpp"
+
+namespace slc {
+
+/// Which geometry module computes the vertex normals and curvature a law needs (paper §3):
+/// intrinsic (Eqs. 7, 8; no mesh) or embedded (Eq. 9 on a local mesh; needs a distance tree).
+enum class GeometryModule { intrinsic, embedded };
+
+/// What a law needs at the vertices besides their positions.
+struct GeometryNeeds {
+    bool normals = false;
+    bool curvature = false;
+    GeometryModule module = GeometryModule::intrinsic;
+
+    bool any() const { return normals || curvature; }
+};
+
+/// A velocity law: the velocity u of every vertex of Γ at time t, points moving with dy/dt = u
+/// (DESIGN §1), so u = v·N moves the curve outward for normal speed v > 0.
+class VelocityLaw {
+public:
+    virtual ~VelocityLaw() = default;
+
+    /// The law's name, used in error messages ("rotation", or the user's).
+    virtual std::string name() const = 0;
+    /// The vertex geometry velocities() needs; the default is none.
+    virtual GeometryNeeds needs() const { return {}; }
+    /// u at every vertex of curves at time t. geometry holds normals and curvature (one per
+    /// vertex) from the module needs() names when needs().any(), and is empty otherwise. Must
+    /// return curves.size() vectors.
+    virtual std::vector<Vec2> velocities(double t, const Interface& curves,
+                                         const VertexGeometry& geometry) const = 0;
+
+    /// True for a law defined everywhere (a flow field such as rotation), which can then be
+    /// sampled at any points instead of extended from the vertices.
+    virtual bool is_field() const { return false; }
+    /// The flow field at time t at every point; out.size() == points.size(). Throws InvalidInput
+    /// unless is_field(). field_velocities() calls it and checks the answer.
+    virtual void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const;
+};
+
+/// Where the geometry modules get what they need.
+struct GeometryContext {
+    /// A distance tree of the same curves: required when a law asks for the embedded module.
+    const DistanceTree* tree = nullptr;
+    /// M, E and S of the embedded module.
+    EmbeddedOptions embedded = {};
+};
+
+/// The vertex geometry a law asks for: empty when it needs none, else normals and curvature from
+/// its module. Throws InvalidInput when the embedded module is asked for without a tree, or with
+/// a tree of other curves.
+VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curves,
+                               const GeometryContext& context);
+
+/// Velocity(t, Γ): computes the geometry the law needs, calls it, and checks the answer.
+/// Throws InvalidInput if the law returns the wrong number of vectors, NumericalFailure naming
+/// the law, the time and the vertex if a velocity is not finite.
+std::vector<Vec2> vertex_velocities(const VelocityLaw& law, double t, const Interface& curves,
+                                    const GeometryContext& context = {});
+
+/// A flow field sampled at points, checked like vertex_velocities (the message names the point).
+std::vector<Vec2> field_velocities(const VelocityLaw& law, double t, std::span<const Vec2> points);
+
+// ---- adapters: a user's law from a small callable ----------------------------------------------
+
+/// What a local law sees at one vertex. normal and curvature are set when the law asked for them.
+struct VertexState {
+    std::size_t index = 0;
+    Vec2 point;
+    Vec2 normal;
+    double curvature = 0.0;
+};
+
+/// A law u = f(t, x) defined everywhere: f(double t, Vec2 x) -> Vec2, called concurrently.
+template <class F>
+requires std::regular_invocable<const F&, double, Vec2> &&
+    std::convertible_to<std::invoke_result_t<const F&, double, Vec2>, Vec2>
+class FieldLaw final : public VelocityLaw {
+public:
+    FieldLaw(std::string name, F f) : name_(std::move(name)), f_(std::move(f)) {}
+    std::string name() const override { return name_; }
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry&) const override {
+        std::vector<Vec2> u(curves.size());
+        sample(t, curves.points(), u);
+        return u;
+    }
+    bool is_field() const override { return true; }
+    void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override {
+        parallel_for(points.size(), [&](std::size_t i) { out[i] = f_(t, points[i]); });
+    }
+
+private:
+    std::string name_;
+    F f_;
+};
+
+/// A local law u_i = f(t, state_i) at each vertex: f(double t, const VertexState&) -> Vec2,
+/// called concurrently.
+template <class F>
+requires std::regular_invocable<const F&, double, const VertexState&>
+class LocalLaw final : public VelocityLaw {
+public:
+    LocalLaw(std::string name, GeometryNeeds needs, F f)
+        : name_(std::move(name)), needs_(needs), f_(std::move(f)) {}
+    std::string name() const override { return name_; }
+    GeometryNeeds needs() const override { return needs_; }
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override {
+        std::vector<Vec2> u(curves.size());
+        parallel_for(u.size(), [&](std::size_t i) {
+            VertexState s{i, curves.point(i), {}, 0.0};
+            if (!geometry.normals.empty()) s.normal = geometry.normals[i];
+            if (!geometry.curvature.empty()) s.curvature = geometry.curvature[i];
+            u[i] = f_(t, s);
+        });
+        return u;
+    }
+
+private:
+    std::string name_;
+    GeometryNeeds needs_;
+    F f_;
+};
+
+/// A law that sees the whole curve (nonlocal): f(double t, const Interface&, const
+/// VertexGeometry&) -> std::vector<Vec2>.
+template <class F>
+requires std::regular_invocable<const F&, double, const Interface&, const VertexGeometry&>
+class CurveLaw final : public VelocityLaw {
+public:
+    CurveLaw(std::string name, GeometryNeeds needs, F f)
+        : name_(std::move(name)), needs_(needs), f_(std::move(f)) {}
+    std::string name() const override { return name_; }
+    GeometryNeeds needs() const override { return needs_; }
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override {
+        return f_(t, curves, geometry);
+    }
+
+private:
+    std::string name_;
+    GeometryNeeds needs_;
+    F f_;
+};
+
+/// field_law("swirl", [](double t, Vec2 x) { return ...; })
+template <class F>
+std::unique_ptr<VelocityLaw> field_law(std::string name, F f) {
+    return std::make_unique<FieldLaw<F>>(std::move(name), std::move(f));
+}
+/// local_law("speed-2", {.normals = true}, [](double, const VertexState& s) { return 2 * s.normal;
+/// })
+template <class F>
+std::unique_ptr<VelocityLaw> local_law(std::string name, GeometryNeeds needs, F f) {
+    return std::make_unique<LocalLaw<F>>(std::move(name), needs, std::move(f));
+}
+/// curve_law("mine", needs, [](double t, const Interface& c, const VertexGeometry& g) { ... })
+template <class F>
+std::unique_ptr<VelocityLaw> curve_law(std::string name, GeometryNeeds needs, F f) {
+    return std::make_unique<CurveLaw<F>>(std::move(name), needs, std::move(f));
+}
+
+}  // namespace slc

@@ -1,0 +1,200 @@
+// One-dimensional ENO kernels: stencil choice by undivided differences, Lagrange weights for the
+// derivative at a node and for interpolation, and the 1-2-1 smoothing pass (paper §3.2).
+#include "slc/geometry_modules/eno.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "slc/core/error.hpp"
+
+namespace slc::eno {
+namespace {
+
+constexpr int max_points = max_order + 1;
+
+/// 1 / Π_{l≠m} (m − l) for the Lagrange basis on nodes 0..p − 1: table[p][m].
+using InverseDenominators = std::array<std::array<double, max_points>, max_points + 1>;
+
+const InverseDenominators& inverse_denominators() {
+    static const InverseDenominators table = [] {
+        InverseDenominators t{};
+        for (int p = 1; p <= max_points; ++p) {
+            for (int m = 0; m < p; ++m) {
+                double d = 1.0;
+                for (int l = 0; l < p; ++l)
+                    if (l != m) d *= m - l;
+                t[static_cast<std::size_t>(p)][static_cast<std::size_t>(m)] = 1.0 / d;
+            }
+        }
+        return t;
+    }();
+    return table;
+}
+
+void check_order(int order) {
+    SLC_ASSERT(order >= 1 && order <= max_order, "ENO order is in 1..max_order");
+}
+
+/// Undivided differences of a line, level by level: at(d, k) = Δ^d f_k over samples k..k + d,
+/// for d = 1..levels, each level computed from the one below (the same operations, in the same
+/// order, whatever the window, so stencil choices do not depend on how a line is cut).
+class DifferenceTable {
+public:
+    DifferenceTable(std::span<const double> f, int levels) : n_(f.size()) {
+        const std::size_t size = static_cast<std::size_t>(levels) * n_;
+        if (size > small_.size()) large_.resize(size);
+        diff_ = size > small_.size() ? large_.data() : small_.data();
+        for (std::size_t k = 0; k + 1 < n_; ++k) diff_[k] = f[k + 1] - f[k];
+        for (int d = 2; d <= levels; ++d) {
+            const std::size_t row = static_cast<std::size_t>(d - 1) * n_, below = row - n_;
+            for (std::size_t k = 0; k + static_cast<std::size_t>(d) < n_; ++k)
+                diff_[row + k] = diff_[below + k + 1] - diff_[below + k];
+        }
+    }
+    DifferenceTable(const DifferenceTable&) = delete;
+    DifferenceTable& operator=(const DifferenceTable&) = delete;
+
+    /// |Δ^d f_k|, for 1 <= d <= levels and k + d < n.
+    double magnitude(int d, std::size_t k) const {
+        return std::abs(diff_[static_cast<std::size_t>(d - 1) * n_ + k]);
+    }
+
+private:
+    std::size_t n_;
+    std::array<double, 64> small_;  ///< enough for the windows of stencil(): (2E + 2)·E <= 60
+    std::vector<double> large_;
+    double* diff_ = nullptr;
+};
+
+/// The ENO rule on a precomputed table (see stencil()).
+Stencil grow(const DifferenceTable& table, std::size_t n, std::size_t lo, std::size_t hi,
+             int order) {
+    const std::size_t centre2 = lo + hi;  // twice the centre of the starting stencil
+    int points = static_cast<int>(hi - lo) + 1;
+    while (points < order + 1 && hi - lo + 1 < n) {
+        bool left;
+        if (lo == 0) {
+            left = false;
+        } else if (hi + 1 == n) {
+            left = true;
+        } else {
+            const double dl = table.magnitude(points, lo - 1), dr = table.magnitude(points, lo);
+            // Tie: extend on the side that keeps the stencil balanced about its start.
+            left = dl < dr || (dl == dr && lo + hi >= centre2);
+        }
+        if (left) {
+            --lo;
+        } else {
+            ++hi;
+        }
+        ++points;
+    }
+    return {lo, points};
+}
+
+/// Weights w[m] with Σ w[m] f(m) = p'(at) for the polynomial p of degree points − 1 through the
+/// samples at the integers 0..points − 1 (unit spacing): w[m] = L_m'(at).
+std::array<double, max_points> lagrange_derivative_weights(int points, double at) {
+    std::array<double, max_points> w{};
+    for (int m = 0; m < points; ++m) {
+        double denominator = 1.0;
+        for (int l = 0; l < points; ++l)
+            if (l != m) denominator *= m - l;
+        double sum = 0.0;
+        for (int q = 0; q < points; ++q) {
+            if (q == m) continue;
+            double product = 1.0;
+            for (int l = 0; l < points; ++l)
+                if (l != m && l != q) product *= at - l;
+            sum += product;
+        }
+        w[static_cast<std::size_t>(m)] = sum / denominator;
+    }
+    return w;
+}
+
+/// Derivative weights for every stencil size and every node of the stencil, computed once:
+/// table[points][node][m].
+using DerivativeTable =
+    std::array<std::array<std::array<double, max_points>, max_points>, max_points + 1>;
+
+const DerivativeTable& derivative_table() {
+    static const DerivativeTable table = [] {
+        DerivativeTable t{};
+        for (int p = 1; p <= max_points; ++p)
+            for (int node = 0; node < p; ++node)
+                t[static_cast<std::size_t>(p)][static_cast<std::size_t>(node)] =
+                    lagrange_derivative_weights(p, node);
+        return t;
+    }();
+    return table;
+}
+
+}  // namespace
+
+Stencil stencil(std::span<const double> f, std::size_t lo, std::size_t hi, int order) {
+    check_order(order);
+    SLC_ASSERT(lo <= hi && hi < f.size(), "the starting stencil lies inside the line");
+    // Only samples within `order` of the start can join the stencil.
+    const std::size_t first =
+        lo >= static_cast<std::size_t>(order) ? lo - static_cast<std::size_t>(order) : 0;
+    const std::size_t last = std::min(f.size() - 1, hi + static_cast<std::size_t>(order));
+    const auto window = f.subspan(first, last - first + 1);
+    const DifferenceTable table(window, order);
+    const Stencil s = grow(table, window.size(), lo - first, hi - first, order);
+    return {s.first + first, s.points};
+}
+
+void derivative(std::span<const double> f, double h, int order, std::span<double> out) {
+    check_order(order);
+    SLC_ASSERT(out.size() == f.size(), "one derivative per sample");
+    SLC_ASSERT(h > 0.0, "positive spacing");
+    if (f.size() < 2) {
+        std::fill(out.begin(), out.end(), 0.0);
+        return;
+    }
+    const DerivativeTable& weights = derivative_table();
+    const DifferenceTable differences(f, order);
+    for (std::size_t k = 0; k < f.size(); ++k) {
+        const Stencil s = grow(differences, f.size(), k, k, order);
+        const auto& w = weights[static_cast<std::size_t>(s.points)][k - s.first];
+        double sum = 0.0;
+        for (int m = 0; m < s.points; ++m)
+            sum += w[static_cast<std::size_t>(m)] * f[s.first + static_cast<std::size_t>(m)];
+        out[k] = sum / h;
+    }
+}
+
+double interpolate(std::span<const double> f, std::size_t i, double theta, int order) {
+    check_order(order);
+    SLC_ASSERT(i + 1 < f.size(), "the interval [x_i, x_{i+1}] lies inside the line");
+    const Stencil s = stencil(f, i, i + 1, order);
+    // Lagrange basis on the integer nodes 0..p − 1 of the stencil at x_i + theta in those units:
+    // L_m(at) = Π_{l≠m} (at − l) / Π_{l≠m} (m − l), the numerators from prefix and suffix
+    // products, the denominators from a table.
+    const auto p = static_cast<std::size_t>(s.points);
+    const double at = static_cast<double>(i - s.first) + theta;
+    std::array<double, max_points + 1> prefix{}, suffix{};
+    prefix[0] = 1.0;
+    for (std::size_t l = 0; l < p; ++l) prefix[l + 1] = prefix[l] * (at - static_cast<double>(l));
+    suffix[p] = 1.0;
+    for (std::size_t l = p; l-- > 0;) suffix[l] = suffix[l + 1] * (at - static_cast<double>(l));
+    const auto& inverse = inverse_denominators()[p];
+    double sum = 0.0;
+    for (std::size_t m = 0; m < p; ++m)
+        sum += prefix[m] * suffix[m + 1] * inverse[m] * f[s.first + m];
+    return sum;
+}
+
+void smooth(std::span<const double> f, std::span<double> out) {
+    SLC_ASSERT(out.size() == f.size(), "one output per sample");
+    const std::size_t n = f.size();
+    if (n == 0) return;
+    out[0] = f[0];
+    out[n - 1] = f[n - 1];
+    for (std::size_t k = 1; k + 1 < n; ++k) out[k] = 0.25 * (f[k - 1] + 2.0 * f[k] + f[k + 1]);
+}
+
+}  // namespace slc::eno

@@ -1,0 +1,29 @@
+// Arc-length weights of the vertices and arc-length means over Γ (for the nonlocal law, paper
+// Eq. 13, and for integrals of the curvature).
+#include "slc/geometry_modules/vertex_geometry.hpp"
+
+#include "slc/core/error.hpp"
+
+namespace slc {
+
+std::vector<double> vertex_arc_lengths(const Interface& curves) {
+    std::vector<double> w(curves.size());
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+        w[i] = 0.5 * (distance(curves.point(curves.prev(i)), curves.point(i)) +
+                      distance(curves.point(i), curves.point(curves.next(i))));
+    }
+    return w;
+}
+
+double arc_length_mean(const Interface& curves, std::span<const double> g) {
+    SLC_ASSERT(g.size() == curves.size() && !curves.empty(), "one value per vertex");
+    const std::vector<double> w = vertex_arc_lengths(curves);
+    double integral = 0.0, length_sum = 0.0;
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        integral += g[i] * w[i];
+        length_sum += w[i];
+    }
+    return integral / length_sum;
+}
+
+}  // namespace slc

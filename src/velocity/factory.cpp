@@ -1,0 +1,150 @@
+// The built-in velocity laws by name: the catalog of names and parameters, and make_velocity,
+// which checks the parameters and builds the law.
+#include "slc/velocity/factory.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <functional>
+
+#include "slc/core/error.hpp"
+#include "slc/velocity/laws.hpp"
+
+namespace slc {
+namespace {
+
+/// Parameter values after defaults, and which ones the user gave.
+struct Resolved {
+    VelocityParams values;
+    double operator[](const std::string& key) const { return values.at(key); }
+    bool has(const std::string& key) const { return values.count(key) != 0; }
+};
+
+using Builder =
+    std::function<std::unique_ptr<VelocityLaw>(const Resolved&, std::optional<GeometryModule>)>;
+
+struct Entry {
+    VelocityInfo info;
+    Builder build;
+};
+
+VelocityParameter param(std::string name, double value, std::string meaning) {
+    return {std::move(name), value, fmt::format("{}", value), std::move(meaning), false};
+}
+
+std::unique_ptr<VelocityLaw> make_anisotropic(const Resolved& p,
+                                              std::optional<GeometryModule> module) {
+    const double m = p["m"];
+    if (!p.has("eps") && m * m == 1.0) {
+        throw InvalidInput(fmt::format(
+            "velocity 'anisotropic': the default eps = 5/(m²−1) is undefined for m = {}; give eps",
+            m));
+    }
+    const double eps = p.has("eps") ? p["eps"] : 5.0 / (m * m - 1.0);
+    return std::make_unique<AnisotropicNormalSpeed>(p["R"], m, eps,
+                                                    module.value_or(GeometryModule::intrinsic));
+}
+
+const std::vector<Entry>& entries() {
+    using M = std::optional<GeometryModule>;
+    static const std::vector<Entry> table = {
+        {{"rotation",
+          "rigid counterclockwise rotation u = omega (-(y - cy), x - cx)",
+          {param("omega", 1, "angular velocity"), param("cx", 0, "x of the centre"),
+           param("cy", 0, "y of the centre")}},
+         [](const Resolved& p, M) {
+             return std::make_unique<Rotation>(p["omega"], Vec2{p["cx"], p["cy"]});
+         }},
+        {{"translation",
+          "constant velocity u = (ux, uy)",
+          {{"ux", std::nullopt, "required", "x velocity", true},
+           {"uy", std::nullopt, "required", "y velocity", true}}},
+         [](const Resolved& p, M) {
+             return std::make_unique<Translation>(Vec2{p["ux"], p["uy"]});
+         }},
+        {{"unit-normal",
+          "constant normal speed u = speed N (positive grows)",
+          {param("speed", 1, "normal speed, either sign")}},
+         [](const Resolved& p, M m) {
+             return std::make_unique<NormalSpeed>(p["speed"],
+                                                  m.value_or(GeometryModule::intrinsic));
+         }},
+        {{"anisotropic",
+          "anisotropic normal speed u = (R + eps cos(m theta)) N",
+          {param("R", -1, "isotropic part of the normal speed"),
+           param("m", 4, "number of facets"),
+           {"eps", std::nullopt, "5/(m²−1)", "amplitude of the anisotropy", false}}},
+         make_anisotropic},
+        {{"curvature", "motion by curvature u = C N (shrinks circles)", {}},
+         [](const Resolved&, M m) {
+             return std::make_unique<CurvatureFlow>(m.value_or(GeometryModule::embedded));
+         }},
+        {{"volume-preserving-curvature", "nonlocal u = (C - mean of C over all of Gamma) N", {}},
+         [](const Resolved&, M m) {
+             return std::make_unique<VolumePreservingCurvatureFlow>(
+                 m.value_or(GeometryModule::embedded));
+         }},
+        {{"vortex",
+          "LeVeque's single vortex on [0, 1]^2, reversed at t = period/2",
+          {param("period", 8, "period T: the flow is multiplied by cos(pi t / T)")}},
+         [](const Resolved& p, M) { return std::make_unique<SingleVortex>(p["period"]); }},
+    };
+    return table;
+}
+
+std::string joined_names(const std::vector<VelocityParameter>& params) {
+    std::string s;
+    for (const auto& p : params) s += (s.empty() ? "" : ", ") + p.name;
+    return s.empty() ? "none" : s;
+}
+
+/// The user's values checked against the law's parameters, with defaults filled in.
+Resolved resolve(const VelocityInfo& info, const VelocityParams& given) {
+    Resolved r;
+    for (const auto& [key, value] : given) {
+        bool known = false;
+        for (const auto& p : info.parameters) known = known || p.name == key;
+        if (!known) {
+            throw InvalidInput(
+                fmt::format("velocity '{}' has no parameter '{}'; its parameters: {}", info.name,
+                            key, joined_names(info.parameters)));
+        }
+        if (!std::isfinite(value))
+            throw InvalidInput(fmt::format("velocity '{}': parameter {} must be finite, got {}",
+                                           info.name, key, value));
+        r.values[key] = value;
+    }
+    for (const auto& p : info.parameters) {
+        if (r.has(p.name)) continue;
+        if (p.default_value) {
+            r.values[p.name] = *p.default_value;
+        } else if (p.required) {
+            throw InvalidInput(fmt::format("velocity '{}' needs parameter {} (its parameters: {})",
+                                           info.name, p.name, joined_names(info.parameters)));
+        }
+    }
+    return r;
+}
+
+}  // namespace
+
+const std::vector<VelocityInfo>& velocity_catalog() {
+    static const std::vector<VelocityInfo> catalog = [] {
+        std::vector<VelocityInfo> c;
+        for (const Entry& e : entries()) c.push_back(e.info);
+        return c;
+    }();
+    return catalog;
+}
+
+std::unique_ptr<VelocityLaw> make_velocity(const std::string& name, const VelocityParams& params,
+                                           std::optional<GeometryModule> module) {
+    std::string known;
+    for (const Entry& e : entries()) {
+        if (e.info.name == name) return e.build(resolve(e.info, params), module);
+        known += (known.empty() ? "" : ", ") + e.info.name;
+    }
+    throw InvalidInput(fmt::format("unknown velocity '{}'; known: {}", name, known));
+}
+
+}  // namespace slc

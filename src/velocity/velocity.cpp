@@ -1,0 +1,64 @@
+// Velocity laws: the default sample(), the geometry a law asks for, and the checks on what a law
+// returns (a non-finite velocity names the law, the time and the vertex).
+#include "slc/velocity/velocity.hpp"
+
+#include <fmt/format.h>
+
+#include "slc/core/error.hpp"
+#include "slc/geometry_modules/intrinsic.hpp"
+
+namespace slc {
+namespace {
+
+/// Throws NumericalFailure at the first non-finite velocity, naming `what` (vertex or point).
+void check_finite(const VelocityLaw& law, double t, std::span<const Vec2> at,
+                  std::span<const Vec2> u, const char* what) {
+    for (std::size_t i = 0; i < u.size(); ++i) {
+        if (!is_finite(u[i])) {
+            throw NumericalFailure(
+                fmt::format("velocity '{}' is not finite at t = {}, {} {} ({}, {}): ({}, {})",
+                            law.name(), t, what, i, at[i].x, at[i].y, u[i].x, u[i].y));
+        }
+    }
+}
+
+}  // namespace
+
+void VelocityLaw::sample(double, std::span<const Vec2>, std::span<Vec2>) const {
+    throw InvalidInput(
+        fmt::format("velocity '{}' is defined only on the interface, not everywhere", name()));
+}
+
+VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curves,
+                               const GeometryContext& context) {
+    if (!needs.any()) return {};
+    if (needs.module == GeometryModule::intrinsic) return intrinsic_geometry(curves);
+    if (context.tree == nullptr)
+        throw InvalidInput("the embedded geometry module needs a distance tree of the interface");
+    if (&context.tree->curves() != &curves)
+        throw InvalidInput(
+            "the embedded geometry module was given a distance tree of other curves");
+    return embedded_geometry(*context.tree, context.embedded);
+}
+
+std::vector<Vec2> vertex_velocities(const VelocityLaw& law, double t, const Interface& curves,
+                                    const GeometryContext& context) {
+    const VertexGeometry geometry = vertex_geometry(law.needs(), curves, context);
+    std::vector<Vec2> u = law.velocities(t, curves, geometry);
+    if (u.size() != curves.size()) {
+        throw InvalidInput(
+            fmt::format("velocity '{}' returned {} velocities for {} vertices at t = {}",
+                        law.name(), u.size(), curves.size(), t));
+    }
+    check_finite(law, t, curves.points(), u, "vertex");
+    return u;
+}
+
+std::vector<Vec2> field_velocities(const VelocityLaw& law, double t, std::span<const Vec2> points) {
+    std::vector<Vec2> u(points.size());
+    law.sample(t, points, u);
+    check_finite(law, t, points, u, "point");
+    return u;
+}
+
+}  // namespace slc
