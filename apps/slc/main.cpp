@@ -12,6 +12,9 @@ int main(int argc, char** argv) {
     CLI::App app{"slc: moving interfaces by semi-Lagrangian contouring (J. Strain, JCP 2001)"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "slc 0.1.0");
+    slc::cli::add_run_command(app);
+    slc::cli::add_study_command(app);
+    slc::cli::add_contour_command(app);
     slc::cli::add_distance_command(app);
     slc::cli::add_render_command(app);
     slc::cli::add_tree_command(app);

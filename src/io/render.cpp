@@ -59,10 +59,11 @@ struct TrianglesLayer {
     double line_width = 0.0;
 };
 struct CurvesLayer {
-    Interface curves;
+    std::vector<std::vector<Vec2>> paths;
     std::string label;
     Color color;
     double line_width = 0.0;
+    bool closed = true;
 };
 struct PointsLayer {
     std::vector<Vec2> points;
@@ -384,15 +385,15 @@ void draw_triangles(cairo_t* cr, const Page& page, const TrianglesLayer& layer) 
 }
 
 void draw_curves(cairo_t* cr, const Page& page, const CurvesLayer& layer) {
-    for (std::size_t c = 0; c < layer.curves.curve_count(); ++c) {
+    for (const auto& path : layer.paths) {
         bool first = true;
-        for (const Vec2 v : layer.curves.curve(c)) {
+        for (const Vec2 v : path) {
             if (!is_finite(v)) continue;  // a broken curve is still drawn, without that vertex
             const Vec2 p = page.to_page(v);
             first ? cairo_move_to(cr, p.x, p.y) : cairo_line_to(cr, p.x, p.y);
             first = false;
         }
-        if (!first) cairo_close_path(cr);
+        if (!first && layer.closed) cairo_close_path(cr);
     }
     set_color(cr, layer.color);
     cairo_set_line_width(cr, layer.line_width);
@@ -692,8 +693,15 @@ void Figure::add_triangles(std::span<const Vec2> vertices,
 void Figure::add_curves(const Interface& curves, const std::string& label, Color color,
                         double line_width) {
     check_positive(line_width, "line width");
-    layers_.push_back(
-        std::make_shared<Layer>(Layer{CurvesLayer{curves, label, color, line_width}}));
+    layers_.push_back(std::make_shared<Layer>(
+        Layer{CurvesLayer{curves.curves(), label, color, line_width, true}}));
+}
+
+void Figure::add_polyline(std::span<const Vec2> points, const std::string& label, Color color,
+                          double line_width) {
+    check_positive(line_width, "line width");
+    layers_.push_back(std::make_shared<Layer>(Layer{CurvesLayer{
+        {std::vector<Vec2>(points.begin(), points.end())}, label, color, line_width, false}}));
 }
 
 void Figure::add_points(std::span<const Vec2> points, Color color, double radius) {

@@ -9,5 +9,8 @@ namespace slc::cli {
 void add_distance_command(CLI::App& app);
 void add_render_command(CLI::App& app);
 void add_tree_command(CLI::App& app);
+void add_run_command(CLI::App& app);
+void add_study_command(CLI::App& app);
+void add_contour_command(CLI::App& app);
 
 }  // namespace slc::cli

@@ -52,6 +52,9 @@ public:
     /// Every curve of an interface, closed, with a legend entry `label` (none if empty).
     void add_curves(const Interface& curves, const std::string& label, Color color,
                     double line_width = 1.5);
+    /// An open polyline through points (a graph), with a legend entry `label` (none if empty).
+    void add_polyline(std::span<const Vec2> points, const std::string& label, Color color,
+                      double line_width = 1.5);
     /// Dots at points (for instance the vertices of a curve).
     void add_points(std::span<const Vec2> points, Color color, double radius = 1.5);
     /// Arrows from at[i] along vec[i] * scale (plane units).

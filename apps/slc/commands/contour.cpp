@@ -1,0 +1,239 @@
+// slc contour: contours the exact signed distance of an interface (paper §2, Tables 2 and 3) and
+// reports cells, segments, mean segment length, error and cost, with a picture of the tree and
+// the contour like the paper's Figs. 5–7.
+#include "slc/contour/contour.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+
+#include "commands/commands.hpp"
+#include "commands/common.hpp"
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+#include "slc/distance/distance_tree.hpp"
+#include "slc/io/interface_json.hpp"
+#include "slc/io/render.hpp"
+#include "slc/tree/triangulation.hpp"
+
+namespace slc::cli {
+namespace {
+
+struct ContourCommandOptions {
+    std::string initial;
+    int depth = 0;
+    std::optional<double> eps;
+    int refine = 0;
+    double eta = 1e-10;
+    double rho = 0.1;
+    DomainOptions domain;
+    std::optional<int> tree_depth;
+    std::string out;
+    int threads = 0;
+};
+
+/// Largest |F| over the vertices and over the segment midpoints (paper Tables 2 and 3).
+struct ContourError {
+    double vertices = 0.0;
+    double midpoints = 0.0;
+};
+
+ContourError measure_error(const DistanceTree& tree, const Interface& curves) {
+    std::vector<Vec2> points(curves.points().begin(), curves.points().end());
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+        const Segment s = curves.segment(i);
+        points.push_back(0.5 * (s.a + s.b));
+    }
+    const std::vector<double> f = tree.signed_distances(points);
+    ContourError e;
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+        e.vertices = std::max(e.vertices, std::abs(f[i]));
+        e.midpoints = std::max(e.midpoints, std::abs(f[curves.size() + i]));
+    }
+    return e;
+}
+
+nlohmann::json stats_json(const ContourStats& s) {
+    return {{"cells", s.cells},
+            {"leaves", s.leaves},
+            {"triangles", s.triangles},
+            {"curves", s.curves},
+            {"segments", s.segments},
+            {"vertices", s.vertices},
+            {"mean_segment_length", s.mean_segment_length},
+            {"g_evals", s.g_evals},
+            {"g_evals_tree", s.g_evals_tree},
+            {"g_evals_roots", s.g_evals_roots},
+            {"g_evals_refine", s.g_evals_refine},
+            {"g_evals_per_vertex", s.g_evals_per_vertex},
+            {"gamma", s.gamma},
+            {"perturbed", s.perturbed},
+            {"stalled_roots", s.stalled_roots},
+            {"passes", s.passes},
+            {"splits", s.splits},
+            {"rejected", s.rejected},
+            {"pruned", s.pruned}};
+}
+
+/// The tree's triangulation (unperturbed) and leaves, the input faintly, the contour and its
+/// vertices on top.
+void draw(const ContourResult& r, const Interface& input, const Box& domain,
+          const std::string& title, const std::filesystem::path& dir) {
+    std::vector<Box> cells;
+    for (std::uint32_t c : r.tree.leaves()) cells.push_back(r.tree.box(c));
+    const Triangulation mesh = triangulate(r.tree);
+    Figure figure(domain, title);
+    figure.add_triangles(mesh.vertices, mesh.triangles, Color{0.55, 0.68, 0.88, 1.0}, 0.3);
+    figure.add_boxes(cells, Color{0.35, 0.35, 0.35, 0.8});
+    figure.add_curves(input, "input", Color{0.6, 0.75, 0.95, 1.0}, 3.0);
+    figure.add_curves(r.curves, "contour", palette_color(1), 1.2);
+    figure.add_points(r.curves.points(), palette_color(1), 1.8);
+    figure.save(dir / "final.svg");
+    figure.save(dir / "final.png");
+}
+
+/// A CLI11 check for a positive finite number, with a one-line message.
+const CLI::Validator positive(
+    [](std::string& text) {
+        try {
+            const double v = std::stod(text);
+            if (v > 0.0 && std::isfinite(v)) return std::string();
+        } catch (const std::exception&) {
+        }
+        return fmt::format("must be a positive number, got {}", text);
+    },
+    "POSITIVE");
+
+ContourOptions library_options(const ContourCommandOptions& o) {
+    ContourOptions options;
+    options.depth = o.depth;
+    options.refine_passes = o.refine;
+    options.eps = o.eps;
+    options.eta = o.eta;
+    options.rho = o.rho;
+    return options;
+}
+
+/// summary.json before the contour: the input and every parameter, resolved.
+nlohmann::json summary_head(const ContourCommandOptions& o, const LoadedInterface& in,
+                            const ContourOptions& options, int tree_depth) {
+    return {{"command", "contour"},
+            {"input", o.initial},
+            {"time", in.time},
+            {"domain", box_json(in.domain)},
+            {"params",
+             {{"K", o.depth},
+              {"P", o.refine},
+              {"eps", options.resolved_eps()},
+              {"eta", o.eta},
+              {"rho", o.rho},
+              {"gamma", options.gamma},
+              {"L", tree_depth},
+              {"threads", thread_count()}}}};
+}
+
+std::string picture_title(const ContourCommandOptions& o, const ContourResult& r, double error) {
+    if (o.refine == 0) {
+        return fmt::format("Linear contour, K = {}: {} segments, error {:.2e}", o.depth,
+                           r.stats.segments, error);
+    }
+    return fmt::format("Contour K = {}, eps = {:.0e}, {} passes: {} segments, error {:.2e}",
+                       o.depth, library_options(o).resolved_eps(), r.stats.passes, r.stats.segments,
+                       error);
+}
+
+/// final.json, the pictures, then summary.json (last, so that it marks a complete run).
+void write_results(const ContourCommandOptions& o, const LoadedInterface& in,
+                   const DistanceTree& tree, const ContourResult& r, nlohmann::json summary) {
+    const std::filesystem::path dir(o.out);
+    const ContourError e = measure_error(tree, r.curves);
+    const double error = std::max(e.vertices, e.midpoints);
+    summary["status"] = "ok";
+    summary.update(stats_json(r.stats));
+    summary["error"] = r.curves.empty() ? nlohmann::json(nullptr) : nlohmann::json(error);
+    summary["error_vertices"] = e.vertices;
+    summary["error_midpoints"] = e.midpoints;
+    summary["area"] = area(r.curves);
+    summary["length"] = length(r.curves);
+    write_file_atomic(dir / "final.json", interface_json(r.curves, in.time));
+    draw(r, in.curves, in.domain, picture_title(o, r, error), dir);
+    write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+    fmt::print(
+        "{} cells, {} segments, error {:.3g}, {} G evaluations ({:.2f} per vertex), {:.3g} s; "
+        "wrote {}\n",
+        r.stats.cells, r.stats.segments, error, r.stats.g_evals, r.stats.g_evals_per_vertex,
+        summary["cpu_s"].get<double>(), (dir / "summary.json").string());
+}
+
+void run_contour(const ContourCommandOptions& o) {
+    apply_threads(o.threads);
+    const LoadedInterface in = load_interface(o.initial, o.domain);
+    const int tree_depth = o.tree_depth.value_or(default_tree_depth(in.curves, in.domain));
+    const ContourOptions options = library_options(o);
+    nlohmann::json summary = summary_head(o, in, options, tree_depth);
+
+    const DistanceTree tree(in.curves, in.domain, {.depth = tree_depth, .triangulate = false});
+    const auto exact = [&tree](std::span<const Vec2> x, std::span<double> v) {
+        const std::vector<double> f = tree.signed_distances(x);
+        std::copy(f.begin(), f.end(), v.begin());
+    };
+    // cpu_s and wall_s time the contour alone, evaluations of F included.
+    const std::clock_t cpu_start = std::clock();
+    const auto wall_start = std::chrono::steady_clock::now();
+    std::optional<ContourResult> result;
+    try {
+        result = contour(exact, in.domain, options);
+    } catch (const NumericalFailure& e) {
+        const std::string message = fmt::format("at t = {}: {}", in.time, e.what());
+        summary["status"] = "error";
+        summary["message"] = message;
+        write_file_atomic(std::filesystem::path(o.out) / "summary.json", summary.dump(2) + "\n");
+        throw NumericalFailure(message);
+    }
+    summary["cpu_s"] = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    summary["wall_s"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    write_results(o, in, tree, *result, std::move(summary));
+}
+
+}  // namespace
+
+void add_contour_command(CLI::App& app) {
+    auto o = std::make_shared<ContourCommandOptions>();
+    auto* cmd = app.add_subcommand(
+        "contour",
+        "Contours the exact signed distance of an interface (paper Tables 2 and 3): writes "
+        "final.json, summary.json (cells, segments, mean segment length, error = max |F| over "
+        "vertices and segment midpoints, cpu_s, g_evals, g_evals_per_vertex) and final.svg/.png "
+        "(tree and contour)");
+    cmd->add_option("--initial", o->initial, "Interface file (JSON)")->required();
+    cmd->add_option("-K,--depth", o->depth, "Depth K of the contouring tree")
+        ->required()
+        ->check(CLI::Range(0, 20));
+    cmd->add_option("--eps", o->eps, "Midpoint tolerance eps of refinement (default 10^-K)")
+        ->check(positive);
+    cmd->add_option("--refine", o->refine,
+                    "Passes P of adaptive refinement (default 0: linear contour); refinement stops "
+                    "early when no midpoint exceeds eps or a pass changes nothing, so a large P "
+                    "means 'until converged'")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--eta", o->eta,
+                    "Root-finding tolerance eta: |G| <= eta at every vertex (default 1e-10)")
+        ->check(positive);
+    cmd->add_option("--rho", o->rho, "Pruning ratio rho in [0, 1) (default 0.1)")
+        ->check(CLI::Range(0.0, 0.999999));
+    add_domain_options(*cmd, o->domain);
+    cmd->add_option("-L,--tree-depth", o->tree_depth,
+                    "Depth L of the distance tree that evaluates F (default: cells about one mean "
+                    "segment wide; it sets the speed, not the error)")
+        ->check(CLI::Range(0, 30));
+    cmd->add_option("--out", o->out, "Output folder")->required();
+    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->callback([o] { run_contour(*o); });
+}
+
+}  // namespace slc::cli

@@ -1,0 +1,161 @@
+// Method options of slc run and slc study, and the summary of a run.
+#include "commands/run_options.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+
+namespace slc::cli {
+
+void add_method_options(CLI::App& cmd, MethodOptions& o) {
+    cmd.add_option("-N,--steps", o.steps, "N: time steps on [0, a] (problem's default)")
+        ->check(CLI::Range(1, 100000000));
+    cmd.add_option("-K,--depth", o.depth, "K: depth of the contouring tree (problem's default)")
+        ->check(CLI::Range(1, 24));
+    cmd.add_option("-P,--refine", o.refine, "P: passes of adaptive refinement (problem's default)")
+        ->check(CLI::Range(0, 64));
+    cmd.add_option("--eps", o.eps, "epsilon: midpoint tolerance of refinement (default 10^-K)")
+        ->check(CLI::PositiveNumber);
+    cmd.add_option("--eta", o.eta, "eta: root-finding tolerance (default 1e-10)")
+        ->check(CLI::PositiveNumber);
+    cmd.add_option("--rho", o.rho, "rho: pruning ratio in [0, 1) (default 0.1)")
+        ->check(CLI::Range(0.0, 0.999999));
+    cmd.add_option("--mesh", o.mesh, "M: embedded mesh points per side (default 2^(K+1))")
+        ->check(CLI::Range(8, 1 << 22));
+    cmd.add_option("--eno-order", o.eno_order, "E: ENO order of the embedded module (default 3)")
+        ->check(CLI::Range(1, 5));
+    cmd.add_option("--smooth", o.smooth, "S: cosine smoothing passes (problem's default)")
+        ->check(CLI::Range(0, 64));
+    cmd.add_option("-L,--tree-depth", o.tree_depth, "L: distance tree depth (default K + P)")
+        ->check(CLI::Range(1, 30));
+    cmd.add_option("--extension", o.extension,
+                   "Velocity extension off the curve: nearest (default), whitney, or direct (flow "
+                   "fields only)")
+        ->check(CLI::IsMember({"nearest", "whitney", "direct"}));
+    cmd.add_option("--threads", o.threads,
+                   "Worker threads (0 = all cores); results do not depend on it")
+        ->check(CLI::NonNegativeNumber);
+}
+
+RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
+    RunOptions r;
+    r.t_start = 0.0;
+    r.t_end = p.t_end;
+    r.steps = m.steps.value_or(p.steps);
+    ContourOptions& c = r.step.contour;
+    c.depth = m.depth.value_or(p.depth);
+    c.refine_passes = m.refine.value_or(p.refine);
+    c.eps = m.eps ? *m.eps : (m.depth ? std::pow(10.0, -c.depth) : p.eps);
+    c.eta = m.eta;
+    c.rho = m.rho;
+    if (*c.eps < c.eta)
+        throw InvalidInput(fmt::format("--eps ({}) must not be below --eta ({})", *c.eps, c.eta));
+    r.step.tree_depth = m.tree_depth.value_or(0);
+    r.step.extension = m.extension == "whitney"  ? Extension::whitney
+                       : m.extension == "direct" ? Extension::direct
+                                                 : Extension::nearest_point;
+    r.step.embedded.mesh = m.mesh.value_or(default_mesh_size(c.depth));
+    r.step.embedded.eno_order = m.eno_order;
+    r.step.embedded.smoothing = m.smooth.value_or(p.smoothing);
+    return r;
+}
+
+std::string run_name(const RunOptions& o) {
+    return fmt::format("{}/{}/{}/{}/{:.0e}", o.steps, o.step.embedded.smoothing,
+                       o.step.contour.depth, o.step.contour.refine_passes,
+                       o.step.contour.resolved_eps());
+}
+
+nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResult& r,
+                           const std::string& velocity) {
+    const auto e_inf = max_error(p, r.curves, r.t);
+    const ContourOptions& c = o.step.contour;
+    nlohmann::json params = {
+        {"N", o.steps},
+        {"K", c.depth},
+        {"P", c.refine_passes},
+        {"eps", c.resolved_eps()},
+        {"eta", c.eta},
+        {"rho", c.rho},
+        {"M", o.step.embedded.mesh},
+        {"E", o.step.embedded.eno_order},
+        {"S", o.step.embedded.smoothing},
+        {"L", o.step.resolved_tree_depth()},
+        {"domain", {p.domain.lo.x, p.domain.lo.y, p.domain.hi.x, p.domain.hi.y}},
+        {"t_end", o.t_end},
+        {"velocity", velocity},
+        {"velocity_params", p.velocity_params},
+        {"extension", o.step.extension == Extension::whitney  ? "whitney"
+                      : o.step.extension == Extension::direct ? "direct"
+                                                              : "nearest"}};
+    for (const auto& q : p.parameters) params["problem_params"][q.name] = q.value;
+    nlohmann::json s = {
+        {"problem", p.name},
+        {"run", run_name(o)},
+        {"params", params},
+        {"t_end", o.t_end},
+        {"t", r.t},
+        {"steps", o.steps},
+        {"steps_done", r.steps_done},
+        {"status", to_string(r.status)},
+        {"e_inf", e_inf ? nlohmann::json(*e_inf) : nlohmann::json(nullptr)},
+        {"area", area(r.curves)},
+        {"length", length(r.curves)},
+        {"components", r.curves.curve_count()},
+        {"segments", r.curves.size()},
+        {"wall_s", r.wall_s},
+        {"cpu_s", r.cpu_s},
+        {"cpu_s_per_step", r.steps_done > 0 ? r.cpu_s / r.steps_done : 0.0},
+        {"threads", thread_count()},
+        {"g_evals", r.g_evals},
+        {"g_evals_per_vertex",
+         r.vertices_produced > 0 ? static_cast<double>(r.g_evals) / r.vertices_produced : 0.0}};
+    if (r.status == RunStatus::error) s["message"] = r.message;
+    return s;
+}
+
+std::map<std::string, double> parse_params(const std::vector<std::string>& params) {
+    std::map<std::string, double> out;
+    for (const std::string& kv : params) {
+        const auto eq = kv.find('=');
+        double value = 0.0;
+        std::size_t used = 0;
+        bool ok = eq != std::string::npos && eq > 0 && eq + 1 < kv.size();
+        if (ok) {
+            try {
+                value = std::stod(kv.substr(eq + 1), &used);
+                ok = used == kv.size() - eq - 1 && std::isfinite(value);
+            } catch (const std::exception&) {
+                ok = false;
+            }
+        }
+        if (!ok)
+            throw InvalidInput(
+                fmt::format("--param expects key=value with a finite number, got '{}'", kv));
+        out[kv.substr(0, eq)] = value;
+    }
+    return out;
+}
+
+std::string problem_help() {
+    std::string text = "A named problem:";
+    for (const auto& p : problem_catalog()) text += fmt::format("\n  {}: {}", p.name, p.summary);
+    return text;
+}
+
+std::string velocity_help() {
+    std::string text = "Velocity law for --initial:";
+    for (const auto& v : velocity_catalog()) {
+        std::string params;
+        for (const auto& q : v.parameters)
+            params += fmt::format(" {}[{}]", q.name,
+                                  q.default_text.empty() ? "required" : q.default_text);
+        text += fmt::format("\n  {}:{} — {}", v.name, params, v.summary);
+    }
+    return text;
+}
+
+}  // namespace slc::cli

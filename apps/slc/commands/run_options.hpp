@@ -1,0 +1,54 @@
+// The method parameters shared by `slc run` and `slc study` (DESIGN §4), their resolution against
+// a problem's defaults, and the summary.json of a run.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "slc/evolve/problems.hpp"
+#include "slc/evolve/run.hpp"
+
+namespace slc::cli {
+
+/// N, K, P, ε, η, ρ, M, E, S, L, the extension and threads; unset ones take the problem's
+/// values or the defaults of DESIGN §4.
+struct MethodOptions {
+    std::optional<int> steps;
+    std::optional<int> depth;
+    std::optional<int> refine;
+    std::optional<double> eps;
+    double eta = 1e-10;
+    double rho = 0.1;
+    std::optional<int> mesh;
+    int eno_order = 3;
+    std::optional<int> smooth;
+    std::optional<int> tree_depth;
+    std::string extension = "nearest";
+    int threads = 0;
+};
+
+void add_method_options(CLI::App& cmd, MethodOptions& options);
+
+/// The run's options: command line over problem defaults over DESIGN §4 defaults.
+RunOptions resolve_run_options(const MethodOptions& method, const Problem& problem);
+
+/// summary.json of a run (DESIGN §6): problem, params, t_end, steps, status, e_inf, area, length,
+/// components, segments, wall_s, cpu_s, cpu_s_per_step, threads, g_evals, g_evals_per_vertex.
+nlohmann::json run_summary(const Problem& problem, const RunOptions& options,
+                           const RunResult& result, const std::string& velocity);
+
+/// The run's name N/S/K/P/ε as in the paper.
+std::string run_name(const RunOptions& options);
+
+/// --param key=value pairs; InvalidInput for a malformed one.
+std::map<std::string, double> parse_params(const std::vector<std::string>& params);
+
+/// Help texts listing the problems and the velocity laws with their parameters.
+std::string problem_help();
+std::string velocity_help();
+
+}  // namespace slc::cli

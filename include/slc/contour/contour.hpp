@@ -1,0 +1,107 @@
+// Fast adaptive contouring of any function (paper §2): the zero set of G, a function that can
+// only be evaluated, as closed oriented polygons with a consistent topology and a chosen accuracy.
+//
+// 1. Topology (§2.1): a K-level quadtree split while a cell's edge exceeds min|G|/γ over its
+// corners
+//    and centre, γ doubled until the tree is 2:1 balanced; its conforming triangulation; vertices
+//    with |G| ≤ η perturbed; the zero set of the piecewise-linear interpolant, one segment per
+//    triangle with a sign change, chained into closed polygons with G > 0 on their right.
+// 2. Root finding (§2.1 "Bisection"): every vertex moved along its triangle edge to |G| ≤ η.
+// 3. Adaptive refinement (§2.2), P passes: split segments with |G(midpoint)| > ε, bracket the new
+//    vertex along the segment's normal, find the root, apply the safeguards, prune short segments.
+//
+// docs/algorithms/contour.md derives each step and the choices made where the paper is terse.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+
+#include "slc/contour/implicit_function.hpp"
+#include "slc/contour/root_finding.hpp"
+#include "slc/core/box.hpp"
+#include "slc/geometry/interface.hpp"
+#include "slc/tree/quadtree.hpp"
+
+namespace slc {
+
+/// Parameters of contour() (paper Table 4; DESIGN §4).
+struct ContourOptions {
+    /// refine_passes value meaning: refine until no segment midpoint exceeds ε, or a pass changes
+    /// nothing, but at most max_refine_passes passes.
+    static constexpr int until_converged = -1;
+
+    /// K: deepest level of the topology tree, 0..Quadtree::max_supported_depth.
+    int depth = 6;
+    /// P ≥ 0, or until_converged. Refinement also stops early when no midpoint exceeds ε or a
+    /// pass changes nothing, so a large P runs to convergence too.
+    int refine_passes = 0;
+    /// ε: midpoint tolerance of refinement, ε ≥ η; default 10^−K.
+    std::optional<double> eps;
+    /// η > 0: root-finding tolerance, |G| ≤ η at every vertex.
+    double eta = 1e-10;
+    /// ρ in [0, 1): prune segments shorter than ρ times both neighbours; 0 disables pruning.
+    double rho = 0.1;
+    /// γ > 0: starting estimate of the gradient bound |∇G| ≤ γ, doubled until the tree balances.
+    double gamma = 1.0;
+    /// Cap on the passes of until_converged.
+    int max_refine_passes = 64;
+    /// How brackets are shrunk: Brent (default), Illinois, or the paper's bisection.
+    RootMethod root_method = RootMethod::brent;
+
+    /// ε as given, or its default 10^−K.
+    double resolved_eps() const;
+};
+
+/// What a contour cost and what it produced.
+struct ContourStats {
+    std::size_t cells = 0;      ///< cells of the topology tree, all levels (as the paper counts)
+    std::size_t leaves = 0;     ///< leaves of the topology tree
+    std::size_t triangles = 0;  ///< triangles of its triangulation
+    std::size_t curves = 0;     ///< closed polygons in the result
+    std::size_t vertices = 0;   ///< vertices of the result (= segments: every curve is closed)
+    std::size_t segments = 0;
+    double mean_segment_length = 0.0;  ///< total length / segments; 0 for an empty result
+
+    std::size_t g_evals = 0;         ///< all evaluations of G, each point counted once
+    std::size_t g_evals_tree = 0;    ///< of which: building the tree and perturbing vertices
+    std::size_t g_evals_roots = 0;   ///< of which: root finding on the triangle edges
+    std::size_t g_evals_refine = 0;  ///< of which: adaptive refinement (midpoints, brackets, roots)
+    double g_evals_per_vertex = 0.0;  ///< g_evals / vertices; 0 for an empty result
+
+    double gamma = 0.0;             ///< the gradient bound γ at which the tree was balanced
+    std::size_t perturbed = 0;      ///< triangulation vertices moved because |G| ≤ η there
+    std::size_t stalled_roots = 0;  ///< roots left with |G| > η: G jumps across zero there
+    int passes = 0;                 ///< refinement passes done (passes that found candidates)
+    std::size_t splits = 0;         ///< vertices added by refinement
+    std::size_t rejected = 0;       ///< split candidates refused (no bracket, or a safeguard)
+    std::size_t pruned = 0;         ///< vertices removed by pruning
+    /// Largest |G| at the midpoints of the final segments when the last refinement step evaluated
+    /// them all (refinement ran to convergence); nullopt otherwise.
+    std::optional<double> max_midpoint_value;
+};
+
+/// The contour, the topology tree it was resolved on (for pictures), and the statistics.
+struct ContourResult {
+    Interface curves;
+    Quadtree tree;
+    ContourStats stats;
+};
+
+/// Contours the zero set of g in the square domain.
+///
+/// The result's curves are closed, simple and mutually disjoint polygons with G > 0 on the right
+/// of each (counterclockwise around regions where G < 0), every vertex with |G| ≤ η unless
+/// stats.stalled_roots > 0. After refinement to convergence every segment midpoint has
+/// |G| ≤ ε except for segments whose split the safeguards refused (stats.rejected). A G without
+/// a zero in the domain gives an empty Interface.
+///
+/// Cost: about one evaluation per tree cell (O(2^K) cells for a curve of bounded length), 2–3 per
+/// vertex for root finding, about 4 per vertex added by refinement; all handed to g in batches.
+/// Besides G, O(1) work per cell and per vertex (about 2 µs per output vertex).
+/// Throws InvalidInput for an invalid option or a domain that is not a square of positive size;
+/// NumericalFailure, naming the place, when the contour reaches the boundary of the domain, when
+/// repeated perturbation cannot move a vertex off the zero set (G and ∇G vanish together: the
+/// problem is ill-posed), or when g returns a value that is not finite.
+ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options = {});
+
+}  // namespace slc

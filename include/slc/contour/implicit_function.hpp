@@ -1,0 +1,76 @@
+// Implicit functions for contouring (paper §2): a function G of the plane that can be evaluated at
+// any point and nothing more (no derivatives, no grid). The contouring module hands G whole
+// batches of points (one per tree level, per root-finding round, per refinement pass) so that G can
+// evaluate them on all cores (DESIGN §5).
+#pragma once
+
+#include <concepts>
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <type_traits>
+#include <utility>
+
+#include "slc/core/parallel.hpp"
+#include "slc/core/vec2.hpp"
+
+namespace slc {
+
+/// A function G of the plane evaluated on batches: g(points, values) sets values[i] = G(points[i])
+/// for every i, with values.size() == points.size(). It may use all worker threads, but each value
+/// must depend only on its point: not on the thread count, nor on the rest of the batch.
+template <class G>
+concept BatchFunction = std::invocable<const G&, std::span<const Vec2>, std::span<double>>;
+
+/// A non-owning reference to any BatchFunction (a function, a lambda, any callable object), like
+/// std::function_ref: the referenced callable must outlive the reference. Type erasure costs one
+/// indirect call per batch, which is nothing beside the batch itself, and lets the contouring
+/// algorithm live in compiled sources.
+class BatchFunctionRef {
+public:
+    template <BatchFunction G>
+    requires(!std::same_as<std::remove_cvref_t<G>, BatchFunctionRef>) BatchFunctionRef(const G& g)
+    noexcept  // implicit, as std::function_ref
+        : call_(&call<G>) {
+        if constexpr (std::is_function_v<G>) {
+            target_.function = reinterpret_cast<void (*)()>(&g);
+        } else {
+            target_.object = static_cast<const void*>(std::addressof(g));
+        }
+    }
+
+    void operator()(std::span<const Vec2> points, std::span<double> values) const {
+        call_(target_, points, values);
+    }
+
+private:
+    /// The referenced callable: an object, or a function (whose pointer may not become void*).
+    union Target {
+        const void* object;
+        void (*function)();
+    };
+
+    template <class G>
+    static void call(Target g, std::span<const Vec2> points, std::span<double> values) {
+        if constexpr (std::is_function_v<G>) {
+            reinterpret_cast<G*>(g.function)(points, values);
+        } else {
+            (*static_cast<const G*>(g.object))(points, values);
+        }
+    }
+
+    Target target_{};
+    void (*call_)(Target, std::span<const Vec2>, std::span<double>);
+};
+
+/// The BatchFunction that evaluates a pointwise function f(Vec2) -> double at every point of a
+/// batch on all worker threads. f must be safe to call concurrently.
+template <class F>
+requires std::is_invocable_r_v<double, const F&, Vec2>
+auto pointwise(F f) {
+    return [f = std::move(f)](std::span<const Vec2> points, std::span<double> values) {
+        parallel_for(points.size(), [&](std::size_t i) { values[i] = f(points[i]); });
+    };
+}
+
+}  // namespace slc

@@ -1,0 +1,61 @@
+// The time loop (paper §4.3): N steps of advance() from t = 0 to a, with an observer that sees
+// every step and may stop the run, and the run's statistics for summary.json.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "slc/evolve/step.hpp"
+
+namespace slc {
+
+/// How a run ended (summary.json "status").
+enum class RunStatus {
+    ok,           ///< reached t_end
+    vanished,     ///< every component shrank away; the run ended at that time
+    interrupted,  ///< the observer asked to stop
+    error,        ///< a step failed (contour left the domain, velocity not finite): see message
+};
+
+/// The summary.json spelling of a status.
+const char* to_string(RunStatus status);
+
+struct RunOptions {
+    double t_start = 0.0;
+    double t_end = 1.0;  ///< a
+    int steps = 40;      ///< N; k = (t_end − t_start) / N
+    StepOptions step;
+};
+
+/// What the observer sees after each step.
+struct StepReport {
+    int step = 0;                       ///< 1..N
+    int steps = 0;                      ///< N
+    double t = 0.0;                     ///< time reached
+    const Interface* curves = nullptr;  ///< Γ(t)
+    const StepStats* stats = nullptr;
+    double wall_s = 0.0;  ///< seconds of the time loop so far
+};
+
+/// Called after every step; returning false stops the run (status interrupted).
+using Observer = std::function<bool(const StepReport&)>;
+
+struct RunResult {
+    Interface curves;  ///< Γ at the end (empty when vanished)
+    double t = 0.0;    ///< the time reached
+    int steps_done = 0;
+    RunStatus status = RunStatus::ok;
+    std::string message;                ///< why, when status is error
+    std::size_t g_evals = 0;            ///< every G evaluation of the run
+    std::size_t vertices_produced = 0;  ///< every vertex every contour of the run produced
+    double wall_s = 0.0;                ///< the time loop alone
+    double cpu_s = 0.0;                 ///< process CPU seconds of the time loop (all threads)
+};
+
+/// Runs initial (valid, inside domain) from t_start to t_end in `steps` steps under law.
+/// Failures inside a step end the run with status error and a message naming the time; throws
+/// InvalidInput only for bad options (steps < 1, t_end ≤ t_start, non-finite times).
+RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domain,
+              const RunOptions& options, const Observer& observer = {});
+
+}  // namespace slc

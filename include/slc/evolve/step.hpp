@@ -1,0 +1,57 @@
+// One semi-Lagrangian time step t → t + k (paper §1.2, §4.3; DESIGN §1): the CIR predictor
+// G̃(x) = F(x − k W(x, t); Γ(t)) contoured to Γ̃, then the trapezoidal corrector
+// G(x) = F(x − k W̄(x); Γ(t)), W̄(x) = ½ W(x − k W(x, t), t) + ½ W̃(x, t + k), contoured to Γ(t + k).
+// Every G value is an exact signed distance, so max |G| never grows: explicit, unconditionally
+// stable in the maximum norm, second order in time.
+#pragma once
+
+#include <cstddef>
+
+#include "slc/contour/contour.hpp"
+#include "slc/core/box.hpp"
+#include "slc/geometry/interface.hpp"
+#include "slc/geometry_modules/embedded.hpp"
+#include "slc/velocity/velocity.hpp"
+
+namespace slc {
+
+/// How the vertex velocities become the advection velocity W off the curve (§1.3).
+enum class Extension {
+    nearest_point,  ///< W(x) = u at the nearest point of Γ (the paper's choice)
+    whitney,        ///< the continuous piecewise-linear Whitney extension on the distance tree
+    direct,         ///< sample the law at x itself; only for laws defined everywhere (flow fields)
+};
+
+/// The parameters of a step (paper Table 4).
+struct StepOptions {
+    ContourOptions contour;  ///< K, P, ε, η, ρ of both contours
+    int tree_depth = 0;      ///< L, the distance trees' depth; 0 means K + P
+    Extension extension = Extension::nearest_point;
+    EmbeddedOptions embedded;  ///< M, E, S for laws that use the embedded geometry module
+
+    /// L as given, or K + P (refinement until converged counts as P = 4).
+    int resolved_tree_depth() const;
+};
+
+/// What a step cost.
+struct StepStats {
+    ContourStats predictor;
+    ContourStats corrector;
+    /// Evaluations of G̃ and G together, and the vertices both contours produced.
+    std::size_t g_evals() const { return predictor.g_evals + corrector.g_evals; }
+    std::size_t vertices() const { return predictor.vertices + corrector.vertices; }
+};
+
+struct StepResult {
+    Interface curves;  ///< Γ(t + k); empty when everything vanished
+    StepStats stats;
+};
+
+/// Advances curves (inside domain, a square) from t to t + k under law. Components may vanish;
+/// an empty result means nothing is left. Throws InvalidInput for k ≤ 0 or a direct extension of
+/// a law that is not a flow field; NumericalFailure (from contouring or the law) when the contour
+/// reaches the domain boundary or a velocity is not finite.
+StepResult advance(const Interface& curves, double t, double k, const VelocityLaw& law,
+                   const Box& domain, const StepOptions& options);
+
+}  // namespace slc

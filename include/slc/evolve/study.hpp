@@ -1,0 +1,51 @@
+// Convergence studies (paper §4.2, Tables 5–7, Fig. 10): a 5×5 table of runs whose rows refine N,
+// K and ε together (N ← 2N, K ← K + 1, ε ← ε/10) and whose columns add passes of adaptive
+// refinement (P = 0..4), with the observed orders of convergence.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "slc/evolve/problems.hpp"
+#include "slc/evolve/run.hpp"
+
+namespace slc {
+
+/// One run of a study.
+struct StudyCell {
+    int row = 0;
+    int refine = 0;  ///< P, the column
+    RunOptions options;
+    RunStatus status = RunStatus::ok;
+    std::optional<double> e_inf;  ///< Eq. (11) at the end
+    double cpu_s_per_step = 0.0;
+    double g_evals_per_vertex = 0.0;
+    std::size_t segments = 0;
+};
+
+struct StudyResult {
+    int rows = 0;
+    int columns = 0;
+    std::vector<StudyCell> cells;  ///< row-major
+
+    const StudyCell& at(int row, int column) const {
+        return cells[static_cast<std::size_t>(row * columns + column)];
+    }
+    /// log2(E(row, P) / E(row, P + 1)): about 1 while refinement controls the error (first order
+    /// in the segment length, which halves per pass). nullopt where an error is missing or zero.
+    std::optional<double> row_order(int row, int column) const;
+    /// log2(E(row, P) / E(row + 1, P)): about 2 in the P = 4 column (second order in time, k
+    /// halving per row), 1 where the spatial error still dominates.
+    std::optional<double> column_order(int row, int column) const;
+};
+
+/// Called before each run with its row and column and after it with the finished cell.
+using StudyObserver = std::function<void(const StudyCell&)>;
+
+/// Runs `rows` rows (1..5) of the problem's study plan with method options `base` (η, ρ, E,
+/// extension, ... kept; N, K, ε, S, P set by the plan). Throws InvalidInput for rows out of range.
+StudyResult study(const Problem& problem, int rows, const RunOptions& base,
+                  const StudyObserver& observer = {});
+
+}  // namespace slc

@@ -1,0 +1,161 @@
+// The working polygons of refinement (paper §2.2) as doubly linked vertices, the uniform grid of
+// their segments for exact crossing tests, and the evaluation counter of G.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "slc/core/error.hpp"
+#include "slc/geometry/predicates.hpp"
+#include "stages.hpp"
+
+namespace slc::contouring {
+
+void CountingFunction::operator()(std::span<const Vec2> points, std::span<double> values) const {
+    SLC_ASSERT(points.size() == values.size(), "one value per point");
+    g_(points, values);
+    *count_ += points.size();
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (!std::isfinite(values[i])) {
+            throw NumericalFailure(fmt::format("G is not finite at ({:.6g}, {:.6g}): got {}",
+                                               points[i].x, points[i].y, values[i]));
+        }
+    }
+}
+
+Chain::Chain(std::vector<Vec2> vertices, std::span<const std::uint32_t> successor,
+             std::span<const std::uint32_t> triangle)
+    : points(std::move(vertices)),
+      next(successor.begin(), successor.end()),
+      prev(points.size()),
+      home(triangle.begin(), triangle.end()),
+      mid_value(points.size(), std::numeric_limits<double>::quiet_NaN()),
+      frozen(points.size(), 0),
+      alive(points.size(), 1),
+      curve(points.size(), std::numeric_limits<std::uint32_t>::max()) {
+    for (std::uint32_t i = 0; i < next.size(); ++i) prev[next[i]] = i;
+    for (std::uint32_t i = 0; i < points.size(); ++i) {
+        if (curve[i] != std::numeric_limits<std::uint32_t>::max()) continue;
+        const auto c = static_cast<std::uint32_t>(curve_size.size());
+        std::size_t size = 0;
+        for (std::uint32_t j = i; curve[j] != c; j = next[j], ++size) curve[j] = c;
+        curve_size.push_back(size);
+    }
+}
+
+std::uint32_t Chain::insert_after(std::uint32_t u, Vec2 w) {
+    const auto n = static_cast<std::uint32_t>(points.size());
+    const std::uint32_t v = next[u];
+    points.push_back(w);
+    next.push_back(v);
+    prev.push_back(u);
+    home.push_back(home[u]);
+    mid_value.push_back(std::numeric_limits<double>::quiet_NaN());
+    frozen.push_back(0);
+    alive.push_back(1);
+    curve.push_back(curve[u]);
+    next[u] = n;
+    prev[v] = n;
+    mid_value[u] = std::numeric_limits<double>::quiet_NaN();
+    frozen[u] = 0;
+    ++curve_size[curve[u]];
+    return n;
+}
+
+void Chain::remove(std::uint32_t x) {
+    const std::uint32_t a = prev[x], b = next[x];
+    if (length(x) > length(a)) home[a] = home[x];
+    next[a] = b;
+    prev[b] = a;
+    alive[x] = 0;
+    mid_value[a] = std::numeric_limits<double>::quiet_NaN();
+    frozen[a] = 0;
+    --curve_size[curve[x]];
+}
+
+Interface Chain::to_interface() const {
+    std::vector<std::vector<Vec2>> curves;
+    std::vector<std::uint8_t> seen(points.size(), 0);
+    for (std::uint32_t i = 0; i < points.size(); ++i) {
+        if (!alive[i] || seen[i]) continue;
+        std::vector<Vec2> c;
+        for (std::uint32_t j = i; !seen[j]; j = next[j]) {
+            seen[j] = 1;
+            c.push_back(points[j]);
+        }
+        curves.push_back(std::move(c));
+    }
+    return Interface(curves);
+}
+
+SegmentGrid::SegmentGrid(const Chain& chain, double cell)
+    : chain_(chain), cell_(cell), origin_(chain.points.empty() ? Vec2{} : chain.points[0]) {
+    SLC_ASSERT(cell > 0.0, "grid cells have a positive size");
+    for (std::uint32_t i = 0; i < chain.points.size(); ++i)
+        if (chain.alive[i]) insert(i);
+}
+
+std::uint64_t SegmentGrid::key(std::int64_t ix, std::int64_t iy) const {
+    constexpr std::int64_t bias = std::int64_t{1} << 31;
+    return (static_cast<std::uint64_t>(ix + bias) << 32) | static_cast<std::uint64_t>(iy + bias);
+}
+
+std::array<std::int64_t, 4> SegmentGrid::cell_range(Segment s) const {
+    // Cell indices are clamped far outside any domain: only extreme inputs would reach the clamp,
+    // and then cells merely hold more segments.
+    constexpr double limit = 1e9;
+    auto index = [&](double x, double o) {
+        return static_cast<std::int64_t>(std::floor(std::clamp((x - o) / cell_, -limit, limit)));
+    };
+    return {index(std::min(s.a.x, s.b.x), origin_.x), index(std::min(s.a.y, s.b.y), origin_.y),
+            index(std::max(s.a.x, s.b.x), origin_.x), index(std::max(s.a.y, s.b.y), origin_.y)};
+}
+
+void SegmentGrid::insert(std::uint32_t u) {
+    const auto [x0, y0, x1, y1] = cell_range(chain_.segment(u));
+    for (std::int64_t iy = y0; iy <= y1; ++iy)
+        for (std::int64_t ix = x0; ix <= x1; ++ix)
+            cells_[key(ix, iy)].push_back({u, chain_.next[u]});
+}
+
+bool SegmentGrid::crosses(Segment s, std::span<const std::uint32_t> skip) const {
+    const auto [x0, y0, x1, y1] = cell_range(s);
+    for (std::int64_t iy = y0; iy <= y1; ++iy) {
+        for (std::int64_t ix = x0; ix <= x1; ++ix) {
+            const auto it = cells_.find(key(ix, iy));
+            if (it == cells_.end()) continue;
+            for (const auto& [u, v] : it->second) {
+                if (!chain_.alive[u] || chain_.next[u] != v) continue;  // stale entry
+                if (std::find(skip.begin(), skip.end(), u) != skip.end()) continue;
+                if (segments_intersect(s, chain_.segment(u))) return true;
+            }
+        }
+    }
+    return false;
+}
+
+double SegmentGrid::first_hit(Vec2 o, Vec2 d, double reach, std::uint32_t skip) const {
+    double best = std::numeric_limits<double>::infinity();
+    if (!(reach > 0.0) || !std::isfinite(reach)) return best;
+    const auto [x0, y0, x1, y1] = cell_range({o, o + reach * d});
+    for (std::int64_t iy = y0; iy <= y1; ++iy) {
+        for (std::int64_t ix = x0; ix <= x1; ++ix) {
+            const auto it = cells_.find(key(ix, iy));
+            if (it == cells_.end()) continue;
+            for (const auto& [u, v] : it->second) {
+                if (u == skip || !chain_.alive[u] || chain_.next[u] != v) continue;
+                // o + t d = a + r (b − a), solved by cross products.
+                const Segment s = chain_.segment(u);
+                const Vec2 e = s.b - s.a, w = s.a - o;
+                const double den = cross(d, e);
+                if (den == 0.0) continue;
+                const double t = cross(w, e) / den, r = cross(w, d) / den;
+                if (t > 0.0 && t <= reach && r >= 0.0 && r <= 1.0) best = std::min(best, t);
+            }
+        }
+    }
+    return best;
+}
+
+}  // namespace slc::contouring

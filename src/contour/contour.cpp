@@ -1,0 +1,102 @@
+// contour(): the three stages of fast adaptive contouring (paper §2, and the Contour step of §4.3)
+// put together — topology resolution, root finding on triangle edges, adaptive refinement — with
+// the validation of the options and the statistics.
+#include "slc/contour/contour.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "slc/core/error.hpp"
+#include "stages.hpp"
+
+namespace slc {
+namespace {
+
+void validate(const ContourOptions& o, const Box& domain) {
+    auto positive = [](double x) { return x > 0.0 && std::isfinite(x); };
+    if (o.depth < 0 || o.depth > Quadtree::max_supported_depth) {
+        throw InvalidInput(fmt::format("contour depth K must be between 0 and {}, got {}",
+                                       Quadtree::max_supported_depth, o.depth));
+    }
+    if (o.refine_passes < 0 && o.refine_passes != ContourOptions::until_converged) {
+        throw InvalidInput(
+            fmt::format("refinement passes P must be >= 0, got {}", o.refine_passes));
+    }
+    if (o.max_refine_passes < 0) {
+        throw InvalidInput(
+            fmt::format("max_refine_passes must be >= 0, got {}", o.max_refine_passes));
+    }
+    if (!positive(o.eta)) throw InvalidInput(fmt::format("eta must be positive, got {}", o.eta));
+    if (o.eps && (!positive(*o.eps) || *o.eps < o.eta)) {
+        throw InvalidInput(fmt::format("eps must be at least eta = {}, got {}", o.eta, *o.eps));
+    }
+    if (!(o.rho >= 0.0 && o.rho < 1.0)) {
+        throw InvalidInput(fmt::format("rho must be in [0, 1), got {}", o.rho));
+    }
+    if (!positive(o.gamma))
+        throw InvalidInput(fmt::format("gamma must be positive, got {}", o.gamma));
+    const double w = domain.width();
+    if (!(w > 0.0) || !std::isfinite(w) || !is_finite(domain.lo) || domain.height() != w) {
+        throw InvalidInput(
+            fmt::format("the contour domain must be a square of positive size, got "
+                        "[{}, {}] x [{}, {}]",
+                        domain.lo.x, domain.hi.x, domain.lo.y, domain.hi.y));
+    }
+}
+
+void count_output(const Interface& curves, ContourStats& s) {
+    s.curves = curves.curve_count();
+    s.vertices = curves.size();
+    s.segments = curves.size();
+    s.mean_segment_length =
+        curves.empty() ? 0.0 : length(curves) / static_cast<double>(curves.size());
+    s.g_evals_per_vertex =
+        curves.empty() ? 0.0 : static_cast<double>(s.g_evals) / static_cast<double>(curves.size());
+}
+
+}  // namespace
+
+double ContourOptions::resolved_eps() const { return eps.value_or(std::pow(10.0, -depth)); }
+
+ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options) {
+    validate(options, domain);
+    ContourStats stats;
+    std::size_t evaluations = 0;
+    const contouring::CountingFunction counted(g, evaluations);
+
+    contouring::Topology topo = contouring::resolve_topology(counted, domain, options);
+    stats.g_evals_tree = evaluations;
+    stats.cells = topo.tree.size();
+    stats.leaves = topo.tree.leaves().size();
+    stats.triangles = topo.mesh.triangles.size();
+    stats.gamma = topo.gamma;
+    stats.perturbed = topo.perturbed;
+
+    const contouring::LinearContour linear = contouring::march(topo);
+    const std::vector<Root> roots =
+        find_roots(counted, linear.brackets, {.eta = options.eta, .method = options.root_method});
+    stats.g_evals_roots = evaluations - stats.g_evals_tree;
+    std::vector<Vec2> points(roots.size());
+    for (std::size_t i = 0; i < roots.size(); ++i) {
+        points[i] = roots[i].point;
+        if (!roots[i].converged) ++stats.stalled_roots;
+    }
+
+    contouring::Chain chain(std::move(points), linear.next, linear.triangle);
+    const contouring::RefineReport refined =
+        contouring::refine(chain, counted, topo, domain, options);
+    stats.g_evals_refine = evaluations - stats.g_evals_tree - stats.g_evals_roots;
+    stats.passes = refined.passes;
+    stats.splits = refined.splits;
+    stats.rejected = refined.rejected;
+    stats.pruned = refined.pruned;
+    stats.max_midpoint_value = refined.max_midpoint_value;
+    stats.g_evals = evaluations;
+
+    Interface curves = chain.to_interface();
+    count_output(curves, stats);
+    return {std::move(curves), std::move(topo.tree), stats};
+}
+
+}  // namespace slc

@@ -1,0 +1,124 @@
+// The stages of contour() (paper §2), internal to the contour module: topology resolution on the
+// triangulated tree (§2.1), the chain of contour vertices, and adaptive refinement (§2.2).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "slc/contour/contour.hpp"
+#include "slc/contour/root_finding.hpp"
+#include "slc/core/box.hpp"
+#include "slc/geometry/interface.hpp"
+#include "slc/tree/quadtree.hpp"
+#include "slc/tree/triangulation.hpp"
+
+namespace slc::contouring {
+
+/// Wraps G: counts evaluations and turns a non-finite value into NumericalFailure naming the
+/// point, so that no NaN ever reaches a sign test.
+class CountingFunction {
+public:
+    CountingFunction(BatchFunctionRef g, std::size_t& count) : g_(g), count_(&count) {}
+    void operator()(std::span<const Vec2> points, std::span<double> values) const;
+
+private:
+    BatchFunctionRef g_;
+    std::size_t* count_;
+};
+
+/// The topology of the zero set (§2.1): the tree, its triangulation with G at every vertex
+/// (|G| > η everywhere after perturbation), and which triangles G changes sign in.
+struct Topology {
+    Quadtree tree;
+    Triangulation mesh;          ///< vertices moved where they were perturbed
+    std::vector<double> values;  ///< G at mesh.vertices (stand-ins: see below)
+    /// Centres of finest leaves that provably hold no zero under the gradient bound: their value
+    /// is a stand-in with the right sign, never evaluated; their triangles are never crossed.
+    std::vector<std::uint8_t> stand_in;
+    std::vector<std::uint8_t> crossed;  ///< per triangle: G changes sign at its vertices
+    double gamma = 1.0;                 ///< the gradient bound at which the tree balanced
+    std::size_t perturbed = 0;          ///< vertices perturbed
+};
+
+/// Builds the K-level tree (γ doubled until balanced), triangulates it, perturbs vertices with
+/// |G| ≤ η and checks that the zero set stays off the domain boundary. Throws NumericalFailure
+/// naming the place when it does not, or when perturbation keeps failing.
+Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOptions& options);
+
+/// The zero set of the piecewise-linear interpolant: one vertex per triangle edge with a sign
+/// change, one segment per crossed triangle, linked into closed polygons.
+struct LinearContour {
+    std::vector<Bracket> brackets;        ///< per vertex: its edge, lower vertex number first
+    std::vector<std::uint32_t> next;      ///< segment i runs from vertex i to vertex next[i]
+    std::vector<std::uint32_t> triangle;  ///< the triangle holding segment i
+};
+
+/// Marching triangles with G > 0 on the right of every segment. Marks topo.crossed.
+LinearContour march(Topology& topo);
+
+/// Closed polygons as doubly linked vertices, with the per-segment state refinement needs.
+/// Segment i runs from vertex i to next[i]; removed vertices stay in the arrays, not alive.
+struct Chain {
+    std::vector<Vec2> points;
+    std::vector<std::uint32_t> next, prev;
+    std::vector<std::uint32_t> home;   ///< triangle segment i descends from (the safeguard's start)
+    std::vector<double> mid_value;     ///< G at the midpoint of segment i; NaN until evaluated
+    std::vector<std::uint8_t> frozen;  ///< a split of segment i was refused: do not retry it
+    std::vector<std::uint8_t> alive;
+    std::vector<std::uint32_t> curve;     ///< the curve of vertex i
+    std::vector<std::size_t> curve_size;  ///< alive vertices per curve
+
+    Chain(std::vector<Vec2> vertices, std::span<const std::uint32_t> successor,
+          std::span<const std::uint32_t> triangle);
+    Segment segment(std::uint32_t i) const { return {points[i], points[next[i]]}; }
+    double length(std::uint32_t i) const { return distance(points[i], points[next[i]]); }
+    /// Adds vertex w on segment u; both halves keep u's home and are not yet evaluated.
+    std::uint32_t insert_after(std::uint32_t u, Vec2 w);
+    /// Removes vertex x; the merged segment takes the home of the longer of x's two segments.
+    void remove(std::uint32_t x);
+    /// The alive polygons, each from its lowest-numbered vertex: deterministic.
+    Interface to_interface() const;
+};
+
+/// Segments of a Chain bucketed on a uniform grid, for exact crossing tests of new segments
+/// against their neighbourhood. Entries go stale when the chain changes and are skipped.
+class SegmentGrid {
+public:
+    SegmentGrid(const Chain& chain, double cell);
+    /// Registers segment u as it now is.
+    void insert(std::uint32_t u);
+    /// True if s meets a current segment other than those starting at a vertex in skip.
+    bool crosses(Segment s, std::span<const std::uint32_t> skip) const;
+    /// Distance from o along the unit direction d to the first current segment other than
+    /// segment skip that the ray meets within reach; infinity if none.
+    double first_hit(Vec2 o, Vec2 d, double reach, std::uint32_t skip) const;
+
+private:
+    std::uint64_t key(std::int64_t ix, std::int64_t iy) const;
+    std::array<std::int64_t, 4> cell_range(Segment s) const;
+
+    const Chain& chain_;
+    double cell_;
+    Vec2 origin_;
+    std::unordered_map<std::uint64_t, std::vector<std::array<std::uint32_t, 2>>> cells_;
+};
+
+/// What refinement did.
+struct RefineReport {
+    int passes = 0;
+    std::size_t splits = 0;
+    std::size_t rejected = 0;
+    std::size_t pruned = 0;
+    std::optional<double> max_midpoint_value;
+};
+
+/// P passes of split, bracket, root-find, safeguard and prune (§2.2) on the chain.
+RefineReport refine(Chain& chain, BatchFunctionRef g, const Topology& topo, const Box& domain,
+                    const ContourOptions& options);
+
+}  // namespace slc::contouring

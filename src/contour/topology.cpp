@@ -1,0 +1,325 @@
+// Topology resolution (paper §2.1): the K-level tree split by min|G|/γ with γ doubled until the
+// tree is 2:1 balanced, G on its triangulation, perturbation of vertices where |G| ≤ η, the
+// boundary check, and marching triangles into closed polygons with G > 0 on their right.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "slc/core/error.hpp"
+#include "stages.hpp"
+
+namespace slc::contouring {
+namespace {
+
+/// After this many doublings of γ (a factor of about 10^7) the tree is balanced by brute force
+/// instead: G has a gradient far beyond any estimate, or no useful one.
+constexpr int max_gamma_doublings = 24;
+/// Perturbation: the first displacement is this fraction of the finest cell edge, doubled at each
+/// attempt. After max_perturbations attempts it is 3.2% of that edge: far below the 35% of the
+/// edge that the smallest triangle altitude allows, so the triangulation stays valid.
+constexpr double first_perturbation = 1e-3;
+constexpr int max_perturbations = 6;
+
+/// Integer coordinates on the grid of half the finest cell edge, with the very formula
+/// triangulate() uses to place its vertices, so that sample points and triangulation vertices
+/// are the same doubles and G is never evaluated twice at one point.
+class SampleGrid {
+public:
+    explicit SampleGrid(const Quadtree& tree)
+        : lo_(tree.root_box().lo),
+          shift_(tree.max_depth() + 1),
+          step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)) {}
+
+    std::uint64_t units(int level) const { return std::uint64_t{1} << (shift_ - level); }
+    std::uint64_t extent() const { return std::uint64_t{1} << shift_; }
+    Vec2 point(std::uint64_t gx, std::uint64_t gy) const {
+        return {lo_.x + static_cast<double>(gx) * step_, lo_.y + static_cast<double>(gy) * step_};
+    }
+    std::array<std::uint64_t, 2> coordinates(Vec2 p) const {
+        return {static_cast<std::uint64_t>(std::llround((p.x - lo_.x) / step_)),
+                static_cast<std::uint64_t>(std::llround((p.y - lo_.y) / step_))};
+    }
+    static std::uint64_t key(std::uint64_t gx, std::uint64_t gy) { return (gx << 32) | gy; }
+
+private:
+    Vec2 lo_;
+    int shift_;
+    double step_;
+};
+
+/// G at the corners and centres of the tree's cells, evaluated once per point, in one batch per
+/// call, and the smallest |G| over each cell's sample points. Cells at the depth limit are never
+/// tested for splitting, so their centres wait for complete_centres().
+class TreeSampler {
+public:
+    TreeSampler(BatchFunctionRef g, const Quadtree& tree) : g_(g), tree_(tree), grid_(tree) {}
+
+    void sample(std::span<const std::uint32_t> cells) {
+        std::vector<std::uint64_t> keys;
+        for (std::uint32_t c : cells)
+            for (std::uint64_t k : sample_keys(c)) add(k, keys);
+        evaluate(keys);
+        cell_min_.resize(tree_.size(), std::numeric_limits<double>::infinity());
+        for (std::uint32_t c : cells) {
+            double m = std::numeric_limits<double>::infinity();
+            for (std::uint64_t k : sample_keys(c)) m = std::min(m, std::abs(values_.at(k)));
+            cell_min_[c] = m;
+        }
+    }
+
+    /// Centres of the leaves at the depth limit, in one batch. A leaf whose corners share one sign
+    /// with |G| > γ h/√2 holds no zero if |∇G| ≤ γ (every point is within h/√2 of a corner), and
+    /// such a leaf has no finer neighbour, so all its triangles keep that sign: its centre gets a
+    /// stand-in value with that sign instead of an evaluation. Returns the stand-ins' keys.
+    std::vector<std::uint64_t> complete_centres(double gamma) {
+        const int depth = tree_.max_depth();
+        const double clearance = gamma * tree_.edge(depth) / std::numbers::sqrt2;
+        std::vector<std::uint64_t> keys, stand_ins;
+        for (std::uint32_t c : tree_.leaves()) {
+            if (tree_.cell(c).level != depth) continue;
+            const auto k = sample_keys(c, true);
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (int i = 0; i < 4; ++i) {
+                lo = std::min(lo, values_.at(k[i]));
+                hi = std::max(hi, values_.at(k[i]));
+            }
+            if (lo > clearance || hi < -clearance) {
+                values_.try_emplace(k[4], lo > 0.0 ? lo : hi);
+                stand_ins.push_back(k[4]);
+            } else {
+                add(k[4], keys);
+            }
+        }
+        evaluate(keys);
+        return stand_ins;
+    }
+
+    double min_abs(std::uint32_t c) const { return cell_min_[c]; }
+    double value(std::uint64_t key) const { return values_.at(key); }
+    const SampleGrid& grid() const { return grid_; }
+
+private:
+    /// Corners, then the centre when the cell can be split (or always, with with_centre).
+    std::vector<std::uint64_t> sample_keys(std::uint32_t c, bool with_centre = false) const {
+        const auto& cell = tree_.cell(c);
+        const std::uint64_t u = grid_.units(cell.level), x0 = cell.ix * u, y0 = cell.iy * u;
+        std::vector<std::uint64_t> k{SampleGrid::key(x0, y0), SampleGrid::key(x0 + u, y0),
+                                     SampleGrid::key(x0, y0 + u), SampleGrid::key(x0 + u, y0 + u)};
+        if (with_centre || cell.level < tree_.max_depth())
+            k.push_back(SampleGrid::key(x0 + u / 2, y0 + u / 2));
+        return k;
+    }
+    void add(std::uint64_t k, std::vector<std::uint64_t>& keys) {
+        if (values_.try_emplace(k, std::numeric_limits<double>::quiet_NaN()).second)
+            keys.push_back(k);
+    }
+    void evaluate(std::span<const std::uint64_t> keys) {
+        if (keys.empty()) return;
+        std::vector<Vec2> points;
+        for (std::uint64_t k : keys) points.push_back(grid_.point(k >> 32, k & 0xffffffffu));
+        std::vector<double> values(points.size());
+        g_(points, values);
+        for (std::size_t i = 0; i < keys.size(); ++i) values_[keys[i]] = values[i];
+    }
+
+    BatchFunctionRef g_;
+    const Quadtree& tree_;
+    SampleGrid grid_;
+    std::unordered_map<std::uint64_t, double> values_;
+    std::vector<double> cell_min_;
+};
+
+/// Splits, level by level from the frontier, every cell whose edge exceeds min|G|/γ, sampling
+/// each new level in one batch.
+void split_while_coarse(Quadtree& tree, TreeSampler& sampler, std::vector<std::uint32_t> frontier,
+                        double gamma) {
+    while (!frontier.empty()) {
+        std::vector<std::uint32_t> children;
+        for (std::uint32_t c : frontier) {
+            const int level = tree.cell(c).level;
+            if (level < tree.max_depth() && gamma * tree.edge(level) > sampler.min_abs(c)) {
+                const std::uint32_t first = tree.split(c);
+                for (std::uint32_t k = 0; k < 4; ++k) children.push_back(first + k);
+            }
+        }
+        sampler.sample(children);
+        frontier = std::move(children);
+    }
+}
+
+/// The split criterion is monotone in γ, so the tree for 2γ refines the tree for γ: instead of
+/// rebuilding from the root, the leaves are offered to the criterion again. Returns γ.
+double build_tree(Quadtree& tree, TreeSampler& sampler, double gamma) {
+    sampler.sample(std::vector<std::uint32_t>{0});
+    std::vector<std::uint32_t> frontier{0};
+    for (int doubling = 0;; ++doubling) {
+        split_while_coarse(tree, sampler, std::move(frontier), gamma);
+        if (tree.is_balanced()) return gamma;
+        if (doubling == max_gamma_doublings) break;
+        gamma *= 2.0;
+        frontier.clear();
+        for (std::uint32_t c : tree.leaves())
+            if (tree.cell(c).level < tree.max_depth()) frontier.push_back(c);
+    }
+    std::vector<std::uint32_t> children;
+    tree.balance([&](std::size_t c) {
+        for (std::uint32_t k = 0; k < 4; ++k) children.push_back(tree.cell(c).first_child + k);
+    });
+    sampler.sample(children);
+    return gamma;
+}
+
+std::string place(Vec2 p) { return fmt::format("({:.6g}, {:.6g})", p.x, p.y); }
+
+/// The zero set of the interpolant stays inside the domain iff G has one strict sign at every
+/// boundary vertex: a boundary edge with a sign change or a zero would carry a contour vertex.
+void check_boundary(const Topology& topo, std::span<const std::uint8_t> on_boundary, double eta) {
+    const auto& mesh = topo.mesh;
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+        if (on_boundary[v] && std::abs(topo.values[v]) <= eta) {
+            throw NumericalFailure(
+                fmt::format("the contour reaches the domain boundary at {} (|G| <= eta there); "
+                            "enlarge the domain",
+                            place(mesh.vertices[v])));
+        }
+    }
+    for (const auto& t : mesh.triangles) {
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+            const double ga = topo.values[a], gb = topo.values[b];
+            if (on_boundary[a] && on_boundary[b] && (ga > 0.0) != (gb > 0.0)) {
+                const Vec2 p =
+                    mesh.vertices[a] + ga / (ga - gb) * (mesh.vertices[b] - mesh.vertices[a]);
+                throw NumericalFailure(fmt::format(
+                    "the contour crosses the domain boundary near {}; enlarge the domain",
+                    place(p)));
+            }
+        }
+    }
+}
+
+/// A deterministic direction for attempt k at vertex v (golden-ratio sequences: well spread,
+/// independent of evaluation order and thread count).
+Vec2 perturbation_direction(std::size_t v, int k) {
+    const double phi = 0.6180339887498949, silver = 0.4142135623730950;
+    const double turns = static_cast<double>(v + 1) * phi + static_cast<double>(k) * silver;
+    const double angle = 2.0 * std::numbers::pi * (turns - std::floor(turns));
+    return {std::cos(angle), std::sin(angle)};
+}
+
+/// Moves interior vertices with |G| ≤ η (§2.1) until none is left; all such vertices of one
+/// attempt are evaluated in one batch. Returns the number of vertices moved.
+std::size_t perturb(Topology& topo, BatchFunctionRef g, double eta) {
+    struct Pending {
+        std::size_t vertex;
+        Vec2 original;
+    };
+    auto& mesh = topo.mesh;
+    const double h = topo.tree.edge(topo.tree.depth());
+    std::vector<Pending> todo;
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+        if (std::abs(topo.values[v]) <= eta) todo.push_back({v, mesh.vertices[v]});
+    const std::size_t moved = todo.size();
+    for (int k = 0; !todo.empty(); ++k) {
+        if (k == max_perturbations) {
+            throw NumericalFailure(fmt::format(
+                "G vanishes (|G| <= eta = {}) at and around {} after {} perturbations up to "
+                "{:.3g}: "
+                "G and its gradient seem to vanish together, so the contour is ill-posed there",
+                eta, place(todo.front().original), max_perturbations,
+                first_perturbation * std::ldexp(h, max_perturbations - 1)));
+        }
+        std::vector<Vec2> points;
+        for (const Pending& p : todo) {
+            const double step = first_perturbation * std::ldexp(h, k);
+            points.push_back(p.original + step * perturbation_direction(p.vertex, k));
+        }
+        std::vector<double> values(points.size());
+        g(points, values);
+        std::vector<Pending> left;
+        for (std::size_t i = 0; i < todo.size(); ++i) {
+            mesh.vertices[todo[i].vertex] = points[i];
+            topo.values[todo[i].vertex] = values[i];
+            if (std::abs(values[i]) <= eta) left.push_back(todo[i]);
+        }
+        todo = std::move(left);
+    }
+    return moved;
+}
+
+}  // namespace
+
+Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOptions& options) {
+    Topology topo{Quadtree(domain, options.depth), {}, {}, {}, {}, options.gamma, 0};
+    TreeSampler sampler(g, topo.tree);
+    topo.gamma = build_tree(topo.tree, sampler, options.gamma);
+    std::vector<std::uint64_t> stand_ins = sampler.complete_centres(topo.gamma);
+    std::sort(stand_ins.begin(), stand_ins.end());
+    topo.mesh = triangulate(topo.tree);
+    const auto& vertices = topo.mesh.vertices;
+    const std::uint64_t n = sampler.grid().extent();
+    std::vector<std::uint8_t> on_boundary(vertices.size());
+    topo.values.resize(vertices.size());
+    topo.stand_in.resize(vertices.size());
+    for (std::size_t v = 0; v < vertices.size(); ++v) {
+        const auto [gx, gy] = sampler.grid().coordinates(vertices[v]);
+        const std::uint64_t key = SampleGrid::key(gx, gy);
+        topo.values[v] = sampler.value(key);
+        topo.stand_in[v] = std::binary_search(stand_ins.begin(), stand_ins.end(), key);
+        on_boundary[v] = gx == 0 || gy == 0 || gx == n || gy == n;
+    }
+    check_boundary(topo, on_boundary, options.eta);
+    topo.perturbed = perturb(topo, g, options.eta);
+    return topo;
+}
+
+LinearContour march(Topology& topo) {
+    const auto& mesh = topo.mesh;
+    LinearContour out;
+    std::unordered_map<std::uint64_t, std::uint32_t> on_edge;  // edge (lo, hi) -> contour vertex
+    auto vertex_on = [&](std::uint32_t a, std::uint32_t b) {
+        if (a > b) std::swap(a, b);
+        const auto [it, fresh] = on_edge.try_emplace(
+            (std::uint64_t{a} << 32) | b, static_cast<std::uint32_t>(out.brackets.size()));
+        if (fresh) {
+            out.brackets.push_back(
+                {mesh.vertices[a], mesh.vertices[b], topo.values[a], topo.values[b]});
+            out.next.push_back(std::numeric_limits<std::uint32_t>::max());
+            out.triangle.push_back(0);
+        }
+        return it->second;
+    };
+    topo.crossed.assign(mesh.triangles.size(), 0);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto& tri = mesh.triangles[t];
+        std::array<bool, 3> positive{};
+        for (int k = 0; k < 3; ++k) positive[k] = topo.values[tri[k]] > 0.0;
+        if (positive[0] == positive[1] && positive[1] == positive[2]) continue;
+        topo.crossed[t] = 1;
+        SLC_ASSERT(!topo.stand_in[tri[0]] && !topo.stand_in[tri[1]] && !topo.stand_in[tri[2]],
+                   "a leaf centre left unevaluated lies in triangles of one sign only");
+        // Walking the counterclockwise boundary, the segment starts on the edge where G turns
+        // from negative to positive and ends where it turns back: then G > 0 lies on its right.
+        std::uint32_t start = 0, end = 0;
+        for (int k = 0; k < 3; ++k) {
+            const int j = (k + 1) % 3;
+            if (!positive[k] && positive[j]) start = vertex_on(tri[k], tri[j]);
+            if (positive[k] && !positive[j]) end = vertex_on(tri[k], tri[j]);
+        }
+        SLC_ASSERT(
+            out.next[start] == std::numeric_limits<std::uint32_t>::max(),
+            "a contour vertex starts one segment: its edge has two triangles of opposite walk");
+        out.next[start] = end;
+        out.triangle[start] = static_cast<std::uint32_t>(t);
+    }
+    for (std::uint32_t s : out.next) {
+        SLC_ASSERT(s != std::numeric_limits<std::uint32_t>::max(),
+                   "every contour vertex starts a segment: no dead ends off the boundary");
+    }
+    return out;
+}
+
+}  // namespace slc::contouring

@@ -1,0 +1,372 @@
+// The named problems: shapes chosen to look like the paper's figures where it does not give them
+// exactly (documented in docs/problems.md), the paper's N/S/K/P/ε as defaults, exact solutions.
+#include "slc/evolve/problems.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <random>
+
+#include "slc/core/error.hpp"
+#include "slc/distance/distance_tree.hpp"
+#include "slc/geometry/shapes.hpp"
+
+namespace slc {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+using Curves = std::vector<std::vector<Vec2>>;
+
+Vec2 rotated(Vec2 p, Vec2 c, double angle) {
+    const double cs = std::cos(angle), sn = std::sin(angle);
+    const Vec2 d = p - c;
+    return {c.x + cs * d.x - sn * d.y, c.y + sn * d.x + cs * d.y};
+}
+
+Curves rotated(Curves curves, Vec2 c, double angle) {
+    for (auto& curve : curves)
+        for (Vec2& p : curve) p = rotated(p, c, angle);
+    return curves;
+}
+
+/// The signed distance to fixed curves, owned with their tree.
+class Distance {
+public:
+    Distance(const Curves& curves, Box domain)
+        : curves_(curves), tree_(curves_, domain, {.depth = 10, .triangulate = false}) {}
+    std::vector<double> operator()(std::span<const Vec2> xs) const {
+        return tree_.signed_distances(xs);
+    }
+
+private:
+    Interface curves_;
+    DistanceTree tree_;
+};
+
+/// Exact solution of rigid rotation by omega about c: the initial distance at the back-rotated
+/// point.
+auto rotation_exact(const Problem& p, Vec2 c, double omega) {
+    auto f0 = std::make_shared<Distance>(p.initial, p.domain.inflated(p.domain.width()));
+    return
+        [f0, c, omega](std::span<const Vec2> xs, double t) -> std::optional<std::vector<double>> {
+            std::vector<Vec2> back(xs.begin(), xs.end());
+            for (Vec2& x : back) x = rotated(x, c, -omega * t);
+            return (*f0)(back);
+        };
+}
+
+/// Huygens' principle: under normal speed s the interface at t is the level set F0 = s t.
+auto huygens_exact(const Problem& p, double speed) {
+    auto f0 = std::make_shared<Distance>(p.initial, p.domain);
+    return [f0, speed](std::span<const Vec2> xs, double t) -> std::optional<std::vector<double>> {
+        std::vector<double> d = (*f0)(xs);
+        for (double& v : d) v -= speed * t;
+        return d;
+    };
+}
+
+double velocity_param(const Problem& p, const std::string& name, double fallback) {
+    auto it = p.velocity_params.find(name);
+    return it == p.velocity_params.end() ? fallback : it->second;
+}
+
+/// An equilateral triangle of circumradius r about the origin, tilted, sides split evenly.
+std::vector<Vec2> triangle(double r, double tilt, int per_side) {
+    std::vector<Vec2> pts;
+    for (int s = 0; s < 3; ++s) {
+        const double a0 = pi / 2 + tilt + 2 * pi * s / 3, a1 = a0 + 2 * pi / 3;
+        const Vec2 p0{r * std::cos(a0), r * std::sin(a0)}, p1{r * std::cos(a1), r * std::sin(a1)};
+        for (int k = 0; k < per_side; ++k)
+            pts.push_back(p0 + (static_cast<double>(k) / per_side) * (p1 - p0));
+    }
+    return pts;
+}
+
+/// A strip of half-width w along a square spiral with arms 1, 1, 2, 2, 3, 3, ... times `arm`.
+std::vector<Vec2> square_spiral(int arms, double arm, double w) {
+    std::vector<Vec2> centre{{0, 0}};
+    const Vec2 dirs[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+    for (int i = 0; i < arms; ++i)
+        centre.push_back(centre.back() + (arm * (i / 2 + 1)) * dirs[i % 4]);
+    std::vector<Vec2> left, right;
+    for (std::size_t i = 0; i < centre.size(); ++i) {
+        const Vec2 in = i == 0 ? dirs[0] : dirs[(i - 1) % 4];
+        const Vec2 out = i + 1 == centre.size() ? in : dirs[i % 4];
+        const Vec2 offset = w * (perp(in) + perp(out) - (in == out ? perp(in) : Vec2{}));
+        left.push_back(centre[i] + offset);
+        right.push_back(centre[i] - offset);
+    }
+    std::vector<Vec2> pts(right.begin(), right.end());
+    pts.insert(pts.end(), left.rbegin(), left.rend());
+    return pts;
+}
+
+/// Zalesak's slotted disk: centre c, radius r, a slot of width w from the bottom up to height top.
+std::vector<Vec2> slotted_disk(Vec2 c, double r, double w, double top, int n) {
+    const double half = 0.5 * w, drop = std::sqrt(r * r - half * half);
+    const double start = std::atan2(-drop, half), end = std::atan2(-drop, -half) + 2 * pi;
+    std::vector<Vec2> pts;
+    for (int k = 0; k <= n; ++k) {
+        const double a = start + (end - start) * k / n;
+        pts.push_back({c.x + r * std::cos(a), c.y + r * std::sin(a)});
+    }
+    const int rise = std::max(2, static_cast<int>(n * (top - c.y + drop) / (2 * pi * r)));
+    for (int k = 1; k <= rise; ++k)
+        pts.push_back({c.x - half, c.y - drop + (top - c.y + drop) * k / rise});
+    for (int k = rise - 1; k >= 1; --k)
+        pts.push_back({c.x + half, c.y - drop + (top - c.y + drop) * k / rise});
+    return pts;
+}
+
+/// Non-overlapping circles placed by a fixed pseudo-random sequence (identical everywhere).
+Curves bubbles(int count, double extent, double r_min, double r_max, unsigned seed) {
+    std::mt19937 rng(seed);
+    auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * (rng() / 4294967296.0); };
+    std::vector<std::pair<Vec2, double>> placed;
+    while (static_cast<int>(placed.size()) < count) {
+        const double r = uniform(r_min, r_max);
+        const Vec2 c{uniform(-extent + r, extent - r), uniform(-extent + r, extent - r)};
+        bool clear = true;
+        for (const auto& [q, s] : placed) clear = clear && distance(c, q) > r + s + 0.1;
+        if (clear) placed.push_back({c, r});
+    }
+    Curves out;
+    for (const auto& [c, r] : placed)
+        out.push_back(shapes::circle(c, r, std::max(64, static_cast<int>(400 * r))));
+    return out;
+}
+
+/// A tilted non-convex polygon (an arrow-headed comb) for curvature flow to extinction (§4.6.2).
+std::vector<Vec2> comb_polygon(double tilt) {
+    const std::vector<Vec2> corners = {{-6, -4}, {6, -4}, {6, 4},   {3, 4},   {3, -1}, {1, -1},
+                                       {1, 5},   {-1, 5}, {-1, -1}, {-3, -1}, {-3, 2}, {-6, 2}};
+    std::vector<Vec2> pts;
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+        const Vec2 a = corners[i], b = corners[(i + 1) % corners.size()];
+        const int n = std::max(1, static_cast<int>(std::ceil(4 * distance(a, b))));
+        for (int k = 0; k < n; ++k)
+            pts.push_back(rotated(a + (static_cast<double>(k) / n) * (b - a), {}, tilt));
+    }
+    return pts;
+}
+
+Problem base(std::string name, std::string description, Curves initial, Box domain, double t_end,
+             std::string velocity) {
+    Problem p;
+    p.name = std::move(name);
+    p.description = std::move(description);
+    p.initial = std::move(initial);
+    p.domain = domain;
+    p.t_end = t_end;
+    p.velocity = std::move(velocity);
+    return p;
+}
+
+void set_run(Problem& p, int steps, int smoothing, int depth, int refine, double eps) {
+    p.steps = steps;
+    p.smoothing = smoothing;
+    p.depth = depth;
+    p.refine = refine;
+    p.eps = eps;
+}
+
+using Params = std::map<std::string, double>;
+
+Problem propeller_rotation(const Params&) {
+    Problem p = base(
+        "propeller-rotation",
+        "three-bladed propeller under rigid rotation, two periods (§4.4, Fig. 12, Table 5)",
+        {shapes::propeller(1024, {}, 1.0, 0.5)}, Box::centered_square(2.0), 4 * pi, "rotation");
+    set_run(p, 160, 0, 5, 2, 1e-5);
+    p.study.paper_table = "table5_rotation";
+    p.exact = rotation_exact(p, {}, 1.0);
+    return p;
+}
+
+Problem triangle_normal(const Params& params) {
+    const double tilt = params.count("tilt") ? params.at("tilt") : 0.0;
+    Problem p =
+        base("triangle-normal",
+             "equilateral triangle moving with unit normal speed, growing (speed 1) or shrinking "
+             "(speed -1), tilted by `tilt` degrees (§4.5.1, Fig. 13)",
+             {triangle(1.0, tilt * pi / 180, 64)}, Box::centered_square(2.5), 0.4, "unit-normal");
+    p.parameters = {{"tilt", tilt, "rotation of the triangle, degrees"}};
+    set_run(p, 80, 0, 5, 2, 1e-5);
+    return p;
+}
+
+Problem merging_circles(const Params&) {
+    Problem p = base("merging-circles",
+                     "three circles growing with unit normal speed and merging, cusps and islands "
+                     "(§4.5.2, Fig. 14, Table 6)",
+                     {shapes::circle({-0.6, 0}, 0.4, 512), shapes::circle({0.6, 0}, 0.4, 512),
+                      shapes::circle({0, 0.9}, 0.3, 384)},
+                     Box::centered_square(2.0), 0.5, "unit-normal");
+    set_run(p, 160, 0, 5, 2, 1e-5);
+    p.study.paper_table = "table6_merging";
+    return p;
+}
+
+Problem wulff(const Params&) {
+    Problem p =
+        base("wulff",
+             "circle under anisotropic normal speed R + eps cos(m theta) with |R| + eps(1 - m^2) = "
+             "-4, facetting into the Wulff shape (§4.5.3, Fig. 15)",
+             {shapes::circle({}, 1.5, 1024)}, Box::centered_square(3.5), 1.0, "anisotropic");
+    set_run(p, 80, 0, 5, 2, 1e-5);
+    return p;
+}
+
+Problem circle_curvature(const Params& params) {
+    const double r0 = params.count("R0") ? params.at("R0") : std::sqrt(5.0);
+    if (!(r0 > 0.0) || !(r0 < 2.8))
+        throw InvalidInput(
+            fmt::format("R0 must be in (0, 2.8) to fit the domain [-3, 3]^2, got {}", r0));
+    Problem p = base("circle-curvature",
+                     "circle shrinking under curvature, R(t)^2 = R0^2 - 2t; R0 = sqrt 5 to t = 2, "
+                     "or R0 = 1 vanishing at t = 1/2 (§4.6.1, Fig. 16, Table 7)",
+                     {shapes::circle({}, r0, 1024)}, Box::centered_square(3.0),
+                     r0 * r0 / 2 > 2.0 ? 2.0 : r0 * r0 / 2 + 0.1, "curvature");
+    p.parameters = {{"R0", r0, "initial radius"}};
+    p.module = GeometryModule::embedded;
+    set_run(p, 80, 1, 5, 2, 1e-5);
+    p.study = {20, 3, 1e-3, {1, 1, 1, 2, 3}, "table7_curvature"};
+    p.exact = [r0](std::span<const Vec2> xs, double t) -> std::optional<std::vector<double>> {
+        const double r2 = r0 * r0 - 2 * t;
+        if (r2 <= 0) return std::nullopt;
+        std::vector<double> d;
+        for (Vec2 x : xs) d.push_back(norm(x) - std::sqrt(r2));
+        return d;
+    };
+    return p;
+}
+
+Problem polygon_curvature(const Params& params) {
+    const double tilt = params.count("tilt") ? params.at("tilt") : 10.0;
+    Problem p = base("polygon-curvature",
+                     "tilted non-convex polygon shrinking under curvature to a round point and "
+                     "extinction (§4.6.2, Fig. 17)",
+                     {comb_polygon(tilt * pi / 180)}, Box::centered_square(8.0), 13.0, "curvature");
+    p.parameters = {{"tilt", tilt, "rotation of the polygon, degrees"}};
+    p.module = GeometryModule::embedded;
+    set_run(p, 320, 1, 5, 4, 1e-3);
+    return p;
+}
+
+Problem spiral_nonlocal(const Params& params) {
+    const double tilt = params.count("tilt") ? params.at("tilt") : 20.0;
+    Problem p = base("spiral-nonlocal",
+                     "tilted square spiral unwinding under area-preserving curvature flow (§4.7, "
+                     "Eq. 13, Fig. 18)",
+                     rotated(Curves{square_spiral(10, 0.5, 0.1)}, {}, tilt * pi / 180),
+                     Box::centered_square(3.0), 2.56, "volume-preserving-curvature");
+    p.parameters = {{"tilt", tilt, "rotation of the spiral, degrees"}};
+    p.module = GeometryModule::embedded;
+    set_run(p, 512, 2, 7, 3, 1e-3);
+    return p;
+}
+
+Problem bubbles_nonlocal(const Params&) {
+    Problem p = base("bubbles-nonlocal",
+                     "circular bubbles merging and vanishing under area-preserving curvature flow "
+                     "(§4.7, Fig. 19)",
+                     bubbles(14, 2.5, 0.15, 0.6, 19), Box::centered_square(3.0), 10.24,
+                     "volume-preserving-curvature");
+    p.module = GeometryModule::embedded;
+    set_run(p, 2048, 3, 7, 4, 1e-4);
+    return p;
+}
+
+Problem zalesak(const Params&) {
+    Problem p = base("zalesak",
+                     "Zalesak's slotted disk (centre (0.5, 0.75), R = 0.15, slot 0.05 wide up to y "
+                     "= 0.85), one turn about (0.5, 0.5) in t = 1",
+                     {slotted_disk({0.5, 0.75}, 0.15, 0.05, 0.85, 1024)}, Box{{0, 0}, {1, 1}}, 1.0,
+                     "rotation");
+    p.velocity_params = {{"omega", 2 * pi}, {"cx", 0.5}, {"cy", 0.5}};
+    set_run(p, 100, 0, 7, 2, 1e-6);
+    p.exact = rotation_exact(p, {0.5, 0.5}, 2 * pi);
+    return p;
+}
+
+Problem vortex(const Params& params) {
+    const double period = params.count("period") ? params.at("period") : 8.0;
+    Problem p =
+        base("vortex",
+             "circle R = 0.15 at (0.5, 0.75) in LeVeque's single vortex of period T, stretched "
+             "until T/2 and back at T",
+             {shapes::circle({0.5, 0.75}, 0.15, 512)}, Box{{0, 0}, {1, 1}}, period, "vortex");
+    set_run(p, 160, 0, 7, 2, 1e-6);
+    auto f0 = std::make_shared<Distance>(p.initial, p.domain);
+    p.exact = [f0, period](std::span<const Vec2> xs,
+                           double t) -> std::optional<std::vector<double>> {
+        if (std::abs(t - period) > 1e-12 * period) return std::nullopt;  // known only at t = T
+        return (*f0)(xs);
+    };
+    return p;
+}
+
+struct Entry {
+    const char* name;
+    Problem (*make)(const Params&);
+};
+
+const Entry entries[] = {{"propeller-rotation", propeller_rotation},
+                         {"triangle-normal", triangle_normal},
+                         {"merging-circles", merging_circles},
+                         {"wulff", wulff},
+                         {"circle-curvature", circle_curvature},
+                         {"polygon-curvature", polygon_curvature},
+                         {"spiral-nonlocal", spiral_nonlocal},
+                         {"bubbles-nonlocal", bubbles_nonlocal},
+                         {"zalesak", zalesak},
+                         {"vortex", vortex}};
+
+}  // namespace
+
+const std::vector<ProblemInfo>& problem_catalog() {
+    static const std::vector<ProblemInfo> catalog = [] {
+        std::vector<ProblemInfo> out;
+        for (const Entry& e : entries) out.push_back({e.name, e.make({}).description});
+        return out;
+    }();
+    return catalog;
+}
+
+Problem make_problem(const std::string& name, const std::map<std::string, double>& params) {
+    for (const Entry& e : entries) {
+        if (name != e.name) continue;
+        Problem p = e.make(params);
+        for (const auto& [key, value] : params) {
+            bool own = false;
+            for (const auto& q : p.parameters) own = own || q.name == key;
+            if (!own) p.velocity_params[key] = value;
+        }
+        if (p.velocity == "unit-normal")
+            p.exact = huygens_exact(p, velocity_param(p, "speed", 1.0));
+        return p;
+    }
+    std::string known;
+    for (const Entry& e : entries) known += (known.empty() ? "" : ", ") + std::string(e.name);
+    throw InvalidInput(fmt::format("unknown problem '{}'; known: {}", name, known));
+}
+
+std::optional<double> max_error(const Problem& problem, const Interface& curves, double t) {
+    if (!problem.exact || curves.empty()) return std::nullopt;
+    std::vector<Vec2> xs;
+    xs.reserve(2 * curves.size());
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+        const Segment s = curves.segment(i);
+        xs.push_back(s.a);
+        xs.push_back(0.5 * (s.a + s.b));
+    }
+    const auto d = problem.exact(xs, t);
+    if (!d) return std::nullopt;
+    double worst = 0.0;
+    for (double v : *d) worst = std::max(worst, std::abs(v));
+    return worst;
+}
+
+}  // namespace slc

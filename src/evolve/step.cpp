@@ -1,0 +1,113 @@
+// The predictor–corrector step (paper §1.2 Eqs. 4, 5; §4.3 "Semi-Lagrangian evaluation").
+#include "slc/evolve/step.hpp"
+
+#include <fmt/format.h>
+
+#include <memory>
+#include <optional>
+
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+#include "slc/distance/extension.hpp"
+
+namespace slc {
+
+int StepOptions::resolved_tree_depth() const {
+    if (tree_depth > 0) return tree_depth;
+    const int passes = contour.refine_passes < 0 ? 4 : contour.refine_passes;
+    return std::min(contour.depth + passes, Quadtree::max_supported_depth);
+}
+
+namespace {
+
+/// Γ at one time level: its distance tree, its vertex velocities and their extension W off Γ.
+class Level {
+public:
+    Level(const Interface& curves, double t, const VelocityLaw& law, const Box& domain,
+          const StepOptions& options)
+        : t_(t),
+          law_(&law),
+          extension_(options.extension),
+          tree_(curves, domain,
+                {.depth = options.resolved_tree_depth(),
+                 .triangulate = options.extension == Extension::whitney}) {
+        if (extension_ != Extension::direct) {
+            u_ = vertex_velocities(law, t, curves, GeometryContext{&tree_, options.embedded});
+            if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
+        }
+    }
+
+    /// W(x) at this level's time.
+    Vec2 velocity(Vec2 x) const {
+        switch (extension_) {
+            case Extension::whitney:
+                return (*whitney_)(x);
+            case Extension::direct: {
+                Vec2 w;
+                law_->sample(t_, std::span<const Vec2>(&x, 1), std::span<Vec2>(&w, 1));
+                return w;
+            }
+            default:
+                return nearest_point_extension<Vec2>(tree_.curves(), u_, tree_.closest_point(x));
+        }
+    }
+    /// The exact signed distance to this level's Γ.
+    double distance(Vec2 x) const { return tree_.closest_point(x).distance; }
+
+private:
+    double t_;
+    const VelocityLaw* law_;
+    Extension extension_;
+    DistanceTree tree_;
+    std::vector<Vec2> u_;
+    std::optional<WhitneyExtension<Vec2>> whitney_;
+};
+
+/// Checks a foot point's velocity, which a law may have produced anywhere.
+Vec2 finite(Vec2 w, const VelocityLaw& law, double t, Vec2 x) {
+    if (!is_finite(w)) {
+        throw NumericalFailure(fmt::format("velocity '{}' is not finite at t = {} near ({}, {})",
+                                           law.name(), t, x.x, x.y));
+    }
+    return w;
+}
+
+}  // namespace
+
+StepResult advance(const Interface& curves, double t, double k, const VelocityLaw& law,
+                   const Box& domain, const StepOptions& options) {
+    if (!(k > 0.0) || !std::isfinite(k)) {
+        throw InvalidInput(fmt::format("time step must be positive and finite, got {}", k));
+    }
+    if (options.extension == Extension::direct && !law.is_field()) {
+        throw InvalidInput(
+            fmt::format("velocity '{}' is not defined off the curve: use the nearest-point or "
+                        "Whitney extension",
+                        law.name()));
+    }
+    StepResult result;
+    const Level now(curves, t, law, domain, options);
+
+    // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x, t); Γ(t)).
+    auto predictor =
+        pointwise([&](Vec2 x) { return now.distance(x - k * finite(now.velocity(x), law, t, x)); });
+    ContourResult predicted = contour(predictor, domain, options.contour);
+    result.stats.predictor = predicted.stats;
+    if (predicted.curves.empty()) return result;  // everything vanished within the step
+
+    // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x.
+    const Level next(predicted.curves, t + k, law, domain, options);
+    auto corrector = pointwise([&](Vec2 x) {
+        const Vec2 w = finite(now.velocity(x), law, t, x);
+        const Vec2 foot = x - k * w;
+        const Vec2 w_foot = finite(now.velocity(foot), law, t, foot);
+        const Vec2 w_next = finite(next.velocity(x), law, t + k, x);
+        return now.distance(x - (0.5 * k) * (w_foot + w_next));
+    });
+    ContourResult corrected = contour(corrector, domain, options.contour);
+    result.stats.corrector = corrected.stats;
+    result.curves = std::move(corrected.curves);
+    return result;
+}
+
+}  // namespace slc

@@ -1,0 +1,72 @@
+// The convergence study loop and its observed orders.
+#include "slc/evolve/study.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "slc/core/error.hpp"
+#include "slc/geometry/validate.hpp"
+
+namespace slc {
+
+namespace {
+
+std::optional<double> order(const std::optional<double>& coarse,
+                            const std::optional<double>& fine) {
+    if (!coarse || !fine || !(*coarse > 0.0) || !(*fine > 0.0)) return std::nullopt;
+    return std::log2(*coarse / *fine);
+}
+
+}  // namespace
+
+std::optional<double> StudyResult::row_order(int row, int column) const {
+    if (column + 1 >= columns) return std::nullopt;
+    return order(at(row, column).e_inf, at(row, column + 1).e_inf);
+}
+
+std::optional<double> StudyResult::column_order(int row, int column) const {
+    if (row + 1 >= rows) return std::nullopt;
+    return order(at(row, column).e_inf, at(row + 1, column).e_inf);
+}
+
+StudyResult study(const Problem& problem, int rows, const RunOptions& base,
+                  const StudyObserver& observer) {
+    if (rows < 1 || rows > 5)
+        throw InvalidInput(fmt::format("rows must be between 1 and 5, got {}", rows));
+    const StudyPlan& plan = problem.study;
+    const auto law = make_velocity(problem.velocity, problem.velocity_params, problem.module);
+    const Interface initial = prepare_interface(problem.initial, problem.domain).curves;
+    StudyResult result{rows, 5, {}};
+    for (int row = 0; row < rows; ++row) {
+        for (int p = 0; p < 5; ++p) {
+            StudyCell cell;
+            cell.row = row;
+            cell.refine = p;
+            cell.options = base;
+            RunOptions& o = cell.options;
+            o.t_start = 0.0;
+            o.t_end = problem.t_end;
+            o.steps = plan.steps << row;
+            o.step.contour.depth = plan.depth + row;
+            o.step.contour.refine_passes = p;
+            o.step.contour.eps = plan.eps * std::pow(10.0, -row);
+            o.step.tree_depth = 0;
+            o.step.embedded.mesh = default_mesh_size(o.step.contour.depth);
+            o.step.embedded.smoothing = plan.smoothing[static_cast<std::size_t>(row)];
+            const RunResult r = run(initial, *law, problem.domain, o);
+            cell.status = r.status;
+            cell.e_inf = max_error(problem, r.curves, r.t);
+            cell.cpu_s_per_step = r.steps_done > 0 ? r.cpu_s / r.steps_done : 0.0;
+            cell.g_evals_per_vertex = r.vertices_produced > 0
+                                          ? static_cast<double>(r.g_evals) / r.vertices_produced
+                                          : 0.0;
+            cell.segments = r.curves.size();
+            if (observer) observer(cell);
+            result.cells.push_back(std::move(cell));
+        }
+    }
+    return result;
+}
+
+}  // namespace slc

@@ -1,0 +1,36 @@
+# slc run: a named problem and a user's curve, the files written, the summary's keys, bad input.
+source "$(dirname "$0")/lib.sh" "$1"
+
+expect_ok "merging circles" -- run --problem merging-circles -N 8 -K 4 -P 1 --frames 2 --out mc --quiet
+for f in summary.json final.json final.svg final.png frames.svg frames.png frames/frame_0000.json frames/frame_0002.json; do
+    check "run writes $f" test -s "mc/$f"
+done
+for key in problem params t_end steps status e_inf area length components segments wall_s cpu_s \
+           cpu_s_per_step threads g_evals g_evals_per_vertex; do
+    check "summary has $key" grep -q "\"$key\":" mc/summary.json
+done
+check "status ok" grep -q '"status": "ok"' mc/summary.json
+check "merged into one component" grep -q '"components": 1' mc/summary.json
+
+square_json >square.json
+expect_ok "user curve and law" -- run --initial square.json --velocity rotation --param omega=2 --t-end 0.5 \
+    -N 4 -K 4 -P 0 --domain 2 --out user --quiet
+check "user run writes final.json" test -s user/final.json
+check "user run has no exact solution" grep -q '"e_inf": null' user/summary.json
+
+echo '{"curves": [{"points": [[0, 0], [0.4, 0], [0, 0.4]]}]}' >small.json
+expect_ok "shrinking to nothing" -- run --initial small.json --velocity unit-normal --param speed=-1 --t-end 1 \
+    -N 10 -K 4 -P 0 --domain 1 --out gone --quiet
+check "vanished status" grep -q '"status": "vanished"' gone/summary.json
+
+expect_error "unknown problem" "unknown problem 'nope'" -- run --problem nope --out x
+expect_error "unknown velocity" "unknown velocity" -- run --initial square.json --velocity warp --t-end 1 --domain 2 --out x
+expect_error "unknown parameter" "omeg" -- run --initial square.json --velocity rotation --param omeg=1 --t-end 1 --domain 2 --out x
+expect_error "malformed parameter" "key=value" -- run --problem vortex --param period --out x
+expect_error "zero steps" "steps" -- run --problem vortex -N 0 --out x
+expect_error "negative eps" "eps" -- run --problem vortex --eps -1 --out x
+expect_error "no input" "--problem|--initial" -- run --out x
+expect_error "missing t-end" "t-end" -- run --initial square.json --velocity rotation --domain 2 --out x
+expect_ok "help lists the problems" -- run --help
+check "help names zalesak" grep -q "zalesak" out.txt
+finish

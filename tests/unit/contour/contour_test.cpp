@@ -1,0 +1,301 @@
+// Tests of contour() (paper §2) on analytic functions: circles, ellipses, several components, a
+// hole, nearly touching circles, zeros on tree vertices, no zero, the boundary and ill-posed
+// errors, option validation, evaluation counting and thread independence.
+#include "slc/contour/contour.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <utility>
+
+#include "contour_checks.hpp"
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+
+namespace slc {
+namespace {
+
+using testing::expect_outside_on_right;
+using testing::expect_simple;
+using testing::residuals;
+
+const Box unit_domain = Box::centered_square(1.0);
+/// Root-finding tolerance of every test: the library default.
+constexpr double eta = 1e-10;
+constexpr double pi = std::numbers::pi;
+/// Area tolerance after two or three refinement passes at K = 6: the chords' sagitta is then
+/// below about 1e−4 (cells 1/32, three halvings), and the enclosed area moves by at most
+/// perimeter (< 4 per curve here) × sagitta, so 1e−3 is safe and still catches a lost arc.
+constexpr double refined_area_tolerance = 1e-3;
+
+/// Signed distance to the circle of radius r about c: exact, |∇G| = 1.
+auto circle(Vec2 c, double r) {
+    return [=](Vec2 p) { return distance(p, c) - r; };
+}
+
+ContourOptions options(int depth, int passes, std::optional<double> eps = std::nullopt) {
+    ContourOptions o;
+    o.depth = depth;
+    o.refine_passes = passes;
+    o.eps = eps;
+    return o;
+}
+
+TEST(Contour, CircleIsOneCounterclockwiseCurveWithVerticesWithinEta) {
+    const auto g = pointwise(circle({0.1, -0.05}, 0.6));
+    const ContourResult r = contour(g, unit_domain, options(5, 0));
+    ASSERT_EQ(r.curves.curve_count(), 1u);
+    // Chords of a circle of radius R and length ≤ L enclose πR² less O(L²) of area; L ≤ the
+    // finest cell diagonal 2·2^−5·√2 ≈ 0.09, so 1% is generous and still catches a lost arc.
+    EXPECT_NEAR(signed_area(r.curves.curve(0)), pi * 0.36, 0.01 * pi * 0.36);
+    EXPECT_LE(residuals(r.curves, g).vertices, eta);
+    expect_simple(r.curves);
+    expect_outside_on_right(r.curves, g, 0.25);
+    EXPECT_EQ(r.stats.vertices, r.curves.size());
+    EXPECT_EQ(r.stats.cells, r.tree.size());
+    EXPECT_FALSE(r.stats.max_midpoint_value.has_value());
+}
+
+TEST(Contour, RefinementBringsEveryMidpointWithinEps) {
+    const auto g = pointwise(circle({0.1, -0.05}, 0.6));
+    for (double eps : {1e-3, 1e-5, 1e-7}) {
+        SCOPED_TRACE(::testing::Message() << "eps " << eps);
+        const ContourResult r =
+            contour(g, unit_domain, options(4, ContourOptions::until_converged, eps));
+        const auto res = residuals(r.curves, g);
+        // G is the exact distance, so these are the contour's errors, with no slack: the library
+        // evaluated the same G at the same midpoints.
+        EXPECT_LE(res.vertices, eta);
+        EXPECT_LE(res.midpoints, eps);
+        ASSERT_TRUE(r.stats.max_midpoint_value.has_value());
+        EXPECT_EQ(*r.stats.max_midpoint_value, res.midpoints);
+        EXPECT_EQ(r.stats.rejected, 0u);
+        expect_simple(r.curves);
+        expect_outside_on_right(r.curves, g, 0.25);
+    }
+}
+
+TEST(Contour, FixedPassesStopEarlyWhenConverged) {
+    const auto g = pointwise(circle({0.0, 0.0}, 0.5));
+    const ContourResult r = contour(g, unit_domain, options(5, 50, 1e-4));
+    EXPECT_LT(r.stats.passes, 50);
+    EXPECT_LE(residuals(r.curves, g).midpoints, 1e-4);
+}
+
+TEST(Contour, EllipseOfANonDistanceFunctionIsWithinEtaAndEps) {
+    // G = x²/a² + y²/b² − 1 is no distance (|∇G| from 2/a·… varies by a factor 4 on the curve):
+    // the tree needs a larger γ and the brackets must work from G alone.
+    const double a = 0.8, b = 0.3;
+    const auto g =
+        pointwise([=](Vec2 p) { return p.x * p.x / (a * a) + p.y * p.y / (b * b) - 1.0; });
+    const ContourResult r =
+        contour(g, unit_domain, options(6, ContourOptions::until_converged, 1e-6));
+    ASSERT_EQ(r.curves.curve_count(), 1u);
+    const auto res = residuals(r.curves, g);
+    EXPECT_LE(res.vertices, eta);
+    EXPECT_LE(res.midpoints, 1e-6);
+    // |G| ≤ 1e-6 at the midpoints bounds the chords' sagitta by about 1e-6·b/2; the polygon's
+    // area is within perimeter × sagitta ≈ 1e-5 of πab.
+    EXPECT_NEAR(signed_area(r.curves.curve(0)), pi * a * b, 1e-4);
+    expect_simple(r.curves);
+    expect_outside_on_right(r.curves, g, 0.25);
+}
+
+TEST(Contour, SeveralComponentsAreSeveralCounterclockwiseCurves) {
+    const auto g = pointwise([](Vec2 p) {
+        return std::min({distance(p, {-0.5, -0.5}) - 0.3, distance(p, {0.5, -0.4}) - 0.25,
+                         distance(p, {0.0, 0.5}) - 0.35});
+    });
+    const ContourResult r = contour(g, unit_domain, options(6, 3));
+    ASSERT_EQ(r.curves.curve_count(), 3u);
+    double total = 0.0;
+    for (std::size_t c = 0; c < 3; ++c) {
+        EXPECT_GT(signed_area(r.curves.curve(c)), 0.0);
+        total += signed_area(r.curves.curve(c));
+    }
+    EXPECT_NEAR(total, pi * (0.09 + 0.0625 + 0.1225), refined_area_tolerance);
+    EXPECT_LE(residuals(r.curves, g).vertices, eta);
+    expect_simple(r.curves);
+    expect_outside_on_right(r.curves, g, 0.25);
+}
+
+TEST(Contour, HoleIsAClockwiseCurve) {
+    // G < 0 in the annulus 0.3 < |x| < 0.7: outer circle counterclockwise, inner one clockwise.
+    const auto g = pointwise([](Vec2 p) { return std::max(norm(p) - 0.7, 0.3 - norm(p)); });
+    const ContourResult r = contour(g, unit_domain, options(6, 2));
+    ASSERT_EQ(r.curves.curve_count(), 2u);
+    std::vector<double> areas{signed_area(r.curves.curve(0)), signed_area(r.curves.curve(1))};
+    std::sort(areas.begin(), areas.end());
+    EXPECT_NEAR(areas[0], -pi * 0.09, refined_area_tolerance);
+    EXPECT_NEAR(areas[1], pi * 0.49, refined_area_tolerance);
+    EXPECT_NEAR(area(r.curves), pi * (0.49 - 0.09), 2.0 * refined_area_tolerance);
+    expect_simple(r.curves);
+    expect_outside_on_right(r.curves, g, 0.25);
+}
+
+TEST(Contour, NearlyTouchingCirclesGiveSimpleCurvesAtEveryResolution) {
+    // Gaps from far below a cell to several cells: the linear interpolant may merge the circles
+    // or not (paper Fig. 4), but the contour must stay simple, closed and within η, also after
+    // refinement pushes vertices towards the true circles.
+    for (double gap : {1e-6, 1e-3, 0.01, 0.05}) {
+        const double r0 = 0.4;
+        const auto g = pointwise([=](Vec2 p) {
+            return std::min(distance(p, {-r0 - 0.5 * gap, 0.013}) - r0,
+                            distance(p, {r0 + 0.5 * gap, 0.013}) - r0);
+        });
+        for (int depth = 3; depth <= 7; ++depth) {
+            for (int passes : {0, 2, ContourOptions::until_converged}) {
+                SCOPED_TRACE(::testing::Message()
+                             << "gap " << gap << " K " << depth << " P " << passes);
+                const ContourResult r = contour(g, unit_domain, options(depth, passes, 1e-6));
+                EXPECT_GE(r.curves.curve_count(), 1u);
+                EXPECT_LE(r.curves.curve_count(), 2u);
+                EXPECT_LE(residuals(r.curves, g).vertices, eta);
+                expect_simple(r.curves);
+                if (gap > 4.0 * unit_domain.width() / (1 << depth)) {
+                    EXPECT_EQ(r.curves.curve_count(), 2u);
+                }
+            }
+        }
+    }
+}
+
+TEST(Contour, ZerosOnTreeVerticesArePerturbed) {
+    // |x|² − 1/4 vanishes exactly at (±1/2, 0) and (0, ±1/2), which are tree vertices from K = 2
+    // on; max(|x|, |y|) − 1/2 vanishes at every tree vertex on the square's sides.
+    const auto circle_g = pointwise([](Vec2 p) { return p.x * p.x + p.y * p.y - 0.25; });
+    const auto square_g =
+        pointwise([](Vec2 p) { return std::max(std::abs(p.x), std::abs(p.y)) - 0.5; });
+    for (int depth = 2; depth <= 6; ++depth) {
+        SCOPED_TRACE(::testing::Message() << "K " << depth);
+        const ContourResult c = contour(circle_g, unit_domain, options(depth, 1));
+        EXPECT_GE(c.stats.perturbed, 4u);
+        EXPECT_EQ(c.curves.curve_count(), 1u);
+        EXPECT_LE(residuals(c.curves, circle_g).vertices, eta);
+        expect_simple(c.curves);
+        const ContourResult s = contour(square_g, unit_domain, options(depth, 2));
+        EXPECT_GE(s.stats.perturbed, std::size_t{8} << (depth - 2));
+        EXPECT_EQ(s.curves.curve_count(), 1u);
+        EXPECT_GT(signed_area(s.curves.curve(0)), 0.0);
+        EXPECT_LE(residuals(s.curves, square_g).vertices, eta);
+        expect_simple(s.curves);
+    }
+}
+
+TEST(Contour, NoZeroGivesAnEmptyInterface) {
+    for (double sign : {1.0, -1.0}) {
+        const auto g = pointwise([=](Vec2 p) { return sign * (0.5 + norm2(p)); });
+        const ContourResult r = contour(g, unit_domain, options(5, 3));
+        EXPECT_TRUE(r.curves.empty());
+        EXPECT_EQ(r.stats.vertices, 0u);
+        EXPECT_EQ(r.stats.g_evals_per_vertex, 0.0);
+        EXPECT_GT(r.stats.g_evals, 0u);
+    }
+}
+
+TEST(Contour, ZeroSetReachingTheBoundaryIsAFailureNamingThePlace) {
+    const auto line = pointwise([](Vec2 p) { return p.x - 0.1; });
+    try {
+        contour(line, unit_domain, options(4, 0));
+        FAIL() << "a contour crossing the boundary must throw";
+    } catch (const NumericalFailure& e) {
+        EXPECT_NE(std::string(e.what()).find("boundary near (0.1, "), std::string::npos)
+            << e.what();
+    }
+    // A circle through a boundary vertex touches the boundary.
+    const auto touching = pointwise(circle({0.0, 0.0}, 1.0));
+    EXPECT_THROW(contour(touching, unit_domain, options(3, 0)), NumericalFailure);
+}
+
+TEST(Contour, VanishingOnARegionIsIllPosed) {
+    const auto flat = pointwise([](Vec2 p) { return std::max(0.0, norm(p) - 0.3); });
+    try {
+        contour(flat, unit_domain, options(5, 0));
+        FAIL() << "G = 0 on a disk must throw";
+    } catch (const NumericalFailure& e) {
+        EXPECT_NE(std::string(e.what()).find("ill-posed"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Contour, NonFiniteValueIsAFailureNamingThePoint) {
+    const auto g = pointwise([](Vec2 p) { return p.x > 0.7 ? std::nan("") : norm(p) - 0.5; });
+    try {
+        contour(g, unit_domain, options(4, 0));
+        FAIL() << "NaN must throw";
+    } catch (const NumericalFailure& e) {
+        EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Contour, InvalidOptionsAreRejected) {
+    const auto g = pointwise(circle({0.0, 0.0}, 0.5));
+    auto with = [](auto change) {
+        ContourOptions o;
+        change(o);
+        return o;
+    };
+    EXPECT_THROW(contour(g, unit_domain, with([](auto& o) { o.depth = -1; })), InvalidInput);
+    EXPECT_THROW(contour(g, unit_domain, with([](auto& o) { o.depth = 31; })), InvalidInput);
+    EXPECT_THROW(contour(g, unit_domain, with([](auto& o) { o.refine_passes = -2; })),
+                 InvalidInput);
+    EXPECT_THROW(contour(g, unit_domain, with([](auto& o) { o.eta = 0.0; })), InvalidInput);
+    EXPECT_THROW(contour(g, unit_domain, with([](auto& o) { o.eps = 1e-12; })), InvalidInput);
+    EXPECT_THROW(contour(g, unit_domain, with([](auto& o) { o.rho = 1.0; })), InvalidInput);
+    EXPECT_THROW(contour(g, unit_domain, with([](auto& o) { o.gamma = -1.0; })), InvalidInput);
+    EXPECT_THROW(contour(g, Box{{0, 0}, {1, 2}}, ContourOptions{}), InvalidInput);
+    EXPECT_DOUBLE_EQ(with([](auto& o) { o.depth = 7; }).resolved_eps(), 1e-7);
+}
+
+TEST(Contour, CountsEveryEvaluationAndNeverEvaluatesAPointTwice) {
+    std::vector<Vec2> seen;
+    const auto g = [&seen](std::span<const Vec2> x, std::span<double> v) {
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            seen.push_back(x[i]);
+            v[i] = x[i].x * x[i].x + 2.0 * x[i].y * x[i].y - 0.3 + 0.1 * std::sin(5.0 * x[i].x);
+        }
+    };
+    const ContourResult r =
+        contour(g, unit_domain, options(6, ContourOptions::until_converged, 1e-7));
+    EXPECT_EQ(r.stats.g_evals, seen.size());
+    EXPECT_EQ(r.stats.g_evals,
+              r.stats.g_evals_tree + r.stats.g_evals_roots + r.stats.g_evals_refine);
+    std::set<std::pair<double, double>> distinct;
+    for (const Vec2 p : seen) distinct.insert({p.x, p.y});
+    EXPECT_EQ(distinct.size(), seen.size());
+    EXPECT_DOUBLE_EQ(r.stats.g_evals_per_vertex,
+                     static_cast<double>(r.stats.g_evals) / static_cast<double>(r.stats.vertices));
+}
+
+TEST(Contour, LinearContourErrorIsSecondOrderInTheCellSize) {
+    // Paper Table 2: the midpoint error of the linear interpolant is O(h²).
+    const auto g = pointwise(circle({0.03, 0.01}, 0.55));
+    std::vector<double> errors;
+    for (int depth = 5; depth <= 8; ++depth)
+        errors.push_back(residuals(contour(g, unit_domain, options(depth, 0)).curves, g).midpoints);
+    const double order = std::log2(errors.front() / errors.back()) / 3.0;
+    EXPECT_GT(order, 1.7);
+    EXPECT_LT(order, 2.3);
+}
+
+TEST(Contour, SameContourForOneAndTwoThreads) {
+    const auto g = pointwise([](Vec2 p) {
+        const double r = norm(p), theta = std::atan2(p.y, p.x);
+        return r - 0.5 * (1.0 + 0.5 * std::cos(3.0 * theta));
+    });
+    std::vector<ContourResult> results;
+    for (int threads : {1, 2}) {
+        set_thread_count(threads);
+        results.push_back(
+            contour(g, unit_domain, options(7, ContourOptions::until_converged, 1e-6)));
+    }
+    set_thread_count(0);
+    ASSERT_EQ(results[0].curves.size(), results[1].curves.size());
+    EXPECT_EQ(results[0].curves.curves(), results[1].curves.curves());
+    EXPECT_EQ(results[0].stats.g_evals, results[1].stats.g_evals);
+    EXPECT_EQ(results[0].stats.cells, results[1].stats.cells);
+}
+
+}  // namespace
+}  // namespace slc
