@@ -27,7 +27,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         ->check(CLI::Range(8, 1 << 22));
     cmd.add_option("--eno-order", o.eno_order, "E: ENO order of the embedded module (default 3)")
         ->check(CLI::Range(1, 5));
-    cmd.add_option("--smooth", o.smooth, "S: cosine smoothing passes (problem's default)")
+    cmd.add_option("-S,--smooth", o.smooth, "S: cosine smoothing passes (problem's default)")
         ->check(CLI::Range(0, 64));
     cmd.add_option("-L,--tree-depth", o.tree_depth, "L: distance tree depth (default K + P)")
         ->check(CLI::Range(1, 30));

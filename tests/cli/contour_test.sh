@@ -1,0 +1,21 @@
+# slc contour: contours the exact distance of an interface; files, summary keys, accuracy, bad input.
+source "$(dirname "$0")/lib.sh" "$1"
+
+square_json >square.json
+expect_ok "linear contour" -- contour --initial square.json -K 5 --domain 2 --out lin
+for f in final.json summary.json final.svg final.png; do check "contour writes $f" test -s "lin/$f"; done
+for key in cells segments mean_segment_length error cpu_s g_evals g_evals_per_vertex; do
+    check "summary has $key" grep -q "\"$key\":" lin/summary.json
+done
+# A smooth curve (a 256-gon of radius 1): refinement to convergence reaches every midpoint. (At a
+# sharp corner the safeguards may refuse a split; the summary counts those as "rejected".)
+awk 'BEGIN { printf "{\"curves\": [{\"points\": ["; for (i = 0; i < 256; i++) {
+    a = 2 * 3.141592653589793 * i / 256; printf "%s[%.17g, %.17g]", (i ? ", " : ""), cos(a), sin(a) }
+    print "]}]}" }' >circle.json
+expect_ok "adaptive contour" -- contour --initial circle.json -K 4 --eps 1e-4 --refine 20 --domain 2 --out ada
+error=$(grep -o '"error": [0-9.e+-]*' ada/summary.json | awk '{print $2}')
+check "adaptive error within eps ($error)" awk -v e="$error" 'BEGIN { exit !(e <= 1e-4) }'
+expect_error "negative eps" "eps" -- contour --initial square.json -K 4 --eps -1 --domain 2 --out x
+expect_error "depth missing" "depth|-K" -- contour --initial square.json --domain 2 --out x
+expect_error "missing file" "nope.json" -- contour --initial nope.json -K 4 --out x
+finish
