@@ -14,6 +14,7 @@
 #include <map>
 #include <numbers>
 
+#include "bench_support.hpp"
 #include "slc/contour/contour.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/distance_tree.hpp"
@@ -22,6 +23,7 @@
 namespace {
 
 using namespace slc;
+using namespace slc::bench;
 
 /// The propeller r(θ) = r0 (1 + ½ cos 3θ) with r0 = 3 in [−6, 6]², 16384 vertices. Cell and segment
 /// counts depend only on the shape within the domain; this scale makes our Table 2 mean segment
@@ -109,22 +111,6 @@ BENCHMARK(BM_LinearContour)->DenseRange(3, 9)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AdaptiveContour)->DenseRange(3, 9)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AdaptiveIllinois)->Arg(7)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AdaptiveBisection)->Arg(7)->Unit(benchmark::kMillisecond);
-
-/// Keeps every run so that the tables can be written after the console report.
-class Recorder : public benchmark::ConsoleReporter {
-public:
-    void ReportRuns(const std::vector<Run>& runs) override {
-        for (const Run& r : runs) {
-            if (r.run_type == Run::RT_Iteration) results[r.benchmark_name()] = r;
-        }
-        ConsoleReporter::ReportRuns(runs);
-    }
-    std::map<std::string, Run> results;
-};
-
-double seconds(const benchmark::BenchmarkReporter::Run& r) {
-    return r.GetAdjustedCPUTime() / benchmark::GetTimeUnitMultiplier(r.time_unit);
-}
 
 /// The paper's Tables 2 and 3 (450 MHz UltraSPARC II, 2000): cells, segments, length, error, CPU s.
 struct PaperRow {
@@ -239,15 +225,7 @@ void write_table3(const Recorder& rec, const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string tables = "docs/tables";
-    for (int i = 1; i + 1 < argc; ++i) {
-        if (std::strcmp(argv[i], "--tables") == 0) {
-            tables = argv[i + 1];
-            for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
-            argc -= 2;
-            break;
-        }
-    }
+    const std::string tables = take_flag(argc, argv, "--tables", "docs/tables");
     slc::set_thread_count(1);
     benchmark::Initialize(&argc, argv);
     Recorder recorder;

@@ -11,6 +11,7 @@
 #include <map>
 #include <random>
 
+#include "bench_support.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/extension.hpp"
 #include "slc/geometry/shapes.hpp"
@@ -18,6 +19,7 @@
 namespace {
 
 using namespace slc;
+using namespace slc::bench;
 
 const Box domain = Box::centered_square(1.0);
 /// The Table 1 interface: the propeller r = 0.5 (1 + 0.5 cos 3θ) with 4096 segments.
@@ -114,22 +116,6 @@ BENCHMARK(BM_QueryNearInterface)
     ->Complexity(benchmark::oLogN);
 BENCHMARK(BM_QueryBruteForce)->RangeMultiplier(10)->Range(1000, 10000)->Complexity(benchmark::oN);
 
-/// Keeps every run so that the tables can be written after the console report.
-class Recorder : public benchmark::ConsoleReporter {
-public:
-    void ReportRuns(const std::vector<Run>& runs) override {
-        for (const Run& r : runs) {
-            if (r.run_type == Run::RT_Iteration) results[r.benchmark_name()] = r;
-        }
-        ConsoleReporter::ReportRuns(runs);
-    }
-    std::map<std::string, Run> results;
-};
-
-double seconds(const benchmark::BenchmarkReporter::Run& r) {
-    return r.GetAdjustedCPUTime() / benchmark::GetTimeUnitMultiplier(r.time_unit);
-}
-
 void write_table1(const Recorder& rec, const std::string& path) {
     // The paper's Table 1 (450 MHz UltraSPARC II, 2000).
     const std::map<int, std::array<double, 4>> paper = {
@@ -175,15 +161,7 @@ void write_table1(const Recorder& rec, const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string table = "docs/tables/table1.md";
-    for (int i = 1; i + 1 < argc; ++i) {
-        if (std::strcmp(argv[i], "--table") == 0) {
-            table = argv[i + 1];
-            for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
-            argc -= 2;
-            break;
-        }
-    }
+    const std::string table = take_flag(argc, argv, "--table", "docs/tables/table1.md");
     slc::set_thread_count(1);
     benchmark::Initialize(&argc, argv);
     Recorder recorder;

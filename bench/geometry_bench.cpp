@@ -16,6 +16,7 @@
 #include <fstream>
 #include <map>
 
+#include "bench_support.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/geometry/shapes.hpp"
 #include "slc/geometry_modules/embedded.hpp"
@@ -25,6 +26,7 @@
 namespace {
 
 using namespace slc;
+using namespace slc::bench;
 
 const Box domain = Box::centered_square(1.0);
 
@@ -93,22 +95,6 @@ BENCHMARK(BM_BuildDistanceTree)->Apply([](auto* b) {
 BENCHMARK(BM_IntrinsicGeometry)
     ->Apply([](auto* b) { mesh_sizes(b, {}); }) -> Unit(benchmark::kMillisecond);
 
-/// Keeps every run so that the table can be written after the console report.
-class Recorder : public benchmark::ConsoleReporter {
-public:
-    void ReportRuns(const std::vector<Run>& runs) override {
-        for (const Run& r : runs) {
-            if (r.run_type == Run::RT_Iteration) results[r.benchmark_name()] = r;
-        }
-        ConsoleReporter::ReportRuns(runs);
-    }
-    std::map<std::string, Run> results;
-};
-
-double seconds(const benchmark::BenchmarkReporter::Run& r) {
-    return r.GetAdjustedCPUTime() / benchmark::GetTimeUnitMultiplier(r.time_unit);
-}
-
 void write_table(const Recorder& rec, const std::string& path) {
     std::string md =
         "# Geometry modules: embedded mesh against the distance tree\n\n"
@@ -161,19 +147,6 @@ void draw_local_mesh(const std::string& path) {
     fig.add_curves(curves, "interface", palette_color(2), 1.5);
     fig.add_arrows(at, normal, 0.12, palette_color(4));
     fig.save(path);
-}
-
-/// Removes `--flag value` from argv and returns value, or fallback.
-std::string take_flag(int& argc, char** argv, const char* flag, std::string fallback) {
-    for (int i = 1; i + 1 < argc; ++i) {
-        if (std::strcmp(argv[i], flag) == 0) {
-            std::string value = argv[i + 1];
-            for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
-            argc -= 2;
-            return value;
-        }
-    }
-    return fallback;
 }
 
 }  // namespace

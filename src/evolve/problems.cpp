@@ -129,7 +129,7 @@ Curves bubbles(int count, double extent, double r_min, double r_max, unsigned se
         const double r = uniform(r_min, r_max);
         const Vec2 c{uniform(-extent + r, extent - r), uniform(-extent + r, extent - r)};
         bool clear = true;
-        for (const auto& [q, s] : placed) clear = clear && distance(c, q) > r + s + 0.1;
+        for (const auto& [q, s] : placed) clear = clear && distance(c, q) > r + s + 0.05;
         if (clear) placed.push_back({c, r});
     }
     Curves out;
@@ -264,7 +264,9 @@ Problem spiral_nonlocal(const Params& params) {
                      Box::centered_square(3.0), 2.56, "volume-preserving-curvature");
     p.parameters = {{"tilt", tilt, "rotation of the spiral, degrees"}};
     p.module = GeometryModule::embedded;
-    set_run(p, 512, 2, 7, 3, 1e-3);
+    // S = 3 where the paper has 2 for its 512-step run (it uses 3 at 1024 steps): with 2, our
+    // spiral, smaller in its domain, grows grid-scale wiggles once it has become round.
+    set_run(p, 512, 3, 7, 3, 1e-3);
     return p;
 }
 
@@ -272,7 +274,7 @@ Problem bubbles_nonlocal(const Params&) {
     Problem p = base("bubbles-nonlocal",
                      "circular bubbles merging and vanishing under area-preserving curvature flow "
                      "(§4.7, Fig. 19)",
-                     bubbles(14, 2.5, 0.15, 0.6, 19), Box::centered_square(3.0), 10.24,
+                     bubbles(12, 2.7, 0.25, 0.75, 19), Box::centered_square(3.0), 10.24,
                      "volume-preserving-curvature");
     p.module = GeometryModule::embedded;
     set_run(p, 2048, 3, 7, 4, 1e-4);

@@ -151,23 +151,6 @@ std::vector<Vec2> parse_curve(const Json& curve, std::size_t c, const std::strin
     return out;
 }
 
-/// The whole content of a file, or InvalidInput with the system's reason.
-std::string read_text_file(const std::filesystem::path& path) {
-    auto fail = [&](int err) {
-        return InvalidInput(
-            fmt::format("cannot read {}: {}", path.string(), std::generic_category().message(err)));
-    };
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                         &std::fclose);
-    if (!file) throw fail(errno);
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
-    if (std::ferror(file.get())) throw fail(errno);
-    return text;
-}
-
 /// A double with 17 significant digits: enough for strtod to give back the same bits. −0 keeps a
 /// decimal point, since the parser would read "-0" as the integer 0 and lose the sign.
 std::string exact_number(double v) {
@@ -257,6 +240,22 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
         std::filesystem::remove(temp, ec);
         throw fail(reason);
     }
+}
+
+std::string read_text_file(const std::filesystem::path& path) {
+    auto fail = [&](int err) {
+        return InvalidInput(
+            fmt::format("cannot read {}: {}", path.string(), std::generic_category().message(err)));
+    };
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                         &std::fclose);
+    if (!file) throw fail(errno);
+    std::string text;
+    char buffer[1 << 16];
+    std::size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
+    if (std::ferror(file.get())) throw fail(errno);
+    return text;
 }
 
 }  // namespace slc

@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "slc/core/error.hpp"
+#include "slc/io/interface_json.hpp"
 
 namespace slc {
 namespace {
@@ -61,22 +62,6 @@ double parse_coordinate(std::string_view field, const char* name, const std::str
         throw InvalidInput(fmt::format("{}: {} = \"{}\" is not finite", place, name, field));
     }
     return value;
-}
-
-std::string read_text_file(const std::filesystem::path& path) {
-    auto fail = [&](int err) {
-        return InvalidInput(
-            fmt::format("cannot read {}: {}", path.string(), std::generic_category().message(err)));
-    };
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                         &std::fclose);
-    if (!file) throw fail(errno);
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
-    if (std::ferror(file.get())) throw fail(errno);
-    return text;
 }
 
 }  // namespace

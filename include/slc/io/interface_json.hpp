@@ -27,6 +27,9 @@ InterfaceFile read_interface_json(const std::filesystem::path& path);
 /// The interface as JSON text, coordinates with 17 significant digits (round-trips exactly).
 std::string interface_json(const Interface& curves, double time);
 
+/// The whole content of a file; InvalidInput ("cannot read PATH: reason") when it cannot be read.
+std::string read_text_file(const std::filesystem::path& path);
+
 /// Writes text to path atomically: to a temporary file in the same folder, then renamed over
 /// path, so that a reader never sees a partial file. Creates missing parent folders. Throws
 /// InvalidInput when the folder cannot be written.

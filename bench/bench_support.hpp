@@ -1,0 +1,45 @@
+// What the benchmark programs share: a reporter that keeps every run so that a program can write
+// its markdown tables after the console report, CPU seconds of a run, and a flag of the program's
+// own taken out of argv before Google Benchmark parses the rest.
+#pragma once
+
+#include <benchmark/benchmark.h>
+
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace slc::bench {
+
+/// Keeps every iteration run by benchmark name ("BM_BuildTree/12").
+class Recorder : public benchmark::ConsoleReporter {
+public:
+    void ReportRuns(const std::vector<Run>& runs) override {
+        for (const Run& r : runs) {
+            if (r.run_type == Run::RT_Iteration) results[r.benchmark_name()] = r;
+        }
+        ConsoleReporter::ReportRuns(runs);
+    }
+    std::map<std::string, Run> results;
+};
+
+/// CPU seconds per iteration of a run.
+inline double seconds(const benchmark::BenchmarkReporter::Run& r) {
+    return r.GetAdjustedCPUTime() / benchmark::GetTimeUnitMultiplier(r.time_unit);
+}
+
+/// Removes `--flag value` from argv and returns value, or fallback.
+inline std::string take_flag(int& argc, char** argv, const char* flag, std::string fallback) {
+    for (int i = 1; i + 1 < argc; ++i) {
+        if (std::strcmp(argv[i], flag) == 0) {
+            std::string value = argv[i + 1];
+            for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
+            argc -= 2;
+            return value;
+        }
+    }
+    return fallback;
+}
+
+}  // namespace slc::bench
