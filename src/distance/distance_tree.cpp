@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -63,6 +64,7 @@ DistanceTree::DistanceTree(const Interface& curves, Box domain, Options options)
         segments_.insert(segments_.end(), list.begin(), list.end());
         offsets_.push_back(static_cast<std::uint32_t>(segments_.size()));
     }
+    build_start_grid();
     if (options.triangulate) {
         mesh_ = triangulate(tree_);
         vertex_nearest_ = closest_points(mesh_.vertices);
@@ -98,8 +100,37 @@ void DistanceTree::build_lists(std::vector<std::vector<std::uint32_t>>& lists) {
     tree_.balance([&](std::size_t c) { list_children(c, tree_.cell(c).first_child); });
 }
 
+void DistanceTree::build_start_grid() {
+    // Four levels above the deepest, at most 2^8 blocks a side (256 KiB): the descent from a
+    // block to its leaf is then at most a few steps instead of one per level.
+    start_level_ = std::clamp(tree_.depth() - 4, 0, 8);
+    const std::uint32_t n = 1u << start_level_;
+    start_grid_.resize(std::size_t{n} * n);
+    for (std::uint32_t gy = 0; gy < n; ++gy)
+        for (std::uint32_t gx = 0; gx < n; ++gx)
+            start_grid_[std::size_t{gy} * n + gx] = tree_.find(start_level_, gx, gy);
+}
+
+std::uint32_t DistanceTree::leaf_at(Vec2 x) const {
+    const int depth = tree_.depth();
+    const Box& root = tree_.root_box();
+    const double scale = static_cast<double>(std::uint64_t{1} << depth) / root.width();
+    const double top = static_cast<double>((std::uint64_t{1} << depth) - 1);
+    const auto ix = static_cast<std::uint64_t>(std::clamp((x.x - root.lo.x) * scale, 0.0, top));
+    const auto iy = static_cast<std::uint64_t>(std::clamp((x.y - root.lo.y) * scale, 0.0, top));
+    const int shift0 = depth - start_level_;
+    std::uint32_t c =
+        start_grid_[(iy >> shift0) * (std::uint64_t{1} << start_level_) + (ix >> shift0)];
+    while (!tree_.is_leaf(c)) {
+        const int shift = depth - tree_.cell(c).level - 1;
+        c = tree_.cell(c).first_child + static_cast<std::uint32_t>((ix >> shift) & 1u) +
+            2u * static_cast<std::uint32_t>((iy >> shift) & 1u);
+    }
+    return c;
+}
+
 ClosestPoint DistanceTree::closest_point(Vec2 x) const {
-    std::uint32_t c = tree_.leaf_at(x);
+    std::uint32_t c = leaf_at(x);
     double best = std::numeric_limits<double>::infinity();
     ClosestPoint result;
     for (;;) {

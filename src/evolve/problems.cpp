@@ -221,13 +221,13 @@ Problem wulff(const Params&) {
 
 Problem circle_curvature(const Params& params) {
     const double r0 = params.count("R0") ? params.at("R0") : std::sqrt(5.0);
-    if (!(r0 > 0.0) || !(r0 < 2.8))
+    if (!(r0 > 0.0) || !(r0 < 3.8))
         throw InvalidInput(
-            fmt::format("R0 must be in (0, 2.8) to fit the domain [-3, 3]^2, got {}", r0));
+            fmt::format("R0 must be in (0, 3.8) to fit the domain [-4, 4]^2, got {}", r0));
     Problem p = base("circle-curvature",
                      "circle shrinking under curvature, R(t)^2 = R0^2 - 2t; R0 = sqrt 5 to t = 2, "
                      "or R0 = 1 vanishing at t = 1/2 (§4.6.1, Fig. 16, Table 7)",
-                     {shapes::circle({}, r0, 1024)}, Box::centered_square(3.0),
+                     {shapes::circle({}, r0, 1024)}, Box::centered_square(4.0),
                      r0 * r0 / 2 > 2.0 ? 2.0 : r0 * r0 / 2 + 0.1, "curvature");
     p.parameters = {{"R0", r0, "initial radius"}};
     p.module = GeometryModule::embedded;

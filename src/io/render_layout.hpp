@@ -1,0 +1,147 @@
+// Internals of the picture module shared by its two sources: page constants, the layers a Figure
+// holds, colour maps, tick and text helpers, and the page layout (render_layout.cpp); drawing and
+// output live in render.cpp.
+#pragma once
+
+#include <cairo.h>
+
+#include <array>
+#include <span>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "slc/io/render.hpp"
+
+namespace slc::render_detail {
+
+// Page layout in pixels of the SVG (points) and of the PNG before its 2x scale.
+inline constexpr double plot_size = 560.0;       // edge of the square plot area
+inline constexpr double min_left_margin = 80.0;  // room for y tick labels and the "y" axis label
+inline constexpr double right_margin = 30.0;     // room for half of the last x tick label
+inline constexpr double top_margin = 20.0;
+inline constexpr double title_room = 34.0;  // added to the top margin when there is a title
+inline constexpr double bottom_margin = 60.0;
+inline constexpr double side_gap = 24.0;  // between the plot and the legend / colour-bar column
+inline constexpr double min_side_width = 150.0;
+inline constexpr double tick_length = 5.0;
+inline constexpr double label_gap = 4.0;  // between a tick and its label
+inline constexpr double font_size = 13.0;
+inline constexpr double title_font_size = 16.0;
+inline constexpr double legend_row = 20.0;
+inline constexpr double legend_sample = 28.0;  // length of the line sample of a legend entry
+inline constexpr double legend_pad = 8.0;
+inline constexpr double colorbar_width = 16.0;
+inline constexpr double colorbar_max_height = 300.0;
+inline constexpr double colorbar_min_height = 120.0;  // below a long legend the page grows instead
+inline constexpr double png_scale = 2.0;  // PNG pixels per layout pixel, for sharp lines and text
+inline constexpr int max_ticks = 7;
+inline const char* const font_family = "DejaVu Sans";
+
+struct FieldLayer {
+    ScalarGrid grid;
+    std::string label;
+    bool diverging = false;
+};
+struct BoxesLayer {
+    std::vector<Box> boxes;
+    Color color;
+    double line_width = 0.0;
+};
+struct TrianglesLayer {
+    std::vector<Vec2> vertices;
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    Color color;
+    double line_width = 0.0;
+};
+struct CurvesLayer {
+    std::vector<std::vector<Vec2>> paths;
+    std::string label;
+    Color color;
+    double line_width = 0.0;
+    bool closed = true;
+};
+struct PointsLayer {
+    std::vector<Vec2> points;
+    Color color;
+    double radius = 0.0;
+};
+struct ArrowsLayer {
+    std::vector<Vec2> at;
+    std::vector<Vec2> vec;
+    double scale = 0.0;
+    Color color;
+};
+using LayerItem =
+    std::variant<FieldLayer, BoxesLayer, TrianglesLayer, CurvesLayer, PointsLayer, ArrowsLayer>;
+using Layers = std::vector<const LayerItem*>;
+
+template <class... F>
+struct Overloaded : F... {
+    using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+/// The values mapped to the two ends of the colour map: ±max|v| when diverging, else min, max.
+struct FieldRange {
+    double lo = 0.0;
+    double hi = 1.0;
+    double t(double v) const { return (v - lo) / (hi - lo); }
+};
+
+/// Tick values i·step in [lo, hi], step 1, 2 or 5 × 10^e, the finest giving at most max_ticks.
+struct Ticks {
+    std::vector<double> values;
+    std::vector<std::string> labels;
+};
+
+/// Where things go on the page, and the map from the plane to it (y up).
+struct Page {
+    Box view;
+    double width = 0.0;
+    double height = 0.0;
+    double plot_x = 0.0;  // top-left corner of the plot square
+    double plot_y = 0.0;
+    double side_x = 0.0;        // left edge of the legend / colour-bar column
+    double colorbar_top = 0.0;  // top of the colour bar itself; its label sits above
+    double colorbar_height = 0.0;
+    Ticks x_ticks;
+    Ticks y_ticks;
+
+    double scale() const { return plot_size / view.width(); }
+    Vec2 to_page(Vec2 p) const {
+        return {plot_x + (p.x - view.lo.x) * scale(), plot_y + (view.hi.y - p.y) * scale()};
+    }
+};
+
+/// A colour from its hex code 0xRRGGBB.
+constexpr Color rgb(int hex) {
+    return {((hex >> 16) & 0xff) / 255.0, ((hex >> 8) & 0xff) / 255.0, (hex & 0xff) / 255.0, 1.0};
+}
+
+std::span<const Color> color_map(bool diverging);
+/// The map's colour at t in [0, 1].
+Color map_color(std::span<const Color> anchors, double t);
+FieldRange field_range(const FieldLayer& field);
+/// A number as printed by fmt, made typographic ("−1.5e−5").
+std::string typeset(std::string s);
+Ticks nice_ticks(double lo, double hi);
+void set_font(cairo_t* cr, double size, bool italic = false);
+double text_width(cairo_t* cr, const std::string& s);
+/// Draws s with its box anchored at (x, y); see render_layout.cpp.
+void draw_text(cairo_t* cr, const std::string& s, double x, double y, double ax, double ay);
+void set_color(cairo_t* cr, Color c);
+/// The last field layer, if any: the one the colour bar shows.
+const FieldLayer* last_field(const Layers& layers);
+/// The labelled curve layers, in order: the legend's entries.
+std::vector<const CurvesLayer*> legend_entries(const Layers& layers);
+/// The labels of a colour bar: top, bottom, and 0 in between when it lies inside the range.
+std::vector<std::pair<double, std::string>> colorbar_labels(const FieldRange& range);
+/// Height of the legend box (0 without labelled curves).
+double legend_height(const Layers& layers);
+/// Places plot, title, legend and colour bar for a view and its layers.
+Page layout(cairo_t* cr, const Box& view, const std::string& title, const Layers& layers);
+
+}  // namespace slc::render_detail
