@@ -18,6 +18,15 @@ expect_ok "user curve and law" -- run --initial square.json --velocity rotation 
 check "user run writes final.json" test -s user/final.json
 check "user run has no exact solution" grep -q '"e_inf": null' user/summary.json
 
+# A file's "time" is where the run starts; --t-end is where it ends.
+echo '{"time": 0.5, "curves": [{"points": [[-1, -1], [1, -1], [1, 1], [-1, 1]]}]}' >late.json
+expect_ok "run from the file's time" -- run --initial late.json --velocity rotation --t-end 1 -N 2 -K 3 -P 0 \
+    --domain 2 --out late --quiet
+check "ends at t-end" grep -q '"t": 1.0' late/summary.json
+check "final.json keeps the time" grep -q '"time": 1' late/final.json
+expect_error "t-end before the file's time" "t-end" -- run --initial late.json --velocity rotation --t-end 0.2 \
+    --domain 2 --out early
+
 echo '{"curves": [{"points": [[0, 0], [0.4, 0], [0, 0.4]]}]}' >small.json
 expect_ok "shrinking to nothing" -- run --initial small.json --velocity unit-normal --param speed=-1 --t-end 1 \
     -N 10 -K 4 -P 0 --domain 1 --out gone --quiet

@@ -52,7 +52,8 @@ Problem resolve_problem(const RunCommand& o) {
     p.name = std::filesystem::path(o.initial).stem().string();
     p.initial = in.curves.curves();
     p.domain = in.domain;
-    p.t_end = in.time + *o.t_end;
+    p.t_start = in.time;
+    p.t_end = *o.t_end;
     p.velocity = o.velocity;
     p.velocity_params = params;
     p.steps = 40;
@@ -149,7 +150,10 @@ void add_run_command(CLI::App& app) {
     cmd->add_option("--velocity", o->velocity, velocity_help())->excludes(problem);
     cmd->add_option("--param", o->params,
                     "key=value: a parameter of the velocity law or the problem (repeatable)");
-    cmd->add_option("--t-end", o->t_end, "Final time a (a problem's own by default)");
+    cmd->add_option(
+        "--t-end", o->t_end,
+        "Final time a (a problem's own by default); with --initial the run starts at the "
+        "file's \"time\" (0 if absent)");
     cmd->add_option("--geometry", o->geometry,
                     "Geometry module for normals and curvature: intrinsic or embedded (the law's "
                     "default otherwise)")

@@ -42,7 +42,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
 
 RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
     RunOptions r;
-    r.t_start = 0.0;
+    r.t_start = p.t_start;
     r.t_end = p.t_end;
     r.steps = m.steps.value_or(p.steps);
     ContourOptions& c = r.step.contour;

@@ -39,6 +39,7 @@ struct Problem {
     std::string description;  ///< what it is and where in the paper
     std::vector<std::vector<Vec2>> initial;
     Box domain;
+    double t_start = 0.0;  ///< the initial curves' time (an interface file's "time")
     double t_end = 1.0;
     int steps = 40;     ///< N
     int depth = 5;      ///< K
