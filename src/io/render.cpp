@@ -349,6 +349,11 @@ Color palette_color(std::size_t i) {
     return palette[i % palette.size()];
 }
 
+Color sequence_color(double t) {
+    // Viridis without its palest yellow end, which is too faint for a line on white.
+    return map_color(color_map(false), 0.85 * std::clamp(t, 0.0, 1.0));
+}
+
 Figure::Figure(Box view, std::string title) : title_(std::move(title)) {
     const double w = view.width();
     const double h = view.height();

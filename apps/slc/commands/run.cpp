@@ -80,8 +80,9 @@ void draw(const std::filesystem::path& dir, const Problem& p, const Interface& i
     if (frames.size() < 2) return;
     Figure overlay(p.domain, fmt::format("{}: {} frames", p.name, frames.size()));
     for (std::size_t i = 0; i < frames.size(); ++i) {
+        const double along = static_cast<double>(i) / static_cast<double>(frames.size() - 1);
         overlay.add_curves(frames[i].second, fmt::format("t = {:.4g}", frames[i].first),
-                           palette_color(i), 1.0);
+                           sequence_color(along), 1.0);
     }
     overlay.save(dir / "frames.svg");
     overlay.save(dir / "frames.png");

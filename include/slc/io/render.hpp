@@ -24,6 +24,10 @@ struct Color {
 /// A qualitative palette for successive interfaces in one picture (legend order).
 Color palette_color(std::size_t i);
 
+/// A colour for the member at t ∈ [0, 1] of an ordered sequence (frames in time): dark violet at
+/// 0 through blue and green to a dark yellow at 1.
+Color sequence_color(double t);
+
 /// Scalar samples on a uniform nx × ny grid of cell centres covering box, row-major from the
 /// bottom-left (values[j * nx + i] at x = lo.x + (i + ½) w / nx, y = lo.y + (j + ½) h / ny).
 struct ScalarGrid {
