@@ -209,7 +209,7 @@ void write_table3(const Recorder& rec, const std::string& path) {
     }
     md +=
         "\n## Root finding at K = 7, ε = 1e−5\n\n"
-        "The paper bisects; the issue's goal is at most 8 G evaluations per output vertex here.\n\n"
+        "The paper bisects; our goal is at most 8 G evaluations per output vertex here.\n\n"
         "| method | G evals / vertex | G evals | cpu s | error |\n|---|---|---|---|---|\n";
     for (const auto& [name, bench] : {std::pair{"Brent (default)", "BM_AdaptiveContour/7"},
                                       std::pair{"Illinois", "BM_AdaptiveIllinois/7"},

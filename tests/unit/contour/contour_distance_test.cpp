@@ -1,5 +1,5 @@
 // Tests of contour() on exact signed distances of polygons (DistanceTree): the propeller of the
-// paper's Fig. 6 and Tables 2–3 against its exact distance, the evaluation budget of the issue,
+// paper's Fig. 6 and Tables 2–3 against its exact distance, the evaluation budget of the project,
 // and seeded random interfaces with holes, corners and several components.
 #include <gtest/gtest.h>
 
@@ -64,7 +64,7 @@ TEST(ContourDistance, PropellerErrorIsWithinEpsAgainstTheExactDistance) {
 }
 
 TEST(ContourDistance, PropellerNeedsAtMostEightEvaluationsPerVertexAtDepthSeven) {
-    // The issue's goal at K = 7, ε = 1e−5, η = 1e−10; bisection alone needs about 30.
+    // The project's goal at K = 7, ε = 1e−5, η = 1e−10; bisection alone needs about 30.
     const Propeller p;
     ContourOptions o;
     o.depth = 7;
