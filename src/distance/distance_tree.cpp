@@ -112,21 +112,11 @@ void DistanceTree::build_start_grid() {
 }
 
 std::uint32_t DistanceTree::leaf_at(Vec2 x) const {
-    const int depth = tree_.depth();
-    const Box& root = tree_.root_box();
-    const double scale = static_cast<double>(std::uint64_t{1} << depth) / root.width();
-    const double top = static_cast<double>((std::uint64_t{1} << depth) - 1);
-    const auto ix = static_cast<std::uint64_t>(std::clamp((x.x - root.lo.x) * scale, 0.0, top));
-    const auto iy = static_cast<std::uint64_t>(std::clamp((x.y - root.lo.y) * scale, 0.0, top));
-    const int shift0 = depth - start_level_;
-    std::uint32_t c =
-        start_grid_[(iy >> shift0) * (std::uint64_t{1} << start_level_) + (ix >> shift0)];
-    while (!tree_.is_leaf(c)) {
-        const int shift = depth - tree_.cell(c).level - 1;
-        c = tree_.cell(c).first_child + static_cast<std::uint32_t>((ix >> shift) & 1u) +
-            2u * static_cast<std::uint32_t>((iy >> shift) & 1u);
-    }
-    return c;
+    const Quadtree::LatticePoint q = tree_.lattice_point(x);
+    const int shift = tree_.depth() - start_level_;
+    const std::uint64_t block =
+        (q.iy >> shift) * (std::uint64_t{1} << start_level_) + (q.ix >> shift);
+    return tree_.descend(start_grid_[block], q);
 }
 
 ClosestPoint DistanceTree::closest_point(Vec2 x) const {

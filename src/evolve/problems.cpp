@@ -357,14 +357,7 @@ Problem make_problem(const std::string& name, const std::map<std::string, double
 
 std::optional<double> max_error(const Problem& problem, const Interface& curves, double t) {
     if (!problem.exact || curves.empty()) return std::nullopt;
-    std::vector<Vec2> xs;
-    xs.reserve(2 * curves.size());
-    for (std::size_t i = 0; i < curves.size(); ++i) {
-        const Segment s = curves.segment(i);
-        xs.push_back(s.a);
-        xs.push_back(0.5 * (s.a + s.b));
-    }
-    const auto d = problem.exact(xs, t);
+    const auto d = problem.exact(vertices_and_midpoints(curves), t);
     if (!d) return std::nullopt;
     double worst = 0.0;
     for (double v : *d) worst = std::max(worst, std::abs(v));

@@ -36,6 +36,16 @@ std::vector<std::vector<Vec2>> Interface::curves() const {
     return out;
 }
 
+std::vector<Vec2> vertices_and_midpoints(const Interface& curves) {
+    std::vector<Vec2> points(curves.points().begin(), curves.points().end());
+    points.reserve(2 * curves.size());
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+        const Segment s = curves.segment(i);
+        points.push_back(0.5 * (s.a + s.b));
+    }
+    return points;
+}
+
 double signed_area(std::span<const Vec2> curve) {
     // Shoelace formula about the first vertex, which keeps the terms small for curves far from
     // the origin.

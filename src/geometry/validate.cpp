@@ -232,32 +232,17 @@ void check_inside(const RawCurves& raw, const Box& domain) {
     }
 }
 
-/// The smallest box holding box and p.
-Box grown(const Box& box, Vec2 p) {
-    return {{std::min(box.lo.x, p.x), std::min(box.lo.y, p.y)},
-            {std::max(box.hi.x, p.x), std::max(box.hi.y, p.y)}};
-}
-
-/// Precondition: points is not empty.
-Box bounding_box(std::span<const Vec2> points) {
-    Box box{points[0], points[0]};
-    for (Vec2 p : points) box = grown(box, p);
-    return box;
-}
-
 /// The length below which two consecutive points are one: tolerance::duplicate_point times the
 /// width of the domain, or of the bounding box of all points when no domain is given.
 double duplicate_distance(const RawCurves& raw, const std::optional<Box>& domain) {
-    std::optional<Box> box = domain;
+    Box box = domain.value_or(Box::empty());
     if (!domain) {
-        for (const auto& curve : raw) {
-            for (Vec2 p : curve) box = box ? grown(*box, p) : Box{p, p};
-        }
+        for (const auto& curve : raw) box = unite(box, bounding_box(curve));
     }
-    if (!box) return 0.0;
+    if (box.is_empty()) return 0.0;
     // Half-widths, so that a box spanning nearly all doubles does not overflow to infinity.
     const double half_width =
-        std::max(0.5 * box->hi.x - 0.5 * box->lo.x, 0.5 * box->hi.y - 0.5 * box->lo.y);
+        std::max(0.5 * box.hi.x - 0.5 * box.lo.x, 0.5 * box.hi.y - 0.5 * box.lo.y);
     return 2.0 * tolerance::duplicate_point * half_width;
 }
 

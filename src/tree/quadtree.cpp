@@ -47,17 +47,19 @@ std::uint32_t Quadtree::split(std::size_t c) {
     return first;
 }
 
-std::uint32_t Quadtree::leaf_at(Vec2 p) const {
-    // Integer coordinates of p at the deepest level, then a descent that reads one bit of each
-    // per level: no box arithmetic on the way down.
+Quadtree::LatticePoint Quadtree::lattice_point(Vec2 p) const {
     const double scale = static_cast<double>(std::uint64_t{1} << depth_) / root_.width();
     const double top = static_cast<double>((std::uint64_t{1} << depth_) - 1);
-    const auto ix = static_cast<std::uint64_t>(std::clamp((p.x - root_.lo.x) * scale, 0.0, top));
-    const auto iy = static_cast<std::uint64_t>(std::clamp((p.y - root_.lo.y) * scale, 0.0, top));
-    std::uint32_t c = 0;
-    for (int shift = depth_ - 1; !is_leaf(c); --shift) {
-        c = cells_[c].first_child + static_cast<std::uint32_t>((ix >> shift) & 1u) +
-            2u * static_cast<std::uint32_t>((iy >> shift) & 1u);
+    return {static_cast<std::uint64_t>(std::clamp((p.x - root_.lo.x) * scale, 0.0, top)),
+            static_cast<std::uint64_t>(std::clamp((p.y - root_.lo.y) * scale, 0.0, top))};
+}
+
+std::uint32_t Quadtree::descend(std::uint32_t from, LatticePoint q) const {
+    std::uint32_t c = from;
+    while (!is_leaf(c)) {
+        const int shift = depth_ - cells_[c].level - 1;
+        c = cells_[c].first_child + static_cast<std::uint32_t>((q.ix >> shift) & 1u) +
+            2u * static_cast<std::uint32_t>((q.iy >> shift) & 1u);
     }
     return c;
 }

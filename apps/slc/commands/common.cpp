@@ -64,17 +64,11 @@ Box resolve_domain(const DomainOptions& options, const std::vector<std::vector<V
         return Box::centered_square(b);
     }
     if (options.box) return parse_box(*options.box);
-    Box bounds{{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
-    for (const auto& curve : raw)
-        for (const Vec2 p : curve) {
-            if (!is_finite(p)) continue;  // reported by validation
-            bounds = {{std::min(bounds.lo.x, p.x), std::min(bounds.lo.y, p.y)},
-                      {std::max(bounds.hi.x, p.x), std::max(bounds.hi.y, p.y)}};
-        }
-    if (!(bounds.width() >= 0.0)) throw InvalidInput("no curves: the interface is empty");
+    Box bounds = Box::empty();  // of the finite points: the others are reported by validation
+    for (const auto& curve : raw) bounds = unite(bounds, bounding_box(curve));
+    if (bounds.is_empty()) throw InvalidInput("no curves: the interface is empty");
     const double half = 1.5 * std::max({0.5 * bounds.width(), 0.5 * bounds.height(), 1e-300});
-    const Vec2 c = bounds.center();
-    return {{c.x - half, c.y - half}, {c.x + half, c.y + half}};
+    return Box::square(bounds.center(), half);
 }
 
 LoadedInterface load_interface(const std::string& path, const DomainOptions& domain) {

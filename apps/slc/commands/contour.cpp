@@ -42,12 +42,7 @@ struct ContourError {
 };
 
 ContourError measure_error(const DistanceTree& tree, const Interface& curves) {
-    std::vector<Vec2> points(curves.points().begin(), curves.points().end());
-    for (std::size_t i = 0; i < curves.size(); ++i) {
-        const Segment s = curves.segment(i);
-        points.push_back(0.5 * (s.a + s.b));
-    }
-    const std::vector<double> f = tree.signed_distances(points);
+    const std::vector<double> f = tree.signed_distances(vertices_and_midpoints(curves));
     ContourError e;
     for (std::size_t i = 0; i < curves.size(); ++i) {
         e.vertices = std::max(e.vertices, std::abs(f[i]));

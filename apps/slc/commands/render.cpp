@@ -21,14 +21,9 @@ struct RenderOptions {
 
 /// The square around all curves with a 10% margin.
 Box view_around(const std::vector<Interface>& all) {
-    Box b{{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
-    for (const Interface& curves : all)
-        for (const Vec2 p : curves.points())
-            b = {{std::min(b.lo.x, p.x), std::min(b.lo.y, p.y)},
-                 {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y)}};
-    const double half = 0.55 * std::max(b.width(), b.height());
-    const Vec2 c = b.center();
-    return {{c.x - half, c.y - half}, {c.x + half, c.y + half}};
+    Box b = Box::empty();
+    for (const Interface& curves : all) b = unite(b, bounding_box(curves.points()));
+    return Box::square(b.center(), 0.55 * std::max(b.width(), b.height()));
 }
 
 void run_render(const RenderOptions& o) {

@@ -9,6 +9,20 @@
 #include "slc/core/parallel.hpp"
 
 namespace slc::cli {
+namespace {
+
+/// The --extension spellings, also used in summary.json.
+const std::map<std::string, Extension> extension_names = {{"nearest", Extension::nearest_point},
+                                                          {"whitney", Extension::whitney},
+                                                          {"direct", Extension::direct}};
+
+std::string extension_name(Extension e) {
+    for (const auto& [name, value] : extension_names)
+        if (value == e) return name;
+    return "nearest";
+}
+
+}  // namespace
 
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
     cmd.add_option("-N,--steps", o.steps, "N: time steps on [0, a] (problem's default)")
@@ -34,7 +48,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
     cmd.add_option("--extension", o.extension,
                    "Velocity extension off the curve: nearest (default), whitney, or direct (flow "
                    "fields only)")
-        ->check(CLI::IsMember({"nearest", "whitney", "direct"}));
+        ->check(CLI::IsMember(extension_names));
     cmd.add_option("--threads", o.threads,
                    "Worker threads (0 = all cores); results do not depend on it")
         ->check(CLI::NonNegativeNumber);
@@ -54,9 +68,7 @@ RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
     if (*c.eps < c.eta)
         throw InvalidInput(fmt::format("--eps ({}) must not be below --eta ({})", *c.eps, c.eta));
     r.step.tree_depth = m.tree_depth.value_or(0);
-    r.step.extension = m.extension == "whitney"  ? Extension::whitney
-                       : m.extension == "direct" ? Extension::direct
-                                                 : Extension::nearest_point;
+    r.step.extension = extension_names.at(m.extension);
     r.step.embedded.mesh = m.mesh.value_or(default_mesh_size(c.depth));
     r.step.embedded.eno_order = m.eno_order;
     r.step.embedded.smoothing = m.smooth.value_or(p.smoothing);
@@ -88,9 +100,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"t_end", o.t_end},
         {"velocity", velocity},
         {"velocity_params", p.velocity_params},
-        {"extension", o.step.extension == Extension::whitney  ? "whitney"
-                      : o.step.extension == Extension::direct ? "direct"
-                                                              : "nearest"}};
+        {"extension", extension_name(o.step.extension)}};
     for (const auto& q : p.parameters) params["problem_params"][q.name] = q.value;
     nlohmann::json s = {
         {"problem", p.name},

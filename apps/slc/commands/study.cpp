@@ -124,13 +124,12 @@ std::string csv(const StudyResult& s) {
 void plot(const std::filesystem::path& dir, const Problem& p, const StudyResult& s,
           const Paper& paper) {
     std::vector<std::vector<Vec2>> ours(static_cast<std::size_t>(s.rows)), theirs(ours.size());
-    Box b{{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
+    Box b = Box::empty();
     auto add = [&](std::vector<Vec2>& line, double t, double e) {
         if (!(t > 0) || !(e > 0)) return;
         const Vec2 q{std::log10(t), std::log10(e)};
         line.push_back(q);
-        b = {{std::min(b.lo.x, q.x), std::min(b.lo.y, q.y)},
-             {std::max(b.hi.x, q.x), std::max(b.hi.y, q.y)}};
+        b = unite(b, {q, q});
     };
     for (const StudyCell& c : s.cells) {
         if (c.e_inf) add(ours[static_cast<std::size_t>(c.row)], c.cpu_s_per_step, *c.e_inf);
@@ -138,10 +137,8 @@ void plot(const std::filesystem::path& dir, const Problem& p, const StudyResult&
         if (it != paper.end())
             add(theirs[static_cast<std::size_t>(c.row)], it->second.second, it->second.first);
     }
-    if (!(b.width() >= 0)) return;
-    const double half = 0.55 * std::max({b.width(), b.height(), 1.0});
-    const Vec2 c = b.center();
-    Figure fig({{c.x - half, c.y - half}, {c.x + half, c.y + half}},
+    if (b.is_empty()) return;
+    Figure fig(Box::square(b.center(), 0.55 * std::max({b.width(), b.height(), 1.0})),
                fmt::format("{}: log10 E_inf against log10 CPU s per step", p.name));
     for (std::size_t r = 0; r < ours.size(); ++r) {
         if (theirs[r].size() >= 2)

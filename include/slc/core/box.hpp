@@ -2,6 +2,8 @@
 #pragma once
 
 #include <algorithm>
+#include <limits>
+#include <span>
 
 #include "slc/core/vec2.hpp"
 
@@ -14,6 +16,17 @@ struct Box {
 
     /// The square [−b, b]², the paper's standard domain.
     static constexpr Box centered_square(double b) { return {{-b, -b}, {b, b}}; }
+    /// The square of half-width b centred on c.
+    static constexpr Box square(Vec2 c, double b) {
+        return {{c.x - b, c.y - b}, {c.x + b, c.y + b}};
+    }
+    /// The empty box (lo > hi): the identity of unite().
+    static constexpr Box empty() {
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        return {{inf, inf}, {-inf, -inf}};
+    }
+
+    constexpr bool is_empty() const { return !(lo.x <= hi.x && lo.y <= hi.y); }
 
     constexpr double width() const { return hi.x - lo.x; }
     constexpr double height() const { return hi.y - lo.y; }
@@ -35,6 +48,21 @@ struct Box {
     }
     friend constexpr bool operator==(const Box&, const Box&) = default;
 };
+
+/// The smallest box holding a and b.
+constexpr Box unite(const Box& a, const Box& b) {
+    return {{std::min(a.lo.x, b.lo.x), std::min(a.lo.y, b.lo.y)},
+            {std::max(a.hi.x, b.hi.x), std::max(a.hi.y, b.hi.y)}};
+}
+
+/// The smallest box holding every finite point; Box::empty() when there is none.
+inline Box bounding_box(std::span<const Vec2> points) {
+    Box b = Box::empty();
+    for (const Vec2 p : points) {
+        if (is_finite(p)) b = unite(b, {p, p});
+    }
+    return b;
+}
 
 /// Euclidean distance from p to the box (zero inside).
 inline double distance(const Box& b, Vec2 p) { return distance(b.clamp(p), p); }

@@ -66,6 +66,10 @@ private:
     std::vector<std::size_t> curve_index_;
 };
 
+/// The vertices of every curve, then the midpoints of every segment: [0, N) and [N, 2N). The
+/// points at which the paper's Eq. (11) measures the error of an interface.
+std::vector<Vec2> vertices_and_midpoints(const Interface& curves);
+
 /// Signed area enclosed by one closed polygon: positive when counterclockwise (shoelace formula).
 double signed_area(std::span<const Vec2> curve);
 /// Total enclosed area of the interface: the sum of signed areas (holes, clockwise, subtract).

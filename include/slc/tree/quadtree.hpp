@@ -50,9 +50,20 @@ public:
     /// max_depth. Returns the index of the first child.
     std::uint32_t split(std::size_t c);
 
-    /// The leaf containing p; points outside the root box are first moved to its nearest point.
-    /// On a shared edge the cell on the high side wins (to rounding). O(depth).
-    std::uint32_t leaf_at(Vec2 p) const;
+    /// Integer coordinates, at the deepest existing level, of the cell holding p (moved first to
+    /// the nearest point of the root box); on a shared edge the high side wins (to rounding).
+    struct LatticePoint {
+        std::uint64_t ix = 0;
+        std::uint64_t iy = 0;
+    };
+    LatticePoint lattice_point(Vec2 p) const;
+
+    /// The leaf holding lattice point q, descending from cell `from` (which must hold q): one bit
+    /// of each coordinate per level, no box arithmetic. O(levels below `from`).
+    std::uint32_t descend(std::uint32_t from, LatticePoint q) const;
+
+    /// The leaf containing p: descend(0, lattice_point(p)). O(depth).
+    std::uint32_t leaf_at(Vec2 p) const { return descend(0, lattice_point(p)); }
 
     /// The cell at (level, ix, iy), or the deepest existing cell containing it; no_cell when
     /// (ix, iy) lies outside [0, 2^level)². O(level).
