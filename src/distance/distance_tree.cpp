@@ -19,6 +19,10 @@ namespace {
 /// query inexact.
 constexpr double triple_slack = 1e-12;
 
+/// A query meeting a cell list longer than this turns to the segment hierarchy, whose pruned
+/// descent beats a scan of so many segments.
+constexpr std::size_t longest_scanned_list = 48;
+
 /// True if the closed segment meets the closed box (separating-axis test: bounding boxes, then
 /// the segment's line against the box corners).
 bool meets(Segment s, const Box& b) {
@@ -53,6 +57,7 @@ DistanceTree::DistanceTree(const Interface& curves, Box domain, Options options)
     if (curves.empty()) throw InvalidInput("distance tree: the interface is empty");
     segment_ends_.reserve(curves.size());
     for (std::size_t i = 0; i < curves.size(); ++i) segment_ends_.push_back(curves.segment(i));
+    hierarchy_ = SegmentHierarchy(segment_ends_);
     std::vector<std::vector<std::uint32_t>> lists(1);
     lists[0].resize(curves.size());
     std::iota(lists[0].begin(), lists[0].end(), 0u);
@@ -121,28 +126,25 @@ std::uint32_t DistanceTree::leaf_at(Vec2 x) const {
 
 ClosestPoint DistanceTree::closest_point(Vec2 x) const {
     std::uint32_t c = leaf_at(x);
-    double best = std::numeric_limits<double>::infinity();
-    ClosestPoint result;
+    NearestSegment best;
     for (;;) {
-        for (std::uint32_t s : cell_segments(c)) {
-            const SegmentPoint p = slc::closest_point(segment_ends_[s], x);
-            if (p.distance2 < best || (p.distance2 == best && s < result.segment)) {
-                best = p.distance2;
-                result.point = p.point;
-                result.segment = s;
-                result.t = p.t;
-            }
+        const auto list = cell_segments(c);
+        if (list.size() > longest_scanned_list) {
+            hierarchy_.nearest(segment_ends_, x, best);
+            break;
         }
-        if (best < std::numeric_limits<double>::infinity()) {
-            const double m = std::sqrt(best);
+        for (std::uint32_t s : list) best.offer(s, slc::closest_point(segment_ends_[s], x));
+        if (best.distance2 < std::numeric_limits<double>::infinity()) {
+            const double m = std::sqrt(best.distance2);
             const Box reach{{x.x - m, x.y - m}, {x.x + m, x.y + m}};
             if (tree_.triple(c).contains(reach)) break;
         }
         if (c == 0) break;  // the root lists every segment
         c = tree_.cell(c).parent;
     }
-    const double d = std::sqrt(best);
-    result.distance = d == 0.0 ? 0.0 : side_of(*curves_, result.segment, result.t, x) * d;
+    const double d = std::sqrt(best.distance2);
+    ClosestPoint result{0.0, best.point, best.segment, best.t};
+    result.distance = d == 0.0 ? 0.0 : side_of(*curves_, best.segment, best.t, x) * d;
     return result;
 }
 

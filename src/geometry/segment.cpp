@@ -5,16 +5,6 @@
 
 namespace slc {
 
-SegmentPoint closest_point(Segment s, Vec2 x) {
-    const Vec2 d = s.b - s.a;
-    const double len2 = norm2(d);
-    double t = len2 > 0.0 ? dot(x - s.a, d) / len2 : 0.0;
-    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-    // Endpoints are returned exactly, so that a nearest vertex is recognised by t == 0 or 1.
-    const Vec2 p = t == 0.0 ? s.a : (t == 1.0 ? s.b : s.a + t * d);
-    return {p, t, norm2(x - p)};
-}
-
 namespace {
 
 /// Outward unit normal of segment i: its direction turned a quarter clockwise (outside on the

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "slc/core/box.hpp"
+#include "slc/distance/segment_hierarchy.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/segment.hpp"
 #include "slc/tree/quadtree.hpp"
@@ -66,6 +67,8 @@ private:
 
     const Interface* curves_;
     std::vector<Segment> segment_ends_;  ///< the segments' endpoints, contiguous for the queries
+    /// Answers the queries whose cell lists are long: points far from Γ, in large cells.
+    SegmentHierarchy hierarchy_;
     Quadtree tree_;
     std::vector<std::uint32_t>
         offsets_;  ///< CSR: segments of cell c are [offsets_[c], offsets_[c+1])

@@ -16,8 +16,17 @@ struct SegmentPoint {
     double distance2 = 0.0;  ///< squared distance from x to point
 };
 
-/// Nearest point to x on the segment [a, b] (a degenerate segment is its endpoint). O(1).
-SegmentPoint closest_point(Segment s, Vec2 x);
+/// Nearest point to x on the segment [a, b] (a degenerate segment is its endpoint). O(1); inline,
+/// since the distance tree calls it in its innermost loop.
+inline SegmentPoint closest_point(Segment s, Vec2 x) {
+    const Vec2 d = s.b - s.a;
+    const double len2 = norm2(d);
+    double t = len2 > 0.0 ? dot(x - s.a, d) / len2 : 0.0;
+    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    // Endpoints are returned exactly, so that a nearest vertex is recognised by t == 0 or 1.
+    const Vec2 p = t == 0.0 ? s.a : (t == 1.0 ? s.b : s.a + t * d);
+    return {p, t, norm2(x - p)};
+}
 
 /// Signed closest point of an interface to a query point x.
 struct ClosestPoint {
