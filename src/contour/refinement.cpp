@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "slc/core/error.hpp"
 #include "stages.hpp"
@@ -36,6 +37,10 @@ constexpr double short_probe_fraction = 0.5;
 constexpr double collision_margin = 0.9;
 /// Barycentric slack when deciding that a root lies in its home triangle: rounding only.
 constexpr double triangle_slack = 1e-12;
+
+/// The safeguards' grid cells are never smaller than this fraction of the finest tree edge
+/// (which bounds the hash keys however short the segments become).
+constexpr double min_grid_fraction = 1.0 / 4096.0;
 
 constexpr double infinity = std::numeric_limits<double>::infinity();
 
@@ -79,14 +84,14 @@ public:
           topo_(topo),
           domain_(domain),
           options_(options),
-          eps_(options.resolved_eps()),
-          grid_(chain, topo.tree.edge(topo.tree.depth())) {}
+          eps_(options.resolved_eps()) {}
 
     RefineReport run() {
         const int passes = options_.refine_passes == ContourOptions::until_converged
                                ? options_.max_refine_passes
                                : options_.refine_passes;
         for (int p = 0; p < passes; ++p) {
+            index_segments();
             evaluate_midpoints();
             std::vector<Candidate> candidates = select();
             if (candidates.empty()) break;
@@ -101,6 +106,26 @@ public:
     }
 
 private:
+    /// A fresh grid of the segments for the safeguards, its cells twice the mean segment length:
+    /// each pass halves the segments, and a grid sized for the first pass would put hundreds of
+    /// segments in a cell by the last.
+    void index_segments() {
+        double total = 0.0;
+        std::size_t count = 0;
+        for (std::uint32_t i = 0; i < chain_.points.size(); ++i) {
+            if (chain_.alive[i]) {
+                total += chain_.length(i);
+                ++count;
+            }
+        }
+        const double finest = topo_.tree.edge(topo_.tree.depth());
+        const double cell = count > 0 && total > 0.0
+                                ? std::clamp(2.0 * total / static_cast<double>(count),
+                                             finest * min_grid_fraction, finest)
+                                : finest;
+        grid_.emplace(chain_, cell);
+    }
+
     /// G at the midpoint of every segment not yet evaluated, in one batch.
     void evaluate_midpoints() {
         std::vector<std::uint32_t> ids;
@@ -144,7 +169,7 @@ private:
             const Vec2 right{tangent.y, -tangent.x};
             c.dir = c.g_mid > 0.0 ? -right : right;
             const double longest = max_bracket_distance * chain_.length(u);
-            c.reach = std::min(collision_margin * grid_.first_hit(c.mid, c.dir, longest, u),
+            c.reach = std::min(collision_margin * grid_->first_hit(c.mid, c.dir, longest, u),
                                ray_exit(domain_, c.mid, c.dir));
             c.near = c.mid;
             c.g_near = c.g_mid;
@@ -230,8 +255,8 @@ private:
                 continue;
             }
             const std::uint32_t w = chain_.insert_after(c.u, c.root);
-            grid_.insert(c.u);
-            grid_.insert(w);
+            grid_->insert(c.u);
+            grid_->insert(w);
             ++added;
         }
         report_.splits += added;
@@ -247,7 +272,7 @@ private:
             return false;
         }
         const std::array<std::uint32_t, 2> skip_uw{chain_.prev[u], u}, skip_wv{u, v};
-        return !grid_.crosses({pu, w}, skip_uw) && !grid_.crosses({w, pv}, skip_wv);
+        return !grid_->crosses({pu, w}, skip_uw) && !grid_->crosses({w, pv}, skip_wv);
     }
 
     /// |∇Q| of the linear interpolant Q of G in triangle t: an O(h) estimate of |∇G| there.
@@ -297,7 +322,7 @@ private:
             if (!merge_is_safe(x)) continue;
             const std::uint32_t a = chain_.prev[x];
             chain_.remove(x);
-            grid_.insert(a);
+            grid_->insert(a);
             ++removed;
         }
         report_.pruned += removed;
@@ -311,7 +336,7 @@ private:
             is_sharp(pb, chain_.points[chain_.next[b]], pa))
             return false;
         const std::array<std::uint32_t, 4> skip{chain_.prev[a], a, x, b};
-        return !grid_.crosses({pa, pb}, skip);
+        return !grid_->crosses({pa, pb}, skip);
     }
 
     std::optional<double> max_midpoint_value() const {
@@ -330,7 +355,7 @@ private:
     Box domain_;
     const ContourOptions& options_;
     double eps_;
-    SegmentGrid grid_;
+    std::optional<SegmentGrid> grid_;
     RefineReport report_;
 };
 
