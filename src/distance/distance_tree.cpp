@@ -58,17 +58,7 @@ DistanceTree::DistanceTree(const Interface& curves, Box domain, Options options)
     segment_ends_.reserve(curves.size());
     for (std::size_t i = 0; i < curves.size(); ++i) segment_ends_.push_back(curves.segment(i));
     hierarchy_ = SegmentHierarchy(segment_ends_);
-    std::vector<std::vector<std::uint32_t>> lists(1);
-    lists[0].resize(curves.size());
-    std::iota(lists[0].begin(), lists[0].end(), 0u);
-    build_lists(lists);
-
-    offsets_.reserve(lists.size() + 1);
-    offsets_.push_back(0);
-    for (const auto& list : lists) {
-        segments_.insert(segments_.end(), list.begin(), list.end());
-        offsets_.push_back(static_cast<std::uint32_t>(segments_.size()));
-    }
+    build_lists();
     build_start_grid();
     if (options.triangulate) {
         mesh_ = triangulate(tree_);
@@ -76,13 +66,30 @@ DistanceTree::DistanceTree(const Interface& curves, Box domain, Options options)
     }
 }
 
-void DistanceTree::build_lists(std::vector<std::vector<std::uint32_t>>& lists) {
+void DistanceTree::build_lists() {
+    // Bounding boxes decide membership: a segment whose box meets a triple is listed even if
+    // the segment itself passes by a corner, which only lengthens a list, never drops a segment.
+    std::vector<Box> bounds(segment_ends_.size());
+    for (std::size_t s = 0; s < segment_ends_.size(); ++s) {
+        const Segment& e = segment_ends_[s];
+        bounds[s] = {{std::min(e.a.x, e.b.x), std::min(e.a.y, e.b.y)},
+                     {std::max(e.a.x, e.b.x), std::max(e.a.y, e.b.y)}};
+    }
+    // Lists are appended in cell order (children are created, and listed, together), so the
+    // one array segments_ with offsets_ is built directly: the root lists every segment.
+    segments_.resize(segment_ends_.size());
+    std::iota(segments_.begin(), segments_.end(), 0u);
+    offsets_ = {0, static_cast<std::uint32_t>(segments_.size())};
     auto list_children = [&](std::size_t c, std::uint32_t first) {
-        lists.resize(tree_.size());
+        SLC_ASSERT(offsets_.size() == std::size_t{first} + 1, "lists follow the cell order");
+        const std::uint32_t begin = offsets_[c], end = offsets_[c + 1];
         for (std::uint32_t k = first; k < first + 4; ++k) {
             const Box t = tree_.triple(k).inflated(triple_slack * tree_.edge(tree_.cell(k).level));
-            for (std::uint32_t s : lists[c])
-                if (meets(segment_ends_[s], t)) lists[k].push_back(s);
+            for (std::uint32_t i = begin; i < end; ++i) {
+                const std::uint32_t s = segments_[i];
+                if (bounds[s].overlaps(t)) segments_.push_back(s);
+            }
+            offsets_.push_back(static_cast<std::uint32_t>(segments_.size()));
         }
     };
     // Cells are appended breadth-first, so one pass in index order refines level by level:
@@ -94,7 +101,7 @@ void DistanceTree::build_lists(std::vector<std::vector<std::uint32_t>>& lists) {
         const Box b = tree_.box(c);
         const double h = tree_.edge(level);
         bool near = false;
-        for (std::uint32_t s : lists[c]) {
+        for (std::uint32_t s : cell_segments(c)) {
             if (distance(segment_ends_[s], b) < h) {
                 near = true;
                 break;

@@ -59,7 +59,7 @@ public:
     }
 
 private:
-    void build_lists(std::vector<std::vector<std::uint32_t>>& lists);
+    void build_lists();
     void build_start_grid();
     /// The leaf holding x (clamped to the domain): Quadtree::leaf_at, but starting from the
     /// start grid instead of the root, which saves most of the descent.
