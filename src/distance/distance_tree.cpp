@@ -113,22 +113,44 @@ void DistanceTree::build_lists() {
 }
 
 void DistanceTree::build_start_grid() {
-    // Four levels above the deepest, at most 2^8 blocks a side (256 KiB): the descent from a
-    // block to its leaf is then at most a few steps instead of one per level.
-    start_level_ = std::clamp(tree_.depth() - 4, 0, 8);
+    first_child_.resize(tree_.size());
+    for (std::size_t c = 0; c < tree_.size(); ++c) first_child_[c] = tree_.cell(c).first_child;
+    // Two levels above the deepest, at most 2^8 blocks a side (256 KiB): the descent from a
+    // block to its leaf is then at most two steps. Each cell at the start level, or a leaf above
+    // it, fills its own blocks.
+    start_level_ = std::clamp(tree_.depth() - 2, 0, 8);
     const std::uint32_t n = 1u << start_level_;
     start_grid_.resize(std::size_t{n} * n);
-    for (std::uint32_t gy = 0; gy < n; ++gy)
-        for (std::uint32_t gx = 0; gx < n; ++gx)
-            start_grid_[std::size_t{gy} * n + gx] = tree_.find(start_level_, gx, gy);
+    std::vector<std::uint32_t> todo{0};
+    while (!todo.empty()) {
+        const std::uint32_t c = todo.back();
+        todo.pop_back();
+        const Quadtree::Cell& cell = tree_.cell(c);
+        if (cell.level < start_level_ && !tree_.is_leaf(c)) {
+            for (std::uint32_t k = 0; k < 4; ++k) todo.push_back(cell.first_child + k);
+            continue;
+        }
+        const int up = start_level_ - cell.level;
+        const std::uint32_t x0 = cell.ix << up, y0 = cell.iy << up, w = 1u << up;
+        for (std::uint32_t gy = y0; gy < y0 + w; ++gy)
+            std::fill_n(start_grid_.begin() + std::size_t{gy} * n + x0, w, c);
+    }
 }
 
 std::uint32_t DistanceTree::leaf_at(Vec2 x) const {
     const Quadtree::LatticePoint q = tree_.lattice_point(x);
-    const int shift = tree_.depth() - start_level_;
-    const std::uint64_t block =
-        (q.iy >> shift) * (std::uint64_t{1} << start_level_) + (q.ix >> shift);
-    return tree_.descend(start_grid_[block], q);
+    const int depth = tree_.depth();
+    const int shift = depth - start_level_;
+    std::uint32_t c =
+        start_grid_[(q.iy >> shift) * (std::uint64_t{1} << start_level_) + (q.ix >> shift)];
+    // Quadtree::descend over the compact child array: one bit of each coordinate per level.
+    int bit = depth - tree_.cell(c).level - 1;
+    for (std::uint32_t child = first_child_[c]; child != Quadtree::no_cell;
+         child = first_child_[c], --bit) {
+        c = child + static_cast<std::uint32_t>((q.ix >> bit) & 1u) +
+            2u * static_cast<std::uint32_t>((q.iy >> bit) & 1u);
+    }
+    return c;
 }
 
 ClosestPoint DistanceTree::closest_point(Vec2 x) const {

@@ -77,6 +77,8 @@ private:
     /// 2^start_level_ blocks per side (row-major from the low corner).
     int start_level_ = 0;
     std::vector<std::uint32_t> start_grid_;
+    /// Each cell's first child (Quadtree::no_cell for a leaf), compact for the descent.
+    std::vector<std::uint32_t> first_child_;
     Triangulation mesh_;
     std::vector<ClosestPoint> vertex_nearest_;
 };
