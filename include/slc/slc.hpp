@@ -1,5 +1,6 @@
-// The whole public interface of slc in one include, for programs that use most of it. Each module's
-// headers can also be included on their own (include/slc/<module>/).
+/// @file
+/// The whole public interface of slc in one include, for programs that use most of it. Each
+/// module's headers can also be included on their own (`include/slc/<module>/`).
 #pragma once
 
 #include "slc/contour/contour.hpp"
@@ -24,3 +25,8 @@
 #include "slc/velocity/factory.hpp"
 #include "slc/velocity/laws.hpp"
 #include "slc/velocity/velocity.hpp"
+
+/// @namespace slc
+/// Semi-Lagrangian contouring for moving interfaces, after Strain's paper of 2001 in the Journal
+/// of Computational Physics. Signs as in DESIGN §2: signed distance F < 0 inside, outward normal N
+/// = ∇F, curvature C = −∇·N; points move with dy/dt = u(y).

@@ -1,16 +1,17 @@
-// Fast adaptive contouring of any function (paper §2): the zero set of G, a function that can
-// only be evaluated, as closed oriented polygons with a consistent topology and a chosen accuracy.
-//
-// 1. Topology (§2.1): a K-level quadtree split while a cell's edge exceeds min|G|/γ over its
-// corners
-//    and centre, γ doubled until the tree is 2:1 balanced; its conforming triangulation; vertices
-//    with |G| ≤ η perturbed; the zero set of the piecewise-linear interpolant, one segment per
-//    triangle with a sign change, chained into closed polygons with G > 0 on their right.
-// 2. Root finding (§2.1 "Bisection"): every vertex moved along its triangle edge to |G| ≤ η.
-// 3. Adaptive refinement (§2.2), P passes: split segments with |G(midpoint)| > ε, bracket the new
-//    vertex along the segment's normal, find the root, apply the safeguards, prune short segments.
-//
-// docs/algorithms/contour.md derives each step and the choices made where the paper is terse.
+/// @file
+/// Fast adaptive contouring of any function (paper §2): the zero set of G, a function that can
+/// only be evaluated, as closed oriented polygons with a consistent topology and a chosen accuracy.
+///
+/// 1. Topology (§2.1): a K-level quadtree split while a cell's edge exceeds min|G|/γ over its
+///    corners and centre, γ doubled until the tree is 2:1 balanced; its conforming
+///    triangulation; vertices with |G| ≤ η perturbed; the zero set of the piecewise-linear
+///    interpolant, one segment per triangle with a sign change, chained into closed polygons with
+///    G > 0 on their right.
+/// 2. Root finding (§2.1 "Bisection"): every vertex moved along its triangle edge to |G| ≤ η.
+/// 3. Adaptive refinement (§2.2), P passes: split segments with |G(midpoint)| > ε, bracket the new
+///    vertex along the segment's normal, find the root, apply the safeguards, prune short segments.
+///
+/// docs/algorithms/contour.md derives each step and the choices made where the paper is terse.
 #pragma once
 
 #include <cstddef>
@@ -59,7 +60,7 @@ struct ContourStats {
     std::size_t triangles = 0;  ///< triangles of its triangulation
     std::size_t curves = 0;     ///< closed polygons in the result
     std::size_t vertices = 0;   ///< vertices of the result (= segments: every curve is closed)
-    std::size_t segments = 0;
+    std::size_t segments = 0;   ///< segments of the result (= vertices)
     double mean_segment_length = 0.0;  ///< total length / segments; 0 for an empty result
 
     std::size_t g_evals = 0;         ///< all evaluations of G, each point counted once
@@ -82,9 +83,9 @@ struct ContourStats {
 
 /// The contour, the topology tree it was resolved on (for pictures), and the statistics.
 struct ContourResult {
-    Interface curves;
-    Quadtree tree;
-    ContourStats stats;
+    Interface curves;    ///< the zero set of G: closed polygons, G > 0 on the right
+    Quadtree tree;       ///< the balanced topology tree
+    ContourStats stats;  ///< cost and outcome
 };
 
 /// Contours the zero set of g in the square domain.

@@ -1,7 +1,8 @@
-// Implicit functions for contouring (paper §2): a function G of the plane that can be evaluated at
-// any point and nothing more (no derivatives, no grid). The contouring module hands G whole
-// batches of points (one per tree level, per root-finding round, per refinement pass) so that G can
-// evaluate them on all cores (DESIGN §5).
+/// @file
+/// Implicit functions for contouring (paper §2): a function G of the plane that can be evaluated at
+/// any point and nothing more (no derivatives, no grid). The contouring module hands G whole
+/// batches of points (one per tree level, per root-finding round, per refinement pass) so that G
+/// can evaluate them on all cores (DESIGN §5).
 #pragma once
 
 #include <concepts>
@@ -28,6 +29,7 @@ concept BatchFunction = std::invocable<const G&, std::span<const Vec2>, std::spa
 /// algorithm live in compiled sources.
 class BatchFunctionRef {
 public:
+    /// Refers to g, which must outlive the reference (a temporary does not).
     template <BatchFunction G>
     requires(!std::same_as<std::remove_cvref_t<G>, BatchFunctionRef>) BatchFunctionRef(const G& g)
     noexcept  // implicit, as std::function_ref
@@ -39,6 +41,7 @@ public:
         }
     }
 
+    /// Calls the referenced function: values[i] = G(points[i]), values.size() == points.size().
     void operator()(std::span<const Vec2> points, std::span<double> values) const {
         call_(target_, points, values);
     }

@@ -1,8 +1,9 @@
-// Bracketed root finding along segments of the plane, many brackets at once (paper §2.1
-// "Bisection" and §2.2 "Bisect"). The paper bisects; by default we use Brent's method, which keeps
-// the bracket like bisection but converges superlinearly on smooth G (secant and inverse quadratic
-// steps), and falls back to bisection steps whenever interpolation does not shrink the bracket
-// fast enough, so that it is never much slower than bisection on a bad G.
+/// @file
+/// Bracketed root finding along segments of the plane, many brackets at once (paper §2.1
+/// "Bisection" and §2.2 "Bisect"). The paper bisects; by default we use Brent's method, which keeps
+/// the bracket like bisection but converges superlinearly on smooth G (secant and inverse quadratic
+/// steps), and falls back to bisection steps whenever interpolation does not shrink the bracket
+/// fast enough, so that it is never much slower than bisection on a bad G.
 #pragma once
 
 #include <span>
@@ -22,16 +23,16 @@ enum class RootMethod {
 
 /// A segment [a, b] on whose ends G has opposite signs: ga = G(a), gb = G(b), ga·gb ≤ 0.
 struct Bracket {
-    Vec2 a;
-    Vec2 b;
-    double ga = 0.0;
-    double gb = 0.0;
+    Vec2 a;           ///< one end
+    Vec2 b;           ///< the other end
+    double ga = 0.0;  ///< G(a)
+    double gb = 0.0;  ///< G(b), of the opposite sign (or zero)
 };
 
 /// Tolerances of find_roots.
 struct RootOptions {
-    double eta = 1e-10;  ///< η: a point with |G| ≤ η is a root
-    RootMethod method = RootMethod::brent;
+    double eta = 1e-10;                     ///< η: a point with |G| ≤ η is a root
+    RootMethod method = RootMethod::brent;  ///< how brackets are shrunk
 };
 
 /// The result for one bracket.

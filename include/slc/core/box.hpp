@@ -1,4 +1,5 @@
-// Box: an axis-aligned rectangle, used for the computational domain (a square) and for tree cells.
+/// @file
+/// Box: an axis-aligned rectangle, used for the computational domain (a square) and for tree cells.
 #pragma once
 
 #include <algorithm>
@@ -11,8 +12,8 @@ namespace slc {
 
 /// The closed rectangle [lo.x, hi.x] × [lo.y, hi.y].
 struct Box {
-    Vec2 lo;
-    Vec2 hi;
+    Vec2 lo;  ///< lower left corner
+    Vec2 hi;  ///< upper right corner
 
     /// The square [−b, b]², the paper's standard domain.
     static constexpr Box centered_square(double b) { return {{-b, -b}, {b, b}}; }
@@ -26,17 +27,24 @@ struct Box {
         return {{inf, inf}, {-inf, -inf}};
     }
 
+    /// True when the box holds no point (lo > hi in some coordinate), as Box::empty() does.
     constexpr bool is_empty() const { return !(lo.x <= hi.x && lo.y <= hi.y); }
 
+    /// hi.x − lo.x.
     constexpr double width() const { return hi.x - lo.x; }
+    /// hi.y − lo.y.
     constexpr double height() const { return hi.y - lo.y; }
+    /// The midpoint of the box.
     constexpr Vec2 center() const { return {0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y)}; }
+    /// True when p lies in the closed box (boundary included).
     constexpr bool contains(Vec2 p) const {
         return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y;
     }
+    /// True when the whole of b lies in this closed box.
     constexpr bool contains(const Box& b) const {
         return b.lo.x >= lo.x && b.hi.x <= hi.x && b.lo.y >= lo.y && b.hi.y <= hi.y;
     }
+    /// True when the two closed boxes share at least one point (touching counts).
     constexpr bool overlaps(const Box& b) const {
         return b.lo.x <= hi.x && b.hi.x >= lo.x && b.lo.y <= hi.y && b.hi.y >= lo.y;
     }
@@ -46,6 +54,7 @@ struct Box {
     constexpr Vec2 clamp(Vec2 p) const {
         return {std::clamp(p.x, lo.x, hi.x), std::clamp(p.y, lo.y, hi.y)};
     }
+    /// Exact equality of both corners.
     friend constexpr bool operator==(const Box&, const Box&) = default;
 };
 

@@ -1,4 +1,6 @@
-// Errors: InvalidInput for bad input at a public entry point, and SLC_ASSERT for broken invariants.
+/// @file
+/// Errors: InvalidInput for bad input at a public entry point, and SLC_ASSERT for broken
+/// invariants.
 #pragma once
 
 #include <stdexcept>
@@ -10,6 +12,7 @@ namespace slc {
 /// so that the command-line tool can print it as it is and exit with status 2.
 class InvalidInput : public std::runtime_error {
 public:
+    /// what: the one-line message, naming the parameter and the value.
     explicit InvalidInput(const std::string& what) : std::runtime_error(what) {}
 };
 
@@ -17,6 +20,7 @@ public:
 /// contour, a curve leaving the domain), reported with the time and place.
 class NumericalFailure : public std::runtime_error {
 public:
+    /// what: the one-line message, naming the time or the place.
     explicit NumericalFailure(const std::string& what) : std::runtime_error(what) {}
 };
 

@@ -1,6 +1,7 @@
-// Parallel loops over batches. Every loop here writes each output slot from exactly one
-// iteration, and reductions are done afterwards in index order, so results never depend on the
-// number of threads.
+/// @file
+/// Parallel loops over batches. Every loop here writes each output slot from exactly one
+/// iteration, and reductions are done afterwards in index order, so results never depend on the
+/// number of threads.
 #pragma once
 
 #include <cstddef>

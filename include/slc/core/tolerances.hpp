@@ -1,6 +1,8 @@
-// Named tolerances shared by the modules, each with the reason for its size.
+/// @file
+/// Named tolerances shared by the modules, each with the reason for its size.
 #pragma once
 
+/// Named tolerances shared by the modules.
 namespace slc::tolerance {
 
 /// Relative size, against the domain width, below which two consecutive input points are the same

@@ -1,11 +1,12 @@
-// DistanceTree: exact signed distance F and a nearest point of Γ anywhere, fast (paper §1.3).
-//
-// A quadtree over the domain in which a cell is split (to depth L) while its edge exceeds its
-// distance to Γ, then 2:1 balanced. Every cell lists the segments that meet its concentric triple
-// (the 3×3 block of same-size cells around it). A query starts in the leaf holding x and climbs
-// ancestors, keeping the nearest segment of their lists, until the box of half-width m (the best
-// distance so far) around x lies inside the cell's triple: every segment nearer than m meets that
-// box and so is on the list, which makes the answer exact. The root lists every segment.
+/// @file
+/// DistanceTree: exact signed distance F and a nearest point of Γ anywhere, fast (paper §1.3).
+///
+/// A quadtree over the domain in which a cell is split (to depth L) while its edge exceeds its
+/// distance to Γ, then 2:1 balanced. Every cell lists the segments that meet its concentric triple
+/// (the 3×3 block of same-size cells around it). A query starts in the leaf holding x and climbs
+/// ancestors, keeping the nearest segment of their lists, until the box of half-width m (the best
+/// distance so far) around x lies inside the cell's triple: every segment nearer than m meets that
+/// box and so is on the list, which makes the answer exact. The root lists every segment.
 #pragma once
 
 #include <cstdint>
@@ -21,8 +22,12 @@
 
 namespace slc {
 
+/// Exact signed distance F and a nearest point of an interface Γ at any point, in O(log N) per
+/// query near Γ (paper §1.3; the construction is described at the top of this file). The tree
+/// refers to the curves it was built on and never copies them.
 class DistanceTree {
 public:
+    /// The tree's parameters (paper Table 4: L).
     struct Options {
         int depth = 8;            ///< L: deepest level of the tree
         bool triangulate = true;  ///< build the triangulation and its vertices' nearest points
@@ -41,11 +46,14 @@ public:
     /// closest_point for a batch, on all worker threads; out.size() == xs.size(). The answer for
     /// each point does not depend on the thread count.
     void closest_points(std::span<const Vec2> xs, std::span<ClosestPoint> out) const;
+    /// The same, returning a new vector.
     std::vector<ClosestPoint> closest_points(std::span<const Vec2> xs) const;
     /// Signed distances F for a batch, on all worker threads.
     std::vector<double> signed_distances(std::span<const Vec2> xs) const;
 
+    /// The curves the tree was built on.
     const Interface& curves() const { return *curves_; }
+    /// The balanced quadtree: cells split to depth L near Γ.
     const Quadtree& tree() const { return tree_; }
     /// The triangulation of the balanced tree (empty unless Options::triangulate).
     const Triangulation& triangulation() const { return mesh_; }

@@ -1,9 +1,10 @@
-// Extension of values given at the vertices of Γ (velocities, usually) to the whole plane
-// (paper §1.3): the nearest-point extension W(x) = u(y*(x)), linear in u along the nearest
-// segment, and the numerical Whitney extension, the continuous piecewise-linear interpolant of the
-// nearest-point extension on the triangulated distance tree. Both obey the maximum principle:
-// every extended value is a convex combination of vertex values, so no component exceeds its
-// largest value on Γ.
+/// @file
+/// Extension of values given at the vertices of Γ (velocities, usually) to the whole plane
+/// (paper §1.3): the nearest-point extension W(x) = u(y*(x)), linear in u along the nearest
+/// segment, and the numerical Whitney extension, the continuous piecewise-linear interpolant of the
+/// nearest-point extension on the triangulated distance tree. Both obey the maximum principle:
+/// every extended value is a convex combination of vertex values, so no component exceeds its
+/// largest value on Γ.
 #pragma once
 
 #include <span>

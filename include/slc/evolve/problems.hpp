@@ -1,6 +1,7 @@
-// The paper's experiments (§4.4–4.7) and the two standard benchmarks (Zalesak's disk, the single
-// vortex) as named problems: initial curves, domain, velocity law, the paper's parameters as
-// defaults, and the exact solution where one is known.
+/// @file
+/// The paper's experiments (§4.4–4.7) and the two standard benchmarks (Zalesak's disk, the single
+/// vortex) as named problems: initial curves, domain, velocity law, the paper's parameters as
+/// defaults, and the exact solution where one is known.
 #pragma once
 
 #include <functional>
@@ -16,50 +17,53 @@
 
 namespace slc {
 
-/// A problem's own parameters (set with --param like the velocity's, e.g. tilt, R0).
+/// A problem's own parameters (set with --param like the velocity's, for instance tilt, R0).
 struct ProblemParameter {
-    std::string name;
-    double value = 0.0;
-    std::string meaning;
+    std::string name;     ///< as in --param name=value
+    double value = 0.0;   ///< the value in use (the default unless set)
+    std::string meaning;  ///< one line for --help
 };
 
 /// The paper's 5×5 convergence study (§4.2): row r runs N0·2^r steps, depth K0 + r, ε0/10^r and
 /// smoothing[r]; columns P = 0..4.
 struct StudyPlan {
-    int steps = 40;
-    int depth = 3;
-    double eps = 1e-3;
-    std::vector<int> smoothing = {0, 0, 0, 0, 0};
+    int steps = 40;                                ///< N0, the steps of row 0
+    int depth = 3;                                 ///< K0, the depth of row 0
+    double eps = 1e-3;                             ///< ε0, the tolerance of row 0
+    std::vector<int> smoothing = {0, 0, 0, 0, 0};  ///< S of each row
     std::string
         paper_table;  ///< the paper's table in its reference CSV ("table5_rotation"), if any
 };
 
+/// A named problem: initial curves, domain, law and the paper's settings as defaults.
 struct Problem {
-    std::string name;
-    std::string description;  ///< what it is and where in the paper
-    std::vector<std::vector<Vec2>> initial;
-    Box domain;
-    double t_start = 0.0;  ///< the initial curves' time (an interface file's "time")
-    double t_end = 1.0;
-    int steps = 40;     ///< N
-    int depth = 5;      ///< K
-    int refine = 2;     ///< P
-    double eps = 1e-5;  ///< ε
-    int smoothing = 0;  ///< S
-    std::string velocity;
-    VelocityParams velocity_params;
-    std::optional<GeometryModule> module;  ///< overrides the law's default geometry module
-    std::vector<ProblemParameter> parameters;
-    StudyPlan study;
+    std::string name;                        ///< as in --problem NAME
+    std::string description;                 ///< what it is and where in the paper
+    std::vector<std::vector<Vec2>> initial;  ///< the initial curves, not yet validated
+    Box domain;                              ///< the square the curves must stay in
+    double t_start = 0.0;            ///< the initial curves' time (an interface file's "time")
+    double t_end = 1.0;              ///< a, the final time
+    int steps = 40;                  ///< N
+    int depth = 5;                   ///< K
+    int refine = 2;                  ///< P
+    double eps = 1e-5;               ///< ε
+    int smoothing = 0;               ///< S
+    std::string velocity;            ///< the built-in law, by make_velocity name
+    VelocityParams velocity_params;  ///< its parameters
+    std::optional<GeometryModule> module;      ///< overrides the law's default geometry module
+    std::vector<ProblemParameter> parameters;  ///< the problem's own parameters, in use
+    StudyPlan study;                           ///< the settings of `slc study`
     /// The exact signed distance to Γ(t) at points, when known at time t (else nullopt).
     std::function<std::optional<std::vector<double>>(std::span<const Vec2>, double)> exact;
 };
 
 /// One line per problem, in a fixed order, for --help and errors.
 struct ProblemInfo {
-    std::string name;
-    std::string summary;
+    std::string name;     ///< as in --problem NAME
+    std::string summary;  ///< one line
 };
+/// Every named problem, in a fixed order: propeller-rotation, triangle-normal, merging-circles,
+/// wulff, circle-curvature, polygon-curvature, spiral-nonlocal, bubbles-nonlocal, zalesak, vortex.
 const std::vector<ProblemInfo>& problem_catalog();
 
 /// The problem `name` with parameters set from params: keys naming a problem parameter set it,
@@ -67,8 +71,9 @@ const std::vector<ProblemInfo>& problem_catalog();
 /// unknown problem ("unknown problem 'x'; known: ...").
 Problem make_problem(const std::string& name, const std::map<std::string, double>& params = {});
 
-/// The paper's Eq. (11): the largest |F(x, t)| over the vertices and segment midpoints of curves,
-/// F the exact signed distance; nullopt when the problem has no exact solution at t.
+/// The error of the paper's Equation (11): the largest |F(x, t)| over the vertices and segment
+/// midpoints of curves, F the exact signed distance; nullopt when the problem has no exact solution
+/// at t.
 std::optional<double> max_error(const Problem& problem, const Interface& curves, double t);
 
 }  // namespace slc

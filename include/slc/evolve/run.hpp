@@ -1,5 +1,6 @@
-// The time loop (paper §4.3): N steps of advance() from t = 0 to a, with an observer that sees
-// every step and may stop the run, and the run's statistics for summary.json.
+/// @file
+/// The time loop (paper §4.3): N steps of advance() from t = 0 to a, with an observer that sees
+/// every step and may stop the run, and the run's statistics for summary.json.
 #pragma once
 
 #include <functional>
@@ -20,11 +21,12 @@ enum class RunStatus {
 /// The summary.json spelling of a status.
 const char* to_string(RunStatus status);
 
+/// The time interval, the number of steps and the parameters of every step.
 struct RunOptions {
-    double t_start = 0.0;
-    double t_end = 1.0;  ///< a
-    int steps = 40;      ///< N; k = (t_end − t_start) / N
-    StepOptions step;
+    double t_start = 0.0;  ///< the initial curves' time
+    double t_end = 1.0;    ///< a, the final time
+    int steps = 40;        ///< N; k = (t_end − t_start) / N
+    StepOptions step;      ///< K, P, ε, L, M, E, S, ... of each step
 };
 
 /// What the observer sees after each step.
@@ -33,18 +35,19 @@ struct StepReport {
     int steps = 0;                      ///< N
     double t = 0.0;                     ///< time reached
     const Interface* curves = nullptr;  ///< Γ(t)
-    const StepStats* stats = nullptr;
-    double wall_s = 0.0;  ///< seconds of the time loop so far
+    const StepStats* stats = nullptr;   ///< what the step cost
+    double wall_s = 0.0;                ///< seconds of the time loop so far
 };
 
 /// Called after every step; returning false stops the run (status interrupted).
 using Observer = std::function<bool(const StepReport&)>;
 
+/// How a run ended and what it cost.
 struct RunResult {
-    Interface curves;  ///< Γ at the end (empty when vanished)
-    double t = 0.0;    ///< the time reached
-    int steps_done = 0;
-    RunStatus status = RunStatus::ok;
+    Interface curves;                   ///< Γ at the end (empty when vanished)
+    double t = 0.0;                     ///< the time reached
+    int steps_done = 0;                 ///< steps completed, N when status is ok
+    RunStatus status = RunStatus::ok;   ///< how the run ended
     std::string message;                ///< why, when status is error
     std::size_t g_evals = 0;            ///< every G evaluation of the run
     std::size_t vertices_produced = 0;  ///< every vertex every contour of the run produced

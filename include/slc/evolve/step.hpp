@@ -1,8 +1,9 @@
-// One semi-Lagrangian time step t → t + k (paper §1.2, §4.3; DESIGN §1): the CIR predictor
-// G̃(x) = F(x − k W(x, t); Γ(t)) contoured to Γ̃, then the trapezoidal corrector
-// G(x) = F(x − k W̄(x); Γ(t)), W̄(x) = ½ W(x − k W(x, t), t) + ½ W̃(x, t + k), contoured to Γ(t + k).
-// Every G value is an exact signed distance, so max |G| never grows: explicit, unconditionally
-// stable in the maximum norm, second order in time.
+/// @file
+/// One semi-Lagrangian time step t → t + k (paper §1.2, §4.3; DESIGN §1): the CIR predictor
+/// G̃(x) = F(x − k W(x, t); Γ(t)) contoured to Γ̃, then the trapezoidal corrector
+/// G(x) = F(x − k W̄(x); Γ(t)), W̄(x) = ½ W(x − k W(x, t), t) + ½ W̃(x, t + k), contoured to Γ(t + k).
+/// Every G value is an exact signed distance, so max |G| never grows: explicit, unconditionally
+/// stable in the maximum norm, second order in time.
 #pragma once
 
 #include <cstddef>
@@ -26,7 +27,7 @@ enum class Extension {
 struct StepOptions {
     ContourOptions contour;  ///< K, P, ε, η, ρ of both contours
     int tree_depth = 0;      ///< L, the distance trees' depth; 0 means K + P
-    Extension extension = Extension::nearest_point;
+    Extension extension = Extension::nearest_point;  ///< how W is extended off Γ
     EmbeddedOptions embedded;  ///< M, E, S for laws that use the embedded geometry module
 
     /// L as given, or K + P (refinement until converged counts as P = 4).
@@ -35,16 +36,18 @@ struct StepOptions {
 
 /// What a step cost.
 struct StepStats {
-    ContourStats predictor;
-    ContourStats corrector;
+    ContourStats predictor;  ///< the contour of G̃ (CIR predictor)
+    ContourStats corrector;  ///< the contour of G (trapezoidal corrector)
     /// Evaluations of G̃ and G together, and the vertices both contours produced.
     std::size_t g_evals() const { return predictor.g_evals + corrector.g_evals; }
+    /// @copybrief g_evals
     std::size_t vertices() const { return predictor.vertices + corrector.vertices; }
 };
 
+/// The curves after one step and its cost.
 struct StepResult {
     Interface curves;  ///< Γ(t + k); empty when everything vanished
-    StepStats stats;
+    StepStats stats;   ///< both contours' statistics
 };
 
 /// Advances curves (inside domain, a square) from t to t + k under law. Components may vanish;

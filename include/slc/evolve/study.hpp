@@ -1,6 +1,7 @@
-// Convergence studies (paper §4.2, Tables 5–7, Fig. 10): a 5×5 table of runs whose rows refine N,
-// K and ε together (N ← 2N, K ← K + 1, ε ← ε/10) and whose columns add passes of adaptive
-// refinement (P = 0..4), with the observed orders of convergence.
+/// @file
+/// Convergence studies (paper §4.2, Tables 5–7, Figure 10): a 5×5 table of runs whose rows refine
+/// N, K and ε together (N ← 2N, K ← K + 1, ε ← ε/10) and whose columns add passes of adaptive
+/// refinement (P = 0..4), with the observed orders of convergence.
 #pragma once
 
 #include <functional>
@@ -14,21 +15,23 @@ namespace slc {
 
 /// One run of a study.
 struct StudyCell {
-    int row = 0;
-    int refine = 0;  ///< P, the column
-    RunOptions options;
-    RunStatus status = RunStatus::ok;
-    std::optional<double> e_inf;  ///< Eq. (11) at the end
-    double cpu_s_per_step = 0.0;
-    double g_evals_per_vertex = 0.0;
-    std::size_t segments = 0;
+    int row = 0;                       ///< 0..rows − 1: N, K and ε refined `row` times
+    int refine = 0;                    ///< P, the column
+    RunOptions options;                ///< the run's settings (N/S/K/P/ε resolved)
+    RunStatus status = RunStatus::ok;  ///< how the run ended
+    std::optional<double> e_inf;       ///< the error of Equation (11) at the end
+    double cpu_s_per_step = 0.0;       ///< process CPU seconds of the time loop / N
+    double g_evals_per_vertex = 0.0;   ///< G evaluations / vertices produced, whole run
+    std::size_t segments = 0;          ///< segments of the final curves
 };
 
+/// The table of a study: rows × columns runs with their errors and costs.
 struct StudyResult {
-    int rows = 0;
-    int columns = 0;
+    int rows = 0;                  ///< runs refining N, K, ε together
+    int columns = 0;               ///< P = 0..columns − 1
     std::vector<StudyCell> cells;  ///< row-major
 
+    /// The cell in row `row` and column `column` (P = column).
     const StudyCell& at(int row, int column) const {
         return cells[static_cast<std::size_t>(row * columns + column)];
     }

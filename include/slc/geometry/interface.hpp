@@ -1,5 +1,6 @@
-// Interface: the moving curve Γ as a finite set of closed oriented polygons (DESIGN §2), stored
-// flat so that trees and batches can index its vertices and segments by one number.
+/// @file
+/// Interface: the moving curve Γ as a finite set of closed oriented polygons (DESIGN §2), stored
+/// flat so that trees and batches can index its vertices and segments by one number.
 #pragma once
 
 #include <cstddef>
@@ -12,8 +13,8 @@ namespace slc {
 
 /// Segment i of an interface: from vertex i to the next vertex of the same curve.
 struct Segment {
-    Vec2 a;
-    Vec2 b;
+    Vec2 a;  ///< first end: vertex i
+    Vec2 b;  ///< second end: vertex next(i)
 };
 
 /// A set of closed polygons ("curves"). Vertex i and segment i share an index: segment i joins
@@ -24,17 +25,22 @@ struct Segment {
 /// crossings, orientation) is separate: see validate.hpp.
 class Interface {
 public:
+    /// No curves: empty() is true.
     Interface() = default;
     /// Builds from a list of curves, each a list of vertices, the closing segment implicit.
     /// Throws InvalidInput if a curve has fewer than 3 vertices.
     explicit Interface(const std::vector<std::vector<Vec2>>& curves);
 
+    /// Number of closed curves.
     std::size_t curve_count() const { return offsets_.size() - 1; }
     /// Number of vertices, which is also the number of segments.
     std::size_t size() const { return points_.size(); }
+    /// True when there are no curves (a run whose curves all vanished).
     bool empty() const { return points_.empty(); }
 
+    /// Vertex i, 0 <= i < size().
     Vec2 point(std::size_t i) const { return points_[i]; }
+    /// All vertices, curve after curve, each curve in its order.
     std::span<const Vec2> points() const { return points_; }
     /// The vertices of curve c, in order.
     std::span<const Vec2> curve(std::size_t c) const {
@@ -49,9 +55,11 @@ public:
     std::size_t next(std::size_t i) const {
         return i + 1 == offsets_[curve_index_[i] + 1] ? offsets_[curve_index_[i]] : i + 1;
     }
+    /// @copybrief next
     std::size_t prev(std::size_t i) const {
         return i == offsets_[curve_index_[i]] ? offsets_[curve_index_[i] + 1] - 1 : i - 1;
     }
+    /// Segment i: from vertex i to vertex next(i).
     Segment segment(std::size_t i) const { return {points_[i], points_[next(i)]}; }
 
     /// Reverses the order of the vertices of curve c (flips its orientation).

@@ -1,6 +1,7 @@
-// Exact geometric predicates: the sign of an orientation determinant and segment intersection,
-// decided without rounding error (Shewchuk-style filter, then exact expansion arithmetic), so that
-// topology decisions (crossings, orientation) never depend on rounding.
+/// @file
+/// Exact geometric predicates: the sign of an orientation determinant and segment intersection,
+/// decided without rounding error (Shewchuk-style filter, then exact expansion arithmetic), so that
+/// topology decisions (crossings, orientation) never depend on rounding.
 #pragma once
 
 #include "slc/core/vec2.hpp"

@@ -1,5 +1,6 @@
-// Closest point on a segment and signed distance to an interface by brute force: the exact kernel
-// that the distance tree calls, and the oracle its tests compare against.
+/// @file
+/// Closest point on a segment and signed distance to an interface by brute force: the exact kernel
+/// that the distance tree calls, and the oracle its tests compare against.
 #pragma once
 
 #include <cstddef>
@@ -11,8 +12,8 @@ namespace slc {
 
 /// The point of segment [a, b] nearest x: point = a + t (b − a) with t in [0, 1].
 struct SegmentPoint {
-    Vec2 point;
-    double t = 0.0;
+    Vec2 point;              ///< the nearest point of the segment
+    double t = 0.0;          ///< its parameter: point = a + t (b − a), t in [0, 1]
     double distance2 = 0.0;  ///< squared distance from x to point
 };
 

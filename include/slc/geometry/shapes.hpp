@@ -1,5 +1,6 @@
-// Built-in shapes: polygons sampling simple closed curves, counterclockwise, for problems,
-// tests, benchmarks and the demo.
+/// @file
+/// Built-in shapes: polygons sampling simple closed curves, counterclockwise, for problems,
+/// tests, benchmarks and the demo.
 #pragma once
 
 #include <functional>
@@ -7,6 +8,7 @@
 
 #include "slc/core/vec2.hpp"
 
+/// Built-in shapes: counterclockwise polygons sampling simple closed curves.
 namespace slc::shapes {
 
 /// n vertices on the circle of radius r about centre, counterclockwise from angle phase.
@@ -17,7 +19,7 @@ std::vector<Vec2> circle(Vec2 centre, double r, int n, double phase = 0.0);
 std::vector<Vec2> polar(Vec2 centre, const std::function<double(double)>& r, int n,
                         double phase = 0.0);
 
-/// The three-bladed propeller r(θ) = r0 (1 + a cos 3θ) used for the paper's Figs. 3 and 6,
+/// The three-bladed propeller r(θ) = r0 (1 + a cos 3θ) used for the paper's Figures 3 and 6,
 /// with r0 = 0.5, a = 0.5 by default: blades reaching 0.75 from the centre, waists at 0.25.
 std::vector<Vec2> propeller(int n, Vec2 centre = {}, double r0 = 0.5, double a = 0.5,
                             double phase = 0.0);

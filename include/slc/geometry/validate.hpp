@@ -1,5 +1,6 @@
-// Validation of user-given curves (DESIGN §2, §6): the one place where raw coordinates become an
-// Interface that every other module may trust.
+/// @file
+/// Validation of user-given curves (DESIGN §2, §6): the one place where raw coordinates become an
+/// Interface that every other module may trust.
 #pragma once
 
 #include <cstddef>
@@ -26,8 +27,8 @@ std::optional<Crossing> find_crossing(const Interface& curves);
 
 /// What prepare_interface did to the input besides checking it.
 struct PreparedInterface {
-    Interface curves;
-    /// One line per change made, e.g. "curve 1 was clockwise; reoriented counterclockwise".
+    Interface curves;  ///< the valid curves, oriented as DESIGN §2 says
+    /// One line per change made, for instance "curve 1 was clockwise; reoriented counterclockwise".
     std::vector<std::string> notes;
 };
 

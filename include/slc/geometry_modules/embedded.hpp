@@ -1,7 +1,8 @@
-// The embedded geometry module (paper §3.2, Eq. 9): Γ embedded as the zero set of its exact signed
-// distance F on a local uniform mesh; N = ∇F/|∇F| and C = −∇·N by ENO differences of order E,
-// S passes of cosine smoothing after each differentiation, and ENO interpolation of order E back
-// to the vertices.
+/// @file
+/// The embedded geometry module (paper §3.2, Equation 9): Γ embedded as the zero set of its exact
+/// signed distance F on a local uniform mesh; N = ∇F/|∇F| and C = −∇·N by ENO differences of order
+/// E, S passes of cosine smoothing after each differentiation, and ENO interpolation of order E
+/// back to the vertices.
 #pragma once
 
 #include <vector>

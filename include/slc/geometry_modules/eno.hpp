@@ -1,19 +1,21 @@
-// One-dimensional ENO kernels on a uniform line of samples (paper §3.2, after Harten, Engquist,
-// Osher and Chakravarthy [10]): differentiation at the nodes, interpolation between them, and the
-// cosine (1-2-1) smoothing pass. The embedded geometry module applies them along the x- and
-// y-intervals of its local mesh.
-//
-// An ENO stencil of order E holds E + 1 consecutive samples. It is grown one point at a time from
-// its starting points ({k} for a derivative at node k, {i, i + 1} for interpolation in [x_i,
-// x_{i+1}]), each time on the side where the next undivided difference is smaller in magnitude, so
-// that it avoids the kinks of the data (Eq. 10 oscillates when its stencil crosses one). A
-// stencil never leaves the line: near an end it is one-sided, with the same order as long as the
-// line holds E + 1 samples (fewer samples lower the order to what they allow).
+/// @file
+/// One-dimensional ENO kernels on a uniform line of samples (paper §3.2, after Harten, Engquist,
+/// Osher and Chakravarthy [10]): differentiation at the nodes, interpolation between them, and the
+/// cosine (1-2-1) smoothing pass. The embedded geometry module applies them along the x- and
+/// y-intervals of its local mesh.
+///
+/// An ENO stencil of order E holds E + 1 consecutive samples. It is grown one point at a time from
+/// its starting points ({k} for a derivative at node k, {i, i + 1} for interpolation in [x_i,
+/// x_{i+1}]), each time on the side where the next undivided difference is smaller in magnitude, so
+/// that it avoids the kinks of the data (Eq. 10 oscillates when its stencil crosses one). A
+/// stencil never leaves the line: near an end it is one-sided, with the same order as long as the
+/// line holds E + 1 samples (fewer samples lower the order to what they allow).
 #pragma once
 
 #include <cstddef>
 #include <span>
 
+/// One-dimensional ENO kernels on a uniform line of samples (paper §3.2).
 namespace slc::eno {
 
 /// Highest ENO order supported (stencils of up to max_order + 1 samples).
@@ -21,8 +23,8 @@ inline constexpr int max_order = 5;
 
 /// The stencil chosen by the ENO rule: samples [first, first + points).
 struct Stencil {
-    std::size_t first = 0;
-    int points = 0;
+    std::size_t first = 0;  ///< index of its first sample
+    int points = 0;         ///< its number of samples, order + 1 unless the line is shorter
 };
 
 /// Grows the stencil [lo, hi] (0 <= lo <= hi < f.size()) by the ENO rule until it holds

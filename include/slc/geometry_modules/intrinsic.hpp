@@ -1,5 +1,6 @@
-// The intrinsic geometry module (paper §3.1): normals and curvature at the vertices of a polygon
-// from the left-right average difference along the curve, Eqs. (7) and (8), with no mesh.
+/// @file
+/// The intrinsic geometry module (paper §3.1): normals and curvature at the vertices of a polygon
+/// from the left-right average difference along the curve, Equations (7) and (8), with no mesh.
 #pragma once
 
 #include "slc/geometry/interface.hpp"

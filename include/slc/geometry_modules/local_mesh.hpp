@@ -1,9 +1,10 @@
-// LocalMesh: the local uniform mesh of the embedded geometry module (paper §3.2, Fig. 9), the
-// points of a uniform lattice of spacing h that lie within R lattice steps of Γ, stored as sorted,
-// pruned x-intervals (runs of a row) and the y-intervals (runs of a column) of the same points.
-// Memory and cost grow with (length of Γ)/h · R, never with the number of lattice points of the
-// domain. Also the operations the embedded module applies on it: ENO differences along rows or
-// columns, cosine smoothing, and ENO interpolation at any point near Γ.
+/// @file
+/// LocalMesh: the local uniform mesh of the embedded geometry module (paper §3.2, Figure 9), the
+/// points of a uniform lattice of spacing h that lie within R lattice steps of Γ, stored as sorted,
+/// pruned x-intervals (runs of a row) and the y-intervals (runs of a column) of the same points.
+/// Memory and cost grow with (length of Γ)/h · R, never with the number of lattice points of the
+/// domain. Also the operations the embedded module applies on it: ENO differences along rows or
+/// columns, cosine smoothing, and ENO interpolation at any point near Γ.
 #pragma once
 
 #include <cstddef>
@@ -30,14 +31,16 @@ public:
     /// i = lo..hi, or y-interval = points (line, j) for j = lo..hi. `first` is the number of its
     /// first point (x-intervals) or its first position in the column order (y-intervals).
     struct Interval {
-        std::int32_t line = 0;
-        std::int32_t lo = 0;
-        std::int32_t hi = 0;
-        std::uint32_t first = 0;
+        std::int32_t line = 0;    ///< the row j (x-interval) or the column i (y-interval)
+        std::int32_t lo = 0;      ///< first lattice index along the line
+        std::int32_t hi = 0;      ///< last lattice index along the line, hi >= lo
+        std::uint32_t first = 0;  ///< first point number, or first position in the column order
 
+        /// Number of points, hi − lo + 1.
         std::size_t size() const { return static_cast<std::size_t>(hi - lo) + 1; }
     };
 
+    /// No points.
     LocalMesh() = default;
 
     /// Builds the mesh around curves with lattice origin and spacing h > 0, range >= 1 steps:
@@ -49,8 +52,11 @@ public:
 
     /// Number of mesh points.
     std::size_t size() const { return size_; }
+    /// h, the lattice spacing.
     double spacing() const { return h_; }
+    /// The lattice point (0, 0).
     Vec2 origin() const { return origin_; }
+    /// R: points lie within R lattice steps of Γ (L∞ distance).
     int range() const { return range_; }
 
     /// The x-intervals, sorted by row and then by start; disjoint and not adjacent.

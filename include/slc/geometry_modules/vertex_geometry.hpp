@@ -1,6 +1,7 @@
-// VertexGeometry: outward unit normals and curvature at the vertices of Γ, what both geometry
-// modules of paper §3 return, and the arc-length weights of the vertices for integrals over Γ
-// (the nonlocal law of paper Eq. 13).
+/// @file
+/// VertexGeometry: outward unit normals and curvature at the vertices of Γ, what both geometry
+/// modules of paper §3 return, and the arc-length weights of the vertices for integrals over Γ
+/// (the nonlocal law of paper Equation 13).
 #pragma once
 
 #include <span>
@@ -15,8 +16,8 @@ namespace slc {
 /// normals point outward (towards F > 0), N = (cos θ, sin θ); curvature C = −∇·N, so C = −1/R
 /// on a circle of radius R and +1/R on a circular hole.
 struct VertexGeometry {
-    std::vector<Vec2> normals;
-    std::vector<double> curvature;
+    std::vector<Vec2> normals;      ///< outward unit normal N_i at vertex i
+    std::vector<double> curvature;  ///< C_i at vertex i, −1/R on a circle of radius R
 };
 
 /// The arc length that belongs to each vertex: half of each of its two segments. Weights of the

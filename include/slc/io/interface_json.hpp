@@ -1,4 +1,5 @@
-// Interface files (DESIGN §6): {"time": 0.0, "curves": [{"points": [[x, y], ...]}, ...]}.
+/// @file
+/// Interface files (DESIGN §6): {"time": 0.0, "curves": [{"points": [[x, y], ...]}, ...]}.
 #pragma once
 
 #include <filesystem>
@@ -12,8 +13,8 @@ namespace slc {
 
 /// The content of an interface file before validation (see prepare_interface).
 struct InterfaceFile {
-    double time = 0.0;  ///< "time", 0 when absent
-    std::vector<std::vector<Vec2>> curves;
+    double time = 0.0;                      ///< "time", 0 when absent
+    std::vector<std::vector<Vec2>> curves;  ///< "curves"[c]."points", as read
 };
 
 /// Parses interface JSON text. `source` names the input in messages (a file name).

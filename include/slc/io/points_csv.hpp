@@ -1,4 +1,5 @@
-// Point files for `slc distance`: one "x,y" per line, an optional header line "x,y".
+/// @file
+/// Point files for `slc distance`: one "x,y" per line, an optional header line "x,y".
 #pragma once
 
 #include <filesystem>

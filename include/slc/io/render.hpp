@@ -1,5 +1,6 @@
-// Pictures of interfaces, trees and fields in the style of the paper's figures, drawn with cairo
-// as SVG or PNG (chosen by the file extension).
+/// @file
+/// Pictures of interfaces, trees and fields in the style of the paper's figures, drawn with cairo
+/// as SVG or PNG (chosen by the file extension).
 #pragma once
 
 #include <array>
@@ -18,7 +19,10 @@ namespace slc {
 
 /// An RGBA colour, components in [0, 1].
 struct Color {
-    double r = 0.0, g = 0.0, b = 0.0, a = 1.0;
+    double r = 0.0;  ///< red
+    double g = 0.0;  ///< green
+    double b = 0.0;  ///< blue
+    double a = 1.0;  ///< opacity (alpha), 1 opaque
 };
 
 /// A qualitative palette for successive interfaces in one picture (legend order).
@@ -31,10 +35,10 @@ Color sequence_color(double t);
 /// Scalar samples on a uniform nx × ny grid of cell centres covering box, row-major from the
 /// bottom-left (values[j * nx + i] at x = lo.x + (i + ½) w / nx, y = lo.y + (j + ½) h / ny).
 struct ScalarGrid {
-    Box box;
-    int nx = 0;
-    int ny = 0;
-    std::vector<double> values;
+    Box box;                     ///< the region covered
+    int nx = 0;                  ///< samples per row
+    int ny = 0;                  ///< rows
+    std::vector<double> values;  ///< nx · ny samples, row-major from the bottom-left
 };
 
 /// A picture: axes with ticks around the view box, layers drawn in the order added, a legend of

@@ -1,6 +1,7 @@
-// Quadtree: the square cells of the distance tree (paper §1.3, Fig. 2a) and of the contouring
-// tree (§2.1), with 2:1 balancing. The tree holds only structure; owners keep per-cell data in
-// arrays indexed by cell number.
+/// @file
+/// Quadtree: the square cells of the distance tree (paper §1.3, Figure 2a) and of the contouring
+/// tree (§2.1), with 2:1 balancing. The tree holds only structure; owners keep per-cell data in
+/// arrays indexed by cell number.
 #pragma once
 
 #include <cstddef>
@@ -17,31 +18,39 @@ namespace slc {
 /// (high x, high y). A cell at level l has integer coordinates (ix, iy) in [0, 2^l)².
 class Quadtree {
 public:
+    /// The index that names no cell: a leaf's first_child, the root's parent, a failed search.
     static constexpr std::uint32_t no_cell = 0xffffffffu;
     /// Deepest level supported: integer vertex keys of the triangulation need 2·(level + 1) bits.
     static constexpr int max_supported_depth = 30;
 
+    /// One square cell: its place in the tree and its integer coordinates at its level.
     struct Cell {
-        std::uint32_t parent = no_cell;
+        std::uint32_t parent = no_cell;       ///< no_cell for the root
         std::uint32_t first_child = no_cell;  ///< no_cell for a leaf
-        std::uint32_t ix = 0;
-        std::uint32_t iy = 0;
-        int level = 0;
+        std::uint32_t ix = 0;                 ///< column at its level, in [0, 2^level)
+        std::uint32_t iy = 0;                 ///< row at its level, in [0, 2^level)
+        int level = 0;                        ///< 0 for the root; edge = root edge / 2^level
     };
 
     /// A single root cell covering root, which must be a square of positive size, and cells
     /// never deeper than max_depth (0..max_supported_depth). Throws InvalidInput otherwise.
     Quadtree(Box root, int max_depth);
 
+    /// Number of cells, all levels.
     std::size_t size() const { return cells_.size(); }
+    /// Cell c, 0 <= c < size().
     const Cell& cell(std::size_t c) const { return cells_[c]; }
+    /// True when cell c has no children.
     bool is_leaf(std::size_t c) const { return cells_[c].first_child == no_cell; }
+    /// The deepest level split() may create, as given to the constructor.
     int max_depth() const { return max_depth_; }
     /// Deepest level of any existing cell.
     int depth() const { return depth_; }
+    /// The square the root covers.
     const Box& root_box() const { return root_; }
     /// Edge length of a cell at the given level.
     double edge(int level) const { return edges_[static_cast<std::size_t>(level)]; }
+    /// The square of cell c, computed from its integer coordinates (corners exact on the lattice).
     Box box(std::size_t c) const;
     /// The cell's concentric triple: the 3×3 block of same-size cells around it (§1.3).
     Box triple(std::size_t c) const { return box(c).inflated(edge(cells_[c].level)); }
@@ -50,12 +59,13 @@ public:
     /// max_depth. Returns the index of the first child.
     std::uint32_t split(std::size_t c);
 
-    /// Integer coordinates, at the deepest existing level, of the cell holding p (moved first to
-    /// the nearest point of the root box); on a shared edge the high side wins (to rounding).
+    /// Integer coordinates of a cell at the deepest existing level of the tree.
     struct LatticePoint {
-        std::uint64_t ix = 0;
-        std::uint64_t iy = 0;
+        std::uint64_t ix = 0;  ///< column at the deepest existing level
+        std::uint64_t iy = 0;  ///< row at the deepest existing level
     };
+    /// Integer coordinates, at the deepest existing level, of the cell holding p (moved first to
+    /// the nearest point of the root box); on a shared edge the high side wins (to rounding). O(1).
     LatticePoint lattice_point(Vec2 p) const;
 
     /// The leaf holding lattice point q, descending from cell `from` (which must hold q): one bit
@@ -78,6 +88,7 @@ public:
     /// level. Calls on_split(c) after each split, in order. Cost O(cells · depth).
     template <class OnSplit>
     void balance(OnSplit&& on_split);
+    /// The same, with no callback.
     void balance() {
         balance([](std::size_t) {});
     }

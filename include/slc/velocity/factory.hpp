@@ -1,5 +1,6 @@
-// The built-in velocity laws by name, with their parameters by name, as the command line gives
-// them (`--velocity NAME --param key=value`, DESIGN §6).
+/// @file
+/// The built-in velocity laws by name, with their parameters by name, as the command line gives
+/// them (`--velocity NAME --param key=value`, DESIGN §6).
 #pragma once
 
 #include <map>
@@ -17,18 +18,18 @@ using VelocityParams = std::map<std::string, double>;
 
 /// One parameter of a built-in law.
 struct VelocityParameter {
-    std::string name;
+    std::string name;                     ///< as in --param name=value
     std::optional<double> default_value;  ///< nothing when required or computed from others
     std::string default_text;             ///< the default as shown to a user: "1", "5/(m²−1)"
-    std::string meaning;
-    bool required = false;  ///< the law cannot be built without it
+    std::string meaning;                  ///< one line for --help
+    bool required = false;                ///< the law cannot be built without it
 };
 
 /// A built-in law: its name, what it does, and its parameters.
 struct VelocityInfo {
-    std::string name;
-    std::string summary;
-    std::vector<VelocityParameter> parameters;
+    std::string name;                           ///< as in --velocity NAME
+    std::string summary;                        ///< one line for --help
+    std::vector<VelocityParameter> parameters;  ///< in the order --help lists them
 };
 
 /// Every built-in law, in a fixed order: rotation, translation, unit-normal, anisotropic,

@@ -1,6 +1,7 @@
-// The built-in velocity laws of the paper's examples (§4.4–4.7 and the single vortex of LeVeque
-// and Rider–Kothe), each a VelocityLaw. Their names and parameters on the command line are in
-// factory.hpp.
+/// @file
+/// The built-in velocity laws of the paper's examples (§4.4–4.7 and the single vortex of LeVeque
+/// and Rider–Kothe), each a VelocityLaw. Their names and parameters on the command line are in
+/// factory.hpp.
 #pragma once
 
 #include "slc/velocity/velocity.hpp"
@@ -10,6 +11,8 @@ namespace slc {
 /// `rotation`: rigid counterclockwise rotation u = ω (−(y − cy), x − cx) about centre (§4.4).
 class Rotation final : public VelocityLaw {
 public:
+    /// omega: angular velocity ω in radians per unit time (counterclockwise when positive);
+    /// centre: the fixed point (cx, cy).
     explicit Rotation(double omega = 1.0, Vec2 centre = {}) : omega_(omega), centre_(centre) {}
     std::string name() const override { return "rotation"; }
     std::vector<Vec2> velocities(double t, const Interface& curves,
@@ -25,6 +28,7 @@ private:
 /// `translation`: the constant velocity u = (ux, uy).
 class Translation final : public VelocityLaw {
 public:
+    /// u: the velocity of every point, length per unit time.
     explicit Translation(Vec2 u) : u_(u) {}
     std::string name() const override { return "translation"; }
     std::vector<Vec2> velocities(double t, const Interface& curves,
@@ -58,6 +62,7 @@ private:
 /// geometric laws).
 class NormalSpeed final : public VelocityLaw {
 public:
+    /// speed: s, length per unit time (negative shrinks the curve); module: where N comes from.
     explicit NormalSpeed(double speed = 1.0, GeometryModule module = GeometryModule::intrinsic)
         : speed_(speed), module_(module) {}
     std::string name() const override { return "unit-normal"; }
@@ -71,9 +76,11 @@ private:
 };
 
 /// `anisotropic`: u = v(θ)·N with v = R + ε cos(mθ), θ the normal angle, N = (cos θ, sin θ)
-/// (§4.5.3, Eq. 12; the paper's Wulff-shape runs use R = −1 and ε = 5/(m² − 1)).
+/// (§4.5.3, Equation 12; the paper's Wulff-shape runs use R = −1 and ε = 5/(m² − 1)).
 class AnisotropicNormalSpeed final : public VelocityLaw {
 public:
+    /// r: R, the isotropic part of the speed; m: the number of lobes of cos(mθ); eps: ε, their
+    /// amplitude; module: where N comes from.
     AnisotropicNormalSpeed(double r, double m, double eps,
                            GeometryModule module = GeometryModule::intrinsic)
         : r_(r), m_(m), eps_(eps), module_(module) {}
@@ -92,6 +99,7 @@ private:
 /// second-order laws).
 class CurvatureFlow final : public VelocityLaw {
 public:
+    /// module: where N and C come from.
     explicit CurvatureFlow(GeometryModule module = GeometryModule::embedded) : module_(module) {}
     std::string name() const override { return "curvature"; }
     GeometryNeeds needs() const override {
@@ -105,10 +113,11 @@ private:
 };
 
 /// `volume-preserving-curvature`: the nonlocal law u = (C − C̄)·N, C̄ the arc-length mean of C
-/// over all components of Γ (§4.7, Eq. 13). The mean normal speed is zero, so the enclosed area
-/// is conserved; small components give their area to large ones. Embedded module by default.
+/// over all components of Γ (§4.7, Equation 13). The mean normal speed is zero, so the enclosed
+/// area is conserved; small components give their area to large ones. Embedded module by default.
 class VolumePreservingCurvatureFlow final : public VelocityLaw {
 public:
+    /// module: where N and C come from.
     explicit VolumePreservingCurvatureFlow(GeometryModule module = GeometryModule::embedded)
         : module_(module) {}
     std::string name() const override { return "volume-preserving-curvature"; }

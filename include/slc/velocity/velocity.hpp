@@ -1,6 +1,7 @@
-// Velocity laws (DESIGN §3, paper §3 and §4.3 "Velocity(t, Γ)"): the interface a law implements,
-// the call that hands it the vertex geometry it asks for and checks what it returns, and adapters
-// that turn a small callable into a law.
+/// @file
+/// Velocity laws (DESIGN §3, paper §3 and §4.3 "Velocity(t, Γ)"): the interface a law implements,
+/// the call that hands it the vertex geometry it asks for and checks what it returns, and adapters
+/// that turn a small callable into a law.
 #pragma once
 
 #include <concepts>
@@ -20,15 +21,17 @@
 namespace slc {
 
 /// Which geometry module computes the vertex normals and curvature a law needs (paper §3):
-/// intrinsic (Eqs. 7, 8; no mesh) or embedded (Eq. 9 on a local mesh; needs a distance tree).
+/// intrinsic (Equations 7, 8; no mesh) or embedded (Equation 9 on a local mesh; needs a distance
+/// tree).
 enum class GeometryModule { intrinsic, embedded };
 
 /// What a law needs at the vertices besides their positions.
 struct GeometryNeeds {
-    bool normals = false;
-    bool curvature = false;
-    GeometryModule module = GeometryModule::intrinsic;
+    bool normals = false;                               ///< outward unit normals N
+    bool curvature = false;                             ///< curvature C = −∇·N
+    GeometryModule module = GeometryModule::intrinsic;  ///< which module computes them
 
+    /// True when the law needs normals or curvature.
     bool any() const { return normals || curvature; }
 };
 
@@ -83,10 +86,10 @@ std::vector<Vec2> field_velocities(const VelocityLaw& law, double t, std::span<c
 
 /// What a local law sees at one vertex. normal and curvature are set when the law asked for them.
 struct VertexState {
-    std::size_t index = 0;
-    Vec2 point;
-    Vec2 normal;
-    double curvature = 0.0;
+    std::size_t index = 0;   ///< vertex number in Interface::points()
+    Vec2 point;              ///< its position
+    Vec2 normal;             ///< outward unit normal N, or (0, 0) when not asked for
+    double curvature = 0.0;  ///< C = −∇·N (−1/R on a circle), or 0 when not asked for
 };
 
 /// A law u = f(t, x) defined everywhere: f(double t, Vec2 x) -> Vec2, called concurrently.
@@ -95,6 +98,7 @@ requires std::regular_invocable<const F&, double, Vec2> &&
     std::convertible_to<std::invoke_result_t<const F&, double, Vec2>, Vec2>
 class FieldLaw final : public VelocityLaw {
 public:
+    /// name: the law's name in messages; f: the velocity field.
     FieldLaw(std::string name, F f) : name_(std::move(name)), f_(std::move(f)) {}
     std::string name() const override { return name_; }
     std::vector<Vec2> velocities(double t, const Interface& curves,
@@ -119,6 +123,7 @@ template <class F>
 requires std::regular_invocable<const F&, double, const VertexState&>
 class LocalLaw final : public VelocityLaw {
 public:
+    /// name: the law's name in messages; needs: the vertex geometry f reads; f: the law.
     LocalLaw(std::string name, GeometryNeeds needs, F f)
         : name_(std::move(name)), needs_(needs), f_(std::move(f)) {}
     std::string name() const override { return name_; }
@@ -147,6 +152,8 @@ template <class F>
 requires std::regular_invocable<const F&, double, const Interface&, const VertexGeometry&>
 class CurveLaw final : public VelocityLaw {
 public:
+    /// name: the law's name in messages; needs: the vertex geometry f reads; f: the law, which
+    /// must return one velocity per vertex.
     CurveLaw(std::string name, GeometryNeeds needs, F f)
         : name_(std::move(name)), needs_(needs), f_(std::move(f)) {}
     std::string name() const override { return name_; }
@@ -162,18 +169,28 @@ private:
     F f_;
 };
 
-/// field_law("swirl", [](double t, Vec2 x) { return ...; })
+/// A FieldLaw owning f, for instance a rigid rotation:
+/// @code
+/// auto law = field_law("swirl", [](double, Vec2 x) { return Vec2{-x.y, x.x}; });
+/// @endcode
 template <class F>
 std::unique_ptr<VelocityLaw> field_law(std::string name, F f) {
     return std::make_unique<FieldLaw<F>>(std::move(name), std::move(f));
 }
-/// local_law("speed-2", {.normals = true}, [](double, const VertexState& s) { return 2 * s.normal;
-/// })
+/// A LocalLaw owning f, for instance the normal speed 2:
+/// @code
+/// auto law = local_law("speed-2", {.normals = true},
+///                      [](double, const VertexState& s) { return 2.0 * s.normal; });
+/// @endcode
 template <class F>
 std::unique_ptr<VelocityLaw> local_law(std::string name, GeometryNeeds needs, F f) {
     return std::make_unique<LocalLaw<F>>(std::move(name), needs, std::move(f));
 }
-/// curve_law("mine", needs, [](double t, const Interface& c, const VertexGeometry& g) { ... })
+/// A CurveLaw owning f, for laws that see the whole curve (an integral over Γ, say):
+/// @code
+/// auto law = curve_law("mine", {.normals = true},
+///                      [](double t, const Interface& c, const VertexGeometry& g) { ... });
+/// @endcode
 template <class F>
 std::unique_ptr<VelocityLaw> curve_law(std::string name, GeometryNeeds needs, F f) {
     return std::make_unique<CurveLaw<F>>(std::move(name), needs, std::move(f));
