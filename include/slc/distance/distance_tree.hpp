@@ -6,7 +6,8 @@
 /// (the 3×3 block of same-size cells around it). A query starts in the leaf holding x and climbs
 /// ancestors, keeping the nearest segment of their lists, until the box of half-width m (the best
 /// distance so far) around x lies inside the cell's triple: every segment nearer than m meets that
-/// box and so is on the list, which makes the answer exact. The root lists every segment.
+/// box and so is on the list, which makes the answer exact. Far from Γ, where cells are large
+/// and their lists long, a SegmentHierarchy over all segments finishes the search instead.
 #pragma once
 
 #include <cstdint>

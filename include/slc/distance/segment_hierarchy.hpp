@@ -1,10 +1,11 @@
-// SegmentHierarchy: a bounding-box hierarchy over segments in index order, for the exact nearest
-// segment to points far from Γ, where the distance tree's cells are large and their lists long.
-//
-// Consecutive segments of a curve lie side by side, so runs of consecutive indices make tight
-// boxes: the hierarchy is a complete binary tree over runs of `leaf_size` segments, built in O(N)
-// without sorting. A query descends nearer child first and skips every box farther than the best
-// segment so far, which makes it O(log N) for a point far from a curve of similar segments.
+/// @file
+/// SegmentHierarchy: a bounding-box hierarchy over segments in index order, for the exact nearest
+/// segment to points far from Γ, where the distance tree's cells are large and their lists long.
+///
+/// Consecutive segments of a curve lie side by side, so runs of consecutive indices make tight
+/// boxes: the hierarchy is a complete binary tree over runs of `leaf_size` segments, built in O(N)
+/// without sorting. A query descends nearer child first and skips every box farther than the best
+/// segment so far, which makes it O(log N) for a point far from a curve of similar segments.
 #pragma once
 
 #include <cstdint>
@@ -20,8 +21,8 @@ namespace slc {
 /// The nearest segment found so far: the least (distance2, segment) pair, compared in that
 /// order, so that the answer is the same whatever order segments are examined in.
 struct NearestSegment {
-    double distance2 = std::numeric_limits<double>::infinity();
-    std::uint32_t segment = std::numeric_limits<std::uint32_t>::max();
+    double distance2 = std::numeric_limits<double>::infinity();         ///< squared distance to x
+    std::uint32_t segment = std::numeric_limits<std::uint32_t>::max();  ///< its index
     Vec2 point;      ///< the nearest point on that segment
     double t = 0.0;  ///< point = a + t (b − a)
 
@@ -36,6 +37,8 @@ struct NearestSegment {
     }
 };
 
+/// Boxes over runs of consecutive segments, nested in a complete binary tree (see the file
+/// comment); the segments themselves stay with the caller.
 class SegmentHierarchy {
 public:
     /// Segments per leaf box.
