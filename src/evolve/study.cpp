@@ -30,11 +30,29 @@ std::optional<double> StudyResult::column_order(int row, int column) const {
     return order(at(row, column).e_inf, at(row + 1, column).e_inf);
 }
 
+RunOptions study_cell_options(const Problem& problem, int row, int refine, const RunOptions& base) {
+    if (row < 0 || row > 4 || refine < 0 || refine > 4) {
+        throw InvalidInput(
+            fmt::format("a study cell has row and P in 0..4, got row {} and P {}", row, refine));
+    }
+    const StudyPlan& plan = problem.study;
+    RunOptions o = base;
+    o.t_start = 0.0;
+    o.t_end = problem.t_end;
+    o.steps = plan.steps << row;
+    o.step.contour.depth = plan.depth + row;
+    o.step.contour.refine_passes = refine;
+    o.step.contour.eps = plan.eps * std::pow(10.0, -row);
+    o.step.tree_depth = 0;
+    o.step.embedded.mesh = default_mesh_size(o.step.contour.depth);
+    o.step.embedded.smoothing = plan.smoothing[static_cast<std::size_t>(row)];
+    return o;
+}
+
 StudyResult study(const Problem& problem, int rows, const RunOptions& base,
                   const StudyObserver& observer) {
     if (rows < 1 || rows > 5)
         throw InvalidInput(fmt::format("rows must be between 1 and 5, got {}", rows));
-    const StudyPlan& plan = problem.study;
     const auto law = make_velocity(problem.velocity, problem.velocity_params, problem.module);
     const Interface initial = prepare_interface(problem.initial, problem.domain).curves;
     StudyResult result{rows, 5, {}};
@@ -43,17 +61,8 @@ StudyResult study(const Problem& problem, int rows, const RunOptions& base,
             StudyCell cell;
             cell.row = row;
             cell.refine = p;
-            cell.options = base;
-            RunOptions& o = cell.options;
-            o.t_start = 0.0;
-            o.t_end = problem.t_end;
-            o.steps = plan.steps << row;
-            o.step.contour.depth = plan.depth + row;
-            o.step.contour.refine_passes = p;
-            o.step.contour.eps = plan.eps * std::pow(10.0, -row);
-            o.step.tree_depth = 0;
-            o.step.embedded.mesh = default_mesh_size(o.step.contour.depth);
-            o.step.embedded.smoothing = plan.smoothing[static_cast<std::size_t>(row)];
+            cell.options = study_cell_options(problem, row, p, base);
+            const RunOptions& o = cell.options;
             const RunResult r = run(initial, *law, problem.domain, o);
             cell.status = r.status;
             cell.e_inf = max_error(problem, r.curves, r.t);

@@ -43,6 +43,11 @@ struct StudyResult {
     std::optional<double> column_order(int row, int column) const;
 };
 
+/// The options of one cell of the problem's study plan: `base` (η, ρ, E, extension, ... kept)
+/// with N, K, ε, S and M of row `row` (0-based) and P = refine. Throws InvalidInput for a row
+/// outside 0..4 or a refine outside 0..4.
+RunOptions study_cell_options(const Problem& problem, int row, int refine, const RunOptions& base);
+
 /// Called before each run with its row and column and after it with the finished cell.
 using StudyObserver = std::function<void(const StudyCell&)>;
 
