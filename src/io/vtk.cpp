@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
 #include <iterator>
+#include <vector>
 
 #include "slc/core/error.hpp"
 #include "slc/io/interface_json.hpp"
@@ -19,108 +21,94 @@ void check_time(double time) {
         throw InvalidInput(fmt::format("VTK frame time must be finite, got {}", time));
 }
 
-/// Opens a DataArray element; the values follow on the next lines. VTK's reader needs
-/// NumberOfTuples in field data, where no point or cell count implies it.
-void open_array(std::string& out, const char* type, const char* name, int components,
-                std::size_t tuples) {
+/// A DataArray element holding values, `components` to a tuple and a line. fmt's "{}" of a double
+/// is the shortest text that reads back to the same double. VTK's reader needs NumberOfTuples in
+/// field data, where no point or cell count implies it.
+template <class T>
+void append_array(std::string& out, const char* type, const char* name, int components,
+                  const std::vector<T>& values) {
+    const auto per_line = static_cast<std::size_t>(components == 1 ? 8 : components);
     fmt::format_to(std::back_inserter(out),
                    "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" "
-                   "NumberOfTuples=\"{}\" format=\"ascii\">\n",
-                   type, name, components, tuples);
+                   "NumberOfTuples=\"{}\" format=\"ascii\">",
+                   type, name, components, values.size() / components);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        out += i % per_line == 0 ? "\n          " : " ";
+        fmt::format_to(std::back_inserter(out), "{}", values[i]);
+    }
+    out += "\n        </DataArray>\n";
 }
 
-void close_array(std::string& out) { out += "\n        </DataArray>\n"; }
+/// Points at z = 0, in the interface's order.
+void append_points(std::string& out, const Interface& curves) {
+    std::vector<double> xyz;
+    xyz.reserve(3 * curves.size());
+    for (const Vec2 p : curves.points()) xyz.insert(xyz.end(), {p.x, p.y, 0.0});
+    out += "      <Points>\n";
+    append_array(out, "Float64", "Points", 3, xyz);
+    out += "      </Points>\n";
+}
 
-/// Values separated by spaces, `per_line` to a line. fmt's "{}" of a double is the shortest text
-/// that reads back to the same double.
-template <class Range>
-void append_values(std::string& out, const Range& values, std::size_t per_line) {
-    std::size_t n = 0;
-    for (const auto& v : values) {
-        if (n > 0) out += n % per_line == 0 ? "\n" : " ";
-        if (n % per_line == 0) out += "          ";
-        fmt::format_to(std::back_inserter(out), "{}", v);
-        ++n;
+/// One closed polyline per curve: its vertices in order, then its first vertex again.
+void append_lines(std::string& out, const Interface& curves) {
+    std::vector<std::int64_t> connectivity;
+    std::vector<std::int64_t> offsets;
+    connectivity.reserve(curves.size() + curves.curve_count());
+    for (std::size_t k = 0; k < curves.curve_count(); ++k) {
+        const std::size_t first = curves.offsets()[k];
+        for (std::size_t i = first; i < curves.offsets()[k + 1]; ++i)
+            connectivity.push_back(static_cast<std::int64_t>(i));
+        connectivity.push_back(static_cast<std::int64_t>(first));
+        offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
     }
+    out += "      <Lines>\n";
+    append_array(out, "Int64", "connectivity", 1, connectivity);
+    append_array(out, "Int64", "offsets", 1, offsets);
+    out += "      </Lines>\n";
+}
+
+/// Point data "curve"; cell data "curve", "signed_area" and "length".
+void append_data(std::string& out, const Interface& curves) {
+    const std::size_t c = curves.curve_count();
+    std::vector<std::int32_t> point_curve(curves.size());
+    for (std::size_t i = 0; i < curves.size(); ++i)
+        point_curve[i] = static_cast<std::int32_t>(curves.curve_of(i));
+    std::vector<std::int32_t> cell_curve(c);
+    std::vector<double> areas(c);
+    std::vector<double> lengths(c, 0.0);
+    for (std::size_t k = 0; k < c; ++k) {
+        cell_curve[k] = static_cast<std::int32_t>(k);
+        areas[k] = signed_area(curves.curve(k));
+        for (std::size_t i = curves.offsets()[k]; i < curves.offsets()[k + 1]; ++i)
+            lengths[k] += distance(curves.point(i), curves.point(curves.next(i)));
+    }
+    out += "      <PointData Scalars=\"curve\">\n";
+    append_array(out, "Int32", "curve", 1, point_curve);
+    out += "      </PointData>\n      <CellData Scalars=\"curve\">\n";
+    append_array(out, "Int32", "curve", 1, cell_curve);
+    append_array(out, "Float64", "signed_area", 1, areas);
+    append_array(out, "Float64", "length", 1, lengths);
+    out += "      </CellData>\n";
 }
 
 }  // namespace
 
 std::string vtp_text(const Interface& curves, double time) {
     check_time(time);
-    const std::size_t n = curves.size();
-    const std::size_t c = curves.curve_count();
     std::string out;
-    out.reserve(200 * c + 70 * n + 1200);
+    out.reserve(70 * curves.size() + 200 * curves.curve_count() + 1200);
     out += "<?xml version=\"1.0\"?>\n";
     out += "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
-    out += "  <PolyData>\n";
-    out += "    <FieldData>\n";
-    open_array(out, "Float64", "TimeValue", 1, 1);
-    fmt::format_to(std::back_inserter(out), "          {}", time);
-    close_array(out);
+    out += "  <PolyData>\n    <FieldData>\n";
+    append_array(out, "Float64", "TimeValue", 1, std::vector<double>{time});
     out += "    </FieldData>\n";
     fmt::format_to(std::back_inserter(out),
                    "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
                    "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
-                   n, c);
-
-    out += "      <Points>\n";
-    open_array(out, "Float64", "Points", 3, n);
-    std::vector<double> xyz;
-    xyz.reserve(3 * n);
-    for (const Vec2 p : curves.points()) xyz.insert(xyz.end(), {p.x, p.y, 0.0});
-    append_values(out, xyz, 3);
-    close_array(out);
-    out += "      </Points>\n";
-
-    out += "      <Lines>\n";
-    std::vector<std::size_t> connectivity;
-    std::vector<std::size_t> offsets;
-    connectivity.reserve(n + c);
-    for (std::size_t k = 0; k < c; ++k) {
-        const std::size_t first = curves.offsets()[k];
-        for (std::size_t i = first; i < curves.offsets()[k + 1]; ++i) connectivity.push_back(i);
-        connectivity.push_back(first);  // closes the polyline
-        offsets.push_back(connectivity.size());
-    }
-    open_array(out, "Int64", "connectivity", 1, connectivity.size());
-    append_values(out, connectivity, 12);
-    close_array(out);
-    open_array(out, "Int64", "offsets", 1, offsets.size());
-    append_values(out, offsets, 12);
-    close_array(out);
-    out += "      </Lines>\n";
-
-    out += "      <PointData Scalars=\"curve\">\n";
-    std::vector<int> point_curve(n);
-    for (std::size_t i = 0; i < n; ++i) point_curve[i] = static_cast<int>(curves.curve_of(i));
-    open_array(out, "Int32", "curve", 1, n);
-    append_values(out, point_curve, 12);
-    close_array(out);
-    out += "      </PointData>\n";
-
-    out += "      <CellData Scalars=\"curve\">\n";
-    std::vector<int> cell_curve(c);
-    std::vector<double> areas(c);
-    std::vector<double> lengths(c);
-    for (std::size_t k = 0; k < c; ++k) {
-        cell_curve[k] = static_cast<int>(k);
-        areas[k] = signed_area(curves.curve(k));
-        for (std::size_t i = curves.offsets()[k]; i < curves.offsets()[k + 1]; ++i)
-            lengths[k] += distance(curves.point(i), curves.point(curves.next(i)));
-    }
-    open_array(out, "Int32", "curve", 1, c);
-    append_values(out, cell_curve, 12);
-    close_array(out);
-    open_array(out, "Float64", "signed_area", 1, c);
-    append_values(out, areas, 4);
-    close_array(out);
-    open_array(out, "Float64", "length", 1, c);
-    append_values(out, lengths, 4);
-    close_array(out);
-    out += "      </CellData>\n";
-
+                   curves.size(), curves.curve_count());
+    append_points(out, curves);
+    append_lines(out, curves);
+    append_data(out, curves);
     out += "    </Piece>\n  </PolyData>\n</VTKFile>\n";
     return out;
 }
