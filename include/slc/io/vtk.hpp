@@ -20,7 +20,7 @@ namespace slc {
 /// index of the vertex's curve); cell data "curve", "signed_area" (positive counterclockwise,
 /// negative for a hole) and "length" of each curve; field data "TimeValue" = time, which ParaView
 /// shows as the time of a single file. An empty interface gives a valid file with no points.
-/// Cost O(N) for N vertices, about 60 bytes per vertex. Throws InvalidInput for a non-finite time.
+/// Cost O(N) for N vertices, about 65 bytes per vertex. Throws InvalidInput for a non-finite time.
 std::string vtp_text(const Interface& curves, double time);
 
 /// One dataset of a ParaView collection: its time and its file, relative to the .pvd file.

@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -24,22 +24,35 @@ std::vector<AnimationFrame> squares(int n) {
     return frames;
 }
 
-std::vector<std::smatch> all_matches(const std::string& text, const std::regex& re) {
-    std::vector<std::smatch> out;
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator();
-         ++it)
-        out.push_back(*it);
+/// How many times `what` occurs in text.
+std::size_t count(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+        ++n;
+    return n;
+}
+
+/// The value of attribute `name` in the first element `<tag ...>` at or after from.
+std::string attribute(const std::string& svg, const std::string& tag, const std::string& name,
+                      std::size_t from) {
+    const std::size_t begin = svg.find("<" + tag + " ", from);
+    const std::string e = svg.substr(begin, svg.find('>', begin) + 1 - begin);
+    const std::size_t at = e.find(" " + name + "=\"") + name.size() + 3;
+    return e.substr(at, e.find('"', at) - at);
+}
+
+std::vector<std::string> split(const std::string& list) {
+    std::vector<std::string> out;
+    for (std::size_t a = 0, b = 0; a <= list.size(); a = b + 1) {
+        b = std::min(list.find(';', a), list.size());
+        out.push_back(list.substr(a, b - a));
+    }
     return out;
 }
 
 std::vector<double> numbers(const std::string& list) {
     std::vector<double> out;
-    std::size_t start = 0;
-    while (start <= list.size()) {
-        const std::size_t end = std::min(list.find(';', start), list.size());
-        out.push_back(std::stod(list.substr(start, end - start)));
-        start = end + 1;
-    }
+    for (const std::string& item : split(list)) out.push_back(std::stod(item));
     return out;
 }
 
@@ -55,23 +68,19 @@ std::string value_at(const std::vector<std::string>& values, const std::vector<d
 TEST(AnimatedSvg, EachFrameShowsDuringItsOwnSlotOnly) {
     const int n = 5;
     const std::string svg = animated_svg(squares(n), Box::centered_square(1.0), {0.5, "", false});
-    const auto anims = all_matches(
-        svg, std::regex("<g id=\"frame(\\d+)\"[\\s\\S]*?<animate attributeName=\"visibility\" "
-                        "calcMode=\"discrete\" values=\"([^\"]*)\" keyTimes=\"([^\"]*)\" "
-                        "dur=\"([^\"]*)s\""));
-    ASSERT_EQ(anims.size(), static_cast<std::size_t>(n));
+    ASSERT_EQ(count(svg, "<g id=\"frame"), static_cast<std::size_t>(n));
+    ASSERT_EQ(count(svg, "<animate "), static_cast<std::size_t>(n));
+    std::size_t group = 0;
     for (int i = 0; i < n; ++i) {
-        EXPECT_EQ(std::stoi(anims[i][1]), i);
-        std::vector<std::string> values;
-        const std::string v = anims[i][2];
-        for (std::size_t a = 0, b; a < v.size(); a = b + 1) {
-            b = std::min(v.find(';', a), v.size());
-            values.push_back(v.substr(a, b - a));
-        }
-        const std::vector<double> keys = numbers(anims[i][3]);
+        group = svg.find("<g id=\"frame", group + 1);
+        EXPECT_EQ(attribute(svg, "g", "id", group), "frame" + std::to_string(i));
+        EXPECT_EQ(attribute(svg, "animate", "attributeName", group), "visibility");
+        EXPECT_EQ(attribute(svg, "animate", "calcMode", group), "discrete");
+        const std::vector<std::string> values = split(attribute(svg, "animate", "values", group));
+        const std::vector<double> keys = numbers(attribute(svg, "animate", "keyTimes", group));
         ASSERT_EQ(values.size(), keys.size());
         EXPECT_EQ(keys.front(), 0.0);
-        EXPECT_DOUBLE_EQ(std::stod(anims[i][4]), 0.5 * n);
+        EXPECT_EQ(attribute(svg, "animate", "dur", group), "2.5s");  // 5 frames × 0.5 s
         // Sample the middle of every slot: visible in slot i only.
         for (int slot = 0; slot < n; ++slot) {
             const double f = (slot + 0.5) / n;
@@ -98,7 +107,7 @@ TEST(AnimatedSvg, TrailHoldsEveryNonEmptyFrame) {
     const std::size_t trail = svg.find("<g id=\"trail\"");
     ASSERT_NE(trail, std::string::npos);
     const std::string trail_group = svg.substr(trail, svg.find("</g>", trail) - trail);
-    EXPECT_EQ(all_matches(trail_group, std::regex("<path ")).size(), 3u);
+    EXPECT_EQ(count(trail_group, "<path "), 3u);
     EXPECT_NE(svg.find("t = 2 (nothing left)"), std::string::npos);
 }
 

@@ -13,7 +13,6 @@
 #include <fstream>
 #include <limits>
 #include <random>
-#include <regex>
 #include <sstream>
 
 #include "random_interfaces.hpp"
@@ -52,30 +51,43 @@ std::string slurp(const fs::path& path) {
     return s.str();
 }
 
+/// The text of the first element `<tag ...>` at or after `from`, up to its '>'; empty if none.
+std::string element(const std::string& xml, const std::string& tag, std::size_t from = 0) {
+    const std::size_t begin = xml.find("<" + tag + " ", from);
+    if (begin == std::string::npos) return {};
+    return xml.substr(begin, xml.find('>', begin) + 1 - begin);
+}
+
 /// The value of attribute `name` in the first element `tag` of xml; fails the test when absent.
-std::string attribute(const std::string& xml, const std::string& tag, const std::string& name) {
-    const std::regex re("<" + tag + "\\b[^>]*\\b" + name + "=\"([^\"]*)\"");
-    std::smatch m;
-    if (!std::regex_search(xml, m, re)) {
+std::string attribute(const std::string& xml, const std::string& tag, const std::string& name,
+                      std::size_t from = 0) {
+    const std::string e = element(xml, tag, from);
+    const std::size_t at = e.find(" " + name + "=\"");
+    if (at == std::string::npos) {
         ADD_FAILURE() << "no " << tag << " with " << name;
         return {};
     }
-    return m[1];
+    const std::size_t begin = at + name.size() + 3;
+    return e.substr(begin, e.find('"', begin) - begin);
 }
 
 /// The values of the DataArray named `name` inside the element `section` (Points, Lines,
 /// PointData, CellData, FieldData), parsed as doubles by the C library, as a VTK reader does.
 std::vector<double> data_array(const std::string& xml, const std::string& section,
                                const std::string& name) {
-    const std::regex re("<" + section + "\\b[^>]*>[\\s\\S]*?<DataArray[^>]*Name=\"" + name +
-                        "\"[^>]*>([^<]*)</DataArray>");
-    std::smatch m;
-    if (!std::regex_search(xml, m, re)) {
+    const std::size_t open = xml.find("<" + section);
+    const std::size_t close = xml.find("</" + section + ">");
+    const std::size_t at = xml.find("<DataArray type=", open);
+    std::size_t array = at;
+    while (array < close && attribute(xml, "DataArray", "Name", array) != name)
+        array = xml.find("<DataArray type=", array + 1);
+    if (open == std::string::npos || array >= close) {
         ADD_FAILURE() << "no DataArray " << name << " in " << section;
         return {};
     }
+    const std::size_t begin = xml.find('>', array) + 1;
     std::vector<double> values;
-    std::istringstream in(m[1].str());
+    std::istringstream in(xml.substr(begin, xml.find("</DataArray>", begin) - begin));
     std::string word;
     while (in >> word) values.push_back(std::strtod(word.c_str(), nullptr));
     return values;
@@ -187,14 +199,15 @@ TEST(VtkSeries, WritesFramesAndACollectionOfThem) {
 
     const std::string pvd = slurp(dir.path() / "run.pvd");
     EXPECT_EQ(attribute(pvd, "VTKFile", "type"), "Collection");
-    const std::regex dataset("<DataSet timestep=\"([^\"]*)\"[^>]*file=\"([^\"]*)\"");
     std::size_t f = 0;
-    for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), dataset);
-         it != std::sregex_iterator(); ++it, ++f) {
+    for (std::size_t at = pvd.find("<DataSet "); at != std::string::npos;
+         at = pvd.find("<DataSet ", at + 1), ++f) {
         ASSERT_LT(f, times.size());
-        EXPECT_TRUE(same_bits(std::strtod((*it)[1].str().c_str(), nullptr), times[f]));
-        EXPECT_EQ((*it)[2].str(), fmt::format("run/frame_{:04d}.vtp", f));
-        const fs::path frame = dir.path() / (*it)[2].str();
+        const std::string time = attribute(pvd, "DataSet", "timestep", at);
+        const std::string file = attribute(pvd, "DataSet", "file", at);
+        EXPECT_TRUE(same_bits(std::strtod(time.c_str(), nullptr), times[f]));
+        EXPECT_EQ(file, fmt::format("run/frame_{:04d}.vtp", f));
+        const fs::path frame = dir.path() / file;
         ASSERT_TRUE(fs::exists(frame)) << frame;
         expect_describes(slurp(frame), shapes[f], times[f]);
     }
