@@ -98,7 +98,9 @@ void run_render(const RenderOptions& o) {
 void add_render_command(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
     auto* cmd = app.add_subcommand(
-        "render", "Draws interface files as SVG or PNG (by the extension of --out)");
+        "render",
+        "Draws interface files as SVG or PNG (by the extension of --out), or the frames of a run "
+        "as an animated SVG (--frames)");
     auto* files = cmd->add_option("files", o->files, "Interface files (JSON)");
     cmd->add_option("--frames", o->frames,
                     "Instead of files: the frames of a run (DIR/frames/frame_*.json, from slc run "
