@@ -22,6 +22,7 @@
 #include "slc/geometry_modules/intrinsic.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
+#include "slc/io/vtk.hpp"
 #include "slc/velocity/factory.hpp"
 #include "slc/velocity/laws.hpp"
 #include "slc/velocity/velocity.hpp"

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <csignal>
 #include <filesystem>
+#include <optional>
 
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
@@ -15,6 +16,7 @@
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
+#include "slc/io/vtk.hpp"
 
 namespace slc::cli {
 namespace {
@@ -32,6 +34,7 @@ struct RunCommand {
     std::vector<std::string> params;
     std::string geometry;
     int frames = 0;
+    bool vtk = false;
     bool quiet = false;
     std::string out;
 };
@@ -106,6 +109,12 @@ void run_command(const RunCommand& o) {
         frames.emplace_back(t, curves);
     };
     if (o.frames > 0) keep_frame(0, options.t_start, initial);
+    // --vtk: DIR/frames.pvd over DIR/frames/frame_NNNN.vtp — the initial interface, the frames
+    // and the final one.
+    std::optional<VtkSeries> vtk;
+    int vtk_step = 0;
+    if (o.vtk) vtk.emplace(dir / "frames.pvd");
+    if (vtk) vtk->add(options.t_start, initial);
     const bool progress = !o.quiet && isatty(STDERR_FILENO);
     stop_requested = false;
     std::signal(SIGINT, request_stop);
@@ -113,6 +122,8 @@ void run_command(const RunCommand& o) {
     const RunResult r = run(initial, *law, p.domain, options, [&](const StepReport& s) {
         if (o.frames > 0 && (s.step * o.frames) % s.steps < o.frames) {
             keep_frame(static_cast<int>(frames.size()), s.t, *s.curves);
+            if (vtk) vtk->add(s.t, *s.curves);
+            vtk_step = s.step;
         }
         if (progress && s.wall_s > 2.0) {
             const double left = s.wall_s * (s.steps - s.step) / s.step;
@@ -126,6 +137,7 @@ void run_command(const RunCommand& o) {
     if (progress) fmt::print(stderr, "\n");
 
     write_file_atomic(dir / "final.json", interface_json(r.curves, r.t));
+    if (vtk && vtk_step != r.steps_done) vtk->add(r.t, r.curves);
     draw(dir, p, initial, r, frames);
     nlohmann::json summary = run_summary(p, options, r, law->name());
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
@@ -165,6 +177,9 @@ void add_run_command(CLI::App& app) {
            "--frames", o->frames,
            "Write this many frames (plus the initial one) to DIR/frames/ and draw them overlaid")
         ->check(CLI::Range(0, 100000));
+    cmd->add_flag("--vtk", o->vtk,
+                  "Also write the initial interface, the frames and the final one as VTK PolyData "
+                  "(DIR/frames/*.vtp) and DIR/frames.pvd, a time series ParaView opens");
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
                     "Output folder: summary.json, final.json, final.svg/.png, frames")

@@ -1,0 +1,148 @@
+// VTK XML PolyData (.vtp) and ParaView collections (.pvd), written as ASCII text by hand: the
+// format is a handful of XML elements (VTK File Formats, "XML File Formats", PolyData and
+// Collection), so a writer of its own spares the project the VTK library.
+#include "slc/io/vtk.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <vector>
+
+#include "slc/core/error.hpp"
+#include "slc/io/interface_json.hpp"
+
+namespace slc {
+namespace {
+
+void check_time(double time) {
+    if (!std::isfinite(time))
+        throw InvalidInput(fmt::format("VTK frame time must be finite, got {}", time));
+}
+
+/// A DataArray element holding values, `components` to a tuple and a line. fmt's "{}" of a double
+/// is the shortest text that reads back to the same double. VTK's reader needs NumberOfTuples in
+/// field data, where no point or cell count implies it.
+template <class T>
+void append_array(std::string& out, const char* type, const char* name, int components,
+                  const std::vector<T>& values) {
+    const auto per_line = static_cast<std::size_t>(components == 1 ? 8 : components);
+    fmt::format_to(std::back_inserter(out),
+                   "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" "
+                   "NumberOfTuples=\"{}\" format=\"ascii\">",
+                   type, name, components, values.size() / components);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        out += i % per_line == 0 ? "\n          " : " ";
+        fmt::format_to(std::back_inserter(out), "{}", values[i]);
+    }
+    out += "\n        </DataArray>\n";
+}
+
+/// Points at z = 0, in the interface's order.
+void append_points(std::string& out, const Interface& curves) {
+    std::vector<double> xyz;
+    xyz.reserve(3 * curves.size());
+    for (const Vec2 p : curves.points()) xyz.insert(xyz.end(), {p.x, p.y, 0.0});
+    out += "      <Points>\n";
+    append_array(out, "Float64", "Points", 3, xyz);
+    out += "      </Points>\n";
+}
+
+/// One closed polyline per curve: its vertices in order, then its first vertex again.
+void append_lines(std::string& out, const Interface& curves) {
+    std::vector<std::int64_t> connectivity;
+    std::vector<std::int64_t> offsets;
+    connectivity.reserve(curves.size() + curves.curve_count());
+    for (std::size_t k = 0; k < curves.curve_count(); ++k) {
+        const std::size_t first = curves.offsets()[k];
+        for (std::size_t i = first; i < curves.offsets()[k + 1]; ++i)
+            connectivity.push_back(static_cast<std::int64_t>(i));
+        connectivity.push_back(static_cast<std::int64_t>(first));
+        offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+    }
+    out += "      <Lines>\n";
+    append_array(out, "Int64", "connectivity", 1, connectivity);
+    append_array(out, "Int64", "offsets", 1, offsets);
+    out += "      </Lines>\n";
+}
+
+/// Point data "curve"; cell data "curve", "signed_area" and "length".
+void append_data(std::string& out, const Interface& curves) {
+    const std::size_t c = curves.curve_count();
+    std::vector<std::int32_t> point_curve(curves.size());
+    for (std::size_t i = 0; i < curves.size(); ++i)
+        point_curve[i] = static_cast<std::int32_t>(curves.curve_of(i));
+    std::vector<std::int32_t> cell_curve(c);
+    std::vector<double> areas(c);
+    std::vector<double> lengths(c, 0.0);
+    for (std::size_t k = 0; k < c; ++k) {
+        cell_curve[k] = static_cast<std::int32_t>(k);
+        areas[k] = signed_area(curves.curve(k));
+        for (std::size_t i = curves.offsets()[k]; i < curves.offsets()[k + 1]; ++i)
+            lengths[k] += distance(curves.point(i), curves.point(curves.next(i)));
+    }
+    out += "      <PointData Scalars=\"curve\">\n";
+    append_array(out, "Int32", "curve", 1, point_curve);
+    out += "      </PointData>\n      <CellData Scalars=\"curve\">\n";
+    append_array(out, "Int32", "curve", 1, cell_curve);
+    append_array(out, "Float64", "signed_area", 1, areas);
+    append_array(out, "Float64", "length", 1, lengths);
+    out += "      </CellData>\n";
+}
+
+}  // namespace
+
+std::string vtp_text(const Interface& curves, double time) {
+    check_time(time);
+    std::string out;
+    out.reserve(70 * curves.size() + 200 * curves.curve_count() + 1200);
+    out += "<?xml version=\"1.0\"?>\n";
+    out += "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
+    out += "  <PolyData>\n    <FieldData>\n";
+    append_array(out, "Float64", "TimeValue", 1, std::vector<double>{time});
+    out += "    </FieldData>\n";
+    fmt::format_to(std::back_inserter(out),
+                   "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
+                   "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
+                   curves.size(), curves.curve_count());
+    append_points(out, curves);
+    append_lines(out, curves);
+    append_data(out, curves);
+    out += "    </Piece>\n  </PolyData>\n</VTKFile>\n";
+    return out;
+}
+
+std::string pvd_text(std::span<const VtkFrame> frames) {
+    std::string out;
+    out += "<?xml version=\"1.0\"?>\n";
+    out += "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
+    out += "  <Collection>\n";
+    for (const VtkFrame& f : frames) {
+        check_time(f.time);
+        if (f.file.find_first_of("<>&\"") != std::string::npos)
+            throw InvalidInput(
+                fmt::format("VTK frame file name must not hold <, >, & or \", got {}", f.file));
+        fmt::format_to(std::back_inserter(out),
+                       "    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", f.time,
+                       f.file);
+    }
+    out += "  </Collection>\n</VTKFile>\n";
+    return out;
+}
+
+VtkSeries::VtkSeries(std::filesystem::path pvd) : pvd_(std::move(pvd)) {
+    if (!pvd_.has_filename() || !pvd_.has_stem())
+        throw InvalidInput(
+            fmt::format("VTK collection needs a file name, got '{}'", pvd_.string()));
+}
+
+void VtkSeries::add(double time, const Interface& curves) {
+    const std::string name =
+        fmt::format("{}/frame_{:04d}.vtp", pvd_.stem().string(), frames_.size());
+    write_file_atomic(pvd_.parent_path() / name, vtp_text(curves, time));
+    frames_.push_back({time, name});
+    write_file_atomic(pvd_, pvd_text(frames_));
+}
+
+}  // namespace slc
