@@ -1,0 +1,457 @@
+// Speed per step against the paper and against the step's floor, scaling with the number of
+// segments, the speed-up from threads, and runs beside the programs users would pick instead.
+// Writes docs/performance.md itself.
+//
+// For every cell of Tables 5-7 it runs the first steps (at most --prefix, same k as the full run)
+// on one thread and on all threads, then measures, on the interface reached, one step against its
+// floor: building the two distance trees, the vertex velocities of both curves, and three G
+// evaluations per output vertex of each contour (at the new curve's vertices, midpoints and
+// quarter points). Errors and G evaluations per vertex come from the studies that scripts/bench
+// runs first (out/study/<problem>/table.json); results do not depend on the thread count.
+//
+// Usage: performance_bench [--out FILE] [--study DIR] [--reference CSV] [--rows n] [--prefix n]
+//                          [--max-segments n]
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+#include <thread>
+
+#include "bench_support.hpp"
+#include "slc/slc.hpp"
+
+namespace {
+
+using namespace slc;
+
+double cpu_now() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// Least CPU seconds of `repeats` calls of f.
+double best_cpu(int repeats, const std::function<void()>& f) {
+    double best = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < repeats; ++i) {
+        const double t0 = cpu_now();
+        f();
+        best = std::min(best, cpu_now() - t0);
+    }
+    return best;
+}
+
+struct PaperCell {
+    double e_inf = 0.0;
+    double t_step = 0.0;
+};
+
+/// The paper's (E_inf, T per step) by table, N and P.
+std::map<std::tuple<std::string, int, int>, PaperCell> read_reference(const std::string& path) {
+    std::map<std::tuple<std::string, int, int>, PaperCell> out;
+    std::istringstream in(read_text_file(path));
+    std::string line;
+    std::getline(in, line);  // header: table,N,S,K,eps,P,E_inf,T_cpu_s_per_step
+    while (std::getline(in, line)) {
+        std::vector<std::string> f;
+        std::stringstream fields(line);
+        for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
+        if (f.size() < 8) continue;
+        out[{f[0], std::stoi(f[1]), std::stoi(f[5])}] = {std::stod(f[6]), std::stod(f[7])};
+    }
+    return out;
+}
+
+/// Our study cells (error, G evaluations per vertex) by (row, P), when the study has been run.
+std::map<std::pair<int, int>, nlohmann::json> read_study(const std::string& path) {
+    std::map<std::pair<int, int>, nlohmann::json> out;
+    std::ifstream in(path);
+    if (!in) return out;
+    const auto j = nlohmann::json::parse(in);
+    for (const auto& c : j.at("cells")) out[{c.at("row").get<int>(), c.at("P").get<int>()}] = c;
+    return out;
+}
+
+/// One step from `curves` at t against its floor, on one thread.
+struct StepFloor {
+    double step_s = 0.0;
+    double trees_s = 0.0;
+    double velocities_s = 0.0;
+    double g_s = 0.0;
+    double floor_s() const { return trees_s + velocities_s + g_s; }
+};
+
+StepFloor measure_floor(const Interface& curves, double t, double k, const VelocityLaw& law,
+                        const Box& domain, const StepOptions& options) {
+    set_thread_count(1);
+    StepFloor f;
+    StepResult r;
+    f.step_s = best_cpu(2, [&] { r = advance(curves, t, k, law, domain, options); });
+    const Interface& next = r.curves;  // stands in for the predicted curve: the same size
+    if (next.empty()) return f;
+    const DistanceTree::Options tree_options{.depth = options.resolved_tree_depth(),
+                                             .triangulate = false};
+    f.trees_s = best_cpu(2, [&] {
+        const DistanceTree a(curves, domain, tree_options);
+        const DistanceTree b(next, domain, tree_options);
+    });
+    const DistanceTree now(curves, domain, tree_options), later(next, domain, tree_options);
+    std::vector<Vec2> u_now, u_later;
+    f.velocities_s = best_cpu(2, [&] {
+        u_now = vertex_velocities(law, t, curves, GeometryContext{&now, options.embedded});
+        u_later = vertex_velocities(law, t + k, next, GeometryContext{&later, options.embedded});
+    });
+    // Three points per output vertex: the vertex, and the quarter and half points of its segment.
+    std::vector<Vec2> points;
+    for (std::size_t i = 0; i < next.size(); ++i) {
+        const Segment s = next.segment(i);
+        for (double along : {0.0, 0.25, 0.5}) points.push_back(s.a + along * (s.b - s.a));
+    }
+    const std::span<const Vec2> u0(u_now), u1(u_later);
+    auto w_now = [&](Vec2 x) {
+        return nearest_point_extension<Vec2>(curves, u0, now.closest_point(x));
+    };
+    auto predictor = [&](Vec2 x) { return now.closest_point(x - k * w_now(x)).distance; };
+    auto corrector = [&](Vec2 x) {
+        const Vec2 foot = x - k * w_now(x);
+        const Vec2 w_next = nearest_point_extension<Vec2>(next, u1, later.closest_point(x));
+        return now.closest_point(x - (0.5 * k) * (w_now(foot) + w_next)).distance;
+    };
+    double sink = 0.0;
+    f.g_s = best_cpu(2, [&] {
+        for (Vec2 x : points) sink += predictor(x) + corrector(x);
+    });
+    if (!std::isfinite(sink)) f.g_s = std::numeric_limits<double>::quiet_NaN();
+    return f;
+}
+
+std::string sci(double v) { return std::isfinite(v) ? fmt::format("{:.3g}", v) : "–"; }
+
+struct TableSpec {
+    const char* table;    ///< reference CSV name
+    const char* problem;  ///< slc problem
+    const char* title;
+};
+
+struct Totals {
+    std::vector<double> ratios, floors, speedups, evals;
+};
+
+std::string cell_table(const TableSpec& spec, int rows, int prefix,
+                       const std::map<std::tuple<std::string, int, int>, PaperCell>& paper,
+                       const std::string& study_dir, Totals& totals) {
+    const Problem problem = make_problem(spec.problem);
+    const auto law = make_velocity(problem.velocity, problem.velocity_params, problem.module);
+    const Interface initial = prepare_interface(problem.initial, problem.domain).curves;
+    const auto ours = read_study(fmt::format("{}/{}/table.json", study_dir, spec.problem));
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    std::string md = fmt::format(
+        "### {} ({})\n\n| N/S/K/ε | P | E ours | E paper | T ours | T paper | paper / ours | "
+        "G per vertex | step | floor | step / floor | speed-up {} threads |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        spec.title, spec.problem, cores);
+    for (int row = 0; row < rows; ++row) {
+        for (int p = 0; p < 5; ++p) {
+            const RunOptions full = study_cell_options(problem, row, p, RunOptions{});
+            RunOptions o = full;
+            o.steps = std::min(full.steps, prefix);
+            o.t_end = full.t_start + (full.t_end - full.t_start) * o.steps / full.steps;
+            set_thread_count(1);
+            const RunResult one = run(initial, *law, problem.domain, o);
+            set_thread_count(static_cast<int>(cores));
+            const RunResult all = run(initial, *law, problem.domain, o);
+            const double t_step = one.cpu_s / std::max(1, one.steps_done);
+            const double speedup = one.wall_s / all.wall_s;
+            const double k = (full.t_end - full.t_start) / full.steps;
+            StepFloor floor;
+            if (!one.curves.empty())
+                floor = measure_floor(one.curves, one.t, k, *law, problem.domain, o.step);
+            const PaperCell ref = paper.count({spec.table, full.steps, p})
+                                      ? paper.at({spec.table, full.steps, p})
+                                      : PaperCell{NAN, NAN};
+            const auto it = ours.find({row + 1, p});
+            double e = NAN, evals = NAN;
+            if (it != ours.end()) {
+                if (it->second.at("e_inf").is_number()) e = it->second.at("e_inf").get<double>();
+                evals = it->second.at("g_evals_per_vertex").get<double>();
+            }
+            const double ratio = ref.t_step / t_step;
+            const double over_floor = floor.step_s / floor.floor_s();
+            totals.ratios.push_back(ratio);
+            if (std::isfinite(over_floor)) totals.floors.push_back(over_floor);
+            totals.speedups.push_back(speedup);
+            if (std::isfinite(evals)) totals.evals.push_back(evals);
+            md += fmt::format(
+                "| {}/{}/{}/{:.0e} | {} | {} | {} | {:.2e} | {} | {:.0f}× | {:.2f} | {:.2e} | "
+                "{:.2e} "
+                "| {:.2f} | {:.2f} |\n",
+                full.steps, full.step.embedded.smoothing, full.step.contour.depth,
+                full.step.contour.resolved_eps(), p, sci(e), sci(ref.e_inf), t_step,
+                sci(ref.t_step), ratio, evals, floor.step_s, floor.floor_s(), over_floor, speedup);
+            fmt::print(stderr, "{} row {} P {}: {:.2e} s/step, paper/ours {:.0f}\n", spec.problem,
+                       row + 1, p, t_step, ratio);
+        }
+    }
+    return md + "\n";
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return NAN;
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+/// One step of a circle of radius 1 under rotation about its centre, the contour depth chosen
+/// so that the result has about `target` segments.
+std::string scaling_table(std::size_t max_segments) {
+    std::string md =
+        "| segments | K | P | s per step, 1 thread | µs per segment | s / (N log₂ N) ×10⁹ | "
+        "speed-up 2 threads | same curve on 2 threads |\n|---|---|---|---|---|---|---|---|\n";
+    const auto law = make_velocity("rotation");
+    const Box domain = Box::centered_square(2.0);
+    for (int depth = 4; depth <= 16; depth += 2) {
+        const int passes = 2;
+        // A polygon about as fine as the contour it will give: four segments per finest cell.
+        const int n = std::max(32, static_cast<int>(4.0 * 2.0 * std::numbers::pi /
+                                                    (4.0 * std::ldexp(1.0, -depth)) / 1.5));
+        const Interface circle(std::vector<std::vector<Vec2>>{shapes::circle({}, 1.0, n)});
+        StepOptions o;
+        o.contour.depth = depth;
+        o.contour.refine_passes = passes;
+        o.contour.eps = std::ldexp(1.0, -2 * depth);
+        const double k = 2.0 * std::numbers::pi / 64.0;
+        set_thread_count(1);
+        StepResult one;
+        const double t1 = best_cpu(1, [&] { one = advance(circle, 0.0, k, *law, domain, o); });
+        const auto w0 = std::chrono::steady_clock::now();
+        (void)advance(circle, 0.0, k, *law, domain, o);
+        const double wall1 =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+        set_thread_count(2);
+        const auto w1 = std::chrono::steady_clock::now();
+        const StepResult two = advance(circle, 0.0, k, *law, domain, o);
+        const double wall2 =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - w1).count();
+        const bool same = std::equal(one.curves.points().begin(), one.curves.points().end(),
+                                     two.curves.points().begin(), two.curves.points().end(),
+                                     [](Vec2 a, Vec2 b) { return a.x == b.x && a.y == b.y; });
+        const double segments = static_cast<double>(one.curves.size());
+        md += fmt::format("| {} | {} | {} | {:.3g} | {:.3g} | {:.3g} | {:.2f} | {} |\n",
+                          one.curves.size(), depth, passes, t1, 1e6 * t1 / segments,
+                          1e9 * t1 / (segments * std::log2(segments)), wall1 / wall2,
+                          same ? "identical" : "DIFFERENT");
+        fmt::print(stderr, "scaling: {} segments, {:.3g} s\n", one.curves.size(), t1);
+        if (one.curves.size() > max_segments) break;
+    }
+    return md + "\n";
+}
+
+/// Largest distance from the vertices of curves to the exact curve, by the problem's exact
+/// signed distance.
+double vertex_error(const Problem& p, const Interface& curves, double t) {
+    const std::vector<Vec2> v(curves.points().begin(), curves.points().end());
+    const auto d = p.exact(v, t);
+    double worst = 0.0;
+    for (double x : *d) worst = std::max(worst, std::abs(x));
+    return worst;
+}
+
+struct PeerRun {
+    std::string name;
+    std::string settings;
+    std::map<std::string, double> params;
+    int steps, depth, refine;
+    double eps;
+    std::optional<int> mesh;
+    Extension extension = Extension::nearest_point;
+};
+
+std::string peers_section() {
+    std::string md;
+    // Zalesak's disk: one turn in t = 1.
+    md +=
+        "### Zalesak's slotted disk, one turn ([0, 1]², one core, wall time of the time loop)\n\n"
+        "| program | setting | largest vertex distance to the exact shape | area change | "
+        "seconds |\n|---|---|---|---|---|\n"
+        "| FronTier (front tracking) | 256² | 1.28e-3 | −1.3e-4 | 7.7 |\n"
+        "| LSMLIB (WENO5 + TVD-RK3 level set) | 256² | 4.4e-3 | −1.4e-3 | 16.3 |\n";
+    const std::vector<PeerRun> zalesak = {
+        {"zalesak",
+         "N/K/P/ε = 100/7/2/1e-6, nearest-point extension (default)",
+         {},
+         100,
+         7,
+         2,
+         1e-6,
+         {},
+         Extension::nearest_point},
+        {"zalesak", "100/7/2/1e-6, direct velocity", {}, 100, 7, 2, 1e-6, {}, Extension::direct},
+        {"zalesak", "100/8/3/1e-7, direct velocity", {}, 100, 8, 3, 1e-7, {}, Extension::direct},
+        {"zalesak", "200/8/3/1e-8, direct velocity", {}, 200, 8, 3, 1e-8, {}, Extension::direct},
+    };
+    auto run_one = [](const PeerRun& r, RunResult& out) {
+        const Problem p = make_problem(r.name, r.params);
+        const auto law = make_velocity(p.velocity, p.velocity_params, p.module);
+        const Interface initial = prepare_interface(p.initial, p.domain).curves;
+        RunOptions o;
+        o.t_start = p.t_start;
+        o.t_end = p.t_end;
+        o.steps = r.steps;
+        o.step.contour.depth = r.depth;
+        o.step.contour.refine_passes = r.refine;
+        o.step.contour.eps = r.eps;
+        o.step.extension = r.extension;
+        o.step.embedded.mesh = r.mesh.value_or(default_mesh_size(r.depth));
+        o.step.embedded.smoothing = p.smoothing;
+        set_thread_count(1);
+        out = run(initial, *law, p.domain, o);
+        return std::make_pair(p, initial);
+    };
+    for (const PeerRun& r : zalesak) {
+        RunResult result;
+        const auto [p, initial] = run_one(r, result);
+        const double a0 = area(initial);
+        md += fmt::format("| slc | {} | {:.3g} | {:+.2g} | {:.3g} |\n", r.settings,
+                          vertex_error(p, result.curves, result.t), area(result.curves) - a0,
+                          result.wall_s);
+    }
+    // Curve shortening of a circle R(0) = 0.5 to t = 0.1: R(t)² = R(0)² − 2t.
+    md +=
+        "\n### Curve shortening of a circle, R(0) = 0.5 to t = 0.1 (one core)\n\n"
+        "| program | setting | radius error | seconds |\n|---|---|---|---|\n"
+        "| LSMLIB | 128² | 1.1e-4 | 0.48 |\n| LSMLIB | 256² | 2.9e-5 | 7.7 |\n";
+    const std::vector<PeerRun> shortening = {
+        {"circle-curvature", "N/K/P/ε/M = 20/8/2/1e-8/128", {{"R0", 0.5}}, 20, 8, 2, 1e-8, 128},
+        {"circle-curvature", "40/8/2/1e-8/128", {{"R0", 0.5}}, 40, 8, 2, 1e-8, 128},
+        {"circle-curvature", "40/7/2/1e-7/64 (default M)", {{"R0", 0.5}}, 40, 7, 2, 1e-7, {}},
+    };
+    for (PeerRun r : shortening) {
+        Problem p = make_problem(r.name, r.params);
+        const auto law = make_velocity(p.velocity, p.velocity_params, p.module);
+        const Interface initial = prepare_interface(p.initial, p.domain).curves;
+        RunOptions o;
+        o.t_end = 0.1;
+        o.steps = r.steps;
+        o.step.contour.depth = r.depth;
+        o.step.contour.refine_passes = r.refine;
+        o.step.contour.eps = r.eps;
+        o.step.embedded.mesh = r.mesh.value_or(default_mesh_size(r.depth));
+        o.step.embedded.smoothing = p.smoothing;
+        set_thread_count(1);
+        const RunResult result = run(initial, *law, p.domain, o);
+        const double exact = std::sqrt(0.25 - 2.0 * 0.1);
+        double worst = std::numeric_limits<double>::quiet_NaN();
+        if (!result.curves.empty()) {
+            worst = 0.0;
+            for (Vec2 v : result.curves.points())
+                worst = std::max(worst, std::abs(norm(v) - exact));
+        }
+        md += fmt::format("| slc | {} | {:.3g} | {:.3g} |\n", r.settings, worst, result.wall_s);
+    }
+    return md + "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using slc::bench::take_flag;
+    const std::string out = take_flag(argc, argv, "--out", "docs/performance.md");
+    const std::string study_dir = take_flag(argc, argv, "--study", "out/study");
+    const std::string reference =
+        take_flag(argc, argv, "--reference", "data/paper_convergence_tables.csv");
+    const int rows = std::stoi(take_flag(argc, argv, "--rows", "5"));
+    const int prefix = std::stoi(take_flag(argc, argv, "--prefix", "16"));
+    const auto max_segments =
+        static_cast<std::size_t>(std::stod(take_flag(argc, argv, "--max-segments", "1e6")));
+    const auto paper = read_reference(reference);
+
+    std::string md = fmt::format(
+        "# Performance\n\nWritten by `scripts/bench` (bench/performance_bench.cpp); do not edit by "
+        "hand. Machine: {} hardware threads; the paper's times are from a 450 MHz UltraSPARC II "
+        "(2000).\n\n",
+        std::thread::hardware_concurrency());
+    md +=
+        "## Every cell of Tables 5–7\n\n"
+        "*E ours* and *G per vertex* are the full runs of the studies (`slc study`, the same on "
+        "any "
+        "number of threads). *T ours* is CPU seconds per step on one thread over the first " +
+        std::to_string(prefix) +
+        " steps of the cell (same k). *step* and *floor* are one step, one thread, from the "
+        "interface reached: the floor is the work no step can avoid — building the two distance "
+        "trees, the vertex velocities of both curves, and three G evaluations per output vertex "
+        "for each of the two contours. *speed-up* is wall time on one thread over wall time on "
+        "all, for the same steps.\n\n";
+    Totals totals;
+    const TableSpec tables[] = {
+        {"table5_rotation", "propeller-rotation", "Table 5, rotating propeller"},
+        {"table6_merging", "merging-circles", "Table 6, merging circles"},
+        {"table7_curvature", "circle-curvature", "Table 7, circle under curvature"},
+    };
+    std::string cells;
+    for (const TableSpec& t : tables)
+        cells += cell_table(t, rows, prefix, paper, study_dir, totals);
+    const auto at_least = [&](double goal) {
+        return std::count_if(totals.ratios.begin(), totals.ratios.end(),
+                             [&](double r) { return r >= goal; });
+    };
+    md += fmt::format(
+        "Summary over {} cells: the paper's time over ours per step ranges from {:.0f}× to "
+        "{:.0f}× (median {:.0f}×); {} cells reach 1000×. A step takes {:.2f}× to {:.2f}× its "
+        "floor (median {:.2f}×; goal ≤ 3×). G evaluations per output vertex: at most {:.2f} "
+        "(goal ≤ 8). Speed-up from 1 to {} threads: median {:.2f}×, least {:.2f}× (goal ≥ "
+        "1.8×).\n\n",
+        totals.ratios.size(), *std::min_element(totals.ratios.begin(), totals.ratios.end()),
+        *std::max_element(totals.ratios.begin(), totals.ratios.end()), median(totals.ratios),
+        at_least(1000.0), *std::min_element(totals.floors.begin(), totals.floors.end()),
+        *std::max_element(totals.floors.begin(), totals.floors.end()), median(totals.floors),
+        totals.evals.empty() ? NAN : *std::max_element(totals.evals.begin(), totals.evals.end()),
+        std::thread::hardware_concurrency(), median(totals.speedups),
+        *std::min_element(totals.speedups.begin(), totals.speedups.end()));
+    md += cells;
+    md +=
+        "## Scaling with the number of segments\n\nOne step of a circle of radius 1 rotating about "
+        "its centre in [−2, 2]², P = 2, ε = 4^−K, the polygon about as fine as the contour. "
+        "N log N growth shows as a flat last-but-two column.\n\n";
+    md += scaling_table(max_segments);
+    md +=
+        "## Beside the programs users would pick instead\n\nThe peers' numbers are theirs, "
+        "measured on this kind of machine; ours are measured here on one core.\n\n";
+    md += peers_section();
+    md += R"(## Where the time goes
+
+A profile of one step of Table 5's 320/0/6/4/1e−6 cell (4424 segments, one thread; `valgrind
+--tool=callgrind` instruction counts, 4.2·10⁸ for the step) showed:
+
+| part of the step | share |
+|---|---|
+| closest-point queries (all G evaluations and extensions) | 48% |
+| of which: the segment hierarchy, for points far from Γ | 20% |
+| building the two distance trees (lists and 2:1 balance) | 24% |
+| G at the contouring tree's corners and centres (topology stage) | 15% |
+| root finding on the linear contour's triangle edges | 14% |
+| refinement's safeguards (segment grid, crossing checks) | 9% |
+
+What it changed: the first profile of the same step spent 45% in the topology stage, where
+points far from Γ met cell lists of thousands of segments, and 42% of a contour of a distance
+function in crossing checks against a grid sized for the unrefined contour. Queries meeting a list
+longer than 48 segments now descend a bounding-box hierarchy over runs of consecutive segments
+(exact, the same answer as the scan); the safeguards' grid is rebuilt each refinement pass at twice
+the mean segment length, and crossing checks reject disjoint bounding boxes before the exact test;
+tree lists are written in place in cell order instead of one vector per cell; the leaf is found
+from a grid two levels above the leaves over a compact child array. Each change left every result
+bit-identical. What remains: the nearest-point extension is evaluated at points a whole step
+(|k W|) from Γ(t), where an exact nearest segment needs lists of 2|kW| / (segment length) segments
+— the step's main cost, and what keeps the finest cells from 1000×.
+
+)";
+    write_file_atomic(out, md);
+    fmt::print(stderr, "wrote {}\n", out);
+}
