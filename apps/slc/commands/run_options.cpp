@@ -1,6 +1,8 @@
 // Method options of slc run and slc study, and the summary of a run.
 #include "commands/run_options.hpp"
 
+#include "commands/common.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -26,25 +28,25 @@ std::string extension_name(Extension e) {
 
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
     cmd.add_option("-N,--steps", o.steps, "N: time steps on [0, a] (problem's default)")
-        ->check(CLI::Range(1, 100000000));
+        ->check(integer_in(1, 100000000));
     cmd.add_option("-K,--depth", o.depth, "K: depth of the contouring tree (problem's default)")
-        ->check(CLI::Range(1, 24));
+        ->check(integer_in(1, 24));
     cmd.add_option("-P,--refine", o.refine, "P: passes of adaptive refinement (problem's default)")
-        ->check(CLI::Range(0, 64));
+        ->check(integer_in(0, 64));
     cmd.add_option("--eps", o.eps, "epsilon: midpoint tolerance of refinement (default 10^-K)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_number());
     cmd.add_option("--eta", o.eta, "eta: root-finding tolerance (default 1e-10)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_number());
     cmd.add_option("--rho", o.rho, "rho: pruning ratio in [0, 1) (default 0.1)")
-        ->check(CLI::Range(0.0, 0.999999));
+        ->check(fraction_below_one());
     cmd.add_option("--mesh", o.mesh, "M: embedded mesh points per side (default 2^(K+1))")
-        ->check(CLI::Range(8, 1 << 22));
+        ->check(integer_in(8, 1 << 22));
     cmd.add_option("--eno-order", o.eno_order, "E: ENO order of the embedded module (default 3)")
-        ->check(CLI::Range(1, 5));
+        ->check(integer_in(1, 5));
     cmd.add_option("-S,--smooth", o.smooth, "S: cosine smoothing passes (problem's default)")
-        ->check(CLI::Range(0, 64));
+        ->check(integer_in(0, 64));
     cmd.add_option("-L,--tree-depth", o.tree_depth, "L: distance tree depth (default K + P)")
-        ->check(CLI::Range(1, 30));
+        ->check(integer_in(1, 30));
     cmd.add_option("--extension", o.extension,
                    "Velocity extension off the curve: nearest (default), whitney, or direct (flow "
                    "fields only)")
