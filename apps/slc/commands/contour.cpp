@@ -195,14 +195,14 @@ void add_contour_command(CLI::App& app) {
     cmd->add_option("--initial", o->initial, "Interface file (JSON)")->required();
     cmd->add_option("-K,--depth", o->depth, "Depth K of the contouring tree")
         ->required()
-        ->check(CLI::Range(0, 20));
+        ->check(integer_in(0, 20));
     cmd->add_option("--eps", o->eps, "Midpoint tolerance eps of refinement (default 10^-K)")
         ->check(positive_number());
     cmd->add_option("--refine", o->refine,
                     "Passes P of adaptive refinement (default 0: linear contour); refinement stops "
                     "early when no midpoint exceeds eps or a pass changes nothing, so a large P "
                     "means 'until converged'")
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_in(0, 1000000));
     cmd->add_option("--eta", o->eta,
                     "Root-finding tolerance eta: |G| <= eta at every vertex (default 1e-10)")
         ->check(positive_number());
@@ -212,10 +212,10 @@ void add_contour_command(CLI::App& app) {
     cmd->add_option("-L,--tree-depth", o->tree_depth,
                     "Depth L of the distance tree that evaluates F (default: cells about one mean "
                     "segment wide; it sets the speed, not the error)")
-        ->check(CLI::Range(0, 30));
+        ->check(integer_in(0, 30));
     cmd->add_option("--out", o->out, "Output folder")->required();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_in(0, 1024));
     cmd->callback([o] { run_contour(*o); });
 }
 

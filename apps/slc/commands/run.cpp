@@ -187,7 +187,7 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
     cmd->add_option(
            "--frames", o->frames,
            "Write this many frames (plus the initial one) to DIR/frames/ and draw them overlaid")
-        ->check(CLI::Range(0, 100000));
+        ->check(integer_in(0, 100000));
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
                     "Output folder: summary.json, final.json, final.svg/.png, frames");

@@ -4,6 +4,7 @@
 #include "commands/common.hpp"
 
 #include <fmt/format.h>
+#include <sys/resource.h>
 
 #include <cmath>
 
@@ -17,6 +18,14 @@ namespace {
 const std::map<std::string, Extension> extension_names = {{"nearest", Extension::nearest_point},
                                                           {"whitney", Extension::whitney},
                                                           {"direct", Extension::direct}};
+
+/// The most memory the process has held so far (resident set, MiB): the check that long runs
+/// stay bounded (scripts/memcheck) reads it from summary.json.
+double peak_rss_mib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
 
 std::string extension_name(Extension e) {
     for (const auto& [name, value] : extension_names)
@@ -53,7 +62,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         ->check(CLI::IsMember(extension_names));
     cmd.add_option("--threads", o.threads,
                    "Worker threads (0 = all cores); results do not depend on it")
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_in(0, 1024));
 }
 
 RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
@@ -123,6 +132,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"cpu_s_per_step", r.steps_done > 0 ? r.cpu_s / r.steps_done : 0.0},
         {"threads", thread_count()},
         {"g_evals", r.g_evals},
+        {"peak_rss_mib", peak_rss_mib()},
         {"g_evals_per_vertex",
          r.vertices_produced > 0 ? static_cast<double>(r.g_evals) / r.vertices_produced : 0.0}};
     if (r.status == RunStatus::error) s["message"] = r.message;
