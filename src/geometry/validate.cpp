@@ -11,8 +11,8 @@
 #include <cmath>
 #include <iterator>
 #include <set>
-#include <utility>
 #include <span>
+#include <utility>
 
 #include "slc/core/error.hpp"
 #include "slc/core/tolerances.hpp"

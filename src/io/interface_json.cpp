@@ -154,8 +154,9 @@ Json parse_document(const std::string& text, const std::string& source) {
     PointCounter counter;
     Json::sax_parse(text, &counter);
     if (counter.points() > max_interface_points) {
-        throw InvalidInput(fmt::format("{}: more than {} points; split the interface or thin it out",
-                                       source, max_interface_points));
+        throw InvalidInput(
+            fmt::format("{}: more than {} points; split the interface or thin it out", source,
+                        max_interface_points));
     }
     try {
         return Json::parse(text);

@@ -2,10 +2,10 @@
 # interface, byte for byte (17 significant digits: the same doubles), as a run never stopped.
 source "$(dirname "$0")/lib.sh" "$1"
 
-same_run() {  # same_run NAME A B: final.json identical, and the summaries but for the clocks
+same_run() {  # same_run NAME A B: final.json identical, and the summaries but for clocks and memory
     check "$1: final.json identical" cmp -s "$2/final.json" "$3/final.json"
-    check "$1: summary identical but clocks" diff <(grep -vE '"(wall_s|cpu_s|cpu_s_per_step)"' "$2/summary.json") \
-        <(grep -vE '"(wall_s|cpu_s|cpu_s_per_step)"' "$3/summary.json")
+    check "$1: summary identical but clocks and memory" diff <(grep -vE '"(wall_s|cpu_s|cpu_s_per_step|peak_rss_mib)"' "$2/summary.json") \
+        <(grep -vE '"(wall_s|cpu_s|cpu_s_per_step|peak_rss_mib)"' "$3/summary.json")
 }
 
 # Uninterrupted, then the same run checkpointed every 6 steps and resumed from its last checkpoint

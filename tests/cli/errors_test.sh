@@ -101,7 +101,7 @@ reject "beyond the coordinate limit" 'huge.csv, line 1: x = "1e300" is beyond th
 
 section "parameters (slc run, and the same options of the other commands)"
 reject "no subcommand" "A subcommand is required" --
-reject "unknown option" "not expected: .*--speed" -- run --problem vortex --speed 2 --out x
+reject "unknown option" "not expected: --fast" -- run --problem vortex --fast --out x
 reject "unknown problem" "unknown problem 'nope'; known: " -- run --problem nope --out x
 reject "unknown velocity" "unknown velocity 'warp'; known: " -- run --initial square.json --velocity warp --t-end 1 --out x
 reject "unknown velocity parameter" "velocity 'rotation' has no parameter 'omeg'" -- run --initial square.json --velocity rotation --param omeg=1 --t-end 1 --out x

@@ -53,16 +53,17 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     Json options = Json::array();
     for (const auto& [name, values] : c.options) options.push_back({name, values});
     const RunResult& s = c.state;
-    const Json json = {{"format", format_name},
-                       {"options", options},
-                       {"steps_done", s.steps_done},
-                       {"t", s.t},
-                       {"g_evals", s.g_evals},
-                       {"vertices_produced", s.vertices_produced},
-                       {"wall_s", s.wall_s},
-                       {"cpu_s", s.cpu_s},
-                       {"frames_kept", c.frames_kept},
-                       {"curves", curves_json(s.curves)}};
+    Json json;
+    json["format"] = format_name;
+    json["options"] = options;
+    json["steps_done"] = s.steps_done;
+    json["t"] = s.t;
+    json["g_evals"] = s.g_evals;
+    json["vertices_produced"] = s.vertices_produced;
+    json["wall_s"] = s.wall_s;
+    json["cpu_s"] = s.cpu_s;
+    json["frames_kept"] = c.frames_kept;
+    json["curves"] = curves_json(s.curves);
     write_file_atomic(checkpoint_path(dir), json.dump() + "\n");
 }
 

@@ -67,8 +67,9 @@ Box resolve_domain(const DomainOptions& options, const std::vector<std::vector<V
     if (options.half_width) {
         const double b = *options.half_width;
         if (!(b > 0.0) || !(b <= tolerance::max_coordinate)) {
-            throw InvalidInput(fmt::format("--domain must be a positive half-width up to {:g}, got {}",
-                                           tolerance::max_coordinate, b));
+            throw InvalidInput(
+                fmt::format("--domain must be a positive half-width up to {:g}, got {}",
+                            tolerance::max_coordinate, b));
         }
         return Box::centered_square(b);
     }

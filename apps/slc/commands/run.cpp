@@ -191,8 +191,9 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
                     "Output folder: summary.json, final.json, final.svg/.png, frames");
-    cmd->add_option("--checkpoint-every", o->checkpoint_every,
-                    "Write DIR/checkpoint.json every n steps, and when stopped by Ctrl-C or SIGTERM")
+    cmd->add_option(
+           "--checkpoint-every", o->checkpoint_every,
+           "Write DIR/checkpoint.json every n steps, and when stopped by Ctrl-C or SIGTERM")
         ->check(integer_in(1, 100000000));
     cmd->add_option("--resume", o->resume,
                     "Continue the run whose checkpoint is in DIR (its options, its output folder): "

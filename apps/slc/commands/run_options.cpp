@@ -1,13 +1,12 @@
 // Method options of slc run and slc study, and the summary of a run.
 #include "commands/run_options.hpp"
 
-#include "commands/common.hpp"
-
 #include <fmt/format.h>
 #include <sys/resource.h>
 
 #include <cmath>
 
+#include "commands/common.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 
