@@ -216,10 +216,11 @@ std::vector<GivenOption> options_to_keep(const CLI::App& cmd, const RunCommand& 
 
 /// --resume DIR: the checkpoint's options parsed again, with DIR as the output folder.
 void resume_command(const CLI::App& cmd, const RunCommand& o) {
-    for (const auto& [name, values] : given_options(cmd, {"--resume", "--threads", "--quiet"})) {
+    const std::vector<GivenOption> extra = given_options(cmd, {"--resume", "--threads", "--quiet"});
+    if (!extra.empty()) {
         throw InvalidInput(fmt::format(
             "--resume takes the run's options from its checkpoint; {} cannot be given with it",
-            name));
+            extra.front().first));
     }
     const std::filesystem::path dir(o.resume);
     const Checkpoint c = read_checkpoint(dir);
