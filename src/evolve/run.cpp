@@ -40,25 +40,51 @@ void check(const RunOptions& o) {
     }
 }
 
+/// The time after n of the N steps: from the step count, not by summing k, so that the last step
+/// ends exactly at t_end and a resumed run takes the same steps.
+double time_after(const RunOptions& o, int n) {
+    const double k = (o.t_end - o.t_start) / o.steps;
+    return n == o.steps ? o.t_end : o.t_start + n * k;
+}
+
 }  // namespace
 
 RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domain,
               const RunOptions& options, const Observer& observer) {
     check(options);
-    RunResult result;
-    result.curves = initial;
-    result.t = options.t_start;
-    const double k = (options.t_end - options.t_start) / options.steps;
+    RunResult start;
+    start.curves = initial;
+    start.t = options.t_start;
+    return resume(start, law, domain, options, observer);
+}
+
+RunResult resume(const RunResult& from, const VelocityLaw& law, const Box& domain,
+                 const RunOptions& options, const Observer& observer) {
+    check(options);
+    if (from.steps_done < 0 || from.steps_done >= options.steps) {
+        throw InvalidInput(fmt::format("cannot resume after step {} of a run of {} steps",
+                                       from.steps_done, options.steps));
+    }
+    if (from.t != time_after(options, from.steps_done)) {
+        throw InvalidInput(fmt::format("cannot resume: t = {} is not the time after step {} ({})",
+                                       from.t, from.steps_done,
+                                       time_after(options, from.steps_done)));
+    }
+    RunResult result = from;
+    result.status = RunStatus::ok;
+    result.message.clear();
+    const double wall_before = from.wall_s;
+    const double cpu_before = from.cpu_s;
     const auto wall_start = std::chrono::steady_clock::now();
     const double cpu_start = process_cpu_seconds();
     auto clocks = [&] {
         result.wall_s =
+            wall_before +
             std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-        result.cpu_s = process_cpu_seconds() - cpu_start;
+        result.cpu_s = cpu_before + process_cpu_seconds() - cpu_start;
     };
-    for (int n = 1; n <= options.steps; ++n) {
-        // t from the step count, not by summing k, so that the last step ends exactly at t_end.
-        const double t_next = n == options.steps ? options.t_end : options.t_start + n * k;
+    for (int n = from.steps_done + 1; n <= options.steps; ++n) {
+        const double t_next = time_after(options, n);
         StepResult step;
         try {
             step = advance(result.curves, result.t, t_next - result.t, law, domain, options.step);
@@ -75,7 +101,7 @@ RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domai
         clocks();
         const bool go_on =
             !observer || observer(StepReport{n, options.steps, result.t, &result.curves,
-                                             &step.stats, result.wall_s});
+                                             &step.stats, result.wall_s, &result});
         if (result.curves.empty()) {
             result.status = RunStatus::vanished;
             break;

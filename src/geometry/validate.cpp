@@ -12,6 +12,7 @@
 #include <iterator>
 #include <set>
 #include <span>
+#include <utility>
 
 #include "slc/core/error.hpp"
 #include "slc/core/tolerances.hpp"
@@ -215,6 +216,11 @@ void check_finite(const RawCurves& raw) {
                 throw InvalidInput(fmt::format("curve {}, vertex {}: coordinate is not finite ({})",
                                                c, v, std::isfinite(p.x) ? p.y : p.x));
             }
+            if (std::max(std::abs(p.x), std::abs(p.y)) > tolerance::max_coordinate) {
+                throw InvalidInput(fmt::format(
+                    "curve {}, vertex {}: point ({}, {}) is beyond the coordinate limit ±{:g}", c,
+                    v, p.x, p.y, tolerance::max_coordinate));
+            }
         }
     }
 }
@@ -368,9 +374,19 @@ PreparedInterface prepare_interface(const std::vector<std::vector<Vec2>>& raw,
     for (std::size_t c = 0; c < raw.size(); ++c) {
         clean.push_back(without_duplicates(raw[c], tol));
         if (clean[c].points.size() < 3) {
+            // Points that differ but lie within tol of each other: say so, with the tolerance.
+            const std::set<std::pair<double, double>> exact = [&] {
+                std::set<std::pair<double, double>> out;
+                for (const Vec2 p : raw[c]) out.emplace(p.x, p.y);
+                return out;
+            }();
+            const std::string why =
+                exact.size() > clean[c].points.size()
+                    ? fmt::format(" (points closer than {:.3g} are one at this scale)", tol)
+                    : "";
             throw InvalidInput(
-                fmt::format("curve {} has {} distinct points; a closed curve needs at least 3", c,
-                            clean[c].points.size()));
+                fmt::format("curve {} has {} distinct points{}; a closed curve needs at least 3", c,
+                            clean[c].points.size(), why));
         }
         points.push_back(clean[c].points);
     }

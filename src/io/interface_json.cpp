@@ -113,8 +113,51 @@ std::string overflow_message(const std::string& text, const std::string& source)
     return fmt::format("{}: a number is too large to be finite", source);
 }
 
+/// A SAX handler that counts the points of an interface file (arrays four levels below the root,
+/// as in {"curves": [{"points": [[x, y]]}]}) and stops the parse beyond max_interface_points, so
+/// that an enormous file is refused before its document is built.
+class PointCounter final : public nlohmann::json_sax<Json> {
+public:
+    bool null() override { return true; }
+    bool boolean(bool) override { return true; }
+    bool number_integer(number_integer_t) override { return true; }
+    bool number_unsigned(number_unsigned_t) override { return true; }
+    bool number_float(number_float_t, const string_t&) override { return true; }
+    bool string(string_t&) override { return true; }
+    bool binary(binary_t&) override { return true; }
+    bool start_object(std::size_t) override { return open(false); }
+    bool key(string_t&) override { return true; }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override { return open(true); }
+    bool end_array() override { return close(); }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;
+    }
+    std::size_t points() const { return points_; }
+
+private:
+    bool open(bool is_array) {
+        if (is_array && depth_ == 4) ++points_;
+        ++depth_;
+        return points_ <= max_interface_points;
+    }
+    bool close() {
+        --depth_;
+        return true;
+    }
+    int depth_ = 0;
+    std::size_t points_ = 0;
+};
+
 /// The document as JSON, or InvalidInput naming the source and the byte where parsing failed.
 Json parse_document(const std::string& text, const std::string& source) {
+    PointCounter counter;
+    Json::sax_parse(text, &counter);
+    if (counter.points() > max_interface_points) {
+        throw InvalidInput(
+            fmt::format("{}: more than {} points; split the interface or thin it out", source,
+                        max_interface_points));
+    }
     try {
         return Json::parse(text);
     } catch (const Json::parse_error& e) {

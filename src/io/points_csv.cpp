@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "slc/core/error.hpp"
+#include "slc/core/tolerances.hpp"
 #include "slc/io/interface_json.hpp"
 
 namespace slc {
@@ -45,7 +46,21 @@ bool is_header(const std::vector<std::string_view>& fields) {
     return fields.size() == 2 && is(fields[0], 'x') && is(fields[1], 'y');
 }
 
-/// One coordinate: the whole field must be a finite number (an optional leading '+' allowed).
+/// A field as it may appear in a one-line message: control and non-ASCII bytes as '?', at most
+/// 24 characters.
+std::string quoted(std::string_view field) {
+    constexpr std::size_t longest = 24;
+    std::string out;
+    for (const char c : field.substr(0, longest)) {
+        const auto byte = static_cast<unsigned char>(c);
+        out += byte >= 0x20 && byte < 0x7f ? c : '?';
+    }
+    if (field.size() > longest) out += "...";
+    return fmt::format("\"{}\"", out);
+}
+
+/// One coordinate: the whole field must be a finite number (an optional leading '+' allowed)
+/// within ±tolerance::max_coordinate.
 double parse_coordinate(std::string_view field, const char* name, const std::string& place) {
     std::string_view digits = field;
     if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-') digits.remove_prefix(1);
@@ -53,13 +68,17 @@ double parse_coordinate(std::string_view field, const char* name, const std::str
     const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
     if (ec == std::errc::result_out_of_range) {
         throw InvalidInput(
-            fmt::format("{}: {} = \"{}\" is out of the range of a double", place, name, field));
+            fmt::format("{}: {} = {} is out of the range of a double", place, name, quoted(field)));
     }
     if (ec != std::errc{} || end != digits.data() + digits.size()) {
-        throw InvalidInput(fmt::format("{}: {} = \"{}\" is not a number", place, name, field));
+        throw InvalidInput(fmt::format("{}: {} = {} is not a number", place, name, quoted(field)));
     }
     if (!std::isfinite(value)) {
-        throw InvalidInput(fmt::format("{}: {} = \"{}\" is not finite", place, name, field));
+        throw InvalidInput(fmt::format("{}: {} = {} is not finite", place, name, quoted(field)));
+    }
+    if (std::abs(value) > tolerance::max_coordinate) {
+        throw InvalidInput(fmt::format("{}: {} = {} is beyond the coordinate limit ±{:g}", place,
+                                       name, quoted(field), tolerance::max_coordinate));
     }
     return value;
 }

@@ -7,8 +7,33 @@
 #include <cmath>
 
 #include "slc/core/error.hpp"
+#include "slc/core/tolerances.hpp"
 
 namespace slc {
+
+namespace {
+
+double largest_magnitude(const Box& b) {
+    return std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.hi.x), std::abs(b.hi.y)});
+}
+
+}  // namespace
+
+int Quadtree::max_resolvable_depth(const Box& root) {
+    const double w = root.width();
+    const double magnitude = largest_magnitude(root);
+    if (!(w >= tolerance::min_domain_width) || !(magnitude <= tolerance::max_coordinate) ||
+        root.height() != w) {
+        return -1;
+    }
+    // Cells halve with each level: the deepest l with w 2^-l ≥ min_relative_cell · magnitude.
+    int depth = 0;
+    while (depth < max_supported_depth &&
+           std::ldexp(w, -(depth + 1)) >= tolerance::min_relative_cell * magnitude) {
+        ++depth;
+    }
+    return depth;
+}
 
 Quadtree::Quadtree(Box root, int max_depth) : root_(root), max_depth_(max_depth) {
     const double w = root.width();
@@ -17,9 +42,24 @@ Quadtree::Quadtree(Box root, int max_depth) : root_(root), max_depth_(max_depth)
             fmt::format("tree root must be a square of positive size, got [{}, {}]x[{}, {}]",
                         root.lo.x, root.hi.x, root.lo.y, root.hi.y));
     }
+    const int deepest = max_resolvable_depth(root);
+    if (deepest < 0) {
+        throw InvalidInput(fmt::format(
+            "tree root [{}, {}]x[{}, {}] is out of range: coordinates within ±{:g}, width at least "
+            "{:g}",
+            root.lo.x, root.hi.x, root.lo.y, root.hi.y, tolerance::max_coordinate,
+            tolerance::min_domain_width));
+    }
     if (max_depth < 0 || max_depth > max_supported_depth) {
         throw InvalidInput(fmt::format("tree depth must be between 0 and {}, got {}",
                                        max_supported_depth, max_depth));
+    }
+    if (max_depth > deepest) {
+        throw InvalidInput(fmt::format(
+            "tree depth {} is too deep for doubles in the domain [{}, {}]x[{}, {}]: its cells "
+            "({:.3g} wide) would be below 2^-42 of the coordinates (at most depth {} there)",
+            max_depth, root.lo.x, root.hi.x, root.lo.y, root.hi.y, std::ldexp(w, -max_depth),
+            deepest));
     }
     edges_.resize(static_cast<std::size_t>(max_depth) + 1);
     for (int l = 0; l <= max_depth; ++l) edges_[static_cast<std::size_t>(l)] = std::ldexp(w, -l);

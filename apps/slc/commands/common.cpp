@@ -6,11 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string_view>
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/tolerances.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
+#include "slc/tree/quadtree.hpp"
 
 namespace slc::cli {
 
@@ -46,6 +49,11 @@ Box parse_box(const std::string& text) {
         throw InvalidInput(
             fmt::format("--box must have x0 < x1 and y0 < y1, all finite, got '{}'", text));
     }
+    if (std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.hi.x), std::abs(b.hi.y)}) >
+        tolerance::max_coordinate) {
+        throw InvalidInput(fmt::format("--box corners must lie within ±{:g}, got '{}'",
+                                       tolerance::max_coordinate, text));
+    }
     if (std::abs(b.width() - b.height()) > 1e-12 * b.width()) {
         throw InvalidInput(
             fmt::format("--box must be a square, got {} wide and {} high", b.width(), b.height()));
@@ -58,8 +66,10 @@ Box parse_box(const std::string& text) {
 Box resolve_domain(const DomainOptions& options, const std::vector<std::vector<Vec2>>& raw) {
     if (options.half_width) {
         const double b = *options.half_width;
-        if (!(b > 0.0) || !std::isfinite(b)) {
-            throw InvalidInput(fmt::format("--domain must be a positive half-width, got {}", b));
+        if (!(b > 0.0) || !(b <= tolerance::max_coordinate)) {
+            throw InvalidInput(
+                fmt::format("--domain must be a positive half-width up to {:g}, got {}",
+                            tolerance::max_coordinate, b));
         }
         return Box::centered_square(b);
     }
@@ -67,27 +77,86 @@ Box resolve_domain(const DomainOptions& options, const std::vector<std::vector<V
     Box bounds = Box::empty();  // of the finite points: the others are reported by validation
     for (const auto& curve : raw) bounds = unite(bounds, bounding_box(curve));
     if (bounds.is_empty()) throw InvalidInput("no curves: the interface is empty");
-    const double half = 1.5 * std::max({0.5 * bounds.width(), 0.5 * bounds.height(), 1e-300});
+    double half = 1.5 * std::max(0.5 * bounds.width(), 0.5 * bounds.height());
+    if (half == 0.0) half = 1.0;  // all points at one place: validation names the curve
+    if (!(2.0 * half >= tolerance::min_domain_width)) {
+        throw InvalidInput(fmt::format(
+            "the curves span only {:.3g}: give --domain or --box at least {:g} wide, or scale them",
+            std::max(bounds.width(), bounds.height()), tolerance::min_domain_width));
+    }
     return Box::square(bounds.center(), half);
 }
 
 LoadedInterface load_interface(const std::string& path, const DomainOptions& domain) {
     InterfaceFile file = read_interface_json(path);
-    const Box box = resolve_domain(domain, file.curves);
-    PreparedInterface prepared = prepare_interface(file.curves, box);
-    for (const std::string& note : prepared.notes) fmt::print(stderr, "slc: {}: {}\n", path, note);
-    return {std::move(prepared.curves), file.time, box};
+    // Problems of the curves name the file, as the reader's do.
+    try {
+        const Box box = resolve_domain(domain, file.curves);
+        PreparedInterface prepared = prepare_interface(file.curves, box);
+        for (const std::string& note : prepared.notes)
+            fmt::print(stderr, "slc: {}: {}\n", path, note);
+        return {std::move(prepared.curves), file.time, box};
+    } catch (const InvalidInput& e) {
+        if (std::string_view(e.what()).starts_with("--")) throw;
+        throw InvalidInput(fmt::format("{}: {}", path, e.what()));
+    }
 }
 
 int default_tree_depth(const Interface& curves, const Box& domain) {
     const double mean = length(curves) / static_cast<double>(curves.size());
     const int level =
         static_cast<int>(std::ceil(std::log2(domain.width() / std::max(mean, 1e-300))));
-    return std::clamp(level, 2, 16);
+    return std::clamp(level, std::min(2, Quadtree::max_resolvable_depth(domain)),
+                      std::min(16, Quadtree::max_resolvable_depth(domain)));
 }
 
 nlohmann::json box_json(const Box& b) { return {b.lo.x, b.lo.y, b.hi.x, b.hi.y}; }
 
 void apply_threads(int threads) { set_thread_count(threads); }
+
+namespace {
+
+/// The whole of text as a number, or nothing.
+std::optional<double> number(const std::string& text) {
+    try {
+        std::size_t used = 0;
+        const double v = std::stod(text, &used);
+        if (used == text.size()) return v;
+    } catch (const std::exception&) {
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+CLI::Validator positive_number() {
+    return CLI::Validator(
+        [](std::string& text) {
+            const auto v = number(text);
+            if (v && *v > 0.0 && std::isfinite(*v)) return std::string();
+            return fmt::format("must be a positive finite number, got '{}'", text);
+        },
+        "POSITIVE");
+}
+
+CLI::Validator integer_in(int lo, int hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) {
+            const auto v = number(text);
+            if (v && *v >= lo && *v <= hi && *v == std::floor(*v)) return std::string();
+            return fmt::format("must be an integer from {} to {}, got '{}'", lo, hi, text);
+        },
+        fmt::format("INT in [{}, {}]", lo, hi));
+}
+
+CLI::Validator fraction_below_one() {
+    return CLI::Validator(
+        [](std::string& text) {
+            const auto v = number(text);
+            if (v && *v >= 0.0 && *v < 1.0) return std::string();
+            return fmt::format("must be a number in [0, 1), got '{}'", text);
+        },
+        "in [0, 1)");
+}
 
 }  // namespace slc::cli

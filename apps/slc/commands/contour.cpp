@@ -90,18 +90,6 @@ void draw(const ContourResult& r, const Interface& input, const Box& domain,
     figure.save(dir / "final.png");
 }
 
-/// A CLI11 check for a positive finite number, with a one-line message.
-const CLI::Validator positive(
-    [](std::string& text) {
-        try {
-            const double v = std::stod(text);
-            if (v > 0.0 && std::isfinite(v)) return std::string();
-        } catch (const std::exception&) {
-        }
-        return fmt::format("must be a positive number, got {}", text);
-    },
-    "POSITIVE");
-
 ContourOptions library_options(const ContourCommandOptions& o) {
     ContourOptions options;
     options.depth = o.depth;
@@ -207,27 +195,27 @@ void add_contour_command(CLI::App& app) {
     cmd->add_option("--initial", o->initial, "Interface file (JSON)")->required();
     cmd->add_option("-K,--depth", o->depth, "Depth K of the contouring tree")
         ->required()
-        ->check(CLI::Range(0, 20));
+        ->check(integer_in(0, 20));
     cmd->add_option("--eps", o->eps, "Midpoint tolerance eps of refinement (default 10^-K)")
-        ->check(positive);
+        ->check(positive_number());
     cmd->add_option("--refine", o->refine,
                     "Passes P of adaptive refinement (default 0: linear contour); refinement stops "
                     "early when no midpoint exceeds eps or a pass changes nothing, so a large P "
                     "means 'until converged'")
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_in(0, 1000000));
     cmd->add_option("--eta", o->eta,
                     "Root-finding tolerance eta: |G| <= eta at every vertex (default 1e-10)")
-        ->check(positive);
+        ->check(positive_number());
     cmd->add_option("--rho", o->rho, "Pruning ratio rho in [0, 1) (default 0.1)")
-        ->check(CLI::Range(0.0, 0.999999));
+        ->check(fraction_below_one());
     add_domain_options(*cmd, o->domain);
     cmd->add_option("-L,--tree-depth", o->tree_depth,
                     "Depth L of the distance tree that evaluates F (default: cells about one mean "
                     "segment wide; it sets the speed, not the error)")
-        ->check(CLI::Range(0, 30));
+        ->check(integer_in(0, 30));
     cmd->add_option("--out", o->out, "Output folder")->required();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_in(0, 1024));
     cmd->callback([o] { run_contour(*o); });
 }
 

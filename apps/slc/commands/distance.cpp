@@ -47,9 +47,9 @@ void add_distance_command(CLI::App& app) {
     add_domain_options(*cmd, o->domain);
     cmd->add_option("-L,--tree-depth", o->depth,
                     "Depth L of the distance tree (default: cells about one mean segment wide)")
-        ->check(CLI::Range(0, 30));
+        ->check(integer_in(0, 30));
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_in(0, 1024));
     cmd->callback([o] { run_distance(*o); });
 }
 

@@ -3,11 +3,14 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 
+#include "commands/checkpoint.hpp"
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
 #include "commands/run_options.hpp"
@@ -37,6 +40,8 @@ struct RunCommand {
     bool vtk = false;
     bool quiet = false;
     std::string out;
+    int checkpoint_every = 0;
+    std::string resume;
 };
 
 /// The problem to run: a named one, or one assembled from the user's file and law.
@@ -91,7 +96,19 @@ void draw(const std::filesystem::path& dir, const Problem& p, const Interface& i
     overlay.save(dir / "frames.png");
 }
 
-void run_command(const RunCommand& o) {
+/// The frames a checkpointed run wrote before it stopped, read back for the overlay picture.
+std::vector<std::pair<double, Interface>> read_frames(const std::filesystem::path& dir, int count) {
+    std::vector<std::pair<double, Interface>> frames;
+    for (int i = 0; i < count; ++i) {
+        InterfaceFile f = read_interface_json(frame_path(dir, i));
+        frames.emplace_back(f.time, Interface(f.curves));
+    }
+    return frames;
+}
+
+/// Runs o from the start, or from a checkpoint; `given` are the options to store in checkpoints.
+void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
+                 const Checkpoint* from) {
     apply_threads(o.method.threads);
     const Problem p = resolve_problem(o);
     const RunOptions options = resolve_run_options(o.method, p);
@@ -108,22 +125,34 @@ void run_command(const RunCommand& o) {
         write_file_atomic(frame_path(dir, i), interface_json(curves, t));
         frames.emplace_back(t, curves);
     };
-    if (o.frames > 0) keep_frame(0, options.t_start, initial);
-    // --vtk: DIR/frames.pvd over DIR/frames/frame_NNNN.vtp — the initial interface, the frames
-    // and the final one.
+    if (from) {
+        frames = read_frames(dir, from->frames_kept);
+    } else if (o.frames > 0) {
+        keep_frame(0, options.t_start, initial);
+    }
+    // --vtk: DIR/frames.pvd over DIR/frames/frame_NNNN.vtp — the initial interface (or, after
+    // --resume, the frames kept so far), the frames and the final one.
     std::optional<VtkSeries> vtk;
     int vtk_step = 0;
     if (o.vtk) vtk.emplace(dir / "frames.pvd");
-    if (vtk) vtk->add(options.t_start, initial);
+    if (vtk) {
+        for (const auto& [t, curves] : frames) vtk->add(t, curves);
+        if (frames.empty()) vtk->add(options.t_start, initial);
+    }
     const bool progress = !o.quiet && isatty(STDERR_FILENO);
     stop_requested = false;
     std::signal(SIGINT, request_stop);
     std::signal(SIGTERM, request_stop);
-    const RunResult r = run(initial, *law, p.domain, options, [&](const StepReport& s) {
-        if (o.frames > 0 && (s.step * o.frames) % s.steps < o.frames) {
+    const Observer observer = [&](const StepReport& s) {
+        if (o.frames > 0 && (std::int64_t{s.step} * o.frames) % s.steps < o.frames) {
             keep_frame(static_cast<int>(frames.size()), s.t, *s.curves);
             if (vtk) vtk->add(s.t, *s.curves);
             vtk_step = s.step;
+        }
+        // Every n steps, and when stopped early, so that --resume loses nothing.
+        if (o.checkpoint_every > 0 && s.step < s.steps && !s.curves->empty() &&
+            (s.step % o.checkpoint_every == 0 || stop_requested)) {
+            write_checkpoint(dir, {given, *s.run, static_cast<int>(frames.size())});
         }
         if (progress && s.wall_s > 2.0) {
             const double left = s.wall_s * (s.steps - s.step) / s.step;
@@ -131,7 +160,9 @@ void run_command(const RunCommand& o) {
                        s.steps, s.t, s.curves->size(), left);
         }
         return !stop_requested;
-    });
+    };
+    const RunResult r = from ? resume(from->state, *law, p.domain, options, observer)
+                             : run(initial, *law, p.domain, options, observer);
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
     if (progress) fmt::print(stderr, "\n");
@@ -149,13 +180,8 @@ void run_command(const RunCommand& o) {
     if (r.status == RunStatus::error) throw NumericalFailure(r.message);
 }
 
-}  // namespace
-
-void add_run_command(CLI::App& app) {
-    auto o = std::make_shared<RunCommand>();
-    auto* cmd = app.add_subcommand("run",
-                                   "Moves an interface: a named problem (--problem) or your curve "
-                                   "(--initial) under a velocity law");
+/// The options of `slc run` (all but the action), so that --resume can parse a checkpoint's again.
+void add_run_options(CLI::App* cmd, RunCommand* o) {
     auto* problem = cmd->add_option("--problem", o->problem, problem_help());
     auto* initial = cmd->add_option("--initial", o->initial,
                                     "Interface file (JSON) to move instead of a problem");
@@ -176,18 +202,76 @@ void add_run_command(CLI::App& app) {
     cmd->add_option(
            "--frames", o->frames,
            "Write this many frames (plus the initial one) to DIR/frames/ and draw them overlaid")
-        ->check(CLI::Range(0, 100000));
+        ->check(integer_in(0, 100000));
     cmd->add_flag("--vtk", o->vtk,
                   "Also write the initial interface, the frames and the final one as VTK PolyData "
                   "(DIR/frames/*.vtp) and DIR/frames.pvd, a time series ParaView opens");
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
-                    "Output folder: summary.json, final.json, final.svg/.png, frames")
-        ->required();
-    cmd->callback([o, problem, initial] {
-        if (problem->count() == 0 && initial->count() == 0)
+                    "Output folder: summary.json, final.json, final.svg/.png, frames");
+    cmd->add_option(
+           "--checkpoint-every", o->checkpoint_every,
+           "Write DIR/checkpoint.json every n steps, and when stopped by Ctrl-C or SIGTERM")
+        ->check(integer_in(1, 100000000));
+    cmd->add_option("--resume", o->resume,
+                    "Continue the run whose checkpoint is in DIR (its options, its output folder): "
+                    "the same final interface, bit for bit, as a run never stopped. Only --threads "
+                    "and --quiet may be given with it");
+}
+
+/// The options of the first run, to keep in checkpoints. With --initial, a copy of the file goes
+/// to DIR/checkpoint-initial/ and the checkpoint names the copy, which --resume reads.
+std::vector<GivenOption> options_to_keep(const CLI::App& cmd, const RunCommand& o) {
+    std::vector<GivenOption> given = given_options(cmd, {"--out", "--quiet", "--threads"});
+    if (o.checkpoint_every == 0 || o.initial.empty()) return given;
+    const std::filesystem::path name = std::filesystem::path(o.initial).filename();
+    write_file_atomic(std::filesystem::path(o.out) / "checkpoint-initial" / name,
+                      read_text_file(o.initial));
+    for (auto& [option, values] : given)
+        if (option == "--initial") values = {name.string()};
+    return given;
+}
+
+/// --resume DIR: the checkpoint's options parsed again, with DIR as the output folder.
+void resume_command(const CLI::App& cmd, const RunCommand& o) {
+    const std::vector<GivenOption> extra = given_options(cmd, {"--resume", "--threads", "--quiet"});
+    if (!extra.empty()) {
+        throw InvalidInput(fmt::format(
+            "--resume takes the run's options from its checkpoint; {} cannot be given with it",
+            extra.front().first));
+    }
+    const std::filesystem::path dir(o.resume);
+    const Checkpoint c = read_checkpoint(dir);
+    std::vector<std::string> args = as_arguments(c.options);
+    for (std::string& arg : args) {
+        if (arg.starts_with("--initial="))
+            arg = "--initial=" + (dir / "checkpoint-initial" / arg.substr(10)).string();
+    }
+    args.push_back("--out=" + dir.string());
+    if (o.quiet) args.push_back("--quiet");
+    if (o.method.threads != 0) args.push_back(fmt::format("--threads={}", o.method.threads));
+    CLI::App again;
+    RunCommand resumed;
+    add_run_options(&again, &resumed);
+    std::reverse(args.begin(), args.end());  // CLI11 takes a vector of arguments last first
+    again.parse(args);
+    run_command(resumed, c.options, &c);
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app) {
+    auto o = std::make_shared<RunCommand>();
+    auto* cmd = app.add_subcommand("run",
+                                   "Moves an interface: a named problem (--problem) or your curve "
+                                   "(--initial) under a velocity law");
+    add_run_options(cmd, o.get());
+    cmd->callback([o, cmd] {
+        if (!o->resume.empty()) return resume_command(*cmd, *o);
+        if (o->problem.empty() && o->initial.empty())
             throw InvalidInput("give --problem NAME or --initial FILE");
-        run_command(*o);
+        if (o->out.empty()) throw InvalidInput("--out DIR is required");
+        run_command(*o, options_to_keep(*cmd, *o), nullptr);
     });
 }
 

@@ -2,9 +2,11 @@
 #include "commands/run_options.hpp"
 
 #include <fmt/format.h>
+#include <sys/resource.h>
 
 #include <cmath>
 
+#include "commands/common.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 
@@ -16,6 +18,14 @@ const std::map<std::string, Extension> extension_names = {{"nearest", Extension:
                                                           {"whitney", Extension::whitney},
                                                           {"direct", Extension::direct}};
 
+/// The most memory the process has held so far (resident set, MiB): the check that long runs
+/// stay bounded (scripts/memcheck) reads it from summary.json.
+double peak_rss_mib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
 std::string extension_name(Extension e) {
     for (const auto& [name, value] : extension_names)
         if (value == e) return name;
@@ -26,32 +36,32 @@ std::string extension_name(Extension e) {
 
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
     cmd.add_option("-N,--steps", o.steps, "N: time steps on [0, a] (problem's default)")
-        ->check(CLI::Range(1, 100000000));
+        ->check(integer_in(1, 100000000));
     cmd.add_option("-K,--depth", o.depth, "K: depth of the contouring tree (problem's default)")
-        ->check(CLI::Range(1, 24));
+        ->check(integer_in(1, 24));
     cmd.add_option("-P,--refine", o.refine, "P: passes of adaptive refinement (problem's default)")
-        ->check(CLI::Range(0, 64));
+        ->check(integer_in(0, 64));
     cmd.add_option("--eps", o.eps, "epsilon: midpoint tolerance of refinement (default 10^-K)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_number());
     cmd.add_option("--eta", o.eta, "eta: root-finding tolerance (default 1e-10)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_number());
     cmd.add_option("--rho", o.rho, "rho: pruning ratio in [0, 1) (default 0.1)")
-        ->check(CLI::Range(0.0, 0.999999));
+        ->check(fraction_below_one());
     cmd.add_option("--mesh", o.mesh, "M: embedded mesh points per side (default 2^(K+1))")
-        ->check(CLI::Range(8, 1 << 22));
+        ->check(integer_in(8, 1 << 22));
     cmd.add_option("--eno-order", o.eno_order, "E: ENO order of the embedded module (default 3)")
-        ->check(CLI::Range(1, 5));
+        ->check(integer_in(1, 5));
     cmd.add_option("-S,--smooth", o.smooth, "S: cosine smoothing passes (problem's default)")
-        ->check(CLI::Range(0, 64));
+        ->check(integer_in(0, 64));
     cmd.add_option("-L,--tree-depth", o.tree_depth, "L: distance tree depth (default K + P)")
-        ->check(CLI::Range(1, 30));
+        ->check(integer_in(1, 30));
     cmd.add_option("--extension", o.extension,
                    "Velocity extension off the curve: nearest (default), whitney, or direct (flow "
                    "fields only)")
         ->check(CLI::IsMember(extension_names));
     cmd.add_option("--threads", o.threads,
                    "Worker threads (0 = all cores); results do not depend on it")
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_in(0, 1024));
 }
 
 RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
@@ -121,6 +131,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"cpu_s_per_step", r.steps_done > 0 ? r.cpu_s / r.steps_done : 0.0},
         {"threads", thread_count()},
         {"g_evals", r.g_evals},
+        {"peak_rss_mib", peak_rss_mib()},
         {"g_evals_per_vertex",
          r.vertices_produced > 0 ? static_cast<double>(r.g_evals) / r.vertices_produced : 0.0}};
     if (r.status == RunStatus::error) s["message"] = r.message;

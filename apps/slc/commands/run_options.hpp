@@ -37,7 +37,8 @@ void add_method_options(CLI::App& cmd, MethodOptions& options);
 RunOptions resolve_run_options(const MethodOptions& method, const Problem& problem);
 
 /// summary.json of a run (DESIGN §6): problem, params, t_end, steps, status, e_inf, area, length,
-/// components, segments, wall_s, cpu_s, cpu_s_per_step, threads, g_evals, g_evals_per_vertex.
+/// components, segments, wall_s, cpu_s, cpu_s_per_step, threads, g_evals, g_evals_per_vertex,
+/// peak_rss_mib (the process's peak resident memory).
 nlohmann::json run_summary(const Problem& problem, const RunOptions& options,
                            const RunResult& result, const std::string& velocity);
 

@@ -199,7 +199,7 @@ void add_study_command(CLI::App& app) {
         "table.md, table.csv, table.json and error_vs_time.svg/.png");
     cmd->add_option("--problem", o->problem, problem_help())->required();
     cmd->add_option("--rows", o->rows, "Rows of the table to run, 1..5 (default 5)")
-        ->check(CLI::Range(1, 5));
+        ->check(integer_in(1, 5));
     cmd->add_option("--param", o->params,
                     "key=value: a parameter of the velocity law or the problem (repeatable)");
     cmd->add_option("--reference", o->reference,

@@ -160,13 +160,13 @@ void add_tree_command(CLI::App& app) {
     initial->excludes(shape);
     add_domain_options(*cmd, o->domain);
     cmd->add_option("-L,--tree-depth", o->depth, "Depth L of the distance tree (default 6)")
-        ->check(CLI::Range(0, 16));
+        ->check(integer_in(0, 16));
     cmd->add_option("--out", o->out,
                     "Output folder: summary.json, interface.json, tree/distance/extension/whitney "
                     ".svg and .png")
         ->required();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_in(0, 1024));
     cmd->callback([o, initial, shape] {
         if (initial->count() == 0 && shape->count() == 0)
             throw InvalidInput("give --initial FILE or --shape NAME");

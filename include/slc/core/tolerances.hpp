@@ -9,4 +9,16 @@ namespace slc::tolerance {
 /// point and one is dropped: far above rounding (1e-16), far below any useful segment.
 inline constexpr double duplicate_point = 1e-12;
 
+/// Largest magnitude of a coordinate, of an input point or of a domain corner. Squared distances
+/// across a domain of this size (about 1e201) stay far from the overflow of doubles (1.8e308).
+inline constexpr double max_coordinate = 1e100;
+
+/// Smallest width of a domain: squared distances of its cells (about 1e-200 and below) stay far
+/// from the underflow of doubles (2.2e-308).
+inline constexpr double min_domain_width = 1e-100;
+
+/// Smallest edge of a tree cell, relative to the largest coordinate magnitude of the domain: 2^-42
+/// is about 1000 spacings of doubles there, so that a cell still holds distinct points.
+inline constexpr double min_relative_cell = 0x1p-42;
+
 }  // namespace slc::tolerance

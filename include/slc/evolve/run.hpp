@@ -29,6 +29,8 @@ struct RunOptions {
     StepOptions step;      ///< K, P, ε, L, M, E, S, ... of each step
 };
 
+struct RunResult;
+
 /// What the observer sees after each step.
 struct StepReport {
     int step = 0;                       ///< 1..N
@@ -37,6 +39,8 @@ struct StepReport {
     const Interface* curves = nullptr;  ///< Γ(t)
     const StepStats* stats = nullptr;   ///< what the step cost
     double wall_s = 0.0;                ///< seconds of the time loop so far
+    /// The run so far (Γ, t, steps done, counters, clocks): what resume() continues from.
+    const RunResult* run = nullptr;
 };
 
 /// Called after every step; returning false stops the run (status interrupted).
@@ -60,5 +64,14 @@ struct RunResult {
 /// InvalidInput only for bad options (steps < 1, t_end ≤ t_start, non-finite times).
 RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domain,
               const RunOptions& options, const Observer& observer = {});
+
+/// Continues a run from `from`, the state after from.steps_done of its N steps (as an observer saw
+/// it in StepReport::run, or read back from a checkpoint): steps from.steps_done + 1 .. N, with
+/// the counters and clocks of `from` carried on. With the same law, domain and options, the
+/// final interface is the one of the uninterrupted run, bit for bit: each step depends only on
+/// Γ, t and the step index. Throws InvalidInput as run() does, and when from.steps_done is not
+/// in [0, N) or from.t is not the time the run reaches after that many steps.
+RunResult resume(const RunResult& from, const VelocityLaw& law, const Box& domain,
+                 const RunOptions& options, const Observer& observer = {});
 
 }  // namespace slc

@@ -35,7 +35,7 @@ struct PreparedInterface {
 /// Turns raw curves into a valid Interface, or throws InvalidInput with one line naming the
 /// curve and vertex at fault. In order:
 /// - no curves at all: error;
-/// - a non-finite coordinate: error;
+/// - a non-finite coordinate, or one beyond ±tolerance::max_coordinate: error;
 /// - a point outside domain (when given): error;
 /// - consecutive duplicate points (and a last point repeating the first) are dropped silently;
 /// - fewer than 3 distinct points left: error;

@@ -2,6 +2,7 @@
 /// Interface files (DESIGN §6): {"time": 0.0, "curves": [{"points": [[x, y], ...]}, ...]}.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -17,9 +18,14 @@ struct InterfaceFile {
     std::vector<std::vector<Vec2>> curves;  ///< "curves"[c]."points", as read
 };
 
+/// Most points an interface file may hold, all curves together: reading one takes about 1 GB of
+/// memory per million points, so larger files are refused before they are read into memory.
+inline constexpr std::size_t max_interface_points = 2'000'000;
+
 /// Parses interface JSON text. `source` names the input in messages (a file name).
 /// Throws InvalidInput, one line naming the source and what is wrong: not JSON, no "curves"
-/// array, a curve without "points", a point that is not two numbers, a non-finite "time".
+/// array, a curve without "points", a point that is not two numbers, a non-finite "time", more
+/// than max_interface_points points.
 InterfaceFile parse_interface_json(const std::string& text, const std::string& source);
 
 /// Reads and parses an interface file; a missing or unreadable file is InvalidInput too.

@@ -12,7 +12,7 @@ namespace slc {
 
 /// Parses CSV text of points. Blank lines are skipped; a first line "x,y" is a header.
 /// Throws InvalidInput naming the source and line: wrong number of columns, a non-number,
-/// a non-finite value.
+/// a non-finite value, a value beyond ±tolerance::max_coordinate.
 std::vector<Vec2> parse_points_csv(const std::string& text, const std::string& source);
 
 /// Reads and parses a points file; a missing file is InvalidInput.

@@ -33,8 +33,14 @@ public:
     };
 
     /// A single root cell covering root, which must be a square of positive size, and cells
-    /// never deeper than max_depth (0..max_supported_depth). Throws InvalidInput otherwise.
+    /// never deeper than max_depth (0..max_resolvable_depth(root)). Throws InvalidInput otherwise.
     Quadtree(Box root, int max_depth);
+
+    /// The deepest level whose cells doubles still resolve in root (tolerance::min_relative_cell),
+    /// at most max_supported_depth; −1 when root is not a square of width in
+    /// [tolerance::min_domain_width, 2·tolerance::max_coordinate] with corners within
+    /// ±tolerance::max_coordinate.
+    static int max_resolvable_depth(const Box& root);
 
     /// Number of cells, all levels.
     std::size_t size() const { return cells_.size(); }

@@ -389,6 +389,19 @@ TEST(PrepareInterface, RejectsCurveWithFewerThanThreeDistinctPoints) {
               "curve 0 has 1 distinct points; a closed curve needs at least 3");
 }
 
+TEST(PrepareInterface, RejectsCoordinatesBeyondTheLimit) {
+    EXPECT_EQ(error_of({{{0, 0}, {1e101, 0}, {0, 1}}}),
+              "curve 0, vertex 1: point (1e+101, 0) is beyond the coordinate limit ±1e+100");
+    EXPECT_EQ(error_of({{{0, 0}, {1e100, 0}, {0, -1e100}}}), "");
+}
+
+TEST(PrepareInterface, SaysWhenDistinctPointsMergeAtTheScaleOfTheDomain) {
+    // Three different points closer than 1e-12 of the domain's width are one.
+    EXPECT_EQ(error_of({{{0, 0}, {1e-14, 0}, {0, 1e-14}}}, Box::centered_square(1)),
+              "curve 0 has 1 distinct points (points closer than 2e-12 are one at this scale); a "
+              "closed curve needs at least 3");
+}
+
 TEST(PrepareInterface, RejectsSelfCrossingCurve) {
     EXPECT_EQ(error_of({square_ccw, {{5, 5}, {6, 6}, {6, 5}, {5, 6}}}),
               "curve 1 crosses itself: segment 0 meets segment 2");
@@ -472,9 +485,9 @@ TEST(PrepareInterface, PassesValidInputUntouched) {
 }
 
 TEST(PrepareInterface, HandlesExtremeCoordinateScales) {
-    // Nothing overflows near the largest double or underflows near the smallest: the predicates
-    // are exact and the duplicate tolerance is computed from half-widths.
-    for (const double s : {1e308, 1e-300}) {
+    // Nothing overflows at the coordinate limit or underflows near the smallest double: the
+    // predicates are exact and the duplicate tolerance is computed from half-widths.
+    for (const double s : {tolerance::max_coordinate, 1e-300}) {
         const Curves input{{{-s, -s}, {s, -s}, {s, s}, {-s, s}},
                            {{-s / 2, -s / 2}, {-s / 2, s / 2}, {s / 2, s / 2}, {s / 2, -s / 2}}};
         const PreparedInterface p = prepare_interface(input);

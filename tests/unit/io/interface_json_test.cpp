@@ -235,5 +235,13 @@ TEST(WriteFileAtomic, ReadOnlyFolderIsInvalidInput) {
     EXPECT_TRUE(fs::is_empty(locked));
 }
 
+TEST(InterfaceJson, RefusesMoreThanTheLimitOfPointsBeforeBuildingTheDocument) {
+    std::string text = R"({"curves": [{"points": [[0, 0])";
+    for (std::size_t p = 0; p < max_interface_points; ++p) text += ",[0,0]";
+    text += "]}]}";
+    expect_invalid([&] { parse_interface_json(text, "big.json"); },
+                   {"big.json: more than 2000000 points"});
+}
+
 }  // namespace
 }  // namespace slc

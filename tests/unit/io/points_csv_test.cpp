@@ -92,6 +92,18 @@ TEST(PointsCsv, RejectsNonFiniteValues) {
     expect_invalid("0,-1e400\n", {"pts.csv, line 1:", "y = \"-1e400\"", "range"});
 }
 
+TEST(PointsCsv, RejectsValuesBeyondTheCoordinateLimit) {
+    expect_invalid("1e101,0\n", {"pts.csv, line 1:", "x = \"1e101\"", "coordinate limit"});
+    EXPECT_EQ(parse_points_csv("-1e100,1e100\n", "pts.csv"), (std::vector<Vec2>{{-1e100, 1e100}}));
+}
+
+TEST(PointsCsv, QuotesGarbageOnOneShortLine) {
+    // Control bytes become '?', a long field is cut: the message stays one readable line.
+    expect_invalid("\x01\r\x1b[1m,0\n", {"x = \"???[1m\" is not a number"});
+    expect_invalid("0," + std::string(1000, 'z') + "\n",
+                   {"y = \"" + std::string(24, 'z') + "...\""});
+}
+
 TEST(PointsCsv, ReadsAFileAndRejectsAMissingOne) {
     const fs::path dir =
         fs::temp_directory_path() / fmt::format("slc_points_csv_test_{}", ::getpid());

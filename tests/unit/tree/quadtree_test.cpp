@@ -35,6 +35,22 @@ bool share_edge(const Box& a, const Box& b) {
     return (x_touch && y_overlap) || (y_touch && x_overlap);
 }
 
+TEST(Quadtree, DepthIsLimitedToCellsDoublesResolve) {
+    // Centred: only the supported depth limits. A unit square at 1e12, where doubles are 1.2e-4
+    // apart: cells must stay above 2^-42 · 1e12 ≈ 0.23, so depth 2 (0.25) is the deepest.
+    EXPECT_EQ(Quadtree::max_resolvable_depth(Box::centered_square(1e-50)),
+              Quadtree::max_supported_depth);
+    const Box far{{1e12, 1e12}, {1e12 + 1, 1e12 + 1}};
+    EXPECT_EQ(Quadtree::max_resolvable_depth(far), 2);
+    EXPECT_NO_THROW(Quadtree(far, 2));
+    EXPECT_THROW(Quadtree(far, 3), InvalidInput);
+    // Out of range: too large, too small, not square.
+    EXPECT_EQ(Quadtree::max_resolvable_depth(Box::centered_square(1e101)), -1);
+    EXPECT_EQ(Quadtree::max_resolvable_depth(Box::centered_square(1e-101)), -1);
+    EXPECT_EQ(Quadtree::max_resolvable_depth(Box{{0, 0}, {1, 2}}), -1);
+    EXPECT_THROW(Quadtree(Box::centered_square(1e101), 0), InvalidInput);
+}
+
 TEST(Quadtree, LeafAtReturnsTheLeafContainingThePoint) {
     std::mt19937 rng(7);
     const Quadtree tree = graded_tree(8, rng, 5);

@@ -1,0 +1,118 @@
+// Checkpoints of slc run: writing and reading DIR/checkpoint.json.
+#include "commands/checkpoint.hpp"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "slc/core/error.hpp"
+#include "slc/io/interface_json.hpp"
+
+namespace slc::cli {
+namespace {
+
+using Json = nlohmann::json;
+
+constexpr const char* format_name = "slc run checkpoint 1";
+
+/// Each curve as one flat array x0, y0, x1, y1, ...; nlohmann-json writes every double in its
+/// shortest round-trip form, so the checkpoint reads back bit for bit.
+Json curves_json(const Interface& curves) {
+    Json out = Json::array();
+    for (std::size_t c = 0; c < curves.curve_count(); ++c) {
+        Json flat = Json::array();
+        for (const Vec2 p : curves.curve(c)) {
+            flat.push_back(p.x);
+            flat.push_back(p.y);
+        }
+        out.push_back(std::move(flat));
+    }
+    return out;
+}
+
+Interface curves_from(const Json& json) {
+    std::vector<std::vector<Vec2>> curves;
+    for (const Json& flat : json) {
+        const auto xy = flat.get<std::vector<double>>();
+        if (xy.size() % 2 != 0) throw InvalidInput("a curve has an odd number of coordinates");
+        std::vector<Vec2>& curve = curves.emplace_back();
+        for (std::size_t i = 0; i < xy.size(); i += 2) curve.push_back({xy[i], xy[i + 1]});
+        for (const Vec2 p : curve)
+            if (!is_finite(p)) throw InvalidInput("a coordinate is not finite");
+    }
+    return Interface(curves);
+}
+
+}  // namespace
+
+std::filesystem::path checkpoint_path(const std::filesystem::path& dir) {
+    return dir / "checkpoint.json";
+}
+
+void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
+    Json options = Json::array();
+    for (const auto& [name, values] : c.options) options.push_back({name, values});
+    const RunResult& s = c.state;
+    Json json;
+    json["format"] = format_name;
+    json["options"] = options;
+    json["steps_done"] = s.steps_done;
+    json["t"] = s.t;
+    json["g_evals"] = s.g_evals;
+    json["vertices_produced"] = s.vertices_produced;
+    json["wall_s"] = s.wall_s;
+    json["cpu_s"] = s.cpu_s;
+    json["frames_kept"] = c.frames_kept;
+    json["curves"] = curves_json(s.curves);
+    write_file_atomic(checkpoint_path(dir), json.dump() + "\n");
+}
+
+Checkpoint read_checkpoint(const std::filesystem::path& dir) {
+    const std::filesystem::path path = checkpoint_path(dir);
+    const std::string text = read_text_file(path);
+    try {
+        const Json json = Json::parse(text);
+        if (json.at("format") != format_name) throw InvalidInput("unknown format");
+        Checkpoint c;
+        for (const Json& option : json.at("options")) {
+            c.options.emplace_back(option.at(0).get<std::string>(),
+                                   option.at(1).get<std::vector<std::string>>());
+        }
+        RunResult& s = c.state;
+        s.steps_done = json.at("steps_done").get<int>();
+        s.t = json.at("t").get<double>();
+        s.g_evals = json.at("g_evals").get<std::size_t>();
+        s.vertices_produced = json.at("vertices_produced").get<std::size_t>();
+        s.wall_s = json.at("wall_s").get<double>();
+        s.cpu_s = json.at("cpu_s").get<double>();
+        s.status = RunStatus::interrupted;
+        c.frames_kept = json.at("frames_kept").get<int>();
+        s.curves = curves_from(json.at("curves"));
+        return c;
+    } catch (const std::exception& e) {
+        // nlohmann-json's messages are one line: "[json.exception.type_error.302] ...".
+        throw InvalidInput(
+            fmt::format("{}: not a checkpoint of slc run ({})", path.string(), e.what()));
+    }
+}
+
+std::vector<GivenOption> given_options(const CLI::App& cmd, const std::set<std::string>& skip) {
+    std::vector<GivenOption> out;
+    for (const CLI::Option* option : cmd.get_options()) {
+        const std::string name = option->get_name();
+        if (option->count() == 0 || skip.contains(name)) continue;
+        out.emplace_back(name, option->results());
+    }
+    return out;
+}
+
+std::vector<std::string> as_arguments(const std::vector<GivenOption>& options) {
+    std::vector<std::string> args;
+    for (const auto& [name, values] : options) {
+        // "--name=value", so that a value starting with '-' is not taken for an option.
+        for (const std::string& value : values) args.push_back(name + "=" + value);
+    }
+    return args;
+}
+
+}  // namespace slc::cli

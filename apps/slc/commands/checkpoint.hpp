@@ -1,0 +1,43 @@
+// Checkpoints of `slc run`: DIR/checkpoint.json holds the options the run was given and its state
+// after some steps (Γ, t, the step count, counters and clocks), so that `slc run --resume DIR`
+// continues it to the same final interface, bit for bit.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "slc/evolve/run.hpp"
+
+namespace slc::cli {
+
+/// An option of the command line as given: its name ("--steps") and its raw values.
+using GivenOption = std::pair<std::string, std::vector<std::string>>;
+
+struct Checkpoint {
+    std::vector<GivenOption> options;  ///< the run's options, to parse again on resume
+    RunResult state;                   ///< after state.steps_done steps
+    int frames_kept = 0;               ///< frames written so far (DIR/frames/frame_0000.json ...)
+};
+
+/// DIR/checkpoint.json.
+std::filesystem::path checkpoint_path(const std::filesystem::path& dir);
+
+/// Writes the checkpoint atomically (a killed run leaves the previous one or this one, whole).
+/// Doubles are written in the shortest form that reads back to the same bits.
+void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& checkpoint);
+
+/// Reads DIR/checkpoint.json; InvalidInput (one line naming the file) when it is missing or not
+/// a checkpoint.
+Checkpoint read_checkpoint(const std::filesystem::path& dir);
+
+/// The options given to cmd on its command line, except those named in skip.
+std::vector<GivenOption> given_options(const CLI::App& cmd, const std::set<std::string>& skip);
+
+/// The options as command-line arguments, in order: "--name=value", ... (long names only).
+std::vector<std::string> as_arguments(const std::vector<GivenOption>& options);
+
+}  // namespace slc::cli

@@ -1,0 +1,57 @@
+# slc run --checkpoint-every and --resume: a run stopped and resumed ends with the same final
+# interface, byte for byte (17 significant digits: the same doubles), as a run never stopped.
+source "$(dirname "$0")/lib.sh" "$1"
+
+same_run() {  # same_run NAME A B: final.json identical, and the summaries but for clocks and memory
+    check "$1: final.json identical" cmp -s "$2/final.json" "$3/final.json"
+    check "$1: summary identical but clocks and memory" diff <(grep -vE '"(wall_s|cpu_s|cpu_s_per_step|peak_rss_mib)"' "$2/summary.json") \
+        <(grep -vE '"(wall_s|cpu_s|cpu_s_per_step|peak_rss_mib)"' "$3/summary.json")
+}
+
+# Uninterrupted, then the same run checkpointed every 6 steps and resumed from its last checkpoint
+# (step 18 of 20): steps 19 and 20 again, with the frames written before.
+run_args=(run --problem vortex -N 20 -K 5 -P 1 --frames 4 --quiet)
+expect_ok "uninterrupted" -- "${run_args[@]}" --out full
+expect_ok "checkpointed" -- "${run_args[@]}" --checkpoint-every 6 --out part
+check "checkpoint written" test -s part/checkpoint.json
+check "last checkpoint after step 18" grep -q '"steps_done":18' part/checkpoint.json
+same_run "checkpointing changes nothing" full part
+rm part/final.json part/summary.json part/frames.png
+expect_ok "resume" -- run --resume part --quiet
+same_run "resumed from step 18" full part
+check "resume redraws the frames" test -s part/frames.png
+
+# A user's curve under a law: the checkpoint keeps a copy of the file, so that resuming does not
+# depend on the original staying where it was.
+echo '{"curves": [{"points": [[-1, -1], [1, -1], [1, 1], [-1, 1]]}]}' >square.json
+user_args=(run --initial square.json --velocity rotation --param omega=2 --t-end 0.5 -N 5 -K 4 -P 1
+           --domain 2 --quiet)
+expect_ok "user curve" -- "${user_args[@]}" --out user_full
+expect_ok "user curve checkpointed" -- "${user_args[@]}" --checkpoint-every 2 --out user_part
+rm square.json user_part/final.json user_part/summary.json
+expect_ok "user curve resumed" -- run --resume user_part --quiet
+same_run "user curve resumed from step 4" user_full user_part
+
+# Stopped by SIGTERM while running: status interrupted, a checkpoint at the step it stopped after,
+# and the resumed run ends as the uninterrupted one. (Should the run finish before the signal,
+# the last regular checkpoint is resumed: the comparison holds either way.)
+long_args=(run --problem vortex -N 100 -K 5 -P 0 --quiet)
+expect_ok "long run" -- "${long_args[@]}" --out long_full
+"$SLC" "${long_args[@]}" --checkpoint-every 1 --out long_part 2>err.txt &
+pid=$!
+for _ in $(seq 200); do [ -s long_part/checkpoint.json ] && break; sleep 0.05; done
+kill -TERM "$pid"
+wait "$pid"
+check "SIGTERM: exit status 0" test $? -eq 0
+check "SIGTERM: status interrupted (or ok had it finished)" \
+    grep -qE '"status": "(interrupted|ok)"' long_part/summary.json
+expect_ok "resume after SIGTERM" -- run --resume long_part --quiet
+same_run "resumed after SIGTERM" long_full long_part
+
+# Bad use of --resume.
+expect_error "resume with other options" "--steps cannot be given" -- run --resume part --steps 3
+expect_error "resume without checkpoint" "cannot read" -- run --resume nowhere
+echo '{"format": "slc run checkpoint 1"}' >part/checkpoint.json
+expect_error "resume a broken checkpoint" "not a checkpoint" -- run --resume part
+expect_error "checkpoint-every 0" "checkpoint-every" -- run --problem vortex --checkpoint-every 0 --out x
+finish
