@@ -8,6 +8,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/geometry/predicates.hpp"
+#include "slc/geometry/segment.hpp"
 #include "stages.hpp"
 
 namespace slc::contouring {
@@ -121,8 +122,7 @@ void SegmentGrid::insert(std::uint32_t u) {
 
 bool SegmentGrid::crosses(Segment s, std::span<const std::uint32_t> skip) const {
     const auto [x0, y0, x1, y1] = cell_range(s);
-    const Box bounds{{std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y)},
-                     {std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)}};
+    const Box bounds = bounding_box(s);
     for (std::int64_t iy = y0; iy <= y1; ++iy) {
         for (std::int64_t ix = x0; ix <= x1; ++ix) {
             const auto it = cells_.find(key(ix, iy));
@@ -132,10 +132,7 @@ bool SegmentGrid::crosses(Segment s, std::span<const std::uint32_t> skip) const 
                 if (std::find(skip.begin(), skip.end(), u) != skip.end()) continue;
                 const Segment t = chain_.segment(u);
                 // Disjoint bounding boxes cannot meet: most pairs end here, before the exact test.
-                if (std::max(t.a.x, t.b.x) < bounds.lo.x || std::min(t.a.x, t.b.x) > bounds.hi.x ||
-                    std::max(t.a.y, t.b.y) < bounds.lo.y || std::min(t.a.y, t.b.y) > bounds.hi.y) {
-                    continue;
-                }
+                if (!bounds.overlaps(bounding_box(t))) continue;
                 if (segments_intersect(s, t)) return true;
             }
         }

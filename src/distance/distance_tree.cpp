@@ -70,11 +70,8 @@ void DistanceTree::build_lists() {
     // Bounding boxes decide membership: a segment whose box meets a triple is listed even if
     // the segment itself passes by a corner, which only lengthens a list, never drops a segment.
     std::vector<Box> bounds(segment_ends_.size());
-    for (std::size_t s = 0; s < segment_ends_.size(); ++s) {
-        const Segment& e = segment_ends_[s];
-        bounds[s] = {{std::min(e.a.x, e.b.x), std::min(e.a.y, e.b.y)},
-                     {std::max(e.a.x, e.b.x), std::max(e.a.y, e.b.y)}};
-    }
+    for (std::size_t s = 0; s < segment_ends_.size(); ++s)
+        bounds[s] = bounding_box(segment_ends_[s]);
     // Lists are appended in cell order (children are created, and listed, together), so the
     // one array segments_ with offsets_ is built directly: the root lists every segment.
     segments_.resize(segment_ends_.size());

@@ -13,7 +13,8 @@ namespace {
 /// the grown box's distance stays a lower bound of every computed distance inside it.
 constexpr double box_slack = 1e-12;
 
-/// Squared distance from x to box b (0 inside).
+/// Squared distance from x to box b (0 inside; infinite for an empty box, which Box::clamp
+/// does not handle).
 double distance2(const Box& b, Vec2 x) {
     const double dx = std::max({b.lo.x - x.x, x.x - b.hi.x, 0.0});
     const double dy = std::max({b.lo.y - x.y, x.y - b.hi.y, 0.0});
@@ -31,8 +32,7 @@ SegmentHierarchy::SegmentHierarchy(std::span<const Segment> segments) {
     for (std::uint32_t s = 0; s < n; ++s) {
         const Segment& seg = segments[s];
         Box& leaf = boxes_[leaves_ + s / leaf_size];
-        leaf = unite(leaf, Box{{std::min(seg.a.x, seg.b.x), std::min(seg.a.y, seg.b.y)},
-                               {std::max(seg.a.x, seg.b.x), std::max(seg.a.y, seg.b.y)}});
+        leaf = unite(leaf, bounding_box(seg));
         scale = std::max(
             {scale, std::abs(seg.a.x), std::abs(seg.a.y), std::abs(seg.b.x), std::abs(seg.b.y)});
     }

@@ -3,8 +3,10 @@
 /// that the distance tree calls, and the oracle its tests compare against.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 
+#include "slc/core/box.hpp"
 #include "slc/core/vec2.hpp"
 #include "slc/geometry/interface.hpp"
 
@@ -16,6 +18,12 @@ struct SegmentPoint {
     double t = 0.0;          ///< its parameter: point = a + t (b − a), t in [0, 1]
     double distance2 = 0.0;  ///< squared distance from x to point
 };
+
+/// The smallest box holding the segment.
+inline Box bounding_box(Segment s) {
+    return {{std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y)},
+            {std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)}};
+}
 
 /// Nearest point to x on the segment [a, b] (a degenerate segment is its endpoint). O(1); inline,
 /// since the distance tree calls it in its innermost loop.
