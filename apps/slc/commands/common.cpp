@@ -146,7 +146,7 @@ CLI::Validator integer_in(int lo, int hi) {
             if (v && *v >= lo && *v <= hi && *v == std::floor(*v)) return std::string();
             return fmt::format("must be an integer from {} to {}, got '{}'", lo, hi, text);
         },
-        fmt::format("INT in [{}, {}]", lo, hi));
+        fmt::format("in [{}, {}]", lo, hi));
 }
 
 CLI::Validator fraction_below_one() {

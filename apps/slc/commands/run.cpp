@@ -208,7 +208,8 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
                   "(DIR/frames/*.vtp) and DIR/frames.pvd, a time series ParaView opens");
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
-                    "Output folder: summary.json, final.json, final.svg/.png, frames");
+                    "Output folder (required, except with --resume): summary.json, final.json, "
+                    "final.svg/.png, frames");
     cmd->add_option(
            "--checkpoint-every", o->checkpoint_every,
            "Write DIR/checkpoint.json every n steps, and when stopped by Ctrl-C or SIGTERM")
