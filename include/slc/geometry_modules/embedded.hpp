@@ -38,7 +38,9 @@ struct EmbeddedFields {
 };
 
 /// The fields of the embedded module on the local mesh of range R = E + S around the tree's
-/// curves, lattice anchored at the corner of the tree's domain with h = width/M:
+/// curves, h = width/M, the lattice offset by (h/2, h/2) from the corner of the tree's domain
+/// (cell-centred: a contour of a depth-K tree over the same domain has its vertices on the tree's
+/// cell edges, which at M = 2^(K+1) would otherwise be lattice lines; see below):
 ///  1. F at every mesh point from the tree (exact);
 ///  2. ∇F by ENO differences of order E along rows and columns, N = ∇F/|∇F| (N = 0 where the
 ///     differences cancel, which happens only on the medial axis of Γ);
