@@ -15,6 +15,7 @@
 #include "commands/common.hpp"
 #include "commands/run_options.hpp"
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
 
@@ -57,11 +58,12 @@ std::string number(const std::optional<double>& v, const char* format = "{:.3g}"
 
 std::string markdown(const Problem& p, const StudyResult& s, const Paper& paper) {
     std::string md = fmt::format("# Convergence study: {}\n\n{}\n\n", p.name, p.description);
-    md +=
+    const int threads = thread_count();
+    md += fmt::format(
         "E_inf is the largest |exact signed distance| over the final vertices and segment "
-        "midpoints "
-        "(paper Eq. 11); T is CPU seconds per step (all threads). Rows refine N, K and ε together; "
-        "columns add passes P of adaptive refinement.";
+        "midpoints (paper Eq. 11); T is process CPU seconds per step, on {} thread{}. Rows refine "
+        "N, K and ε together; columns add passes P of adaptive refinement.",
+        threads, threads == 1 ? "" : "s");
     if (!paper.empty()) md += " Each cell: ours / the paper's (450 MHz UltraSPARC II, 2000).";
     md +=
         "\n\n| N/S/K/ε | | P = 0 | P = 1 | P = 2 | P = 3 | P = 4 "
