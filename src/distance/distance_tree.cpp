@@ -23,6 +23,10 @@ constexpr double triple_slack = 1e-12;
 /// descent beats a scan of so many segments.
 constexpr std::size_t longest_scanned_list = 48;
 
+/// A level of the tree is built on all worker threads when its cells list at least this many
+/// segments in all: below, starting the threads costs more than the work.
+constexpr std::size_t min_parallel_work = 4096;
+
 /// True if the closed segment meets the closed box (separating-axis test: bounding boxes, then
 /// the segment's line against the box corners).
 bool meets(Segment s, const Box& b) {
@@ -72,41 +76,92 @@ void DistanceTree::build_lists() {
     std::vector<Box> bounds(segment_ends_.size());
     for (std::size_t s = 0; s < segment_ends_.size(); ++s)
         bounds[s] = bounding_box(segment_ends_[s]);
+    // The segments of parent's list whose boxes meet child k's triple, written to out; returns
+    // their number.
+    auto filter = [&](std::size_t parent, std::uint32_t k, std::uint32_t* out) {
+        const Box t = tree_.triple(k).inflated(triple_slack * tree_.edge(tree_.cell(k).level));
+        std::uint32_t n = 0;
+        for (std::uint32_t s : cell_segments(parent))
+            if (bounds[s].overlaps(t)) out[n++] = s;
+        return n;
+    };
     // Lists are appended in cell order (children are created, and listed, together), so the
     // one array segments_ with offsets_ is built directly: the root lists every segment.
     segments_.resize(segment_ends_.size());
     std::iota(segments_.begin(), segments_.end(), 0u);
     offsets_ = {0, static_cast<std::uint32_t>(segments_.size())};
-    auto list_children = [&](std::size_t c, std::uint32_t first) {
+
+    // Cells are appended breadth-first, so [begin, end) below is one whole level, and the tree
+    // grows level by level: split a cell while its edge exceeds its distance to Γ (§1.3, Eq. 6).
+    // Only segments on the cell's list can be that near, since the triple holds every point
+    // within one edge. The tests, and the children's lists, are computed on all worker threads
+    // (each child's list into its own stretch of a scratch array, then packed in cell order), so
+    // the tree and its lists are those of a sequential pass, whatever the thread count.
+    std::vector<std::uint32_t> scratch;
+    for (std::size_t begin = 0, end = tree_.size(); begin < end; begin = end, end = tree_.size()) {
+        const std::size_t level_work = offsets_[end] - offsets_[begin];
+        const std::size_t min_iterations = level_work >= min_parallel_work ? 1 : end - begin + 1;
+        std::vector<std::uint8_t> near(end - begin, 0);
+        parallel_for(
+            end - begin,
+            [&](std::size_t i) {
+                const std::size_t c = begin + i;
+                const int level = tree_.cell(c).level;
+                if (level == tree_.max_depth()) return;
+                const Box b = tree_.box(c);
+                const double h = tree_.edge(level);
+                for (std::uint32_t s : cell_segments(c)) {
+                    if (distance(segment_ends_[s], b) < h) {
+                        near[i] = 1;
+                        return;
+                    }
+                }
+            },
+            min_iterations);
+        // Children, each with the start of its scratch stretch (four per parent, each as long
+        // as the parent's list).
+        std::vector<std::pair<std::uint32_t, std::size_t>> children;
+        std::size_t stretch = 0;
+        for (std::size_t c = begin; c < end; ++c) {
+            if (!near[c - begin]) continue;
+            const std::uint32_t first = tree_.split(c);
+            const std::size_t length = offsets_[c + 1] - offsets_[c];
+            for (std::uint32_t k = 0; k < 4; ++k, stretch += length)
+                children.emplace_back(first + k, stretch);
+        }
+        if (children.empty()) break;
+        scratch.resize(stretch);
+        std::vector<std::uint32_t> count(children.size());
+        parallel_for(
+            children.size(),
+            [&](std::size_t j) {
+                const auto [k, at] = children[j];
+                count[j] = filter(tree_.cell(k).parent, k, scratch.data() + at);
+            },
+            min_iterations);
+        const std::size_t listed = segments_.size();
+        for (std::uint32_t n : count) offsets_.push_back(offsets_.back() + n);
+        segments_.resize(offsets_.back());
+        parallel_for(
+            children.size(),
+            [&](std::size_t j) {
+                std::copy_n(scratch.data() + children[j].second, count[j],
+                            segments_.data() + offsets_[children[j].first]);
+            },
+            min_iterations);
+        SLC_ASSERT(offsets_[children.front().first] == listed, "lists follow the cell order");
+    }
+    tree_.balance([&](std::size_t c) {
+        const std::uint32_t first = tree_.cell(c).first_child;
         SLC_ASSERT(offsets_.size() == std::size_t{first} + 1, "lists follow the cell order");
-        const std::uint32_t begin = offsets_[c], end = offsets_[c + 1];
         for (std::uint32_t k = first; k < first + 4; ++k) {
-            const Box t = tree_.triple(k).inflated(triple_slack * tree_.edge(tree_.cell(k).level));
-            for (std::uint32_t i = begin; i < end; ++i) {
-                const std::uint32_t s = segments_[i];
-                if (bounds[s].overlaps(t)) segments_.push_back(s);
-            }
+            const std::size_t at = segments_.size();
+            segments_.resize(at + offsets_[c + 1] - offsets_[c]);
+            const std::uint32_t n = filter(c, k, segments_.data() + at);
+            segments_.resize(at + n);
             offsets_.push_back(static_cast<std::uint32_t>(segments_.size()));
         }
-    };
-    // Cells are appended breadth-first, so one pass in index order refines level by level:
-    // split a cell while its edge exceeds its distance to Γ (§1.3, Eq. 6). Only segments on the
-    // cell's list can be that near, since the triple holds every point within one edge.
-    for (std::size_t c = 0; c < tree_.size(); ++c) {
-        const int level = tree_.cell(c).level;
-        if (level == tree_.max_depth()) continue;
-        const Box b = tree_.box(c);
-        const double h = tree_.edge(level);
-        bool near = false;
-        for (std::uint32_t s : cell_segments(c)) {
-            if (distance(segment_ends_[s], b) < h) {
-                near = true;
-                break;
-            }
-        }
-        if (near) list_children(c, tree_.split(c));
-    }
-    tree_.balance([&](std::size_t c) { list_children(c, tree_.cell(c).first_child); });
+    });
 }
 
 void DistanceTree::build_start_grid() {

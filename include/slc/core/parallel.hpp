@@ -18,11 +18,12 @@ int thread_count();
 /// Below this many iterations a loop runs on the calling thread: starting threads costs more.
 inline constexpr std::size_t parallel_grain = 256;
 
-/// Calls body(i) for i in [0, n), on all worker threads when n is large enough. body must only
-/// write data owned by iteration i.
+/// Calls body(i) for i in [0, n), on all worker threads when n >= min_iterations (for loops
+/// whose iterations are each long, pass fewer than parallel_grain). body must only write data
+/// owned by iteration i.
 template <class Body>
-void parallel_for(std::size_t n, Body&& body) {
-    if (n < parallel_grain || thread_count() == 1) {
+void parallel_for(std::size_t n, Body&& body, std::size_t min_iterations = parallel_grain) {
+    if (n < min_iterations || n < 2 || thread_count() == 1) {
         for (std::size_t i = 0; i < n; ++i) body(i);
         return;
     }

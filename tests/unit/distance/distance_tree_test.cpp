@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -167,6 +168,35 @@ TEST(DistanceTree, BatchAnswersDoNotDependOnThreadCount) {
     const auto two = tree.signed_distances(xs);
     set_thread_count(0);
     EXPECT_EQ(one, two);
+}
+
+TEST(DistanceTree, CellsAndListsDoNotDependOnThreadCount) {
+    // 8192 segments: enough list entries per level for the build to use every worker thread.
+    const Interface circle({shapes::polar(
+        {0.05, -0.1}, [](double t) { return 0.9 + 0.2 * std::cos(5 * t); }, 8192)});
+    set_thread_count(1);
+    const DistanceTree one(circle, domain, {.depth = 11, .triangulate = false});
+    set_thread_count(2);
+    const DistanceTree two(circle, domain, {.depth = 11, .triangulate = false});
+    set_thread_count(0);
+    ASSERT_EQ(one.tree().size(), two.tree().size());
+    for (std::size_t c = 0; c < one.tree().size(); ++c) {
+        ASSERT_EQ(one.tree().cell(c).first_child, two.tree().cell(c).first_child) << "cell " << c;
+        const auto a = one.cell_segments(c), b = two.cell_segments(c);
+        ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << "cell " << c;
+    }
+    // The long lists of the coarse levels, against their definition: every segment whose box
+    // meets the triple, in increasing order.
+    const Quadtree& q = two.tree();
+    for (std::size_t c = 0; c < q.size(); ++c) {
+        if (q.cell(c).level > 4) continue;
+        std::vector<std::uint32_t> expected;
+        for (std::uint32_t s = 0; s < circle.size(); ++s)
+            if (bounding_box(circle.segment(s)).overlaps(q.triple(c))) expected.push_back(s);
+        const auto list = two.cell_segments(c);
+        EXPECT_TRUE(std::equal(list.begin(), list.end(), expected.begin(), expected.end()))
+            << "cell " << c << " lists " << list.size() << ", expected " << expected.size();
+    }
 }
 
 TEST(DistanceTree, RejectsAnEmptyInterfaceAndBadDomains) {
