@@ -265,14 +265,38 @@ double vertex_error(const Problem& p, const Interface& curves, double t) {
 }
 
 struct PeerRun {
-    std::string name;
-    std::string settings;
-    std::map<std::string, double> params;
-    int steps, depth, refine;
-    double eps;
-    std::optional<int> mesh;
+    std::string name{};
+    std::string settings{};
+    std::map<std::string, double> params{};
+    int steps = 0, depth = 0, refine = 0;
+    double eps = 0.0;
+    std::optional<int> mesh{};
     Extension extension = Extension::nearest_point;
+    std::optional<double> t_end{};       ///< the problem's own when not given
+    std::optional<double> half_width{};  ///< the domain [−b, b]², the problem's own when not given
 };
+
+/// Runs a peer comparison on one thread: the problem's setting with r's method options.
+/// Returns the problem (with its domain), the initial curves and the result.
+std::tuple<Problem, Interface, RunResult> run_peer(const PeerRun& r) {
+    Problem p = make_problem(r.name, r.params);
+    if (r.half_width) p.domain = Box::centered_square(*r.half_width);
+    const auto law = make_velocity(p.velocity, p.velocity_params, p.module);
+    Interface initial = prepare_interface(p.initial, p.domain).curves;
+    RunOptions o;
+    o.t_start = p.t_start;
+    o.t_end = r.t_end.value_or(p.t_end);
+    o.steps = r.steps;
+    o.step.contour.depth = r.depth;
+    o.step.contour.refine_passes = r.refine;
+    o.step.contour.eps = r.eps;
+    o.step.extension = r.extension;
+    o.step.embedded.mesh = r.mesh.value_or(default_mesh_size(r.depth));
+    o.step.embedded.smoothing = p.smoothing;
+    set_thread_count(1);
+    RunResult result = run(initial, *law, p.domain, o);
+    return {std::move(p), std::move(initial), std::move(result)};
+}
 
 std::string peers_section() {
     std::string md;
@@ -283,70 +307,56 @@ std::string peers_section() {
         "seconds |\n|---|---|---|---|---|\n"
         "| FronTier (front tracking) | 256² | 1.28e-3 | −1.3e-4 | 7.7 |\n"
         "| LSMLIB (WENO5 + TVD-RK3 level set) | 256² | 4.4e-3 | −1.4e-3 | 16.3 |\n";
-    const std::vector<PeerRun> zalesak = {
-        {"zalesak",
-         "N/K/P/ε = 100/7/2/1e-6, nearest-point extension (default)",
-         {},
-         100,
-         7,
-         2,
-         1e-6,
-         {},
-         Extension::nearest_point},
-        {"zalesak", "100/7/2/1e-6, direct velocity", {}, 100, 7, 2, 1e-6, {}, Extension::direct},
-        {"zalesak", "100/8/3/1e-7, direct velocity", {}, 100, 8, 3, 1e-7, {}, Extension::direct},
-        {"zalesak", "200/8/3/1e-8, direct velocity", {}, 200, 8, 3, 1e-8, {}, Extension::direct},
+    auto zalesak_run = [](std::string settings, int steps, int depth, int refine, double eps,
+                          Extension extension) {
+        return PeerRun{.name = "zalesak",
+                       .settings = std::move(settings),
+                       .steps = steps,
+                       .depth = depth,
+                       .refine = refine,
+                       .eps = eps,
+                       .extension = extension};
     };
-    auto run_one = [](const PeerRun& r, RunResult& out) {
-        const Problem p = make_problem(r.name, r.params);
-        const auto law = make_velocity(p.velocity, p.velocity_params, p.module);
-        const Interface initial = prepare_interface(p.initial, p.domain).curves;
-        RunOptions o;
-        o.t_start = p.t_start;
-        o.t_end = p.t_end;
-        o.steps = r.steps;
-        o.step.contour.depth = r.depth;
-        o.step.contour.refine_passes = r.refine;
-        o.step.contour.eps = r.eps;
-        o.step.extension = r.extension;
-        o.step.embedded.mesh = r.mesh.value_or(default_mesh_size(r.depth));
-        o.step.embedded.smoothing = p.smoothing;
-        set_thread_count(1);
-        out = run(initial, *law, p.domain, o);
-        return std::make_pair(p, initial);
+    const std::vector<PeerRun> zalesak = {
+        zalesak_run("N/K/P/ε = 100/7/2/1e-6, nearest-point extension (default)", 100, 7, 2, 1e-6,
+                    Extension::nearest_point),
+        zalesak_run("100/7/2/1e-6, direct velocity", 100, 7, 2, 1e-6, Extension::direct),
+        zalesak_run("100/8/3/1e-7, direct velocity", 100, 8, 3, 1e-7, Extension::direct),
+        zalesak_run("200/8/3/1e-8, direct velocity", 200, 8, 3, 1e-8, Extension::direct),
     };
     for (const PeerRun& r : zalesak) {
-        RunResult result;
-        const auto [p, initial] = run_one(r, result);
-        const double a0 = area(initial);
+        const auto [p, initial, result] = run_peer(r);
         md += fmt::format("| slc | {} | {:.3g} | {:+.2g} | {:.3g} |\n", r.settings,
-                          vertex_error(p, result.curves, result.t), area(result.curves) - a0,
-                          result.wall_s);
+                          vertex_error(p, result.curves, result.t),
+                          area(result.curves) - area(initial), result.wall_s);
     }
-    // Curve shortening of a circle R(0) = 0.5 to t = 0.1: R(t)² = R(0)² − 2t.
+    // Curve shortening of a circle R(0) = 0.5 to t = 0.1: R(t)² = R(0)² − 2t. The problem's
+    // S = 1 keeps k/h² ≤ 1.6 stable (docs/user-guide.md §5).
     md +=
-        "\n### Curve shortening of a circle, R(0) = 0.5 to t = 0.1 (one core)\n\n"
+        "\n### Curve shortening of a circle, R(0) = 0.5 to t = 0.1 (one core, S = 1)\n\n"
         "| program | setting | radius error | seconds |\n|---|---|---|---|\n"
         "| LSMLIB | 128² | 1.1e-4 | 0.48 |\n| LSMLIB | 256² | 2.9e-5 | 7.7 |\n";
-    const std::vector<PeerRun> shortening = {
-        {"circle-curvature", "N/K/P/ε/M = 20/8/2/1e-8/128", {{"R0", 0.5}}, 20, 8, 2, 1e-8, 128},
-        {"circle-curvature", "40/8/2/1e-8/128", {{"R0", 0.5}}, 40, 8, 2, 1e-8, 128},
-        {"circle-curvature", "40/7/2/1e-7/64 (default M)", {{"R0", 0.5}}, 40, 7, 2, 1e-7, {}},
+    auto shortening_run = [](std::string settings, int steps, int depth, double eps,
+                             std::optional<int> mesh, std::optional<double> half_width) {
+        return PeerRun{.name = "circle-curvature",
+                       .settings = std::move(settings),
+                       .params = {{"R0", 0.5}},
+                       .steps = steps,
+                       .depth = depth,
+                       .refine = 2,
+                       .eps = eps,
+                       .mesh = mesh,
+                       .t_end = 0.1,
+                       .half_width = half_width};
     };
-    for (PeerRun r : shortening) {
-        Problem p = make_problem(r.name, r.params);
-        const auto law = make_velocity(p.velocity, p.velocity_params, p.module);
-        const Interface initial = prepare_interface(p.initial, p.domain).curves;
-        RunOptions o;
-        o.t_end = 0.1;
-        o.steps = r.steps;
-        o.step.contour.depth = r.depth;
-        o.step.contour.refine_passes = r.refine;
-        o.step.contour.eps = r.eps;
-        o.step.embedded.mesh = r.mesh.value_or(default_mesh_size(r.depth));
-        o.step.embedded.smoothing = p.smoothing;
-        set_thread_count(1);
-        const RunResult result = run(initial, *law, p.domain, o);
+    const std::vector<PeerRun> shortening = {
+        shortening_run("N/K/P/ε/M = 20/8/2/1e-8/128 in [−4, 4]²", 20, 8, 1e-8, 128, {}),
+        shortening_run("40/7/2/1e-7/64 (default M) in [−4, 4]²", 40, 7, 1e-7, {}, {}),
+        shortening_run("10/6/2/1e-7/32 in [−1, 1]²", 10, 6, 1e-7, 32, 1.0),
+        shortening_run("20/6/2/1e-7/32 in [−1, 1]²", 20, 6, 1e-7, 32, 1.0),
+    };
+    for (const PeerRun& r : shortening) {
+        const auto [p, initial, result] = run_peer(r);
         const double exact = std::sqrt(0.25 - 2.0 * 0.1);
         double worst = std::numeric_limits<double>::quiet_NaN();
         if (!result.curves.empty()) {
