@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 #include "stages.hpp"
 
 namespace slc::contouring {
@@ -161,9 +162,11 @@ private:
     /// bracket stays off every other segment (the neighbours, or another part of the contour
     /// across a narrow gap, whose zero the bracket would otherwise jump over together with ours)
     /// and inside the domain. One batch, and a second for brackets that fell short of the zero.
+    /// The reaches are found on all worker threads: the grid is only read here.
     void bracket(std::vector<Candidate>& candidates) {
-        std::vector<Vec2> probes;
-        for (Candidate& c : candidates) {
+        std::vector<Vec2> probes(candidates.size());
+        parallel_for(candidates.size(), [&](std::size_t k) {
+            Candidate& c = candidates[k];
             const std::uint32_t u = c.u, v = chain_.next[u];
             const Vec2 tangent = (chain_.points[v] - chain_.points[u]) / chain_.length(u);
             const Vec2 right{tangent.y, -tangent.x};
@@ -175,8 +178,8 @@ private:
             c.g_near = c.g_mid;
             c.probe = domain_.clamp(c.mid +
                                     std::min(bracket_distance * chain_.length(u), c.reach) * c.dir);
-            probes.push_back(c.probe);
-        }
+            probes[k] = c.probe;
+        });
         std::vector<double> values(probes.size());
         g_(probes, values);
         for (std::size_t k = 0; k < candidates.size(); ++k) candidates[k].g_probe = values[k];

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/core/tolerances.hpp"
 
 namespace slc {
@@ -144,12 +145,23 @@ void Quadtree::collect_coarse_neighbours(std::size_t c, std::vector<std::uint32_
 }
 
 bool Quadtree::is_balanced() const {
-    std::vector<std::uint32_t> coarse;
-    for (std::uint32_t c : leaves()) {
-        collect_coarse_neighbours(c, coarse);
-        if (!coarse.empty()) return false;
-    }
-    return true;
+    // Every leaf checked on all worker threads: the triangulation, the contouring tree's γ rounds
+    // and both distance trees of a step ask this of trees of many thousands of leaves.
+    const std::vector<std::uint32_t> leaf = leaves();
+    std::vector<std::uint8_t> coarse(leaf.size(), 0);
+    parallel_for(leaf.size(), [&](std::size_t i) {
+        constexpr int dx[4] = {-1, 1, 0, 0};
+        constexpr int dy[4] = {0, 0, -1, 1};
+        const int level = cells_[leaf[i]].level;
+        for (int d = 0; d < 4; ++d) {
+            const std::uint32_t m = neighbour(leaf[i], dx[d], dy[d]);
+            if (m != no_cell && cells_[m].level < level - 1) {
+                coarse[i] = 1;
+                return;
+            }
+        }
+    });
+    return std::find(coarse.begin(), coarse.end(), std::uint8_t{1}) == coarse.end();
 }
 
 std::vector<std::uint32_t> Quadtree::leaves() const {

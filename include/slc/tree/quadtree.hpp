@@ -99,7 +99,8 @@ public:
         balance([](std::size_t) {});
     }
 
-    /// True when every two edge-adjacent leaves differ by at most one level.
+    /// True when every two edge-adjacent leaves differ by at most one level. On all worker
+    /// threads.
     bool is_balanced() const;
 
     /// All leaves, in increasing cell number.
@@ -118,6 +119,7 @@ private:
 
 template <class OnSplit>
 void Quadtree::balance(OnSplit&& on_split) {
+    if (is_balanced()) return;  // the common case, checked on all worker threads
     // Work from the finest level to the coarsest: a leaf at level l forces its edge neighbours
     // to exist down to level l − 1; splits only create cells above level l, which are handled
     // when their own level comes up.
