@@ -231,7 +231,8 @@ ClosestPoint DistanceTree::closest_point(Vec2 x) const {
 
 void DistanceTree::closest_points(std::span<const Vec2> xs, std::span<ClosestPoint> out) const {
     SLC_ASSERT(xs.size() == out.size(), "one answer per query point");
-    parallel_for(xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]); });
+    parallel_for(
+        xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]); }, expensive_grain);
 }
 
 std::vector<ClosestPoint> DistanceTree::closest_points(std::span<const Vec2> xs) const {
@@ -242,7 +243,8 @@ std::vector<ClosestPoint> DistanceTree::closest_points(std::span<const Vec2> xs)
 
 std::vector<double> DistanceTree::signed_distances(std::span<const Vec2> xs) const {
     std::vector<double> out(xs.size());
-    parallel_for(xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]).distance; });
+    parallel_for(
+        xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]).distance; }, expensive_grain);
     return out;
 }
 

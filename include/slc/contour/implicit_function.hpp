@@ -72,7 +72,8 @@ template <class F>
 requires std::is_invocable_r_v<double, const F&, Vec2>
 auto pointwise(F f) {
     return [f = std::move(f)](std::span<const Vec2> points, std::span<double> values) {
-        parallel_for(points.size(), [&](std::size_t i) { values[i] = f(points[i]); });
+        parallel_for(
+            points.size(), [&](std::size_t i) { values[i] = f(points[i]); }, expensive_grain);
     };
 }
 

@@ -17,6 +17,9 @@ int thread_count();
 
 /// Below this many iterations a loop runs on the calling thread: starting threads costs more.
 inline constexpr std::size_t parallel_grain = 256;
+/// The same for loops whose every iteration costs a microsecond or more (an evaluation of G, a
+/// closest-point query): there, 32 iterations already repay starting the threads.
+inline constexpr std::size_t expensive_grain = 32;
 
 /// Calls body(i) for i in [0, n), on all worker threads when n >= min_iterations (for loops
 /// whose iterations are each long, pass fewer than parallel_grain). body must only write data
