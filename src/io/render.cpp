@@ -11,6 +11,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <variant>
 
 #include "render_layout.hpp"
@@ -193,10 +194,19 @@ void draw_axes(cairo_t* cr, const Page& page) {
     }
     cairo_stroke(cr);
     set_font(cr, font_size + 1.0, true);
-    draw_text(cr, "x", page.plot_x + 0.5 * plot_size, bottom + tick_length + 3.0 * font_size, 0.5,
-              0.5);
-    draw_text(cr, "y", page.plot_x - tick_length - label_gap - widest - font_size,
-              page.plot_y + 0.5 * plot_size, 0.5, 0.5);
+    draw_text(cr, page.x_name, page.plot_x + 0.5 * plot_size,
+              bottom + tick_length + 3.0 * font_size, 0.5, 0.5);
+    const double y_name_x = page.plot_x - tick_length - label_gap - widest - font_size;
+    if (page.y_name.size() <= 1) {
+        draw_text(cr, page.y_name, y_name_x, page.plot_y + 0.5 * plot_size, 0.5, 0.5);
+        return;
+    }
+    // A longer name reads bottom to top along the axis, in the one em the layout leaves.
+    cairo_save(cr);
+    cairo_translate(cr, y_name_x, page.plot_y + 0.5 * plot_size);
+    cairo_rotate(cr, -0.5 * std::numbers::pi);
+    draw_text(cr, page.y_name, 0.0, 0.0, 0.5, 0.5);
+    cairo_restore(cr);
 }
 
 void draw_title(cairo_t* cr, const Page& page, const std::string& title) {
@@ -446,7 +456,9 @@ void Figure::save(const std::filesystem::path& path) const {
     }
     Layers layers;
     for (const auto& layer : layers_) layers.push_back(&layer->item);
-    const Page page = measured_layout(view_, title_, layers);
+    Page page = measured_layout(view_, title_, layers);
+    page.x_name = x_name_;
+    page.y_name = y_name_;
     write_file_atomic(path, ext == ".svg" ? svg_bytes(page, layers, title_, path)
                                           : png_bytes(page, layers, title_, path));
 }

@@ -109,6 +109,8 @@ struct Page {
     double colorbar_height = 0.0;
     Ticks x_ticks;
     Ticks y_ticks;
+    std::string x_name = "x";  // below the x ticks
+    std::string y_name = "y";  // left of the y ticks, upright when one character, else turned
 
     double scale() const { return plot_size / view.width(); }
     Vec2 to_page(Vec2 p) const {

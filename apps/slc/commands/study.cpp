@@ -141,7 +141,8 @@ void plot(const std::filesystem::path& dir, const Problem& p, const StudyResult&
     }
     if (b.is_empty()) return;
     Figure fig(Box::square(b.center(), 0.55 * std::max({b.width(), b.height(), 1.0})),
-               fmt::format("{}: log10 E_inf against log10 CPU s per step", p.name));
+               fmt::format("{}: error against CPU time per step", p.name));
+    fig.set_axis_names("log10 CPU seconds per step", "log10 E_inf");
     for (std::size_t r = 0; r < ours.size(); ++r) {
         if (theirs[r].size() >= 2)
             fig.add_polyline(theirs[r], r == 0 ? "paper" : "", Color{0.6, 0.6, 0.6, 1}, 1.0);

@@ -68,6 +68,13 @@ public:
     /// Arrows from at[i] along vec[i] * scale (plane units).
     void add_arrows(std::span<const Vec2> at, std::span<const Vec2> vec, double scale, Color color);
 
+    /// Names the axes (default "x" and "y"); a y name longer than one character is turned to
+    /// read along the axis.
+    void set_axis_names(std::string x, std::string y) {
+        x_name_ = std::move(x);
+        y_name_ = std::move(y);
+    }
+
     /// Writes the picture; the extension (.svg or .png) picks the format, else InvalidInput.
     /// Written atomically (write_file_atomic semantics).
     void save(const std::filesystem::path& path) const;
@@ -76,6 +83,8 @@ private:
     struct Layer;
     Box view_;
     std::string title_;
+    std::string x_name_ = "x";
+    std::string y_name_ = "y";
     std::vector<std::shared_ptr<Layer>> layers_;
 };
 
