@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -93,6 +94,9 @@ Interface Chain::to_interface() const {
 SegmentGrid::SegmentGrid(const Chain& chain, double cell)
     : chain_(chain), cell_(cell), origin_(chain.points.empty() ? Vec2{} : chain.points[0]) {
     SLC_ASSERT(cell > 0.0, "grid cells have a positive size");
+    // Cells are about twice the mean segment, so most segments lie in one to four cells.
+    heads_.assign(std::bit_ceil(std::max<std::size_t>(2 * chain.points.size(), 16)), none);
+    entries_.reserve(2 * chain.points.size());
     for (std::uint32_t i = 0; i < chain.points.size(); ++i)
         if (chain.alive[i]) insert(i);
 }
@@ -100,6 +104,26 @@ SegmentGrid::SegmentGrid(const Chain& chain, double cell)
 std::uint64_t SegmentGrid::key(std::int64_t ix, std::int64_t iy) const {
     constexpr std::int64_t bias = std::int64_t{1} << 31;
     return (static_cast<std::uint64_t>(ix + bias) << 32) | static_cast<std::uint64_t>(iy + bias);
+}
+
+std::uint32_t SegmentGrid::bucket(std::uint64_t key) const {
+    // Fibonacci hashing: the high bits of the product mix both coordinates.
+    const std::uint64_t h = key * 0x9e3779b97f4a7c15ull;
+    return static_cast<std::uint32_t>(h >> 32) & static_cast<std::uint32_t>(heads_.size() - 1);
+}
+
+void SegmentGrid::add(std::uint64_t key, std::uint32_t u, std::uint32_t v) {
+    if (entries_.size() >= heads_.size()) {  // keep buckets short: double and rethread
+        heads_.assign(2 * heads_.size(), none);
+        for (std::uint32_t e = 0; e < entries_.size(); ++e) {
+            const std::uint32_t b = bucket(entries_[e].key);
+            entries_[e].next = heads_[b];
+            heads_[b] = e;
+        }
+    }
+    const std::uint32_t b = bucket(key);
+    entries_.push_back({key, u, v, heads_[b]});
+    heads_[b] = static_cast<std::uint32_t>(entries_.size() - 1);
 }
 
 std::array<std::int64_t, 4> SegmentGrid::cell_range(Segment s) const {
@@ -116,28 +140,26 @@ std::array<std::int64_t, 4> SegmentGrid::cell_range(Segment s) const {
 void SegmentGrid::insert(std::uint32_t u) {
     const auto [x0, y0, x1, y1] = cell_range(chain_.segment(u));
     for (std::int64_t iy = y0; iy <= y1; ++iy)
-        for (std::int64_t ix = x0; ix <= x1; ++ix)
-            cells_[key(ix, iy)].push_back({u, chain_.next[u]});
+        for (std::int64_t ix = x0; ix <= x1; ++ix) add(key(ix, iy), u, chain_.next[u]);
 }
 
 bool SegmentGrid::crosses(Segment s, std::span<const std::uint32_t> skip) const {
     const auto [x0, y0, x1, y1] = cell_range(s);
     const Box bounds = bounding_box(s);
-    for (std::int64_t iy = y0; iy <= y1; ++iy) {
-        for (std::int64_t ix = x0; ix <= x1; ++ix) {
-            const auto it = cells_.find(key(ix, iy));
-            if (it == cells_.end()) continue;
-            for (const auto& [u, v] : it->second) {
-                if (!chain_.alive[u] || chain_.next[u] != v) continue;  // stale entry
-                if (std::find(skip.begin(), skip.end(), u) != skip.end()) continue;
+    bool found = false;
+    for (std::int64_t iy = y0; iy <= y1 && !found; ++iy) {
+        for (std::int64_t ix = x0; ix <= x1 && !found; ++ix) {
+            for_each_in_cell(ix, iy, [&](std::uint32_t u, std::uint32_t v) {
+                if (found || !chain_.alive[u] || chain_.next[u] != v) return;  // stale entry
+                if (std::find(skip.begin(), skip.end(), u) != skip.end()) return;
                 const Segment t = chain_.segment(u);
                 // Disjoint bounding boxes cannot meet: most pairs end here, before the exact test.
-                if (!bounds.overlaps(bounding_box(t))) continue;
-                if (segments_intersect(s, t)) return true;
-            }
+                if (!bounds.overlaps(bounding_box(t))) return;
+                found = segments_intersect(s, t);
+            });
         }
     }
-    return false;
+    return found;
 }
 
 double SegmentGrid::first_hit(Vec2 o, Vec2 d, double reach, std::uint32_t skip) const {
@@ -146,18 +168,16 @@ double SegmentGrid::first_hit(Vec2 o, Vec2 d, double reach, std::uint32_t skip) 
     const auto [x0, y0, x1, y1] = cell_range({o, o + reach * d});
     for (std::int64_t iy = y0; iy <= y1; ++iy) {
         for (std::int64_t ix = x0; ix <= x1; ++ix) {
-            const auto it = cells_.find(key(ix, iy));
-            if (it == cells_.end()) continue;
-            for (const auto& [u, v] : it->second) {
-                if (u == skip || !chain_.alive[u] || chain_.next[u] != v) continue;
+            for_each_in_cell(ix, iy, [&](std::uint32_t u, std::uint32_t v) {
+                if (u == skip || !chain_.alive[u] || chain_.next[u] != v) return;
                 // o + t d = a + r (b − a), solved by cross products.
                 const Segment s = chain_.segment(u);
                 const Vec2 e = s.b - s.a, w = s.a - o;
                 const double den = cross(d, e);
-                if (den == 0.0) continue;
+                if (den == 0.0) return;
                 const double t = cross(w, e) / den, r = cross(w, d) / den;
                 if (t > 0.0 && t <= reach && r >= 0.0 && r <= 1.0) best = std::min(best, t);
-            }
+            });
         }
     }
     return best;

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <optional>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "slc/contour/contour.hpp"
@@ -87,6 +86,10 @@ struct Chain {
 
 /// Segments of a Chain bucketed on a uniform grid, for exact crossing tests of new segments
 /// against their neighbourhood. Entries go stale when the chain changes and are skipped.
+///
+/// The buckets are one hash table of chains threaded through a single entry array (no
+/// allocation per cell or per entry); the order of a bucket never matters, since its users ask
+/// whether any segment crosses, or for the least hit distance.
 class SegmentGrid {
 public:
     SegmentGrid(const Chain& chain, double cell);
@@ -99,13 +102,31 @@ public:
     double first_hit(Vec2 o, Vec2 d, double reach, std::uint32_t skip) const;
 
 private:
+    static constexpr std::uint32_t none = 0xffffffffu;
+    /// Segment u → next[u] as registered, in the cell with the given key.
+    struct Entry {
+        std::uint64_t key;
+        std::uint32_t u, v;
+        std::uint32_t next;  ///< the bucket's next entry, or none
+    };
+
     std::uint64_t key(std::int64_t ix, std::int64_t iy) const;
     std::array<std::int64_t, 4> cell_range(Segment s) const;
+    std::uint32_t bucket(std::uint64_t key) const;
+    void add(std::uint64_t key, std::uint32_t u, std::uint32_t v);
+    /// Calls f(u, v) for every entry of the cell (ix, iy).
+    template <class F>
+    void for_each_in_cell(std::int64_t ix, std::int64_t iy, F&& f) const {
+        const std::uint64_t k = key(ix, iy);
+        for (std::uint32_t e = heads_[bucket(k)]; e != none; e = entries_[e].next)
+            if (entries_[e].key == k) f(entries_[e].u, entries_[e].v);
+    }
 
     const Chain& chain_;
     double cell_;
     Vec2 origin_;
-    std::unordered_map<std::uint64_t, std::vector<std::array<std::uint32_t, 2>>> cells_;
+    std::vector<std::uint32_t> heads_;  ///< first entry of each bucket; size a power of two
+    std::vector<Entry> entries_;
 };
 
 /// What refinement did.
