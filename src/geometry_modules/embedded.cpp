@@ -81,8 +81,8 @@ EmbeddedFields embedded_fields(const DistanceTree& tree, const EmbeddedOptions& 
     const double h = domain.width() / options.mesh;
     // Cell-centred: contour vertices lie on the contouring tree's cell edges, and at the default
     // M = 2^(K+1) a lattice anchored at the corner would put them on its lines, where ENO
-    // stencils see the polygon's kinks in step with the mesh; the Table 7 cell 80/1/5/0 had
-    // E∞ = 0.0449 anchored at the corner and 0.0111 offset.
+    // stencils see the polygon's kinks in step with the mesh: the Table 7 cell 80/1/5/0 has
+    // E∞ = 0.0449 with the lattice anchored at the corner, 0.0111 offset.
     EmbeddedFields out;
     out.mesh = LocalMesh(tree.curves(), domain.lo + Vec2{0.5 * h, 0.5 * h}, h,
                          options.eno_order + options.smoothing);
