@@ -150,16 +150,9 @@ bool Quadtree::is_balanced() const {
     const std::vector<std::uint32_t> leaf = leaves();
     std::vector<std::uint8_t> coarse(leaf.size(), 0);
     parallel_for(leaf.size(), [&](std::size_t i) {
-        constexpr int dx[4] = {-1, 1, 0, 0};
-        constexpr int dy[4] = {0, 0, -1, 1};
-        const int level = cells_[leaf[i]].level;
-        for (int d = 0; d < 4; ++d) {
-            const std::uint32_t m = neighbour(leaf[i], dx[d], dy[d]);
-            if (m != no_cell && cells_[m].level < level - 1) {
-                coarse[i] = 1;
-                return;
-            }
-        }
+        std::vector<std::uint32_t> found;  // allocates only for a leaf that has some
+        collect_coarse_neighbours(leaf[i], found);
+        coarse[i] = found.empty() ? 0 : 1;
     });
     return std::find(coarse.begin(), coarse.end(), std::uint8_t{1}) == coarse.end();
 }
