@@ -43,9 +43,9 @@ double wall_now() {
         .count();
 }
 
-/// Least CPU and wall seconds of repeated calls of f: at least one call, then more until 0.3 s
-/// of wall time have passed (at most five), so that one interruption of the machine does not
-/// decide a short measurement.
+/// Least CPU and wall seconds of repeated calls of f: three calls, then more until 0.3 s of wall
+/// time have passed (at most five), so that one interruption of the machine does not decide a
+/// measurement.
 struct Least {
     double cpu = std::numeric_limits<double>::infinity();
     double wall = std::numeric_limits<double>::infinity();
@@ -53,7 +53,7 @@ struct Least {
 Least least_of_repeats(const std::function<void()>& f) {
     Least least;
     const double start = wall_now();
-    for (int i = 0; i < 5 && (i == 0 || wall_now() - start < 0.3); ++i) {
+    for (int i = 0; i < 5 && (i < 3 || wall_now() - start < 0.3); ++i) {
         const double c0 = cpu_now(), w0 = wall_now();
         f();
         least.cpu = std::min(least.cpu, cpu_now() - c0);
@@ -417,8 +417,8 @@ int main(int argc, char** argv) {
         "any "
         "number of threads). *T ours* is CPU seconds per step on one thread over the first " +
         std::to_string(prefix) +
-        " steps of the cell (same k), the least of repeated runs when a run is short (up to five, "
-        "within 0.3 s). *step* and *floor* are one step, one thread, from the "
+        " steps of the cell (same k), the least of three runs (up to five for short runs). *step* "
+        "and *floor* are one step, one thread, from the "
         "interface reached: the floor is the work no step can avoid — building the two distance "
         "trees, the vertex velocities of both curves, and three G evaluations per output vertex "
         "for each of the two contours. *speed-up* is wall time on one thread over wall time on "
