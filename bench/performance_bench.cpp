@@ -494,7 +494,7 @@ freshly allocated arrays. The distance trees now grow a level at a time on all t
 cells and lists for any thread count, tested), the balance check runs over all leaves in
 parallel, batches of G and of closest-point queries go parallel from 32 points, bracket reaches
 are found in parallel, and the segment grid keeps its entries in one array: the speed-up of the
-step is 1.66×. A profile on two threads (`perf record -e cpu-clock`, samples counted per thread)
+step is about 1.7× (the table above). A profile on two threads (`perf record -e cpu-clock`, samples counted per thread)
 still finds the second thread waiting at the end of parallel loops for 47% of the step. What
 runs on one thread: refinement's acceptance loop (each candidate must see the vertices its
 predecessors added, so its crossing tests run in order), the contouring tree's splits and
