@@ -436,19 +436,23 @@ int main(int argc, char** argv) {
         return std::count_if(totals.ratios.begin(), totals.ratios.end(),
                              [&](double r) { return r >= goal; });
     };
+    // NaN for an empty list (no cell gave a value).
+    auto least = [](const std::vector<double>& v) {
+        return v.empty() ? NAN : *std::min_element(v.begin(), v.end());
+    };
+    auto most = [](const std::vector<double>& v) {
+        return v.empty() ? NAN : *std::max_element(v.begin(), v.end());
+    };
     md += fmt::format(
         "Summary over {} cells: the paper's time over ours per step ranges from {:.0f}× to "
         "{:.0f}× (median {:.0f}×); {} cells reach 1000×. A step takes {:.2f}× to {:.2f}× its "
         "floor (median {:.2f}×; goal ≤ 3×). G evaluations per output vertex: at most {:.2f} "
         "(goal ≤ 8). Speed-up from 1 to {} threads: median {:.2f}×, least {:.2f}× (goal ≥ "
         "1.8×).\n\n",
-        totals.ratios.size(), *std::min_element(totals.ratios.begin(), totals.ratios.end()),
-        *std::max_element(totals.ratios.begin(), totals.ratios.end()), median(totals.ratios),
-        at_least(1000.0), *std::min_element(totals.floors.begin(), totals.floors.end()),
-        *std::max_element(totals.floors.begin(), totals.floors.end()), median(totals.floors),
-        totals.evals.empty() ? NAN : *std::max_element(totals.evals.begin(), totals.evals.end()),
-        std::thread::hardware_concurrency(), median(totals.speedups),
-        *std::min_element(totals.speedups.begin(), totals.speedups.end()));
+        totals.ratios.size(), least(totals.ratios), most(totals.ratios), median(totals.ratios),
+        at_least(1000.0), least(totals.floors), most(totals.floors), median(totals.floors),
+        most(totals.evals), std::thread::hardware_concurrency(), median(totals.speedups),
+        least(totals.speedups));
     md += cells;
     md +=
         "## Scaling with the number of segments\n\nOne step of a circle of radius 1 rotating about "

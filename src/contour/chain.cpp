@@ -126,60 +126,44 @@ void SegmentGrid::add(std::uint64_t key, std::uint32_t u, std::uint32_t v) {
     heads_[b] = static_cast<std::uint32_t>(entries_.size() - 1);
 }
 
-std::array<std::int64_t, 4> SegmentGrid::cell_range(Segment s) const {
+std::array<std::int64_t, 4> SegmentGrid::cell_range(const Box& b) const {
     // Cell indices are clamped far outside any domain: only extreme inputs would reach the clamp,
     // and then cells merely hold more segments.
     constexpr double limit = 1e9;
     auto index = [&](double x, double o) {
         return static_cast<std::int64_t>(std::floor(std::clamp((x - o) / cell_, -limit, limit)));
     };
-    return {index(std::min(s.a.x, s.b.x), origin_.x), index(std::min(s.a.y, s.b.y), origin_.y),
-            index(std::max(s.a.x, s.b.x), origin_.x), index(std::max(s.a.y, s.b.y), origin_.y)};
+    return {index(b.lo.x, origin_.x), index(b.lo.y, origin_.y), index(b.hi.x, origin_.x),
+            index(b.hi.y, origin_.y)};
 }
 
 void SegmentGrid::insert(std::uint32_t u) {
-    const auto [x0, y0, x1, y1] = cell_range(chain_.segment(u));
+    const auto [x0, y0, x1, y1] = cell_range(bounding_box(chain_.segment(u)));
     for (std::int64_t iy = y0; iy <= y1; ++iy)
         for (std::int64_t ix = x0; ix <= x1; ++ix) add(key(ix, iy), u, chain_.next[u]);
 }
 
 bool SegmentGrid::crosses(Segment s, std::span<const std::uint32_t> skip) const {
-    const auto [x0, y0, x1, y1] = cell_range(s);
-    const Box bounds = bounding_box(s);
-    bool found = false;
-    for (std::int64_t iy = y0; iy <= y1 && !found; ++iy) {
-        for (std::int64_t ix = x0; ix <= x1 && !found; ++ix) {
-            for_each_in_cell(ix, iy, [&](std::uint32_t u, std::uint32_t v) {
-                if (found || !chain_.alive[u] || chain_.next[u] != v) return;  // stale entry
-                if (std::find(skip.begin(), skip.end(), u) != skip.end()) return;
-                const Segment t = chain_.segment(u);
-                // Disjoint bounding boxes cannot meet: most pairs end here, before the exact test.
-                if (!bounds.overlaps(bounding_box(t))) return;
-                found = segments_intersect(s, t);
-            });
-        }
-    }
-    return found;
+    return any_in_cells(bounding_box(s), [&](std::uint32_t u) {
+        return std::find(skip.begin(), skip.end(), u) == skip.end() &&
+               segments_intersect(s, chain_.segment(u));
+    });
 }
 
 double SegmentGrid::first_hit(Vec2 o, Vec2 d, double reach, std::uint32_t skip) const {
     double best = std::numeric_limits<double>::infinity();
     if (!(reach > 0.0) || !std::isfinite(reach)) return best;
-    const auto [x0, y0, x1, y1] = cell_range({o, o + reach * d});
-    for (std::int64_t iy = y0; iy <= y1; ++iy) {
-        for (std::int64_t ix = x0; ix <= x1; ++ix) {
-            for_each_in_cell(ix, iy, [&](std::uint32_t u, std::uint32_t v) {
-                if (u == skip || !chain_.alive[u] || chain_.next[u] != v) return;
-                // o + t d = a + r (b − a), solved by cross products.
-                const Segment s = chain_.segment(u);
-                const Vec2 e = s.b - s.a, w = s.a - o;
-                const double den = cross(d, e);
-                if (den == 0.0) return;
-                const double t = cross(w, e) / den, r = cross(w, d) / den;
-                if (t > 0.0 && t <= reach && r >= 0.0 && r <= 1.0) best = std::min(best, t);
-            });
-        }
-    }
+    any_in_cells(bounding_box(Segment{o, o + reach * d}), [&](std::uint32_t u) {
+        if (u == skip) return false;
+        // o + t d = a + r (b − a), solved by cross products.
+        const Segment s = chain_.segment(u);
+        const Vec2 e = s.b - s.a, w = s.a - o;
+        const double den = cross(d, e);
+        if (den == 0.0) return false;
+        const double t = cross(w, e) / den, r = cross(w, d) / den;
+        if (t > 0.0 && t <= reach && r >= 0.0 && r <= 1.0) best = std::min(best, t);
+        return false;
+    });
     return best;
 }
 

@@ -92,10 +92,10 @@ public:
                                ? options_.max_refine_passes
                                : options_.refine_passes;
         for (int p = 0; p < passes; ++p) {
-            index_segments();
             evaluate_midpoints();
             std::vector<Candidate> candidates = select();
             if (candidates.empty()) break;
+            index_segments();  // read by the bracket, acceptance and pruning steps only
             bracket(candidates);
             solve(candidates);
             const std::size_t changed = accept(candidates) + prune();

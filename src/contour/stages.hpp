@@ -111,15 +111,27 @@ private:
     };
 
     std::uint64_t key(std::int64_t ix, std::int64_t iy) const;
-    std::array<std::int64_t, 4> cell_range(Segment s) const;
+    /// The cells [x0, x1] × [y0, y1] that a bounding box covers.
+    std::array<std::int64_t, 4> cell_range(const Box& b) const;
     std::uint32_t bucket(std::uint64_t key) const;
     void add(std::uint64_t key, std::uint32_t u, std::uint32_t v);
-    /// Calls f(u, v) for every entry of the cell (ix, iy).
+    /// Calls f(u) for every current segment u registered in the cells that box b covers (stale
+    /// entries skipped), until f returns true; returns whether one did.
     template <class F>
-    void for_each_in_cell(std::int64_t ix, std::int64_t iy, F&& f) const {
-        const std::uint64_t k = key(ix, iy);
-        for (std::uint32_t e = heads_[bucket(k)]; e != none; e = entries_[e].next)
-            if (entries_[e].key == k) f(entries_[e].u, entries_[e].v);
+    bool any_in_cells(const Box& b, F&& f) const {
+        const auto [x0, y0, x1, y1] = cell_range(b);
+        for (std::int64_t iy = y0; iy <= y1; ++iy) {
+            for (std::int64_t ix = x0; ix <= x1; ++ix) {
+                const std::uint64_t k = key(ix, iy);
+                for (std::uint32_t e = heads_[bucket(k)]; e != none; e = entries_[e].next) {
+                    const Entry& entry = entries_[e];
+                    if (entry.key != k || !chain_.alive[entry.u] || chain_.next[entry.u] != entry.v)
+                        continue;
+                    if (f(entry.u)) return true;
+                }
+            }
+        }
+        return false;
     }
 
     const Chain& chain_;

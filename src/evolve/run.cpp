@@ -51,8 +51,7 @@ double time_after(const RunOptions& o, int n) {
 
 RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domain,
               const RunOptions& options, const Observer& observer) {
-    check(options);
-    RunResult start;
+    RunResult start;  // resume() checks the options
     start.curves = initial;
     start.t = options.t_start;
     return resume(start, law, domain, options, observer);

@@ -90,20 +90,23 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
 
     // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x, t); Γ(t)).
     auto predictor =
-        pointwise([&](Vec2 x) { return now.distance(x - k * finite(now.velocity(x), law, t, x)); });
+        pointwise([&](Vec2 x) { return now.distance(x - k * finite(now.velocity(x), law, t, x)); },
+                  expensive_grain);
     ContourResult predicted = contour(predictor, domain, options.contour);
     result.stats.predictor = predicted.stats;
     if (predicted.curves.empty()) return result;  // everything vanished within the step
 
     // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x.
     const Level next(predicted.curves, t + k, law, domain, options);
-    auto corrector = pointwise([&](Vec2 x) {
-        const Vec2 w = finite(now.velocity(x), law, t, x);
-        const Vec2 foot = x - k * w;
-        const Vec2 w_foot = finite(now.velocity(foot), law, t, foot);
-        const Vec2 w_next = finite(next.velocity(x), law, t + k, x);
-        return now.distance(x - (0.5 * k) * (w_foot + w_next));
-    });
+    auto corrector = pointwise(
+        [&](Vec2 x) {
+            const Vec2 w = finite(now.velocity(x), law, t, x);
+            const Vec2 foot = x - k * w;
+            const Vec2 w_foot = finite(now.velocity(foot), law, t, foot);
+            const Vec2 w_next = finite(next.velocity(x), law, t + k, x);
+            return now.distance(x - (0.5 * k) * (w_foot + w_next));
+        },
+        expensive_grain);
     ContourResult corrected = contour(corrector, domain, options.contour);
     result.stats.corrector = corrected.stats;
     result.curves = std::move(corrected.curves);

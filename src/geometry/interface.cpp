@@ -37,8 +37,9 @@ std::vector<std::vector<Vec2>> Interface::curves() const {
 }
 
 std::vector<Vec2> vertices_and_midpoints(const Interface& curves) {
-    std::vector<Vec2> points(curves.points().begin(), curves.points().end());
+    std::vector<Vec2> points;
     points.reserve(2 * curves.size());
+    points.assign(curves.points().begin(), curves.points().end());
     for (std::size_t i = 0; i < curves.size(); ++i) {
         const Segment s = curves.segment(i);
         points.push_back(0.5 * (s.a + s.b));

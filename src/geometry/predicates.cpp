@@ -18,6 +18,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "slc/geometry/segment.hpp"
+
 namespace slc {
 
 namespace {
@@ -187,10 +189,7 @@ int exact_orientation(Vec2 a, Vec2 b, Vec2 c) {
 }
 
 /// p lies in the bounding box of s; with p on the line of s, that means p lies on s.
-bool in_box(Segment s, Vec2 p) {
-    return std::min(s.a.x, s.b.x) <= p.x && p.x <= std::max(s.a.x, s.b.x) &&
-           std::min(s.a.y, s.b.y) <= p.y && p.y <= std::max(s.a.y, s.b.y);
-}
+bool in_box(Segment s, Vec2 p) { return bounding_box(s).contains(p); }
 
 }  // namespace
 
@@ -201,6 +200,8 @@ int orientation(Vec2 a, Vec2 b, Vec2 c) {
 }
 
 bool segments_intersect(Segment s, Segment t) {
+    // Disjoint bounding boxes (compared exactly) share no point: most pairs end here.
+    if (!bounding_box(s).overlaps(bounding_box(t))) return false;
     const int o1 = orientation(s.a, s.b, t.a);
     const int o2 = orientation(s.a, s.b, t.b);
     const int o3 = orientation(t.a, t.b, s.a);

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <string>
+#include <vector>
 
 #include "slc/core/error.hpp"
 #include "slc/io/render.hpp"
@@ -126,12 +128,19 @@ std::string animated_svg(std::span<const AnimationFrame> frames, const Box& view
                    "[{:.4g}, {:.4g}]</text>\n",
                    margin, plot_top + plot_size + 16, map.view.lo.x, map.view.hi.x, map.view.lo.y,
                    map.view.hi.y);
+    // Each frame's colour and path, written once and used by the trail and by the frame.
+    std::vector<std::string> colour(n), path(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (frames[i].curves.empty()) continue;
+        colour[i] = css(sequence_color(along(i)));
+        path[i] = path_data(frames[i].curves, map);
+    }
     if (options.trail) {
         out += "<g id=\"trail\" fill=\"none\" stroke-width=\"0.8\" stroke-opacity=\"0.6\">\n";
         for (std::size_t i = 0; i < n; ++i) {
             if (frames[i].curves.empty()) continue;
-            fmt::format_to(std::back_inserter(out), "<path stroke=\"{}\" d=\"{}\"/>\n",
-                           css(sequence_color(along(i))), path_data(frames[i].curves, map));
+            fmt::format_to(std::back_inserter(out), "<path stroke=\"{}\" d=\"{}\"/>\n", colour[i],
+                           path[i]);
         }
         out += "</g>\n";
     }
@@ -148,7 +157,7 @@ std::string animated_svg(std::span<const AnimationFrame> frames, const Box& view
             fmt::format_to(std::back_inserter(out),
                            "<path fill=\"{0}\" fill-opacity=\"0.25\" fill-rule=\"evenodd\" "
                            "stroke=\"{0}\" stroke-width=\"2\" d=\"{1}\"/>\n",
-                           css(sequence_color(along(i))), path_data(frames[i].curves, map));
+                           colour[i], path[i]);
         }
         fmt::format_to(std::back_inserter(out),
                        "<text x=\"{}\" y=\"{}\" font-size=\"14\" text-anchor=\"end\">t = {:.4g}"

@@ -67,14 +67,17 @@ private:
 };
 
 /// The BatchFunction that evaluates a pointwise function f(Vec2) -> double at every point of a
-/// batch on all worker threads. f must be safe to call concurrently.
+/// batch on all worker threads, for batches of at least min_iterations points (pass
+/// expensive_grain for an f that costs a microsecond or more). f must be safe to call
+/// concurrently.
 template <class F>
 requires std::is_invocable_r_v<double, const F&, Vec2>
-auto pointwise(F f) {
-    return [f = std::move(f)](std::span<const Vec2> points, std::span<double> values) {
-        parallel_for(
-            points.size(), [&](std::size_t i) { values[i] = f(points[i]); }, expensive_grain);
-    };
+auto pointwise(F f, std::size_t min_iterations = parallel_grain) {
+    return
+        [f = std::move(f), min_iterations](std::span<const Vec2> points, std::span<double> values) {
+            parallel_for(
+                points.size(), [&](std::size_t i) { values[i] = f(points[i]); }, min_iterations);
+        };
 }
 
 }  // namespace slc
