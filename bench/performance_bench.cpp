@@ -17,11 +17,14 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <set>
+#include <span>
 #include <sstream>
 #include <thread>
 
@@ -32,9 +35,12 @@ namespace {
 
 using namespace slc;
 
+/// CPU seconds of the calling thread. On one thread it does all of a step's work; the process
+/// clock would also count the idle workers of the previous run on all threads, which spin for
+/// milliseconds before they sleep.
 double cpu_now() {
     timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
     return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
@@ -118,18 +124,18 @@ StepFloor measure_floor(const Interface& curves, double t, double k, const Veloc
     set_thread_count(1);
     StepFloor f;
     StepResult r;
-    f.step_s = best_cpu(2, [&] { r = advance(curves, t, k, law, domain, options); });
+    f.step_s = best_cpu(3, [&] { r = advance(curves, t, k, law, domain, options); });
     const Interface& next = r.curves;  // stands in for the predicted curve: the same size
     if (next.empty()) return f;
     const DistanceTree::Options tree_options{.depth = options.resolved_tree_depth(),
                                              .triangulate = false};
-    f.trees_s = best_cpu(2, [&] {
+    f.trees_s = best_cpu(3, [&] {
         const DistanceTree a(curves, domain, tree_options);
         const DistanceTree b(next, domain, tree_options);
     });
     const DistanceTree now(curves, domain, tree_options), later(next, domain, tree_options);
     std::vector<Vec2> u_now, u_later;
-    f.velocities_s = best_cpu(2, [&] {
+    f.velocities_s = best_cpu(3, [&] {
         u_now = vertex_velocities(law, t, curves, GeometryContext{&now, options.embedded});
         u_later = vertex_velocities(law, t + k, next, GeometryContext{&later, options.embedded});
     });
@@ -150,7 +156,7 @@ StepFloor measure_floor(const Interface& curves, double t, double k, const Veloc
         return now.closest_point(x - (0.5 * k) * (w_now(foot) + w_next)).distance;
     };
     double sink = 0.0;
-    f.g_s = best_cpu(2, [&] {
+    f.g_s = best_cpu(3, [&] {
         for (Vec2 x : points) sink += predictor(x) + corrector(x);
     });
     if (!std::isfinite(sink)) f.g_s = std::numeric_limits<double>::quiet_NaN();
@@ -321,15 +327,62 @@ std::tuple<Problem, Interface, RunResult> run_peer(const PeerRun& r) {
     return {std::move(p), std::move(initial), std::move(result)};
 }
 
-std::string peers_section() {
+/// One program's setting beside the others: its error and seconds.
+struct PeerPoint {
+    std::string program;
+    double error = 0.0, seconds = 0.0;
+};
+
+/// log10 error against log10 seconds, a colour per program, and the goal's corner: as accurate as
+/// the best peer and 7× faster (its lower-left quadrant). The settings of a program named in
+/// `refinements` are one setting refined, joined by a line; others are dots. Written to path.
+void plot_peers(const std::filesystem::path& path, const std::string& title,
+                const std::vector<PeerPoint>& points, PeerPoint best,
+                const std::set<std::string>& refinements) {
+    std::map<std::string, std::vector<Vec2>> lines;
+    Box b = Box::empty();
+    for (const PeerPoint& q : points) {
+        if (!(q.error > 0) || !(q.seconds > 0)) continue;
+        const Vec2 v{std::log10(q.seconds), std::log10(q.error)};
+        lines[q.program].push_back(v);
+        b = unite(b, {v, v});
+    }
+    const Vec2 goal{std::log10(best.seconds / 7.0), std::log10(best.error)};
+    b = unite(b, {goal, goal});
+    const double half = 0.55 * std::max({b.width(), b.height(), 1.0});
+    Figure fig(Box::square(b.center(), half), title);
+    fig.set_axis_names("log10 seconds", "log10 error");
+    const Vec2 corner[] = {{goal.x, b.center().y - half}, goal, {b.center().x - half, goal.y}};
+    fig.add_polyline(corner, "goal: as accurate as the best peer, 7× faster",
+                     Color{0.6, 0.6, 0.6, 1}, 1.0);
+    std::size_t i = 0;
+    for (auto& [program, line] : lines) {
+        std::sort(line.begin(), line.end(), [](Vec2 a, Vec2 c) { return a.x < c.x; });
+        // A single point draws no line but still names the colour in the legend.
+        fig.add_polyline(refinements.count(program) ? std::span<const Vec2>(line)
+                                                    : std::span<const Vec2>(line).first(1),
+                         program, palette_color(i));
+        fig.add_points(line, palette_color(i), 3.0);
+        ++i;
+    }
+    fig.save(path);
+}
+
+std::string peers_section(const std::filesystem::path& figures) {
     std::string md;
+    std::filesystem::create_directories(figures);
     // Zalesak's disk: one turn in t = 1.
     md +=
         "### Zalesak's slotted disk, one turn ([0, 1]², one core, wall time of the time loop)\n\n"
+        "With the law sampled directly (`--extension direct`) each step traces the characteristics "
+        "back by the fourth-order Runge–Kutta rule and contours once, so a few steps per turn "
+        "suffice; the default nearest-point extension is second order in time and contours "
+        "twice per step.\n\n"
         "| program | setting | largest vertex distance to the exact shape | area change | "
         "seconds |\n|---|---|---|---|---|\n"
         "| FronTier (front tracking) | 256² | 1.28e-3 | −1.3e-4 | 7.7 |\n"
         "| LSMLIB (WENO5 + TVD-RK3 level set) | 256² | 4.4e-3 | −1.4e-3 | 16.3 |\n";
+    std::vector<PeerPoint> zalesak_points = {{"FronTier", 1.28e-3, 7.7}, {"LSMLIB", 4.4e-3, 16.3}};
     auto zalesak_run = [](std::string settings, int steps, int depth, int refine, double eps,
                           Extension extension) {
         return PeerRun{.name = "zalesak",
@@ -343,22 +396,47 @@ std::string peers_section() {
     const std::vector<PeerRun> zalesak = {
         zalesak_run("N/K/P/ε = 100/7/2/1e-6, nearest-point extension (default)", 100, 7, 2, 1e-6,
                     Extension::nearest_point),
-        zalesak_run("100/7/2/1e-6, direct velocity", 100, 7, 2, 1e-6, Extension::direct),
-        zalesak_run("100/8/3/1e-7, direct velocity", 100, 8, 3, 1e-7, Extension::direct),
-        zalesak_run("200/8/3/1e-8, direct velocity", 200, 8, 3, 1e-8, Extension::direct),
+        zalesak_run("16/7/2/1e-6, direct velocity", 16, 7, 2, 1e-6, Extension::direct),
+        zalesak_run("20/8/2/1e-7, direct velocity", 20, 8, 2, 1e-7, Extension::direct),
+        zalesak_run("20/9/2/1e-8, direct velocity", 20, 9, 2, 1e-8, Extension::direct),
     };
+    Problem disk;
+    Interface exact_disk;
+    std::vector<std::pair<std::string, Interface>> shapes;
     for (const PeerRun& r : zalesak) {
         const auto [p, initial, result] = run_peer(r);
-        md += fmt::format("| slc | {} | {:.3g} | {:+.2g} | {:.3g} |\n", r.settings,
-                          vertex_error(p, result.curves, result.t),
+        const double error = vertex_error(p, result.curves, result.t);
+        md += fmt::format("| slc | {} | {:.3g} | {:+.2g} | {:.3g} |\n", r.settings, error,
                           area(result.curves) - area(initial), result.wall_s);
+        zalesak_points.push_back(
+            {r.extension == Extension::direct ? "slc, direct velocity" : "slc, nearest-point",
+             error, result.wall_s});
+        if (r.extension == Extension::direct)
+            shapes.emplace_back(fmt::format("slc {}", r.settings.substr(0, r.settings.find(','))),
+                                result.curves);
+        disk = p;
+        exact_disk = initial;
     }
+    plot_peers(figures / "performance_zalesak.png", "Zalesak's disk, one turn: error and seconds",
+               zalesak_points, {"FronTier", 1.28e-3, 7.7}, {"LSMLIB", "slc, direct velocity"});
+    // The slot's mouth after one turn, where the convex corners are: the exact shape (the
+    // initial one) and the direct runs.
+    Figure slot(Box::square({0.5, 0.62}, 0.04), "Zalesak's disk after one turn: the slot's mouth");
+    slot.add_curves(exact_disk, "exact", Color{0.4, 0.4, 0.4, 1}, 3.0);
+    for (std::size_t i = 0; i < shapes.size(); ++i)
+        slot.add_curves(shapes[i].second, shapes[i].first, palette_color(i), 1.2);
+    slot.save(figures / "performance_zalesak_slot.png");
+    md +=
+        "\n![error against seconds](figures/performance_zalesak.png)\n"
+        "![the slot's mouth after one turn](figures/performance_zalesak_slot.png)\n";
+
     // Curve shortening of a circle R(0) = 0.5 to t = 0.1: R(t)² = R(0)² − 2t. The problem's
     // S = 1 keeps k/h² ≤ 1.6 stable (docs/user-guide.md §5).
     md +=
         "\n### Curve shortening of a circle, R(0) = 0.5 to t = 0.1 (one core, S = 1)\n\n"
         "| program | setting | radius error | seconds |\n|---|---|---|---|\n"
         "| LSMLIB | 128² | 1.1e-4 | 0.48 |\n| LSMLIB | 256² | 2.9e-5 | 7.7 |\n";
+    std::vector<PeerPoint> shortening_points = {{"LSMLIB", 1.1e-4, 0.48}, {"LSMLIB", 2.9e-5, 7.7}};
     auto shortening_run = [](std::string settings, int steps, int depth, double eps,
                              std::optional<int> mesh, std::optional<double> half_width) {
         return PeerRun{.name = "circle-curvature",
@@ -388,7 +466,12 @@ std::string peers_section() {
                 worst = std::max(worst, std::abs(norm(v) - exact));
         }
         md += fmt::format("| slc | {} | {:.3g} | {:.3g} |\n", r.settings, worst, result.wall_s);
+        shortening_points.push_back({"slc", worst, result.wall_s});
     }
+    plot_peers(figures / "performance_curve_shortening.png",
+               "Curve shortening of a circle: error and seconds", shortening_points,
+               {"LSMLIB", 1.1e-4, 0.48}, {"LSMLIB"});
+    md += "\n![error against seconds](figures/performance_curve_shortening.png)\n";
     return md + "\n";
 }
 
@@ -415,7 +498,8 @@ int main(int argc, char** argv) {
         "## Every cell of Tables 5–7\n\n"
         "*E ours* and *G per vertex* are the full runs of the studies (`slc study`, the same on "
         "any "
-        "number of threads). *T ours* is CPU seconds per step on one thread over the first " +
+        "number of threads). *T ours* is CPU seconds per step on one thread (that thread's CPU "
+        "clock) over the first " +
         std::to_string(prefix) +
         " steps of the cell (same k), the least of three runs (up to five for short runs). *step* "
         "and *floor* are one step, one thread, from the "
@@ -462,7 +546,7 @@ int main(int argc, char** argv) {
     md +=
         "## Beside the programs users would pick instead\n\nThe peers' numbers are theirs, "
         "measured on this kind of machine; ours are measured here on one core.\n\n";
-    md += peers_section();
+    md += peers_section(std::filesystem::path(out).parent_path() / "figures");
     md += R"(## Where the time goes
 
 A profile of one step of Table 5's 320/0/6/4/1e−6 cell (4424 segments, one thread; `valgrind

@@ -20,14 +20,13 @@ int StepOptions::resolved_tree_depth() const {
 
 namespace {
 
-/// Γ at one time level: its distance tree, its vertex velocities and their extension W off Γ.
+/// Γ at one time level: its distance tree and, unless the law is sampled directly, its vertex
+/// velocities and their extension W off Γ.
 class Level {
 public:
     Level(const Interface& curves, double t, const VelocityLaw& law, const Box& domain,
           const StepOptions& options)
-        : t_(t),
-          law_(&law),
-          extension_(options.extension),
+        : extension_(options.extension),
           tree_(curves, domain,
                 {.depth = options.resolved_tree_depth(),
                  .triangulate = options.extension == Extension::whitney}) {
@@ -37,26 +36,15 @@ public:
         }
     }
 
-    /// W(x) at this level's time.
+    /// W(x) at this level's time, extended from the vertex velocities.
     Vec2 velocity(Vec2 x) const {
-        switch (extension_) {
-            case Extension::whitney:
-                return (*whitney_)(x);
-            case Extension::direct: {
-                Vec2 w;
-                law_->sample(t_, std::span<const Vec2>(&x, 1), std::span<Vec2>(&w, 1));
-                return w;
-            }
-            default:
-                return nearest_point_extension<Vec2>(tree_.curves(), u_, tree_.closest_point(x));
-        }
+        if (extension_ == Extension::whitney) return (*whitney_)(x);
+        return nearest_point_extension<Vec2>(tree_.curves(), u_, tree_.closest_point(x));
     }
     /// The exact signed distance to this level's Γ.
     double distance(Vec2 x) const { return tree_.closest_point(x).distance; }
 
 private:
-    double t_;
-    const VelocityLaw* law_;
     Extension extension_;
     DistanceTree tree_;
     std::vector<Vec2> u_;
@@ -70,6 +58,24 @@ Vec2 finite(Vec2 w, const VelocityLaw& law, double t, Vec2 x) {
                                            law.name(), t, x.x, x.y));
     }
     return w;
+}
+
+/// The law sampled at one point.
+Vec2 sample(const VelocityLaw& law, double t, Vec2 x) {
+    Vec2 w;
+    law.sample(t, std::span<const Vec2>(&x, 1), std::span<Vec2>(&w, 1));
+    return finite(w, law, t, x);
+}
+
+/// Where the characteristic through x at t + k of a flow field was at t: dy/dt = u(y, t)
+/// integrated backward by the classical fourth-order Runge–Kutta rule.
+Vec2 departure_point(const VelocityLaw& law, double t, double k, Vec2 x) {
+    const double half = 0.5 * k;
+    const Vec2 k1 = sample(law, t + k, x);
+    const Vec2 k2 = sample(law, t + half, x - half * k1);
+    const Vec2 k3 = sample(law, t + half, x - half * k2);
+    const Vec2 k4 = sample(law, t, x - k * k3);
+    return x - (k / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
 }
 
 }  // namespace
@@ -87,6 +93,17 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
     }
     StepResult result;
     const Level now(curves, t, law, domain, options);
+
+    if (options.extension == Extension::direct) {
+        // A flow field is known everywhere, so the foot of each characteristic needs no predicted
+        // curve: G(x) = F(departure point of x; Γ(t)), one contour, fourth order in time.
+        auto g = pointwise([&](Vec2 x) { return now.distance(departure_point(law, t, k, x)); },
+                           expensive_grain);
+        ContourResult traced = contour(g, domain, options.contour);
+        result.stats.corrector = traced.stats;
+        result.curves = std::move(traced.curves);
+        return result;
+    }
 
     // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x, t); Γ(t)).
     auto predictor =

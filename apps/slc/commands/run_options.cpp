@@ -57,7 +57,8 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         ->check(integer_in(1, 30));
     cmd.add_option("--extension", o.extension,
                    "Velocity extension off the curve: nearest (default), whitney, or direct (flow "
-                   "fields only)")
+                   "fields only: the law sampled along each characteristic, traced back by "
+                   "4th-order Runge-Kutta; one contour per step)")
         ->check(CLI::IsMember(extension_names));
     cmd.add_option("--threads", o.threads,
                    "Worker threads (0 = all cores); results do not depend on it")

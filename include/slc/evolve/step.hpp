@@ -2,6 +2,8 @@
 /// One semi-Lagrangian time step t → t + k (paper §1.2, §4.3; DESIGN §1): the CIR predictor
 /// G̃(x) = F(x − k W(x, t); Γ(t)) contoured to Γ̃, then the trapezoidal corrector
 /// G(x) = F(x − k W̄(x); Γ(t)), W̄(x) = ½ W(x − k W(x, t), t) + ½ W̃(x, t + k), contoured to Γ(t + k).
+/// A flow field sampled directly (Extension::direct) needs no predictor: G(x) = F(x*; Γ(t)) with x*
+/// the foot of the characteristic through x traced back by the fourth-order Runge–Kutta rule.
 /// Every G value is an exact signed distance, so max |G| never grows: explicit, unconditionally
 /// stable in the maximum norm, second order in time.
 #pragma once
@@ -20,7 +22,9 @@ namespace slc {
 enum class Extension {
     nearest_point,  ///< W(x) = u at the nearest point of Γ (the paper's choice)
     whitney,        ///< the continuous piecewise-linear Whitney extension on the distance tree
-    direct,         ///< sample the law at x itself; only for laws defined everywhere (flow fields)
+    /// Sample the law itself, only for laws defined everywhere (flow fields): the foot of each
+    /// characteristic by the classical Runge–Kutta rule, one contour per step, fourth order in time
+    direct,
 };
 
 /// The parameters of a step (paper Table 4).
@@ -36,7 +40,7 @@ struct StepOptions {
 
 /// What a step cost.
 struct StepStats {
-    ContourStats predictor;  ///< the contour of G̃ (CIR predictor)
+    ContourStats predictor;  ///< the contour of G̃ (CIR predictor); empty for a direct step
     ContourStats corrector;  ///< the contour of G (trapezoidal corrector)
     /// Evaluations of G̃ and G together, and the vertices both contours produced.
     std::size_t g_evals() const { return predictor.g_evals + corrector.g_evals; }
