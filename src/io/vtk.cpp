@@ -137,12 +137,21 @@ VtkSeries::VtkSeries(std::filesystem::path pvd) : pvd_(std::move(pvd)) {
             fmt::format("VTK collection needs a file name, got '{}'", pvd_.string()));
 }
 
-void VtkSeries::add(double time, const Interface& curves) {
+void VtkSeries::write_frame(double time, const Interface& curves) {
     const std::string name =
         fmt::format("{}/frame_{:04d}.vtp", pvd_.stem().string(), frames_.size());
     write_file_atomic(pvd_.parent_path() / name, vtp_text(curves, time));
     frames_.push_back({time, name});
+}
+
+void VtkSeries::add(double time, const Interface& curves) {
+    write_frame(time, curves);
     write_file_atomic(pvd_, pvd_text(frames_));
+}
+
+void VtkSeries::add(std::span<const std::pair<double, Interface>> frames) {
+    for (const auto& [time, curves] : frames) write_frame(time, curves);
+    if (!frames.empty()) write_file_atomic(pvd_, pvd_text(frames_));
 }
 
 }  // namespace slc

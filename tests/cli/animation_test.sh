@@ -24,4 +24,6 @@ expect_error "png animation" "must end in .svg" -- render --frames mc --out x.pn
 expect_error "frames and files" "excludes|frames" -- render small.json --frames mc --out x.svg
 expect_error "nothing to draw" "files|--frames" -- render --out x.svg
 expect_error "zero seconds per frame" "seconds-per-frame" -- render --frames mc --seconds-per-frame 0 --out x.svg
+expect_error "nan seconds per frame" "--seconds-per-frame: must be a positive finite number, got 'nan'" -- render --frames mc --seconds-per-frame nan --out x.svg
+expect_error "infinite seconds per frame" "--seconds-per-frame: must be a positive finite number, got 'inf'" -- render --frames mc --seconds-per-frame inf --out x.svg
 finish

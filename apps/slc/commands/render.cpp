@@ -109,7 +109,7 @@ void add_render_command(CLI::App& app) {
         ->excludes(files);
     cmd->add_option("--seconds-per-frame", o->seconds_per_frame,
                     "With --frames: how long each frame shows (default 0.25)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_number());
     cmd->add_option("--out", o->out, "Picture to write: .svg or .png (.svg with --frames)")
         ->required();
     cmd->add_option("--title", o->title, "Title above the picture");

@@ -136,8 +136,10 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     int vtk_step = 0;
     if (o.vtk) vtk.emplace(dir / "frames.pvd");
     if (vtk) {
-        for (const auto& [t, curves] : frames) vtk->add(t, curves);
-        if (frames.empty()) vtk->add(options.t_start, initial);
+        if (frames.empty())
+            vtk->add(options.t_start, initial);
+        else
+            vtk->add(frames);  // after --resume: the collection written once, not per frame
     }
     const bool progress = !o.quiet && isatty(STDERR_FILENO);
     stop_requested = false;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "slc/geometry/interface.hpp"
@@ -48,6 +49,9 @@ public:
     /// vertices plus O(F) for F frames so far. Throws InvalidInput for a non-finite time or when a
     /// file cannot be written (the message names it).
     void add(double time, const Interface& curves);
+    /// Writes each (time, curves) as the next frame, then the collection once: O(total N + F).
+    /// Throws as add() does.
+    void add(std::span<const std::pair<double, Interface>> frames);
 
     /// The frames written so far, in order, their files relative to the collection's folder.
     std::span<const VtkFrame> frames() const { return frames_; }
@@ -55,6 +59,9 @@ public:
     const std::filesystem::path& pvd() const { return pvd_; }
 
 private:
+    /// Writes the next frame's .vtp and records it; the collection is not rewritten.
+    void write_frame(double time, const Interface& curves);
+
     std::filesystem::path pvd_;
     std::vector<VtkFrame> frames_;
 };

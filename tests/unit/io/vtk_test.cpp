@@ -217,6 +217,25 @@ TEST(VtkSeries, WritesFramesAndACollectionOfThem) {
         EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
+TEST(VtkSeries, FramesAddedTogetherWriteWhatOneByOneWould) {
+    TempDir one_dir, all_dir;
+    VtkSeries one(one_dir.path() / "run.pvd"), all(all_dir.path() / "run.pvd");
+    std::vector<std::pair<double, Interface>> frames;
+    for (int f = 0; f < 3; ++f) {
+        const double s = 1.0 + f;
+        frames.emplace_back(0.5 * f, Interface({{{0, 0}, {s, 0}, {0, s}}}));
+        one.add(frames.back().first, frames.back().second);
+    }
+    all.add(std::span<const std::pair<double, Interface>>(frames).first(2));
+    all.add(frames[2].first, frames[2].second);
+    ASSERT_EQ(all.frames().size(), 3u);
+    EXPECT_EQ(slurp(all_dir.path() / "run.pvd"), slurp(one_dir.path() / "run.pvd"));
+    for (const VtkFrame& f : one.frames())
+        EXPECT_EQ(slurp(all_dir.path() / f.file), slurp(one_dir.path() / f.file)) << f.file;
+    all.add({});  // nothing to add: nothing changes
+    EXPECT_EQ(all.frames().size(), 3u);
+}
+
 TEST(VtkSeries, BadTimesNamesAndFoldersAreInvalid) {
     TempDir dir;
     const Interface square({{{0, 0}, {1, 0}, {1, 1}, {0, 1}}});
