@@ -23,6 +23,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <span>
 #include <sstream>
@@ -129,11 +130,12 @@ StepFloor measure_floor(const Interface& curves, double t, double k, const Veloc
     if (next.empty()) return f;
     const DistanceTree::Options tree_options{.depth = options.resolved_tree_depth(),
                                              .triangulate = false};
+    std::optional<DistanceTree> now_tree, later_tree;  // the last timed pair, used below
     f.trees_s = best_cpu(3, [&] {
-        const DistanceTree a(curves, domain, tree_options);
-        const DistanceTree b(next, domain, tree_options);
+        now_tree.emplace(curves, domain, tree_options);
+        later_tree.emplace(next, domain, tree_options);
     });
-    const DistanceTree now(curves, domain, tree_options), later(next, domain, tree_options);
+    const DistanceTree &now = *now_tree, &later = *later_tree;
     std::vector<Vec2> u_now, u_later;
     f.velocities_s = best_cpu(3, [&] {
         u_now = vertex_velocities(law, t, curves, GeometryContext{&now, options.embedded});
@@ -400,7 +402,6 @@ std::string peers_section(const std::filesystem::path& figures) {
         zalesak_run("20/8/2/1e-7, direct velocity", 20, 8, 2, 1e-7, Extension::direct),
         zalesak_run("20/9/2/1e-8, direct velocity", 20, 9, 2, 1e-8, Extension::direct),
     };
-    Problem disk;
     Interface exact_disk;
     std::vector<std::pair<std::string, Interface>> shapes;
     for (const PeerRun& r : zalesak) {
@@ -414,7 +415,6 @@ std::string peers_section(const std::filesystem::path& figures) {
         if (r.extension == Extension::direct)
             shapes.emplace_back(fmt::format("slc {}", r.settings.substr(0, r.settings.find(','))),
                                 result.curves);
-        disk = p;
         exact_disk = initial;
     }
     plot_peers(figures / "performance_zalesak.png", "Zalesak's disk, one turn: error and seconds",

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
-#include <string_view>
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
@@ -89,15 +89,17 @@ Box resolve_domain(const DomainOptions& options, const std::vector<std::vector<V
 
 LoadedInterface load_interface(const std::string& path, const DomainOptions& domain) {
     InterfaceFile file = read_interface_json(path);
-    // Problems of the curves name the file, as the reader's do.
+    // A domain given by --domain or --box is the options' own problem; the rest, which comes from
+    // the curves, names the file, as the reader's problems do.
+    const std::optional<Box> given =
+        domain.half_width || domain.box ? std::optional(resolve_domain(domain, {})) : std::nullopt;
     try {
-        const Box box = resolve_domain(domain, file.curves);
+        const Box box = given ? *given : resolve_domain(domain, file.curves);
         PreparedInterface prepared = prepare_interface(file.curves, box);
         for (const std::string& note : prepared.notes)
             fmt::print(stderr, "slc: {}: {}\n", path, note);
         return {std::move(prepared.curves), file.time, box};
     } catch (const InvalidInput& e) {
-        if (std::string_view(e.what()).starts_with("--")) throw;
         throw InvalidInput(fmt::format("{}: {}", path, e.what()));
     }
 }

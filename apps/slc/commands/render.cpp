@@ -26,11 +26,10 @@ struct RenderOptions {
     DomainOptions view;
 };
 
-/// The square around all curves with a 10% margin.
-Box view_around(const std::vector<Interface>& all) {
-    Box b = Box::empty();
-    for (const Interface& curves : all) b = unite(b, bounding_box(curves.points()));
-    return Box::square(b.center(), 0.55 * std::max(b.width(), b.height()));
+/// The view the options give, else the square around `bounds` (the curves') with a 10% margin.
+Box view_of(const DomainOptions& given, Box bounds) {
+    if (given.half_width || given.box) return resolve_domain(given, {});
+    return Box::square(bounds.center(), 0.55 * std::max(bounds.width(), bounds.height()));
 }
 
 /// The frame files of a run folder, in order: DIR/frames/frame_*.json, or DIR/frame_*.json.
@@ -59,19 +58,17 @@ void render_animation(const RenderOptions& o) {
         throw InvalidInput(
             fmt::format("--frames draws an animated SVG: --out must end in .svg, got {}", o.out));
     std::vector<AnimationFrame> frames;
-    std::vector<Interface> all;
+    Box bounds = Box::empty();
     for (const auto& file : frame_files(o.frames)) {
         const InterfaceFile raw = read_interface_json(file);
         // A run's last frame is empty when everything vanished.
         Interface curves = raw.curves.empty() ? Interface{} : prepare_interface(raw.curves).curves;
-        if (!curves.empty()) all.push_back(curves);
+        if (!curves.empty()) bounds = unite(bounds, bounding_box(curves.points()));
         frames.push_back({raw.time, std::move(curves)});
     }
-    if (all.empty()) throw InvalidInput(fmt::format("every frame in {} is empty", o.frames));
-    const bool explicit_view = o.view.half_width || o.view.box;
-    const Box view = explicit_view ? resolve_domain(o.view, {}) : view_around(all);
+    if (bounds.is_empty()) throw InvalidInput(fmt::format("every frame in {} is empty", o.frames));
     const AnimationOptions options{o.seconds_per_frame, o.title, true};
-    write_file_atomic(o.out, animated_svg(frames, view, options));
+    write_file_atomic(o.out, animated_svg(frames, view_of(o.view, bounds), options));
 }
 
 void run_render(const RenderOptions& o) {
@@ -81,11 +78,12 @@ void run_render(const RenderOptions& o) {
     }
     if (o.files.empty()) throw InvalidInput("give interface files to draw, or --frames DIR");
     std::vector<Interface> all;
-    for (const std::string& file : o.files)
+    Box bounds = Box::empty();
+    for (const std::string& file : o.files) {
         all.push_back(load_interface(file, DomainOptions{}).curves);
-    const bool explicit_view = o.view.half_width || o.view.box;
-    const Box view = explicit_view ? resolve_domain(o.view, {}) : view_around(all);
-    Figure figure(view, o.title);
+        bounds = unite(bounds, bounding_box(all.back().points()));
+    }
+    Figure figure(view_of(o.view, bounds), o.title);
     for (std::size_t i = 0; i < all.size(); ++i) {
         figure.add_curves(all[i], std::filesystem::path(o.files[i]).filename().string(),
                           palette_color(i));
