@@ -34,6 +34,10 @@ void validate(const ContourOptions& o, const Box& domain) {
     if (!(o.rho >= 0.0 && o.rho < 1.0)) {
         throw InvalidInput(fmt::format("rho must be in [0, 1), got {}", o.rho));
     }
+    if (o.distance_slack && !(*o.distance_slack >= 0.0 && std::isfinite(*o.distance_slack))) {
+        throw InvalidInput(
+            fmt::format("distance_slack must be finite and >= 0, got {}", *o.distance_slack));
+    }
     if (!positive(o.gamma))
         throw InvalidInput(fmt::format("gamma must be positive, got {}", o.gamma));
     const double w = domain.width();
@@ -72,6 +76,7 @@ ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOption
     stats.triangles = topo.mesh.triangles.size();
     stats.gamma = topo.gamma;
     stats.perturbed = topo.perturbed;
+    stats.settled = topo.settled;
 
     const contouring::LinearContour linear = contouring::march(topo);
     const std::vector<Root> roots =

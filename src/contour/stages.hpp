@@ -36,12 +36,14 @@ struct Topology {
     Quadtree tree;
     Triangulation mesh;          ///< vertices moved where they were perturbed
     std::vector<double> values;  ///< G at mesh.vertices (stand-ins: see below)
-    /// Centres of finest leaves that provably hold no zero under the gradient bound: their value
-    /// is a stand-in with the right sign, never evaluated; their triangles are never crossed.
+    /// Vertices whose value is a stand-in with the right sign, never evaluated: centres of finest
+    /// leaves that hold no zero under the gradient bound, and points the distance bound settled
+    /// (ContourOptions::distance_slack). No triangle with a stand-in is crossed.
     std::vector<std::uint8_t> stand_in;
     std::vector<std::uint8_t> crossed;  ///< per triangle: G changes sign at its vertices
     double gamma = 1.0;                 ///< the gradient bound at which the tree balanced
     std::size_t perturbed = 0;          ///< vertices perturbed
+    std::size_t settled = 0;            ///< tree points given stand-ins instead of evaluations of G
 };
 
 /// Builds the K-level tree (γ doubled until balanced), triangulates it, perturbs vertices with

@@ -54,55 +54,112 @@ private:
 /// G at the corners and centres of the tree's cells, evaluated once per point, in one batch per
 /// call, and the smallest |G| over each cell's sample points. Cells at the depth limit are never
 /// tested for splitting, so their centres wait for complete_centres().
+///
+/// With ContourOptions::distance_slack δ, |G(x) − G(y)| ≤ |x − y| + δ, so a new point x near a
+/// known sample y has |G(x)| ≥ |G(y)| − |x − y| − δ and, when that is positive, G(y)'s sign. A
+/// point whose bound from its cell's parent's samples already reaches the split threshold γ·edge
+/// is settled, not evaluated: the bound with its sign stands in for G. Every split decision is
+/// the one exact values give (a stand-in below a later, larger threshold is evaluated first), and
+/// stand-ins left in triangles where G changes sign are evaluated before the contour is marched.
 class TreeSampler {
 public:
-    TreeSampler(BatchFunctionRef g, const Quadtree& tree) : g_(g), tree_(tree), grid_(tree) {}
+    TreeSampler(BatchFunctionRef g, const Quadtree& tree, const ContourOptions& options,
+                double rounding)
+        : g_(g),
+          tree_(tree),
+          grid_(tree),
+          slack_(options.distance_slack ? std::optional(*options.distance_slack + rounding)
+                                        : std::nullopt),
+          eta_(options.eta) {}
 
-    void sample(std::span<const std::uint32_t> cells) {
+    /// Samples the given cells (the root, or children of split cells): new points are evaluated
+    /// in one batch unless their parent's samples settle them at the cells' split threshold.
+    void sample(std::span<const std::uint32_t> cells, double gamma) {
         std::vector<std::uint64_t> keys;
-        for (std::uint32_t c : cells)
-            for (std::uint64_t k : sample_keys(c)) add(k, keys);
+        for (std::uint32_t c : cells) {
+            const auto& cell = tree_.cell(c);
+            const double threshold = gamma * tree_.edge(cell.level);
+            for (std::uint64_t k : sample_keys(c)) {
+                if (values_.contains(k)) continue;
+                const std::optional<double> bound =
+                    c == 0 ? std::nullopt : settled(k, sample_keys(cell.parent), threshold);
+                if (bound)
+                    values_.emplace(k, Sample{*bound, false});
+                else
+                    add(k, keys);
+            }
+        }
         evaluate(keys);
         cell_min_.resize(tree_.size(), std::numeric_limits<double>::infinity());
+        for (std::uint32_t c : cells) update_min(c);
+    }
+
+    /// Before the cells are tested against γ: evaluates the stand-ins on which a split would
+    /// rest (a bound below the threshold says nothing), so each test sees what exact values
+    /// would decide. One batch.
+    void settle_tests(std::span<const std::uint32_t> cells, double gamma) {
+        std::vector<std::uint64_t> keys;
+        std::vector<std::uint32_t> touched;
         for (std::uint32_t c : cells) {
-            double m = std::numeric_limits<double>::infinity();
-            for (std::uint64_t k : sample_keys(c)) m = std::min(m, std::abs(values_.at(k)));
-            cell_min_[c] = m;
+            const int level = tree_.cell(c).level;
+            const double threshold = gamma * tree_.edge(level);
+            if (level == tree_.max_depth() || !(threshold > cell_min_[c])) continue;
+            // The cell's least value may also be stale: a neighbour's test evaluated a stand-in
+            // it shares.
+            touched.push_back(c);
+            for (std::uint64_t k : sample_keys(c)) {
+                Sample& s = values_.at(k);
+                if (!s.exact && std::abs(s.value) < threshold) {
+                    s = Sample{std::numeric_limits<double>::quiet_NaN(), true};
+                    keys.push_back(k);
+                }
+            }
         }
+        evaluate(keys);
+        for (std::uint32_t c : touched) update_min(c);
     }
 
     /// Centres of the leaves at the depth limit, in one batch. A leaf whose corners share one sign
     /// with |G| > γ h/√2 holds no zero if |∇G| ≤ γ (every point is within h/√2 of a corner), and
     /// such a leaf has no finer neighbour, so all its triangles keep that sign: its centre gets a
-    /// stand-in value with that sign instead of an evaluation. Returns the stand-ins' keys.
-    std::vector<std::uint64_t> complete_centres(double gamma) {
+    /// stand-in value with that sign instead of an evaluation. So does a centre the distance
+    /// bound settles (its sign is then certain).
+    void complete_centres(double gamma) {
         const int depth = tree_.max_depth();
         const double clearance = gamma * tree_.edge(depth) / std::numbers::sqrt2;
-        std::vector<std::uint64_t> keys, stand_ins;
+        std::vector<std::uint64_t> keys;
         for (std::uint32_t c : tree_.leaves()) {
             if (tree_.cell(c).level != depth) continue;
             const auto k = sample_keys(c, true);
             double lo = std::numeric_limits<double>::infinity(), hi = -lo;
             for (int i = 0; i < 4; ++i) {
-                lo = std::min(lo, values_.at(k[i]));
-                hi = std::max(hi, values_.at(k[i]));
+                lo = std::min(lo, values_.at(k[i]).value);
+                hi = std::max(hi, values_.at(k[i]).value);
             }
+            if (values_.contains(k[4])) continue;
             if (lo > clearance || hi < -clearance) {
-                values_.try_emplace(k[4], lo > 0.0 ? lo : hi);
-                stand_ins.push_back(k[4]);
+                values_.emplace(k[4], Sample{lo > 0.0 ? lo : hi, false});
+            } else if (const auto bound = settled(k[4], std::span(k).first(4), 0.0)) {
+                values_.emplace(k[4], Sample{*bound, false});
             } else {
                 add(k[4], keys);
             }
         }
         evaluate(keys);
-        return stand_ins;
     }
 
     double min_abs(std::uint32_t c) const { return cell_min_[c]; }
-    double value(std::uint64_t key) const { return values_.at(key); }
+    double value(std::uint64_t key) const { return values_.at(key).value; }
+    bool exact(std::uint64_t key) const { return values_.at(key).exact; }
     const SampleGrid& grid() const { return grid_; }
 
 private:
+    /// G at a point, or a stand-in: a lower bound on |G| with G's sign.
+    struct Sample {
+        double value;
+        bool exact;
+    };
+
     /// Corners, then the centre when the cell can be split (or always, with with_centre).
     std::vector<std::uint64_t> sample_keys(std::uint32_t c, bool with_centre = false) const {
         const auto& cell = tree_.cell(c);
@@ -113,23 +170,51 @@ private:
             k.push_back(SampleGrid::key(x0 + u / 2, y0 + u / 2));
         return k;
     }
+    Vec2 point(std::uint64_t k) const { return grid_.point(k >> 32, k & 0xffffffffu); }
+
+    /// The distance bound at key k from the known samples among donors: a stand-in value when it
+    /// reaches threshold (and exceeds η, so that the point is never a perturbation candidate).
+    std::optional<double> settled(std::uint64_t k, std::span<const std::uint64_t> donors,
+                                  double threshold) const {
+        if (!slack_) return std::nullopt;
+        const Vec2 x = point(k);
+        double best = 0.0, sign = 0.0;
+        for (std::uint64_t d : donors) {
+            const auto it = values_.find(d);
+            if (it == values_.end()) continue;
+            const double b = std::abs(it->second.value) - distance(x, point(d)) - *slack_;
+            if (b > best) {  // false for a donor not yet evaluated (NaN)
+                best = b;
+                sign = it->second.value;
+            }
+        }
+        if (best >= threshold && best > eta_) return std::copysign(best, sign);
+        return std::nullopt;
+    }
+    void update_min(std::uint32_t c) {
+        double m = std::numeric_limits<double>::infinity();
+        for (std::uint64_t k : sample_keys(c)) m = std::min(m, std::abs(values_.at(k).value));
+        cell_min_[c] = m;
+    }
     void add(std::uint64_t k, std::vector<std::uint64_t>& keys) {
-        if (values_.try_emplace(k, std::numeric_limits<double>::quiet_NaN()).second)
+        if (values_.try_emplace(k, Sample{std::numeric_limits<double>::quiet_NaN(), true}).second)
             keys.push_back(k);
     }
     void evaluate(std::span<const std::uint64_t> keys) {
         if (keys.empty()) return;
         std::vector<Vec2> points;
-        for (std::uint64_t k : keys) points.push_back(grid_.point(k >> 32, k & 0xffffffffu));
+        for (std::uint64_t k : keys) points.push_back(point(k));
         std::vector<double> values(points.size());
         g_(points, values);
-        for (std::size_t i = 0; i < keys.size(); ++i) values_[keys[i]] = values[i];
+        for (std::size_t i = 0; i < keys.size(); ++i) values_[keys[i]] = Sample{values[i], true};
     }
 
     BatchFunctionRef g_;
     const Quadtree& tree_;
     SampleGrid grid_;
-    std::unordered_map<std::uint64_t, double> values_;
+    std::optional<double> slack_;
+    double eta_;
+    std::unordered_map<std::uint64_t, Sample> values_;
     std::vector<double> cell_min_;
 };
 
@@ -138,6 +223,7 @@ private:
 void split_while_coarse(Quadtree& tree, TreeSampler& sampler, std::vector<std::uint32_t> frontier,
                         double gamma) {
     while (!frontier.empty()) {
+        sampler.settle_tests(frontier, gamma);
         std::vector<std::uint32_t> children;
         for (std::uint32_t c : frontier) {
             const int level = tree.cell(c).level;
@@ -146,7 +232,7 @@ void split_while_coarse(Quadtree& tree, TreeSampler& sampler, std::vector<std::u
                 for (std::uint32_t k = 0; k < 4; ++k) children.push_back(first + k);
             }
         }
-        sampler.sample(children);
+        sampler.sample(children, gamma);
         frontier = std::move(children);
     }
 }
@@ -154,7 +240,7 @@ void split_while_coarse(Quadtree& tree, TreeSampler& sampler, std::vector<std::u
 /// The split criterion is monotone in γ, so the tree for 2γ refines the tree for γ: instead of
 /// rebuilding from the root, the leaves are offered to the criterion again. Returns γ.
 double build_tree(Quadtree& tree, TreeSampler& sampler, double gamma) {
-    sampler.sample(std::vector<std::uint32_t>{0});
+    sampler.sample(std::vector<std::uint32_t>{0}, gamma);
     std::vector<std::uint32_t> frontier{0};
     for (int doubling = 0;; ++doubling) {
         split_while_coarse(tree, sampler, std::move(frontier), gamma);
@@ -169,7 +255,7 @@ double build_tree(Quadtree& tree, TreeSampler& sampler, double gamma) {
     tree.balance([&](std::size_t c) {
         for (std::uint32_t k = 0; k < 4; ++k) children.push_back(tree.cell(c).first_child + k);
     });
-    sampler.sample(children);
+    sampler.sample(children, gamma);
     return gamma;
 }
 
@@ -251,14 +337,40 @@ std::size_t perturb(Topology& topo, BatchFunctionRef g, double eta) {
     return moved;
 }
 
+/// Stand-ins at vertices of triangles where G changes sign get their exact values: root finding
+/// starts from them. Their signs were certain, so no triangle changes state. One batch.
+void evaluate_crossed_stand_ins(Topology& topo, BatchFunctionRef g) {
+    const auto& mesh = topo.mesh;
+    std::vector<std::uint32_t> ids;
+    for (const auto& t : mesh.triangles) {
+        const bool positive = topo.values[t[0]] > 0.0;
+        if ((topo.values[t[1]] > 0.0) == positive && (topo.values[t[2]] > 0.0) == positive)
+            continue;
+        for (std::uint32_t v : t) {
+            if (topo.stand_in[v]) {
+                topo.stand_in[v] = 0;
+                ids.push_back(v);
+            }
+        }
+    }
+    if (ids.empty()) return;
+    std::vector<Vec2> points;
+    for (std::uint32_t v : ids) points.push_back(mesh.vertices[v]);
+    std::vector<double> values(points.size());
+    g(points, values);
+    for (std::size_t i = 0; i < ids.size(); ++i) topo.values[ids[i]] = values[i];
+}
+
 }  // namespace
 
 Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOptions& options) {
-    Topology topo{Quadtree(domain, options.depth), {}, {}, {}, {}, options.gamma, 0};
-    TreeSampler sampler(g, topo.tree);
+    Topology topo{Quadtree(domain, options.depth), {}, {}, {}, {}, options.gamma, 0, 0};
+    // The distance bound allows for rounding in G: a few thousand ulps of the coordinates.
+    const double scale = std::max({std::abs(domain.lo.x), std::abs(domain.lo.y),
+                                   std::abs(domain.hi.x), std::abs(domain.hi.y), domain.width()});
+    TreeSampler sampler(g, topo.tree, options, 1e-12 * scale);
     topo.gamma = build_tree(topo.tree, sampler, options.gamma);
-    std::vector<std::uint64_t> stand_ins = sampler.complete_centres(topo.gamma);
-    std::sort(stand_ins.begin(), stand_ins.end());
+    sampler.complete_centres(topo.gamma);
     topo.mesh = triangulate(topo.tree);
     const auto& vertices = topo.mesh.vertices;
     const std::uint64_t n = sampler.grid().extent();
@@ -269,11 +381,14 @@ Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOp
         const auto [gx, gy] = sampler.grid().coordinates(vertices[v]);
         const std::uint64_t key = SampleGrid::key(gx, gy);
         topo.values[v] = sampler.value(key);
-        topo.stand_in[v] = std::binary_search(stand_ins.begin(), stand_ins.end(), key);
+        topo.stand_in[v] = !sampler.exact(key);
         on_boundary[v] = gx == 0 || gy == 0 || gx == n || gy == n;
     }
     check_boundary(topo, on_boundary, options.eta);
     topo.perturbed = perturb(topo, g, options.eta);
+    evaluate_crossed_stand_ins(topo, g);
+    topo.settled = static_cast<std::size_t>(
+        std::count(topo.stand_in.begin(), topo.stand_in.end(), std::uint8_t{1}));
     return topo;
 }
 

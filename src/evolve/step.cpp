@@ -43,6 +43,12 @@ public:
     }
     /// The exact signed distance to this level's Γ.
     double distance(Vec2 x) const { return tree_.closest_point(x).distance; }
+    /// max |W|: both extensions interpolate the vertex velocities (the maximum principle).
+    double max_speed() const {
+        double m = 0.0;
+        for (Vec2 u : u_) m = std::max(m, norm(u));
+        return m;
+    }
 
 private:
     Extension extension_;
@@ -105,16 +111,21 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
         return result;
     }
 
-    // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x, t); Γ(t)).
+    // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x, t); Γ(t)). F is 1-Lipschitz and the
+    // foot moves at most k max|W| from x, so |G̃(x) − G̃(y)| ≤ |x − y| + 2k max|W|.
+    ContourOptions contour_options = options.contour;
+    contour_options.distance_slack = 2.0 * k * now.max_speed();
     auto predictor =
         pointwise([&](Vec2 x) { return now.distance(x - k * finite(now.velocity(x), law, t, x)); },
                   expensive_grain);
-    ContourResult predicted = contour(predictor, domain, options.contour);
+    ContourResult predicted = contour(predictor, domain, contour_options);
     result.stats.predictor = predicted.stats;
     if (predicted.curves.empty()) return result;  // everything vanished within the step
 
-    // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x.
+    // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x. Its foot moves
+    // at most k/2 (max|W(t)| + max|W(t + k)|) from x.
     const Level next(predicted.curves, t + k, law, domain, options);
+    contour_options.distance_slack = k * (now.max_speed() + next.max_speed());
     auto corrector = pointwise(
         [&](Vec2 x) {
             const Vec2 w = finite(now.velocity(x), law, t, x);
@@ -124,7 +135,7 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
             return now.distance(x - (0.5 * k) * (w_foot + w_next));
         },
         expensive_grain);
-    ContourResult corrected = contour(corrector, domain, options.contour);
+    ContourResult corrected = contour(corrector, domain, contour_options);
     result.stats.corrector = corrected.stats;
     result.curves = std::move(corrected.curves);
     return result;

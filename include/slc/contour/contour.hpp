@@ -48,6 +48,12 @@ struct ContourOptions {
     int max_refine_passes = 64;
     /// How brackets are shrunk: Brent (default), Illinois, or the paper's bisection.
     RootMethod root_method = RootMethod::brent;
+    /// δ ≥ 0, when the caller can guarantee |G(x) − G(y)| ≤ |x − y| + δ for all x and y: 0 for a
+    /// signed distance function, 2k·max|W| for the semi-Lagrangian formula. Tree points where a
+    /// nearby sample's value already bounds |G| above the split threshold are then not evaluated
+    /// (the bound, with its certain sign, stands in). The tree and the contour are those that
+    /// exact values give. Unset (the default): every tree point is evaluated.
+    std::optional<double> distance_slack;
 
     /// ε as given, or its default 10^−K.
     double resolved_eps() const;
@@ -69,6 +75,8 @@ struct ContourStats {
     std::size_t g_evals_refine = 0;  ///< of which: adaptive refinement (midpoints, brackets, roots)
     double g_evals_per_vertex = 0.0;  ///< g_evals / vertices; 0 for an empty result
 
+    /// Tree points that distance_slack or the gradient bound settled without evaluating G.
+    std::size_t settled = 0;
     double gamma = 0.0;             ///< the gradient bound γ at which the tree was balanced
     std::size_t perturbed = 0;      ///< triangulation vertices moved because |G| ≤ η there
     std::size_t stalled_roots = 0;  ///< roots left with |G| > η: G jumps across zero there

@@ -3,11 +3,14 @@
 // and seeded random interfaces with holes, corners and several components.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "contour_checks.hpp"
 #include "random_interfaces.hpp"
 #include "slc/contour/contour.hpp"
+#include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/geometry/shapes.hpp"
@@ -116,6 +119,58 @@ TEST(ContourDistance, RandomInterfacesGiveSimpleOrientedCurves) {
             // seed.
             EXPECT_NEAR(area(r.curves), area(curves), 0.05 * std::abs(area(curves)) + 0.02);
         }
+    }
+}
+
+TEST(ContourDistance, DistanceSlackSkipsEvaluationsAndChangesNothing) {
+    // G(x) = F(x − d(x)) with a displacement |d| ≤ D that jumps from cell to cell of a fine
+    // checkerboard: |G(x) − G(y)| ≤ |x − y| + 2D, so distance_slack = 2D is a true bound, and
+    // with it the contour must be the one every point evaluated gives, bit for bit.
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        std::mt19937 rng(seed);
+        const Interface curves = testing::random_interface(rng);
+        const Box domain = Box::centered_square(1.5);
+        const DistanceTree tree(curves, domain, {.depth = 10, .triangulate = false});
+        for (double shift : {0.0, 0.01}) {
+            auto g = [&tree, shift](std::span<const Vec2> x, std::span<double> v) {
+                for (std::size_t i = 0; i < x.size(); ++i) {
+                    const auto cx = static_cast<long>(std::floor(x[i].x / 0.013));
+                    const auto cy = static_cast<long>(std::floor(x[i].y / 0.017));
+                    const double turn = static_cast<double>((cx * 7 + cy * 3) % 5);
+                    const Vec2 d = shift * Vec2{std::cos(turn), std::sin(turn)};
+                    v[i] = tree.closest_point(x[i] - d).distance;
+                }
+            };
+            for (int passes : {0, 2}) {
+                ContourOptions o;
+                o.depth = 7;
+                o.refine_passes = passes;
+                o.eps = 1e-5;
+                const ContourResult every = contour(g, domain, o);
+                o.distance_slack = 2.0 * shift;
+                const ContourResult bounded = contour(g, domain, o);
+                EXPECT_EQ(bounded.curves.curves(), every.curves.curves());
+                EXPECT_EQ(bounded.stats.cells, every.stats.cells);
+                EXPECT_EQ(bounded.stats.g_evals_roots, every.stats.g_evals_roots);
+                EXPECT_EQ(bounded.stats.g_evals_refine, every.stats.g_evals_refine);
+                // Far from Γ most tree points are settled by their parent cell's values.
+                EXPECT_LT(bounded.stats.g_evals_tree, every.stats.g_evals_tree * 3 / 4);
+                EXPECT_EQ(bounded.stats.g_evals_tree + bounded.stats.settled,
+                          every.stats.g_evals_tree + every.stats.settled);
+            }
+        }
+    }
+}
+
+TEST(ContourDistance, NegativeOrInfiniteDistanceSlackIsInvalid) {
+    const Propeller p;
+    ContourOptions o;
+    o.depth = 4;
+    for (double slack : {-1e-3, std::numeric_limits<double>::infinity(),
+                         std::numeric_limits<double>::quiet_NaN()}) {
+        o.distance_slack = slack;
+        EXPECT_THROW(contour(exact_distance(p.tree), p.domain, o), InvalidInput);
     }
 }
 
