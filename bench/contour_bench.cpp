@@ -68,6 +68,7 @@ ContourOptions table_options(int k, bool adaptive, RootMethod method = RootMetho
     ContourOptions o;
     o.depth = k;
     o.root_method = method;
+    o.distance_slack = 0.0;  // the exact signed distance is 1-Lipschitz
     if (adaptive) {
         o.eps = std::pow(10.0, -(k - 2));
         o.refine_passes = ContourOptions::until_converged;

@@ -8,6 +8,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/distance/extension.hpp"
 #include "slc/evolve/problems.hpp"
 #include "slc/evolve/run.hpp"
 #include "slc/evolve/step.hpp"
@@ -171,6 +172,36 @@ TEST(Run, DirectFlowFieldIsFourthOrderInTime) {
     const StepResult one = advance(Interface(p.initial), 0.0, 0.25, *law, p.domain, o.step);
     EXPECT_EQ(one.stats.predictor.g_evals, 0u);
     EXPECT_GT(one.stats.corrector.g_evals, 0u);
+}
+
+TEST(Run, StepSettlesFarTreePointsWithTheTreeOfExactValues) {
+    // The predictor of one merging-circles step, contoured here with every tree point evaluated,
+    // must have the tree, the root finding and the refinement of the step's own contour, which
+    // settles the points far from Γ by the bound |G(x) − G(y)| ≤ |x − y| + 2k max|W|.
+    const Problem p = make_problem("merging-circles");
+    const auto law = make_velocity(p.velocity, p.velocity_params, p.module);
+    const Interface initial = prepare_interface(p.initial, p.domain).curves;
+    const RunOptions o = options(0.5, 10, 6, 2, 1e-6);
+    const double k = 0.05;
+    const StepResult step = advance(initial, 0.0, k, *law, p.domain, o.step);
+
+    const DistanceTree tree(initial, p.domain, {.depth = o.step.resolved_tree_depth()});
+    const std::vector<Vec2> u = vertex_velocities(*law, 0.0, initial, GeometryContext{&tree});
+    auto g = [&](std::span<const Vec2> xs, std::span<double> out) {
+        for (std::size_t i = 0; i < xs.size(); ++i) {
+            const Vec2 w = nearest_point_extension<Vec2>(initial, u, tree.closest_point(xs[i]));
+            out[i] = tree.closest_point(xs[i] - k * w).distance;
+        }
+    };
+    const ContourStats every = contour(g, p.domain, o.step.contour).stats;
+    const ContourStats& settled = step.stats.predictor;
+    EXPECT_GT(settled.settled, every.settled);
+    EXPECT_LT(settled.g_evals_tree, every.g_evals_tree);
+    EXPECT_EQ(settled.g_evals_tree + settled.settled, every.g_evals_tree + every.settled);
+    EXPECT_EQ(settled.cells, every.cells);
+    EXPECT_EQ(settled.vertices, every.vertices);
+    EXPECT_EQ(settled.g_evals_roots, every.g_evals_roots);
+    EXPECT_EQ(settled.g_evals_refine, every.g_evals_refine);
 }
 
 TEST(Run, ResultDoesNotDependOnTheThreadCount) {

@@ -61,6 +61,7 @@ nlohmann::json stats_json(const ContourStats& s) {
             {"mean_segment_length", s.mean_segment_length},
             {"g_evals", s.g_evals},
             {"g_evals_tree", s.g_evals_tree},
+            {"settled", s.settled},
             {"g_evals_roots", s.g_evals_roots},
             {"g_evals_refine", s.g_evals_refine},
             {"g_evals_per_vertex", s.g_evals_per_vertex},
@@ -97,6 +98,7 @@ ContourOptions library_options(const ContourCommandOptions& o) {
     options.eps = o.eps;
     options.eta = o.eta;
     options.rho = o.rho;
+    options.distance_slack = 0.0;  // G is the exact signed distance, 1-Lipschitz
     return options;
 }
 
