@@ -133,16 +133,16 @@ public:
             const auto k = sample_keys(c, true);
             double lo = std::numeric_limits<double>::infinity(), hi = -lo;
             for (int i = 0; i < 4; ++i) {
-                lo = std::min(lo, values_.at(k[i]).value);
-                hi = std::max(hi, values_.at(k[i]).value);
+                lo = std::min(lo, values_.at(k.k[i]).value);
+                hi = std::max(hi, values_.at(k.k[i]).value);
             }
-            if (values_.contains(k[4])) continue;
+            if (values_.contains(k.k[4])) continue;
             if (lo > clearance || hi < -clearance) {
-                values_.emplace(k[4], Sample{lo > 0.0 ? lo : hi, false});
-            } else if (const auto bound = settled(k[4], std::span(k).first(4), 0.0)) {
-                values_.emplace(k[4], Sample{*bound, false});
+                values_.emplace(k.k[4], Sample{lo > 0.0 ? lo : hi, false});
+            } else if (const auto bound = settled(k.k[4], Keys{k.k, 4}, 0.0)) {
+                values_.emplace(k.k[4], Sample{*bound, false});
             } else {
-                add(k[4], keys);
+                add(k.k[4], keys);
             }
         }
         evaluate(keys);
@@ -160,29 +160,35 @@ private:
         bool exact;
     };
 
-    /// Corners, then the centre when the cell can be split (or always, with with_centre).
-    std::vector<std::uint64_t> sample_keys(std::uint32_t c, bool with_centre = false) const {
+    /// A cell's sample points: corners, then the centre when the cell can be split (or always,
+    /// with with_centre).
+    struct Keys {
+        std::array<std::uint64_t, 5> k;
+        std::size_t n;
+        const std::uint64_t* begin() const { return k.data(); }
+        const std::uint64_t* end() const { return k.data() + n; }
+    };
+    Keys sample_keys(std::uint32_t c, bool with_centre = false) const {
         const auto& cell = tree_.cell(c);
         const std::uint64_t u = grid_.units(cell.level), x0 = cell.ix * u, y0 = cell.iy * u;
-        std::vector<std::uint64_t> k{SampleGrid::key(x0, y0), SampleGrid::key(x0 + u, y0),
-                                     SampleGrid::key(x0, y0 + u), SampleGrid::key(x0 + u, y0 + u)};
-        if (with_centre || cell.level < tree_.max_depth())
-            k.push_back(SampleGrid::key(x0 + u / 2, y0 + u / 2));
-        return k;
+        const bool centre = with_centre || cell.level < tree_.max_depth();
+        return {{SampleGrid::key(x0, y0), SampleGrid::key(x0 + u, y0), SampleGrid::key(x0, y0 + u),
+                 SampleGrid::key(x0 + u, y0 + u), SampleGrid::key(x0 + u / 2, y0 + u / 2)},
+                centre ? 5u : 4u};
     }
     Vec2 point(std::uint64_t k) const { return grid_.point(k >> 32, k & 0xffffffffu); }
 
     /// The distance bound at key k from the known samples among donors: a stand-in value when it
     /// reaches threshold (and exceeds η, so that the point is never a perturbation candidate).
-    std::optional<double> settled(std::uint64_t k, std::span<const std::uint64_t> donors,
-                                  double threshold) const {
+    std::optional<double> settled(std::uint64_t k, Keys donors, double threshold) const {
         if (!slack_) return std::nullopt;
         const Vec2 x = point(k);
         double best = 0.0, sign = 0.0;
         for (std::uint64_t d : donors) {
             const auto it = values_.find(d);
             if (it == values_.end()) continue;
-            const double b = std::abs(it->second.value) - distance(x, point(d)) - *slack_;
+            const Vec2 r = x - point(d);  // |r| to within an ulp, which the slack covers
+            const double b = std::abs(it->second.value) - std::sqrt(dot(r, r)) - *slack_;
             if (b > best) {  // false for a donor not yet evaluated (NaN)
                 best = b;
                 sign = it->second.value;
