@@ -49,28 +49,36 @@ private:
 };
 
 /// True when the neighbour of leaf c across the edge in direction (dx, dy) is finer than c.
+/// Throws when it is a leaf coarser than c's parent: the tree is not 2:1 balanced (checked here,
+/// where every leaf's four neighbours are found anyway, instead of in a pass of its own).
 bool has_finer_neighbour(const Quadtree& tree, std::size_t c, int dx, int dy) {
     const std::uint32_t n = tree.neighbour(c, dx, dy);
-    return n != Quadtree::no_cell && tree.cell(n).level == tree.cell(c).level && !tree.is_leaf(n);
+    if (n == Quadtree::no_cell) return false;
+    const int level = tree.cell(c).level;
+    if (tree.cell(n).level < level - 1)
+        throw InvalidInput("triangulate: the quadtree is not 2:1 balanced");
+    return tree.cell(n).level == level && !tree.is_leaf(n);
 }
 
 void fan_leaf(const Quadtree& tree, std::size_t c, VertexTable& table, Triangulation& mesh) {
     const auto& cell = tree.cell(c);
     const std::uint64_t u = table.units(cell.level);
     const std::uint64_t x0 = cell.ix * u, y0 = cell.iy * u, h = u / 2;
-    const std::uint32_t centre = table.at(x0 + h, y0 + h);
     // Boundary counterclockwise from the low-left corner: bottom, right, top, left edges, each
     // with its midpoint when the neighbour across it is finer.
+    const bool finer[4] = {has_finer_neighbour(tree, c, 0, -1), has_finer_neighbour(tree, c, 1, 0),
+                           has_finer_neighbour(tree, c, 0, 1), has_finer_neighbour(tree, c, -1, 0)};
+    const std::uint32_t centre = table.at(x0 + h, y0 + h);
     std::array<std::uint32_t, 8> ring{};
     std::size_t n = 0;
     ring[n++] = table.at(x0, y0);
-    if (has_finer_neighbour(tree, c, 0, -1)) ring[n++] = table.at(x0 + h, y0);
+    if (finer[0]) ring[n++] = table.at(x0 + h, y0);
     ring[n++] = table.at(x0 + u, y0);
-    if (has_finer_neighbour(tree, c, 1, 0)) ring[n++] = table.at(x0 + u, y0 + h);
+    if (finer[1]) ring[n++] = table.at(x0 + u, y0 + h);
     ring[n++] = table.at(x0 + u, y0 + u);
-    if (has_finer_neighbour(tree, c, 0, 1)) ring[n++] = table.at(x0 + h, y0 + u);
+    if (finer[2]) ring[n++] = table.at(x0 + h, y0 + u);
     ring[n++] = table.at(x0, y0 + u);
-    if (has_finer_neighbour(tree, c, -1, 0)) ring[n++] = table.at(x0, y0 + h);
+    if (finer[3]) ring[n++] = table.at(x0, y0 + h);
     for (std::size_t k = 0; k < n; ++k)
         mesh.triangles.push_back({centre, ring[k], ring[(k + 1) % n]});
 }
@@ -78,10 +86,10 @@ void fan_leaf(const Quadtree& tree, std::size_t c, VertexTable& table, Triangula
 }  // namespace
 
 Triangulation triangulate(const Quadtree& tree) {
-    if (!tree.is_balanced()) throw InvalidInput("triangulate: the quadtree is not 2:1 balanced");
     Triangulation mesh;
     VertexTable table(tree, mesh);
     mesh.cell_offsets.reserve(tree.size() + 1);
+    mesh.triangles.reserve(4 * tree.size());  // 4 to 8 per leaf, about 3 leaves in 4 cells
     mesh.cell_offsets.push_back(0);
     for (std::size_t c = 0; c < tree.size(); ++c) {
         if (tree.is_leaf(c)) fan_leaf(tree, c, table, mesh);
