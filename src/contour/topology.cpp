@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory_resource>
 #include <numbers>
 #include <unordered_map>
 
@@ -220,7 +221,9 @@ private:
     SampleGrid grid_;
     std::optional<double> slack_;
     double eta_;
-    std::unordered_map<std::uint64_t, Sample> values_;
+    // Points are only added: their nodes come from one arena, freed with the sampler.
+    std::pmr::monotonic_buffer_resource arena_;
+    std::pmr::unordered_map<std::uint64_t, Sample> values_{&arena_};
     std::vector<double> cell_min_;
 };
 

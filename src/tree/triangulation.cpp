@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory_resource>
 #include <unordered_map>
 
 #include "slc/core/error.hpp"
@@ -45,7 +46,9 @@ private:
     Triangulation& mesh_;
     int shift_;
     double step_;
-    std::unordered_map<std::uint64_t, std::uint32_t> index_;
+    // Vertices are only added: their nodes come from one arena, freed with the table.
+    std::pmr::monotonic_buffer_resource arena_;
+    std::pmr::unordered_map<std::uint64_t, std::uint32_t> index_{&arena_};
 };
 
 /// True when the neighbour of leaf c across the edge in direction (dx, dy) is finer than c.
