@@ -36,6 +36,10 @@ constexpr double short_probe_fraction = 0.5;
 /// A bracket that would reach another segment (a neighbour, or another part of the contour
 /// across a narrow gap) stops at this fraction of the way there.
 constexpr double collision_margin = 0.9;
+/// A bracket across which G's secant is this many times the tree's gradient bound γ holds a jump
+/// of G, not a root: its split would be refused anyway (a stalled root is no vertex), so it is
+/// given up at once instead of being bisected to rounding size (some fifty evaluations).
+constexpr double jump_slope_factor = 1024.0;
 /// Barycentric slack when deciding that a root lies in its home triangle: rounding only.
 constexpr double triangle_slack = 1e-12;
 
@@ -238,8 +242,10 @@ private:
                 owner.push_back(k);
             }
         }
-        const std::vector<Root> roots =
-            find_roots(g_, brackets, {.eta = options_.eta, .method = options_.root_method});
+        const std::vector<Root> roots = find_roots(g_, brackets,
+                                                   {.eta = options_.eta,
+                                                    .method = options_.root_method,
+                                                    .jump_slope = jump_slope_factor * topo_.gamma});
         for (std::size_t k = 0; k < roots.size(); ++k) {
             // A stalled root (G jumps across zero) is no vertex of a refined contour.
             candidates[owner[k]].has_root = roots[k].converged;

@@ -33,7 +33,8 @@ struct State {
     double f_lo = 0.0, f_hi = 0.0;  ///< the values regula falsi uses (Illinois halves them)
     int last_replaced = 0;          ///< Illinois: −1 lo was replaced last step, +1 hi, 0 none
     double a = 0.0, b = 1.0, c = 1.0, fa = 0.0, fb = 0.0, fc = 0.0, d = 1.0, e = 1.0;
-    double tol = 0.0;  ///< stall length in t
+    double tol = 0.0;   ///< stall length in t
+    double jump = 0.0;  ///< jump_slope times the bracket's length: the secant bound in t
     int steps = 0;
     double t = 0.0;  ///< the iterate being evaluated
 };
@@ -49,7 +50,7 @@ void check_bracket(const Bracket& b, std::size_t i) {
     }
 }
 
-State initial_state(const Bracket& br) {
+State initial_state(const Bracket& br, double jump_slope) {
     State s;
     s.g_lo = s.f_lo = s.fa = br.ga;
     s.g_hi = s.f_hi = s.fb = s.fc = br.gb;
@@ -58,6 +59,7 @@ State initial_state(const Bracket& br) {
         std::max({std::abs(br.a.x), std::abs(br.a.y), std::abs(br.b.x), std::abs(br.b.y), length});
     s.tol =
         length > 0.0 ? stall_ulps * std::numeric_limits<double>::epsilon() * scale / length : 1.0;
+    s.jump = jump_slope * length;
     return s;
 }
 
@@ -65,6 +67,7 @@ State initial_state(const Bracket& br) {
 /// the open bracket or the safeguard demands it. nullopt when the bracket has stalled.
 std::optional<double> illinois_next(const State& s, RootMethod method) {
     if (s.hi - s.lo <= s.tol) return std::nullopt;
+    if (std::abs(s.g_lo) + std::abs(s.g_hi) > s.jump * (s.hi - s.lo)) return std::nullopt;
     const double mid = 0.5 * (s.lo + s.hi);
     if (method == RootMethod::bisection) return mid;
     if (s.hi - s.lo > std::exp2(-illinois_halvings_per_step * s.steps)) return mid;
@@ -104,6 +107,7 @@ std::optional<double> brent_next(State& s) {
     }
     const double xm = 0.5 * (s.c - s.b);
     if (std::abs(xm) <= s.tol) return std::nullopt;
+    if (std::abs(s.fb) + std::abs(s.fc) > s.jump * std::abs(s.c - s.b)) return std::nullopt;
     if (std::abs(s.e) >= s.tol && std::abs(s.fa) > std::abs(s.fb)) {
         const double ratio = s.fb / s.fa;
         double p, q;
@@ -155,13 +159,17 @@ std::vector<Root> find_roots(BatchFunctionRef g, std::span<const Bracket> bracke
     if (!(options.eta > 0.0) || !std::isfinite(options.eta)) {
         throw InvalidInput(fmt::format("find_roots: eta must be positive, got {}", options.eta));
     }
+    if (!(options.jump_slope > 0.0)) {
+        throw InvalidInput(
+            fmt::format("find_roots: jump_slope must be positive, got {}", options.jump_slope));
+    }
     std::vector<State> states(brackets.size());
     std::vector<Root> roots(brackets.size());
     std::vector<std::size_t> active;
     for (std::size_t i = 0; i < brackets.size(); ++i) {
         const Bracket& br = brackets[i];
         check_bracket(br, i);
-        states[i] = initial_state(br);
+        states[i] = initial_state(br, options.jump_slope);
         if (std::abs(br.ga) <= options.eta || std::abs(br.gb) <= options.eta) {
             const bool at_a = std::abs(br.ga) <= std::abs(br.gb);
             roots[i] = {at_a ? br.a : br.b, at_a ? 0.0 : 1.0, at_a ? br.ga : br.gb, 0, true};

@@ -6,6 +6,7 @@
 /// fast enough, so that it is never much slower than bisection on a bad G.
 #pragma once
 
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -33,6 +34,10 @@ struct Bracket {
 struct RootOptions {
     double eta = 1e-10;                     ///< η: a point with |G| ≤ η is a root
     RootMethod method = RootMethod::brent;  ///< how brackets are shrunk
+    /// Λ_jump > 0: a bracket whose end values satisfy |G(lo)| + |G(hi)| > Λ_jump·|hi − lo| is
+    /// given up as a jump of G across zero (a G with |∇G| ≤ Λ_jump has no such bracket), instead
+    /// of being bisected to rounding size. Infinite (the default): only rounding stops a bracket.
+    double jump_slope = std::numeric_limits<double>::infinity();
 };
 
 /// The result for one bracket.
@@ -41,8 +46,9 @@ struct Root {
     double t = 0.0;       ///< in (0, 1); 0 or 1 only when |G| ≤ η at that given end
     double value = 0.0;   ///< G(point)
     int evaluations = 0;  ///< G evaluations spent on this bracket
-    /// |value| ≤ η. False only when the bracket shrank to rounding size first, which happens
-    /// only where G jumps across zero; point is then the better end of that tiny bracket.
+    /// |value| ≤ η. False only when the bracket shrank to rounding size first, or G's secant
+    /// across it exceeded jump_slope, which happens only where G jumps across zero; point is then
+    /// the better end of that bracket.
     bool converged = false;
 };
 
