@@ -63,13 +63,16 @@ void count_output(const Interface& curves, ContourStats& s) {
 
 double ContourOptions::resolved_eps() const { return eps.value_or(std::pow(10.0, -depth)); }
 
-ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options) {
+namespace {
+
+ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
+                           std::optional<BatchFunctionRef> lower_bound) {
     validate(options, domain);
     ContourStats stats;
     std::size_t evaluations = 0;
     const contouring::CountingFunction counted(g, evaluations);
 
-    contouring::Topology topo = contouring::resolve_topology(counted, domain, options);
+    contouring::Topology topo = contouring::resolve_topology(counted, domain, options, lower_bound);
     stats.g_evals_tree = evaluations;
     stats.cells = topo.tree.size();
     stats.leaves = topo.tree.leaves().size();
@@ -77,6 +80,7 @@ ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOption
     stats.gamma = topo.gamma;
     stats.perturbed = topo.perturbed;
     stats.settled = topo.settled;
+    stats.bound_evals = topo.bound_evals;
 
     const contouring::LinearContour linear = contouring::march(topo);
     const std::vector<Root> roots =
@@ -102,6 +106,17 @@ ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOption
     Interface curves = chain.to_interface();
     count_output(curves, stats);
     return {std::move(curves), std::move(topo.tree), stats};
+}
+
+}  // namespace
+
+ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options) {
+    return contour_with(g, domain, options, std::nullopt);
+}
+
+ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
+                      BatchFunctionRef lower_bound) {
+    return contour_with(g, domain, options, lower_bound);
 }
 
 }  // namespace slc

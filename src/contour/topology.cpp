@@ -64,9 +64,10 @@ private:
 /// stand-ins left in triangles where G changes sign are evaluated before the contour is marched.
 class TreeSampler {
 public:
-    TreeSampler(BatchFunctionRef g, const Quadtree& tree, const ContourOptions& options,
-                double rounding)
+    TreeSampler(BatchFunctionRef g, std::optional<BatchFunctionRef> lower_bound,
+                const Quadtree& tree, const ContourOptions& options, double rounding)
         : g_(g),
+          lower_bound_(lower_bound),
           tree_(tree),
           grid_(tree),
           slack_(options.distance_slack ? std::optional(*options.distance_slack + rounding)
@@ -74,9 +75,11 @@ public:
           eta_(options.eta) {}
 
     /// Samples the given cells (the root, or children of split cells): new points are evaluated
-    /// in one batch unless their parent's samples settle them at the cells' split threshold.
+    /// in one batch unless their parent's samples or the lower bound (one batch before) settle
+    /// them at the cells' split threshold.
     void sample(std::span<const std::uint32_t> cells, double gamma) {
-        std::vector<std::uint64_t> keys;
+        std::vector<std::uint64_t> keys, open;
+        std::vector<double> thresholds;
         for (std::uint32_t c : cells) {
             const auto& cell = tree_.cell(c);
             const double threshold = gamma * tree_.edge(cell.level);
@@ -84,12 +87,17 @@ public:
                 if (values_.contains(k)) continue;
                 const std::optional<double> bound =
                     c == 0 ? std::nullopt : settled(k, sample_keys(cell.parent), threshold);
-                if (bound)
+                if (bound) {
                     values_.emplace(k, Sample{*bound, false});
-                else
+                } else if (!lower_bound_) {
                     add(k, keys);
+                } else {
+                    add(k, open);
+                    thresholds.push_back(threshold);
+                }
             }
         }
+        for (std::uint64_t k : settle_by_lower_bound(open, thresholds)) keys.push_back(k);
         evaluate(keys);
         cell_min_.resize(tree_.size(), std::numeric_limits<double>::infinity());
         for (std::uint32_t c : cells) update_min(c);
@@ -150,6 +158,7 @@ public:
     }
 
     double min_abs(std::uint32_t c) const { return cell_min_[c]; }
+    std::size_t bound_evals() const { return bound_evals_; }
     double value(std::uint64_t key) const { return values_.at(key).value; }
     bool exact(std::uint64_t key) const { return values_.at(key).exact; }
     const SampleGrid& grid() const { return grid_; }
@@ -181,6 +190,8 @@ private:
 
     /// The distance bound at key k from the known samples among donors: a stand-in value when it
     /// reaches threshold (and exceeds η, so that the point is never a perturbation candidate).
+    /// The donors' bound on G at key k: a stand-in when it reaches threshold (and exceeds η, so
+    /// that the point is never a perturbation candidate).
     std::optional<double> settled(std::uint64_t k, Keys donors, double threshold) const {
         if (!slack_) return std::nullopt;
         const Vec2 x = point(k);
@@ -197,6 +208,26 @@ private:
         }
         if (best >= threshold && best > eta_) return std::copysign(best, sign);
         return std::nullopt;
+    }
+    /// The lower bound at the keys (one batch): those it places at or above their threshold (and
+    /// above η) get it as a stand-in. Returns the keys left for G.
+    std::vector<std::uint64_t> settle_by_lower_bound(std::span<const std::uint64_t> keys,
+                                                     std::span<const double> thresholds) {
+        if (keys.empty()) return {};
+        std::vector<Vec2> points;
+        for (std::uint64_t k : keys) points.push_back(point(k));
+        std::vector<double> bounds(points.size());
+        (*lower_bound_)(points, bounds);
+        bound_evals_ += points.size();
+        std::vector<std::uint64_t> left;
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+            const double b = std::abs(bounds[i]);
+            if (b >= thresholds[i] && b > eta_ && std::isfinite(b))
+                values_[keys[i]] = Sample{bounds[i], false};
+            else
+                left.push_back(keys[i]);
+        }
+        return left;
     }
     void update_min(std::uint32_t c) {
         double m = std::numeric_limits<double>::infinity();
@@ -217,6 +248,8 @@ private:
     }
 
     BatchFunctionRef g_;
+    std::optional<BatchFunctionRef> lower_bound_;
+    std::size_t bound_evals_ = 0;
     const Quadtree& tree_;
     SampleGrid grid_;
     std::optional<double> slack_;
@@ -372,14 +405,16 @@ void evaluate_crossed_stand_ins(Topology& topo, BatchFunctionRef g) {
 
 }  // namespace
 
-Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOptions& options) {
-    Topology topo{Quadtree(domain, options.depth), {}, {}, {}, {}, options.gamma, 0, 0};
+Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
+                          std::optional<BatchFunctionRef> lower_bound) {
+    Topology topo{Quadtree(domain, options.depth), {}, {}, {}, {}, options.gamma, 0, 0, 0};
     // The distance bound allows for rounding in G: a few thousand ulps of the coordinates.
     const double scale = std::max({std::abs(domain.lo.x), std::abs(domain.lo.y),
                                    std::abs(domain.hi.x), std::abs(domain.hi.y), domain.width()});
-    TreeSampler sampler(g, topo.tree, options, 1e-12 * scale);
+    TreeSampler sampler(g, lower_bound, topo.tree, options, 1e-12 * scale);
     topo.gamma = build_tree(topo.tree, sampler, options.gamma);
     sampler.complete_centres(topo.gamma);
+    topo.bound_evals = sampler.bound_evals();
     topo.mesh = triangulate(topo.tree);
     const auto& vertices = topo.mesh.vertices;
     const std::uint64_t n = sampler.grid().extent();

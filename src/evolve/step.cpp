@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -99,6 +101,10 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
     }
     StepResult result;
     const Level now(curves, t, law, domain, options);
+    // Rounding in x − D and in F, allowed for in the bounds below: far above a few ulps.
+    const double rounding =
+        1e-12 * std::max({std::abs(domain.lo.x), std::abs(domain.lo.y), std::abs(domain.hi.x),
+                          std::abs(domain.hi.y), domain.width()});
 
     if (options.extension == Extension::direct) {
         // A flow field is known everywhere, so the foot of each characteristic needs no predicted
@@ -112,20 +118,31 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
     }
 
     // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x, t); Γ(t)). F is 1-Lipschitz and the
-    // foot moves at most k max|W| from x, so |G̃(x) − G̃(y)| ≤ |x − y| + 2k max|W|.
+    // foot moves at most d = k max|W| from x, so |G̃(x) − G̃(y)| ≤ |x − y| + 2d, and G̃(x) lies
+    // within d of F(x): one distance query bounds G̃ where G̃ itself takes two.
     ContourOptions contour_options = options.contour;
-    contour_options.distance_slack = 2.0 * k * now.max_speed();
+    double reach = k * now.max_speed();
+    contour_options.distance_slack = 2.0 * reach;
+    auto bound = pointwise(
+        [&](Vec2 x) {
+            const double f = now.distance(x);
+            const double margin = std::abs(f) - reach - rounding;
+            return margin > 0.0 ? std::copysign(margin, f) : 0.0;
+        },
+        expensive_grain);
     auto predictor =
         pointwise([&](Vec2 x) { return now.distance(x - k * finite(now.velocity(x), law, t, x)); },
                   expensive_grain);
-    ContourResult predicted = contour(predictor, domain, contour_options);
+    ContourResult predicted = contour(predictor, domain, contour_options, bound);
     result.stats.predictor = predicted.stats;
     if (predicted.curves.empty()) return result;  // everything vanished within the step
 
     // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x. Its foot moves
-    // at most k/2 (max|W(t)| + max|W(t + k)|) from x.
+    // at most d = k/2 (max|W(t)| + max|W(t + k)|) from x; the same bound, with this d, needs one
+    // query where G needs four.
     const Level next(predicted.curves, t + k, law, domain, options);
-    contour_options.distance_slack = k * (now.max_speed() + next.max_speed());
+    reach = 0.5 * k * (now.max_speed() + next.max_speed());
+    contour_options.distance_slack = 2.0 * reach;
     auto corrector = pointwise(
         [&](Vec2 x) {
             const Vec2 w = finite(now.velocity(x), law, t, x);
@@ -135,7 +152,7 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
             return now.distance(x - (0.5 * k) * (w_foot + w_next));
         },
         expensive_grain);
-    ContourResult corrected = contour(corrector, domain, contour_options);
+    ContourResult corrected = contour(corrector, domain, contour_options, bound);
     result.stats.corrector = corrected.stats;
     result.curves = std::move(corrected.curves);
     return result;
