@@ -573,6 +573,26 @@ bit-identical. What remains: the nearest-point extension is evaluated at points 
 (|k W|) from Γ(t), where an exact nearest segment needs lists of 2|kW| / (segment length) segments
 — the step's main cost, and what keeps the finest cells from 1000×.
 
+### Without refinement (P = 0)
+
+The cells with P = 0 sat furthest above their floor (up to 7.7×). A profile of Table 5's
+640/0/7/0 (`perf record`, one thread) found 78% of the step in the topology stage: the contouring
+tree's sample points far from Γ cost 500–1000 ns per evaluation of G (each of its two or four
+closest-point queries meets long lists there) against 160–220 ns near Γ, and 4602 of them per
+contour against 2261 evaluations for root finding. The step's G changes no faster than the
+distance moved plus twice the foot's largest move d = k max|W|, and differs from F(x; Γ(t)) by at
+most d; so a tree point whose parent cell's values, or one distance query, already place |G|
+above the split threshold needs no evaluation — the bound, with its certain sign, stands in
+(docs/algorithms/contour.md). The trees and contours are bit-identical; the tree's evaluations
+per contour fall from 4565 to 2464 there (from 3501 to 1144 at Table 6's 640/0/7/0), the G
+evaluations per output vertex of every cell are now at most the goal's 8, and the P = 0 steps are
+1.4–1.7× faster. The same profile now: evaluations of G 36% of the step (tree 20%, root finding
+15%), the lower bound's queries 8%, the two distance trees 16%, and the contouring tree's own
+bookkeeping (its table of sample points, 2:1 balance checks, triangulation) about 28%. Refinement
+also gives up a bracket across a jump of G at once (its split would be refused anyway) instead of
+bisecting it to rounding size: at Table 5's 40/0/3/4 the evaluations per output vertex fell from
+8.86 to 6.82.
+
 ### On two threads
 
 On two threads this step took 1/1.34 of its one-thread time. What ran on one thread only:
