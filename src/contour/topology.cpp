@@ -59,8 +59,9 @@ private:
 /// With ContourOptions::distance_slack δ, |G(x) − G(y)| ≤ |x − y| + δ, so a new point x near a
 /// known sample y has |G(x)| ≥ |G(y)| − |x − y| − δ and, when that is positive, G(y)'s sign. A
 /// point whose bound from its cell's parent's samples already reaches the split threshold γ·edge
-/// is settled, not evaluated: the bound with its sign stands in for G. Every split decision is
-/// the one exact values give (a stand-in below a later, larger threshold is evaluated first), and
+/// is settled, not evaluated: the bound with its sign stands in for G. So is a point that the
+/// caller's lower bound, tried next, places at the threshold. Every split decision is the one
+/// exact values give (a stand-in below a later, larger threshold is evaluated first), and
 /// stand-ins left in triangles where G changes sign are evaluated before the contour is marched.
 class TreeSampler {
 public:
@@ -188,8 +189,6 @@ private:
     }
     Vec2 point(std::uint64_t k) const { return grid_.point(k >> 32, k & 0xffffffffu); }
 
-    /// The distance bound at key k from the known samples among donors: a stand-in value when it
-    /// reaches threshold (and exceeds η, so that the point is never a perturbation candidate).
     /// The donors' bound on G at key k: a stand-in when it reaches threshold (and exceeds η, so
     /// that the point is never a perturbation candidate).
     std::optional<double> settled(std::uint64_t k, Keys donors, double threshold) const {
