@@ -84,10 +84,10 @@ public:
         for (std::uint32_t c : cells) {
             const auto& cell = tree_.cell(c);
             const double threshold = gamma * tree_.edge(cell.level);
+            const Donors donors = c == 0 ? Donors{} : donors_of(sample_keys(cell.parent));
             for (std::uint64_t k : sample_keys(c)) {
                 if (values_.contains(k)) continue;
-                const std::optional<double> bound =
-                    c == 0 ? std::nullopt : settled(k, sample_keys(cell.parent), threshold);
+                const std::optional<double> bound = settled(point(k), donors, threshold);
                 if (bound) {
                     values_.emplace(k, Sample{*bound, false});
                 } else if (!lower_bound_) {
@@ -149,7 +149,8 @@ public:
             if (values_.contains(k.k[4])) continue;
             if (lo > clearance || hi < -clearance) {
                 values_.emplace(k.k[4], Sample{lo > 0.0 ? lo : hi, false});
-            } else if (const auto bound = settled(k.k[4], Keys{k.k, 4}, 0.0)) {
+            } else if (const auto bound =
+                           settled(point(k.k[4]), donors_of(Keys{k.k, 4}), 0.0)) {
                 values_.emplace(k.k[4], Sample{*bound, false});
             } else {
                 add(k.k[4], keys);
@@ -189,20 +190,33 @@ private:
     }
     Vec2 point(std::uint64_t k) const { return grid_.point(k >> 32, k & 0xffffffffu); }
 
-    /// The donors' bound on G at key k: a stand-in when it reaches threshold (and exceeds η, so
-    /// that the point is never a perturbation candidate).
-    std::optional<double> settled(std::uint64_t k, Keys donors, double threshold) const {
-        if (!slack_) return std::nullopt;
-        const Vec2 x = point(k);
+    /// Known samples near a new point: where they are and G (or a stand-in) there.
+    struct Donors {
+        std::array<Vec2, 5> at;
+        std::array<double, 5> value;
+        std::size_t n = 0;
+    };
+    Donors donors_of(Keys keys) const {
+        Donors d;
+        if (!slack_) return d;
+        for (std::uint64_t k : keys) {
+            const auto it = values_.find(k);
+            if (it == values_.end() || std::isnan(it->second.value)) continue;
+            d.at[d.n] = point(k);
+            d.value[d.n++] = it->second.value;
+        }
+        return d;
+    }
+    /// The donors' bound on G at x: a stand-in when it reaches threshold (and exceeds η, so that
+    /// the point is never a perturbation candidate).
+    std::optional<double> settled(Vec2 x, const Donors& donors, double threshold) const {
         double best = 0.0, sign = 0.0;
-        for (std::uint64_t d : donors) {
-            const auto it = values_.find(d);
-            if (it == values_.end()) continue;
-            const Vec2 r = x - point(d);  // |r| to within an ulp, which the slack covers
-            const double b = std::abs(it->second.value) - std::sqrt(dot(r, r)) - *slack_;
-            if (b > best) {  // false for a donor not yet evaluated (NaN)
+        for (std::size_t i = 0; i < donors.n; ++i) {
+            const Vec2 r = x - donors.at[i];  // |r| to within an ulp, which the slack covers
+            const double b = std::abs(donors.value[i]) - std::sqrt(dot(r, r)) - *slack_;
+            if (b > best) {
                 best = b;
-                sign = it->second.value;
+                sign = donors.value[i];
             }
         }
         if (best >= threshold && best > eta_) return std::copysign(best, sign);
