@@ -149,8 +149,7 @@ public:
             if (values_.contains(k.k[4])) continue;
             if (lo > clearance || hi < -clearance) {
                 values_.emplace(k.k[4], Sample{lo > 0.0 ? lo : hi, false});
-            } else if (const auto bound =
-                           settled(point(k.k[4]), donors_of(Keys{k.k, 4}), 0.0)) {
+            } else if (const auto bound = settled(point(k.k[4]), donors_of(Keys{k.k, 4}), 0.0)) {
                 values_.emplace(k.k[4], Sample{*bound, false});
             } else {
                 add(k.k[4], keys);

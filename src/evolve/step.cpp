@@ -17,7 +17,12 @@ namespace slc {
 int StepOptions::resolved_tree_depth() const {
     if (tree_depth > 0) return tree_depth;
     const int passes = contour.refine_passes < 0 ? 4 : contour.refine_passes;
-    return std::min(contour.depth + passes, Quadtree::max_supported_depth);
+    // The Whitney extension interpolates on the tree's own triangulation, so there L sets its
+    // accuracy: the paper's K + P. Elsewhere the distances are exact at any depth and L only sets
+    // the cost; a refinement pass splits about half the segments, so the mean segment shrinks
+    // about √2-fold per pass and one level per two passes keeps a few segments in each leaf.
+    const int extra = extension == Extension::whitney ? passes : passes / 2;
+    return std::min(contour.depth + extra, Quadtree::max_supported_depth);
 }
 
 namespace {

@@ -204,6 +204,24 @@ TEST(Run, StepSettlesFarTreePointsWithTheTreeOfExactValues) {
     EXPECT_EQ(settled.g_evals_refine, every.g_evals_refine);
 }
 
+TEST(Run, DistanceTreeDepthChangesOnlyTheCost) {
+    // The default L is K + ⌊P/2⌋ (K + P for the Whitney extension, which interpolates on the
+    // tree); with the nearest-point extension every use of the trees is an exact distance, so the
+    // paper's L = K + P and any other depth give the same curves bit for bit.
+    const Problem p = make_problem("merging-circles");
+    RunOptions o = options(0.1, 4, 5, 3, 1e-5);
+    EXPECT_EQ(o.step.resolved_tree_depth(), 6);
+    o.step.extension = Extension::whitney;
+    EXPECT_EQ(o.step.resolved_tree_depth(), 8);
+    o.step.extension = Extension::nearest_point;
+    const auto [fast, e1] = solve(p, o);
+    for (int depth : {4, 8}) {
+        o.step.tree_depth = depth;
+        const auto [other, e2] = solve(p, o);
+        EXPECT_EQ(other.curves.curves(), fast.curves.curves()) << "L = " << depth;
+    }
+}
+
 TEST(Run, ResultDoesNotDependOnTheThreadCount) {
     const Problem p = make_problem("merging-circles");
     const RunOptions o = options(0.2, 8, 4, 1, 1e-4);

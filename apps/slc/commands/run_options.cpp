@@ -53,7 +53,9 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         ->check(integer_in(1, 5));
     cmd.add_option("-S,--smooth", o.smooth, "S: cosine smoothing passes (problem's default)")
         ->check(integer_in(0, 64));
-    cmd.add_option("-L,--tree-depth", o.tree_depth, "L: distance tree depth (default K + P)")
+    cmd.add_option(
+           "-L,--tree-depth", o.tree_depth,
+           "L: distance tree depth (default K + P/2 rounded down; K + P with --extension whitney)")
         ->check(integer_in(1, 30));
     cmd.add_option("--extension", o.extension,
                    "Velocity extension off the curve: nearest (default), whitney, or direct (flow "

@@ -30,11 +30,13 @@ enum class Extension {
 /// The parameters of a step (paper Table 4).
 struct StepOptions {
     ContourOptions contour;  ///< K, P, ε, η, ρ of both contours
-    int tree_depth = 0;      ///< L, the distance trees' depth; 0 means K + P
+    int tree_depth = 0;      ///< L, the distance trees' depth; 0 means the default below
     Extension extension = Extension::nearest_point;  ///< how W is extended off Γ
     EmbeddedOptions embedded;  ///< M, E, S for laws that use the embedded geometry module
 
-    /// L as given, or K + P (refinement until converged counts as P = 4).
+    /// L as given, or by default K + ⌊P/2⌋ (K + P with the Whitney extension, whose accuracy
+    /// depends on L); refinement until converged counts as P = 4. Only the Whitney extension's
+    /// results depend on L: every other use of the trees is an exact distance.
     int resolved_tree_depth() const;
 };
 
