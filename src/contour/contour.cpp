@@ -59,12 +59,7 @@ void count_output(const Interface& curves, ContourStats& s) {
         curves.empty() ? 0.0 : static_cast<double>(s.g_evals) / static_cast<double>(curves.size());
 }
 
-}  // namespace
-
-double ContourOptions::resolved_eps() const { return eps.value_or(std::pow(10.0, -depth)); }
-
-namespace {
-
+/// contour() with or without a lower bound of |G|.
 ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
                            std::optional<BatchFunctionRef> lower_bound) {
     validate(options, domain);
@@ -109,6 +104,8 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
 }
 
 }  // namespace
+
+double ContourOptions::resolved_eps() const { return eps.value_or(std::pow(10.0, -depth)); }
 
 ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options) {
     return contour_with(g, domain, options, std::nullopt);
