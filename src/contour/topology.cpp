@@ -73,6 +73,7 @@ public:
           grid_(tree),
           slack_(options.distance_slack ? std::optional(*options.distance_slack + rounding)
                                         : std::nullopt),
+          rounding_(rounding),
           eta_(options.eta) {}
 
     /// Samples the given cells (the root, or children of split cells): new points are evaluated
@@ -206,8 +207,7 @@ private:
         }
         return d;
     }
-    /// The donors' bound on G at x: a stand-in when it reaches threshold (and exceeds η, so that
-    /// the point is never a perturbation candidate).
+    /// The donors' bound on G at x: a stand-in when it settles x at threshold.
     std::optional<double> settled(Vec2 x, const Donors& donors, double threshold) const {
         double best = 0.0, sign = 0.0;
         for (std::size_t i = 0; i < donors.n; ++i) {
@@ -218,28 +218,36 @@ private:
                 sign = donors.value[i];
             }
         }
-        if (best >= threshold && best > eta_) return std::copysign(best, sign);
+        if (settles(best, threshold)) return std::copysign(best, sign);
         return std::nullopt;
     }
-    /// The lower bound at the keys (one batch): those it places at or above their threshold (and
-    /// above η) get it as a stand-in. Returns the keys left for G.
+    /// A lower bound b of |G| settles a point at threshold when it reaches it and exceeds η (so
+    /// that the point is never a perturbation candidate).
+    bool settles(double b, double threshold) const { return b >= threshold && b > eta_; }
+    /// The lower bound at the keys (one batch), less the rounding allowance: those it settles
+    /// at their threshold get it as a stand-in. Returns the keys left for G.
     std::vector<std::uint64_t> settle_by_lower_bound(std::span<const std::uint64_t> keys,
                                                      std::span<const double> thresholds) {
         if (keys.empty()) return {};
-        std::vector<Vec2> points;
-        for (std::uint64_t k : keys) points.push_back(point(k));
+        const std::vector<Vec2> points = points_of(keys);
         std::vector<double> bounds(points.size());
         (*lower_bound_)(points, bounds);
         bound_evals_ += points.size();
         std::vector<std::uint64_t> left;
         for (std::size_t i = 0; i < keys.size(); ++i) {
-            const double b = std::abs(bounds[i]);
-            if (b >= thresholds[i] && b > eta_ && std::isfinite(b))
-                values_[keys[i]] = Sample{bounds[i], false};
+            const double b = std::abs(bounds[i]) - rounding_;
+            if (std::isfinite(b) && settles(b, thresholds[i]))
+                values_[keys[i]] = Sample{std::copysign(b, bounds[i]), false};
             else
                 left.push_back(keys[i]);
         }
         return left;
+    }
+    std::vector<Vec2> points_of(std::span<const std::uint64_t> keys) const {
+        std::vector<Vec2> points;
+        points.reserve(keys.size());
+        for (std::uint64_t k : keys) points.push_back(point(k));
+        return points;
     }
     void update_min(std::uint32_t c) {
         double m = std::numeric_limits<double>::infinity();
@@ -252,8 +260,7 @@ private:
     }
     void evaluate(std::span<const std::uint64_t> keys) {
         if (keys.empty()) return;
-        std::vector<Vec2> points;
-        for (std::uint64_t k : keys) points.push_back(point(k));
+        const std::vector<Vec2> points = points_of(keys);
         std::vector<double> values(points.size());
         g_(points, values);
         for (std::size_t i = 0; i < keys.size(); ++i) values_[keys[i]] = Sample{values[i], true};
@@ -265,6 +272,7 @@ private:
     const Quadtree& tree_;
     SampleGrid grid_;
     std::optional<double> slack_;
+    double rounding_;
     double eta_;
     // Points are only added: their nodes come from one arena, freed with the sampler.
     std::pmr::monotonic_buffer_resource arena_;
@@ -420,10 +428,10 @@ void evaluate_crossed_stand_ins(Topology& topo, BatchFunctionRef g) {
 Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
                           std::optional<BatchFunctionRef> lower_bound) {
     Topology topo{Quadtree(domain, options.depth), {}, {}, {}, {}, options.gamma, 0, 0, 0};
-    // The distance bound allows for rounding in G: a few thousand ulps of the coordinates.
-    const double scale = std::max({std::abs(domain.lo.x), std::abs(domain.lo.y),
-                                   std::abs(domain.hi.x), std::abs(domain.hi.y), domain.width()});
-    TreeSampler sampler(g, lower_bound, topo.tree, options, 1e-12 * scale);
+    // Both bounds allow for rounding in G and in the bound: a few thousand ulps of the
+    // coordinates.
+    const double rounding = 1e-12 * std::max(domain.largest_magnitude(), domain.width());
+    TreeSampler sampler(g, lower_bound, topo.tree, options, rounding);
     topo.gamma = build_tree(topo.tree, sampler, options.gamma);
     sampler.complete_centres(topo.gamma);
     topo.bound_evals = sampler.bound_evals();

@@ -40,6 +40,7 @@ public:
         if (extension_ != Extension::direct) {
             u_ = vertex_velocities(law, t, curves, GeometryContext{&tree_, options.embedded});
             if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
+            for (Vec2 u : u_) max_speed_ = std::max(max_speed_, norm(u));
         }
     }
 
@@ -51,16 +52,13 @@ public:
     /// The exact signed distance to this level's Γ.
     double distance(Vec2 x) const { return tree_.closest_point(x).distance; }
     /// max |W|: both extensions interpolate the vertex velocities (the maximum principle).
-    double max_speed() const {
-        double m = 0.0;
-        for (Vec2 u : u_) m = std::max(m, norm(u));
-        return m;
-    }
+    double max_speed() const { return max_speed_; }
 
 private:
     Extension extension_;
     DistanceTree tree_;
     std::vector<Vec2> u_;
+    double max_speed_ = 0.0;
     std::optional<WhitneyExtension<Vec2>> whitney_;
 };
 
@@ -106,10 +104,6 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
     }
     StepResult result;
     const Level now(curves, t, law, domain, options);
-    // Rounding in x − D and in F, allowed for in the bounds below: far above a few ulps.
-    const double rounding =
-        1e-12 * std::max({std::abs(domain.lo.x), std::abs(domain.lo.y), std::abs(domain.hi.x),
-                          std::abs(domain.hi.y), domain.width()});
 
     if (options.extension == Extension::direct) {
         // A flow field is known everywhere, so the foot of each characteristic needs no predicted
@@ -125,20 +119,24 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
     // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x, t); Γ(t)). F is 1-Lipschitz and the
     // foot moves at most d = k max|W| from x, so |G̃(x) − G̃(y)| ≤ |x − y| + 2d, and G̃(x) lies
     // within d of F(x): one distance query bounds G̃ where G̃ itself takes two.
+    // For a foot that moves at most d: sign(F(x)) (|F(x)| − d), or 0 where that says nothing.
+    auto lower_bound = [&now](double d) {
+        return pointwise(
+            [&now, d](Vec2 x) {
+                const double f = now.distance(x);
+                const double margin = std::abs(f) - d;
+                return margin > 0.0 ? std::copysign(margin, f) : 0.0;
+            },
+            expensive_grain);
+    };
     ContourOptions contour_options = options.contour;
-    double reach = k * now.max_speed();
-    contour_options.distance_slack = 2.0 * reach;
-    auto bound = pointwise(
-        [&](Vec2 x) {
-            const double f = now.distance(x);
-            const double margin = std::abs(f) - reach - rounding;
-            return margin > 0.0 ? std::copysign(margin, f) : 0.0;
-        },
-        expensive_grain);
+    const double predictor_reach = k * now.max_speed();
+    contour_options.distance_slack = 2.0 * predictor_reach;
+    const auto predictor_bound = lower_bound(predictor_reach);
     auto predictor =
         pointwise([&](Vec2 x) { return now.distance(x - k * finite(now.velocity(x), law, t, x)); },
                   expensive_grain);
-    ContourResult predicted = contour(predictor, domain, contour_options, bound);
+    ContourResult predicted = contour(predictor, domain, contour_options, predictor_bound);
     result.stats.predictor = predicted.stats;
     if (predicted.curves.empty()) return result;  // everything vanished within the step
 
@@ -146,8 +144,9 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
     // at most d = k/2 (max|W(t)| + max|W(t + k)|) from x; the same bound, with this d, needs one
     // query where G needs four.
     const Level next(predicted.curves, t + k, law, domain, options);
-    reach = 0.5 * k * (now.max_speed() + next.max_speed());
-    contour_options.distance_slack = 2.0 * reach;
+    const double corrector_reach = 0.5 * k * (now.max_speed() + next.max_speed());
+    contour_options.distance_slack = 2.0 * corrector_reach;
+    const auto corrector_bound = lower_bound(corrector_reach);
     auto corrector = pointwise(
         [&](Vec2 x) {
             const Vec2 w = finite(now.velocity(x), law, t, x);
@@ -157,7 +156,7 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
             return now.distance(x - (0.5 * k) * (w_foot + w_next));
         },
         expensive_grain);
-    ContourResult corrected = contour(corrector, domain, contour_options, bound);
+    ContourResult corrected = contour(corrector, domain, contour_options, corrector_bound);
     result.stats.corrector = corrected.stats;
     result.curves = std::move(corrected.curves);
     return result;

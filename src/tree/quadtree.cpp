@@ -12,17 +12,9 @@
 
 namespace slc {
 
-namespace {
-
-double largest_magnitude(const Box& b) {
-    return std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.hi.x), std::abs(b.hi.y)});
-}
-
-}  // namespace
-
 int Quadtree::max_resolvable_depth(const Box& root) {
     const double w = root.width();
-    const double magnitude = largest_magnitude(root);
+    const double magnitude = root.largest_magnitude();
     if (!(w >= tolerance::min_domain_width) || !(magnitude <= tolerance::max_coordinate) ||
         root.height() != w) {
         return -1;

@@ -49,8 +49,7 @@ Box parse_box(const std::string& text) {
         throw InvalidInput(
             fmt::format("--box must have x0 < x1 and y0 < y1, all finite, got '{}'", text));
     }
-    if (std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.hi.x), std::abs(b.hi.y)}) >
-        tolerance::max_coordinate) {
+    if (b.largest_magnitude() > tolerance::max_coordinate) {
         throw InvalidInput(fmt::format("--box corners must lie within ±{:g}, got '{}'",
                                        tolerance::max_coordinate, text));
     }

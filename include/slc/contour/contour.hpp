@@ -117,8 +117,9 @@ ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOption
 
 /// The same contour, bit for bit, with a cheaper function that bounds G from below: lower_bound
 /// sets each value b to 0 (nothing known) or to a number with G's sign and |G| ≥ |b| at that
-/// point. Tree points that neither a nearby sample (ContourOptions::distance_slack) nor lower_bound
-/// places above their split threshold are the only ones where G is evaluated. For the
+/// point (rounding in G and in b is allowed for here). Tree points that neither a nearby sample
+/// (ContourOptions::distance_slack) nor lower_bound places above their split threshold are the
+/// only ones where G is evaluated. For the
 /// semi-Lagrangian formula G(x) = F(x − D(x)) with |D| ≤ d, sign(F(x)) (|F(x)| − d) is such a
 /// bound, at one distance query instead of G's several.
 ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options,

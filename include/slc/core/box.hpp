@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <span>
 
@@ -34,6 +35,10 @@ struct Box {
     constexpr double width() const { return hi.x - lo.x; }
     /// hi.y − lo.y.
     constexpr double height() const { return hi.y - lo.y; }
+    /// The largest magnitude of a corner coordinate: the scale of rounding in the box.
+    double largest_magnitude() const {
+        return std::max({std::abs(lo.x), std::abs(lo.y), std::abs(hi.x), std::abs(hi.y)});
+    }
     /// The midpoint of the box.
     constexpr Vec2 center() const { return {0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y)}; }
     /// True when p lies in the closed box (boundary included).
