@@ -30,9 +30,13 @@ inline Box bounding_box(Segment s) {
 inline SegmentPoint closest_point(Segment s, Vec2 x) {
     const Vec2 d = s.b - s.a;
     const double len2 = norm2(d);
-    double t = len2 > 0.0 ? dot(x - s.a, d) / len2 : 0.0;
-    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    const double along = dot(x - s.a, d);
     // Endpoints are returned exactly, so that a nearest vertex is recognised by t == 0 or 1.
+    // They are told by the sign of along and its size against len2, before any division: the
+    // same t as clamping along / len2 to [0, 1], without waiting for the quotient.
+    if (along < 0.0 || len2 == 0.0) return {s.a, 0.0, norm2(x - s.a)};
+    if (along >= len2) return {s.b, 1.0, norm2(x - s.b)};
+    const double t = along / len2;
     const Vec2 p = t == 0.0 ? s.a : (t == 1.0 ? s.b : s.a + t * d);
     return {p, t, norm2(x - p)};
 }
