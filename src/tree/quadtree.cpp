@@ -126,25 +126,22 @@ std::uint32_t Quadtree::neighbour(std::size_t c, int dx, int dy) const {
     return cells_[across].first_child + (bx ^ (dx != 0)) + 2 * (by ^ (dy != 0));
 }
 
-void Quadtree::collect_coarse_neighbours(std::size_t c, std::vector<std::uint32_t>& out) const {
-    const Cell& cell = cells_[c];
+bool Quadtree::is_balanced() const {
+    // Edge-adjacent leaves differ by at most one level iff every cell with children has all
+    // four same-level edge neighbours (or the root box's edge there): where one is missing, a
+    // leaf at least two levels coarser borders a leaf descendant of the cell, and where none
+    // is, the neighbours of a leaf are siblings or its parent's neighbours or their children.
+    // So only the cells with children are asked, a third as many as the leaves, each on one
+    // worker thread; the trees of a step have many thousands of cells.
     constexpr int dx[4] = {-1, 1, 0, 0};
     constexpr int dy[4] = {0, 0, -1, 1};
-    for (int d = 0; d < 4; ++d) {
-        const std::uint32_t n = neighbour(c, dx[d], dy[d]);
-        if (n != no_cell && cells_[n].level < cell.level - 1) out.push_back(n);
-    }
-}
-
-bool Quadtree::is_balanced() const {
-    // Every leaf checked on all worker threads: the triangulation, the contouring tree's γ rounds
-    // and both distance trees of a step ask this of trees of many thousands of leaves.
-    const std::vector<std::uint32_t> leaf = leaves();
-    std::vector<std::uint8_t> coarse(leaf.size(), 0);
-    parallel_for(leaf.size(), [&](std::size_t i) {
-        std::vector<std::uint32_t> found;  // allocates only for a leaf that has some
-        collect_coarse_neighbours(leaf[i], found);
-        coarse[i] = found.empty() ? 0 : 1;
+    std::vector<std::uint8_t> coarse(cells_.size(), 0);
+    parallel_for(cells_.size(), [&](std::size_t c) {
+        if (is_leaf(c)) return;
+        for (int d = 0; d < 4; ++d) {
+            const std::uint32_t n = neighbour(c, dx[d], dy[d]);
+            if (n != no_cell && cells_[n].level < cells_[c].level) coarse[c] = 1;
+        }
     });
     return std::find(coarse.begin(), coarse.end(), std::uint8_t{1}) == coarse.end();
 }

@@ -91,7 +91,7 @@ public:
     std::uint32_t neighbour(std::size_t c, int dx, int dy) const;
 
     /// Splits leaves until every two leaves that share part of an edge differ by at most one
-    /// level. Calls on_split(c) after each split, in order. Cost O(cells · depth).
+    /// level. Calls on_split(c) after each split, in order. Cost O(cells) on average.
     template <class OnSplit>
     void balance(OnSplit&& on_split);
     /// The same, with no callback.
@@ -107,9 +107,6 @@ public:
     std::vector<std::uint32_t> leaves() const;
 
 private:
-    /// Leaves that must be split so that leaf c has no edge neighbour coarser than level − 1.
-    void collect_coarse_neighbours(std::size_t c, std::vector<std::uint32_t>& out) const;
-
     Box root_;
     int max_depth_ = 0;
     int depth_ = 0;
@@ -119,28 +116,25 @@ private:
 
 template <class OnSplit>
 void Quadtree::balance(OnSplit&& on_split) {
-    if (is_balanced()) return;  // the common case, checked on all worker threads
-    // Work from the finest level to the coarsest: a leaf at level l forces its edge neighbours
-    // to exist down to level l − 1; splits only create cells above level l, which are handled
-    // when their own level comes up.
+    // Balanced iff every cell with children has its four same-level edge neighbours (see
+    // is_balanced). Work from the finest level to the coarsest: a missing neighbour of a cell at
+    // level l is a leaf above level l, split until the neighbour exists; the splits make cells
+    // with children above level l, which are handled when their own level comes up.
+    constexpr int dx[4] = {-1, 1, 0, 0};
+    constexpr int dy[4] = {0, 0, -1, 1};
     std::vector<std::vector<std::uint32_t>> by_level(static_cast<std::size_t>(max_depth_) + 1);
-    for (std::uint32_t c : leaves())
-        by_level[static_cast<std::size_t>(cells_[c].level)].push_back(c);
-    std::vector<std::uint32_t> coarse;
-    for (int level = depth_; level >= 2; --level) {
-        auto& list = by_level[static_cast<std::size_t>(level)];
+    for (std::uint32_t c = 0; c < cells_.size(); ++c)
+        if (!is_leaf(c)) by_level[static_cast<std::size_t>(cells_[c].level)].push_back(c);
+    for (int level = depth_ - 1; level >= 1; --level) {
+        const auto& list = by_level[static_cast<std::size_t>(level)];
         for (std::size_t k = 0; k < list.size(); ++k) {
-            if (!is_leaf(list[k])) continue;
-            for (;;) {  // a neighbour may need several splits
-                coarse.clear();
-                collect_coarse_neighbours(list[k], coarse);
-                if (coarse.empty()) break;
-                for (std::uint32_t n : coarse) {
-                    if (!is_leaf(n)) continue;
-                    const std::uint32_t first = split(n);
+            for (int d = 0; d < 4; ++d) {
+                for (std::uint32_t n = neighbour(list[k], dx[d], dy[d]);
+                     n != no_cell && cells_[n].level < level;
+                     n = neighbour(list[k], dx[d], dy[d])) {
+                    split(n);
                     on_split(n);
-                    for (std::uint32_t ch = first; ch < first + 4; ++ch)
-                        by_level[static_cast<std::size_t>(cells_[ch].level)].push_back(ch);
+                    by_level[static_cast<std::size_t>(cells_[n].level)].push_back(n);
                 }
             }
         }

@@ -113,6 +113,41 @@ TEST(Quadtree, BalanceLeavesEdgeNeighboursWithinOneLevel) {
     }
 }
 
+/// Brute force over all pairs of leaves: true when edge-adjacent leaves differ by at most one
+/// level.
+bool balanced_by_pairs(const Quadtree& tree) {
+    const auto leaves = tree.leaves();
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+        for (std::size_t j = i + 1; j < leaves.size(); ++j) {
+            if (share_edge(tree.box(leaves[i]), tree.box(leaves[j])) &&
+                std::abs(tree.cell(leaves[i]).level - tree.cell(leaves[j]).level) > 1) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+TEST(Quadtree, IsBalancedAgreesWithAllPairsOfLeaves) {
+    // Graded trees, balanced and not, and every intermediate tree of their balancing.
+    int balanced = 0, unbalanced = 0;
+    for (unsigned seed = 1; seed <= 30; ++seed) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        std::mt19937 rng(seed);
+        Quadtree tree = graded_tree(2 + static_cast<int>(seed % 5), rng, 1 + seed % 4);
+        auto check = [&] {
+            const bool expected = balanced_by_pairs(tree);
+            EXPECT_EQ(tree.is_balanced(), expected);
+            (expected ? balanced : unbalanced) += 1;
+        };
+        check();
+        tree.balance([&](std::size_t) { check(); });
+        check();
+    }
+    EXPECT_GT(balanced, 30);  // both answers were asked for
+    EXPECT_GT(unbalanced, 30);
+}
+
 TEST(Quadtree, RejectsARootThatIsNotASquareAndDepthsOutOfRange) {
     EXPECT_THROW(Quadtree(Box{{0, 0}, {1, 2}}, 3), InvalidInput);
     EXPECT_THROW(Quadtree(Box{{0, 0}, {0, 0}}, 3), InvalidInput);
