@@ -116,6 +116,7 @@ private:
 
 template <class OnSplit>
 void Quadtree::balance(OnSplit&& on_split) {
+    if (is_balanced()) return;  // the common case, checked on all worker threads
     // Balanced iff every cell with children has its four same-level edge neighbours (see
     // is_balanced). Work from the finest level to the coarsest: a missing neighbour of a cell at
     // level l is a leaf above level l, split until the neighbour exists; the splits make cells
