@@ -223,8 +223,8 @@ std::string cell_table(const TableSpec& spec, int rows, int prefix,
             const double over_floor = floor.step_s / floor.floor_s();
             totals.ratios.push_back(ratio);
             if (std::isfinite(over_floor)) totals.floors.push_back(over_floor);
-            if (std::isfinite(ref.t_step / floor.floor_s()))
-                totals.paper_over_floor.push_back(ref.t_step / floor.floor_s());
+            const double floor_ratio = ref.t_step / floor.floor_s();
+            if (std::isfinite(floor_ratio)) totals.paper_over_floor.push_back(floor_ratio);
             totals.speedups.push_back(speedup);
             if (std::isfinite(evals)) totals.evals.push_back(evals);
             md += fmt::format(

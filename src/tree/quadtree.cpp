@@ -126,6 +126,13 @@ std::uint32_t Quadtree::neighbour(std::size_t c, int dx, int dy) const {
     return cells_[across].first_child + (bx ^ (dx != 0)) + 2 * (by ^ (dy != 0));
 }
 
+std::uint32_t Quadtree::coarser_neighbour(std::size_t c, int d) const {
+    constexpr int dx[4] = {-1, 1, 0, 0};
+    constexpr int dy[4] = {0, 0, -1, 1};
+    const std::uint32_t n = neighbour(c, dx[d], dy[d]);
+    return n != no_cell && cells_[n].level < cells_[c].level ? n : no_cell;
+}
+
 bool Quadtree::is_balanced() const {
     // Edge-adjacent leaves differ by at most one level iff every cell with children has all
     // four same-level edge neighbours (or the root box's edge there): where one is missing, a
@@ -133,15 +140,11 @@ bool Quadtree::is_balanced() const {
     // is, the neighbours of a leaf are siblings or its parent's neighbours or their children.
     // So only the cells with children are asked, a third as many as the leaves, each on one
     // worker thread; the trees of a step have many thousands of cells.
-    constexpr int dx[4] = {-1, 1, 0, 0};
-    constexpr int dy[4] = {0, 0, -1, 1};
     std::vector<std::uint8_t> coarse(cells_.size(), 0);
     parallel_for(cells_.size(), [&](std::size_t c) {
         if (is_leaf(c)) return;
-        for (int d = 0; d < 4; ++d) {
-            const std::uint32_t n = neighbour(c, dx[d], dy[d]);
-            if (n != no_cell && cells_[n].level < cells_[c].level) coarse[c] = 1;
-        }
+        for (int d = 0; d < 4; ++d)
+            if (coarser_neighbour(c, d) != no_cell) coarse[c] = 1;
     });
     return std::find(coarse.begin(), coarse.end(), std::uint8_t{1}) == coarse.end();
 }

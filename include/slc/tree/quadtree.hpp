@@ -107,6 +107,11 @@ public:
     std::vector<std::uint32_t> leaves() const;
 
 private:
+    /// The leaf bordering cell c in direction d (0..3: −x, +x, −y, +y) when it is coarser than
+    /// c, that is when c's same-level neighbour there is missing; otherwise, or beyond the root
+    /// box, no_cell.
+    std::uint32_t coarser_neighbour(std::size_t c, int d) const;
+
     Box root_;
     int max_depth_ = 0;
     int depth_ = 0;
@@ -121,8 +126,6 @@ void Quadtree::balance(OnSplit&& on_split) {
     // is_balanced). Work from the finest level to the coarsest: a missing neighbour of a cell at
     // level l is a leaf above level l, split until the neighbour exists; the splits make cells
     // with children above level l, which are handled when their own level comes up.
-    constexpr int dx[4] = {-1, 1, 0, 0};
-    constexpr int dy[4] = {0, 0, -1, 1};
     std::vector<std::vector<std::uint32_t>> by_level(static_cast<std::size_t>(max_depth_) + 1);
     for (std::uint32_t c = 0; c < cells_.size(); ++c)
         if (!is_leaf(c)) by_level[static_cast<std::size_t>(cells_[c].level)].push_back(c);
@@ -130,9 +133,8 @@ void Quadtree::balance(OnSplit&& on_split) {
         const auto& list = by_level[static_cast<std::size_t>(level)];
         for (std::size_t k = 0; k < list.size(); ++k) {
             for (int d = 0; d < 4; ++d) {
-                for (std::uint32_t n = neighbour(list[k], dx[d], dy[d]);
-                     n != no_cell && cells_[n].level < level;
-                     n = neighbour(list[k], dx[d], dy[d])) {
+                for (std::uint32_t n = coarser_neighbour(list[k], d); n != no_cell;
+                     n = coarser_neighbour(list[k], d)) {
                     split(n);
                     on_split(n);
                     by_level[static_cast<std::size_t>(cells_[n].level)].push_back(n);
