@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <numbers>
+#include <optional>
 #include <random>
 
 #include "slc/core/error.hpp"
@@ -31,18 +33,25 @@ Curves rotated(Curves curves, Vec2 c, double angle) {
     return curves;
 }
 
-/// The signed distance to fixed curves, owned with their tree.
+/// The signed distance to fixed curves, owned with their tree. The tree is built at the first
+/// evaluation: naming a problem (the catalog, `--help`, a run that never asks for its error) does
+/// no distance work, and starts no worker threads before the run sets their number.
 class Distance {
 public:
-    Distance(const Curves& curves, Box domain)
-        : curves_(curves), tree_(curves_, domain, {.depth = 10, .triangulate = false}) {}
+    Distance(const Curves& curves, Box domain) : curves_(curves), domain_(domain) {}
     std::vector<double> operator()(std::span<const Vec2> xs) const {
-        return tree_.signed_distances(xs);
+        std::call_once(built_, [this] {
+            tree_.emplace(curves_, domain_,
+                          DistanceTree::Options{.depth = 10, .triangulate = false});
+        });
+        return tree_->signed_distances(xs);
     }
 
 private:
     Interface curves_;
-    DistanceTree tree_;
+    Box domain_;
+    mutable std::once_flag built_;
+    mutable std::optional<DistanceTree> tree_;
 };
 
 /// Exact solution of rigid rotation by omega about c: the initial distance at the back-rotated
