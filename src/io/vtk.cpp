@@ -3,11 +3,15 @@
 // Collection), so a writer of its own spares the project the VTK library.
 #include "slc/io/vtk.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <string_view>
 #include <vector>
 
 #include "slc/core/error.hpp"
@@ -91,6 +95,41 @@ void append_data(std::string& out, const Interface& curves) {
     out += "      </CellData>\n";
 }
 
+constexpr std::string_view pvd_tail = "  </Collection>\n</VTKFile>\n";
+
+/// The collection's line for one frame.
+std::string dataset_line(const VtkFrame& f) {
+    check_time(f.time);
+    if (f.file.find_first_of("<>&\"") != std::string::npos)
+        throw InvalidInput(
+            fmt::format("VTK frame file name must not hold <, >, & or \", got {}", f.file));
+    return fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", f.time,
+                       f.file);
+}
+
+/// Replaces the closing lines of the collection at path, size bytes long, by text and those
+/// lines, with one write at their place: a program stopped at any moment (short of the machine
+/// failing) leaves the old collection or the new one. False, writing nothing, if the file is not
+/// of that size or does not end in those lines (someone else changed it), or cannot be opened.
+bool append_to_collection(const std::filesystem::path& path, std::size_t size,
+                          const std::string& text) {
+    if (size < pvd_tail.size()) return false;
+    const int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
+    if (fd < 0) return false;
+    std::string ending(pvd_tail.size(), '\0');
+    struct stat st {};
+    const auto at = static_cast<off_t>(size - pvd_tail.size());
+    bool ok =
+        ::fstat(fd, &st) == 0 && static_cast<std::size_t>(st.st_size) == size &&
+        ::pread(fd, ending.data(), ending.size(), at) == static_cast<ssize_t>(ending.size()) &&
+        ending == pvd_tail;
+    if (ok) {
+        const std::string update = text + std::string(pvd_tail);
+        ok = ::pwrite(fd, update.data(), update.size(), at) == static_cast<ssize_t>(update.size());
+    }
+    return ::close(fd) == 0 && ok;
+}
+
 }  // namespace
 
 std::string vtp_text(const Interface& curves, double time) {
@@ -118,16 +157,8 @@ std::string pvd_text(std::span<const VtkFrame> frames) {
     out += "<?xml version=\"1.0\"?>\n";
     out += "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
     out += "  <Collection>\n";
-    for (const VtkFrame& f : frames) {
-        check_time(f.time);
-        if (f.file.find_first_of("<>&\"") != std::string::npos)
-            throw InvalidInput(
-                fmt::format("VTK frame file name must not hold <, >, & or \", got {}", f.file));
-        fmt::format_to(std::back_inserter(out),
-                       "    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", f.time,
-                       f.file);
-    }
-    out += "  </Collection>\n</VTKFile>\n";
+    for (const VtkFrame& f : frames) out += dataset_line(f);
+    out += pvd_tail;
     return out;
 }
 
@@ -146,12 +177,23 @@ void VtkSeries::write_frame(double time, const Interface& curves) {
 
 void VtkSeries::add(double time, const Interface& curves) {
     write_frame(time, curves);
-    write_file_atomic(pvd_, pvd_text(frames_));
+    const std::string line = dataset_line(frames_.back());
+    if (pvd_size_ > 0 && append_to_collection(pvd_, pvd_size_, line)) {
+        pvd_size_ += line.size();
+        return;
+    }
+    write_collection();
 }
 
 void VtkSeries::add(std::span<const std::pair<double, Interface>> frames) {
     for (const auto& [time, curves] : frames) write_frame(time, curves);
-    if (!frames.empty()) write_file_atomic(pvd_, pvd_text(frames_));
+    if (!frames.empty()) write_collection();
+}
+
+void VtkSeries::write_collection() {
+    const std::string text = pvd_text(frames_);
+    write_file_atomic(pvd_, text);
+    pvd_size_ = text.size();
 }
 
 }  // namespace slc

@@ -86,10 +86,20 @@ void draw(const std::filesystem::path& dir, const Problem& p, const Interface& i
     final_picture.save(dir / "final.svg");
     final_picture.save(dir / "final.png");
     if (frames.size() < 2) return;
+    // Colour runs with time; the legend names at most legend_frames of them, evenly spread from
+    // the first to the last (a legend line per frame would make the picture as tall as the
+    // frames are many, beyond what cairo can draw from about 1600 frames).
+    constexpr std::size_t legend_frames = 9;
+    const std::size_t last = frames.size() - 1;
+    const std::size_t labelled = std::min(frames.size(), legend_frames);
+    std::vector<char> named(frames.size(), 0);
+    for (std::size_t j = 0; j < labelled; ++j)
+        named[(j * last + (labelled - 1) / 2) / (labelled - 1)] = 1;
     Figure overlay(p.domain, fmt::format("{}: {} frames", p.name, frames.size()));
     for (std::size_t i = 0; i < frames.size(); ++i) {
-        const double along = static_cast<double>(i) / static_cast<double>(frames.size() - 1);
-        overlay.add_curves(frames[i].second, fmt::format("t = {:.4g}", frames[i].first),
+        const double along = static_cast<double>(i) / static_cast<double>(last);
+        overlay.add_curves(frames[i].second,
+                           named[i] ? fmt::format("t = {:.4g}", frames[i].first) : std::string(),
                            sequence_color(along), 1.0);
     }
     overlay.save(dir / "frames.svg");

@@ -36,18 +36,23 @@ struct VtkFrame {
 std::string pvd_text(std::span<const VtkFrame> frames);
 
 /// A time series written frame by frame: DIR/NAME.pvd and its frames DIR/NAME/frame_0000.vtp,
-/// frame_0001.vtp, ... (NAME the stem of the .pvd path). Each add() writes its frame and then
-/// rewrites the collection, both atomically (write_file_atomic), so that the collection on disk
-/// always lists complete frames only, even when the writing program is stopped midway.
+/// frame_0001.vtp, ... (NAME the stem of the .pvd path). Each add() writes its frame atomically
+/// (write_file_atomic) and then lists it in the collection: the first time by writing the
+/// collection atomically, after that by one write that replaces the collection's closing lines
+/// with the frame's line and those lines. So the collection on disk always lists complete frames
+/// only, even when the writing program is stopped midway, and a series of F frames costs O(F),
+/// not O(F²). If the collection on disk is not the one this series last wrote, it is written
+/// whole again.
 class VtkSeries {
 public:
     /// A series whose collection file is pvd (its extension should be .pvd). Writes nothing yet.
     /// Throws InvalidInput if pvd has no file name.
     explicit VtkSeries(std::filesystem::path pvd);
 
-    /// Writes curves at time as the next frame and rewrites the collection. Cost O(N) for N
-    /// vertices plus O(F) for F frames so far. Throws InvalidInput for a non-finite time or when a
-    /// file cannot be written (the message names it).
+    /// Writes curves at time as the next frame and lists it in the collection. Cost O(N) for N
+    /// vertices (O(F) for F frames so far only when the collection must be written whole).
+    /// Throws InvalidInput for a non-finite time or when a file cannot be written (the message
+    /// names it).
     void add(double time, const Interface& curves);
     /// Writes each (time, curves) as the next frame, then the collection once: O(total N + F).
     /// Throws as add() does.
@@ -61,9 +66,12 @@ public:
 private:
     /// Writes the next frame's .vtp and records it; the collection is not rewritten.
     void write_frame(double time, const Interface& curves);
+    /// Writes the whole collection atomically.
+    void write_collection();
 
     std::filesystem::path pvd_;
     std::vector<VtkFrame> frames_;
+    std::size_t pvd_size_ = 0;  ///< bytes of the collection as this series last wrote it
 };
 
 }  // namespace slc

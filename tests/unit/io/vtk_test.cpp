@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <bit>
@@ -234,6 +235,43 @@ TEST(VtkSeries, FramesAddedTogetherWriteWhatOneByOneWould) {
         EXPECT_EQ(slurp(all_dir.path() / f.file), slurp(one_dir.path() / f.file)) << f.file;
     all.add({});  // nothing to add: nothing changes
     EXPECT_EQ(all.frames().size(), 3u);
+}
+
+TEST(VtkSeries, LaterFramesAreAppendedInPlaceAndTheCollectionStaysWhole) {
+    TempDir dir;
+    const fs::path pvd = dir.path() / "run.pvd";
+    VtkSeries series(pvd);
+    auto inode = [&] {
+        struct stat st {};
+        EXPECT_EQ(::stat(pvd.c_str(), &st), 0);
+        return st.st_ino;
+    };
+    series.add(0.0, Interface({{{0, 0}, {1, 0}, {0, 1}}}));
+    const auto first = inode();
+    for (int f = 1; f < 40; ++f) {
+        series.add(0.125 * f, Interface({{{0, 0}, {1.0 + f, 0}, {0, 1}}}));
+        // The same file, extended in place: not replaced by a rewrite of every line.
+        EXPECT_EQ(inode(), first) << "frame " << f;
+        ASSERT_EQ(slurp(pvd), pvd_text(series.frames())) << "frame " << f;
+    }
+}
+
+TEST(VtkSeries, ACollectionChangedOnDiskIsWrittenWholeAgain) {
+    TempDir dir;
+    const fs::path pvd = dir.path() / "run.pvd";
+    VtkSeries series(pvd);
+    const Interface triangle({{{0, 0}, {1, 0}, {0, 1}}});
+    series.add(0.0, triangle);
+    series.add(0.5, triangle);
+    // Truncated (its closing lines lost), then replaced by other text of the same length.
+    fs::resize_file(pvd, fs::file_size(pvd) - 5);
+    series.add(1.0, triangle);
+    EXPECT_EQ(slurp(pvd), pvd_text(series.frames()));
+    const std::size_t size = fs::file_size(pvd);
+    std::ofstream(pvd, std::ios::binary | std::ios::trunc) << std::string(size, 'x');
+    series.add(1.5, triangle);
+    EXPECT_EQ(slurp(pvd), pvd_text(series.frames()));
+    ASSERT_EQ(series.frames().size(), 4u);
 }
 
 TEST(VtkSeries, BadTimesNamesAndFoldersAreInvalid) {
