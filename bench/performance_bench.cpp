@@ -50,9 +50,9 @@ double wall_now() {
         .count();
 }
 
-/// Least CPU and wall seconds of repeated calls of f: three calls, then more until 0.3 s of wall
-/// time have passed (at most five), so that one interruption of the machine does not decide a
-/// measurement.
+/// Least CPU and wall seconds of repeated calls of f: three calls, then more until half a second
+/// of wall time has passed (at most fifty), so that neither an interruption of the machine nor
+/// the warming up of caches and clock decides a measurement of a small cell.
 struct Least {
     double cpu = std::numeric_limits<double>::infinity();
     double wall = std::numeric_limits<double>::infinity();
@@ -60,7 +60,7 @@ struct Least {
 Least least_of_repeats(const std::function<void()>& f) {
     Least least;
     const double start = wall_now();
-    for (int i = 0; i < 5 && (i < 3 || wall_now() - start < 0.3); ++i) {
+    for (int i = 0; i < 50 && (i < 3 || wall_now() - start < 0.5); ++i) {
         const double c0 = cpu_now(), w0 = wall_now();
         f();
         least.cpu = std::min(least.cpu, cpu_now() - c0);
@@ -69,10 +69,12 @@ Least least_of_repeats(const std::function<void()>& f) {
     return least;
 }
 
-/// Least CPU seconds of `repeats` calls of f.
-double best_cpu(int repeats, const std::function<void()>& f) {
+/// Least CPU seconds of calls of f: three, then more until a fifth of a second of wall time has
+/// passed (at most a hundred).
+double best_cpu(const std::function<void()>& f) {
     double best = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < repeats; ++i) {
+    const double start = wall_now();
+    for (int i = 0; i < 100 && (i < 3 || wall_now() - start < 0.2); ++i) {
         const double t0 = cpu_now();
         f();
         best = std::min(best, cpu_now() - t0);
@@ -125,19 +127,19 @@ StepFloor measure_floor(const Interface& curves, double t, double k, const Veloc
     set_thread_count(1);
     StepFloor f;
     StepResult r;
-    f.step_s = best_cpu(3, [&] { r = advance(curves, t, k, law, domain, options); });
+    f.step_s = best_cpu([&] { r = advance(curves, t, k, law, domain, options); });
     const Interface& next = r.curves;  // stands in for the predicted curve: the same size
     if (next.empty()) return f;
     const DistanceTree::Options tree_options{.depth = options.resolved_tree_depth(),
                                              .triangulate = false};
     std::optional<DistanceTree> now_tree, later_tree;  // the last timed pair, used below
-    f.trees_s = best_cpu(3, [&] {
+    f.trees_s = best_cpu([&] {
         now_tree.emplace(curves, domain, tree_options);
         later_tree.emplace(next, domain, tree_options);
     });
     const DistanceTree &now = *now_tree, &later = *later_tree;
     std::vector<Vec2> u_now, u_later;
-    f.velocities_s = best_cpu(3, [&] {
+    f.velocities_s = best_cpu([&] {
         u_now = vertex_velocities(law, t, curves, GeometryContext{&now, options.embedded});
         u_later = vertex_velocities(law, t + k, next, GeometryContext{&later, options.embedded});
     });
@@ -158,7 +160,7 @@ StepFloor measure_floor(const Interface& curves, double t, double k, const Veloc
         return now.closest_point(x - (0.5 * k) * (w_now(foot) + w_next)).distance;
     };
     double sink = 0.0;
-    f.g_s = best_cpu(3, [&] {
+    f.g_s = best_cpu([&] {
         for (Vec2 x : points) sink += predictor(x) + corrector(x);
     });
     if (!std::isfinite(sink)) f.g_s = std::numeric_limits<double>::quiet_NaN();
@@ -507,11 +509,12 @@ int main(int argc, char** argv) {
         "number of threads). *T ours* is CPU seconds per step on one thread (that thread's CPU "
         "clock) over the first " +
         std::to_string(prefix) +
-        " steps of the cell (same k), the least of three runs (up to five for short runs). *step* "
-        "and *floor* are one step, one thread, from the "
+        " steps of the cell (same k), the least of at least three runs, repeated for half a "
+        "second (at most fifty). *step* and *floor* are one step, one thread, from the "
         "interface reached: the floor is the work no step can avoid — building the two distance "
         "trees, the vertex velocities of both curves, and three G evaluations per output vertex "
-        "for each of the two contours. *speed-up* is wall time on one thread over wall time on "
+        "for each of the two contours, each the least of calls repeated for a fifth of a second. "
+        "*speed-up* is wall time on one thread over wall time on "
         "all, for the same steps (least wall times of the repeated runs).\n\n";
     Totals totals;
     const TableSpec tables[] = {
