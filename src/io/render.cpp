@@ -220,10 +220,12 @@ void draw_title(cairo_t* cr, const Page& page, const std::string& title) {
 void draw_legend(cairo_t* cr, const Page& page, const Layers& layers) {
     const std::vector<const CurvesLayer*> entries = legend_entries(layers);
     if (entries.empty()) return;
+    const std::string more = legend_overflow(layers);
     set_font(cr, font_size);
     double text = 0.0;
     for (const CurvesLayer* c : entries) text = std::max(text, text_width(cr, c->label));
-    const double w = 3 * legend_pad + legend_sample + text;
+    const double w =
+        std::max(3 * legend_pad + legend_sample + text, 2 * legend_pad + text_width(cr, more));
     const double h = legend_height(layers);
     cairo_rectangle(cr, page.side_x + 0.5, page.plot_y + 0.5, w, h);
     cairo_set_source_rgb(cr, 0.75, 0.75, 0.75);
@@ -240,6 +242,11 @@ void draw_legend(cairo_t* cr, const Page& page, const Layers& layers) {
         cairo_stroke(cr);
         cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
         draw_text(cr, entries[i]->label, x + legend_sample + legend_pad, y, 0.0, 0.5);
+    }
+    if (!more.empty()) {
+        const double y =
+            page.plot_y + legend_pad + legend_row * (static_cast<double>(entries.size()) + 0.5);
+        draw_text(cr, more, page.side_x + legend_pad, y, 0.0, 0.5);
     }
 }
 

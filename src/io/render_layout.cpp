@@ -125,13 +125,29 @@ const FieldLayer* last_field(const Layers& layers) {
     return field;
 }
 
-std::vector<const CurvesLayer*> legend_entries(const Layers& layers) {
-    std::vector<const CurvesLayer*> entries;
+namespace {
+
+std::vector<const CurvesLayer*> labelled_layers(const Layers& layers) {
+    std::vector<const CurvesLayer*> labelled;
     for (const LayerItem* item : layers) {
         const auto* c = std::get_if<CurvesLayer>(item);
-        if (c != nullptr && !c->label.empty()) entries.push_back(c);
+        if (c != nullptr && !c->label.empty()) labelled.push_back(c);
     }
+    return labelled;
+}
+
+}  // namespace
+
+std::vector<const CurvesLayer*> legend_entries(const Layers& layers) {
+    std::vector<const CurvesLayer*> entries = labelled_layers(layers);
+    if (entries.size() > max_legend_entries) entries.resize(max_legend_entries);
     return entries;
+}
+
+std::string legend_overflow(const Layers& layers) {
+    const std::size_t n = labelled_layers(layers).size();
+    return n > max_legend_entries ? fmt::format("… and {} more", n - max_legend_entries)
+                                  : std::string();
 }
 
 /// The labels of a colour bar: top, bottom, and 0 in between when it lies inside the range.
@@ -146,7 +162,7 @@ std::vector<std::pair<double, std::string>> colorbar_labels(const FieldRange& ra
 }
 
 double legend_height(const Layers& layers) {
-    const std::size_t n = legend_entries(layers).size();
+    const std::size_t n = legend_entries(layers).size() + (legend_overflow(layers).empty() ? 0 : 1);
     return n == 0 ? 0.0 : 2 * legend_pad + legend_row * static_cast<double>(n);
 }
 
@@ -157,6 +173,7 @@ double side_width(cairo_t* cr, const Layers& layers) {
     for (const CurvesLayer* c : legend_entries(layers)) {
         w = std::max(w, 3 * legend_pad + legend_sample + text_width(cr, c->label));
     }
+    w = std::max(w, 2 * legend_pad + text_width(cr, legend_overflow(layers)));
     if (const FieldLayer* field = last_field(layers)) {
         w = std::max(w, text_width(cr, field->label));
         for (const auto& [v, s] : colorbar_labels(field_range(*field))) {

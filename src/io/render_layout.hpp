@@ -32,6 +32,10 @@ inline constexpr double title_font_size = 16.0;
 inline constexpr double legend_row = 20.0;
 inline constexpr double legend_sample = 28.0;  // length of the line sample of a legend entry
 inline constexpr double legend_pad = 8.0;
+/// The legend lists at most this many labelled layers (the first ones) and then a row
+/// "… and n more": a row per layer would make a picture of thousands of layers taller than
+/// cairo draws (32767 pixels).
+inline constexpr std::size_t max_legend_entries = 40;
 inline constexpr double colorbar_width = 16.0;
 inline constexpr double colorbar_max_height = 300.0;
 inline constexpr double colorbar_min_height = 120.0;  // below a long legend the page grows instead
@@ -137,8 +141,12 @@ void draw_text(cairo_t* cr, const std::string& s, double x, double y, double ax,
 void set_color(cairo_t* cr, Color c);
 /// The last field layer, if any: the one the colour bar shows.
 const FieldLayer* last_field(const Layers& layers);
-/// The labelled curve layers, in order: the legend's entries.
+/// The labelled curve layers, in order, the first max_legend_entries of them: the legend's
+/// entries.
 std::vector<const CurvesLayer*> legend_entries(const Layers& layers);
+/// The legend's last row, "… and n more", for the labelled layers beyond max_legend_entries;
+/// empty if there are none.
+std::string legend_overflow(const Layers& layers);
 /// The labels of a colour bar: top, bottom, and 0 in between when it lies inside the range.
 std::vector<std::pair<double, std::string>> colorbar_labels(const FieldRange& range);
 /// Height of the legend box (0 without labelled curves).

@@ -42,7 +42,8 @@ struct ScalarGrid {
 };
 
 /// A picture: axes with ticks around the view box, layers drawn in the order added, a legend of
-/// the labelled layers, an optional colour bar for a field and a title.
+/// the labelled layers (the first 40, then a row "… and n more"), an optional colour bar for a
+/// field and a title.
 class Figure {
 public:
     /// view: the region of the plane shown (kept square-aspect). Throws InvalidInput if empty.

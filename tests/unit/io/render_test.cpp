@@ -144,6 +144,26 @@ TEST(Render, PngHasTheLayoutSizeAtTwiceTheScale) {
     EXPECT_GT(cairo_image_surface_get_width(image.get()), png_scale * plain_width);
 }
 
+TEST(Render, LegendListsFortyLayersAndCountsTheRest) {
+    const TempDir dir;
+    const Interface ring = circle({0.0, 0.0}, 1.0, 16);
+    auto height_with = [&](int labelled) {
+        Figure f(Box::centered_square(2.0));
+        for (int i = 0; i < labelled; ++i)
+            f.add_curves(ring, fmt::format("layer {}", i), palette_color(i));
+        const fs::path png = dir.path() / fmt::format("legend_{}.png", labelled);
+        f.save(png);
+        f.save(dir.path() / fmt::format("legend_{}.svg", labelled));
+        return cairo_image_surface_get_height(read_png(png).get()) / png_scale;
+    };
+    const int forty = height_with(40);
+    EXPECT_GT(forty, plain_height);          // forty rows are taller than the plot
+    EXPECT_EQ(height_with(41), forty + 20);  // one more row: "… and 1 more"
+    // Two thousand rows would be 40000 pixels tall, beyond what cairo draws.
+    EXPECT_EQ(height_with(2000), forty + 20);
+    EXPECT_GT(fs::file_size(dir.path() / "legend_2000.svg"), 0u);
+}
+
 TEST(Render, DivergingFieldIsBlueBelowZeroAndRedAboveWithYUp) {
     const TempDir dir;
     Figure figure(Box::centered_square(1.0));
