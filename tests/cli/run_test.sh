@@ -13,7 +13,7 @@ check "status ok" grep -q '"status": "ok"' mc/summary.json
 check "merged into one component" grep -q '"components": 1' mc/summary.json
 
 # Many frames: the overlay's legend names a few, so the picture keeps its size (a line per frame
-# made it 16220 pixels tall at 400 frames, and cairo refused it from about 1600).
+# made it 16220 pixels tall at 400 frames, and cairo refused it from about 1600) ...
 expect_ok "many frames" -- run --problem propeller-rotation -N 1800 -K 3 -P 0 --eps 1e-3 --frames 1800 \
     --out many --quiet
 check "many frames: nothing on stderr" test ! -s err.txt
@@ -21,6 +21,10 @@ check "many frames: overlay drawn" test -s many/frames.png
 png_height() { od -An -tu1 -j20 -N4 "$1" | awk '{print $1 * 16777216 + $2 * 65536 + $3 * 256 + $4}'; }
 check "many frames: overlay as tall as a one-frame picture" \
     test "$(png_height many/frames.png)" -le "$(png_height many/final.png)"
+# ... and draws (and holds) every 29th of the 1801 frames and the last: 64 curves, not 1801.
+check "many frames: overlay draws 64 of them" \
+    test "$(grep -o '<path style="fill:none' many/frames.svg | wc -l)" -lt 100
+check "many frames: all written" test -s many/frames/frame_1800.json
 
 square_json >square.json
 expect_ok "user curve and law" -- run --initial square.json --velocity rotation --param omega=2 --t-end 0.5 \

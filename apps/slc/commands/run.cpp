@@ -77,7 +77,8 @@ std::filesystem::path frame_path(const std::filesystem::path& dir, int i) {
 }
 
 void draw(const std::filesystem::path& dir, const Problem& p, const Interface& initial,
-          const RunResult& r, const std::vector<std::pair<double, Interface>>& frames) {
+          const RunResult& r, const std::vector<std::pair<double, Interface>>& frames,
+          int frames_written) {
     Figure final_picture(p.domain,
                          fmt::format("{}: t = {:.4g} ({})", p.name, r.t, to_string(r.status)));
     final_picture.add_curves(initial, "t = 0", Color{0.6, 0.6, 0.6, 1});
@@ -95,7 +96,10 @@ void draw(const std::filesystem::path& dir, const Problem& p, const Interface& i
     std::vector<char> named(frames.size(), 0);
     for (std::size_t j = 0; j < labelled; ++j)
         named[(j * last + (labelled - 1) / 2) / (labelled - 1)] = 1;
-    Figure overlay(p.domain, fmt::format("{}: {} frames", p.name, frames.size()));
+    const std::string shown = frames.size() == static_cast<std::size_t>(frames_written)
+                                  ? fmt::format("{} frames", frames_written)
+                                  : fmt::format("{} of {} frames", frames.size(), frames_written);
+    Figure overlay(p.domain, fmt::format("{}: {}", p.name, shown));
     for (std::size_t i = 0; i < frames.size(); ++i) {
         const double along = static_cast<double>(i) / static_cast<double>(last);
         overlay.add_curves(frames[i].second,
@@ -106,15 +110,42 @@ void draw(const std::filesystem::path& dir, const Problem& p, const Interface& i
     overlay.save(dir / "frames.png");
 }
 
-/// The frames a checkpointed run wrote before it stopped, read back for the overlay picture.
-std::vector<std::pair<double, Interface>> read_frames(const std::filesystem::path& dir, int count) {
-    std::vector<std::pair<double, Interface>> frames;
-    for (int i = 0; i < count; ++i) {
-        InterfaceFile f = read_interface_json(frame_path(dir, i));
-        frames.emplace_back(f.time, Interface(f.curves));
+/// The frames the overlay picture shows: every stride-th frame from the first, and the last one
+/// added, so that at most max_shown + 1 interfaces are held however many frames the run writes
+/// (thousands of whole interfaces could take gigabytes, and draw a picture nobody can read).
+class OverlayFrames {
+public:
+    static constexpr int max_shown = 64;
+
+    /// For a run that writes `frames` frames in all (the initial one included).
+    explicit OverlayFrames(int frames)
+        : stride_(std::max(1, (frames + max_shown - 1) / max_shown)) {}
+
+    /// Frame i (0, 1, ... in order) at time t.
+    void add(int i, double t, const Interface& curves) {
+        if (i % stride_ == 0) {
+            kept_.emplace_back(t, curves);
+            latest_.reset();
+        } else {
+            latest_.emplace(t, curves);
+        }
+        count_ = i + 1;
     }
-    return frames;
-}
+    /// The frames to draw, in order.
+    std::vector<std::pair<double, Interface>> shown() const {
+        std::vector<std::pair<double, Interface>> out = kept_;
+        if (latest_) out.push_back(*latest_);
+        return out;
+    }
+    /// Frames added so far.
+    int count() const { return count_; }
+
+private:
+    int stride_;
+    int count_ = 0;
+    std::vector<std::pair<double, Interface>> kept_;
+    std::optional<std::pair<double, Interface>> latest_;
+};
 
 /// Runs o from the start, or from a checkpoint; `given` are the options to store in checkpoints.
 void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
@@ -130,41 +161,41 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     const std::filesystem::path dir(o.out);
     std::filesystem::create_directories(dir);
 
-    std::vector<std::pair<double, Interface>> frames;
-    auto keep_frame = [&](int i, double t, const Interface& curves) {
-        write_file_atomic(frame_path(dir, i), interface_json(curves, t));
-        frames.emplace_back(t, curves);
-    };
-    if (from) {
-        frames = read_frames(dir, from->frames_kept);
-    } else if (o.frames > 0) {
-        keep_frame(0, options.t_start, initial);
-    }
     // --vtk: DIR/frames.pvd over DIR/frames/frame_NNNN.vtp — the initial interface (or, after
     // --resume, the frames kept so far), the frames and the final one.
     std::optional<VtkSeries> vtk;
     int vtk_step = 0;
     if (o.vtk) vtk.emplace(dir / "frames.pvd");
-    if (vtk) {
-        if (frames.empty())
-            vtk->add(options.t_start, initial);
-        else
-            vtk->add(frames);  // after --resume: the collection written once, not per frame
+    OverlayFrames overlay(o.frames > 0 ? o.frames + 1 : 0);
+    auto keep_frame = [&](double t, const Interface& curves) {
+        write_file_atomic(frame_path(dir, overlay.count()), interface_json(curves, t));
+        overlay.add(overlay.count(), t, curves);
+        if (vtk) vtk->add(t, curves);
+    };
+    if (from) {  // the frames a checkpointed run wrote before it stopped, read back one by one
+        for (int i = 0; i < from->frames_kept; ++i) {
+            const InterfaceFile f = read_interface_json(frame_path(dir, i));
+            const Interface curves(f.curves);
+            overlay.add(i, f.time, curves);
+            if (vtk) vtk->add(f.time, curves);
+        }
+    } else if (o.frames > 0) {
+        keep_frame(options.t_start, initial);
     }
+    if (vtk && overlay.count() == 0) vtk->add(options.t_start, initial);
     const bool progress = !o.quiet && isatty(STDERR_FILENO);
     stop_requested = false;
     std::signal(SIGINT, request_stop);
     std::signal(SIGTERM, request_stop);
     const Observer observer = [&](const StepReport& s) {
         if (o.frames > 0 && (std::int64_t{s.step} * o.frames) % s.steps < o.frames) {
-            keep_frame(static_cast<int>(frames.size()), s.t, *s.curves);
-            if (vtk) vtk->add(s.t, *s.curves);
+            keep_frame(s.t, *s.curves);
             vtk_step = s.step;
         }
         // Every n steps, and when stopped early, so that --resume loses nothing.
         if (o.checkpoint_every > 0 && s.step < s.steps && !s.curves->empty() &&
             (s.step % o.checkpoint_every == 0 || stop_requested)) {
-            write_checkpoint(dir, {given, *s.run, static_cast<int>(frames.size())});
+            write_checkpoint(dir, {given, *s.run, overlay.count()});
         }
         if (progress && s.wall_s > 2.0) {
             const double left = s.wall_s * (s.steps - s.step) / s.step;
@@ -181,7 +212,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
 
     write_file_atomic(dir / "final.json", interface_json(r.curves, r.t));
     if (vtk && vtk_step != r.steps_done) vtk->add(r.t, r.curves);
-    draw(dir, p, initial, r, frames);
+    draw(dir, p, initial, r, overlay.shown(), overlay.count());
     nlohmann::json summary = run_summary(p, options, r, law->name());
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     if (!o.quiet) {
@@ -213,7 +244,8 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
     add_method_options(*cmd, o->method);
     cmd->add_option(
            "--frames", o->frames,
-           "Write this many frames (plus the initial one) to DIR/frames/ and draw them overlaid")
+           "Write this many frames (plus the initial one) to DIR/frames/ and draw them overlaid "
+           "in DIR/frames.svg/.png (at most 64: every n-th and the last)")
         ->check(integer_in(0, 100000));
     cmd->add_flag("--vtk", o->vtk,
                   "Also write the initial interface, the frames and the final one as VTK PolyData "
