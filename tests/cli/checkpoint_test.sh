@@ -9,17 +9,20 @@ same_run() {  # same_run NAME A B: final.json identical, and the summaries but f
 }
 
 # Uninterrupted, then the same run checkpointed every 6 steps and resumed from its last checkpoint
-# (step 18 of 20): steps 19 and 20 again, with the frames written before.
-run_args=(run --problem vortex -N 20 -K 5 -P 1 --frames 4 --quiet)
+# (step 18 of 20): steps 19 and 20 again, with the frames written before (and their VTK series).
+run_args=(run --problem vortex -N 20 -K 5 -P 1 --frames 4 --vtk --quiet)
 expect_ok "uninterrupted" -- "${run_args[@]}" --out full
 expect_ok "checkpointed" -- "${run_args[@]}" --checkpoint-every 6 --out part
 check "checkpoint written" test -s part/checkpoint.json
 check "last checkpoint after step 18" grep -q '"steps_done":18' part/checkpoint.json
 same_run "checkpointing changes nothing" full part
-rm part/final.json part/summary.json part/frames.png
+rm part/final.json part/summary.json part/frames.png part/frames.pvd part/frames/frame_0000.vtp
 expect_ok "resume" -- run --resume part --quiet
 same_run "resumed from step 18" full part
 check "resume redraws the frames" test -s part/frames.png
+check "resume writes the VTK series again" cmp -s full/frames.pvd part/frames.pvd
+check "resume rewrites the VTK frames" cmp -s full/frames/frame_0000.vtp part/frames/frame_0000.vtp
+check "VTK series of 4 frames and the initial one" test "$(grep -c '<DataSet' part/frames.pvd)" -eq 5
 
 # A user's curve under a law: the checkpoint keeps a copy of the file, so that resuming does not
 # depend on the original staying where it was.
