@@ -27,20 +27,47 @@ int StepOptions::resolved_tree_depth() const {
 
 namespace {
 
+/// The signed curvature of the circle through each vertex and its two neighbours (−1/R on a
+/// circle), or 0 where the curve turns by more than StepOptions::arc_corner.
+std::vector<double> arc_curvatures(const Interface& curves) {
+    std::vector<double> kappa(curves.size());
+    parallel_for(curves.size(), [&](std::size_t i) {
+        const Vec2 u = curves.point(i) - curves.point(curves.prev(i));
+        const Vec2 v = curves.point(curves.next(i)) - curves.point(i);
+        const double turn = std::atan2(cross(u, v), dot(u, v));
+        if (std::abs(turn) <= StepOptions::arc_corner)
+            kappa[i] = -2.0 * cross(u, v) / (norm(u) * norm(v) * norm(u + v));
+    });
+    return kappa;
+}
+
 /// Γ at one time level: its distance tree and, unless the law is sampled directly, its vertex
 /// velocities and their extension W off Γ.
 class Level {
 public:
-    Level(const Interface& curves, double t, const VelocityLaw& law, const Box& domain,
+    /// k: the step, which sets the arclength module's default width.
+    Level(const Interface& curves, double t, double k, const VelocityLaw& law, const Box& domain,
           const StepOptions& options)
         : extension_(options.extension),
           tree_(curves, domain,
                 {.depth = options.resolved_tree_depth(),
                  .triangulate = options.extension == Extension::whitney}) {
         if (extension_ != Extension::direct) {
-            u_ = vertex_velocities(law, t, curves, GeometryContext{&tree_, options.embedded});
+            const GeometryContext context{.tree = &tree_,
+                                          .embedded = options.embedded,
+                                          .arc_width = options.arc_width.value_or(std::sqrt(k))};
+            u_ = vertex_velocities(law, t, curves, context);
             if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
             for (Vec2 u : u_) max_speed_ = std::max(max_speed_, norm(u));
+        }
+        if (options.arcs) {
+            kappa_ = arc_curvatures(curves);
+            for (std::size_t i = 0; i < curves.size(); ++i) {
+                const double c2 = norm2(curves.point(curves.next(i)) - curves.point(i));
+                const double kappa =
+                    std::max(std::abs(kappa_[i]), std::abs(kappa_[curves.next(i)]));
+                max_bulge_ = std::max(max_bulge_, 0.125 * c2 * kappa);
+            }
         }
     }
 
@@ -49,8 +76,23 @@ public:
         if (extension_ == Extension::whitney) return (*whitney_)(x);
         return nearest_point_extension<Vec2>(tree_.curves(), u_, tree_.closest_point(x));
     }
-    /// The exact signed distance to this level's Γ.
-    double distance(Vec2 x) const { return tree_.closest_point(x).distance; }
+    /// The signed distance to this level's Γ: exact to its chords, or to its arcs with
+    /// StepOptions::arcs.
+    double distance(Vec2 x) const {
+        const ClosestPoint p = tree_.closest_point(x);
+        if (kappa_.empty() || p.t == 0.0 || p.t == 1.0) return p.distance;
+        const Interface& curves = tree_.curves();
+        const std::size_t b = curves.next(p.segment);
+        const double c2 = norm2(curves.point(b) - curves.point(p.segment));
+        const double kappa = (1.0 - p.t) * kappa_[p.segment] + p.t * kappa_[b];
+        // The arc through the segment's ends with curvature κ (C = −1/R convention) lies
+        // ½ c² t (1 − t) |κ| outside the chord at t where the curve is convex.
+        return p.distance + 0.5 * c2 * p.t * (1.0 - p.t) * kappa;
+    }
+    /// The exact signed distance to this level's polygon, whatever StepOptions::arcs says.
+    double chord_distance(Vec2 x) const { return tree_.closest_point(x).distance; }
+    /// The most distance() differs from chord_distance(): the largest bulge of an arc.
+    double max_bulge() const { return max_bulge_; }
     /// max |W|: both extensions interpolate the vertex velocities (the maximum principle).
     double max_speed() const { return max_speed_; }
 
@@ -59,6 +101,8 @@ private:
     DistanceTree tree_;
     std::vector<Vec2> u_;
     double max_speed_ = 0.0;
+    std::vector<double> kappa_;  ///< arc curvatures at the vertices, empty without arcs
+    double max_bulge_ = 0.0;
     std::optional<WhitneyExtension<Vec2>> whitney_;
 };
 
@@ -103,7 +147,7 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
                         law.name()));
     }
     StepResult result;
-    const Level now(curves, t, law, domain, options);
+    const Level now(curves, t, k, law, domain, options);
 
     if (options.extension == Extension::direct) {
         // A flow field is known everywhere, so the foot of each characteristic needs no predicted
@@ -118,19 +162,20 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
 
     // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x, t); Γ(t)). F is 1-Lipschitz and the
     // foot moves at most d = k max|W| from x, so |G̃(x) − G̃(y)| ≤ |x − y| + 2d, and G̃(x) lies
-    // within d of F(x): one distance query bounds G̃ where G̃ itself takes two.
+    // within d of F(x): one distance query bounds G̃ where G̃ itself takes two. With arcs, F is
+    // the chords' distance plus a bulge of at most b, which adds b to d in both statements.
     // For a foot that moves at most d: sign(F(x)) (|F(x)| − d), or 0 where that says nothing.
     auto lower_bound = [&now](double d) {
         return pointwise(
             [&now, d](Vec2 x) {
-                const double f = now.distance(x);
+                const double f = now.chord_distance(x);
                 const double margin = std::abs(f) - d;
                 return margin > 0.0 ? std::copysign(margin, f) : 0.0;
             },
             expensive_grain);
     };
     ContourOptions contour_options = options.contour;
-    const double predictor_reach = k * now.max_speed();
+    const double predictor_reach = k * now.max_speed() + now.max_bulge();
     contour_options.distance_slack = 2.0 * predictor_reach;
     const auto predictor_bound = lower_bound(predictor_reach);
     auto predictor =
@@ -143,8 +188,8 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
     // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x. Its foot moves
     // at most d = k/2 (max|W(t)| + max|W(t + k)|) from x; the same bound, with this d, needs one
     // query where G needs four.
-    const Level next(predicted.curves, t + k, law, domain, options);
-    const double corrector_reach = 0.5 * k * (now.max_speed() + next.max_speed());
+    const Level next(predicted.curves, t + k, k, law, domain, options);
+    const double corrector_reach = 0.5 * k * (now.max_speed() + next.max_speed()) + now.max_bulge();
     contour_options.distance_slack = 2.0 * corrector_reach;
     const auto corrector_bound = lower_bound(corrector_reach);
     auto corrector = pointwise(

@@ -33,6 +33,8 @@ VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curv
                                const GeometryContext& context) {
     if (!needs.any()) return {};
     if (needs.module == GeometryModule::intrinsic) return intrinsic_geometry(curves);
+    if (needs.module == GeometryModule::arclength)
+        return arclength_geometry(curves, context.arc_width);
     if (context.tree == nullptr)
         throw InvalidInput("the embedded geometry module needs a distance tree of the interface");
     if (&context.tree->curves() != &curves)

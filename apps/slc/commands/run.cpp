@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 
 #include "commands/checkpoint.hpp"
@@ -26,6 +27,12 @@ namespace {
 
 std::atomic<bool> stop_requested{false};
 extern "C" void request_stop(int) { stop_requested = true; }
+
+/// The --geometry spellings.
+const std::map<std::string, GeometryModule> geometry_modules = {
+    {"intrinsic", GeometryModule::intrinsic},
+    {"embedded", GeometryModule::embedded},
+    {"arclength", GeometryModule::arclength}};
 
 struct RunCommand {
     std::string problem;
@@ -154,8 +161,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     const Problem p = resolve_problem(o);
     const RunOptions options = resolve_run_options(o.method, p);
     std::optional<GeometryModule> module = p.module;
-    if (!o.geometry.empty())
-        module = o.geometry == "embedded" ? GeometryModule::embedded : GeometryModule::intrinsic;
+    if (!o.geometry.empty()) module = geometry_modules.at(o.geometry);
     const auto law = make_velocity(p.velocity, p.velocity_params, module);
     const Interface initial = prepare_interface(p.initial, p.domain).curves;
     const std::filesystem::path dir(o.out);
@@ -237,9 +243,10 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
         "Final time a (a problem's own by default); with --initial the run starts at the "
         "file's \"time\" (0 if absent)");
     cmd->add_option("--geometry", o->geometry,
-                    "Geometry module for normals and curvature: intrinsic or embedded (the law's "
-                    "default otherwise)")
-        ->check(CLI::IsMember({"intrinsic", "embedded"}));
+                    "Geometry module for normals and curvature: intrinsic, embedded, or arclength "
+                    "(circumcircle curvature averaged over --arc-width; the law's default "
+                    "otherwise)")
+        ->check(CLI::IsMember(geometry_modules));
     add_domain_options(*cmd, o->domain);
     add_method_options(*cmd, o->method);
     cmd->add_option(

@@ -62,6 +62,14 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                    "fields only: the law sampled along each characteristic, traced back by "
                    "4th-order Runge-Kutta; one contour per step)")
         ->check(CLI::IsMember(extension_names));
+    cmd.add_flag("--arcs", o.arcs,
+                 "Read the curve as circular arcs through its vertices, not as chords, when G is "
+                 "evaluated (corners turning by more than 0.5 rad stay sharp): for smooth curves, "
+                 "whose chords lose a little area each step");
+    cmd.add_option("--arc-width", o.arc_width,
+                   "sigma: arc length over which the arclength geometry module averages the "
+                   "curvature (default sqrt(k), the least that keeps curvature flow stable)")
+        ->check(CLI::NonNegativeNumber);
     cmd.add_option("--threads", o.threads,
                    "Worker threads (0 = all cores); results do not depend on it")
         ->check(integer_in(0, 1024));
@@ -85,6 +93,8 @@ RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
     r.step.embedded.mesh = m.mesh.value_or(default_mesh_size(c.depth));
     r.step.embedded.eno_order = m.eno_order;
     r.step.embedded.smoothing = m.smooth.value_or(p.smoothing);
+    r.step.arcs = m.arcs;
+    r.step.arc_width = m.arc_width;
     return r;
 }
 
@@ -113,7 +123,9 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"t_end", o.t_end},
         {"velocity", velocity},
         {"velocity_params", p.velocity_params},
-        {"extension", extension_name(o.step.extension)}};
+        {"extension", extension_name(o.step.extension)},
+        {"arcs", o.step.arcs},
+        {"arc_width", o.step.arc_width.value_or(std::sqrt((o.t_end - o.t_start) / o.steps))}};
     for (const auto& q : p.parameters) params["problem_params"][q.name] = q.value;
     nlohmann::json s = {
         {"problem", p.name},

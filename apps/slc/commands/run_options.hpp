@@ -14,7 +14,7 @@
 
 namespace slc::cli {
 
-/// N, K, P, ε, η, ρ, M, E, S, L, the extension and threads; unset ones take the problem's
+/// N, K, P, ε, η, ρ, M, E, S, L, the extension, arcs and threads; unset ones take the problem's
 /// values or the defaults of DESIGN §4.
 struct MethodOptions {
     std::optional<int> steps;
@@ -28,6 +28,8 @@ struct MethodOptions {
     std::optional<int> smooth;
     std::optional<int> tree_depth;
     std::string extension = "nearest";
+    bool arcs = false;
+    std::optional<double> arc_width;
     int threads = 0;
 };
 

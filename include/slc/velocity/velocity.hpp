@@ -15,15 +15,16 @@
 #include "slc/core/parallel.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/geometry/interface.hpp"
+#include "slc/geometry_modules/arclength.hpp"
 #include "slc/geometry_modules/embedded.hpp"
 #include "slc/geometry_modules/vertex_geometry.hpp"
 
 namespace slc {
 
-/// Which geometry module computes the vertex normals and curvature a law needs (paper §3):
-/// intrinsic (Equations 7, 8; no mesh) or embedded (Equation 9 on a local mesh; needs a distance
-/// tree).
-enum class GeometryModule { intrinsic, embedded };
+/// Which geometry module computes the vertex normals and curvature a law needs: intrinsic (paper
+/// §3.1, Equations 7, 8; no mesh), embedded (§3.2, Equation 9 on a local mesh; needs a distance
+/// tree), or arclength (circumcircle curvature averaged along the curve; no mesh).
+enum class GeometryModule { intrinsic, embedded, arclength };
 
 /// What a law needs at the vertices besides their positions.
 struct GeometryNeeds {
@@ -65,6 +66,9 @@ struct GeometryContext {
     const DistanceTree* tree = nullptr;
     /// M, E and S of the embedded module.
     EmbeddedOptions embedded = {};
+    /// σ ≥ 0 of the arclength module: the width, in arc length, over which it averages the
+    /// curvature (0: none). advance() sets √k unless StepOptions::arc_width says otherwise.
+    double arc_width = 0.0;
 };
 
 /// The vertex geometry a law asks for: empty when it needs none, else normals and curvature from
