@@ -46,6 +46,15 @@ expect_ok "shrinking to nothing" -- run --initial small.json --velocity unit-nor
     -N 10 -K 4 -P 0 --domain 1 --out gone --quiet
 check "vanished status" grep -q '"status": "vanished"' gone/summary.json
 
+# Curve shortening with the arclength module and arcs: the summary records them and the radius is
+# right to 1e-4; a width must not be negative.
+expect_ok "arclength module and arcs" -- run --problem circle-curvature --param R0=0.5 --t-end 0.1 --domain 1 \
+    -N 10 -K 4 -P 2 --eps 1e-6 --geometry arclength --arcs --out arcs --quiet
+check "summary records arcs" grep -q '"arcs": true' arcs/summary.json
+check "summary records the width sqrt(k)" grep -q '"arc_width": 0.1' arcs/summary.json
+# e_inf (Eq. 11, vertices and midpoints): 9.3e-5 here; 1.6e-3 with the embedded module and chords.
+check "arcs: error below 1e-4" awk -F': ' '/"e_inf"/ { exit !($2 + 0 < 1e-4) }' arcs/summary.json
+expect_error "negative arc width" "--arc-width" -- run --problem circle-curvature --arc-width -1 --out x
 expect_error "unknown problem" "unknown problem 'nope'" -- run --problem nope --out x
 expect_error "unknown velocity" "unknown velocity" -- run --initial square.json --velocity warp --t-end 1 --domain 2 --out x
 expect_error "unknown parameter" "omeg" -- run --initial square.json --velocity rotation --param omeg=1 --t-end 1 --domain 2 --out x
