@@ -34,16 +34,17 @@ struct StepOptions {
     int tree_depth = 0;      ///< L, the distance trees' depth; 0 means the default below
     Extension extension = Extension::nearest_point;  ///< how W is extended off Γ
     EmbeddedOptions embedded;  ///< M, E, S for laws that use the embedded geometry module
-    /// σ of the arclength geometry module; unset: √k, the least width that keeps an explicit
-    /// step of curvature flow stable (docs/algorithms/geometry.md).
+    /// σ of the arclength geometry module; unset: √k, above the 0.76 √k that an explicit step
+    /// of curvature flow needs to be stable (docs/algorithms/geometry.md).
     std::optional<double> arc_width;
-    /// Read Γ(t) as circular arcs through its vertices instead of its chords when G is
-    /// evaluated: F(y) − ½ c² t (1 − t) κ(t) at a point y whose nearest point is at parameter t
-    /// of a segment of length c, κ the signed curvature of the circles through each end and its
-    /// two neighbours (interpolated linearly in t; 0 at a corner, where the curve turns by more
-    /// than arc_corner). The chords of a polygon inscribed in a smooth curve lie inside its convex
-    /// parts by up to c²|κ|/8, and each step's new vertices land on them: a loss that adds up
-    /// over the steps. The arcs remove it to O(c³); corners stay sharp.
+    /// Read Γ(t) as arcs through its vertices instead of its chords when G is evaluated:
+    /// F(y) + ½ c² t (1 − t) C(t) at a point y whose nearest point is at parameter t of a segment
+    /// of length c, C the signed curvature (−1/R on a counterclockwise circle) of the circles
+    /// through each end and its two neighbours, interpolated linearly in t; C = 0 at a corner,
+    /// where the curve turns by more than arc_corner. The chords of a polygon inscribed in a
+    /// smooth curve cut inside its convex parts by up to c²|C|/8, and each step's new vertices
+    /// land on them: a loss that adds up over the steps. The arcs remove it to O(c³); corners stay
+    /// sharp (docs/algorithms/evolve.md).
     bool arcs = false;
     /// Turning angle at a vertex (radians) above which arcs treats it as a corner.
     static constexpr double arc_corner = 0.5;
