@@ -24,6 +24,16 @@ check "resume writes the VTK series again" cmp -s full/frames.pvd part/frames.pv
 check "resume rewrites the VTK frames" cmp -s full/frames/frame_0000.vtp part/frames/frame_0000.vtp
 check "VTK series of 4 frames and the initial one" test "$(grep -c '<DataSet' part/frames.pvd)" -eq 5
 
+# The arclength module, arcs and a width are options of the run like the others: the checkpoint
+# keeps them (a resume without them would end elsewhere).
+arc_args=(run --problem circle-curvature --param R0=0.5 --t-end 0.1 --domain 1 -N 10 -K 4 -P 2
+          --geometry arclength --arcs --arc-width 0.08 --quiet)
+expect_ok "arcs" -- "${arc_args[@]}" --out arcs_full
+expect_ok "arcs checkpointed" -- "${arc_args[@]}" --checkpoint-every 3 --out arcs_part
+rm arcs_part/final.json arcs_part/summary.json
+expect_ok "arcs resumed" -- run --resume arcs_part --quiet
+same_run "arcs resumed from step 9" arcs_full arcs_part
+
 # A user's curve under a law: the checkpoint keeps a copy of the file, so that resuming does not
 # depend on the original staying where it was.
 echo '{"curves": [{"points": [[-1, -1], [1, -1], [1, 1], [-1, 1]]}]}' >square.json
