@@ -8,7 +8,6 @@
 #include <csignal>
 #include <cstdint>
 #include <filesystem>
-#include <map>
 #include <optional>
 
 #include "commands/checkpoint.hpp"
@@ -28,12 +27,6 @@ namespace {
 std::atomic<bool> stop_requested{false};
 extern "C" void request_stop(int) { stop_requested = true; }
 
-/// The --geometry spellings.
-const std::map<std::string, GeometryModule> geometry_modules = {
-    {"intrinsic", GeometryModule::intrinsic},
-    {"embedded", GeometryModule::embedded},
-    {"arclength", GeometryModule::arclength}};
-
 struct RunCommand {
     std::string problem;
     std::string initial;
@@ -42,7 +35,6 @@ struct RunCommand {
     DomainOptions domain;
     MethodOptions method;
     std::vector<std::string> params;
-    std::string geometry;
     int frames = 0;
     bool vtk = false;
     bool quiet = false;
@@ -160,9 +152,8 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     apply_threads(o.method.threads);
     const Problem p = resolve_problem(o);
     const RunOptions options = resolve_run_options(o.method, p);
-    std::optional<GeometryModule> module = p.module;
-    if (!o.geometry.empty()) module = geometry_modules.at(o.geometry);
-    const auto law = make_velocity(p.velocity, p.velocity_params, module);
+    const std::optional<GeometryModule> module = geometry_module(o.method);
+    const auto law = make_velocity(p.velocity, p.velocity_params, module ? module : p.module);
     const Interface initial = prepare_interface(p.initial, p.domain).curves;
     const std::filesystem::path dir(o.out);
     std::filesystem::create_directories(dir);
@@ -242,11 +233,6 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
         "--t-end", o->t_end,
         "Final time a (a problem's own by default); with --initial the run starts at the "
         "file's \"time\" (0 if absent)");
-    cmd->add_option("--geometry", o->geometry,
-                    "Geometry module for normals and curvature: intrinsic, embedded, or arclength "
-                    "(circumcircle curvature averaged over --arc-width; the law's default "
-                    "otherwise)")
-        ->check(CLI::IsMember(geometry_modules));
     add_domain_options(*cmd, o->domain);
     add_method_options(*cmd, o->method);
     cmd->add_option(

@@ -18,6 +18,12 @@ const std::map<std::string, Extension> extension_names = {{"nearest", Extension:
                                                           {"whitney", Extension::whitney},
                                                           {"direct", Extension::direct}};
 
+/// The --geometry spellings.
+const std::map<std::string, GeometryModule> geometry_names = {
+    {"intrinsic", GeometryModule::intrinsic},
+    {"embedded", GeometryModule::embedded},
+    {"arclength", GeometryModule::arclength}};
+
 /// The most memory the process has held so far (resident set, MiB): the check that long runs
 /// stay bounded (scripts/memcheck) reads it from summary.json.
 double peak_rss_mib() {
@@ -62,6 +68,11 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                    "fields only: the law sampled along each characteristic, traced back by "
                    "4th-order Runge-Kutta; one contour per step)")
         ->check(CLI::IsMember(extension_names));
+    cmd.add_option("--geometry", o.geometry,
+                   "Geometry module for normals and curvature: intrinsic, embedded, or arclength "
+                   "(circumcircle curvature averaged over --arc-width; the law's default "
+                   "otherwise)")
+        ->check(CLI::IsMember(geometry_names));
     cmd.add_flag("--arcs", o.arcs,
                  "Read the curve as circular arcs through its vertices, not as chords, when G is "
                  "evaluated (corners turning by more than 0.5 rad stay sharp): for smooth curves, "
@@ -73,6 +84,11 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
     cmd.add_option("--threads", o.threads,
                    "Worker threads (0 = all cores); results do not depend on it")
         ->check(integer_in(0, 1024));
+}
+
+std::optional<GeometryModule> geometry_module(const MethodOptions& method) {
+    if (method.geometry.empty()) return std::nullopt;
+    return geometry_names.at(method.geometry);
 }
 
 RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {

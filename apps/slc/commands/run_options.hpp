@@ -14,8 +14,8 @@
 
 namespace slc::cli {
 
-/// N, K, P, ε, η, ρ, M, E, S, L, the extension, arcs and threads; unset ones take the problem's
-/// values or the defaults of DESIGN §4.
+/// N, K, P, ε, η, ρ, M, E, S, L, the extension, the geometry module, arcs and threads; unset ones
+/// take the problem's values or the defaults of DESIGN §4.
 struct MethodOptions {
     std::optional<int> steps;
     std::optional<int> depth;
@@ -28,12 +28,16 @@ struct MethodOptions {
     std::optional<int> smooth;
     std::optional<int> tree_depth;
     std::string extension = "nearest";
+    std::string geometry;  ///< empty: the law's (or the problem's) own
     bool arcs = false;
     std::optional<double> arc_width;
     int threads = 0;
 };
 
 void add_method_options(CLI::App& cmd, MethodOptions& options);
+
+/// The geometry module --geometry names, if given.
+std::optional<GeometryModule> geometry_module(const MethodOptions& method);
 
 /// The run's options: command line over problem defaults over DESIGN §4 defaults.
 RunOptions resolve_run_options(const MethodOptions& method, const Problem& problem);

@@ -64,6 +64,10 @@ std::string markdown(const Problem& p, const StudyResult& s, const Paper& paper)
         "midpoints (paper Eq. 11); T is process CPU seconds per step, on {} thread{}. Rows refine "
         "N, K and ε together; columns add passes P of adaptive refinement.",
         threads, threads == 1 ? "" : "s");
+    if (p.module == GeometryModule::arclength)
+        md += " Curvature from the arclength geometry module (--geometry arclength).";
+    if (s.rows > 0 && s.at(0, 0).options.step.arcs)
+        md += " G reads the curves as arcs through their vertices (--arcs).";
     if (!paper.empty()) md += " Each cell: ours / the paper's (450 MHz UltraSPARC II, 2000).";
     md +=
         "\n\n| N/S/K/ε | | P = 0 | P = 1 | P = 2 | P = 3 | P = 4 "
@@ -160,7 +164,8 @@ void plot(const std::filesystem::path& dir, const Problem& p, const StudyResult&
 
 void run_study(const StudyCommand& o) {
     apply_threads(o.method.threads);
-    const Problem p = make_problem(o.problem, parse_params(o.params));
+    Problem p = make_problem(o.problem, parse_params(o.params));
+    if (const auto module = geometry_module(o.method)) p.module = module;
     if (!p.exact)
         throw InvalidInput(
             fmt::format("problem '{}' has no exact solution to measure errors against", p.name));
