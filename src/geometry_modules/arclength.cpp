@@ -73,16 +73,7 @@ VertexGeometry arclength_geometry(const Interface& curves, double width) {
             "arclength geometry: the averaging width must be finite and >= 0, got {}", width));
     }
     const std::size_t n = curves.size();
-    std::vector<double> length(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const Segment s = curves.segment(i);
-        length[i] = distance(s.a, s.b);
-        if (!(length[i] > 0.0)) {
-            throw InvalidInput(
-                fmt::format("arclength geometry: vertex {} ({}, {}) coincides with the next vertex",
-                            i, s.a.x, s.a.y));
-        }
-    }
+    const std::vector<double> length = segment_lengths(curves, "arclength geometry");
     VertexGeometry g{std::vector<Vec2>(n), std::vector<double>(n)};
     parallel_for(n, [&](std::size_t i) {
         const std::size_t a = curves.prev(i);

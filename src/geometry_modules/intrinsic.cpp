@@ -12,15 +12,9 @@ VertexGeometry intrinsic_geometry(const Interface& curves) {
     const std::size_t n = curves.size();
     // Unit tangent of each segment i (from vertex i to next(i)) and its length.
     std::vector<Vec2> tangent(n);
-    std::vector<double> length(n);
+    const std::vector<double> length = segment_lengths(curves, "intrinsic geometry");
     for (std::size_t i = 0; i < n; ++i) {
         const Segment s = curves.segment(i);
-        length[i] = distance(s.a, s.b);
-        if (!(length[i] > 0.0)) {
-            throw InvalidInput(
-                fmt::format("intrinsic geometry: vertex {} ({}, {}) coincides with the next vertex",
-                            i, s.a.x, s.a.y));
-        }
         tangent[i] = (s.b - s.a) / length[i];
     }
     VertexGeometry g{std::vector<Vec2>(n), std::vector<double>(n)};

@@ -2,9 +2,24 @@
 // Eq. 13, and for integrals of the curvature).
 #include "slc/geometry_modules/vertex_geometry.hpp"
 
+#include <fmt/format.h>
+
 #include "slc/core/error.hpp"
 
 namespace slc {
+
+std::vector<double> segment_lengths(const Interface& curves, std::string_view module) {
+    std::vector<double> length(curves.size());
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+        const Segment s = curves.segment(i);
+        length[i] = distance(s.a, s.b);
+        if (!(length[i] > 0.0)) {
+            throw InvalidInput(fmt::format("{}: vertex {} ({}, {}) coincides with the next vertex",
+                                           module, i, s.a.x, s.a.y));
+        }
+    }
+    return length;
+}
 
 std::vector<double> vertex_arc_lengths(const Interface& curves) {
     std::vector<double> w(curves.size());

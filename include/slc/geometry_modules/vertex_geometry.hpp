@@ -5,6 +5,7 @@
 #pragma once
 
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "slc/core/vec2.hpp"
@@ -19,6 +20,10 @@ struct VertexGeometry {
     std::vector<Vec2> normals;      ///< outward unit normal N_i at vertex i
     std::vector<double> curvature;  ///< C_i at vertex i, −1/R on a circle of radius R
 };
+
+/// The length of each segment i (from vertex i to next(i)). Throws InvalidInput, naming `module`
+/// and the vertex, when a vertex coincides with the next one. O(N).
+std::vector<double> segment_lengths(const Interface& curves, std::string_view module);
 
 /// The arc length that belongs to each vertex: half of each of its two segments. Weights of the
 /// trapezoidal rule ∫_Γ g ds ≈ Σ g_i w_i, which is exact for g linear on each segment. O(N).
