@@ -1,9 +1,6 @@
 // The intrinsic geometry module: Eqs. (7) and (8) of paper §3.1.
 #include "slc/geometry_modules/intrinsic.hpp"
 
-#include <fmt/format.h>
-
-#include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 
 namespace slc {
