@@ -137,6 +137,8 @@ reject "domain NaN" "--domain must be a positive half-width up to 1e\+100, got n
 reject "domain beyond the coordinate limit" "--domain must be a positive half-width up to 1e\+100, got 1e\+200" -- run --problem vortex --domain 1e200 --out x
 reject "unknown extension" "--extension: bogus not in" -- run --problem vortex --extension bogus --out x
 reject "unknown geometry module" "--geometry: bogus not in" -- run --problem vortex --geometry bogus --out x
+reject "negative arc width" "--arc-width: must be a finite number >= 0, got '-1'" -- run --problem circle-curvature --arc-width -1 --out x
+reject "arc width not a number" "--arc-width: must be a finite number >= 0, got 'wide'" -- study --problem circle-curvature --arc-width wide --out x
 reject "threads negative" "--threads: must be an integer from 0 to 1024, got '-1'" -- run --problem vortex --threads -1 --out x
 reject "frames negative" "--frames: must be an integer from 0 to 100000, got '-1'" -- run --problem vortex --frames -1 --out x
 reject "checkpoint-every 0" "--checkpoint-every: must be an integer from 1 to 100000000, got '0'" -- run --problem vortex --checkpoint-every 0 --out x

@@ -140,6 +140,16 @@ CLI::Validator positive_number() {
         "POSITIVE");
 }
 
+CLI::Validator nonnegative_number() {
+    return CLI::Validator(
+        [](std::string& text) {
+            const auto v = number(text);
+            if (v && *v >= 0.0 && std::isfinite(*v)) return std::string();
+            return fmt::format("must be a finite number >= 0, got '{}'", text);
+        },
+        "NONNEGATIVE");
+}
+
 CLI::Validator integer_in(int lo, int hi) {
     return CLI::Validator(
         [lo, hi](std::string& text) {

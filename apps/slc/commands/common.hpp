@@ -47,9 +47,10 @@ nlohmann::json box_json(const Box& b);
 /// Applies --threads (0 = all cores).
 void apply_threads(int threads);
 
-/// CLI11 checks with one-line messages naming the value: a positive finite number; an integer in
-/// [lo, hi]; a number in [0, 1).
+/// CLI11 checks with one-line messages naming the value: a positive finite number; a finite
+/// number >= 0; an integer in [lo, hi]; a number in [0, 1).
 CLI::Validator positive_number();
+CLI::Validator nonnegative_number();
 CLI::Validator integer_in(int lo, int hi);
 CLI::Validator fraction_below_one();
 

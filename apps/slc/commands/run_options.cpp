@@ -80,7 +80,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
     cmd.add_option("--arc-width", o.arc_width,
                    "sigma: arc length over which the arclength geometry module averages the "
                    "curvature (default sqrt(k); curvature flow is stable from 0.76 sqrt(k))")
-        ->check(CLI::NonNegativeNumber);
+        ->check(nonnegative_number());
     cmd.add_option("--threads", o.threads,
                    "Worker threads (0 = all cores); results do not depend on it")
         ->check(integer_in(0, 1024));
