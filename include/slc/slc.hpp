@@ -18,6 +18,7 @@
 #include "slc/geometry/segment.hpp"
 #include "slc/geometry/shapes.hpp"
 #include "slc/geometry/validate.hpp"
+#include "slc/geometry_modules/arclength.hpp"
 #include "slc/geometry_modules/embedded.hpp"
 #include "slc/geometry_modules/intrinsic.hpp"
 #include "slc/io/interface_json.hpp"
