@@ -145,7 +145,9 @@ void plot(const std::filesystem::path& dir, const Problem& p, const StudyResult&
     }
     if (b.is_empty()) return;
     Figure fig(Box::square(b.center(), 0.55 * std::max({b.width(), b.height(), 1.0})),
-               fmt::format("{}: error against CPU time per step", p.name));
+               fmt::format("{}{}{}: error against CPU time per step", p.name,
+                           p.module == GeometryModule::arclength ? ", arclength module" : "",
+                           s.rows > 0 && s.at(0, 0).options.step.arcs ? ", arcs" : ""));
     fig.set_axis_names("log10 CPU seconds per step", "log10 E_inf");
     for (std::size_t r = 0; r < ours.size(); ++r) {
         if (theirs[r].size() >= 2)
