@@ -50,17 +50,17 @@ double wall_now() {
         .count();
 }
 
-/// Least CPU and wall seconds of repeated calls of f: three calls, then more until half a second
-/// of wall time has passed (at most fifty), so that neither an interruption of the machine nor
+/// Least CPU and wall seconds of repeated calls of f: three calls, then more until `seconds` of
+/// wall time have passed (at most max_calls), so that neither an interruption of the machine nor
 /// the warming up of caches and clock decides a measurement of a small cell.
 struct Least {
     double cpu = std::numeric_limits<double>::infinity();
     double wall = std::numeric_limits<double>::infinity();
 };
-Least least_of_repeats(const std::function<void()>& f) {
+Least least_of_repeats(const std::function<void()>& f, double seconds = 0.5, int max_calls = 50) {
     Least least;
     const double start = wall_now();
-    for (int i = 0; i < 50 && (i < 3 || wall_now() - start < 0.5); ++i) {
+    for (int i = 0; i < max_calls && (i < 3 || wall_now() - start < seconds); ++i) {
         const double c0 = cpu_now(), w0 = wall_now();
         f();
         least.cpu = std::min(least.cpu, cpu_now() - c0);
@@ -71,16 +71,7 @@ Least least_of_repeats(const std::function<void()>& f) {
 
 /// Least CPU seconds of calls of f: three, then more until a fifth of a second of wall time has
 /// passed (at most a hundred).
-double best_cpu(const std::function<void()>& f) {
-    double best = std::numeric_limits<double>::infinity();
-    const double start = wall_now();
-    for (int i = 0; i < 100 && (i < 3 || wall_now() - start < 0.2); ++i) {
-        const double t0 = cpu_now();
-        f();
-        best = std::min(best, cpu_now() - t0);
-    }
-    return best;
-}
+double best_cpu(const std::function<void()>& f) { return least_of_repeats(f, 0.2, 100).cpu; }
 
 struct PaperCell {
     double e_inf = 0.0;

@@ -11,6 +11,7 @@
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/extension.hpp"
+#include "slc/geometry_modules/arclength.hpp"
 
 namespace slc {
 
@@ -35,8 +36,7 @@ std::vector<double> arc_curvatures(const Interface& curves) {
         const Vec2 u = curves.point(i) - curves.point(curves.prev(i));
         const Vec2 v = curves.point(curves.next(i)) - curves.point(i);
         const double turn = std::atan2(cross(u, v), dot(u, v));
-        if (std::abs(turn) <= StepOptions::arc_corner)
-            kappa[i] = -2.0 * cross(u, v) / (norm(u) * norm(v) * norm(u + v));
+        if (std::abs(turn) <= StepOptions::arc_corner) kappa[i] = circle_curvature(u, v);
     });
     return kappa;
 }
@@ -55,7 +55,7 @@ public:
         if (extension_ != Extension::direct) {
             const GeometryContext context{.tree = &tree_,
                                           .embedded = options.embedded,
-                                          .arc_width = options.arc_width.value_or(std::sqrt(k))};
+                                          .arc_width = options.resolved_arc_width(k)};
             u_ = vertex_velocities(law, t, curves, context);
             if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
             for (Vec2 u : u_) max_speed_ = std::max(max_speed_, norm(u));

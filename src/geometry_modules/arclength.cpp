@@ -26,13 +26,12 @@ double cubic_bspline(double r) {
 
 /// G_σ f: f averaged along each curve with the weights B(s/w) ds, B the cubic B-spline and
 /// w = √3 σ, so that the weights' standard deviation in arc length is σ (see the header).
-/// length[i] is the length of segment i, from vertex i to next(i).
+/// length[i] is the length of segment i, from vertex i to next(i); ds[j] the arc length of
+/// vertex j (vertex_arc_lengths).
 std::vector<double> average_along(const Interface& curves, const std::vector<double>& length,
-                                  const std::vector<double>& f, double width) {
+                                  const std::vector<double>& ds, const std::vector<double>& f,
+                                  double width) {
     const std::size_t total = f.size();
-    // ds_j: half of the two segments at vertex j.
-    std::vector<double> ds(total);
-    for (std::size_t j = 0; j < total; ++j) ds[j] = 0.5 * (length[j] + length[curves.prev(j)]);
     std::vector<double> out(total);
     const double scale = 1.0 / (std::sqrt(3.0) * width);
     parallel_for(total, [&](std::size_t i) {
@@ -84,11 +83,12 @@ VertexGeometry arclength_geometry(const Interface& curves, double width) {
         const Vec2 sum = tangent_in + tangent_out;
         const double sum_norm = norm(sum);
         g.normals[i] = sum_norm > 0.0 ? -perp(sum) / sum_norm : -perp(tangent_out);
-        g.curvature[i] = -2.0 * cross(u, v) / (length[a] * length[i] * norm(u + v));
+        g.curvature[i] = circle_curvature(u, v);
     });
     if (width > 0.0) {
-        const std::vector<double> once = average_along(curves, length, g.curvature, width);
-        const std::vector<double> twice = average_along(curves, length, once, width);
+        const std::vector<double> ds = vertex_arc_lengths(curves);
+        const std::vector<double> once = average_along(curves, length, ds, g.curvature, width);
+        const std::vector<double> twice = average_along(curves, length, ds, once, width);
         for (std::size_t i = 0; i < n; ++i) g.curvature[i] = 2.0 * once[i] - twice[i];
     }
     return g;

@@ -221,11 +221,7 @@ void draw_legend(cairo_t* cr, const Page& page, const Layers& layers) {
     const std::vector<const CurvesLayer*> entries = legend_entries(layers);
     if (entries.empty()) return;
     const std::string more = legend_overflow(layers);
-    set_font(cr, font_size);
-    double text = 0.0;
-    for (const CurvesLayer* c : entries) text = std::max(text, text_width(cr, c->label));
-    const double w =
-        std::max(3 * legend_pad + legend_sample + text, 2 * legend_pad + text_width(cr, more));
+    const double w = legend_width(cr, layers);  // sets the legend's font
     const double h = legend_height(layers);
     cairo_rectangle(cr, page.side_x + 0.5, page.plot_y + 0.5, w, h);
     cairo_set_source_rgb(cr, 0.75, 0.75, 0.75);

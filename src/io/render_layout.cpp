@@ -162,18 +162,26 @@ std::vector<std::pair<double, std::string>> colorbar_labels(const FieldRange& ra
 }
 
 double legend_height(const Layers& layers) {
-    const std::size_t n = legend_entries(layers).size() + (legend_overflow(layers).empty() ? 0 : 1);
+    // The entries, and a row "… and n more" beyond max_legend_entries.
+    const std::size_t labelled = labelled_layers(layers).size();
+    const std::size_t n = std::min(labelled, max_legend_entries) + (labelled > max_legend_entries);
     return n == 0 ? 0.0 : 2 * legend_pad + legend_row * static_cast<double>(n);
+}
+
+double legend_width(cairo_t* cr, const Layers& layers) {
+    const std::vector<const CurvesLayer*> entries = legend_entries(layers);
+    if (entries.empty()) return 0.0;
+    set_font(cr, font_size);
+    double text = 0.0;
+    for (const CurvesLayer* c : entries) text = std::max(text, text_width(cr, c->label));
+    return std::max(3 * legend_pad + legend_sample + text,
+                    2 * legend_pad + text_width(cr, legend_overflow(layers)));
 }
 
 /// Width the side column needs for the legend and the colour bar.
 double side_width(cairo_t* cr, const Layers& layers) {
-    double w = min_side_width;
+    double w = std::max(min_side_width, legend_width(cr, layers));
     set_font(cr, font_size);
-    for (const CurvesLayer* c : legend_entries(layers)) {
-        w = std::max(w, 3 * legend_pad + legend_sample + text_width(cr, c->label));
-    }
-    w = std::max(w, 2 * legend_pad + text_width(cr, legend_overflow(layers)));
     if (const FieldLayer* field = last_field(layers)) {
         w = std::max(w, text_width(cr, field->label));
         for (const auto& [v, s] : colorbar_labels(field_range(*field))) {

@@ -151,6 +151,8 @@ std::string legend_overflow(const Layers& layers);
 std::vector<std::pair<double, std::string>> colorbar_labels(const FieldRange& range);
 /// Height of the legend box (0 without labelled curves).
 double legend_height(const Layers& layers);
+/// Width of the legend box (0 without labelled curves); sets the legend's font on cr.
+double legend_width(cairo_t* cr, const Layers& layers);
 /// Places plot, title, legend and colour bar for a view and its layers.
 Page layout(cairo_t* cr, const Box& view, const std::string& title, const Layers& layers);
 

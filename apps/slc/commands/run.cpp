@@ -120,15 +120,15 @@ public:
     explicit OverlayFrames(int frames)
         : stride_(std::max(1, (frames + max_shown - 1) / max_shown)) {}
 
-    /// Frame i (0, 1, ... in order) at time t.
-    void add(int i, double t, const Interface& curves) {
-        if (i % stride_ == 0) {
+    /// The next frame, at time t.
+    void add(double t, const Interface& curves) {
+        if (count_ % stride_ == 0) {
             kept_.emplace_back(t, curves);
             latest_.reset();
         } else {
             latest_.emplace(t, curves);
         }
-        count_ = i + 1;
+        ++count_;
     }
     /// The frames to draw, in order.
     std::vector<std::pair<double, Interface>> shown() const {
@@ -166,14 +166,14 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     OverlayFrames overlay(o.frames > 0 ? o.frames + 1 : 0);
     auto keep_frame = [&](double t, const Interface& curves) {
         write_file_atomic(frame_path(dir, overlay.count()), interface_json(curves, t));
-        overlay.add(overlay.count(), t, curves);
+        overlay.add(t, curves);
         if (vtk) vtk->add(t, curves);
     };
     if (from) {  // the frames a checkpointed run wrote before it stopped, read back one by one
         for (int i = 0; i < from->frames_kept; ++i) {
             const InterfaceFile f = read_interface_json(frame_path(dir, i));
             const Interface curves(f.curves);
-            overlay.add(i, f.time, curves);
+            overlay.add(f.time, curves);
             if (vtk) vtk->add(f.time, curves);
         }
     } else if (o.frames > 0) {

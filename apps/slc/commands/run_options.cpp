@@ -141,7 +141,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"velocity_params", p.velocity_params},
         {"extension", extension_name(o.step.extension)},
         {"arcs", o.step.arcs},
-        {"arc_width", o.step.arc_width.value_or(std::sqrt((o.t_end - o.t_start) / o.steps))}};
+        {"arc_width", o.step.resolved_arc_width((o.t_end - o.t_start) / o.steps)}};
     for (const auto& q : p.parameters) params["problem_params"][q.name] = q.value;
     nlohmann::json s = {
         {"problem", p.name},

@@ -8,6 +8,7 @@
 /// stable in the maximum norm, second order in time.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <optional>
 
@@ -48,6 +49,9 @@ struct StepOptions {
     bool arcs = false;
     /// Turning angle at a vertex (radians) above which arcs treats it as a corner.
     static constexpr double arc_corner = 0.5;
+
+    /// σ of the arclength module for a step of size k: arc_width as given, or √k.
+    double resolved_arc_width(double k) const { return arc_width.value_or(std::sqrt(k)); }
 
     /// L as given, or by default K + ⌊P/2⌋ (K + P with the Whitney extension, whose accuracy
     /// depends on L); refinement until converged counts as P = 4. Only the Whitney extension's

@@ -5,10 +5,17 @@
 /// explicit step of size k is stable only if the curvature it uses is averaged over about √k.
 #pragma once
 
+#include "slc/core/vec2.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry_modules/vertex_geometry.hpp"
 
 namespace slc {
+
+/// The signed curvature of the circle through x − u, x and x + v (u, v nonzero): −1/R when the
+/// three points run counterclockwise round it (C = −∇·N, as everywhere), 0 when they are in line.
+inline double circle_curvature(Vec2 u, Vec2 v) {
+    return -2.0 * cross(u, v) / (norm(u) * norm(v) * norm(u + v));
+}
 
 /// Vertex normals and curvature of every curve of Γ:
 ///
