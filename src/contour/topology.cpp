@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <memory_resource>
 #include <numbers>
 #include <unordered_map>
 
 #include "slc/core/error.hpp"
+#include "slc/core/key_map.hpp"
 #include "stages.hpp"
 
 namespace slc::contouring {
@@ -90,7 +90,7 @@ public:
                 if (values_.contains(k)) continue;
                 const std::optional<double> bound = settled(point(k), donors, threshold);
                 if (bound) {
-                    values_.emplace(k, Sample{*bound, false});
+                    values_.try_emplace(k, Sample{*bound, false});
                 } else if (!lower_bound_) {
                     add(k, keys);
                 } else {
@@ -149,9 +149,9 @@ public:
             }
             if (values_.contains(k.k[4])) continue;
             if (lo > clearance || hi < -clearance) {
-                values_.emplace(k.k[4], Sample{lo > 0.0 ? lo : hi, false});
+                values_.try_emplace(k.k[4], Sample{lo > 0.0 ? lo : hi, false});
             } else if (const auto bound = settled(point(k.k[4]), donors_of(Keys{k.k, 4}), 0.0)) {
-                values_.emplace(k.k[4], Sample{*bound, false});
+                values_.try_emplace(k.k[4], Sample{*bound, false});
             } else {
                 add(k.k[4], keys);
             }
@@ -200,10 +200,10 @@ private:
         Donors d;
         if (!slack_) return d;
         for (std::uint64_t k : keys) {
-            const auto it = values_.find(k);
-            if (it == values_.end() || std::isnan(it->second.value)) continue;
+            const Sample* s = values_.find(k);
+            if (s == nullptr || std::isnan(s->value)) continue;
             d.at[d.n] = point(k);
-            d.value[d.n++] = it->second.value;
+            d.value[d.n++] = s->value;
         }
         return d;
     }
@@ -237,7 +237,7 @@ private:
         for (std::size_t i = 0; i < keys.size(); ++i) {
             const double b = std::abs(bounds[i]) - rounding_;
             if (std::isfinite(b) && settles(b, thresholds[i]))
-                values_[keys[i]] = Sample{std::copysign(b, bounds[i]), false};
+                values_.assign(keys[i], Sample{std::copysign(b, bounds[i]), false});
             else
                 left.push_back(keys[i]);
         }
@@ -263,7 +263,8 @@ private:
         const std::vector<Vec2> points = points_of(keys);
         std::vector<double> values(points.size());
         g_(points, values);
-        for (std::size_t i = 0; i < keys.size(); ++i) values_[keys[i]] = Sample{values[i], true};
+        for (std::size_t i = 0; i < keys.size(); ++i)
+            values_.assign(keys[i], Sample{values[i], true});
     }
 
     BatchFunctionRef g_;
@@ -274,9 +275,7 @@ private:
     std::optional<double> slack_;
     double rounding_;
     double eta_;
-    // Points are only added: their nodes come from one arena, freed with the sampler.
-    std::pmr::monotonic_buffer_resource arena_;
-    std::pmr::unordered_map<std::uint64_t, Sample> values_{&arena_};
+    KeyMap<Sample> values_;
     std::vector<double> cell_min_;
 };
 

@@ -5,10 +5,9 @@
 
 #include <algorithm>
 #include <limits>
-#include <memory_resource>
-#include <unordered_map>
 
 #include "slc/core/error.hpp"
+#include "slc/core/key_map.hpp"
 
 namespace slc {
 namespace {
@@ -23,20 +22,20 @@ public:
           shift_(tree.max_depth() + 1),
           step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)) {
         // About 1.6 vertices per cell (corners shared by four cells, one centre each).
-        index_.reserve(2 * tree.size());
+        index_ = KeyMap<std::uint32_t>(2 * tree.size());
     }
 
     /// The vertex at grid point (gx, gy), created on first use.
     std::uint32_t at(std::uint64_t gx, std::uint64_t gy) {
         const std::uint64_t key = (gx << 32) | gy;
-        auto [it, inserted] =
+        const auto [index, inserted] =
             index_.try_emplace(key, static_cast<std::uint32_t>(mesh_.vertices.size()));
         if (inserted) {
             const Vec2 lo = tree_.root_box().lo;
             mesh_.vertices.push_back(
                 {lo.x + static_cast<double>(gx) * step_, lo.y + static_cast<double>(gy) * step_});
         }
-        return it->second;
+        return *index;
     }
     /// Grid units per cell edge at a level.
     std::uint64_t units(int level) const { return std::uint64_t{1} << (shift_ - level); }
@@ -46,9 +45,7 @@ private:
     Triangulation& mesh_;
     int shift_;
     double step_;
-    // Vertices are only added: their nodes come from one arena, freed with the table.
-    std::pmr::monotonic_buffer_resource arena_;
-    std::pmr::unordered_map<std::uint64_t, std::uint32_t> index_{&arena_};
+    KeyMap<std::uint32_t> index_;
 };
 
 /// True when the neighbour of leaf c across the edge in direction (dx, dy) is finer than c.
