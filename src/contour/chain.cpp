@@ -35,8 +35,12 @@ Chain::Chain(std::vector<Vec2> vertices, std::span<const std::uint32_t> successo
       mid_value(points.size(), std::numeric_limits<double>::quiet_NaN()),
       frozen(points.size(), 0),
       alive(points.size(), 1),
-      curve(points.size(), std::numeric_limits<std::uint32_t>::max()) {
-    for (std::uint32_t i = 0; i < next.size(); ++i) prev[next[i]] = i;
+      curve(points.size(), std::numeric_limits<std::uint32_t>::max()),
+      lengths(points.size()) {
+    for (std::uint32_t i = 0; i < next.size(); ++i) {
+        prev[next[i]] = i;
+        lengths[i] = distance(points[i], points[next[i]]);
+    }
     for (std::uint32_t i = 0; i < points.size(); ++i) {
         if (curve[i] != std::numeric_limits<std::uint32_t>::max()) continue;
         const auto c = static_cast<std::uint32_t>(curve_size.size());
@@ -57,6 +61,8 @@ std::uint32_t Chain::insert_after(std::uint32_t u, Vec2 w) {
     frozen.push_back(0);
     alive.push_back(1);
     curve.push_back(curve[u]);
+    lengths.push_back(distance(w, points[v]));
+    lengths[u] = distance(points[u], w);
     next[u] = n;
     prev[v] = n;
     mid_value[u] = std::numeric_limits<double>::quiet_NaN();
@@ -70,6 +76,7 @@ void Chain::remove(std::uint32_t x) {
     if (length(x) > length(a)) home[a] = home[x];
     next[a] = b;
     prev[b] = a;
+    lengths[a] = distance(points[a], points[b]);
     alive[x] = 0;
     mid_value[a] = std::numeric_limits<double>::quiet_NaN();
     frozen[a] = 0;

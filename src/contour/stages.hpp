@@ -76,11 +76,14 @@ struct Chain {
     std::vector<std::uint8_t> alive;
     std::vector<std::uint32_t> curve;     ///< the curve of vertex i
     std::vector<std::size_t> curve_size;  ///< alive vertices per curve
+    /// |segment i|, kept up to date by insert_after and remove: refinement asks for each
+    /// segment's length several times a pass.
+    std::vector<double> lengths;
 
     Chain(std::vector<Vec2> vertices, std::span<const std::uint32_t> successor,
           std::span<const std::uint32_t> triangle);
     Segment segment(std::uint32_t i) const { return {points[i], points[next[i]]}; }
-    double length(std::uint32_t i) const { return distance(points[i], points[next[i]]); }
+    double length(std::uint32_t i) const { return lengths[i]; }
     /// Adds vertex w on segment u; both halves keep u's home and are not yet evaluated.
     std::uint32_t insert_after(std::uint32_t u, Vec2 w);
     /// Removes vertex x; the merged segment takes the home of the longer of x's two segments.
