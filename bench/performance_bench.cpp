@@ -644,6 +644,25 @@ missing — a third as many cells: building the tree of Table 5's 320/0/6/4 inte
 segments, L = 8) went from 3.42 to 1.86 ms. Both leave every result bit-identical; whole steps
 became 1.05–1.07× faster.
 
+### Tables of points, and what did not pay
+
+The contouring tree looks up each of its sample points, and the triangulation each of its
+vertices, in a hash table; std::unordered_map kept a node per entry, a cache miss per lookup. Both
+now use one flat table (`KeyMap`: open addressing, each key beside its value), and refinement's
+chain keeps its segments' lengths instead of taking each several times a pass (a `std::hypot`
+each). Results are bit-identical; one thread, least of four runs from the interface after 16
+steps: Table 6's 160/0/5/2 step 5.15 → 4.61 ms (0.90×), Table 5's 40/0/3/0 0.287 → 0.269 ms
+(0.94×), 640/0/7/0 10.3 → 10.1 ms (0.98×), 320/0/6/4 39.4 → 38.7 ms (0.98×), Table 7's
+320/3/7/4 91.5 → 88.8 ms (0.97×). Measured and not kept: leaf lists ordered by their segments'
+box distance, with the scan stopped once that exceeds the best distance (bit-identical, but
+building the order cost more than it saved: 640/0/7/0 10.2 → 11.3 ms); a closest-point
+kernel without branches (1% slower); dynamic scheduling of the parallel loops (5–9% slower on
+two threads); and `sqrt(x² + y²)` for `std::hypot` (1–6% faster, but not bit-identical, and the
+merging circles' cusp bubbles turn last-bit changes into E∞ changes of −9% to +16% per cell of
+Table 6's third row). A profile of Table 5's 320/0/6/4 now: closest-point queries 34%, the
+segment hierarchy 19% (points far from Γ, two thirds of them the contouring tree's samples and
+their lower bounds), building the distance trees 10%, refinement's safeguards 7%.
+
 ### On two threads
 
 On two threads this step took 1/1.34 of its one-thread time. What ran on one thread only:
