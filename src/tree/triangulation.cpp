@@ -20,10 +20,9 @@ public:
         : tree_(tree),
           mesh_(mesh),
           shift_(tree.max_depth() + 1),
-          step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)) {
-        // About 1.6 vertices per cell (corners shared by four cells, one centre each).
-        index_ = KeyMap<std::uint32_t>(2 * tree.size());
-    }
+          step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)),
+          // About 1.6 vertices per cell (corners shared by four cells, one centre each).
+          index_(2 * tree.size()) {}
 
     /// The vertex at grid point (gx, gy), created on first use.
     std::uint32_t at(std::uint64_t gx, std::uint64_t gy) {
