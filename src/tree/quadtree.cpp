@@ -59,13 +59,6 @@ Quadtree::Quadtree(Box root, int max_depth) : root_(root), max_depth_(max_depth)
     cells_.push_back(Cell{});
 }
 
-Box Quadtree::box(std::size_t c) const {
-    const Cell& cell = cells_[c];
-    const double h = edge(cell.level);
-    const Vec2 lo{root_.lo.x + cell.ix * h, root_.lo.y + cell.iy * h};
-    return {lo, {lo.x + h, lo.y + h}};
-}
-
 std::uint32_t Quadtree::split(std::size_t c) {
     SLC_ASSERT(is_leaf(c) && cells_[c].level < max_depth_,
                "only leaves above the depth limit split");
@@ -78,13 +71,6 @@ std::uint32_t Quadtree::split(std::size_t c) {
     }
     if (parent.level + 1 > depth_) depth_ = parent.level + 1;
     return first;
-}
-
-Quadtree::LatticePoint Quadtree::lattice_point(Vec2 p) const {
-    const double scale = static_cast<double>(std::uint64_t{1} << depth_) / root_.width();
-    const double top = static_cast<double>((std::uint64_t{1} << depth_) - 1);
-    return {static_cast<std::uint64_t>(std::clamp((p.x - root_.lo.x) * scale, 0.0, top)),
-            static_cast<std::uint64_t>(std::clamp((p.y - root_.lo.y) * scale, 0.0, top))};
 }
 
 std::uint32_t Quadtree::descend(std::uint32_t from, LatticePoint q) const {

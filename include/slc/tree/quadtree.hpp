@@ -4,6 +4,7 @@
 /// arrays indexed by cell number.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -57,7 +58,13 @@ public:
     /// Edge length of a cell at the given level.
     double edge(int level) const { return edges_[static_cast<std::size_t>(level)]; }
     /// The square of cell c, computed from its integer coordinates (corners exact on the lattice).
-    Box box(std::size_t c) const;
+    /// Inline, as lattice_point: every closest-point query calls both.
+    Box box(std::size_t c) const {
+        const Cell& cell = cells_[c];
+        const double h = edge(cell.level);
+        const Vec2 lo{root_.lo.x + cell.ix * h, root_.lo.y + cell.iy * h};
+        return {lo, {lo.x + h, lo.y + h}};
+    }
     /// The cell's concentric triple: the 3×3 block of same-size cells around it (§1.3).
     Box triple(std::size_t c) const { return box(c).inflated(edge(cells_[c].level)); }
 
@@ -72,7 +79,12 @@ public:
     };
     /// Integer coordinates, at the deepest existing level, of the cell holding p (moved first to
     /// the nearest point of the root box); on a shared edge the high side wins (to rounding). O(1).
-    LatticePoint lattice_point(Vec2 p) const;
+    LatticePoint lattice_point(Vec2 p) const {
+        const double scale = static_cast<double>(std::uint64_t{1} << depth_) / root_.width();
+        const double top = static_cast<double>((std::uint64_t{1} << depth_) - 1);
+        return {static_cast<std::uint64_t>(std::clamp((p.x - root_.lo.x) * scale, 0.0, top)),
+                static_cast<std::uint64_t>(std::clamp((p.y - root_.lo.y) * scale, 0.0, top))};
+    }
 
     /// The leaf holding lattice point q, descending from cell `from` (which must hold q): one bit
     /// of each coordinate per level, no box arithmetic. O(levels below `from`).
