@@ -663,9 +663,11 @@ each). Results are bit-identical; one thread, least of four runs from the interf
 steps: Table 6's 160/0/5/2 step 5.15 → 4.61 ms (0.90×), Table 5's 40/0/3/0 0.287 → 0.269 ms
 (0.94×), 640/0/7/0 10.3 → 10.1 ms (0.98×), 320/0/6/4 39.4 → 38.7 ms (0.98×), Table 7's
 320/3/7/4 91.5 → 88.8 ms (0.97×). The cell box and lattice point that every query computes are
-inline now (they were calls into another library): 1.5–4% more, bit-identical. Measured and not
-kept: precomputed vertex pseudo-normals for the sign (no gain beyond the noise, ±4%); leaf lists ordered by their segments'
-box distance, with the scan stopped once that exceeds the best distance (bit-identical, but
+inline now (they were calls into another library): 1.5–4% more, bit-identical. On this machine
+the same measurement varies by up to ±15% between runs minutes apart, so gains of a few percent
+show in interleaved runs, not in one bench against the last. Measured and not kept: precomputed
+vertex pseudo-normals for the sign (no gain beyond the noise, ±4%); leaf lists ordered by their
+segments' box distance, with the scan stopped once that exceeds the best distance (bit-identical, but
 building the order cost more than it saved: 640/0/7/0 10.2 → 11.3 ms); a closest-point
 kernel without branches (1% slower); dynamic scheduling of the parallel loops (5–9% slower on
 two threads); and `sqrt(x² + y²)` for `std::hypot` (1–6% faster, but not bit-identical, and the
