@@ -220,11 +220,11 @@ std::string cell_table(const TableSpec& spec, int rows, int prefix,
             // second is timed here, the least of repeated runs (one run of a few milliseconds
             // also pays the process's first page faults); a longer one is the study's own.
             double t_step = t_study;
-            if (!std::isfinite(t_study) || t_first * full.steps < 1.0) {
+            const bool short_run = t_first * full.steps < 1.0;
+            if (!std::isfinite(t_study) || short_run) {
                 set_thread_count(1);
                 RunResult whole;
                 const auto time_whole = [&] { whole = run(initial, *law, problem.domain, full); };
-                const bool short_run = t_first * full.steps < 1.0;
                 const Least w =
                     short_run ? least_of_repeats(time_whole) : least_of_repeats(time_whole, 0.0, 1);
                 t_step = w.cpu / std::max(1, whole.steps_done);

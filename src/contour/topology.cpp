@@ -7,7 +7,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <unordered_map>
 
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
@@ -458,10 +457,10 @@ Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOp
 LinearContour march(Topology& topo) {
     const auto& mesh = topo.mesh;
     LinearContour out;
-    std::unordered_map<std::uint64_t, std::uint32_t> on_edge;  // edge (lo, hi) -> contour vertex
+    KeyMap<std::uint32_t> on_edge;  // edge (lo, hi) -> contour vertex
     auto vertex_on = [&](std::uint32_t a, std::uint32_t b) {
         if (a > b) std::swap(a, b);
-        const auto [it, fresh] = on_edge.try_emplace(
+        const auto [vertex, fresh] = on_edge.try_emplace(
             (std::uint64_t{a} << 32) | b, static_cast<std::uint32_t>(out.brackets.size()));
         if (fresh) {
             out.brackets.push_back(
@@ -469,7 +468,7 @@ LinearContour march(Topology& topo) {
             out.next.push_back(std::numeric_limits<std::uint32_t>::max());
             out.triangle.push_back(0);
         }
-        return it->second;
+        return *vertex;
     };
     topo.crossed.assign(mesh.triangles.size(), 0);
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {

@@ -4,6 +4,8 @@
 /// one; std::unordered_map's node per entry cost them a cache miss per lookup.
 #pragma once
 
+#include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -62,9 +64,7 @@ public:
 
 private:
     static std::size_t capacity_for(std::size_t expected) {
-        std::size_t c = 16;
-        while (c < 2 * expected) c *= 2;
-        return c;
+        return std::bit_ceil(std::max<std::size_t>(16, 2 * expected));
     }
     /// Fibonacci hashing: the top bits of key times 2^64/φ.
     std::size_t slot(std::uint64_t key) const {
@@ -74,8 +74,7 @@ private:
         std::vector<Slot> old(capacity);
         old.swap(slots_);
         mask_ = capacity - 1;
-        shift_ = 64;
-        for (std::size_t c = capacity; c > 1; c /= 2) --shift_;
+        shift_ = 64 - std::countr_zero(capacity);
         size_ = 0;
         for (const Slot& s : old)
             if (s.key != no_key) try_emplace(s.key, s.value);
