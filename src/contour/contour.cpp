@@ -59,15 +59,15 @@ void count_output(const Interface& curves, ContourStats& s) {
         curves.empty() ? 0.0 : static_cast<double>(s.g_evals) / static_cast<double>(curves.size());
 }
 
-/// contour() with or without a lower bound of |G|.
+/// contour() with or without bounds on G.
 ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
-                           std::optional<BatchFunctionRef> lower_bound) {
+                           std::optional<BatchBoundsRef> bounds) {
     validate(options, domain);
     ContourStats stats;
     std::size_t evaluations = 0;
     const contouring::CountingFunction counted(g, evaluations);
 
-    contouring::Topology topo = contouring::resolve_topology(counted, domain, options, lower_bound);
+    contouring::Topology topo = contouring::resolve_topology(counted, domain, options, bounds);
     stats.g_evals_tree = evaluations;
     stats.cells = topo.tree.size();
     stats.leaves = topo.tree.leaves().size();
@@ -112,8 +112,8 @@ ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOption
 }
 
 ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
-                      BatchFunctionRef lower_bound) {
-    return contour_with(g, domain, options, lower_bound);
+                      BatchBoundsRef bounds) {
+    return contour_with(g, domain, options, bounds);
 }
 
 }  // namespace slc

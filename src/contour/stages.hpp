@@ -44,15 +44,15 @@ struct Topology {
     double gamma = 1.0;                 ///< the gradient bound at which the tree balanced
     std::size_t perturbed = 0;          ///< vertices perturbed
     std::size_t settled = 0;            ///< tree points given stand-ins instead of evaluations of G
-    std::size_t bound_evals = 0;        ///< evaluations of the lower bound
+    std::size_t bound_evals = 0;        ///< evaluations of the bounds
 };
 
 /// Builds the K-level tree (γ doubled until balanced), triangulates it, perturbs vertices with
 /// |G| ≤ η and checks that the zero set stays off the domain boundary. Throws NumericalFailure
 /// naming the place when it does not, or when perturbation keeps failing.
-/// lower_bound, when given, is the contour's cheap bound on |G| with G's sign (0: unknown).
+/// bounds, when given, are the contour's cheap bounds on G.
 Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
-                          std::optional<BatchFunctionRef> lower_bound);
+                          std::optional<BatchBoundsRef> bounds);
 
 /// The zero set of the piecewise-linear interpolant: one vertex per triangle edge with a sign
 /// change, one segment per crossed triangle, linked into closed polygons.

@@ -51,23 +51,26 @@ private:
     double step_;
 };
 
-/// G at the corners and centres of the tree's cells, evaluated once per point, in one batch per
-/// call, and the smallest |G| over each cell's sample points. Cells at the depth limit are never
-/// tested for splitting, so their centres wait for complete_centres().
+/// G at the corners and centres of the tree's cells, each point evaluated at most once, in one
+/// batch per call, and the smallest |G| over each cell's sample points. Cells at the depth limit
+/// are never tested for splitting, so their centres wait for complete_centres().
 ///
-/// With ContourOptions::distance_slack δ, |G(x) − G(y)| ≤ |x − y| + δ, so a new point x near a
-/// known sample y has |G(x)| ≥ |G(y)| − |x − y| − δ and, when that is positive, G(y)'s sign. A
-/// point whose bound from its cell's parent's samples already reaches the split threshold γ·edge
-/// is settled, not evaluated: the bound with its sign stands in for G. So is a point that the
-/// caller's lower bound, tried next, places at the threshold. Every split decision is the one
-/// exact values give (a stand-in below a later, larger threshold is evaluated first), and
-/// stand-ins left in triangles where G changes sign are evaluated before the contour is marched.
+/// A point is evaluated only when a split test, the sign of a triangle or root finding needs G
+/// there. With ContourOptions::distance_slack δ, |G(x) − G(y)| ≤ |x − y| + δ, so a new point x
+/// near a known sample y has |G(y)| − |x − y| − δ ≤ |G(x)| ≤ |G(y)| + |x − y| + δ and, when the
+/// lower bound is positive, G(y)'s sign; the caller's bounds on G, one batch, are tried next.
+/// Where either gives the sign, the lower bound with that sign stands in for G, beside the upper
+/// bound. A cell's test needs no value where some sample's upper bound is below its threshold
+/// γ·edge (it splits), nor where a stand-in's lower bound reaches it; the stand-ins it does need
+/// are offered to the caller's bounds, then evaluated. So every split decision is the one exact
+/// values give, and stand-ins left in triangles where G changes sign are evaluated before the
+/// contour is marched.
 class TreeSampler {
 public:
-    TreeSampler(BatchFunctionRef g, std::optional<BatchFunctionRef> lower_bound,
-                const Quadtree& tree, const ContourOptions& options, double rounding)
+    TreeSampler(BatchFunctionRef g, std::optional<BatchBoundsRef> bounds, const Quadtree& tree,
+                const ContourOptions& options, double rounding)
         : g_(g),
-          lower_bound_(lower_bound),
+          bounds_(bounds),
           tree_(tree),
           grid_(tree),
           slack_(options.distance_slack ? std::optional(*options.distance_slack + rounding)
@@ -75,56 +78,53 @@ public:
           rounding_(rounding),
           eta_(options.eta) {}
 
-    /// Samples the given cells (the root, or children of split cells): new points are evaluated
-    /// in one batch unless their parent's samples or the lower bound (one batch before) settle
-    /// them at the cells' split threshold.
-    void sample(std::span<const std::uint32_t> cells, double gamma) {
-        std::vector<std::uint64_t> keys, open;
-        std::vector<double> thresholds;
+    /// Samples the given cells (the root, or children of split cells): new points whose sign
+    /// neither their parent's samples nor the bounds (one batch) give are evaluated, in one batch.
+    void sample(std::span<const std::uint32_t> cells) {
+        std::vector<std::uint64_t> open;
         for (std::uint32_t c : cells) {
-            const auto& cell = tree_.cell(c);
-            const double threshold = gamma * tree_.edge(cell.level);
-            const Donors donors = c == 0 ? Donors{} : donors_of(sample_keys(cell.parent));
+            const Donors donors = c == 0 ? Donors{} : donors_of(sample_keys(tree_.cell(c).parent));
             for (std::uint64_t k : sample_keys(c)) {
                 if (values_.contains(k)) continue;
-                const std::optional<double> bound = settled(point(k), donors, threshold);
-                if (bound) {
-                    values_.try_emplace(k, Sample{*bound, false});
-                } else if (!lower_bound_) {
-                    add(k, keys);
+                if (const auto stand_in = from_donors(point(k), donors)) {
+                    values_.try_emplace(k, *stand_in);
                 } else {
                     add(k, open);
-                    thresholds.push_back(threshold);
                 }
             }
         }
-        for (std::uint64_t k : settle_by_lower_bound(open, thresholds)) keys.push_back(k);
-        evaluate(keys);
-        cell_min_.resize(tree_.size(), std::numeric_limits<double>::infinity());
+        evaluate(apply_bounds(open));
+        cell_min_.resize(tree_.size(), infinity);
         for (std::uint32_t c : cells) update_min(c);
     }
 
-    /// Before the cells are tested against γ: evaluates the stand-ins on which a split would
-    /// rest (a bound below the threshold says nothing), so each test sees what exact values
-    /// would decide. One batch.
+    /// Before the cells are tested against γ: resolves the stand-ins on which a test would rest,
+    /// so each test sees what exact values would decide. The parents' stand-ins among them are
+    /// offered to the bounds first (one batch); those still below the threshold are evaluated
+    /// (one batch).
     void settle_tests(std::span<const std::uint32_t> cells, double gamma) {
-        std::vector<std::uint64_t> keys;
         std::vector<std::uint32_t> touched;
         for (std::uint32_t c : cells) {
             const int level = tree_.cell(c).level;
-            const double threshold = gamma * tree_.edge(level);
-            if (level == tree_.max_depth() || !(threshold > cell_min_[c])) continue;
-            // The cell's least value may also be stale: a neighbour's test evaluated a stand-in
+            // The cell's least value may also be stale: a neighbour's test resolved a stand-in
             // it shares.
-            touched.push_back(c);
-            for (std::uint64_t k : sample_keys(c)) {
-                Sample& s = values_.at(k);
-                if (!s.exact && std::abs(s.value) < threshold) {
-                    s = Sample{std::numeric_limits<double>::quiet_NaN(), true};
-                    keys.push_back(k);
-                }
-            }
+            if (level < tree_.max_depth() && gamma * tree_.edge(level) > cell_min_[c])
+                touched.push_back(c);
         }
+        if (bounds_) {
+            std::vector<std::uint64_t> keys;
+            for_needed_stand_ins(touched, gamma, [&](std::uint64_t k, Sample& s) {
+                if (s.source != Source::parents) return;
+                s.source = Source::bounds;  // offered once
+                keys.push_back(k);
+            });
+            apply_bounds(keys);
+        }
+        std::vector<std::uint64_t> keys;
+        for_needed_stand_ins(touched, gamma, [&](std::uint64_t k, Sample& s) {
+            s = pending;
+            keys.push_back(k);
+        });
         evaluate(keys);
         for (std::uint32_t c : touched) update_min(c);
     }
@@ -132,44 +132,52 @@ public:
     /// Centres of the leaves at the depth limit, in one batch. A leaf whose corners share one sign
     /// with |G| > γ h/√2 holds no zero if |∇G| ≤ γ (every point is within h/√2 of a corner), and
     /// such a leaf has no finer neighbour, so all its triangles keep that sign: its centre gets a
-    /// stand-in value with that sign instead of an evaluation. So does a centre the distance
-    /// bound settles (its sign is then certain).
+    /// stand-in value with that sign instead of an evaluation. So does a centre whose sign the
+    /// corners' values or the bounds make certain.
     void complete_centres(double gamma) {
         const int depth = tree_.max_depth();
         const double clearance = gamma * tree_.edge(depth) / std::numbers::sqrt2;
-        std::vector<std::uint64_t> keys;
+        std::vector<std::uint64_t> open;
         for (std::uint32_t c : tree_.leaves()) {
             if (tree_.cell(c).level != depth) continue;
             const auto k = sample_keys(c, true);
-            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            double lo = infinity, hi = -infinity;
             for (int i = 0; i < 4; ++i) {
                 lo = std::min(lo, values_.at(k.k[i]).value);
                 hi = std::max(hi, values_.at(k.k[i]).value);
             }
             if (values_.contains(k.k[4])) continue;
             if (lo > clearance || hi < -clearance) {
-                values_.try_emplace(k.k[4], Sample{lo > 0.0 ? lo : hi, false});
-            } else if (const auto bound = settled(point(k.k[4]), donors_of(Keys{k.k, 4}), 0.0)) {
-                values_.try_emplace(k.k[4], Sample{*bound, false});
+                values_.try_emplace(k.k[4], Sample{lo > 0.0 ? lo : hi, infinity, Source::parents});
+            } else if (const auto stand_in = from_donors(point(k.k[4]), donors_of(Keys{k.k, 4}))) {
+                values_.try_emplace(k.k[4], *stand_in);
             } else {
-                add(k.k[4], keys);
+                add(k.k[4], open);
             }
         }
-        evaluate(keys);
+        evaluate(apply_bounds(open));
     }
 
     double min_abs(std::uint32_t c) const { return cell_min_[c]; }
     std::size_t bound_evals() const { return bound_evals_; }
     double value(std::uint64_t key) const { return values_.at(key).value; }
-    bool exact(std::uint64_t key) const { return values_.at(key).exact; }
+    bool exact(std::uint64_t key) const { return values_.at(key).source == Source::g; }
     const SampleGrid& grid() const { return grid_; }
 
 private:
-    /// G at a point, or a stand-in: a lower bound on |G| with G's sign.
+    static constexpr double infinity = std::numeric_limits<double>::infinity();
+
+    /// Where a sample's value comes from: G itself, or a stand-in from the parent's samples or
+    /// from the caller's bounds (after which only G can tighten it).
+    enum class Source : std::uint8_t { g, parents, bounds };
+    /// G at a point, or a stand-in: a lower bound on |G| with G's sign, and an upper bound.
     struct Sample {
         double value;
-        bool exact;
+        double upper;  ///< |G| ≤ upper: |value| when exact
+        Source source;
     };
+    /// A point in the batch for G.
+    static constexpr Sample pending{std::numeric_limits<double>::quiet_NaN(), infinity, Source::g};
 
     /// A cell's sample points: corners, then the centre when the cell can be split (or always,
     /// with with_centre).
@@ -189,10 +197,30 @@ private:
     }
     Vec2 point(std::uint64_t k) const { return grid_.point(k >> 32, k & 0xffffffffu); }
 
+    /// Calls f(key, sample) once for each stand-in that the test of a touched cell needs: one
+    /// whose lower bound is below the cell's threshold, in a cell where no sample's upper bound
+    /// is below it.
+    template <class F>
+    void for_needed_stand_ins(std::span<const std::uint32_t> touched, double gamma, F f) {
+        for (std::uint32_t c : touched) {
+            const double threshold = gamma * tree_.edge(tree_.cell(c).level);
+            const Keys keys = sample_keys(c);
+            if (std::any_of(keys.begin(), keys.end(),
+                            [&](std::uint64_t k) { return values_.at(k).upper < threshold; })) {
+                continue;  // the cell splits whatever G is at its stand-ins
+            }
+            for (std::uint64_t k : keys) {
+                Sample& s = values_.at(k);
+                if (s.source != Source::g && std::abs(s.value) < threshold) f(k, s);
+            }
+        }
+    }
+
     /// Known samples near a new point: where they are and G (or a stand-in) there.
     struct Donors {
         std::array<Vec2, 5> at;
         std::array<double, 5> value;
+        std::array<double, 5> upper;
         std::size_t n = 0;
     };
     Donors donors_of(Keys keys) const {
@@ -202,43 +230,61 @@ private:
             const Sample* s = values_.find(k);
             if (s == nullptr || std::isnan(s->value)) continue;
             d.at[d.n] = point(k);
+            d.upper[d.n] = s->upper;
             d.value[d.n++] = s->value;
         }
         return d;
     }
-    /// The donors' bound on G at x: a stand-in when it settles x at threshold.
-    std::optional<double> settled(Vec2 x, const Donors& donors, double threshold) const {
-        double best = 0.0, sign = 0.0;
+    /// The donors' bounds on G at x: a stand-in when they give its sign.
+    std::optional<Sample> from_donors(Vec2 x, const Donors& donors) const {
+        double lower = 0.0, sign = 0.0, upper = infinity;
         for (std::size_t i = 0; i < donors.n; ++i) {
             const Vec2 r = x - donors.at[i];  // |r| to within an ulp, which the slack covers
-            const double b = std::abs(donors.value[i]) - std::sqrt(dot(r, r)) - *slack_;
-            if (b > best) {
-                best = b;
+            const double reach = std::sqrt(dot(r, r)) + *slack_;
+            const double b = std::abs(donors.value[i]) - reach;
+            if (b > lower) {
+                lower = b;
                 sign = donors.value[i];
             }
+            upper = std::min(upper, donors.upper[i] + reach);
         }
-        if (settles(best, threshold)) return std::copysign(best, sign);
-        return std::nullopt;
+        if (!certain(lower)) return std::nullopt;
+        return Sample{std::copysign(lower, sign), upper, Source::parents};
     }
-    /// A lower bound b of |G| settles a point at threshold when it reaches it and exceeds η (so
-    /// that the point is never a perturbation candidate).
-    bool settles(double b, double threshold) const { return b >= threshold && b > eta_; }
-    /// The lower bound at the keys (one batch), less the rounding allowance: those it settles
-    /// at their threshold get it as a stand-in. Returns the keys left for G.
-    std::vector<std::uint64_t> settle_by_lower_bound(std::span<const std::uint64_t> keys,
-                                                     std::span<const double> thresholds) {
-        if (keys.empty()) return {};
+    /// A lower bound of |G| gives G's sign, and a stand-in, when it exceeds η (so that the point
+    /// is never a perturbation candidate).
+    bool certain(double lower) const { return lower > eta_; }
+
+    /// The bounds at the keys (one batch; none without bounds), widened by the rounding
+    /// allowance, tighten their stand-ins, or make stand-ins of the points pending for G whose
+    /// sign they give. Returns the keys still pending.
+    std::vector<std::uint64_t> apply_bounds(std::vector<std::uint64_t> keys) {
+        if (!bounds_ || keys.empty()) return keys;
         const std::vector<Vec2> points = points_of(keys);
-        std::vector<double> bounds(points.size());
-        (*lower_bound_)(points, bounds);
+        std::vector<Interval> bounds(points.size());
+        (*bounds_)(points, bounds);
         bound_evals_ += points.size();
         std::vector<std::uint64_t> left;
         for (std::size_t i = 0; i < keys.size(); ++i) {
-            const double b = std::abs(bounds[i]) - rounding_;
-            if (std::isfinite(b) && settles(b, thresholds[i]))
-                values_.assign(keys[i], Sample{std::copysign(b, bounds[i]), false});
-            else
+            Sample& s = values_.at(keys[i]);
+            const auto [lo, hi] = bounds[i];
+            // An interval that excludes 0 gives G's sign and |G| at least its end nearer 0; a
+            // NaN, or ends out of order, say nothing.
+            const bool valid = lo <= hi;
+            const double lower = valid ? (lo > 0.0 ? lo : (hi < 0.0 ? -hi : 0.0)) - rounding_ : 0.0;
+            const double upper =
+                valid ? std::max(std::abs(lo), std::abs(hi)) + rounding_ : infinity;
+            if (s.source != Source::g) {
+                // A stand-in already: both are true bounds, so they agree on a certain sign.
+                if (certain(lower) && lower > std::abs(s.value))
+                    s.value = std::copysign(lower, s.value);
+                s.upper = std::min(s.upper, upper);
+                s.source = Source::bounds;
+            } else if (certain(lower)) {
+                s = Sample{std::copysign(lower, lo), upper, Source::bounds};
+            } else {
                 left.push_back(keys[i]);
+            }
         }
         return left;
     }
@@ -249,13 +295,13 @@ private:
         return points;
     }
     void update_min(std::uint32_t c) {
-        double m = std::numeric_limits<double>::infinity();
+        double m = infinity;
         for (std::uint64_t k : sample_keys(c)) m = std::min(m, std::abs(values_.at(k).value));
         cell_min_[c] = m;
     }
+    /// Adds k, if new, to the points pending for G.
     void add(std::uint64_t k, std::vector<std::uint64_t>& keys) {
-        if (values_.try_emplace(k, Sample{std::numeric_limits<double>::quiet_NaN(), true}).second)
-            keys.push_back(k);
+        if (values_.try_emplace(k, pending).second) keys.push_back(k);
     }
     void evaluate(std::span<const std::uint64_t> keys) {
         if (keys.empty()) return;
@@ -263,11 +309,11 @@ private:
         std::vector<double> values(points.size());
         g_(points, values);
         for (std::size_t i = 0; i < keys.size(); ++i)
-            values_.assign(keys[i], Sample{values[i], true});
+            values_.assign(keys[i], Sample{values[i], std::abs(values[i]), Source::g});
     }
 
     BatchFunctionRef g_;
-    std::optional<BatchFunctionRef> lower_bound_;
+    std::optional<BatchBoundsRef> bounds_;
     std::size_t bound_evals_ = 0;
     const Quadtree& tree_;
     SampleGrid grid_;
@@ -292,7 +338,7 @@ void split_while_coarse(Quadtree& tree, TreeSampler& sampler, std::vector<std::u
                 for (std::uint32_t k = 0; k < 4; ++k) children.push_back(first + k);
             }
         }
-        sampler.sample(children, gamma);
+        sampler.sample(children);
         frontier = std::move(children);
     }
 }
@@ -300,7 +346,7 @@ void split_while_coarse(Quadtree& tree, TreeSampler& sampler, std::vector<std::u
 /// The split criterion is monotone in γ, so the tree for 2γ refines the tree for γ: instead of
 /// rebuilding from the root, the leaves are offered to the criterion again. Returns γ.
 double build_tree(Quadtree& tree, TreeSampler& sampler, double gamma) {
-    sampler.sample(std::vector<std::uint32_t>{0}, gamma);
+    sampler.sample(std::vector<std::uint32_t>{0});
     std::vector<std::uint32_t> frontier{0};
     for (int doubling = 0;; ++doubling) {
         split_while_coarse(tree, sampler, std::move(frontier), gamma);
@@ -315,7 +361,7 @@ double build_tree(Quadtree& tree, TreeSampler& sampler, double gamma) {
     tree.balance([&](std::size_t c) {
         for (std::uint32_t k = 0; k < 4; ++k) children.push_back(tree.cell(c).first_child + k);
     });
-    sampler.sample(children, gamma);
+    sampler.sample(children);
     return gamma;
 }
 
@@ -424,12 +470,12 @@ void evaluate_crossed_stand_ins(Topology& topo, BatchFunctionRef g) {
 }  // namespace
 
 Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
-                          std::optional<BatchFunctionRef> lower_bound) {
+                          std::optional<BatchBoundsRef> bounds) {
     Topology topo{Quadtree(domain, options.depth), {}, {}, {}, {}, options.gamma, 0, 0, 0};
     // Both bounds allow for rounding in G and in the bound: a few thousand ulps of the
     // coordinates.
     const double rounding = 1e-12 * std::max(domain.largest_magnitude(), domain.width());
-    TreeSampler sampler(g, lower_bound, topo.tree, options, rounding);
+    TreeSampler sampler(g, bounds, topo.tree, options, rounding);
     topo.gamma = build_tree(topo.tree, sampler, options.gamma);
     sampler.complete_centres(topo.gamma);
     topo.bound_evals = sampler.bound_evals();

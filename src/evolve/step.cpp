@@ -89,6 +89,13 @@ public:
         // ½ c² t (1 − t) |κ| outside the chord at t where the curve is convex.
         return p.distance + 0.5 * c2 * p.t * (1.0 - p.t) * kappa;
     }
+    /// The exact signed distance to this level's polygon, whatever StepOptions::arcs says, and
+    /// W(x), from one closest-point query.
+    std::pair<double, Vec2> chord_distance_and_velocity(Vec2 x) const {
+        const ClosestPoint p = tree_.closest_point(x);
+        if (extension_ == Extension::whitney) return {p.distance, (*whitney_)(x)};
+        return {p.distance, nearest_point_extension<Vec2>(tree_.curves(), u_, p)};
+    }
     /// The exact signed distance to this level's polygon, whatever StepOptions::arcs says.
     double chord_distance(Vec2 x) const { return tree_.closest_point(x).distance; }
     /// The most distance() differs from chord_distance(): the largest bulge of an arc.
@@ -160,38 +167,39 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
         return result;
     }
 
-    // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x, t); Γ(t)). F is 1-Lipschitz and the
-    // foot moves at most d = k max|W| from x, so |G̃(x) − G̃(y)| ≤ |x − y| + 2d, and G̃(x) lies
-    // within d of F(x): one distance query bounds G̃ where G̃ itself takes two. With arcs, F is
-    // the chords' distance plus a bulge of at most b, which adds b to d in both statements.
-    // For a foot that moves at most d: sign(F(x)) (|F(x)| − d), or 0 where that says nothing.
-    auto lower_bound = [&now](double d) {
-        return pointwise(
-            [&now, d](Vec2 x) {
-                const double f = now.chord_distance(x);
-                const double margin = std::abs(f) - d;
-                return margin > 0.0 ? std::copysign(margin, f) : 0.0;
-            },
-            expensive_grain);
-    };
+    // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x); Γ(t)). F is 1-Lipschitz, so
+    // G̃(x) lies within k|W(x)| of F(x), and |G̃(x) − G̃(y)| ≤ |x − y| + 2d with d = k max|W|: one
+    // distance query bounds G̃ where G̃ itself takes two. With arcs, F is the chords' distance
+    // plus a bulge of at most b, which adds b to the foot's move in both statements.
     ContourOptions contour_options = options.contour;
     const double predictor_reach = k * now.max_speed() + now.max_bulge();
     contour_options.distance_slack = 2.0 * predictor_reach;
-    const auto predictor_bound = lower_bound(predictor_reach);
+    const auto predictor_bounds = pointwise(
+        [&](Vec2 x) {
+            const auto [f, w] = now.chord_distance_and_velocity(x);
+            const double d = k * norm(w) + now.max_bulge();
+            return Interval{f - d, f + d};
+        },
+        expensive_grain);
     auto predictor =
         pointwise([&](Vec2 x) { return now.distance(x - k * finite(now.velocity(x), law, t, x)); },
                   expensive_grain);
-    ContourResult predicted = contour(predictor, domain, contour_options, predictor_bound);
+    ContourResult predicted = contour(predictor, domain, contour_options, predictor_bounds);
     result.stats.predictor = predicted.stats;
     if (predicted.curves.empty()) return result;  // everything vanished within the step
 
     // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x. Its foot moves
-    // at most d = k/2 (max|W(t)| + max|W(t + k)|) from x; the same bound, with this d, needs one
+    // at most d = k/2 (max|W(t)| + max|W(t + k)|) from x; the same bounds, F(x) ± d, need one
     // query where G needs four.
     const Level next(predicted.curves, t + k, k, law, domain, options);
     const double corrector_reach = 0.5 * k * (now.max_speed() + next.max_speed()) + now.max_bulge();
     contour_options.distance_slack = 2.0 * corrector_reach;
-    const auto corrector_bound = lower_bound(corrector_reach);
+    const auto corrector_bounds = pointwise(
+        [&now, corrector_reach](Vec2 x) {
+            const double f = now.chord_distance(x);
+            return Interval{f - corrector_reach, f + corrector_reach};
+        },
+        expensive_grain);
     auto corrector = pointwise(
         [&](Vec2 x) {
             const Vec2 w = finite(now.velocity(x), law, t, x);
@@ -201,7 +209,7 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
             return now.distance(x - (0.5 * k) * (w_foot + w_next));
         },
         expensive_grain);
-    ContourResult corrected = contour(corrector, domain, contour_options, corrector_bound);
+    ContourResult corrected = contour(corrector, domain, contour_options, corrector_bounds);
     result.stats.corrector = corrected.stats;
     result.curves = std::move(corrected.curves);
     return result;

@@ -238,7 +238,8 @@ TEST(Run, DirectFlowFieldIsFourthOrderInTime) {
 TEST(Run, StepSettlesFarTreePointsWithTheTreeOfExactValues) {
     // The predictor of one merging-circles step, contoured here with every tree point evaluated,
     // must have the tree, the root finding and the refinement of the step's own contour, which
-    // settles the points far from Γ by the bound |G(x) − G(y)| ≤ |x − y| + 2k max|W|.
+    // settles the points far from Γ by the bound |G(x) − G(y)| ≤ |x − y| + 2k max|W| and by
+    // F(x) ± k|W(x)|, evaluating G only where a split test or a crossed triangle needs it.
     const Problem p = make_problem("merging-circles");
     const auto law = make_velocity(p.velocity, p.velocity_params, p.module);
     const Interface initial = prepare_interface(p.initial, p.domain).curves;

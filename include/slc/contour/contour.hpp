@@ -75,10 +75,10 @@ struct ContourStats {
     std::size_t g_evals_refine = 0;  ///< of which: adaptive refinement (midpoints, brackets, roots)
     double g_evals_per_vertex = 0.0;  ///< g_evals / vertices; 0 for an empty result
 
-    /// Tree points that distance_slack, the lower bound or the gradient bound settled without
+    /// Tree points that distance_slack, the bounds or the gradient bound settled without
     /// evaluating G.
     std::size_t settled = 0;
-    std::size_t bound_evals = 0;    ///< evaluations of the lower bound (not counted in g_evals)
+    std::size_t bound_evals = 0;    ///< evaluations of the bounds (not counted in g_evals)
     double gamma = 0.0;             ///< the gradient bound γ at which the tree was balanced
     std::size_t perturbed = 0;      ///< triangulation vertices moved because |G| ≤ η there
     std::size_t stalled_roots = 0;  ///< roots left with |G| > η: G jumps across zero there
@@ -115,14 +115,14 @@ struct ContourResult {
 /// problem is ill-posed), or when g returns a value that is not finite.
 ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options = {});
 
-/// The same contour, bit for bit, with a cheaper function that bounds G from below: lower_bound
-/// sets each value b to 0 (nothing known) or to a number with G's sign and |G| ≥ |b| at that
-/// point (rounding in G and in b is allowed for here). Tree points that neither a nearby sample
-/// (ContourOptions::distance_slack) nor lower_bound places above their split threshold are the
-/// only ones where G is evaluated. For the
-/// semi-Lagrangian formula G(x) = F(x − D(x)) with |D| ≤ d, sign(F(x)) (|F(x)| − d) is such a
-/// bound, at one distance query instead of G's several.
+/// The same contour, bit for bit, with a cheaper function that bounds G: bounds sets each value
+/// to an Interval holding G at that point ({−∞, ∞}: nothing known; rounding in G and in the
+/// bounds is allowed for here). A tree point that no nearby sample settles
+/// (ContourOptions::distance_slack) is offered to bounds first, and G is evaluated there only if
+/// the interval decides neither the point's sign with |G| at or above the split threshold, nor
+/// |G| below it (which decides the split). For the semi-Lagrangian formula G(x) = F(x − D(x))
+/// with |D(x)| ≤ d(x), F(x) ± d(x) are such bounds, at one distance query instead of G's several.
 ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
-                      BatchFunctionRef lower_bound);
+                      BatchBoundsRef bounds);
 
 }  // namespace slc

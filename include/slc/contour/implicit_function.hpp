@@ -7,6 +7,7 @@
 
 #include <concepts>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <span>
 #include <type_traits>
@@ -17,21 +18,30 @@
 
 namespace slc {
 
+/// Bounds on a value: lo ≤ G ≤ hi. {−∞, ∞} says nothing.
+struct Interval {
+    double lo = -std::numeric_limits<double>::infinity();
+    double hi = std::numeric_limits<double>::infinity();
+};
+
 /// A function G of the plane evaluated on batches: g(points, values) sets values[i] = G(points[i])
 /// for every i, with values.size() == points.size(). It may use all worker threads, but each value
-/// must depend only on its point: not on the thread count, nor on the rest of the batch.
-template <class G>
-concept BatchFunction = std::invocable<const G&, std::span<const Vec2>, std::span<double>>;
+/// must depend only on its point: not on the thread count, nor on the rest of the batch. Value is
+/// double for G itself, Interval for bounds on G.
+template <class G, class Value = double>
+concept BatchFunction = std::invocable<const G&, std::span<const Vec2>, std::span<Value>>;
 
-/// A non-owning reference to any BatchFunction (a function, a lambda, any callable object), like
-/// std::function_ref: the referenced callable must outlive the reference. Type erasure costs one
-/// indirect call per batch, which is nothing beside the batch itself, and lets the contouring
-/// algorithm live in compiled sources.
-class BatchFunctionRef {
+/// A non-owning reference to any BatchFunction with values of type Value (a function, a lambda,
+/// any callable object), like std::function_ref: the referenced callable must outlive the
+/// reference. Type erasure costs one indirect call per batch, which is nothing beside the batch
+/// itself, and lets the contouring algorithm live in compiled sources.
+template <class Value>
+class BatchRef {
 public:
     /// Refers to g, which must outlive the reference (a temporary does not).
-    template <BatchFunction G>
-    requires(!std::same_as<std::remove_cvref_t<G>, BatchFunctionRef>) BatchFunctionRef(const G& g)
+    template <class G>
+    requires(BatchFunction<G, Value> && !std::same_as<std::remove_cvref_t<G>, BatchRef>)
+        BatchRef(const G& g)
     noexcept  // implicit, as std::function_ref
         : call_(&call<G>) {
         if constexpr (std::is_function_v<G>) {
@@ -42,7 +52,7 @@ public:
     }
 
     /// Calls the referenced function: values[i] = G(points[i]), values.size() == points.size().
-    void operator()(std::span<const Vec2> points, std::span<double> values) const {
+    void operator()(std::span<const Vec2> points, std::span<Value> values) const {
         call_(target_, points, values);
     }
 
@@ -54,7 +64,7 @@ private:
     };
 
     template <class G>
-    static void call(Target g, std::span<const Vec2> points, std::span<double> values) {
+    static void call(Target g, std::span<const Vec2> points, std::span<Value> values) {
         if constexpr (std::is_function_v<G>) {
             reinterpret_cast<G*>(g.function)(points, values);
         } else {
@@ -63,18 +73,26 @@ private:
     }
 
     Target target_{};
-    void (*call_)(Target, std::span<const Vec2>, std::span<double>);
+    void (*call_)(Target, std::span<const Vec2>, std::span<Value>);
 };
 
-/// The BatchFunction that evaluates a pointwise function f(Vec2) -> double at every point of a
-/// batch on all worker threads, for batches of at least min_iterations points (pass
-/// expensive_grain for an f that costs a microsecond or more). f must be safe to call
-/// concurrently.
+/// A reference to a BatchFunction that evaluates G.
+using BatchFunctionRef = BatchRef<double>;
+/// A reference to a BatchFunction that bounds G: an Interval holding G at each point.
+using BatchBoundsRef = BatchRef<Interval>;
+
+/// The BatchFunction that evaluates a pointwise function f(Vec2) at every point of a batch on all
+/// worker threads, for batches of at least min_iterations points (pass expensive_grain for an f
+/// that costs a microsecond or more). f returns a double (G), or an Interval (bounds on G). f must
+/// be safe to call concurrently.
 template <class F>
-requires std::is_invocable_r_v<double, const F&, Vec2>
+requires std::is_invocable_r_v<double, const F&, Vec2> ||
+    std::is_invocable_r_v<Interval, const F&, Vec2>
 auto pointwise(F f, std::size_t min_iterations = parallel_grain) {
+    using Value =
+        std::conditional_t<std::is_invocable_r_v<double, const F&, Vec2>, double, Interval>;
     return
-        [f = std::move(f), min_iterations](std::span<const Vec2> points, std::span<double> values) {
+        [f = std::move(f), min_iterations](std::span<const Vec2> points, std::span<Value> values) {
             parallel_for(
                 points.size(), [&](std::size_t i) { values[i] = f(points[i]); }, min_iterations);
         };

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <set>
 
 #include "contour_checks.hpp"
 #include "random_interfaces.hpp"
@@ -14,6 +15,7 @@
 #include "slc/core/parallel.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/geometry/shapes.hpp"
+#include "slc/tree/triangulation.hpp"
 
 namespace slc {
 namespace {
@@ -125,8 +127,8 @@ TEST(ContourDistance, RandomInterfacesGiveSimpleOrientedCurves) {
 TEST(ContourDistance, BoundsSkipEvaluationsAndChangeNothing) {
     // G(x) = F(x − d(x)) with a displacement |d| ≤ D that jumps from cell to cell of a fine
     // checkerboard: |G(x) − G(y)| ≤ |x − y| + 2D, so distance_slack = 2D is a true bound, and
-    // with it (and a lower bound) the contour must be the one every point evaluated gives, bit
-    // for bit.
+    // with it (and bounds F ± D) the contour must be the one every point evaluated gives, bit for
+    // bit.
     for (unsigned seed = 1; seed <= 8; ++seed) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
         std::mt19937 rng(seed);
@@ -151,15 +153,14 @@ TEST(ContourDistance, BoundsSkipEvaluationsAndChangeNothing) {
                 const ContourResult every = contour(g, domain, o);
                 o.distance_slack = 2.0 * shift;
                 const ContourResult bounded = contour(g, domain, o);
-                // And with the lower bound sign(F(x)) (|F(x)| − shift), since |G − F| ≤ shift.
-                auto lower = [&tree, shift](std::span<const Vec2> x, std::span<double> v) {
+                // And with the bounds F(x) ± shift, since |G − F| ≤ shift.
+                auto bounds = [&tree, shift](std::span<const Vec2> x, std::span<Interval> v) {
                     for (std::size_t i = 0; i < x.size(); ++i) {
                         const double f = tree.closest_point(x[i]).distance;
-                        const double m = std::abs(f) - shift - 1e-12;
-                        v[i] = m > 0.0 ? std::copysign(m, f) : 0.0;
+                        v[i] = {f - shift, f + shift};
                     }
                 };
-                const ContourResult both = contour(g, domain, o, lower);
+                const ContourResult both = contour(g, domain, o, bounds);
                 for (const ContourResult* r : {&bounded, &both}) {
                     EXPECT_EQ(r->curves.curves(), every.curves.curves());
                     EXPECT_EQ(r->stats.cells, every.stats.cells);
@@ -169,12 +170,64 @@ TEST(ContourDistance, BoundsSkipEvaluationsAndChangeNothing) {
                               every.stats.g_evals_tree + every.stats.settled);
                 }
                 // Far from Γ most tree points are settled by their parent cell's values, and the
-                // lower bound settles more.
+                // bounds settle more.
                 EXPECT_LT(bounded.stats.g_evals_tree, every.stats.g_evals_tree * 3 / 4);
                 EXPECT_LT(both.stats.g_evals_tree, bounded.stats.g_evals_tree);
                 EXPECT_GT(both.stats.bound_evals, 0u);
             }
         }
+    }
+}
+
+TEST(ContourDistance, ExactBoundsLeaveOnlyTheCrossedTrianglesToEvaluate) {
+    // Bounds that are G itself, [G, G], settle every tree point whose |G| exceeds η: at or above
+    // its threshold the point stands in, below it the cell splits whatever G is. G is then
+    // evaluated in the tree only at the vertices of triangles where it changes sign, which root
+    // finding starts from, and the contour is still the one every point evaluated gives. Bounds
+    // that say nothing ({−∞, ∞}, or NaN) settle nothing beyond the parents' values.
+    for (unsigned seed = 1; seed <= 4; ++seed) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        std::mt19937 rng(seed);
+        const Interface curves = testing::random_interface(rng);
+        const Box domain = Box::centered_square(1.5);
+        const DistanceTree tree(curves, domain, {.depth = 10, .triangulate = false});
+        const auto g = exact_distance(tree);
+        auto exact = [&tree](std::span<const Vec2> x, std::span<Interval> v) {
+            for (std::size_t i = 0; i < x.size(); ++i) {
+                const double f = tree.closest_point(x[i]).distance;
+                v[i] = {f, f};
+            }
+        };
+        auto nothing = [](std::span<const Vec2> x, std::span<Interval> v) {
+            for (std::size_t i = 0; i < x.size(); ++i)
+                v[i] = i % 2 == 0 ? Interval{} : Interval{std::nan(""), 1.0};
+        };
+        ContourOptions o;
+        o.depth = 7;
+        o.eps = 1e-5;
+        o.distance_slack = 0.0;
+        const ContourResult every = contour(g, domain, o);
+        const ContourResult tight = contour(g, domain, o, exact);
+        const ContourResult loose = contour(g, domain, o, nothing);
+        for (const ContourResult* r : {&tight, &loose}) {
+            EXPECT_EQ(r->curves.curves(), every.curves.curves());
+            EXPECT_EQ(r->stats.cells, every.stats.cells);
+            EXPECT_EQ(r->stats.g_evals_roots, every.stats.g_evals_roots);
+        }
+        EXPECT_EQ(loose.stats.g_evals_tree, every.stats.g_evals_tree);
+        // The vertices of the triangles where G changes sign, counted from G at every vertex.
+        ASSERT_EQ(tight.stats.perturbed, 0u);
+        const Triangulation mesh = triangulate(tight.tree);
+        std::vector<double> values(mesh.vertices.size());
+        g(mesh.vertices, values);
+        std::set<std::uint32_t> crossed;
+        for (const auto& t : mesh.triangles) {
+            const bool positive = values[t[0]] > 0.0;
+            if ((values[t[1]] > 0.0) != positive || (values[t[2]] > 0.0) != positive)
+                crossed.insert(t.begin(), t.end());
+        }
+        EXPECT_EQ(tight.stats.g_evals_tree, crossed.size());
+        EXPECT_LT(tight.stats.g_evals_tree, every.stats.g_evals_tree);
     }
 }
 
