@@ -89,12 +89,12 @@ public:
         // ½ c² t (1 − t) |κ| outside the chord at t where the curve is convex.
         return p.distance + 0.5 * c2 * p.t * (1.0 - p.t) * kappa;
     }
-    /// The exact signed distance to this level's polygon, whatever StepOptions::arcs says, and
-    /// W(x), from one closest-point query.
-    std::pair<double, Vec2> chord_distance_and_velocity(Vec2 x) const {
+    /// The closest point of this level's polygon (whatever StepOptions::arcs says) and W(x),
+    /// from one closest-point query.
+    std::pair<ClosestPoint, Vec2> closest_point_and_velocity(Vec2 x) const {
         const ClosestPoint p = tree_.closest_point(x);
-        if (extension_ == Extension::whitney) return {p.distance, (*whitney_)(x)};
-        return {p.distance, nearest_point_extension<Vec2>(tree_.curves(), u_, p)};
+        if (extension_ == Extension::whitney) return {p, (*whitney_)(x)};
+        return {p, nearest_point_extension<Vec2>(tree_.curves(), u_, p)};
     }
     /// The exact signed distance to this level's polygon, whatever StepOptions::arcs says.
     double chord_distance(Vec2 x) const { return tree_.closest_point(x).distance; }
@@ -168,17 +168,19 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
     }
 
     // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x); Γ(t)). F is 1-Lipschitz, so
-    // G̃(x) lies within k|W(x)| of F(x), and |G̃(x) − G̃(y)| ≤ |x − y| + 2d with d = k max|W|: one
-    // distance query bounds G̃ where G̃ itself takes two. With arcs, F is the chords' distance
-    // plus a bulge of at most b, which adds b to the foot's move in both statements.
+    // G̃(x) lies within k|W(x)| of F(x), and |G̃(x) − G̃(y)| ≤ |x − y| + 2d with d = k max|W|; and
+    // |G̃(x)| is at most the foot's distance to the point of Γ(t) nearest x. One distance query
+    // bounds G̃ where G̃ itself takes two. With arcs, F is the chords' distance plus a bulge of
+    // at most b, which adds b to the foot's move and to that distance.
     ContourOptions contour_options = options.contour;
     const double predictor_reach = k * now.max_speed() + now.max_bulge();
     contour_options.distance_slack = 2.0 * predictor_reach;
     const auto predictor_bounds = pointwise(
         [&](Vec2 x) {
-            const auto [f, w] = now.chord_distance_and_velocity(x);
+            const auto [p, w] = now.closest_point_and_velocity(x);
             const double d = k * norm(w) + now.max_bulge();
-            return Interval{f - d, f + d};
+            const double reach = distance(x - k * w, p.point) + now.max_bulge();
+            return Interval{std::max(p.distance - d, -reach), std::min(p.distance + d, reach)};
         },
         expensive_grain);
     auto predictor =
