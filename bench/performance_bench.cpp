@@ -676,6 +676,34 @@ Table 6's third row). A profile of Table 5's 320/0/6/4 now: closest-point querie
 segment hierarchy 19% (points far from Γ, two thirds of them the contouring tree's samples and
 their lower bounds), building the distance trees 10%, refinement's safeguards 7%.
 
+### Bounds on G as intervals
+
+The contouring tree's bound was a lower bound of |G| with its sign, used only to settle a point at
+its cell's split threshold; every other point was evaluated. The bounds are now intervals holding
+G: a parent's sample y gives |G(y)| ± (|x − y| + δ), the step's caller F(x) ± d(x). A point whose
+sign either gives keeps a stand-in with both bounds; a cell splits without any value where a
+sample's upper bound is below its threshold; and a test evaluates only the stand-ins it needs,
+after offering those the parents made to the caller's bounds (docs/algorithms/contour.md). The
+predictor's d(x) is k|W(x)|, W read from the same query, instead of k max|W|, and |G̃(x)| is at
+most the foot's distance to the point of Γ(t) nearest x. Contours bit-identical; at Table 5's
+640/0/7/0 the tree's evaluations per contour (predictor / corrector, from the interface after 16
+steps) fell from 4003 / 4003 to 1359 / 1967, with 4600 / 4588 bound evaluations instead of
+2973 / 2966; at Table 6's 640/0/7/0 from 1176 to 708. Whole steps, one thread, least of four
+interleaved runs: Table 5's 40/0/3/0 0.87×, 640/0/7/0 0.91×, 320/0/6/4 0.97×, 640/0/7/4 0.91×,
+Table 6's 160/0/5/0 0.87×, 160/0/5/2 0.92×, 640/0/7/4 0.96×, Table 7's 320/3/7/4 0.95×. Measured
+and not kept: a table of Γ(t)'s closest points at the tree's sample points, shared by the
+bounds, the predictor and the corrector (bit-identical; 20–30% of all queries repeat at P = 0,
+3–6% at P ≥ 2, but the lookups cost about what they saved: 0.97–1.00×); the segment hierarchy for
+lists longer than 24 or 96 segments instead of 48 (1.16× slower; 0.98–1.03×); a stack that keeps
+each node's box distance in the hierarchy (noise); a bounding-box test before each segment of a
+list (1.11–1.22× slower: the kernel is cheaper than the test's mispredicted branches); and
+compiling for x86-64-v3 without FMA contraction (0.96×, but the binaries would no longer run
+on every x86-64). A profile of whole runs of Table 5's 40/0/3/1e−3 cell with P = 1,
+the furthest from 1000×: closest-point queries 61% (each of the ~18 segments scanned per query is
+the innermost loop), root finding 38% of the step (3.5 to 6.3 evaluations per root, to the
+paper's η = 10⁻¹⁰ on the edges of a tree of depth 3), the contouring tree 30%, the
+distance trees 8%.
+
 ### On two threads
 
 On two threads this step took 1/1.34 of its one-thread time. What ran on one thread only:
