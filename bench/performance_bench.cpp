@@ -726,8 +726,9 @@ triangulation, and page faults (10% of the main thread's samples).
     md += fmt::format(
         "\nMeasured now (the tables above): this step's speed-up on {} threads is {:.2f}×; Table "
         "6's 160/0/5/1e−5 cell with P = 2 has {:.2f}× over its first steps, from the three "
-        "small circles. Timing that cell's stages over 200 steps from the interface after 16 "
-        "steps (the step 1121 → 825 ms, 1.36×) on one and two threads gave: the contouring tree "
+        "small circles. An earlier timing of that cell's stages (before the interval bounds; "
+        "200 steps from the interface after 16, the step 1121 → 825 ms, 1.36×) on one and two "
+        "threads gave: the contouring tree "
         "(topology stage) 301 → 241 ms (1.25×), refinement 503 → 352 ms (1.43×), root finding "
         "113 → 69 ms (1.64×), the two distance trees 172 → 133 ms (1.30×). The contouring tree's "
         "own bookkeeping, outside its "
