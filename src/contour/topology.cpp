@@ -82,8 +82,14 @@ public:
     /// neither their parent's samples nor the bounds (one batch) give are evaluated, in one batch.
     void sample(std::span<const std::uint32_t> cells) {
         std::vector<std::uint64_t> open;
+        Donors donors;
+        std::uint32_t donors_of_cell = Quadtree::no_cell;  // siblings come together
         for (std::uint32_t c : cells) {
-            const Donors donors = c == 0 ? Donors{} : donors_of(sample_keys(tree_.cell(c).parent));
+            const std::uint32_t parent = c == 0 ? Quadtree::no_cell : tree_.cell(c).parent;
+            if (parent != donors_of_cell) {
+                donors = donors_of(sample_keys(parent));
+                donors_of_cell = parent;
+            }
             for (std::uint64_t k : sample_keys(c)) {
                 if (values_.contains(k)) continue;
                 if (const auto stand_in = from_donors(point(k), donors)) {
