@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 #include <set>
 
@@ -183,8 +184,9 @@ TEST(ContourDistance, ExactBoundsLeaveOnlyTheCrossedTrianglesToEvaluate) {
     // Bounds that are G itself, [G, G], settle every tree point whose |G| exceeds η: at or above
     // its threshold the point stands in, below it the cell splits whatever G is. G is then
     // evaluated in the tree only at the vertices of triangles where it changes sign, which root
-    // finding starts from, and the contour is still the one every point evaluated gives. Bounds
-    // that say nothing ({−∞, ∞}, or NaN) settle nothing beyond the parents' values.
+    // finding starts from, and the contour is still the one every point evaluated gives; with the
+    // parents' values (distance_slack) or without. Bounds that say nothing ({−∞, ∞}, NaN, or
+    // ends out of order) settle nothing beyond the parents' values.
     for (unsigned seed = 1; seed <= 4; ++seed) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
         std::mt19937 rng(seed);
@@ -199,35 +201,39 @@ TEST(ContourDistance, ExactBoundsLeaveOnlyTheCrossedTrianglesToEvaluate) {
             }
         };
         auto nothing = [](std::span<const Vec2> x, std::span<Interval> v) {
-            for (std::size_t i = 0; i < x.size(); ++i)
-                v[i] = i % 2 == 0 ? Interval{} : Interval{std::nan(""), 1.0};
+            const Interval says_nothing[] = {{}, {std::nan(""), 1.0}, {1.0, -1.0}};
+            for (std::size_t i = 0; i < x.size(); ++i) v[i] = says_nothing[i % 3];
         };
-        ContourOptions o;
-        o.depth = 7;
-        o.eps = 1e-5;
-        o.distance_slack = 0.0;
-        const ContourResult every = contour(g, domain, o);
-        const ContourResult tight = contour(g, domain, o, exact);
-        const ContourResult loose = contour(g, domain, o, nothing);
-        for (const ContourResult* r : {&tight, &loose}) {
-            EXPECT_EQ(r->curves.curves(), every.curves.curves());
-            EXPECT_EQ(r->stats.cells, every.stats.cells);
-            EXPECT_EQ(r->stats.g_evals_roots, every.stats.g_evals_roots);
+        for (const std::optional<double> slack :
+             {std::optional<double>(0.0), std::optional<double>()}) {
+            SCOPED_TRACE(slack ? "with the parents' values" : "without");
+            ContourOptions o;
+            o.depth = 7;
+            o.eps = 1e-5;
+            o.distance_slack = slack;
+            const ContourResult every = contour(g, domain, o);
+            const ContourResult tight = contour(g, domain, o, exact);
+            const ContourResult loose = contour(g, domain, o, nothing);
+            for (const ContourResult* r : {&tight, &loose}) {
+                EXPECT_EQ(r->curves.curves(), every.curves.curves());
+                EXPECT_EQ(r->stats.cells, every.stats.cells);
+                EXPECT_EQ(r->stats.g_evals_roots, every.stats.g_evals_roots);
+            }
+            EXPECT_EQ(loose.stats.g_evals_tree, every.stats.g_evals_tree);
+            // The vertices of the triangles where G changes sign, from G at every vertex.
+            ASSERT_EQ(tight.stats.perturbed, 0u);
+            const Triangulation mesh = triangulate(tight.tree);
+            std::vector<double> values(mesh.vertices.size());
+            g(mesh.vertices, values);
+            std::set<std::uint32_t> crossed;
+            for (const auto& t : mesh.triangles) {
+                const bool positive = values[t[0]] > 0.0;
+                if ((values[t[1]] > 0.0) != positive || (values[t[2]] > 0.0) != positive)
+                    crossed.insert(t.begin(), t.end());
+            }
+            EXPECT_EQ(tight.stats.g_evals_tree, crossed.size());
+            EXPECT_LT(tight.stats.g_evals_tree, every.stats.g_evals_tree);
         }
-        EXPECT_EQ(loose.stats.g_evals_tree, every.stats.g_evals_tree);
-        // The vertices of the triangles where G changes sign, counted from G at every vertex.
-        ASSERT_EQ(tight.stats.perturbed, 0u);
-        const Triangulation mesh = triangulate(tight.tree);
-        std::vector<double> values(mesh.vertices.size());
-        g(mesh.vertices, values);
-        std::set<std::uint32_t> crossed;
-        for (const auto& t : mesh.triangles) {
-            const bool positive = values[t[0]] > 0.0;
-            if ((values[t[1]] > 0.0) != positive || (values[t[2]] > 0.0) != positive)
-                crossed.insert(t.begin(), t.end());
-        }
-        EXPECT_EQ(tight.stats.g_evals_tree, crossed.size());
-        EXPECT_LT(tight.stats.g_evals_tree, every.stats.g_evals_tree);
     }
 }
 
