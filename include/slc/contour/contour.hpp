@@ -117,11 +117,12 @@ ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOption
 
 /// The same contour, bit for bit, with a cheaper function that bounds G: bounds sets each value
 /// to an Interval holding G at that point ({−∞, ∞}: nothing known; rounding in G and in the
-/// bounds is allowed for here). A tree point that no nearby sample settles
-/// (ContourOptions::distance_slack) is offered to bounds first, and G is evaluated there only if
-/// the interval decides neither the point's sign with |G| at or above the split threshold, nor
-/// |G| below it (which decides the split). For the semi-Lagrangian formula G(x) = F(x − D(x))
-/// with |D(x)| ≤ d(x), F(x) ± d(x) are such bounds, at one distance query instead of G's several.
+/// bounds is allowed for here). Tree points whose sign no nearby sample gives
+/// (ContourOptions::distance_slack) are offered to bounds, one batch per level. G is evaluated at
+/// a tree point only where neither gives its sign, where a split test needs more than the bounds
+/// (neither |G| at or above the cell's threshold, nor some sample's |G| below it), or at a vertex
+/// of a triangle where G changes sign. For the semi-Lagrangian formula G(x) = F(x − D(x)) with
+/// |D(x)| ≤ d(x), F(x) ± d(x) are such bounds, at one distance query instead of G's several.
 ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
                       BatchBoundsRef bounds);
 
