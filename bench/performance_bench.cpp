@@ -693,7 +693,7 @@ interleaved runs: Table 5's 40/0/3/0 0.87×, 640/0/7/0 0.91×, 320/0/6/4 0.97×,
 Table 6's 160/0/5/0 0.87×, 160/0/5/2 0.92×, 640/0/7/4 0.96×, Table 7's 320/3/7/4 0.95×. Measured
 and not kept: a table of Γ(t)'s closest points at the tree's sample points, shared by the
 bounds, the predictor and the corrector (bit-identical; 20–30% of all queries repeat at P = 0,
-3–6% at P ≥ 2, but the lookups cost about what they saved: 0.97–1.00×); the segment hierarchy for
+3–6% at P ≥ 2, but the lookups cost about what they saved: 0.97–1.03×); the segment hierarchy for
 lists longer than 24 or 96 segments instead of 48 (1.16× slower; 0.98–1.03×); a stack that keeps
 each node's box distance in the hierarchy (noise); a bounding-box test before each segment of a
 list (1.11–1.22× slower: the kernel is cheaper than the test's mispredicted branches); and

@@ -74,7 +74,7 @@ public:
     /// W(x) at this level's time, extended from the vertex velocities.
     Vec2 velocity(Vec2 x) const {
         if (extension_ == Extension::whitney) return (*whitney_)(x);
-        return nearest_point_extension<Vec2>(tree_.curves(), u_, tree_.closest_point(x));
+        return velocity(x, tree_.closest_point(x));
     }
     /// The signed distance to this level's Γ: exact to its chords, or to its arcs with
     /// StepOptions::arcs.
@@ -93,8 +93,7 @@ public:
     /// from one closest-point query.
     std::pair<ClosestPoint, Vec2> closest_point_and_velocity(Vec2 x) const {
         const ClosestPoint p = tree_.closest_point(x);
-        if (extension_ == Extension::whitney) return {p, (*whitney_)(x)};
-        return {p, nearest_point_extension<Vec2>(tree_.curves(), u_, p)};
+        return {p, velocity(x, p)};
     }
     /// The exact signed distance to this level's polygon, whatever StepOptions::arcs says.
     double chord_distance(Vec2 x) const { return tree_.closest_point(x).distance; }
@@ -104,6 +103,12 @@ public:
     double max_speed() const { return max_speed_; }
 
 private:
+    /// W(x), given the closest point p of this level's polygon to x.
+    Vec2 velocity(Vec2 x, const ClosestPoint& p) const {
+        if (extension_ == Extension::whitney) return (*whitney_)(x);
+        return nearest_point_extension<Vec2>(tree_.curves(), u_, p);
+    }
+
     Extension extension_;
     DistanceTree tree_;
     std::vector<Vec2> u_;
