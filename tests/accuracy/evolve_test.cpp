@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
@@ -16,6 +19,7 @@
 #include "slc/evolve/step.hpp"
 #include "slc/geometry/shapes.hpp"
 #include "slc/geometry/validate.hpp"
+#include "slc/velocity/velocity.hpp"
 
 namespace slc {
 namespace {
@@ -296,6 +300,48 @@ TEST(Run, ResultDoesNotDependOnTheThreadCount) {
     for (std::size_t i = 0; i < one.curves.size(); ++i)
         EXPECT_EQ(one.curves.point(i), two.curves.point(i));
     EXPECT_EQ(one.g_evals, two.g_evals);
+}
+
+TEST(Run, AFlowThatFailsNearTheCurveIsReportedOnAnyThreadCount) {
+    // The field is not finite (or the user's function throws) only near the curve, where the
+    // contouring tree evaluates G in batches large enough for all threads: the failure must
+    // reach the caller, the same on one thread as on two, and run() must report it as status.
+    const Interface circle(std::vector<std::vector<Vec2>>{shapes::circle({0.0, 0.0}, 0.25, 64)});
+    const Box domain = Box::centered_square(1.0);
+    auto near_right = [](Vec2 x) { return x.x > 0.2 && x.x < 0.3 && std::abs(x.y) < 0.05; };
+    const auto not_finite = field_law("holed", [&](double, Vec2 x) {
+        return near_right(x) ? Vec2{std::nan(""), 0.0} : Vec2{1.0, 0.0};
+    });
+    const auto throwing = field_law("refusing", [&](double, Vec2 x) {
+        if (near_right(x)) throw std::domain_error("the field refuses this point");
+        return Vec2{1.0, 0.0};
+    });
+    StepOptions o;
+    o.contour.depth = 5;
+    o.extension = Extension::direct;
+    std::vector<std::string> messages;
+    for (int threads : {1, 2}) {
+        set_thread_count(threads);
+        try {
+            advance(circle, 0.0, 0.1, *not_finite, domain, o);
+            ADD_FAILURE() << "expected NumericalFailure on " << threads << " threads";
+        } catch (const NumericalFailure& e) {
+            messages.push_back(e.what());
+        }
+        EXPECT_THROW(advance(circle, 0.0, 0.1, *throwing, domain, o), std::domain_error);
+        RunOptions r;
+        r.t_end = 0.2;
+        r.steps = 2;
+        r.step = o;
+        const RunResult result = run(circle, *not_finite, domain, r);
+        EXPECT_EQ(result.status, RunStatus::error);
+        EXPECT_NE(result.message.find("'holed' is not finite"), std::string::npos)
+            << result.message;
+    }
+    set_thread_count(0);
+    ASSERT_EQ(messages.size(), 2u);
+    EXPECT_EQ(messages[0], messages[1]);
+    EXPECT_NE(messages[0].find("velocity 'holed' is not finite"), std::string::npos) << messages[0];
 }
 
 TEST(Run, RejectsBadOptionsAndReportsFailuresAsStatus) {

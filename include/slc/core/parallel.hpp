@@ -4,7 +4,9 @@
 /// number of threads.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
+#include <exception>
 
 namespace slc {
 
@@ -24,6 +26,10 @@ inline constexpr std::size_t expensive_grain = 32;
 /// Calls body(i) for i in [0, n), on all worker threads when n >= min_iterations (for loops
 /// whose iterations are each long, pass fewer than parallel_grain). body must only write data
 /// owned by iteration i.
+///
+/// If body throws, parallel_for throws what body(i) threw for the least such i, as a loop on one
+/// thread would: the exception never escapes a worker thread, and which one arrives does not
+/// depend on the thread count. Iterations after the least failing one seen so far are skipped.
 template <class Body>
 void parallel_for(std::size_t n, Body&& body, std::size_t min_iterations = parallel_grain) {
     if (n < min_iterations || n < 2 || thread_count() == 1) {
@@ -31,8 +37,22 @@ void parallel_for(std::size_t n, Body&& body, std::size_t min_iterations = paral
         return;
     }
     const long long count = static_cast<long long>(n);
+    std::atomic<long long> first_failure{count};
+    std::exception_ptr failure;
 #pragma omp parallel for schedule(static) num_threads(thread_count())
-    for (long long i = 0; i < count; ++i) body(static_cast<std::size_t>(i));
+    for (long long i = 0; i < count; ++i) {
+        if (i > first_failure.load(std::memory_order_relaxed)) continue;
+        try {
+            body(static_cast<std::size_t>(i));
+        } catch (...) {
+#pragma omp critical(slc_parallel_for_failure)
+            if (i < first_failure.load(std::memory_order_relaxed)) {
+                first_failure.store(i, std::memory_order_relaxed);
+                failure = std::current_exception();
+            }
+        }
+    }
+    if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace slc
