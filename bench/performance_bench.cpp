@@ -704,6 +704,12 @@ the innermost loop), root finding 38% of the step (3.5 to 6.3 evaluations per ro
 paper's η = 10⁻¹⁰ on the edges of a tree of depth 3), the contouring tree 30%, the
 distance trees 8%.
 
+Within a run, a step costs more than the same step repeated from one interface, as the *step*
+column times it: at Table 5's 40/0/3/1e−3 cell with P = 1, step 16 repeated takes 0.38 ms, and
+0.40–0.47 ms alternated with step 17 (which takes 0.52 ms); in sequence, the least of 100 runs,
+the steps from the second on take 0.46–0.59 ms (the first, from the 1024-vertex initial polygon,
+1.34 ms). This is part of why *T ours* exceeds *step* in the smallest cells.
+
 ### On two threads
 
 On two threads this step took 1/1.34 of its one-thread time. What ran on one thread only:
@@ -736,6 +742,26 @@ triangulation, and page faults (10% of the main thread's samples).
         "the acceptance loop (84 ms of the 503), the midpoint selection and the pruning.\n\n",
         std::thread::hardware_concurrency(), speedup("propeller-rotation", 3, 4),
         speedup("merging-circles", 2, 2));
+    md += R"(Measured and not kept since:
+
+- The contouring tree's bookkeeping on all threads: each new point's stand-in from its parent's
+  samples, the leaf centres, the bounds' updates and the vertices' values worked out in parallel
+  and entered in cell order, and the triangulation's neighbour searches in parallel (results
+  bit-identical). The one-circle step of 43770 segments (K = 12) took 0.90× its two-thread time,
+  but Table 5's 640/0/7/1e−7 cell with P = 0 took 1.15–1.19× its one-thread time (the staging
+  arrays and their page faults), and up to 1.49× on two threads. Without the new points' and the
+  centres' stand-ins, the rest gained nothing beyond the noise (0.93–1.05× on one thread,
+  1.01–1.02× on two). A two-thread profile of the 43770-segment step shows why: the second
+  thread waits for 30% of the step while the first runs a long tail of pieces of 1–3% each. The
+  largest are the tree's table of sample points (about 6% of all samples), the triangulation
+  (5%), refinement's crossing tests (3%), and page faults and copies (3%).
+- Handing the bounds' closest-point queries to the batch of G after them. The tree evaluates G
+  next at the points of that batch whose sign the bounds left open, in the same order, and G
+  starts with the same query. Results bit-identical, but it met only about half of the tree's
+  evaluations (about 900 per contour at Table 5's 640/0/7/1e−7 with P = 0): the stand-ins of
+  crossed triangles are evaluated later, away from their bounds' batch. Time: 1.06–1.08× there,
+  0.98× at Table 6's 640/0/7/1e−7, 0.96× at Table 5's 40/0/3/1e−3 with P = 1.
+)";
     write_file_atomic(out, md);
     fmt::print(stderr, "wrote {}\n", out);
 }
