@@ -24,9 +24,9 @@ constexpr int max_gamma_doublings = 24;
 constexpr double first_perturbation = 1e-3;
 constexpr int max_perturbations = 6;
 
-/// Integer coordinates on the grid of half the finest cell edge, with the very formula
-/// triangulate() uses to place its vertices, so that sample points and triangulation vertices
-/// are the same doubles and G is never evaluated twice at one point.
+/// Integer coordinates on the grid of half the finest cell edge (fan_leaves() names vertices by
+/// them), with the formula triangulate() uses to place its vertices: the triangulation's vertices
+/// are the sample points themselves, and G is never evaluated twice at one point.
 class SampleGrid {
 public:
     explicit SampleGrid(const Quadtree& tree)
@@ -39,10 +39,6 @@ public:
     Vec2 point(std::uint64_t gx, std::uint64_t gy) const {
         return {lo_.x + static_cast<double>(gx) * step_, lo_.y + static_cast<double>(gy) * step_};
     }
-    std::array<std::uint64_t, 2> coordinates(Vec2 p) const {
-        return {static_cast<std::uint64_t>(std::llround((p.x - lo_.x) / step_)),
-                static_cast<std::uint64_t>(std::llround((p.y - lo_.y) / step_))};
-    }
     static std::uint64_t key(std::uint64_t gx, std::uint64_t gy) { return (gx << 32) | gy; }
 
 private:
@@ -50,6 +46,20 @@ private:
     int shift_;
     double step_;
 };
+
+/// Where a sample's value comes from: G itself, or a stand-in from the parent's samples or
+/// from the caller's bounds (after which only G can tighten it).
+enum class Source : std::uint8_t { g, parents, bounds };
+/// G at a point, or a stand-in: a lower bound on |G| with G's sign, and an upper bound.
+struct Sample {
+    double value;
+    double upper;  ///< |G| ≤ upper: |value| when exact
+    Source source;
+    std::uint32_t vertex = no_vertex;  ///< its number in the triangulation, once numbered
+};
+/// A point in the batch for G.
+constexpr Sample pending{std::numeric_limits<double>::quiet_NaN(),
+                         std::numeric_limits<double>::infinity(), Source::g};
 
 /// G at the corners and centres of the tree's cells, each point evaluated at most once, in one
 /// batch per call, and the smallest |G| over each cell's sample points. Cells at the depth limit
@@ -166,24 +176,42 @@ public:
 
     double min_abs(std::uint32_t c) const { return cell_min_[c]; }
     std::size_t bound_evals() const { return bound_evals_; }
-    double value(std::uint64_t key) const { return values_.at(key).value; }
-    bool exact(std::uint64_t key) const { return values_.at(key).source == Source::g; }
-    const SampleGrid& grid() const { return grid_; }
+
+    /// The tree's triangulation (triangulate()'s, to the vertex numbers), with G or its stand-in
+    /// at every vertex, the vertices found in the table of samples: every corner and centre of a
+    /// cell is a sample point, and the midpoint of a leaf's edge is one exactly where the
+    /// neighbour across is finer (it is then a corner of that neighbour's children, and no
+    /// other cell's corner or centre). on_boundary: per vertex, whether it is on the root box.
+    void triangulate(Topology& topo, std::vector<std::uint8_t>& on_boundary) {
+        const std::uint64_t n = grid_.extent();
+        topo.values.reserve(values_.size());
+        topo.mesh.vertices.reserve(values_.size());
+        topo.stand_in.reserve(values_.size());
+        on_boundary.reserve(values_.size());
+        auto number = [&](Sample& s, std::uint64_t gx, std::uint64_t gy) {
+            if (s.vertex == no_vertex) {
+                s.vertex = static_cast<std::uint32_t>(topo.mesh.vertices.size());
+                topo.mesh.vertices.push_back(grid_.point(gx, gy));
+                topo.values.push_back(s.value);
+                topo.stand_in.push_back(s.source != Source::g);
+                on_boundary.push_back(gx == 0 || gy == 0 || gx == n || gy == n);
+            }
+            return s.vertex;
+        };
+        fan_leaves(
+            tree_,
+            [&](std::uint64_t gx, std::uint64_t gy) {
+                return number(values_.at(SampleGrid::key(gx, gy)), gx, gy);
+            },
+            [&](std::size_t, int, std::uint64_t gx, std::uint64_t gy) {
+                Sample* s = values_.find(SampleGrid::key(gx, gy));
+                return s == nullptr ? no_vertex : number(*s, gx, gy);
+            },
+            topo.mesh);
+    }
 
 private:
     static constexpr double infinity = std::numeric_limits<double>::infinity();
-
-    /// Where a sample's value comes from: G itself, or a stand-in from the parent's samples or
-    /// from the caller's bounds (after which only G can tighten it).
-    enum class Source : std::uint8_t { g, parents, bounds };
-    /// G at a point, or a stand-in: a lower bound on |G| with G's sign, and an upper bound.
-    struct Sample {
-        double value;
-        double upper;  ///< |G| ≤ upper: |value| when exact
-        Source source;
-    };
-    /// A point in the batch for G.
-    static constexpr Sample pending{std::numeric_limits<double>::quiet_NaN(), infinity, Source::g};
 
     /// A cell's sample points: corners, then the centre when the cell can be split (or always,
     /// with with_centre).
@@ -485,19 +513,8 @@ Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOp
     topo.gamma = build_tree(topo.tree, sampler, options.gamma);
     sampler.complete_centres(topo.gamma);
     topo.bound_evals = sampler.bound_evals();
-    topo.mesh = triangulate(topo.tree);
-    const auto& vertices = topo.mesh.vertices;
-    const std::uint64_t n = sampler.grid().extent();
-    std::vector<std::uint8_t> on_boundary(vertices.size());
-    topo.values.resize(vertices.size());
-    topo.stand_in.resize(vertices.size());
-    for (std::size_t v = 0; v < vertices.size(); ++v) {
-        const auto [gx, gy] = sampler.grid().coordinates(vertices[v]);
-        const std::uint64_t key = SampleGrid::key(gx, gy);
-        topo.values[v] = sampler.value(key);
-        topo.stand_in[v] = !sampler.exact(key);
-        on_boundary[v] = gx == 0 || gy == 0 || gx == n || gy == n;
-    }
+    std::vector<std::uint8_t> on_boundary;
+    sampler.triangulate(topo, on_boundary);
     check_boundary(topo, on_boundary, options.eta);
     topo.perturbed = perturb(topo, g, options.eta);
     evaluate_crossed_stand_ins(topo, g);

@@ -36,8 +36,6 @@ public:
         }
         return *index;
     }
-    /// Grid units per cell edge at a level.
-    std::uint64_t units(int level) const { return std::uint64_t{1} << (shift_ - level); }
 
 private:
     const Quadtree& tree_;
@@ -59,41 +57,18 @@ bool has_finer_neighbour(const Quadtree& tree, std::size_t c, int dx, int dy) {
     return tree.cell(n).level == level && !tree.is_leaf(n);
 }
 
-void fan_leaf(const Quadtree& tree, std::size_t c, VertexTable& table, Triangulation& mesh) {
-    const auto& cell = tree.cell(c);
-    const std::uint64_t u = table.units(cell.level);
-    const std::uint64_t x0 = cell.ix * u, y0 = cell.iy * u, h = u / 2;
-    // Boundary counterclockwise from the low-left corner: bottom, right, top, left edges, each
-    // with its midpoint when the neighbour across it is finer.
-    const bool finer[4] = {has_finer_neighbour(tree, c, 0, -1), has_finer_neighbour(tree, c, 1, 0),
-                           has_finer_neighbour(tree, c, 0, 1), has_finer_neighbour(tree, c, -1, 0)};
-    const std::uint32_t centre = table.at(x0 + h, y0 + h);
-    std::array<std::uint32_t, 8> ring{};
-    std::size_t n = 0;
-    ring[n++] = table.at(x0, y0);
-    if (finer[0]) ring[n++] = table.at(x0 + h, y0);
-    ring[n++] = table.at(x0 + u, y0);
-    if (finer[1]) ring[n++] = table.at(x0 + u, y0 + h);
-    ring[n++] = table.at(x0 + u, y0 + u);
-    if (finer[2]) ring[n++] = table.at(x0 + h, y0 + u);
-    ring[n++] = table.at(x0, y0 + u);
-    if (finer[3]) ring[n++] = table.at(x0, y0 + h);
-    for (std::size_t k = 0; k < n; ++k)
-        mesh.triangles.push_back({centre, ring[k], ring[(k + 1) % n]});
-}
-
 }  // namespace
 
 Triangulation triangulate(const Quadtree& tree) {
     Triangulation mesh;
     VertexTable table(tree, mesh);
-    mesh.cell_offsets.reserve(tree.size() + 1);
-    mesh.triangles.reserve(4 * tree.size());  // 4 to 8 per leaf, about 3 leaves in 4 cells
-    mesh.cell_offsets.push_back(0);
-    for (std::size_t c = 0; c < tree.size(); ++c) {
-        if (tree.is_leaf(c)) fan_leaf(tree, c, table, mesh);
-        mesh.cell_offsets.push_back(static_cast<std::uint32_t>(mesh.triangles.size()));
-    }
+    fan_leaves(
+        tree, [&](std::uint64_t gx, std::uint64_t gy) { return table.at(gx, gy); },
+        [&](std::size_t c, int k, std::uint64_t gx, std::uint64_t gy) {
+            constexpr int dx[4] = {0, 1, 0, -1}, dy[4] = {-1, 0, 1, 0};
+            return has_finer_neighbour(tree, c, dx[k], dy[k]) ? table.at(gx, gy) : no_vertex;
+        },
+        mesh);
     return mesh;
 }
 

@@ -29,6 +29,50 @@ struct Triangulation {
 /// is not 2:1 balanced.
 Triangulation triangulate(const Quadtree& tree);
 
+/// No vertex: what edge_vertex of fan_leaves() returns where the neighbour is not finer.
+inline constexpr std::uint32_t no_vertex = 0xffffffffu;
+
+/// The fans of triangulate(), leaf by leaf in cell order, with the vertices numbered by the
+/// caller, who may know them already: vertex(gx, gy) is the number of the vertex at grid point
+/// (gx, gy) (in units of half the finest cell edge, from the root box's low corner), and
+/// edge_vertex(c, k, gx, gy) that of the midpoint (gx, gy) of edge k of leaf c (0 bottom, 1 right,
+/// 2 top, 3 left), or no_vertex unless the neighbour across that edge is finer. Each leaf asks for
+/// its centre, then its boundary counterclockwise from the low-left corner. Appends to
+/// mesh.triangles and mesh.cell_offsets; mesh.vertices is the caller's to fill. The tree must be
+/// 2:1 balanced.
+template <class Vertex, class EdgeVertex>
+void fan_leaves(const Quadtree& tree, Vertex vertex, EdgeVertex edge_vertex, Triangulation& mesh) {
+    const int shift = tree.max_depth() + 1;
+    mesh.cell_offsets.reserve(tree.size() + 1);
+    mesh.triangles.reserve(4 * tree.size());  // 4 to 8 per leaf, about 3 leaves in 4 cells
+    mesh.cell_offsets.push_back(static_cast<std::uint32_t>(mesh.triangles.size()));
+    for (std::size_t c = 0; c < tree.size(); ++c) {
+        if (tree.is_leaf(c)) {
+            const auto& cell = tree.cell(c);
+            const std::uint64_t u = std::uint64_t{1} << (shift - cell.level);
+            const std::uint64_t x0 = cell.ix * u, y0 = cell.iy * u, h = u / 2;
+            const std::uint32_t centre = vertex(x0 + h, y0 + h);
+            std::array<std::uint32_t, 8> ring{};
+            std::size_t n = 0;
+            auto midpoint = [&](int k, std::uint64_t gx, std::uint64_t gy) {
+                if (const std::uint32_t v = edge_vertex(c, k, gx, gy); v != no_vertex)
+                    ring[n++] = v;
+            };
+            ring[n++] = vertex(x0, y0);
+            midpoint(0, x0 + h, y0);
+            ring[n++] = vertex(x0 + u, y0);
+            midpoint(1, x0 + u, y0 + h);
+            ring[n++] = vertex(x0 + u, y0 + u);
+            midpoint(2, x0 + h, y0 + u);
+            ring[n++] = vertex(x0, y0 + u);
+            midpoint(3, x0, y0 + h);
+            for (std::size_t k = 0; k < n; ++k)
+                mesh.triangles.push_back({centre, ring[k], ring[(k + 1) % n]});
+        }
+        mesh.cell_offsets.push_back(static_cast<std::uint32_t>(mesh.triangles.size()));
+    }
+}
+
 /// A point located in a triangulation: its triangle and barycentric weights (summing to 1).
 struct TrianglePoint {
     std::uint32_t triangle = 0;       ///< index into Triangulation::triangles

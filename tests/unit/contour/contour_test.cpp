@@ -13,6 +13,7 @@
 #include "contour_checks.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/tree/triangulation.hpp"
 
 namespace slc {
 namespace {
@@ -160,6 +161,25 @@ TEST(Contour, NearlyTouchingCirclesGiveSimpleCurvesAtEveryResolution) {
             }
         }
     }
+}
+
+TEST(Contour, ItsTriangulationIsTheOneTriangulateGivesItsTree) {
+    // The contour numbers the triangulation's vertices from its table of samples, where a leaf's
+    // edge midpoint is a vertex exactly where the neighbour across is finer; triangulate() asks
+    // the tree for the neighbours. Graded trees: a distance, and a steep function for which γ is
+    // doubled until the tree balances.
+    const auto g = pointwise(circle({0.05, -0.02}, 0.33));
+    const auto steep = pointwise([](Vec2 p) { return std::exp(12.0 * p.x) * (norm(p) - 0.3); });
+    double largest_gamma = 0.0;
+    for (const BatchFunctionRef f : {BatchFunctionRef(g), BatchFunctionRef(steep)}) {
+        for (int depth = 3; depth <= 7; ++depth) {
+            SCOPED_TRACE(::testing::Message() << "K " << depth);
+            const ContourResult r = contour(f, unit_domain, options(depth, 0));
+            EXPECT_EQ(r.stats.triangles, triangulate(r.tree).triangles.size());
+            largest_gamma = std::max(largest_gamma, r.stats.gamma);
+        }
+    }
+    EXPECT_GE(largest_gamma, 1024.0);  // the steep function's trees needed γ doubled
 }
 
 TEST(Contour, ZerosOnTreeVerticesArePerturbed) {
