@@ -75,6 +75,10 @@ constexpr Sample pending{std::numeric_limits<double>::quiet_NaN(),
 /// are offered to the caller's bounds, then evaluated. So every split decision is the one exact
 /// values give, and stand-ins left in triangles where G changes sign are evaluated before the
 /// contour is marched.
+///
+/// The samples live in one array. A point's key is looked up in a table only when a cell meets
+/// it first; every cell keeps the ids of its samples, so the split tests, the donors and the
+/// triangulation read them without a search.
 class TreeSampler {
 public:
     TreeSampler(BatchFunctionRef g, std::optional<BatchBoundsRef> bounds, const Quadtree& tree,
@@ -86,26 +90,35 @@ public:
           slack_(options.distance_slack ? std::optional(*options.distance_slack + rounding)
                                         : std::nullopt),
           rounding_(rounding),
-          eta_(options.eta) {}
+          eta_(options.eta) {
+        // Room for the samples of a large contour up front: pages are touched only as the
+        // samples come, and the arrays are never copied as they grow.
+        samples_.reserve(reserved_samples);
+        keys_.reserve(reserved_samples);
+    }
 
     /// Samples the given cells (the root, or children of split cells): new points whose sign
     /// neither their parent's samples nor the bounds (one batch) give are evaluated, in one batch.
     void sample(std::span<const std::uint32_t> cells) {
-        std::vector<std::uint64_t> open;
+        cell_samples_.resize(tree_.size(), no_samples);
+        std::vector<std::uint32_t> open;
         Donors donors;
         std::uint32_t donors_of_cell = Quadtree::no_cell;  // siblings come together
         for (std::uint32_t c : cells) {
             const std::uint32_t parent = c == 0 ? Quadtree::no_cell : tree_.cell(c).parent;
             if (parent != donors_of_cell) {
-                donors = donors_of(sample_keys(parent));
+                donors = donors_of(samples_of(parent));
                 donors_of_cell = parent;
             }
-            for (std::uint64_t k : sample_keys(c)) {
-                if (values_.contains(k)) continue;
-                if (const auto stand_in = from_donors(point(k), donors)) {
-                    values_.try_emplace(k, *stand_in);
+            const Keys keys = sample_keys(c);
+            for (std::size_t j = 0; j < keys.n; ++j) {
+                const auto [id, fresh] = add_point(keys.k[j]);
+                cell_samples_[c][j] = id;
+                if (!fresh) continue;
+                if (const auto stand_in = from_donors(point(id), donors)) {
+                    samples_[id] = *stand_in;
                 } else {
-                    add(k, open);
+                    open.push_back(id);
                 }
             }
         }
@@ -128,20 +141,20 @@ public:
                 touched.push_back(c);
         }
         if (bounds_) {
-            std::vector<std::uint64_t> keys;
-            for_needed_stand_ins(touched, gamma, [&](std::uint64_t k, Sample& s) {
+            std::vector<std::uint32_t> ids;
+            for_needed_stand_ins(touched, gamma, [&](std::uint32_t id, Sample& s) {
                 if (s.source != Source::parents) return;
                 s.source = Source::bounds;  // offered once
-                keys.push_back(k);
+                ids.push_back(id);
             });
-            apply_bounds(keys);
+            apply_bounds(ids);
         }
-        std::vector<std::uint64_t> keys;
-        for_needed_stand_ins(touched, gamma, [&](std::uint64_t k, Sample& s) {
+        std::vector<std::uint32_t> ids;
+        for_needed_stand_ins(touched, gamma, [&](std::uint32_t id, Sample& s) {
             s = pending;
-            keys.push_back(k);
+            ids.push_back(id);
         });
-        evaluate(keys);
+        evaluate(ids);
         for (std::uint32_t c : touched) update_min(c);
     }
 
@@ -153,22 +166,25 @@ public:
     void complete_centres(double gamma) {
         const int depth = tree_.max_depth();
         const double clearance = gamma * tree_.edge(depth) / std::numbers::sqrt2;
-        std::vector<std::uint64_t> open;
+        std::vector<std::uint32_t> open;
         for (std::uint32_t c : tree_.leaves()) {
             if (tree_.cell(c).level != depth) continue;
-            const auto k = sample_keys(c, true);
+            std::array<std::uint32_t, 5>& ids = cell_samples_[c];
             double lo = infinity, hi = -infinity;
             for (int i = 0; i < 4; ++i) {
-                lo = std::min(lo, values_.at(k.k[i]).value);
-                hi = std::max(hi, values_.at(k.k[i]).value);
+                lo = std::min(lo, samples_[ids[i]].value);
+                hi = std::max(hi, samples_[ids[i]].value);
             }
-            if (values_.contains(k.k[4])) continue;
+            const auto [id, fresh] = add_point(sample_keys(c, true).k[4]);
+            ids[4] = id;
+            if (!fresh) continue;
             if (lo > clearance || hi < -clearance) {
-                values_.try_emplace(k.k[4], Sample{lo > 0.0 ? lo : hi, infinity, Source::parents});
-            } else if (const auto stand_in = from_donors(point(k.k[4]), donors_of(Keys{k.k, 4}))) {
-                values_.try_emplace(k.k[4], *stand_in);
+                samples_[id] = Sample{lo > 0.0 ? lo : hi, infinity, Source::parents};
+            } else if (const auto stand_in =
+                           from_donors(point(id), donors_of(std::span(ids).first(4)))) {
+                samples_[id] = *stand_in;
             } else {
-                add(k.k[4], open);
+                open.push_back(id);
             }
         }
         evaluate(apply_bounds(open));
@@ -184,10 +200,10 @@ public:
     /// other cell's corner or centre). on_boundary: per vertex, whether it is on the root box.
     void triangulate(Topology& topo, std::vector<std::uint8_t>& on_boundary) {
         const std::uint64_t n = grid_.extent();
-        topo.values.reserve(values_.size());
-        topo.mesh.vertices.reserve(values_.size());
-        topo.stand_in.reserve(values_.size());
-        on_boundary.reserve(values_.size());
+        topo.values.reserve(samples_.size());
+        topo.mesh.vertices.reserve(samples_.size());
+        topo.stand_in.reserve(samples_.size());
+        on_boundary.reserve(samples_.size());
         auto number = [&](Sample& s, std::uint64_t gx, std::uint64_t gy) {
             if (s.vertex == no_vertex) {
                 s.vertex = static_cast<std::uint32_t>(topo.mesh.vertices.size());
@@ -200,12 +216,12 @@ public:
         };
         fan_leaves(
             tree_,
-            [&](std::uint64_t gx, std::uint64_t gy) {
-                return number(values_.at(SampleGrid::key(gx, gy)), gx, gy);
+            [&](std::size_t c, int corner, std::uint64_t gx, std::uint64_t gy) {
+                return number(samples_[cell_samples_[c][corner]], gx, gy);
             },
             [&](std::size_t, int, std::uint64_t gx, std::uint64_t gy) {
-                Sample* s = values_.find(SampleGrid::key(gx, gy));
-                return s == nullptr ? no_vertex : number(*s, gx, gy);
+                const std::uint32_t* id = index_.find(SampleGrid::key(gx, gy));
+                return id == nullptr ? no_vertex : number(samples_[*id], gx, gy);
             },
             topo.mesh);
     }
@@ -229,23 +245,40 @@ private:
                  SampleGrid::key(x0 + u, y0 + u), SampleGrid::key(x0 + u / 2, y0 + u / 2)},
                 centre ? 5u : 4u};
     }
-    Vec2 point(std::uint64_t k) const { return grid_.point(k >> 32, k & 0xffffffffu); }
+    /// The sample ids of cell c: its corners, then its centre when the cell can be split.
+    std::span<const std::uint32_t> samples_of(std::uint32_t c) const {
+        return std::span(cell_samples_[c]).first(tree_.cell(c).level < tree_.max_depth() ? 5 : 4);
+    }
+    /// The id of the sample at key, and whether it is new (then pending for G).
+    std::pair<std::uint32_t, bool> add_point(std::uint64_t key) {
+        const auto [id, fresh] =
+            index_.try_emplace(key, static_cast<std::uint32_t>(samples_.size()));
+        if (fresh) {
+            samples_.push_back(pending);
+            keys_.push_back(key);
+        }
+        return {*id, fresh};
+    }
+    Vec2 point(std::uint32_t id) const {
+        const std::uint64_t k = keys_[id];
+        return grid_.point(k >> 32, k & 0xffffffffu);
+    }
 
-    /// Calls f(key, sample) once for each stand-in that the test of a touched cell needs: one
+    /// Calls f(id, sample) once for each stand-in that the test of a touched cell needs: one
     /// whose lower bound is below the cell's threshold, in a cell where no sample's upper bound
     /// is below it.
     template <class F>
     void for_needed_stand_ins(std::span<const std::uint32_t> touched, double gamma, F f) {
         for (std::uint32_t c : touched) {
             const double threshold = gamma * tree_.edge(tree_.cell(c).level);
-            const Keys keys = sample_keys(c);
-            if (std::any_of(keys.begin(), keys.end(),
-                            [&](std::uint64_t k) { return values_.at(k).upper < threshold; })) {
+            const auto ids = samples_of(c);
+            if (std::any_of(ids.begin(), ids.end(),
+                            [&](std::uint32_t id) { return samples_[id].upper < threshold; })) {
                 continue;  // the cell splits whatever G is at its stand-ins
             }
-            for (std::uint64_t k : keys) {
-                Sample& s = values_.at(k);
-                if (s.source != Source::g && std::abs(s.value) < threshold) f(k, s);
+            for (std::uint32_t id : ids) {
+                Sample& s = samples_[id];
+                if (s.source != Source::g && std::abs(s.value) < threshold) f(id, s);
             }
         }
     }
@@ -257,15 +290,15 @@ private:
         std::array<double, 5> upper;
         std::size_t n = 0;
     };
-    Donors donors_of(Keys keys) const {
+    Donors donors_of(std::span<const std::uint32_t> ids) const {
         Donors d;
         if (!slack_) return d;
-        for (std::uint64_t k : keys) {
-            const Sample* s = values_.find(k);
-            if (s == nullptr || std::isnan(s->value)) continue;
-            d.at[d.n] = point(k);
-            d.upper[d.n] = s->upper;
-            d.value[d.n++] = s->value;
+        for (std::uint32_t id : ids) {
+            const Sample& s = samples_[id];
+            if (std::isnan(s.value)) continue;
+            d.at[d.n] = point(id);
+            d.upper[d.n] = s.upper;
+            d.value[d.n++] = s.value;
         }
         return d;
     }
@@ -289,18 +322,18 @@ private:
     /// is never a perturbation candidate).
     bool certain(double lower) const { return lower > eta_; }
 
-    /// The bounds at the keys (one batch; none without bounds), widened by the rounding
+    /// The bounds at the samples (one batch; none without bounds), widened by the rounding
     /// allowance, tighten their stand-ins, or make stand-ins of the points pending for G whose
-    /// sign they give. Returns the keys still pending.
-    std::vector<std::uint64_t> apply_bounds(std::vector<std::uint64_t> keys) {
-        if (!bounds_ || keys.empty()) return keys;
-        const std::vector<Vec2> points = points_of(keys);
+    /// sign they give. Returns the samples still pending.
+    std::vector<std::uint32_t> apply_bounds(std::vector<std::uint32_t> ids) {
+        if (!bounds_ || ids.empty()) return ids;
+        const std::vector<Vec2> points = points_of(ids);
         std::vector<Interval> bounds(points.size());
         (*bounds_)(points, bounds);
         bound_evals_ += points.size();
-        std::vector<std::uint64_t> left;
-        for (std::size_t i = 0; i < keys.size(); ++i) {
-            Sample& s = values_.at(keys[i]);
+        std::vector<std::uint32_t> left;
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+            Sample& s = samples_[ids[i]];
             const auto [lo, hi] = bounds[i];
             // An interval that excludes 0 gives G's sign and |G| at least its end nearer 0; a
             // NaN, or ends out of order, say nothing.
@@ -317,34 +350,37 @@ private:
             } else if (certain(lower)) {
                 s = Sample{std::copysign(lower, lo), upper, Source::bounds};
             } else {
-                left.push_back(keys[i]);
+                left.push_back(ids[i]);
             }
         }
         return left;
     }
-    std::vector<Vec2> points_of(std::span<const std::uint64_t> keys) const {
+    std::vector<Vec2> points_of(std::span<const std::uint32_t> ids) const {
         std::vector<Vec2> points;
-        points.reserve(keys.size());
-        for (std::uint64_t k : keys) points.push_back(point(k));
+        points.reserve(ids.size());
+        for (std::uint32_t id : ids) points.push_back(point(id));
         return points;
     }
     void update_min(std::uint32_t c) {
         double m = infinity;
-        for (std::uint64_t k : sample_keys(c)) m = std::min(m, std::abs(values_.at(k).value));
+        for (std::uint32_t id : samples_of(c)) m = std::min(m, std::abs(samples_[id].value));
         cell_min_[c] = m;
     }
-    /// Adds k, if new, to the points pending for G.
-    void add(std::uint64_t k, std::vector<std::uint64_t>& keys) {
-        if (values_.try_emplace(k, pending).second) keys.push_back(k);
-    }
-    void evaluate(std::span<const std::uint64_t> keys) {
-        if (keys.empty()) return;
-        const std::vector<Vec2> points = points_of(keys);
+    void evaluate(std::span<const std::uint32_t> ids) {
+        if (ids.empty()) return;
+        const std::vector<Vec2> points = points_of(ids);
         std::vector<double> values(points.size());
         g_(points, values);
-        for (std::size_t i = 0; i < keys.size(); ++i)
-            values_.assign(keys[i], Sample{values[i], std::abs(values[i]), Source::g});
+        for (std::size_t i = 0; i < ids.size(); ++i)
+            samples_[ids[i]] = Sample{values[i], std::abs(values[i]), Source::g};
     }
+
+    /// Samples the arrays have room for before they first grow.
+    static constexpr std::size_t reserved_samples = std::size_t{1} << 16;
+    /// No sample yet: the centre of a cell at the depth limit before complete_centres().
+    static constexpr std::uint32_t no_sample = 0xffffffffu;
+    static constexpr std::array<std::uint32_t, 5> no_samples{no_sample, no_sample, no_sample,
+                                                             no_sample, no_sample};
 
     BatchFunctionRef g_;
     std::optional<BatchBoundsRef> bounds_;
@@ -354,7 +390,12 @@ private:
     std::optional<double> slack_;
     double rounding_;
     double eta_;
-    KeyMap<Sample> values_;
+    /// Every sample point: its key on the grid, G there or a stand-in, and its id in the table.
+    std::vector<std::uint64_t> keys_;
+    std::vector<Sample> samples_;
+    KeyMap<std::uint32_t> index_;
+    /// Per cell, the ids of its corners (in sample_keys() order) and centre.
+    std::vector<std::array<std::uint32_t, 5>> cell_samples_;
     std::vector<double> cell_min_;
 };
 

@@ -63,7 +63,8 @@ Triangulation triangulate(const Quadtree& tree) {
     Triangulation mesh;
     VertexTable table(tree, mesh);
     fan_leaves(
-        tree, [&](std::uint64_t gx, std::uint64_t gy) { return table.at(gx, gy); },
+        tree,
+        [&](std::size_t, int, std::uint64_t gx, std::uint64_t gy) { return table.at(gx, gy); },
         [&](std::size_t c, int k, std::uint64_t gx, std::uint64_t gy) {
             constexpr int dx[4] = {0, 1, 0, -1}, dy[4] = {-1, 0, 1, 0};
             return has_finer_neighbour(tree, c, dx[k], dy[k]) ? table.at(gx, gy) : no_vertex;

@@ -33,11 +33,12 @@ Triangulation triangulate(const Quadtree& tree);
 inline constexpr std::uint32_t no_vertex = 0xffffffffu;
 
 /// The fans of triangulate(), leaf by leaf in cell order, with the vertices numbered by the
-/// caller, who may know them already: vertex(gx, gy) is the number of the vertex at grid point
-/// (gx, gy) (in units of half the finest cell edge, from the root box's low corner), and
-/// edge_vertex(c, k, gx, gy) that of the midpoint (gx, gy) of edge k of leaf c (0 bottom, 1 right,
-/// 2 top, 3 left), or no_vertex unless the neighbour across that edge is finer. Each leaf asks for
-/// its centre, then its boundary counterclockwise from the low-left corner. Appends to
+/// caller, who may know them already: vertex(c, j, gx, gy) is the number of the vertex at grid
+/// point (gx, gy) (in units of half the finest cell edge, from the root box's low corner), which
+/// is corner j of leaf c (0 low-left, 1 low-right, 2 high-left, 3 high-right) or its centre (j =
+/// 4), and edge_vertex(c, k, gx, gy) that of the midpoint (gx, gy) of edge k of leaf c (0 bottom, 1
+/// right, 2 top, 3 left), or no_vertex unless the neighbour across that edge is finer. Each leaf
+/// asks for its centre, then its boundary counterclockwise from the low-left corner. Appends to
 /// mesh.triangles and mesh.cell_offsets; mesh.vertices is the caller's to fill. The tree must be
 /// 2:1 balanced.
 template <class Vertex, class EdgeVertex>
@@ -51,20 +52,20 @@ void fan_leaves(const Quadtree& tree, Vertex vertex, EdgeVertex edge_vertex, Tri
             const auto& cell = tree.cell(c);
             const std::uint64_t u = std::uint64_t{1} << (shift - cell.level);
             const std::uint64_t x0 = cell.ix * u, y0 = cell.iy * u, h = u / 2;
-            const std::uint32_t centre = vertex(x0 + h, y0 + h);
+            const std::uint32_t centre = vertex(c, 4, x0 + h, y0 + h);
             std::array<std::uint32_t, 8> ring{};
             std::size_t n = 0;
             auto midpoint = [&](int k, std::uint64_t gx, std::uint64_t gy) {
                 if (const std::uint32_t v = edge_vertex(c, k, gx, gy); v != no_vertex)
                     ring[n++] = v;
             };
-            ring[n++] = vertex(x0, y0);
+            ring[n++] = vertex(c, 0, x0, y0);
             midpoint(0, x0 + h, y0);
-            ring[n++] = vertex(x0 + u, y0);
+            ring[n++] = vertex(c, 1, x0 + u, y0);
             midpoint(1, x0 + u, y0 + h);
-            ring[n++] = vertex(x0 + u, y0 + u);
+            ring[n++] = vertex(c, 3, x0 + u, y0 + u);
             midpoint(2, x0 + h, y0 + u);
-            ring[n++] = vertex(x0, y0 + u);
+            ring[n++] = vertex(c, 2, x0, y0 + u);
             midpoint(3, x0, y0 + h);
             for (std::size_t k = 0; k < n; ++k)
                 mesh.triangles.push_back({centre, ring[k], ring[(k + 1) % n]});
