@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 #include "slc/core/error.hpp"
@@ -97,7 +98,10 @@ void DistanceTree::build_lists() {
     // within one edge. The tests, and the children's lists, are computed on all worker threads
     // (each child's list into its own stretch of a scratch array, then packed in cell order), so
     // the tree and its lists are those of a sequential pass, whatever the thread count.
-    std::vector<std::uint32_t> scratch;
+    // Uninitialized, and grown only when a level needs more: a child's stretch is as long as
+    // its parent's list but its list is usually far shorter, and untouched pages cost nothing.
+    std::unique_ptr<std::uint32_t[]> scratch;
+    std::size_t scratch_size = 0;
     for (std::size_t begin = 0, end = tree_.size(); begin < end; begin = end, end = tree_.size()) {
         const std::size_t level_work = offsets_[end] - offsets_[begin];
         const std::size_t min_iterations = level_work >= min_parallel_work ? 1 : end - begin + 1;
@@ -130,13 +134,16 @@ void DistanceTree::build_lists() {
                 children.emplace_back(first + k, stretch);
         }
         if (children.empty()) break;
-        scratch.resize(stretch);
+        if (stretch > scratch_size) {
+            scratch_size = std::max(stretch, 2 * scratch_size);
+            scratch.reset(new std::uint32_t[scratch_size]);
+        }
         std::vector<std::uint32_t> count(children.size());
         parallel_for(
             children.size(),
             [&](std::size_t j) {
                 const auto [k, at] = children[j];
-                count[j] = filter(tree_.cell(k).parent, k, scratch.data() + at);
+                count[j] = filter(tree_.cell(k).parent, k, scratch.get() + at);
             },
             min_iterations);
         const std::size_t listed = segments_.size();
@@ -145,7 +152,7 @@ void DistanceTree::build_lists() {
         parallel_for(
             children.size(),
             [&](std::size_t j) {
-                std::copy_n(scratch.data() + children[j].second, count[j],
+                std::copy_n(scratch.get() + children[j].second, count[j],
                             segments_.data() + offsets_[children[j].first]);
             },
             min_iterations);
