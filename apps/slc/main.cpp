@@ -7,8 +7,10 @@
 
 #include "commands/commands.hpp"
 #include "slc/core/error.hpp"
+#include "slc/core/memory.hpp"
 
 int main(int argc, char** argv) {
+    slc::keep_freed_memory();  // runs and studies free and allocate the same arrays every step
     CLI::App app{"slc: moving interfaces by semi-Lagrangian contouring (J. Strain, JCP 2001)"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "slc 0.1.0");

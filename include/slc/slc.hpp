@@ -6,6 +6,7 @@
 #include "slc/contour/contour.hpp"
 #include "slc/core/box.hpp"
 #include "slc/core/error.hpp"
+#include "slc/core/memory.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/core/vec2.hpp"
 #include "slc/distance/distance_tree.hpp"
