@@ -712,6 +712,25 @@ column times it: at Table 5's 40/0/3/1e−3 cell with P = 1, step 16 repeated ta
 the steps from the second on take 0.46–0.59 ms (the first, from the 1024-vertex initial polygon,
 1.34 ms). This is part of why *T ours* exceeds *step* in the smallest cells.
 
+### The contouring tree's samples, and memory between steps
+
+The contouring tree looked up a sample point in its hash table at every use (split tests, donors,
+leaf centres); its triangulation kept a second table of vertices and asked the tree for every
+leaf's four neighbours; and every vertex was then looked up again for its value. Now the samples
+live in one array and every cell keeps the ids of its samples, which the tests, the donors and the
+triangulation read: a leaf's edge midpoint is a sample exactly where the neighbour across is
+finer, so it takes one lookup and no search for neighbours (tested against `triangulate()` on
+graded trees). The distance tree filters the children's lists into an uninitialized scratch
+buffer instead of a zero-filled vector resized at every level, which halves the page faults of a
+Table 7 step. And `slc`, like this bench, keeps the memory a step frees for the next step
+(`keep_freed_memory()`), which glibc would otherwise hand back to the system and fault in again
+every step: 0.94–0.975× per step in four cells on its own. Results are bit-identical (the same
+final vertices in four whole runs). One thread, least of six interleaved runs from the interface
+after 16 steps, against the version before: Table 5's 640/0/7/1e−7 with P = 0 0.86×, Table 6's
+0.80×, Table 5's 40/0/3/1e−3 with P = 1 0.92×, 320/0/6/1e−6 with P = 4 0.96×, Table 6's
+160/0/5/1e−5 with P = 2 0.97×; Table 7's 160/2/6/1e−6 with P = 4 within the noise (0.94–1.04×
+in repeated comparisons).
+
 ### On two threads
 
 On two threads this step took 1/1.34 of its one-thread time. What ran on one thread only:
