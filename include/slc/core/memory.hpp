@@ -9,7 +9,8 @@ namespace slc {
 /// system and taking it back a page fault at a time: with glibc, blocks up to 32 MiB come from
 /// the heap and up to 256 MiB of free heap is kept. Call once, at the start of a program that
 /// runs many steps; it changes how much memory the process holds, never a result. Does nothing
-/// with other C libraries. Returns whether the settings were taken.
+/// with other C libraries, or under AddressSanitizer's allocator. Returns whether the settings
+/// were taken.
 bool keep_freed_memory();
 
 }  // namespace slc
