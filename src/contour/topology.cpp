@@ -234,8 +234,6 @@ private:
     struct Keys {
         std::array<std::uint64_t, 5> k;
         std::size_t n;
-        const std::uint64_t* begin() const { return k.data(); }
-        const std::uint64_t* end() const { return k.data() + n; }
     };
     Keys sample_keys(std::uint32_t c, bool with_centre = false) const {
         const auto& cell = tree_.cell(c);

@@ -1,7 +1,7 @@
 // keep_freed_memory(): glibc's thresholds for returning freed memory to the system.
 #include "slc/core/memory.hpp"
 
-#include <cstdlib>
+#include <cstdlib>  // any C library header: glibc's defines __GLIBC__, tested below
 
 #if defined(__GLIBC__)
 #include <malloc.h>
