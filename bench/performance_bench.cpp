@@ -142,12 +142,12 @@ StepFloor measure_floor(const Interface& curves, double t, double k, const Veloc
     }
     const std::span<const Vec2> u0(u_now), u1(u_later);
     auto w_now = [&](Vec2 x) {
-        return nearest_point_extension<Vec2>(curves, u0, now.closest_point(x));
+        return nearest_point_extension<Vec2>(curves, u0, now.nearest_point(x));
     };
     auto predictor = [&](Vec2 x) { return now.closest_point(x - k * w_now(x)).distance; };
     auto corrector = [&](Vec2 x) {
         const Vec2 foot = x - k * w_now(x);
-        const Vec2 w_next = nearest_point_extension<Vec2>(next, u1, later.closest_point(x));
+        const Vec2 w_next = nearest_point_extension<Vec2>(next, u1, later.nearest_point(x));
         return now.closest_point(x - (0.5 * k) * (w_now(foot) + w_next)).distance;
     };
     double sink = 0.0;

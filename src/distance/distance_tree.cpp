@@ -212,7 +212,7 @@ std::uint32_t DistanceTree::leaf_at(Vec2 x) const {
     return c;
 }
 
-ClosestPoint DistanceTree::closest_point(Vec2 x) const {
+NearestSegment DistanceTree::nearest_segment(Vec2 x) const {
     std::uint32_t c = leaf_at(x);
     NearestSegment best;
     for (;;) {
@@ -230,10 +230,20 @@ ClosestPoint DistanceTree::closest_point(Vec2 x) const {
         if (c == 0) break;  // the root lists every segment
         c = tree_.cell(c).parent;
     }
+    return best;
+}
+
+ClosestPoint DistanceTree::closest_point(Vec2 x) const {
+    const NearestSegment best = nearest_segment(x);
     const double d = std::sqrt(best.distance2);
     ClosestPoint result{0.0, best.point, best.segment, best.t};
     result.distance = d == 0.0 ? 0.0 : side_of(*curves_, best.segment, best.t, x) * d;
     return result;
+}
+
+ClosestPoint DistanceTree::nearest_point(Vec2 x) const {
+    const NearestSegment best = nearest_segment(x);
+    return {std::sqrt(best.distance2), best.point, best.segment, best.t};
 }
 
 void DistanceTree::closest_points(std::span<const Vec2> xs, std::span<ClosestPoint> out) const {

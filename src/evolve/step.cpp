@@ -74,7 +74,7 @@ public:
     /// W(x) at this level's time, extended from the vertex velocities.
     Vec2 velocity(Vec2 x) const {
         if (extension_ == Extension::whitney) return (*whitney_)(x);
-        return velocity(x, tree_.closest_point(x));
+        return velocity(x, tree_.nearest_point(x));
     }
     /// The signed distance to this level's Γ: exact to its chords, or to its arcs with
     /// StepOptions::arcs.

@@ -43,6 +43,10 @@ public:
     /// Signed closest point of Γ to x (any x, also outside the domain): distance exact to
     /// rounding; sign right at corners (pseudo-normal at vertices); 0 on Γ. O(log N) near Γ.
     ClosestPoint closest_point(Vec2 x) const;
+    /// closest_point(x) without the sign: the same nearest point, segment and t, with distance
+    /// |F(x)|. For callers that need only where the nearest point lies (the nearest-point
+    /// extension): it skips the side test, which at a vertex takes two normals. O(log N) near Γ.
+    ClosestPoint nearest_point(Vec2 x) const;
 
     /// closest_point for a batch, on all worker threads; out.size() == xs.size(). The answer for
     /// each point does not depend on the thread count.
@@ -73,6 +77,9 @@ private:
     /// The leaf holding x (clamped to the domain): Quadtree::leaf_at, but starting from the
     /// start grid instead of the root, which saves most of the descent.
     std::uint32_t leaf_at(Vec2 x) const;
+    /// The least (distance², segment) pair over Γ at x: the query both closest_point and
+    /// nearest_point answer.
+    NearestSegment nearest_segment(Vec2 x) const;
 
     const Interface* curves_;
     std::vector<Segment> segment_ends_;  ///< the segments' endpoints, contiguous for the queries

@@ -16,8 +16,9 @@
 
 namespace slc {
 
-/// The nearest-point extension at a point whose signed closest point is p: the vertex values of
-/// p's segment interpolated linearly at p. T is double or Vec2. O(1).
+/// The nearest-point extension at a point whose closest point is p (signed or not: the sign is
+/// not used): the vertex values of p's segment interpolated linearly at p. T is double or Vec2.
+/// O(1).
 template <class T>
 T nearest_point_extension(const Interface& curves, std::span<const T> values,
                           const ClosestPoint& p) {
@@ -35,7 +36,7 @@ std::vector<T> nearest_point_extension(const DistanceTree& tree, std::span<const
     }
     std::vector<T> out(xs.size());
     parallel_for(xs.size(), [&](std::size_t i) {
-        out[i] = nearest_point_extension(tree.curves(), values, tree.closest_point(xs[i]));
+        out[i] = nearest_point_extension(tree.curves(), values, tree.nearest_point(xs[i]));
     });
     return out;
 }

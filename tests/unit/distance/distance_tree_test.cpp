@@ -57,6 +57,24 @@ TEST(DistanceTree, AgreesWithBruteForceOnRandomInterfaces) {
     }
 }
 
+TEST(DistanceTree, NearestPointIsTheClosestPointWithoutItsSign) {
+    for (unsigned seed = 200; seed < 230; ++seed) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        std::mt19937 rng(seed);
+        const Interface curves = testing::random_interface(rng);
+        const DistanceTree tree(curves, domain,
+                                {.depth = 3 + static_cast<int>(seed % 8), .triangulate = false});
+        for (const Vec2 x : query_points(curves, rng)) {
+            const ClosestPoint slow = closest_point_brute_force(curves, x);
+            const ClosestPoint p = tree.nearest_point(x);
+            ASSERT_EQ(p.distance, std::abs(slow.distance)) << "at (" << x.x << ", " << x.y << ")";
+            ASSERT_EQ(p.segment, slow.segment);
+            ASSERT_EQ(p.point, slow.point);
+            ASSERT_EQ(p.t, slow.t);
+        }
+    }
+}
+
 TEST(DistanceTree, SignAgreesWithTheEvenOddRule) {
     for (unsigned seed = 100; seed < 140; ++seed) {
         SCOPED_TRACE(::testing::Message() << "seed " << seed);
