@@ -782,6 +782,37 @@ triangulation, and page faults (10% of the main thread's samples).
   evaluations (about 900 per contour at Table 5's 640/0/7/1e−7 with P = 0): the stand-ins of
   crossed triangles are evaluated later, away from their bounds' batch. Time: 1.06–1.08× there,
   0.98× at Table 6's 640/0/7/1e−7, 0.96× at Table 5's 40/0/3/1e−3 with P = 1.
+- The four children's lists of a distance-tree cell in one pass over their parent's list, without
+  branches (each segment stored at every child's next place and kept where its box meets that
+  child's triple). The same lists, but building a tree took 1.04–1.13× as long: the stores and
+  their pages cost more than the mispredicted branches they replaced.
+
+### Velocity queries without a sign, and the corrector's foot
+
+The nearest-point extension needs only where the nearest point of Γ lies, so its queries now skip
+the side test (`DistanceTree::nearest_point`), which at a vertex takes two normals: three of the
+corrector's four queries and one of the predictor's two. Results bit-identical (the same final
+vertices in four whole runs). One thread, least of four interleaved runs from the interface after
+16 steps, against the version before: Table 5's 160/0/5/1e−5 with P = 0 0.95×, 320/0/6/1e−6 with
+P = 4 0.97×, Table 6's 160/0/5/1e−5 with P = 2 0.94×, Table 7's 160/2/6/1e−6 with P = 4 0.97×;
+Table 5's 40/0/3/1e−3 cell 0.96–1.01× (noise).
+
+The corrector's first query is the costliest: it asks for Γ(t)'s nearest point to x, a whole step
+k|W| from Γ(t), where lists are long. Eq. 5 needs it for the foot x − kW(x, t). Measured and not
+kept, each as whole studies of Tables 5–7 on one thread beside the current code (run side by side,
+so the times compare only pairwise):
+
+- The foot from the predicted velocity, x − kW̃(x, t + k), which the corrector has from its query
+  near Γ̃ (three queries instead of four, none far from its curve). Table 5: E∞ 0.53–1.00× and T
+  0.73–1.03×; Table 7: E∞ within 0.5%, T 0.87–1.08×. But Table 6: E∞ up to 3.1× (320/0/6/1e−6
+  with P = 4: 0.000462 → 0.00145), the largest errors at the cusps where the circles merge. Under
+  motion along the normal the paper's foot lands exactly on Γ(t)'s nearest point to x (Huygens'
+  construction), which the predicted curve's normals near its own cusp do not reproduce.
+- The same foot followed by two fixed-point steps of the trapezoidal rule: Table 5's E∞ then
+  falls to 0.27–1.00× and is below the paper's in all 25 cells (now in 16), but Table 6's E∞ rises
+  up to 1.9×, and steps take up to 1.73× as long.
+- One more fixed-point step after the paper's foot (five queries): Table 5's E∞ 0.27–1.00×
+  (below the paper's in 24 cells), but Table 6's up to 1.42× and steps up to 1.48× as long.
 )";
     write_file_atomic(out, md);
     fmt::print(stderr, "wrote {}\n", out);
