@@ -784,8 +784,8 @@ triangulation, and page faults (10% of the main thread's samples).
   0.98× at Table 6's 640/0/7/1e−7, 0.96× at Table 5's 40/0/3/1e−3 with P = 1.
 - The four children's lists of a distance-tree cell in one pass over their parent's list, without
   branches (each segment stored at every child's next place and kept where its box meets that
-  child's triple). The same lists, but building a tree took 1.04–1.13× as long: the stores and
-  their pages cost more than the mispredicted branches they replaced.
+  child's triple). The same lists, but building a tree took 1.05–1.13× as long in four of five
+  interfaces (0.96× in one): the stores and their pages cost more than the branches they replaced.
 
 ### Velocity queries without a sign, and the corrector's foot
 
