@@ -44,8 +44,9 @@ inline constexpr std::uint32_t no_vertex = 0xffffffffu;
 template <class Vertex, class EdgeVertex>
 void fan_leaves(const Quadtree& tree, Vertex vertex, EdgeVertex edge_vertex, Triangulation& mesh) {
     const int shift = tree.max_depth() + 1;
-    mesh.cell_offsets.reserve(tree.size() + 1);
-    mesh.triangles.reserve(4 * tree.size());  // 4 to 8 per leaf, about 3 leaves in 4 cells
+    mesh.cell_offsets.reserve(mesh.cell_offsets.size() + tree.size() + 1);
+    // 4 to 8 per leaf, about 3 leaves in 4 cells
+    mesh.triangles.reserve(mesh.triangles.size() + 4 * tree.size());
     mesh.cell_offsets.push_back(static_cast<std::uint32_t>(mesh.triangles.size()));
     for (std::size_t c = 0; c < tree.size(); ++c) {
         if (tree.is_leaf(c)) {
