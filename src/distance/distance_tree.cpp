@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <new>
 #include <numeric>
 
 #include "slc/core/error.hpp"
@@ -89,7 +90,7 @@ void DistanceTree::build_lists() {
     // Lists are appended in cell order (children are created, and listed, together), so the
     // one array segments_ with offsets_ is built directly: the root lists every segment.
     segments_.resize(segment_ends_.size());
-    std::iota(segments_.begin(), segments_.end(), 0u);
+    std::iota(segments_.data(), segments_.data() + segments_.size(), 0u);
     offsets_ = {0, static_cast<std::uint32_t>(segments_.size())};
 
     // Cells are appended breadth-first, so [begin, end) below is one whole level, and the tree
@@ -169,6 +170,17 @@ void DistanceTree::build_lists() {
             offsets_.push_back(static_cast<std::uint32_t>(segments_.size()));
         }
     });
+}
+
+void DistanceTree::Lists::resize(std::size_t n) {
+    if (n > capacity_) {
+        const std::size_t capacity = std::max(n, 2 * capacity_);
+        void* grown = std::realloc(data_, capacity * sizeof(std::uint32_t));
+        if (grown == nullptr) throw std::bad_alloc();
+        data_ = static_cast<std::uint32_t*>(grown);
+        capacity_ = capacity;
+    }
+    size_ = n;
 }
 
 void DistanceTree::build_start_grid() {

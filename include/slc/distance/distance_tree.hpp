@@ -10,8 +10,11 @@
 /// and their lists long, a SegmentHierarchy over all segments finishes the search instead.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "slc/core/box.hpp"
@@ -67,8 +70,7 @@ public:
     std::span<const ClosestPoint> vertex_closest_points() const { return vertex_nearest_; }
     /// Segments listed by cell c: those meeting its concentric triple, in increasing order.
     std::span<const std::uint32_t> cell_segments(std::size_t c) const {
-        return std::span<const std::uint32_t>(segments_).subspan(offsets_[c],
-                                                                 offsets_[c + 1] - offsets_[c]);
+        return {segments_.data() + offsets_[c], segments_.data() + offsets_[c + 1]};
     }
 
 private:
@@ -88,7 +90,41 @@ private:
     Quadtree tree_;
     std::vector<std::uint32_t>
         offsets_;  ///< CSR: segments of cell c are [offsets_[c], offsets_[c+1])
-    std::vector<std::uint32_t> segments_;
+    /// The cells' lists, one after another. Grown level by level without initializing the new
+    /// entries, by realloc, which moves a large block's pages rather than copying its contents.
+    class Lists {
+    public:
+        Lists() = default;
+        Lists(const Lists& o) : Lists() { *this = o; }
+        Lists(Lists&& o) noexcept
+            : data_(std::exchange(o.data_, nullptr)),
+              size_(std::exchange(o.size_, 0)),
+              capacity_(std::exchange(o.capacity_, 0)) {}
+        Lists& operator=(const Lists& o) {
+            if (this != &o) {
+                resize(o.size_);
+                std::copy_n(o.data_, o.size_, data_);
+            }
+            return *this;
+        }
+        Lists& operator=(Lists&& o) noexcept {
+            std::swap(data_, o.data_);
+            std::swap(size_, o.size_);
+            std::swap(capacity_, o.capacity_);
+            return *this;
+        }
+        ~Lists() { std::free(data_); }
+        /// New entries are uninitialized; throws std::bad_alloc when memory runs out.
+        void resize(std::size_t n);
+        std::size_t size() const { return size_; }
+        std::uint32_t* data() { return data_; }
+        const std::uint32_t* data() const { return data_; }
+
+    private:
+        std::uint32_t* data_ = nullptr;
+        std::size_t size_ = 0, capacity_ = 0;
+    };
+    Lists segments_;
     /// The deepest cell at or above level start_level_ holding each block of a uniform grid of
     /// 2^start_level_ blocks per side (row-major from the low corner).
     int start_level_ = 0;

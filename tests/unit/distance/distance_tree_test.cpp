@@ -217,6 +217,28 @@ TEST(DistanceTree, CellsAndListsDoNotDependOnThreadCount) {
     }
 }
 
+TEST(DistanceTree, CopiesAndMovesKeepEveryList) {
+    std::mt19937 rng(5);
+    const Interface curves = testing::random_interface(rng);
+    const Interface other({shapes::circle({}, 0.5, 64)});
+    const DistanceTree tree(curves, domain, {.depth = 7, .triangulate = false});
+    DistanceTree copied = tree;
+    DistanceTree assigned(other, domain, {.depth = 9, .triangulate = false});
+    assigned = tree;
+    DistanceTree moved = std::move(copied);
+    DistanceTree move_assigned(other, domain, {.depth = 9, .triangulate = false});
+    move_assigned = DistanceTree(tree);
+    for (const DistanceTree* t : {&assigned, &moved, &move_assigned}) {
+        ASSERT_EQ(t->tree().size(), tree.tree().size());
+        for (std::size_t c = 0; c < tree.tree().size(); ++c) {
+            const auto a = tree.cell_segments(c), b = t->cell_segments(c);
+            ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << "cell " << c;
+        }
+        for (const Vec2 x : query_points(curves, rng))
+            ASSERT_EQ(t->closest_point(x).distance, tree.closest_point(x).distance);
+    }
+}
+
 TEST(DistanceTree, RejectsAnEmptyInterfaceAndBadDomains) {
     const Interface none;
     EXPECT_THROW(DistanceTree(none, domain, {}), InvalidInput);
