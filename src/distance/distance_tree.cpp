@@ -174,7 +174,7 @@ void DistanceTree::build_lists() {
 
 void DistanceTree::Lists::resize(std::size_t n) {
     if (n > capacity_) {
-        const std::size_t capacity = std::max(n, 2 * capacity_);
+        const std::size_t capacity = std::max(n, 2 * size_);
         void* grown = std::realloc(data_, capacity * sizeof(std::uint32_t));
         if (grown == nullptr) throw std::bad_alloc();
         data_ = static_cast<std::uint32_t*>(grown);

@@ -90,8 +90,10 @@ private:
     Quadtree tree_;
     std::vector<std::uint32_t>
         offsets_;  ///< CSR: segments of cell c are [offsets_[c], offsets_[c+1])
-    /// The cells' lists, one after another. Grown level by level without initializing the new
-    /// entries, by realloc, which moves a large block's pages rather than copying its contents.
+    /// The cells' lists, one after another. Grown level by level, at least twofold as
+    /// std::vector grows, but by realloc and without initializing the new entries: a block large
+    /// enough to be mapped on its own has its pages moved, not copied, and the threads that pack
+    /// the lists touch their pages first.
     class Lists {
     public:
         Lists() = default;
