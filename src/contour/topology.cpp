@@ -10,6 +10,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
+#include "slc/core/parallel.hpp"
 #include "stages.hpp"
 
 namespace slc::contouring {
@@ -76,9 +77,13 @@ constexpr Sample pending{std::numeric_limits<double>::quiet_NaN(),
 /// values give, and stand-ins left in triangles where G changes sign are evaluated before the
 /// contour is marched.
 ///
-/// The samples live in one array. A point's key is looked up in a table only when a cell meets
-/// it first; every cell keeps the ids of its samples, so the split tests, the donors and the
-/// triangulation read them without a search.
+/// The samples live in one array, and every cell keeps the ids of its samples, so the split
+/// tests, the donors and the triangulation read them without a search. A new cell's corners are
+/// its parent's corners and centre, or midpoints of its parent's edges, which a neighbour's
+/// children may share: only those are looked up in a table of keys. A cell's centre is its own
+/// (its children's corners reach it through their parent), and so is never in the table.
+/// The new points' stand-ins are worked out on all threads, each from the first cell that
+/// meets it, so they are the same for any thread count.
 class TreeSampler {
 public:
     TreeSampler(BatchFunctionRef g, std::optional<BatchBoundsRef> bounds, const Quadtree& tree,
@@ -101,30 +106,47 @@ public:
     /// neither their parent's samples nor the bounds (one batch) give are evaluated, in one batch.
     void sample(std::span<const std::uint32_t> cells) {
         cell_samples_.resize(tree_.size(), no_samples);
-        std::vector<std::uint32_t> open;
-        Donors donors;
-        std::uint32_t donors_of_cell = Quadtree::no_cell;  // siblings come together
-        for (std::uint32_t c : cells) {
+        // Numbers the points in cell order, then works out the new points' stand-ins cell by
+        // cell on all threads: each new point's donors are the samples of the parent of the
+        // first cell that meets it, which the parent has before the call.
+        std::vector<std::uint8_t> fresh(cells.size(), 0);  // per cell, a bit per new sample
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            const std::uint32_t c = cells[i];
             const std::uint32_t parent = c == 0 ? Quadtree::no_cell : tree_.cell(c).parent;
-            if (parent != donors_of_cell) {
-                donors = donors_of(samples_of(parent));
-                donors_of_cell = parent;
-            }
+            SLC_ASSERT(parent == Quadtree::no_cell || has_samples(parent),
+                       "a cell is sampled after its parent");
             const Keys keys = sample_keys(c);
             for (std::size_t j = 0; j < keys.n; ++j) {
-                const auto [id, fresh] = add_point(keys.k[j]);
+                const auto [id, is_new] = parent == Quadtree::no_cell
+                                              ? add_point(keys.k[j])
+                                              : child_point(c, j, keys.k[j]);
                 cell_samples_[c][j] = id;
-                if (!fresh) continue;
-                if (const auto stand_in = from_donors(point(id), donors)) {
-                    samples_[id] = *stand_in;
-                } else {
-                    open.push_back(id);
+                if (is_new) fresh[i] |= static_cast<std::uint8_t>(1u << j);
+            }
+        }
+        parallel_for(
+            cells.size(),
+            [&](std::size_t i) {
+                if (fresh[i] == 0 || cells[i] == 0) return;  // the root has no donors
+                const Donors donors = donors_of(samples_of(tree_.cell(cells[i]).parent));
+                for (std::size_t j = 0; j < 5; ++j) {
+                    if ((fresh[i] >> j & 1u) == 0) continue;
+                    const std::uint32_t id = cell_samples_[cells[i]][j];
+                    if (const auto stand_in = from_donors(point(id), donors))
+                        samples_[id] = *stand_in;
                 }
+            },
+            parallel_grain);
+        std::vector<std::uint32_t> open;
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            for (std::size_t j = 0; j < 5; ++j) {
+                const std::uint32_t id = cell_samples_[cells[i]][j];
+                if ((fresh[i] >> j & 1u) != 0 && std::isnan(samples_[id].value)) open.push_back(id);
             }
         }
         evaluate(apply_bounds(open));
         cell_min_.resize(tree_.size(), infinity);
-        for (std::uint32_t c : cells) update_min(c);
+        parallel_for(cells.size(), [&](std::size_t i) { update_min(cells[i]); });
     }
 
     /// Before the cells are tested against γ: resolves the stand-ins on which a test would rest,
@@ -166,30 +188,43 @@ public:
     void complete_centres(double gamma) {
         const int depth = tree_.max_depth();
         const double clearance = gamma * tree_.edge(depth) / std::numbers::sqrt2;
-        std::vector<std::uint32_t> open;
-        for (std::uint32_t c : tree_.leaves()) {
-            if (tree_.cell(c).level != depth) continue;
+        std::vector<std::uint32_t> finest;
+        for (std::uint32_t c : tree_.leaves())
+            if (tree_.cell(c).level == depth) finest.push_back(c);
+        // Each centre is new and its own cell's only: numbered in cell order, worked out on all
+        // threads.
+        const std::size_t first = samples_.size();
+        samples_.resize(first + finest.size(), pending);
+        keys_.resize(first + finest.size());
+        parallel_for(finest.size(), [&](std::size_t i) {
+            const std::uint32_t c = finest[i];
+            const auto id = static_cast<std::uint32_t>(first + i);
             std::array<std::uint32_t, 5>& ids = cell_samples_[c];
-            double lo = infinity, hi = -infinity;
-            for (int i = 0; i < 4; ++i) {
-                lo = std::min(lo, samples_[ids[i]].value);
-                hi = std::max(hi, samples_[ids[i]].value);
-            }
-            const auto [id, fresh] = add_point(sample_keys(c, true).k[4]);
             ids[4] = id;
-            if (!fresh) continue;
+            keys_[id] = sample_keys(c, true).k[4];
+            double lo = infinity, hi = -infinity;
+            for (int j = 0; j < 4; ++j) {
+                lo = std::min(lo, samples_[ids[j]].value);
+                hi = std::max(hi, samples_[ids[j]].value);
+            }
             if (lo > clearance || hi < -clearance) {
                 samples_[id] = Sample{lo > 0.0 ? lo : hi, infinity, Source::parents};
             } else if (const auto stand_in =
                            from_donors(point(id), donors_of(std::span(ids).first(4)))) {
                 samples_[id] = *stand_in;
-            } else {
-                open.push_back(id);
             }
+        });
+        std::vector<std::uint32_t> open;
+        for (std::size_t i = 0; i < finest.size(); ++i) {
+            const auto id = static_cast<std::uint32_t>(first + i);
+            if (std::isnan(samples_[id].value)) open.push_back(id);
         }
         evaluate(apply_bounds(open));
     }
 
+    bool has_samples(std::uint32_t c) const {
+        return c < cell_samples_.size() && cell_samples_[c][0] != no_sample;
+    }
     double min_abs(std::uint32_t c) const { return cell_min_[c]; }
     std::size_t bound_evals() const { return bound_evals_; }
 
@@ -219,7 +254,10 @@ public:
             [&](std::size_t c, int corner, std::uint64_t gx, std::uint64_t gy) {
                 return number(samples_[cell_samples_[c][corner]], gx, gy);
             },
-            [&](std::size_t, int, std::uint64_t gx, std::uint64_t gy) {
+            [&](std::size_t c, int, std::uint64_t gx, std::uint64_t gy) {
+                // No cell is finer than the depth limit, and the midpoint of such a leaf's edge
+                // is on no coarser cell's corners or centre: no lookup is needed there.
+                if (tree_.cell(c).level == tree_.max_depth()) return no_vertex;
                 const std::uint32_t* id = index_.find(SampleGrid::key(gx, gy));
                 return id == nullptr ? no_vertex : number(samples_[*id], gx, gy);
             },
@@ -256,6 +294,27 @@ private:
             keys_.push_back(key);
         }
         return {*id, fresh};
+    }
+    /// A new point that no other cell shares: the centre of a cell, which only its children's
+    /// corners (found through their parent's samples) meet again. It stays out of the table.
+    std::uint32_t add_centre(std::uint64_t key) {
+        samples_.push_back(pending);
+        keys_.push_back(key);
+        return static_cast<std::uint32_t>(samples_.size() - 1);
+    }
+    /// Sample j of child c, as add_point(key) would give it: of the nine corners of its
+    /// parent's four children, the parent's corners and centre are its samples already, and
+    /// only the midpoints of its edges, which the children of a neighbour may have added, are
+    /// looked up in the table; the child's centre is new.
+    std::pair<std::uint32_t, bool> child_point(std::uint32_t c, std::size_t j, std::uint64_t key) {
+        if (j == 4) return {add_centre(key), true};
+        const auto& cell = tree_.cell(c);
+        const std::uint32_t k = c - tree_.cell(cell.parent).first_child;
+        const std::uint32_t a = (k & 1u) + (j & 1u), b = (k >> 1) + (j >> 1);  // in 0..2
+        const auto& parent = cell_samples_[cell.parent];
+        if (a != 1 && b != 1) return {parent[a / 2 + b], false};
+        if (a == 1 && b == 1) return {parent[4], false};
+        return add_point(key);
     }
     Vec2 point(std::uint32_t id) const {
         const std::uint64_t k = keys_[id];
@@ -434,7 +493,14 @@ double build_tree(Quadtree& tree, TreeSampler& sampler, double gamma) {
     tree.balance([&](std::size_t c) {
         for (std::uint32_t k = 0; k < 4; ++k) children.push_back(tree.cell(c).first_child + k);
     });
-    sampler.sample(children);
+    // balance() may split a cell it split itself: such children wait for their parent's samples.
+    while (!children.empty()) {
+        std::vector<std::uint32_t> ready, later;
+        for (std::uint32_t c : children)
+            (sampler.has_samples(tree.cell(c).parent) ? ready : later).push_back(c);
+        sampler.sample(ready);
+        children = std::move(later);
+    }
     return gamma;
 }
 
