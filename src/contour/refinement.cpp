@@ -256,9 +256,17 @@ private:
     /// Safeguards, then insertion, one candidate at a time in vertex order so that each sees the
     /// vertices its predecessors added. Returns the number of vertices added.
     std::size_t accept(const std::vector<Candidate>& candidates) {
+        // Whether a root may leave its segment's triangle does not depend on the other splits:
+        // that safeguard goes first, on all threads.
+        std::vector<std::uint8_t> allowed(candidates.size());
+        parallel_for(candidates.size(), [&](std::size_t i) {
+            const Candidate& c = candidates[i];
+            allowed[i] = c.has_root && in_allowed_triangle(chain_.home[c.u], c.root);
+        });
         std::size_t added = 0;
-        for (const Candidate& c : candidates) {
-            if (!c.has_root || !split_is_safe(c.u, c.root)) {
+        for (std::size_t i = 0; i < candidates.size(); ++i) {
+            const Candidate& c = candidates[i];
+            if (!allowed[i] || !split_is_safe(c.u, c.root)) {
                 chain_.frozen[c.u] = 1;
                 ++report_.rejected;
                 continue;
@@ -272,10 +280,10 @@ private:
         return added;
     }
 
+    /// The safeguards that depend on the splits accepted before: angles and crossings.
     bool split_is_safe(std::uint32_t u, Vec2 w) const {
         const std::uint32_t v = chain_.next[u];
         const Vec2 pu = chain_.points[u], pv = chain_.points[v];
-        if (!in_allowed_triangle(chain_.home[u], w)) return false;
         if (is_sharp(pu, chain_.points[chain_.prev[u]], w) ||
             is_sharp(pv, chain_.points[chain_.next[v]], w) || is_sharp(w, pu, pv)) {
             return false;
