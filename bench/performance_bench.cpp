@@ -839,6 +839,41 @@ builds in the same time as before. In the one-circle step of 240103 segments the
 segments 2.6·10⁻⁵ long), and the second thread waits for about a fifth of the step while the first
 runs the contouring tree's table of samples (3%), its topology (2.5%), refinement's crossing tests
 (1.5%) and its centres (1.5%).
+
+### The contouring tree's table of points, and its stand-ins on all threads
+
+A two-thread profile of the one-circle step of 43770 segments (`perf record -e cpu-clock`,
+samples counted per thread) found the second thread waiting for 30% of its samples. What the
+first ran alone was led by the contouring tree: entering each new cell's five points in its table
+of sample points (half of that time waiting for the table's memory), working out the new
+points' stand-ins, the centres of the finest leaves, and looking up the midpoints of every leaf's
+edges while triangulating. Now a new cell's corners are its parent's corners and centre, read
+from the parent's samples, or the midpoints of its parent's edges, which alone go through the
+table; a centre belongs to its cell only and is never entered; a leaf at the depth limit has no
+finer neighbour, so its edges need no lookup; and the stand-ins of the new points and the leaf
+centres are worked out on all threads, each point's from the parent of the first cell (in cell
+order) that meets it. Refinement checks every candidate's triangle (may the new vertex leave its
+segment's triangle?) on all threads before the acceptance loop, which needs only the angle and
+crossing checks in order. Every result is bit-identical (the same final vertices in eight whole
+runs, on one and two threads), and the second thread now waits for 23% of its samples.
+
+Wall time per step, least of three interleaved runs (one run each at 240103 segments), before →
+after:
+
+| segments | 1 thread | 2 threads | speed-up |
+|---|---|---|---|
+| 1324 | 0.0219 → 0.0218 s | 0.0139 → 0.0136 s | 1.58 → 1.60 |
+| 5253 | 0.0949 → 0.0942 s | 0.0549 → 0.0495 s | 1.73 → 1.90 |
+| 43770 | 0.751 → 0.705 s | 0.427 → 0.373 s | 1.76 → 1.89 |
+| 240103 | 3.91 → 3.82 s | 2.76 → 2.33 s | 1.41 → 1.64 |
+
+The cells of Tables 5–7 have small trees, whose tables stay in cache: one thread, least of four
+interleaved whole runs, 0.98–1.01× (Table 5's 40/0/3/1e−3 with P = 0 and 1, 640/0/7/1e−7 with
+P = 0, 320/0/6/1e−6 with P = 4; Table 6's 160/0/5/1e−5 with P = 2; Table 7's 320/3/7/1e−7 with
+P = 4), and on two threads 0.98–1.00× of the wall time in five of those cells (Table 6's
+640/0/7/1e−7 with P = 4, one run: 0.86×). Measured and not kept: root finding's
+bookkeeping between its batches (the next iterate and the update of each bracket) on all
+threads, 1.01–1.02× at 1324 to 43770 segments.
 )";
     write_file_atomic(out, md);
     fmt::print(stderr, "wrote {}\n", out);
