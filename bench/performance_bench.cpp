@@ -867,6 +867,11 @@ after:
 | 43770 | 0.751 → 0.705 s | 0.427 → 0.373 s | 1.76 → 1.89 |
 | 240103 | 3.91 → 3.82 s | 2.76 → 2.33 s | 1.41 → 1.64 |
 
+The scaling table above comes from one run of this bench, and its speed-ups move by up to ±0.1
+from run to run on this machine (43770 segments: 1.70 in the run before this change, 1.64 in the
+run after it); so do the cells' speed-ups in Tables 5–7 (their median went from 1.42 to 1.37,
+single cells by up to ±0.25 both ways). Interleaved runs compare two versions under the same load.
+
 The cells of Tables 5–7 have small trees, whose tables stay in cache: one thread, least of four
 interleaved whole runs, 0.98–1.01× (Table 5's 40/0/3/1e−3 with P = 0 and 1, 640/0/7/1e−7 with
 P = 0, 320/0/6/1e−6 with P = 4; Table 6's 160/0/5/1e−5 with P = 2; Table 7's 320/3/7/1e−7 with
