@@ -222,6 +222,7 @@ public:
         evaluate(apply_bounds(open));
     }
 
+    /// Whether cell c has been sampled: sample() needs every cell's parent sampled first.
     bool has_samples(std::uint32_t c) const {
         return c < cell_samples_.size() && cell_samples_[c][0] != no_sample;
     }
