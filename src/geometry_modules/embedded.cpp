@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 
 #include "slc/core/error.hpp"
@@ -106,17 +107,16 @@ VertexGeometry interpolate_geometry(const EmbeddedFields& fields, std::span<cons
     VertexGeometry g{std::vector<Vec2>(points.size()), std::vector<double>(points.size())};
     std::vector<char> missing(points.size(), 0);
     parallel_for(points.size(), [&](std::size_t i) {
-        const auto vx = interpolate(fields.mesh, nx, points[i], order);
-        const auto vy = interpolate(fields.mesh, ny, points[i], order);
-        const auto c = interpolate(fields.mesh, fields.curvature, points[i], order);
-        if (!vx || !vy || !c) {
+        const std::array<std::span<const double>, 3> values{nx, ny, fields.curvature};
+        std::array<double, 3> at;
+        if (!interpolate(fields.mesh, values, points[i], order, at)) {
             missing[i] = 1;
             return;
         }
-        const Vec2 v{*vx, *vy};
+        const Vec2 v{at[0], at[1]};
         const double length = norm(v);
         g.normals[i] = length > 0.0 ? v / length : v;
-        g.curvature[i] = *c;
+        g.curvature[i] = at[2];
     });
     for (std::size_t i = 0; i < points.size(); ++i) {
         if (missing[i] != 0) {

@@ -46,6 +46,19 @@ public:
         const std::size_t size = static_cast<std::size_t>(levels) * n_;
         if (size > small_.size()) large_.resize(size);
         diff_ = size > small_.size() ? large_.data() : small_.data();
+        if (size <= small_.size()) {
+            // A short window (a stencil's), column by column from the right: each entry from
+            // two of the level below, one of them just computed. Level by level, the vectorized
+            // loads of each level would wait for the stores of the level before.
+            for (std::size_t k = n_ - 1; k-- > 0;) {
+                diff_[k] = f[k + 1] - f[k];
+                for (int d = 2; d <= levels && k + static_cast<std::size_t>(d) < n_; ++d) {
+                    const std::size_t row = static_cast<std::size_t>(d - 1) * n_;
+                    diff_[row + k] = diff_[row - n_ + k + 1] - diff_[row - n_ + k];
+                }
+            }
+            return;
+        }
         for (std::size_t k = 0; k + 1 < n_; ++k) diff_[k] = f[k + 1] - f[k];
         for (int d = 2; d <= levels; ++d) {
             const std::size_t row = static_cast<std::size_t>(d - 1) * n_, below = row - n_;
@@ -132,6 +145,23 @@ const DerivativeTable& derivative_table() {
     return table;
 }
 
+/// Σ L_m(at) f[m] for the Lagrange basis on the integer nodes 0..P − 1: L_m(at) =
+/// Π_{l≠m} (at − l) / Π_{l≠m} (m − l), the numerators from prefix and suffix products, the
+/// denominators from a table. P is fixed at compile time so that the products stay in registers.
+template <std::size_t P>
+double lagrange_sum(const double* f, double at) {
+    static_assert(P >= 1 && P <= max_points);
+    std::array<double, P + 1> prefix{}, suffix{};
+    prefix[0] = 1.0;
+    for (std::size_t l = 0; l < P; ++l) prefix[l + 1] = prefix[l] * (at - static_cast<double>(l));
+    suffix[P] = 1.0;
+    for (std::size_t l = P; l-- > 0;) suffix[l] = suffix[l + 1] * (at - static_cast<double>(l));
+    const auto& inverse = inverse_denominators()[P];
+    double sum = 0.0;
+    for (std::size_t m = 0; m < P; ++m) sum += prefix[m] * suffix[m + 1] * inverse[m] * f[m];
+    return sum;
+}
+
 }  // namespace
 
 Stencil stencil(std::span<const double> f, std::size_t lo, std::size_t hi, int order) {
@@ -174,18 +204,22 @@ double interpolate(std::span<const double> f, std::size_t i, double theta, int o
     // Lagrange basis on the integer nodes 0..p − 1 of the stencil at x_i + theta in those units:
     // L_m(at) = Π_{l≠m} (at − l) / Π_{l≠m} (m − l), the numerators from prefix and suffix
     // products, the denominators from a table.
-    const auto p = static_cast<std::size_t>(s.points);
     const double at = static_cast<double>(i - s.first) + theta;
-    std::array<double, max_points + 1> prefix{}, suffix{};
-    prefix[0] = 1.0;
-    for (std::size_t l = 0; l < p; ++l) prefix[l + 1] = prefix[l] * (at - static_cast<double>(l));
-    suffix[p] = 1.0;
-    for (std::size_t l = p; l-- > 0;) suffix[l] = suffix[l + 1] * (at - static_cast<double>(l));
-    const auto& inverse = inverse_denominators()[p];
-    double sum = 0.0;
-    for (std::size_t m = 0; m < p; ++m)
-        sum += prefix[m] * suffix[m + 1] * inverse[m] * f[s.first + m];
-    return sum;
+    const double* samples = f.data() + s.first;
+    switch (s.points) {
+        case 1:
+            return lagrange_sum<1>(samples, at);
+        case 2:
+            return lagrange_sum<2>(samples, at);
+        case 3:
+            return lagrange_sum<3>(samples, at);
+        case 4:
+            return lagrange_sum<4>(samples, at);
+        case 5:
+            return lagrange_sum<5>(samples, at);
+        default:
+            return lagrange_sum<6>(samples, at);
+    }
 }
 
 void smooth(std::span<const double> f, std::span<double> out) {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
@@ -22,9 +23,17 @@ constexpr double max_lattice_index = 1073741824.0;
 /// counts as inside: rounding in the band's end points must not drop a point that belongs.
 constexpr double lattice_slack = 1e-9;
 
+/// No interval yet in a row.
+constexpr std::uint32_t no_interval = 0xffffffffu;
+
 /// The x-intervals that one segment (in lattice units, a → b) contributes: for every row j
 /// within range of it, the lattice points of that row within L∞ distance range of the segment.
-void add_segment_intervals(Vec2 a, Vec2 b, double range, std::vector<LocalMesh::Interval>& out) {
+/// An interval that overlaps or touches the last one added to its row (last[j − first_row], which
+/// a curve's previous segment usually made) extends it instead: the union, all that merged()
+/// keeps, is the same, and the raw intervals are far fewer where segments are short.
+void add_segment_intervals(Vec2 a, Vec2 b, double range, std::int32_t first_row,
+                           std::vector<std::uint32_t>& last,
+                           std::vector<LocalMesh::Interval>& out) {
     const double y_lo = std::min(a.y, b.y) - range, y_hi = std::max(a.y, b.y) + range;
     const auto j_lo = static_cast<std::int32_t>(std::ceil(y_lo - lattice_slack));
     const auto j_hi = static_cast<std::int32_t>(std::floor(y_hi + lattice_slack));
@@ -46,7 +55,15 @@ void add_segment_intervals(Vec2 a, Vec2 b, double range, std::vector<LocalMesh::
             static_cast<std::int32_t>(std::ceil(std::min(x0, x1) - range - lattice_slack));
         const auto i_hi =
             static_cast<std::int32_t>(std::floor(std::max(x0, x1) + range + lattice_slack));
-        if (i_lo <= i_hi) out.push_back({j, i_lo, i_hi, 0});
+        if (i_lo > i_hi) continue;
+        std::uint32_t& k = last[static_cast<std::size_t>(j - first_row)];
+        if (k != no_interval && out[k].lo <= i_hi + 1 && i_lo <= out[k].hi + 1) {
+            out[k].lo = std::min(out[k].lo, i_lo);
+            out[k].hi = std::max(out[k].hi, i_hi);
+        } else {
+            k = static_cast<std::uint32_t>(out.size());
+            out.push_back({j, i_lo, i_hi, 0});
+        }
     }
 }
 
@@ -90,7 +107,9 @@ LocalMesh::LocalMesh(const Interface& curves, Vec2 origin, double h, int range)
             fmt::format("local mesh: spacing must be positive and finite, got {}", h));
     if (range < 1)
         throw InvalidInput(fmt::format("local mesh: range must be at least 1, got {}", range));
-    std::vector<Interval> raw;
+    // Segments in lattice units, checked against the index limit, and the rows they can reach.
+    std::vector<Segment> lattice(curves.size());
+    double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
     for (std::size_t s = 0; s < curves.size(); ++s) {
         const Segment seg = curves.segment(s);
         const Vec2 a = (seg.a - origin) / h, b = (seg.b - origin) / h;
@@ -100,8 +119,17 @@ LocalMesh::LocalMesh(const Interface& curves, Vec2 origin, double h, int range)
                 "local mesh: segment {} lies {} lattice steps from the origin (at most 2^30)", s,
                 reach));
         }
-        add_segment_intervals(a, b, static_cast<double>(range), raw);
+        lattice[s] = {a, b};
+        y_min = std::min({y_min, a.y, b.y});
+        y_max = std::max({y_max, a.y, b.y});
     }
+    const auto first_row = static_cast<std::int32_t>(std::floor(y_min)) - range - 1;
+    const auto last_row = static_cast<std::int32_t>(std::ceil(y_max)) + range + 1;
+    std::vector<std::uint32_t> last(static_cast<std::size_t>(last_row - first_row) + 1,
+                                    no_interval);
+    std::vector<Interval> raw;
+    for (const Segment& seg : lattice)
+        add_segment_intervals(seg.a, seg.b, static_cast<double>(range), first_row, last, raw);
     rows_ = merged(raw);
     for (Interval& r : rows_) {
         r.first = static_cast<std::uint32_t>(size_);
@@ -233,40 +261,57 @@ std::vector<double> smoothed(const LocalMesh& mesh, std::span<const double> valu
 
 std::optional<double> interpolate(const LocalMesh& mesh, std::span<const double> values, Vec2 x,
                                   int order) {
-    SLC_ASSERT(values.size() == mesh.size(), "one value per mesh point");
+    double out;
+    if (!interpolate(mesh, std::span(&values, 1), x, order, std::span(&out, 1)))
+        return std::nullopt;
+    return out;
+}
+
+bool interpolate(const LocalMesh& mesh, std::span<const std::span<const double>> fields, Vec2 x,
+                 int order, std::span<double> out) {
+    SLC_ASSERT(out.size() == fields.size(), "one output per field");
     const Vec2 u = (x - mesh.origin()) / mesh.spacing();
     const double fi = std::floor(u.x), fj = std::floor(u.y);
-    if (!(std::abs(fi) < max_lattice_index && std::abs(fj) < max_lattice_index))
-        return std::nullopt;
+    if (!(std::abs(fi) < max_lattice_index && std::abs(fj) < max_lattice_index)) return false;
     const auto i = static_cast<std::int32_t>(fi), j = static_cast<std::int32_t>(fj);
-    // The value along row jj at x, if the row holds both corners i and i + 1.
-    auto row_value = [&](std::int32_t jj) -> std::optional<double> {
+    // Row jj's interval, if it holds both corners i and i + 1.
+    auto row_at = [&](std::int32_t jj) -> const LocalMesh::Interval* {
         const LocalMesh::Interval* r = mesh.row_interval(i, jj);
-        if (r == nullptr || i + 1 > r->hi) return std::nullopt;
-        return eno::interpolate(values.subspan(r->first, r->size()),
-                                static_cast<std::size_t>(i - r->lo), u.x - fi, order);
+        return r != nullptr && i + 1 <= r->hi ? r : nullptr;
     };
-    // Rows j − order + 1 .. j + order, stopping at the first row without the cell's corners.
-    std::array<double, 2 * eno::max_order> column{};
-    const auto below = row_value(j), above = row_value(j + 1);
-    if (!below || !above) return std::nullopt;
-    int lo = order - 1;  // position of row j in column[]
-    int hi = order;      // position of row j + 1
-    column[static_cast<std::size_t>(lo)] = *below;
-    column[static_cast<std::size_t>(hi)] = *above;
+    // Rows j − order + 1 .. j + order, stopping at the first row without the cell's corners:
+    // rows[lo..hi], row j at position order − 1.
+    std::array<const LocalMesh::Interval*, 2 * eno::max_order> rows{};
+    int lo = order - 1, hi = order;
+    rows[static_cast<std::size_t>(lo)] = row_at(j);
+    rows[static_cast<std::size_t>(hi)] = row_at(j + 1);
+    if (rows[static_cast<std::size_t>(lo)] == nullptr ||
+        rows[static_cast<std::size_t>(hi)] == nullptr)
+        return false;
     for (int k = 1; k < order; ++k) {
-        const auto v = row_value(j - k);
-        if (!v) break;
-        column[static_cast<std::size_t>(--lo)] = *v;
+        const LocalMesh::Interval* r = row_at(j - k);
+        if (r == nullptr) break;
+        rows[static_cast<std::size_t>(--lo)] = r;
     }
     for (int k = 2; k <= order; ++k) {
-        const auto v = row_value(j + k);
-        if (!v) break;
-        column[static_cast<std::size_t>(++hi)] = *v;
+        const LocalMesh::Interval* r = row_at(j + k);
+        if (r == nullptr) break;
+        rows[static_cast<std::size_t>(++hi)] = r;
     }
-    const auto line = std::span<const double>(column).subspan(
-        static_cast<std::size_t>(lo), static_cast<std::size_t>(hi - lo + 1));
-    return eno::interpolate(line, static_cast<std::size_t>(order - 1 - lo), u.y - fj, order);
+    std::array<double, 2 * eno::max_order> column{};
+    for (std::size_t f = 0; f < fields.size(); ++f) {
+        SLC_ASSERT(fields[f].size() == mesh.size(), "one value per mesh point");
+        for (int k = lo; k <= hi; ++k) {
+            const LocalMesh::Interval& r = *rows[static_cast<std::size_t>(k)];
+            column[static_cast<std::size_t>(k)] =
+                eno::interpolate(fields[f].subspan(r.first, r.size()),
+                                 static_cast<std::size_t>(i - r.lo), u.x - fi, order);
+        }
+        const auto line = std::span<const double>(column).subspan(
+            static_cast<std::size_t>(lo), static_cast<std::size_t>(hi - lo + 1));
+        out[f] = eno::interpolate(line, static_cast<std::size_t>(order - 1 - lo), u.y - fj, order);
+    }
+    return true;
 }
 
 }  // namespace slc

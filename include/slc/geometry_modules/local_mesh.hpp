@@ -44,7 +44,8 @@ public:
     LocalMesh() = default;
 
     /// Builds the mesh around curves with lattice origin and spacing h > 0, range >= 1 steps:
-    /// one x-interval per segment and row it reaches, sorted by (row, start) and merged where
+    /// one x-interval per segment and row it reaches (extending the row's last one where they
+    /// overlap or touch, as consecutive segments' do), sorted by (row, start) and merged where
     /// they overlap or touch; the y-intervals by a counting sort of the points by column.
     /// Throws InvalidInput for an empty interface, h <= 0 or non-finite, range < 1, or a lattice
     /// index beyond ±2^30. Cost O(I log I + P + W) for I raw intervals, P points, W columns.
@@ -114,5 +115,11 @@ std::vector<double> smoothed(const LocalMesh& mesh, std::span<const double> valu
 /// Returns nothing when a corner of x's lattice cell is not a mesh point.
 std::optional<double> interpolate(const LocalMesh& mesh, std::span<const double> values, Vec2 x,
                                   int order);
+
+/// interpolate() of several fields at the same x, each with its own stencils: out[f] for
+/// fields[f] (out.size() == fields.size()). The rows are looked up once for all fields. Returns
+/// false, leaving out unspecified, when a corner of x's lattice cell is not a mesh point.
+bool interpolate(const LocalMesh& mesh, std::span<const std::span<const double>> fields, Vec2 x,
+                 int order, std::span<double> out);
 
 }  // namespace slc
