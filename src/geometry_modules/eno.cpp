@@ -151,14 +151,16 @@ const DerivativeTable& derivative_table() {
 template <std::size_t P>
 double lagrange_sum(const double* f, double at) {
     static_assert(P >= 1 && P <= max_points);
-    std::array<double, P + 1> prefix{}, suffix{};
-    prefix[0] = 1.0;
-    for (std::size_t l = 0; l < P; ++l) prefix[l + 1] = prefix[l] * (at - static_cast<double>(l));
+    std::array<double, P + 1> suffix{};
     suffix[P] = 1.0;
     for (std::size_t l = P; l-- > 0;) suffix[l] = suffix[l + 1] * (at - static_cast<double>(l));
     const auto& inverse = inverse_denominators()[P];
-    double sum = 0.0;
-    for (std::size_t m = 0; m < P; ++m) sum += prefix[m] * suffix[m + 1] * inverse[m] * f[m];
+    // The prefix product Π_{l<m} (at − l) runs along with the sum.
+    double prefix = 1.0, sum = 0.0;
+    for (std::size_t m = 0; m < P; ++m) {
+        sum += prefix * suffix[m + 1] * inverse[m] * f[m];
+        prefix *= at - static_cast<double>(m);
+    }
     return sum;
 }
 
