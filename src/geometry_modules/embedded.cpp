@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -16,6 +17,9 @@ namespace {
 
 /// Largest accepted M: keeps lattice indices of a curve inside its domain far below 2^30.
 constexpr int max_mesh_size = 1 << 24;
+/// Points interpolated together on one thread, reusing the stencils of the lattice cells they
+/// share.
+constexpr std::size_t points_per_block = 64;
 /// Largest accepted S: far beyond what stabilizes any curvature flow (the paper uses 0..4).
 constexpr int max_smoothing = 64;
 
@@ -106,18 +110,27 @@ VertexGeometry interpolate_geometry(const EmbeddedFields& fields, std::span<cons
     }
     VertexGeometry g{std::vector<Vec2>(points.size()), std::vector<double>(points.size())};
     std::vector<char> missing(points.size(), 0);
-    parallel_for(points.size(), [&](std::size_t i) {
-        const std::array<std::span<const double>, 3> values{nx, ny, fields.curvature};
-        std::array<double, 3> at;
-        if (!interpolate(fields.mesh, values, points[i], order, at)) {
-            missing[i] = 1;
-            return;
-        }
-        const Vec2 v{at[0], at[1]};
-        const double length = norm(v);
-        g.normals[i] = length > 0.0 ? v / length : v;
-        g.curvature[i] = at[2];
-    });
+    // In blocks of consecutive points, which often share a lattice cell and so its stencils.
+    const std::array<std::span<const double>, 3> values{nx, ny, fields.curvature};
+    const std::size_t blocks = (points.size() + points_per_block - 1) / points_per_block;
+    parallel_for(
+        blocks,
+        [&](std::size_t b) {
+            CellStencils cell;
+            const std::size_t end = std::min(points.size(), (b + 1) * points_per_block);
+            for (std::size_t i = b * points_per_block; i < end; ++i) {
+                std::array<double, 3> at;
+                if (!interpolate(fields.mesh, values, points[i], order, at, &cell)) {
+                    missing[i] = 1;
+                    continue;
+                }
+                const Vec2 v{at[0], at[1]};
+                const double length = norm(v);
+                g.normals[i] = length > 0.0 ? v / length : v;
+                g.curvature[i] = at[2];
+            }
+        },
+        2);
     for (std::size_t i = 0; i < points.size(); ++i) {
         if (missing[i] != 0) {
             throw NumericalFailure(

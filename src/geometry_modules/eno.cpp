@@ -202,10 +202,14 @@ void derivative(std::span<const double> f, double h, int order, std::span<double
 double interpolate(std::span<const double> f, std::size_t i, double theta, int order) {
     check_order(order);
     SLC_ASSERT(i + 1 < f.size(), "the interval [x_i, x_{i+1}] lies inside the line");
-    const Stencil s = stencil(f, i, i + 1, order);
-    // Lagrange basis on the integer nodes 0..p − 1 of the stencil at x_i + theta in those units:
-    // L_m(at) = Π_{l≠m} (at − l) / Π_{l≠m} (m − l), the numerators from prefix and suffix
-    // products, the denominators from a table.
+    return interpolate(f, stencil(f, i, i + 1, order), i, theta);
+}
+
+double interpolate(std::span<const double> f, const Stencil& s, std::size_t i, double theta) {
+    SLC_ASSERT(s.points >= 1 && s.points <= max_points && s.first <= i &&
+                   s.first + static_cast<std::size_t>(s.points) <= f.size(),
+               "the stencil lies inside the line and holds x_i");
+    // Lagrange basis on the integer nodes 0..p − 1 of the stencil at x_i + theta in those units.
     const double at = static_cast<double>(i - s.first) + theta;
     const double* samples = f.data() + s.first;
     switch (s.points) {

@@ -268,48 +268,66 @@ std::optional<double> interpolate(const LocalMesh& mesh, std::span<const double>
 }
 
 bool interpolate(const LocalMesh& mesh, std::span<const std::span<const double>> fields, Vec2 x,
-                 int order, std::span<double> out) {
+                 int order, std::span<double> out, CellStencils* cache) {
     SLC_ASSERT(out.size() == fields.size(), "one output per field");
     const Vec2 u = (x - mesh.origin()) / mesh.spacing();
     const double fi = std::floor(u.x), fj = std::floor(u.y);
     if (!(std::abs(fi) < max_lattice_index && std::abs(fj) < max_lattice_index)) return false;
     const auto i = static_cast<std::int32_t>(fi), j = static_cast<std::int32_t>(fj);
-    // Row jj's interval, if it holds both corners i and i + 1.
-    auto row_at = [&](std::int32_t jj) -> const LocalMesh::Interval* {
-        const LocalMesh::Interval* r = mesh.row_interval(i, jj);
-        return r != nullptr && i + 1 <= r->hi ? r : nullptr;
-    };
-    // Rows j − order + 1 .. j + order, stopping at the first row without the cell's corners:
-    // rows[lo..hi], row j at position order − 1.
-    std::array<const LocalMesh::Interval*, 2 * eno::max_order> rows{};
-    int lo = order - 1, hi = order;
-    rows[static_cast<std::size_t>(lo)] = row_at(j);
-    rows[static_cast<std::size_t>(hi)] = row_at(j + 1);
-    if (rows[static_cast<std::size_t>(lo)] == nullptr ||
-        rows[static_cast<std::size_t>(hi)] == nullptr)
-        return false;
-    for (int k = 1; k < order; ++k) {
-        const LocalMesh::Interval* r = row_at(j - k);
-        if (r == nullptr) break;
-        rows[static_cast<std::size_t>(--lo)] = r;
-    }
-    for (int k = 2; k <= order; ++k) {
-        const LocalMesh::Interval* r = row_at(j + k);
-        if (r == nullptr) break;
-        rows[static_cast<std::size_t>(++hi)] = r;
+    CellStencils local;
+    CellStencils& cell =
+        cache != nullptr && fields.size() <= CellStencils::max_fields ? *cache : local;
+    const bool known = cell.valid && cell.i == i && cell.j == j;
+    if (!known) {
+        // Row jj's interval, if it holds both corners i and i + 1.
+        auto row_at = [&](std::int32_t jj) -> const LocalMesh::Interval* {
+            const LocalMesh::Interval* r = mesh.row_interval(i, jj);
+            return r != nullptr && i + 1 <= r->hi ? r : nullptr;
+        };
+        // Rows j − order + 1 .. j + order, stopping at the first row without the cell's
+        // corners: rows[lo..hi], row j at position order − 1.
+        cell.valid = false;
+        cell.lo = order - 1;
+        cell.hi = order;
+        cell.rows[static_cast<std::size_t>(cell.lo)] = row_at(j);
+        cell.rows[static_cast<std::size_t>(cell.hi)] = row_at(j + 1);
+        if (cell.rows[static_cast<std::size_t>(cell.lo)] == nullptr ||
+            cell.rows[static_cast<std::size_t>(cell.hi)] == nullptr)
+            return false;
+        for (int k = 1; k < order; ++k) {
+            const LocalMesh::Interval* r = row_at(j - k);
+            if (r == nullptr) break;
+            cell.rows[static_cast<std::size_t>(--cell.lo)] = r;
+        }
+        for (int k = 2; k <= order; ++k) {
+            const LocalMesh::Interval* r = row_at(j + k);
+            if (r == nullptr) break;
+            cell.rows[static_cast<std::size_t>(++cell.hi)] = r;
+        }
+        cell.i = i;
+        cell.j = j;
+        cell.valid = &cell != &local;
     }
     std::array<double, 2 * eno::max_order> column{};
     for (std::size_t f = 0; f < fields.size(); ++f) {
         SLC_ASSERT(fields[f].size() == mesh.size(), "one value per mesh point");
-        for (int k = lo; k <= hi; ++k) {
-            const LocalMesh::Interval& r = *rows[static_cast<std::size_t>(k)];
-            column[static_cast<std::size_t>(k)] =
-                eno::interpolate(fields[f].subspan(r.first, r.size()),
-                                 static_cast<std::size_t>(i - r.lo), u.x - fi, order);
+        for (int k = cell.lo; k <= cell.hi; ++k) {
+            const LocalMesh::Interval& r = *cell.rows[static_cast<std::size_t>(k)];
+            const auto line = fields[f].subspan(r.first, r.size());
+            const auto at = static_cast<std::size_t>(i - r.lo);
+            eno::Stencil s;
+            if (known) {
+                s = cell.stencils[f][static_cast<std::size_t>(k)];
+            } else {
+                s = eno::stencil(line, at, at + 1, order);
+                if (f < CellStencils::max_fields) cell.stencils[f][static_cast<std::size_t>(k)] = s;
+            }
+            column[static_cast<std::size_t>(k)] = eno::interpolate(line, s, at, u.x - fi);
         }
         const auto line = std::span<const double>(column).subspan(
-            static_cast<std::size_t>(lo), static_cast<std::size_t>(hi - lo + 1));
-        out[f] = eno::interpolate(line, static_cast<std::size_t>(order - 1 - lo), u.y - fj, order);
+            static_cast<std::size_t>(cell.lo), static_cast<std::size_t>(cell.hi - cell.lo + 1));
+        out[f] =
+            eno::interpolate(line, static_cast<std::size_t>(order - 1 - cell.lo), u.y - fj, order);
     }
     return true;
 }

@@ -42,6 +42,11 @@ void derivative(std::span<const double> f, double h, int order, std::span<double
 /// O(h^(order+1)) for smooth f. O(order²).
 double interpolate(std::span<const double> f, std::size_t i, double theta, int order);
 
+/// interpolate() once the stencil is known: the polynomial through the samples of s at
+/// x_i + theta·h, for callers that reuse the stencil of interval i (it does not depend on theta).
+/// O(s.points).
+double interpolate(std::span<const double> f, const Stencil& s, std::size_t i, double theta);
+
 /// One pass of cosine smoothing, out_k = (f_{k−1} + 2 f_k + f_{k+1}) / 4, which multiplies the
 /// Fourier mode e^{iξx} by cos²(ξh/2): the sawtooth is removed, smooth data moves by
 /// (h²/4) f'' + O(h⁴). The two end samples are copied unchanged. out.size() == f.size(), and out

@@ -7,6 +7,7 @@
 /// columns, cosine smoothing, and ENO interpolation at any point near Γ.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -15,6 +16,7 @@
 
 #include "slc/core/vec2.hpp"
 #include "slc/geometry/interface.hpp"
+#include "slc/geometry_modules/eno.hpp"
 
 namespace slc {
 
@@ -116,10 +118,25 @@ std::vector<double> smoothed(const LocalMesh& mesh, std::span<const double> valu
 std::optional<double> interpolate(const LocalMesh& mesh, std::span<const double> values, Vec2 x,
                                   int order);
 
+/// The rows around one lattice cell and each field's ENO stencils along them: they depend on the
+/// cell and the values, not on where in the cell a point lies, so interpolate() keeps them here
+/// and reuses them for the next point in the same cell (consecutive vertices of a curve often
+/// share one). Use one per thread, and only with the same mesh, fields and order.
+struct CellStencils {
+    static constexpr std::size_t max_fields = 4;
+    bool valid = false;
+    std::int32_t i = 0, j = 0;  ///< the lattice cell
+    int lo = 0, hi = 0;         ///< rows[lo..hi] hold the cell's corners
+    std::array<const LocalMesh::Interval*, 2 * eno::max_order> rows{};
+    std::array<std::array<eno::Stencil, 2 * eno::max_order>, max_fields> stencils{};
+};
+
 /// interpolate() of several fields at the same x, each with its own stencils: out[f] for
-/// fields[f] (out.size() == fields.size()). The rows are looked up once for all fields. Returns
-/// false, leaving out unspecified, when a corner of x's lattice cell is not a mesh point.
+/// fields[f] (out.size() == fields.size()). The rows are looked up once for all fields; with a
+/// cache (at most CellStencils::max_fields fields), once per lattice cell, and so are the
+/// stencils. The results are the same with or without it. Returns false, leaving out
+/// unspecified, when a corner of x's lattice cell is not a mesh point.
 bool interpolate(const LocalMesh& mesh, std::span<const std::span<const double>> fields, Vec2 x,
-                 int order, std::span<double> out);
+                 int order, std::span<double> out, CellStencils* cache = nullptr);
 
 }  // namespace slc

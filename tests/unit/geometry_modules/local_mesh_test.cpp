@@ -169,6 +169,36 @@ TEST(LocalMesh, InterpolationReproducesPolynomialsAtTheVertices) {
     EXPECT_FALSE(interpolate(mesh, f, {0.95, 0.95}, 3).has_value());  // far from Γ
 }
 
+TEST(LocalMesh, SeveralFieldsAndTheCellCacheGiveTheSingleFieldValues) {
+    // Rough data, so that the ENO stencils differ from field to field and cell to cell; a fine
+    // curve, so that consecutive vertices share lattice cells and the cache is reused.
+    const Interface curves({shapes::propeller(2000)});
+    const LocalMesh mesh(curves, {-1.0, -1.0}, 2.0 / 64, 3);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<std::vector<double>> data(5, std::vector<double>(mesh.size()));
+    for (auto& field : data)
+        for (double& v : field) v = u(rng);
+    const std::vector<std::span<const double>> fields(data.begin(), data.end());
+    for (const std::size_t count : {std::size_t{3}, std::size_t{5}}) {  // 5: beyond the cache
+        const auto some = std::span(fields).first(count);
+        CellStencils cell;
+        std::vector<Vec2> points(curves.points().begin(), curves.points().end());
+        points.insert(points.begin() + 100, Vec2{0.95, 0.95});  // off the mesh, mid-way
+        for (const Vec2 p : points) {
+            std::vector<double> out(count);
+            const bool found = interpolate(mesh, some, p, 3, out, &cell);
+            for (std::size_t f = 0; f < count; ++f) {
+                const auto single = interpolate(mesh, some[f], p, 3);
+                ASSERT_EQ(found, single.has_value());
+                if (found) {
+                    ASSERT_EQ(out[f], *single);  // bit for bit
+                }
+            }
+        }
+    }
+}
+
 TEST(LocalMesh, RejectsBadInput) {
     const Interface curves({shapes::circle({}, 0.5, 16)});
     EXPECT_THROW(LocalMesh(Interface(), {}, 0.1, 2), InvalidInput);
