@@ -879,6 +879,54 @@ P = 4), and on two threads 0.98–1.00× of the wall time in five of those cells
 640/0/7/1e−7 with P = 4, one run: 0.86×). Measured and not kept: root finding's
 bookkeeping between its batches (the next iterate and the update of each bracket) on all
 threads, 1.01–1.02× at 1324 to 43770 segments.
+
+### The embedded module's ENO stencils
+
+Table 7's cells take the vertex normals and curvature of both curves of a step from the embedded
+module (exact F on a local mesh, ENO differences, ENO interpolation back to the vertices), and a
+profile of its smallest cell, 20/1/3/1e−3 with P = 0, found the module's ENO work and local mesh
+in a third of the step, most of it in the interpolation. Each row interpolation tabulated the undivided differences of its
+eight-point window level by level, and the compiler's vector loads of each level waited for the
+scalar stores of the level before (a load that spans two stores cannot be forwarded from them);
+the Lagrange sum did the same with its prefix products. Short windows are now tabulated column by
+column, the prefix product runs along with the sum, the three fields (two normal components and
+the curvature) look up their rows once, and a lattice cell's row stencils, which depend on the
+cell and the data but not on where in the cell the vertex lies, serve every vertex in that cell
+(about two per cell at Table 7's first row, more than ten at its last). Building the local mesh, a
+segment's run of lattice points in a row extends the run the previous segment left there instead
+of adding one more to sort. Every result is bit-identical (the same final vertices in eight whole
+runs, on one and two threads; `SeveralFieldsAndTheCellCacheGiveTheSingleFieldValues`).
+
+The module on one circle, one thread, least of five interleaved runs, before → after:
+
+| vertices | M | S | whole module | interpolation to the vertices |
+|---|---|---|---|---|
+| 48 | 16 | 1 | 114 → 88 µs | 49 → 27 µs |
+| 330 | 64 | 1 | 589 → 349 µs | 315 → 109 µs |
+| 4300 | 256 | 3 | 8.06 → 4.42 ms | 3.99 → 1.01 ms |
+
+Whole runs of Table 7, one thread, least of four interleaved: 0.78× at 20/1/3/1e−3 with P = 0,
+0.81× at 40/1/4/1e−4 with P = 4, 0.83× at 80/1/5/1e−5 with P = 2, 0.80× at 160/2/6/1e−6 with
+P = 4, 0.78× at 320/3/7/1e−7 with P = 4. Tables 5 and 6 do not use the module. Most of what
+remains of it is the exact distances at the mesh points, up to R = E + S lattice steps from Γ,
+where the distance tree's lists are long.
+
+Measured and not kept, for the closest-point queries that every step spends most of its time in:
+
+- Starting each lattice point's query from the nearest segment of the point before it in its row
+  (the same answers): no gain beyond the noise at 4300 vertices, and slower at 48, since the
+  segment hierarchy's nearer-first descent finds a near segment at once anyway.
+- Remembering recent queries (in a table indexed by the query point's position) with the two
+  nearest segments and a lower bound on every other: a query within reach of a remembered one
+  then needs two segments instead of its cell's list, with the same answer. 20% of the queries of
+  whole runs were answered so, but the bookkeeping made the runs 1.05–1.39× slower.
+- Scanning a cell list twice: a distance to every segment without a division (a precomputed
+  reciprocal of its squared length), then the exact closest point only for segments within
+  rounding of the least. The same answers, 1.13–1.17× slower in three of four cells: the scan
+  near Γ is 12–33 segments long (counted in whole runs of Tables 5–7; a query climbs to the
+  parent cell in 0.4–14% of the cases), and the second pass and its buffer cost more than the
+  divisions they save. A four-wide version with gathered loads was slower still (58 against
+  50 ns per query of 21 segments).
 )";
     write_file_atomic(out, md);
     fmt::print(stderr, "wrote {}\n", out);
