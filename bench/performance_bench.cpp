@@ -9,8 +9,11 @@
 // quarter points). Errors and G evaluations per vertex come from the studies that scripts/bench
 // runs first (out/study/<problem>/table.json); results do not depend on the thread count.
 //
+// Every cell is timed in --rounds rounds (default 2), all cells once per round, and each time is
+// the least over the rounds, so that a slower spell of a shared machine slows at most one round.
+//
 // Usage: performance_bench [--out FILE] [--study DIR] [--reference CSV] [--rows n] [--prefix n]
-//                          [--max-segments n]
+//                          [--rounds n] [--max-segments n]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -173,12 +176,98 @@ struct Totals {
     std::vector<double> paper_over_floor;  ///< the ratio a step costing only its floor would reach
 };
 
-std::string cell_table(const TableSpec& spec, int rows, int prefix,
-                       const std::map<std::tuple<std::string, int, int>, PaperCell>& paper,
-                       const std::string& study_dir, Totals& totals) {
+/// One cell's timings, each the least over the rounds that measured it.
+struct CellTimes {
+    double t_first = std::numeric_limits<double>::infinity();   ///< CPU s per step, first steps
+    double wall_one = std::numeric_limits<double>::infinity();  ///< wall s of those, one thread
+    double wall_all = std::numeric_limits<double>::infinity();  ///< and on all threads
+    double t_step = std::numeric_limits<double>::infinity();    ///< CPU s per step, whole run
+    StepFloor floor{
+        std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+
+    void lower(const CellTimes& o) {
+        t_first = std::min(t_first, o.t_first);
+        wall_one = std::min(wall_one, o.wall_one);
+        wall_all = std::min(wall_all, o.wall_all);
+        t_step = std::min(t_step, o.t_step);
+        floor.step_s = std::min(floor.step_s, o.floor.step_s);
+        floor.trees_s = std::min(floor.trees_s, o.floor.trees_s);
+        floor.velocities_s = std::min(floor.velocities_s, o.floor.velocities_s);
+        floor.g_s = std::min(floor.g_s, o.floor.g_s);
+    }
+};
+
+/// The study's (error, G evaluations per vertex, CPU s per step) of a cell, NaN where missing.
+std::tuple<double, double, double> study_cell(
+    const std::map<std::pair<int, int>, nlohmann::json>& ours, int row, int p) {
+    const auto it = ours.find({row + 1, p});
+    double e = NAN, evals = NAN, t_study = NAN;
+    if (it != ours.end()) {
+        if (it->second.at("e_inf").is_number()) e = it->second.at("e_inf").get<double>();
+        evals = it->second.at("g_evals_per_vertex").get<double>();
+        if (it->second.at("cpu_s_per_step").is_number())
+            t_study = it->second.at("cpu_s_per_step").get<double>();
+    }
+    return {e, evals, t_study};
+}
+
+/// Times every cell of one table once (round 0 first), lowering times[cell] (row-major, five
+/// values of P per row). The paper's T is the whole run's, and so is ours: a run expected to take
+/// under a second is timed here, the least of repeated runs (one run of a few milliseconds also
+/// pays the process's first page faults); a longer one is the study's own run in round 0, and
+/// one more run in each later round.
+void time_cells(const TableSpec& spec, int rows, int prefix, const std::string& study_dir,
+                int round, std::vector<CellTimes>& times) {
     const Problem problem = make_problem(spec.problem);
     const auto law = make_velocity(problem.velocity, problem.velocity_params, problem.module);
     const Interface initial = prepare_interface(problem.initial, problem.domain).curves;
+    const auto ours = read_study(fmt::format("{}/{}/table.json", study_dir, spec.problem));
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    times.resize(static_cast<std::size_t>(rows) * 5);
+    for (int row = 0; row < rows; ++row) {
+        for (int p = 0; p < 5; ++p) {
+            const RunOptions full = study_cell_options(problem, row, p, RunOptions{});
+            RunOptions o = full;
+            o.steps = std::min(full.steps, prefix);
+            o.t_end = full.t_start + (full.t_end - full.t_start) * o.steps / full.steps;
+            CellTimes now;
+            RunResult one;
+            set_thread_count(1);
+            const Least on_one =
+                least_of_repeats([&] { one = run(initial, *law, problem.domain, o); });
+            set_thread_count(static_cast<int>(cores));
+            const Least on_all =
+                least_of_repeats([&] { (void)run(initial, *law, problem.domain, o); });
+            now.t_first = on_one.cpu / std::max(1, one.steps_done);
+            now.wall_one = on_one.wall;
+            now.wall_all = on_all.wall;
+            const double k = (full.t_end - full.t_start) / full.steps;
+            if (!one.curves.empty())
+                now.floor = measure_floor(one.curves, one.t, k, *law, problem.domain, o.step);
+            const double t_study = std::get<2>(study_cell(ours, row, p));
+            const bool short_run = now.t_first * full.steps < 1.0;
+            now.t_step = t_study;
+            if (!std::isfinite(t_study) || short_run || round > 0) {
+                set_thread_count(1);
+                RunResult whole;
+                const auto time_whole = [&] { whole = run(initial, *law, problem.domain, full); };
+                const Least w =
+                    short_run ? least_of_repeats(time_whole) : least_of_repeats(time_whole, 0.0, 1);
+                now.t_step = w.cpu / std::max(1, whole.steps_done);
+            }
+            times[static_cast<std::size_t>(row * 5 + p)].lower(now);
+            fmt::print(stderr, "round {}: {} row {} P {}: {:.2e} s/step\n", round + 1, spec.problem,
+                       row + 1, p, now.t_step);
+        }
+    }
+}
+
+std::string cell_table(const TableSpec& spec, int rows,
+                       const std::map<std::tuple<std::string, int, int>, PaperCell>& paper,
+                       const std::string& study_dir, const std::vector<CellTimes>& times,
+                       Totals& totals) {
+    const Problem problem = make_problem(spec.problem);
     const auto ours = read_study(fmt::format("{}/{}/table.json", study_dir, spec.problem));
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     std::string md = fmt::format(
@@ -189,51 +278,17 @@ std::string cell_table(const TableSpec& spec, int rows, int prefix,
     for (int row = 0; row < rows; ++row) {
         for (int p = 0; p < 5; ++p) {
             const RunOptions full = study_cell_options(problem, row, p, RunOptions{});
-            RunOptions o = full;
-            o.steps = std::min(full.steps, prefix);
-            o.t_end = full.t_start + (full.t_end - full.t_start) * o.steps / full.steps;
-            RunResult one;
-            set_thread_count(1);
-            const Least on_one =
-                least_of_repeats([&] { one = run(initial, *law, problem.domain, o); });
-            set_thread_count(static_cast<int>(cores));
-            const Least on_all =
-                least_of_repeats([&] { (void)run(initial, *law, problem.domain, o); });
-            const double t_first = on_one.cpu / std::max(1, one.steps_done);
-            const double speedup = on_one.wall / on_all.wall;
-            const double k = (full.t_end - full.t_start) / full.steps;
-            StepFloor floor;
-            if (!one.curves.empty())
-                floor = measure_floor(one.curves, one.t, k, *law, problem.domain, o.step);
+            const CellTimes& c = times[static_cast<std::size_t>(row * 5 + p)];
             const PaperCell ref = paper.count({spec.table, full.steps, p})
                                       ? paper.at({spec.table, full.steps, p})
                                       : PaperCell{NAN, NAN};
-            const auto it = ours.find({row + 1, p});
-            double e = NAN, evals = NAN, t_study = NAN;
-            if (it != ours.end()) {
-                if (it->second.at("e_inf").is_number()) e = it->second.at("e_inf").get<double>();
-                evals = it->second.at("g_evals_per_vertex").get<double>();
-                if (it->second.at("cpu_s_per_step").is_number())
-                    t_study = it->second.at("cpu_s_per_step").get<double>();
-            }
-            // The paper's T is the whole run's, and so is ours: a run expected to take under a
-            // second is timed here, the least of repeated runs (one run of a few milliseconds
-            // also pays the process's first page faults); a longer one is the study's own.
-            double t_step = t_study;
-            const bool short_run = t_first * full.steps < 1.0;
-            if (!std::isfinite(t_study) || short_run) {
-                set_thread_count(1);
-                RunResult whole;
-                const auto time_whole = [&] { whole = run(initial, *law, problem.domain, full); };
-                const Least w =
-                    short_run ? least_of_repeats(time_whole) : least_of_repeats(time_whole, 0.0, 1);
-                t_step = w.cpu / std::max(1, whole.steps_done);
-            }
-            const double ratio = ref.t_step / t_step;
-            const double over_floor = floor.step_s / floor.floor_s();
+            const auto [e, evals, t_study] = study_cell(ours, row, p);
+            const double speedup = c.wall_one / c.wall_all;
+            const double ratio = ref.t_step / c.t_step;
+            const double over_floor = c.floor.step_s / c.floor.floor_s();
             totals.ratios.push_back(ratio);
             if (std::isfinite(over_floor)) totals.floors.push_back(over_floor);
-            const double floor_ratio = ref.t_step / floor.floor_s();
+            const double floor_ratio = ref.t_step / c.floor.floor_s();
             if (std::isfinite(floor_ratio)) totals.paper_over_floor.push_back(floor_ratio);
             totals.speedups.push_back(speedup);
             totals.speedup_of[{spec.problem, row, p}] = speedup;
@@ -242,11 +297,9 @@ std::string cell_table(const TableSpec& spec, int rows, int prefix,
                 "| {}/{}/{}/{:.0e} | {} | {} | {} | {:.2e} | {} | {:.0f}× | {:.2e} | {:.2f} | "
                 "{:.2e} | {:.2e} | {:.2f} | {:.2f} |\n",
                 full.steps, full.step.embedded.smoothing, full.step.contour.depth,
-                full.step.contour.resolved_eps(), p, sci(e), sci(ref.e_inf), t_step,
-                sci(ref.t_step), ratio, t_first, evals, floor.step_s, floor.floor_s(), over_floor,
-                speedup);
-            fmt::print(stderr, "{} row {} P {}: {:.2e} s/step, paper/ours {:.0f}\n", spec.problem,
-                       row + 1, p, t_step, ratio);
+                full.step.contour.resolved_eps(), p, sci(e), sci(ref.e_inf), c.t_step,
+                sci(ref.t_step), ratio, c.t_first, evals, c.floor.step_s, c.floor.floor_s(),
+                over_floor, speedup);
         }
     }
     return md + "\n";
@@ -517,6 +570,11 @@ int main(int argc, char** argv) {
         take_flag(argc, argv, "--reference", "data/paper_convergence_tables.csv");
     const int rows = std::stoi(take_flag(argc, argv, "--rows", "5"));
     const int prefix = std::stoi(take_flag(argc, argv, "--prefix", "16"));
+    const int rounds = std::stoi(take_flag(argc, argv, "--rounds", "2"));
+    if (rounds < 1) {
+        fmt::print(stderr, "performance_bench: --rounds must be at least 1, got {}\n", rounds);
+        return 2;
+    }
     const auto max_segments =
         static_cast<std::size_t>(std::stod(take_flag(argc, argv, "--max-segments", "1e6")));
     const auto paper = read_reference(reference);
@@ -535,7 +593,7 @@ int main(int argc, char** argv) {
         "as the paper's T: where the run takes under a second, the least of at least three runs "
         "repeated for half a second (a single run of a few milliseconds would also carry the "
         "process's first page faults); else the study's own timing of its one run (`slc study "
-        "--threads 1`). *T first "
+        "--threads 1`), or a run here in a later round where that took less. *T first "
         "steps* is CPU seconds per step on one thread (that thread's CPU clock) over the first " +
         std::to_string(prefix) +
         " steps of the cell (same k), the least of at least three runs, repeated for half a "
@@ -546,16 +604,26 @@ int main(int argc, char** argv) {
         "trees, the vertex velocities of both curves, and three G evaluations per output vertex "
         "for each of the two contours, each the least of calls repeated for a fifth of a second. "
         "*speed-up* is wall time on one thread over wall time on "
-        "all, for the same steps (least wall times of the repeated runs).\n\n";
+        "all, for the same steps (least wall times of the repeated runs). Every cell is timed in " +
+        std::to_string(rounds) +
+        " rounds, minutes apart, and each time above is the least over the rounds: spells of "
+        "seconds in which the same code runs slower (on this machine up to 1.45×) then slow at "
+        "most one round of a cell.\n\n";
     Totals totals;
     const TableSpec tables[] = {
         {"table5_rotation", "propeller-rotation", "Table 5, rotating propeller"},
         {"table6_merging", "merging-circles", "Table 6, merging circles"},
         {"table7_curvature", "circle-curvature", "Table 7, circle under curvature"},
     };
+    // Every cell once per round, the rounds minutes apart, each time the least of the rounds: a
+    // slower spell of the machine, seconds long, then slows at most one round of a cell.
+    std::vector<CellTimes> times[std::size(tables)];
+    for (int round = 0; round < rounds; ++round)
+        for (std::size_t t = 0; t < std::size(tables); ++t)
+            time_cells(tables[t], rows, prefix, study_dir, round, times[t]);
     std::string cells;
-    for (const TableSpec& t : tables)
-        cells += cell_table(t, rows, prefix, paper, study_dir, totals);
+    for (std::size_t t = 0; t < std::size(tables); ++t)
+        cells += cell_table(tables[t], rows, paper, study_dir, times[t], totals);
     const auto at_least = [&](double goal) {
         return std::count_if(totals.ratios.begin(), totals.ratios.end(),
                              [&](double r) { return r >= goal; });
