@@ -12,22 +12,27 @@
 
 namespace slc::bench {
 
-/// Keeps every iteration run by benchmark name ("BM_BuildTree/12").
+/// CPU seconds per iteration of a run.
+inline double seconds(const benchmark::BenchmarkReporter::Run& r) {
+    return r.GetAdjustedCPUTime() / benchmark::GetTimeUnitMultiplier(r.time_unit);
+}
+
+/// Keeps, by benchmark name ("BM_BuildTree/12"), the iteration run of least CPU time per
+/// iteration: with --benchmark_repetitions=n and --benchmark_enable_random_interleaving=true
+/// (as scripts/bench runs them), the least of n repetitions spread over the program's run, so
+/// that a slower spell of the machine slows at most some of them.
 class Recorder : public benchmark::ConsoleReporter {
 public:
     void ReportRuns(const std::vector<Run>& runs) override {
         for (const Run& r : runs) {
-            if (r.run_type == Run::RT_Iteration) results[r.benchmark_name()] = r;
+            if (r.run_type != Run::RT_Iteration || r.error_occurred) continue;
+            const auto [it, added] = results.try_emplace(r.benchmark_name(), r);
+            if (!added && seconds(r) < seconds(it->second)) it->second = r;
         }
         ConsoleReporter::ReportRuns(runs);
     }
     std::map<std::string, Run> results;
 };
-
-/// CPU seconds per iteration of a run.
-inline double seconds(const benchmark::BenchmarkReporter::Run& r) {
-    return r.GetAdjustedCPUTime() / benchmark::GetTimeUnitMultiplier(r.time_unit);
-}
 
 /// Removes `--flag value` from argv and returns value, or fallback.
 inline std::string take_flag(int& argc, char** argv, const char* flag, std::string fallback) {
