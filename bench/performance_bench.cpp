@@ -97,9 +97,12 @@ std::map<std::tuple<std::string, int, int>, PaperCell> read_reference(const std:
     return out;
 }
 
+/// A study's cells by (row from 1, P).
+using StudyCells = std::map<std::pair<int, int>, nlohmann::json>;
+
 /// Our study cells (error, G evaluations per vertex) by (row, P), when the study has been run.
-std::map<std::pair<int, int>, nlohmann::json> read_study(const std::string& path) {
-    std::map<std::pair<int, int>, nlohmann::json> out;
+StudyCells read_study(const std::string& path) {
+    StudyCells out;
     std::ifstream in(path);
     if (!in) return out;
     const auto j = nlohmann::json::parse(in);
@@ -199,8 +202,7 @@ struct CellTimes {
 };
 
 /// The study's (error, G evaluations per vertex, CPU s per step) of a cell, NaN where missing.
-std::tuple<double, double, double> study_cell(
-    const std::map<std::pair<int, int>, nlohmann::json>& ours, int row, int p) {
+std::tuple<double, double, double> study_cell(const StudyCells& ours, int row, int p) {
     const auto it = ours.find({row + 1, p});
     double e = NAN, evals = NAN, t_study = NAN;
     if (it != ours.end()) {
@@ -217,12 +219,11 @@ std::tuple<double, double, double> study_cell(
 /// under a second is timed here, the least of repeated runs (one run of a few milliseconds also
 /// pays the process's first page faults); a longer one is the study's own run in round 0, and
 /// one more run in each later round.
-void time_cells(const TableSpec& spec, int rows, int prefix, const std::string& study_dir,
-                int round, std::vector<CellTimes>& times) {
+void time_cells(const TableSpec& spec, int rows, int prefix, const StudyCells& ours, int round,
+                std::vector<CellTimes>& times) {
     const Problem problem = make_problem(spec.problem);
     const auto law = make_velocity(problem.velocity, problem.velocity_params, problem.module);
     const Interface initial = prepare_interface(problem.initial, problem.domain).curves;
-    const auto ours = read_study(fmt::format("{}/{}/table.json", study_dir, spec.problem));
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     times.resize(static_cast<std::size_t>(rows) * 5);
     for (int row = 0; row < rows; ++row) {
@@ -265,10 +266,9 @@ void time_cells(const TableSpec& spec, int rows, int prefix, const std::string& 
 
 std::string cell_table(const TableSpec& spec, int rows,
                        const std::map<std::tuple<std::string, int, int>, PaperCell>& paper,
-                       const std::string& study_dir, const std::vector<CellTimes>& times,
+                       const StudyCells& ours, const std::vector<CellTimes>& times,
                        Totals& totals) {
     const Problem problem = make_problem(spec.problem);
-    const auto ours = read_study(fmt::format("{}/{}/table.json", study_dir, spec.problem));
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     std::string md = fmt::format(
         "### {} ({})\n\n| N/S/K/ε | P | E ours | E paper | T ours | T paper | paper / ours | "
@@ -644,13 +644,16 @@ int main(int argc, char** argv) {
     };
     // Every cell once per round, the rounds minutes apart, each time the least of the rounds: a
     // slower spell of the machine, seconds long, then slows at most one round of a cell.
+    StudyCells studies[std::size(tables)];
+    for (std::size_t t = 0; t < std::size(tables); ++t)
+        studies[t] = read_study(fmt::format("{}/{}/table.json", study_dir, tables[t].problem));
     std::vector<CellTimes> times[std::size(tables)];
     for (int round = 0; round < rounds; ++round)
         for (std::size_t t = 0; t < std::size(tables); ++t)
-            time_cells(tables[t], rows, prefix, study_dir, round, times[t]);
+            time_cells(tables[t], rows, prefix, studies[t], round, times[t]);
     std::string cells;
     for (std::size_t t = 0; t < std::size(tables); ++t)
-        cells += cell_table(tables[t], rows, paper, study_dir, times[t], totals);
+        cells += cell_table(tables[t], rows, paper, studies[t], times[t], totals);
     const auto at_least = [&](double goal) {
         return std::count_if(totals.ratios.begin(), totals.ratios.end(),
                              [&](double r) { return r >= goal; });
