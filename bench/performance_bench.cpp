@@ -1028,6 +1028,34 @@ Measured and not kept, for the closest-point queries that every step spends most
   parent cell in 0.4–14% of the cases), and the second pass and its buffer cost more than the
   divisions they save. A four-wide version with gathered loads was slower still (58 against
   50 ns per query of 21 segments).
+
+Measured and not kept since (each the same answers to the last bit, so only time could decide):
+
+- A deeper or shallower distance tree. Its depth L changes only the cost of a query, never its
+  answer, and L = K + P/2 is at or near the least step time: one thread, one step from the
+  interface after 16 or 20 steps, Table 5's 40/0/3/1e−3 with P = 0 at L = 3, 4, 5, 6: 0.175,
+  0.18, 0.21, 0.26 ms; its 640/0/7/1e−7 with P = 4 at L = 8, 9, 10: 82, 74, 78 ms; Table 7's
+  160/2/6/1e−6 with P = 4 at L = 7, 8, 9, 10: 24.9, 22.2, 22.4, 25.4 ms. Deeper trees shorten
+  the scans near Γ but not the queries a whole step |kW| from Γ(t), which climb, and cost more to
+  build. For the first step, from the 1024-vertex initial polygon, where a tree of depth 3 sends
+  every query to the segment hierarchy (half of that step), a depth set by the polygon's mean
+  segment length took 0.72–1.55 ms against 0.47 ms.
+- Root finding one bracket at a time, brackets in parallel (each bracket's iterates in turn on one
+  thread, instead of rounds in which all brackets' iterates form one batch of G). One thread: the
+  same time. Two threads: 0.91–0.92× at Table 5's 40/0/3/1e−3 with P = 4, 0.95× with P = 0, and
+  within the noise (0.98–1.02×) at 160/0/5/1e−5 with P = 2, 320/0/6/1e−6 with P = 4, Table 6's
+  80/0/4/1e−4 and 160/0/5/1e−5 with P = 2, and Table 7's 40/1/4/1e−4 with P = 2 and
+  320/3/7/1e−7 with P = 4. It would also call G from several threads at once, which the
+  contouring module does not ask of a user's G.
+- With that order, each kind of query of G (the foot's, the velocity's) keeping what its last
+  query found: the four nearest segments of that point x₀ and a radius beyond which every other
+  segment lies (the fifth's distance, or the distance to the edge of the cell's triple). A point
+  nearer x₀ takes its nearest of the four when that distance plus its distance from x₀ is below
+  the radius: the same answer. 62–69% of the queries of the first rows' P = 0 cells were answered
+  so, 24–42% in refined cells up to the third row, 5–6% in the finest cells (where most
+  evaluations are refinement's midpoints and probes, a segment apart); but keeping the five nearest segments in every other
+  query cost about what the short ones saved: Table 5's 40/0/3/1e−3 with P = 0 0.97×, with P = 4
+  1.11–1.13×.
 )";
     write_file_atomic(out, md);
     fmt::print(stderr, "wrote {}\n", out);
