@@ -1056,6 +1056,10 @@ Measured and not kept since (each the same answers to the last bit, so only time
   evaluations are refinement's midpoints and probes, a segment apart); but keeping the five nearest segments in every other
   query cost about what the short ones saved: Table 5's 40/0/3/1e−3 with P = 0 0.97×, with P = 4
   1.11–1.13×.
+- Every parallel loop handing its threads blocks of 8 or of 64 iterations in turn, instead of one
+  contiguous block each, for balance where the cost of an iteration varies along a batch: two
+  threads, five cells of Tables 5–7 from Table 5's 160/0/5/1e−5 with P = 2 to its 640/0/7/1e−7
+  with P = 4, twice each, 0.82–1.27× the current time, slower in 16 of the 20 comparisons.
 )";
     write_file_atomic(out, md);
     fmt::print(stderr, "wrote {}\n", out);
