@@ -1038,8 +1038,8 @@ Measured and not kept since (each the same answers to the last bit, so only time
   160/2/6/1e−6 with P = 4 at L = 7, 8, 9, 10: 24.9, 22.2, 22.4, 25.4 ms. Deeper trees shorten
   the scans near Γ but not the queries a whole step |kW| from Γ(t), which climb, and cost more to
   build. For the first step, from the 1024-vertex initial polygon, where a tree of depth 3 sends
-  every query to the segment hierarchy (half of that step), a depth set by the polygon's mean
-  segment length took 0.72–1.55 ms against 0.47 ms.
+  every query on that polygon to the segment hierarchy (half of that step), a depth set by the
+  polygon's mean segment length took 0.72–1.55 ms against 0.47 ms.
 - Root finding one bracket at a time, brackets in parallel (each bracket's iterates in turn on one
   thread, instead of rounds in which all brackets' iterates form one batch of G). One thread: the
   same time. Two threads: 0.91–0.92× at Table 5's 40/0/3/1e−3 with P = 4, 0.95× with P = 0, and
