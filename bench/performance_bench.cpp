@@ -327,7 +327,7 @@ std::string scaling_table(std::size_t max_segments, int rounds) {
     };
     std::vector<Row> table;
     constexpr int passes = 2;
-    // Every row once per round, each time the least over the rounds (see cell_table).
+    // Every row once per round, each time the least over the rounds (see time_cells).
     for (int round = 0; round < rounds; ++round) {
         std::size_t row = 0;
         for (int depth = 4; depth <= 16; depth += 2, ++row) {
@@ -642,8 +642,7 @@ int main(int argc, char** argv) {
         {"table6_merging", "merging-circles", "Table 6, merging circles"},
         {"table7_curvature", "circle-curvature", "Table 7, circle under curvature"},
     };
-    // Every cell once per round, the rounds minutes apart, each time the least of the rounds: a
-    // slower spell of the machine, seconds long, then slows at most one round of a cell.
+    // Rounds: see the comment at the top of this file.
     StudyCells studies[std::size(tables)];
     for (std::size_t t = 0; t < std::size(tables); ++t)
         studies[t] = read_study(fmt::format("{}/{}/table.json", study_dir, tables[t].problem));
@@ -1053,9 +1052,9 @@ Measured and not kept since (each the same answers to the last bit, so only time
   nearer x₀ takes its nearest of the four when that distance plus its distance from x₀ is below
   the radius: the same answer. 62–69% of the queries of the first rows' P = 0 cells were answered
   so, 24–42% in refined cells up to the third row, 5–6% in the finest cells (where most
-  evaluations are refinement's midpoints and probes, a segment apart); but keeping the five nearest segments in every other
-  query cost about what the short ones saved: Table 5's 40/0/3/1e−3 with P = 0 0.97×, with P = 4
-  1.11–1.13×.
+  evaluations are refinement's midpoints and probes, a segment apart); but keeping the five
+  nearest segments in every other query cost about what the short ones saved: Table 5's
+  40/0/3/1e−3 with P = 0 0.97×, with P = 4 1.11–1.13×.
 - Every parallel loop handing its threads blocks of 8 or of 64 iterations in turn, instead of one
   contiguous block each, for balance where the cost of an iteration varies along a batch: two
   threads, five cells of Tables 5–7 from Table 5's 160/0/5/1e−5 with P = 2 to its 640/0/7/1e−7
