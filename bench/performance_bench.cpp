@@ -1059,6 +1059,23 @@ Measured and not kept since (each the same answers to the last bit, so only time
   contiguous block each, for balance where the cost of an iteration varies along a batch: two
   threads, five cells of Tables 5–7 from Table 5's 160/0/5/1e−5 with P = 2 to its 640/0/7/1e−7
   with P = 4, twice each, 0.82–1.27× the current time, slower in 16 of the 20 comparisons.
+- Each leaf's list with the segments whose boxes meet the leaf itself first (both parts in
+  increasing order), scanned first by a query, which stops there when the box of half-width m
+  around x lies in the leaf: the same answer, by the argument for the triple. That part settled
+  33% of the queries of whole runs at Table 5's 40/0/3/1e−3 with P = 4 (3.3 segments instead of
+  the leaf's 10.7), 45% at its 320/0/6/1e−6 with P = 4 (5.3 of 17.1) and 63% at Table 6's
+  160/0/5/1e−5 with P = 2 (5.7 of 17.3); yet one thread, least of repeated whole runs, took
+  0.99–1.01× at Table 5's 40/0/3/1e−3 with P = 0 and with P = 4, 0.99× at Table 6's
+  160/0/5/1e−5 with P = 2 and 1.01–1.03× at Table 7's 160/2/6/1e−6 with P = 2. The time is in
+  the other queries, a step |kW| from Γ(t): per query of Table 5's 40/0/3/1e−3 with P = 4, 9.2
+  more segments in 0.6 more lists (leaves away from Γ, and parent cells), and the segment
+  hierarchy in 6% of the queries (9.9, 0.58 and 18% at its 320/0/6/1e−6 with P = 4).
+
+Why only changes that keep every result to the last bit: a change in the last bits of the roots
+moves single cells' E∞ in Table 6 both ways, where the circles' cusps meet. A smaller root-finding
+tolerance, which only makes every root more accurate, shows it: η = 2·10⁻¹¹ instead of 10⁻¹⁰
+moves the E∞ of Table 6's first three rows by 0.91–1.11× (40/0/3/1e−3 with P = 3: 0.0322 →
+0.0357; 160/0/5/1e−5 with P = 1: 0.0105 → 0.0096), and η = 5·10⁻¹¹ by 0.80–1.00×.
 )";
     write_file_atomic(out, md);
     fmt::print(stderr, "wrote {}\n", out);
