@@ -357,6 +357,9 @@ Problem make_problem(const std::string& name, const std::map<std::string, double
         }
         if (p.velocity == "unit-normal")
             p.exact = huygens_exact(p, velocity_param(p, "speed", 1.0));
+        // The paper's method unless a problem says otherwise: its tables are the reference.
+        if (!p.extension) p.extension = Extension::nearest_point;
+        if (!p.arcs) p.arcs = false;
         return p;
     }
     std::string known;

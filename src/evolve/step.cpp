@@ -21,9 +21,21 @@ int StepOptions::resolved_tree_depth() const {
     // The Whitney extension interpolates on the tree's own triangulation, so there L sets its
     // accuracy: the paper's K + P. Elsewhere the distances are exact at any depth and L only sets
     // the cost; a refinement pass splits about half the segments, so the mean segment shrinks
-    // about √2-fold per pass and one level per two passes keeps a few segments in each leaf.
-    const int extra = extension == Extension::whitney ? passes : passes / 2;
+    // about √2-fold per pass and one level per two passes keeps a few segments in each leaf;
+    // beyond four passes only the segments that still miss ε are split, and the rest keep it.
+    const int extra = extension == Extension::whitney ? passes : std::min(passes, 4) / 2;
     return std::min(contour.depth + extra, Quadtree::max_supported_depth);
+}
+
+Extension StepOptions::resolved_extension(const VelocityLaw& law) const {
+    if (extension) return *extension;
+    return law.is_field() || law.is_normal_law() ? Extension::direct : Extension::nearest_point;
+}
+
+bool StepOptions::resolved_arcs(const VelocityLaw& law) const {
+    if (arcs) return *arcs;
+    const GeometryNeeds needs = law.needs();
+    return needs.curvature && needs.resolved_module() == GeometryModule::arclength;
 }
 
 namespace {
@@ -41,6 +53,13 @@ std::vector<double> arc_curvatures(const Interface& curves) {
     return kappa;
 }
 
+/// How a level evaluates W off Γ.
+enum class Off {
+    none,      ///< a flow field sampled directly: no W
+    extended,  ///< the vertex velocities extended (nearest point or Whitney)
+    normal,    ///< a normal law evaluated with the distance field's normal
+};
+
 /// Γ at one time level: its distance tree and, unless the law is sampled directly, its vertex
 /// velocities and their extension W off Γ.
 class Level {
@@ -48,19 +67,26 @@ public:
     /// k: the step, which sets the arclength module's default width.
     Level(const Interface& curves, double t, double k, const VelocityLaw& law, const Box& domain,
           const StepOptions& options)
-        : extension_(options.extension),
+        : law_(law),
+          t_(t),
+          extension_(options.resolved_extension(law)),
+          off_(extension_ != Extension::direct ? Off::extended
+               : law.is_field()                ? Off::none
+                                               : Off::normal),
           tree_(curves, domain,
                 {.depth = options.resolved_tree_depth(),
-                 .triangulate = options.extension == Extension::whitney}) {
-        if (extension_ != Extension::direct) {
+                 .triangulate = extension_ == Extension::whitney}) {
+        if (off_ == Off::extended) {
             const GeometryContext context{.tree = &tree_,
                                           .embedded = options.embedded,
                                           .arc_width = options.resolved_arc_width(k)};
             u_ = vertex_velocities(law, t, curves, context);
             if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
             for (Vec2 u : u_) max_speed_ = std::max(max_speed_, norm(u));
+        } else if (off_ == Off::normal) {
+            max_speed_ = max_normal_speed();
         }
-        if (options.arcs) {
+        if (options.resolved_arcs(law)) {
             kappa_ = arc_curvatures(curves);
             for (std::size_t i = 0; i < curves.size(); ++i) {
                 const double c2 = norm2(curves.point(curves.next(i)) - curves.point(i));
@@ -78,16 +104,31 @@ public:
     }
     /// The signed distance to this level's Γ: exact to its chords, or to its arcs with
     /// StepOptions::arcs.
-    double distance(Vec2 x) const {
+    double distance(Vec2 x) const { return distance(tree_.closest_point(x)); }
+
+    /// What a normal law's step needs at x: F(x), the distance field's normal N there and the
+    /// law's speed V(t, x, N), from one closest-point query.
+    struct NormalSample {
+        double distance = 0.0;  ///< F(x), as distance() gives it
+        Vec2 normal;            ///< ∇F(x)
+        double speed = 0.0;     ///< V(t, x, N)
+    };
+    /// @copydoc NormalSample
+    NormalSample normal_sample(Vec2 x) const {
         const ClosestPoint p = tree_.closest_point(x);
-        if (kappa_.empty() || p.t == 0.0 || p.t == 1.0) return p.distance;
-        const Interface& curves = tree_.curves();
-        const std::size_t b = curves.next(p.segment);
-        const double c2 = norm2(curves.point(b) - curves.point(p.segment));
-        const double kappa = (1.0 - p.t) * kappa_[p.segment] + p.t * kappa_[b];
-        // The arc through the segment's ends with curvature κ (C = −1/R convention) lies
-        // ½ c² t (1 − t) |κ| outside the chord at t where the curve is convex.
-        return p.distance + 0.5 * c2 * p.t * (1.0 - p.t) * kappa;
+        const Vec2 n = field_normal(x, p);
+        return {distance(p), n, normal_speed(x, n)};
+    }
+    /// The normal law's speed V(t, x, n) at this level's time; NumericalFailure unless finite.
+    double normal_speed(Vec2 x, Vec2 n) const {
+        double v = 0.0;
+        law_.normal_speeds(t_, std::span<const Vec2>(&x, 1), std::span<const Vec2>(&n, 1),
+                           std::span<double>(&v, 1));
+        if (!std::isfinite(v)) {
+            throw NumericalFailure(fmt::format(
+                "velocity '{}' is not finite at t = {} near ({}, {})", law_.name(), t_, x.x, x.y));
+        }
+        return v;
     }
     /// The closest point of this level's polygon (whatever StepOptions::arcs says) and W(x),
     /// from one closest-point query.
@@ -99,7 +140,8 @@ public:
     double chord_distance(Vec2 x) const { return tree_.closest_point(x).distance; }
     /// The most distance() differs from chord_distance(): the largest bulge of an arc.
     double max_bulge() const { return max_bulge_; }
-    /// max |W|: both extensions interpolate the vertex velocities (the maximum principle).
+    /// max |W|: both extensions interpolate the vertex velocities (the maximum principle); a
+    /// normal law's bound is max_normal_speed().
     double max_speed() const { return max_speed_; }
 
 private:
@@ -109,7 +151,80 @@ private:
         return nearest_point_extension<Vec2>(tree_.curves(), u_, p);
     }
 
+    /// distance(x), given the closest point p of this level's polygon to x.
+    double distance(const ClosestPoint& p) const {
+        if (kappa_.empty() || p.t == 0.0 || p.t == 1.0) return p.distance;
+        const Interface& curves = tree_.curves();
+        const std::size_t b = curves.next(p.segment);
+        const double c2 = norm2(curves.point(b) - curves.point(p.segment));
+        const double kappa = (1.0 - p.t) * kappa_[p.segment] + p.t * kappa_[b];
+        // The arc through the segment's ends with curvature κ (C = −1/R convention) lies
+        // ½ c² t (1 − t) |κ| outside the chord at t where the curve is convex.
+        return p.distance + 0.5 * c2 * p.t * (1.0 - p.t) * kappa;
+    }
+
+    /// The outward unit normal of segment s.
+    Vec2 segment_normal(std::size_t s) const {
+        const Interface& curves = tree_.curves();
+        const Vec2 e = curves.point(curves.next(s)) - curves.point(s);
+        return -perp(e) / norm(e);  // the outside is on the right
+    }
+
+    /// ∇F at x, given its closest point p: the nearest segment's normal when p lies inside it,
+    /// else the direction from the nearest vertex, sign F (x − y)/|x − y|; at the vertex itself
+    /// (within a relative 1e−9 of its shorter segment) the pseudo-normal, the normalized sum of
+    /// its two segments' normals.
+    Vec2 field_normal(Vec2 x, const ClosestPoint& p) const {
+        if (p.t > 0.0 && p.t < 1.0) return segment_normal(p.segment);
+        const Interface& curves = tree_.curves();
+        const std::size_t v = p.t == 0.0 ? p.segment : curves.next(p.segment);
+        const std::size_t before = curves.prev(v);
+        const Vec2 d = x - curves.point(v);
+        const double r = norm(d);
+        const double shorter = std::min(norm(curves.point(v) - curves.point(before)),
+                                        norm(curves.point(curves.next(v)) - curves.point(v)));
+        if (r > 1e-9 * shorter) return (p.distance < 0.0 ? -1.0 / r : 1.0 / r) * d;
+        const Vec2 sum = segment_normal(before) + segment_normal(v);
+        const double s = norm(sum);
+        return s > 0.0 ? sum / s : segment_normal(v);
+    }
+
+    /// A bound on |V| over every normal of the distance field: V at each vertex for the normals
+    /// of its two segments and for directions between them at most 0.02 rad apart (the normals
+    /// of the points nearest that vertex), raised by a tenth for the directions between the
+    /// samples and for V's change over a step's reach.
+    double max_normal_speed() const {
+        const Interface& curves = tree_.curves();
+        std::vector<Vec2> at, normals;
+        for (std::size_t v = 0; v < curves.size(); ++v) {
+            const Vec2 a = segment_normal(curves.prev(v)), b = segment_normal(v);
+            const double turn = std::atan2(cross(a, b), dot(a, b));
+            const int samples = 1 + static_cast<int>(std::ceil(std::abs(turn) / 0.02));
+            for (int j = 0; j <= samples; ++j) {
+                const double angle = turn * j / samples;
+                const double c = std::cos(angle), s = std::sin(angle);
+                at.push_back(curves.point(v));
+                normals.push_back({c * a.x - s * a.y, s * a.x + c * a.y});
+            }
+        }
+        std::vector<double> speeds(at.size());
+        law_.normal_speeds(t_, at, normals, speeds);
+        double most = 0.0;
+        for (std::size_t i = 0; i < speeds.size(); ++i) {
+            if (!std::isfinite(speeds[i])) {
+                throw NumericalFailure(
+                    fmt::format("velocity '{}' is not finite at t = {} at ({}, {})", law_.name(),
+                                t_, at[i].x, at[i].y));
+            }
+            most = std::max(most, std::abs(speeds[i]));
+        }
+        return 1.1 * most;
+    }
+
+    const VelocityLaw& law_;
+    double t_;
     Extension extension_;
+    Off off_;
     DistanceTree tree_;
     std::vector<Vec2> u_;
     double max_speed_ = 0.0;
@@ -145,6 +260,55 @@ Vec2 departure_point(const VelocityLaw& law, double t, double k, Vec2 x) {
     return x - (k / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
 }
 
+/// A normal law's step with the distance field's normal N = ∇F (Extension::direct). F is a
+/// distance, so moving x by a along N changes it by a while x stays on its normal line: the
+/// semi-Lagrangian value F(x − k V N) is F(x) − k V. Written so, it also holds where the foot
+/// would cross the medial axis (through a thin part, or a corner's tip when the curve grows):
+/// the level set F = k V is then the exact offset, and the viscosity solution's corners follow.
+/// The trapezoidal rule averages V at the foot at t and at x at t + k, the predicted curve's
+/// normal at x standing in for the normal there.
+StepResult advance_normal(const Interface& curves, double t, double k, const VelocityLaw& law,
+                          const Box& domain, const StepOptions& options) {
+    StepResult result;
+    const Level now(curves, t, k, law, domain, options);
+    // |G(x) − G(y)| ≤ |x − y| + 2k max|V|, and F(x) ± k max|V| bound G at one query.
+    ContourOptions contour_options = options.contour;
+    const double predictor_reach = k * now.max_speed();
+    contour_options.distance_slack = 2.0 * predictor_reach;
+    auto bounds = [&now](double reach) {
+        return pointwise(
+            [&now, reach](Vec2 x) {
+                const double f = now.distance(x);
+                return Interval{f - reach, f + reach};
+            },
+            expensive_grain);
+    };
+    auto predictor = pointwise(
+        [&](Vec2 x) {
+            const Level::NormalSample s = now.normal_sample(x);
+            return s.distance - k * s.speed;
+        },
+        expensive_grain);
+    ContourResult predicted = contour(predictor, domain, contour_options, bounds(predictor_reach));
+    result.stats.predictor = predicted.stats;
+    if (predicted.curves.empty()) return result;
+
+    const Level next(predicted.curves, t + k, k, law, domain, options);
+    const double corrector_reach = 0.5 * k * (now.max_speed() + next.max_speed());
+    contour_options.distance_slack = 2.0 * corrector_reach;
+    auto corrector = pointwise(
+        [&](Vec2 x) {
+            const Level::NormalSample s = now.normal_sample(x);
+            const double v_foot = now.normal_speed(x - k * s.speed * s.normal, s.normal);
+            return s.distance - 0.5 * k * (v_foot + next.normal_sample(x).speed);
+        },
+        expensive_grain);
+    ContourResult corrected = contour(corrector, domain, contour_options, bounds(corrector_reach));
+    result.stats.corrector = corrected.stats;
+    result.curves = std::move(corrected.curves);
+    return result;
+}
+
 }  // namespace
 
 StepResult advance(const Interface& curves, double t, double k, const VelocityLaw& law,
@@ -152,16 +316,19 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
     if (!(k > 0.0) || !std::isfinite(k)) {
         throw InvalidInput(fmt::format("time step must be positive and finite, got {}", k));
     }
-    if (options.extension == Extension::direct && !law.is_field()) {
+    const Extension extension = options.resolved_extension(law);
+    if (extension == Extension::direct && !law.is_field() && !law.is_normal_law()) {
         throw InvalidInput(
             fmt::format("velocity '{}' is not defined off the curve: use the nearest-point or "
                         "Whitney extension",
                         law.name()));
     }
+    if (extension == Extension::direct && law.is_normal_law())
+        return advance_normal(curves, t, k, law, domain, options);
     StepResult result;
     const Level now(curves, t, k, law, domain, options);
 
-    if (options.extension == Extension::direct) {
+    if (extension == Extension::direct) {
         // A flow field is known everywhere, so the foot of each characteristic needs no predicted
         // curve: G(x) = F(departure point of x; Γ(t)), one contour, fourth order in time.
         auto g = pointwise([&](Vec2 x) { return now.distance(departure_point(law, t, k, x)); },

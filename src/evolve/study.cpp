@@ -46,6 +46,8 @@ RunOptions study_cell_options(const Problem& problem, int row, int refine, const
     o.step.tree_depth = 0;
     o.step.embedded.mesh = default_mesh_size(o.step.contour.depth);
     o.step.embedded.smoothing = plan.smoothing[static_cast<std::size_t>(row)];
+    if (!o.step.extension) o.step.extension = problem.extension;
+    if (!o.step.arcs) o.step.arcs = problem.arcs;
     return o;
 }
 

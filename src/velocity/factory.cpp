@@ -41,8 +41,7 @@ std::unique_ptr<VelocityLaw> make_anisotropic(const Resolved& p,
             m));
     }
     const double eps = p.has("eps") ? p["eps"] : 5.0 / (m * m - 1.0);
-    return std::make_unique<AnisotropicNormalSpeed>(p["R"], m, eps,
-                                                    module.value_or(GeometryModule::intrinsic));
+    return std::make_unique<AnisotropicNormalSpeed>(p["R"], m, eps, module);
 }
 
 const std::vector<Entry>& entries() {
@@ -65,10 +64,7 @@ const std::vector<Entry>& entries() {
         {{"unit-normal",
           "constant normal speed u = speed N (positive grows)",
           {param("speed", 1, "normal speed, either sign")}},
-         [](const Resolved& p, M m) {
-             return std::make_unique<NormalSpeed>(p["speed"],
-                                                  m.value_or(GeometryModule::intrinsic));
-         }},
+         [](const Resolved& p, M m) { return std::make_unique<NormalSpeed>(p["speed"], m); }},
         {{"anisotropic",
           "anisotropic normal speed u = (R + eps cos(m theta)) N",
           {param("R", -1, "isotropic part of the normal speed"),
@@ -76,14 +72,9 @@ const std::vector<Entry>& entries() {
            {"eps", std::nullopt, "5/(m²−1)", "amplitude of the anisotropy", false}}},
          make_anisotropic},
         {{"curvature", "motion by curvature u = C N (shrinks circles)", {}},
-         [](const Resolved&, M m) {
-             return std::make_unique<CurvatureFlow>(m.value_or(GeometryModule::embedded));
-         }},
+         [](const Resolved&, M m) { return std::make_unique<CurvatureFlow>(m); }},
         {{"volume-preserving-curvature", "nonlocal u = (C - mean of C over all of Gamma) N", {}},
-         [](const Resolved&, M m) {
-             return std::make_unique<VolumePreservingCurvatureFlow>(
-                 m.value_or(GeometryModule::embedded));
-         }},
+         [](const Resolved&, M m) { return std::make_unique<VolumePreservingCurvatureFlow>(m); }},
         {{"vortex",
           "LeVeque's single vortex on [0, 1]^2, reversed at t = period/2",
           {param("period", 8, "period T: the flow is multiplied by cos(pi t / T)")}},

@@ -83,16 +83,17 @@ void SingleVortex::sample(double t, std::span<const Vec2> points, std::span<Vec2
     });
 }
 
-std::vector<Vec2> NormalSpeed::velocities(double, const Interface& curves,
-                                          const VertexGeometry& g) const {
-    return normal_velocities(*this, curves, g, [&](std::size_t) { return speed_; });
+void NormalSpeed::normal_speeds(double, std::span<const Vec2> points, std::span<const Vec2>,
+                                std::span<double> out) const {
+    std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(points.size()), speed_);
 }
 
-std::vector<Vec2> AnisotropicNormalSpeed::velocities(double, const Interface& curves,
-                                                     const VertexGeometry& g) const {
-    return normal_velocities(*this, curves, g, [&](std::size_t i) {
-        const double theta = std::atan2(g.normals[i].y, g.normals[i].x);
-        return r_ + eps_ * std::cos(m_ * theta);
+void AnisotropicNormalSpeed::normal_speeds(double, std::span<const Vec2> points,
+                                           std::span<const Vec2> normals,
+                                           std::span<double> out) const {
+    parallel_for(points.size(), [&](std::size_t i) {
+        const double theta = std::atan2(normals[i].y, normals[i].x);
+        out[i] = r_ + eps_ * std::cos(m_ * theta);
     });
 }
 

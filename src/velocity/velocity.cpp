@@ -29,12 +29,31 @@ void VelocityLaw::sample(double, std::span<const Vec2>, std::span<Vec2>) const {
         fmt::format("velocity '{}' is defined only on the interface, not everywhere", name()));
 }
 
+void VelocityLaw::normal_speeds(double, std::span<const Vec2>, std::span<const Vec2>,
+                                std::span<double>) const {
+    throw InvalidInput(fmt::format("velocity '{}' is not a normal speed law", name()));
+}
+
+std::vector<Vec2> NormalLaw::velocities(double t, const Interface& curves,
+                                        const VertexGeometry& geometry) const {
+    if (geometry.normals.size() != curves.size()) {
+        throw InvalidInput(fmt::format(
+            "velocity '{}' needs the normals at the vertices (vertex_velocities computes them)",
+            name()));
+    }
+    std::vector<double> v(curves.size());
+    normal_speeds(t, curves.points(), geometry.normals, v);
+    std::vector<Vec2> u(v.size());
+    for (std::size_t i = 0; i < u.size(); ++i) u[i] = v[i] * geometry.normals[i];
+    return u;
+}
+
 VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curves,
                                const GeometryContext& context) {
     if (!needs.any()) return {};
-    if (needs.module == GeometryModule::intrinsic) return intrinsic_geometry(curves);
-    if (needs.module == GeometryModule::arclength)
-        return arclength_geometry(curves, context.arc_width);
+    const GeometryModule module = needs.resolved_module();
+    if (module == GeometryModule::intrinsic) return intrinsic_geometry(curves);
+    if (module == GeometryModule::arclength) return arclength_geometry(curves, context.arc_width);
     if (context.tree == nullptr)
         throw InvalidInput("the embedded geometry module needs a distance tree of the interface");
     if (&context.tree->curves() != &curves)

@@ -32,6 +32,9 @@ RunOptions options(double t_end, int steps, int depth, int refine, double eps) {
     o.step.contour.refine_passes = refine;
     o.step.contour.eps = eps;
     o.step.embedded.mesh = default_mesh_size(depth);
+    o.step.extension =
+        Extension::nearest_point;  // the paper's method, unless a test says otherwise
+    o.step.arcs = false;
     return o;
 }
 

@@ -118,7 +118,7 @@ reject "depth 0" "--depth: must be an integer from 1 to 24, got '0'" -- run --pr
 reject "depth 25" "--depth: must be an integer from 1 to 24, got '25'" -- run --problem vortex -K 25 --out x
 reject "tree depth 31" "--tree-depth: must be an integer from 1 to 30, got '31'" -- run --problem vortex -L 31 --out x
 reject "depth too deep for doubles" "tree depth 20 is too deep for doubles" -- run --initial far.json --velocity rotation --t-end 1 -K 20 -P 0 --eps 1e-9 --out x
-reject "refine passes negative" "--refine: must be an integer from 0 to 64, got '-1'" -- run --problem vortex -P -1 --out x
+reject "refine passes negative" "--refine: must be an integer from 0 to 64 or 'converged', got '-1'" -- run --problem vortex -P -1 --out x
 reject "eps 0" "--eps: must be a positive finite number, got '0'" -- run --problem vortex --eps 0 --out x
 reject "eps negative" "--eps: must be a positive finite number, got '-1e-3'" -- run --problem vortex --eps -1e-3 --out x
 reject "eps NaN" "--eps: must be a positive finite number, got 'nan'" -- run --problem vortex --eps nan --out x

@@ -65,7 +65,10 @@ Problem resolve_problem(const RunCommand& o) {
     p.velocity_params = params;
     p.steps = 40;
     p.depth = 5;
-    p.refine = 2;
+    // Refinement to convergence: a pass splits only the segments whose midpoint misses ε, so
+    // the cost goes where the curve needs it, and corners that the tree cuts are found again.
+    p.refine = ContourOptions::until_converged;
+    p.triangle_safeguard = false;
     p.eps = 1e-5;
     return p;
 }
@@ -210,7 +213,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     write_file_atomic(dir / "final.json", interface_json(r.curves, r.t));
     if (vtk && vtk_step != r.steps_done) vtk->add(r.t, r.curves);
     draw(dir, p, initial, r, overlay.shown(), overlay.count());
-    nlohmann::json summary = run_summary(p, options, r, law->name());
+    nlohmann::json summary = run_summary(p, options, r, *law);
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     if (!o.quiet) {
         fmt::print("{}: {} at t = {:.6g} after {} steps, e_inf = {}, {:.3g} s cpu; wrote {}\n",

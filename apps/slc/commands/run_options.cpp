@@ -45,8 +45,21 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         ->check(integer_in(1, 100000000));
     cmd.add_option("-K,--depth", o.depth, "K: depth of the contouring tree (problem's default)")
         ->check(integer_in(1, 24));
-    cmd.add_option("-P,--refine", o.refine, "P: passes of adaptive refinement (problem's default)")
-        ->check(integer_in(0, 64));
+    cmd.add_option("-P,--refine", o.refine,
+                   "P: passes of adaptive refinement, or 'converged': until every segment "
+                   "midpoint is within eps (a named problem's own P; converged for --initial)")
+        ->transform(CLI::Validator(
+            [](std::string& text) {
+                if (text == "converged") {
+                    text = std::to_string(ContourOptions::until_converged);
+                    return std::string();
+                }
+                std::string copy = text;
+                if (integer_in(0, 64)(copy).empty()) return std::string();
+                return fmt::format("must be an integer from 0 to 64 or 'converged', got '{}'",
+                                   text);
+            },
+            "in [0, 64] or converged"));
     cmd.add_option("--eps", o.eps, "epsilon: midpoint tolerance of refinement (default 10^-K)")
         ->check(positive_number());
     cmd.add_option("--eta", o.eta, "eta: root-finding tolerance (default 1e-10)")
@@ -64,19 +77,25 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
            "L: distance tree depth (default K + P/2 rounded down; K + P with --extension whitney)")
         ->check(integer_in(1, 30));
     cmd.add_option("--extension", o.extension,
-                   "Velocity extension off the curve: nearest (default), whitney, or direct (flow "
-                   "fields only: the law sampled along each characteristic, traced back by "
-                   "4th-order Runge-Kutta; one contour per step)")
+                   "Velocity off the curve: nearest (the vertex velocities at the nearest point), "
+                   "whitney, or direct (the law itself: a flow field sampled along each "
+                   "characteristic, traced back by 4th-order Runge-Kutta, one contour per step; a "
+                   "normal law with the normal of the distance field, so corners move exactly). "
+                   "Default: direct for flow fields and normal laws, nearest otherwise; a named "
+                   "problem's own (nearest)")
         ->check(CLI::IsMember(extension_names));
     cmd.add_option("--geometry", o.geometry,
                    "Geometry module for normals and curvature: intrinsic, embedded, or arclength "
                    "(circumcircle curvature averaged over --arc-width; the law's default "
                    "otherwise)")
         ->check(CLI::IsMember(geometry_names));
-    cmd.add_flag("--arcs", o.arcs,
-                 "Read the curve as circular arcs through its vertices, not as chords, when G is "
-                 "evaluated (corners turning by more than 0.5 rad stay sharp): for smooth curves, "
-                 "whose chords lose a little area each step");
+    // A flag function, called only when given: a flag bound to the optional would set it always.
+    cmd.add_flag_function(
+        "--arcs,!--no-arcs", [&o](std::int64_t count) { o.arcs = count > 0; },
+        "Read the curve as circular arcs through its vertices, not as chords, when G is "
+        "evaluated (corners turning by more than 0.5 rad stay sharp): for smooth curves, "
+        "whose chords lose a little area each step. Default: on for curvature laws with "
+        "the arclength module (their default), off otherwise and for named problems");
     cmd.add_option("--arc-width", o.arc_width,
                    "sigma: arc length over which the arclength geometry module averages the "
                    "curvature (default sqrt(k); curvature flow is stable from 0.76 sqrt(k))")
@@ -102,32 +121,38 @@ RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
     c.eps = m.eps ? *m.eps : (m.depth ? std::pow(10.0, -c.depth) : p.eps);
     c.eta = m.eta;
     c.rho = m.rho;
+    c.triangle_safeguard = p.triangle_safeguard;
     if (*c.eps < c.eta)
         throw InvalidInput(fmt::format("--eps ({}) must not be below --eta ({})", *c.eps, c.eta));
     r.step.tree_depth = m.tree_depth.value_or(0);
-    r.step.extension = extension_names.at(m.extension);
+    r.step.extension = m.extension ? std::optional(extension_names.at(*m.extension)) : p.extension;
     r.step.embedded.mesh = m.mesh.value_or(default_mesh_size(c.depth));
     r.step.embedded.eno_order = m.eno_order;
     r.step.embedded.smoothing = m.smooth.value_or(p.smoothing);
-    r.step.arcs = m.arcs;
+    r.step.arcs = m.arcs ? m.arcs : p.arcs;
     r.step.arc_width = m.arc_width;
     return r;
 }
 
 std::string run_name(const RunOptions& o) {
     return fmt::format("{}/{}/{}/{}/{:.0e}", o.steps, o.step.embedded.smoothing,
-                       o.step.contour.depth, o.step.contour.refine_passes,
+                       o.step.contour.depth, refine_name(o.step.contour.refine_passes),
                        o.step.contour.resolved_eps());
 }
 
+std::string refine_name(int passes) {
+    return passes == ContourOptions::until_converged ? "converged" : std::to_string(passes);
+}
+
 nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResult& r,
-                           const std::string& velocity) {
+                           const VelocityLaw& law) {
     const auto e_inf = max_error(p, r.curves, r.t);
     const ContourOptions& c = o.step.contour;
     nlohmann::json params = {
         {"N", o.steps},
         {"K", c.depth},
-        {"P", c.refine_passes},
+        {"P", c.refine_passes == ContourOptions::until_converged ? nlohmann::json("converged")
+                                                                 : nlohmann::json(c.refine_passes)},
         {"eps", c.resolved_eps()},
         {"eta", c.eta},
         {"rho", c.rho},
@@ -137,10 +162,10 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"L", o.step.resolved_tree_depth()},
         {"domain", {p.domain.lo.x, p.domain.lo.y, p.domain.hi.x, p.domain.hi.y}},
         {"t_end", o.t_end},
-        {"velocity", velocity},
+        {"velocity", law.name()},
         {"velocity_params", p.velocity_params},
-        {"extension", extension_name(o.step.extension)},
-        {"arcs", o.step.arcs},
+        {"extension", extension_name(o.step.resolved_extension(law))},
+        {"arcs", o.step.resolved_arcs(law)},
         {"arc_width", o.step.resolved_arc_width((o.t_end - o.t_start) / o.steps)}};
     for (const auto& q : p.parameters) params["problem_params"][q.name] = q.value;
     nlohmann::json s = {

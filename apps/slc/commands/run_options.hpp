@@ -27,9 +27,9 @@ struct MethodOptions {
     int eno_order = 3;
     std::optional<int> smooth;
     std::optional<int> tree_depth;
-    std::string extension = "nearest";
-    std::string geometry;  ///< empty: the law's (or the problem's) own
-    bool arcs = false;
+    std::optional<std::string> extension;  ///< unset: the problem's, else the law's default
+    std::string geometry;                  ///< empty: the law's (or the problem's) own
+    std::optional<bool> arcs;              ///< --arcs / --no-arcs; unset: as extension
     std::optional<double> arc_width;
     int threads = 0;
 };
@@ -44,12 +44,15 @@ RunOptions resolve_run_options(const MethodOptions& method, const Problem& probl
 
 /// summary.json of a run (DESIGN §6): problem, params, t_end, steps, status, e_inf, area, length,
 /// components, segments, wall_s, cpu_s, cpu_s_per_step, threads, g_evals, g_evals_per_vertex,
-/// peak_rss_mib (the process's peak resident memory).
+/// peak_rss_mib (the process's peak resident memory). law: the law the run used, whose defaults
+/// resolve the extension and arcs.
 nlohmann::json run_summary(const Problem& problem, const RunOptions& options,
-                           const RunResult& result, const std::string& velocity);
+                           const RunResult& result, const VelocityLaw& law);
 
 /// The run's name N/S/K/P/ε as in the paper.
 std::string run_name(const RunOptions& options);
+/// P as a name: the number of passes, or "converged".
+std::string refine_name(int passes);
 
 /// --param key=value pairs; InvalidInput for a malformed one.
 std::map<std::string, double> parse_params(const std::vector<std::string>& params);

@@ -66,7 +66,7 @@ std::string markdown(const Problem& p, const StudyResult& s, const Paper& paper)
         threads, threads == 1 ? "" : "s");
     if (p.module == GeometryModule::arclength)
         md += " Curvature from the arclength geometry module (--geometry arclength).";
-    if (s.rows > 0 && s.at(0, 0).options.step.arcs)
+    if (s.rows > 0 && s.at(0, 0).options.step.arcs == true)
         md += " G reads the curves as arcs through their vertices (--arcs).";
     if (!paper.empty()) md += " Each cell: ours / the paper's (450 MHz UltraSPARC II, 2000).";
     md +=
@@ -147,7 +147,7 @@ void plot(const std::filesystem::path& dir, const Problem& p, const StudyResult&
     Figure fig(Box::square(b.center(), 0.55 * std::max({b.width(), b.height(), 1.0})),
                fmt::format("{}{}{}: error against CPU time per step", p.name,
                            p.module == GeometryModule::arclength ? ", arclength module" : "",
-                           s.rows > 0 && s.at(0, 0).options.step.arcs ? ", arcs" : ""));
+                           s.rows > 0 && s.at(0, 0).options.step.arcs == true ? ", arcs" : ""));
     fig.set_axis_names("log10 CPU seconds per step", "log10 E_inf");
     for (std::size_t r = 0; r < ours.size(); ++r) {
         if (theirs[r].size() >= 2)

@@ -46,6 +46,12 @@ struct ContourOptions {
     double gamma = 1.0;
     /// Cap on the passes of until_converged.
     int max_refine_passes = 64;
+    /// The paper's triangle safeguard: a vertex added by refinement may stay in its segment's
+    /// triangle or move into an adjacent one where G has no sign change, no farther. Off, it may
+    /// go as far as its bracket reaches (at most three segment lengths, and short of every other
+    /// segment), the angle and crossing safeguards still keeping every curve simple and apart:
+    /// refinement then finds the corners of the zero set that the tree's triangles cut off.
+    bool triangle_safeguard = true;
     /// How brackets are shrunk: Brent (default), Illinois, or the paper's bisection.
     RootMethod root_method = RootMethod::brent;
     /// δ ≥ 0, when the caller can guarantee |G(x) − G(y)| ≤ |x − y| + δ for all x and y: 0 for a

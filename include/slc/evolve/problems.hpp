@@ -50,7 +50,14 @@ struct Problem {
     int smoothing = 0;               ///< S
     std::string velocity;            ///< the built-in law, by make_velocity name
     VelocityParams velocity_params;  ///< its parameters
-    std::optional<GeometryModule> module;      ///< overrides the law's default geometry module
+    std::optional<GeometryModule> module;  ///< overrides the law's default geometry module
+    /// The extension and arcs of the run; a named problem sets the paper's (nearest point,
+    /// chords), a user's curve leaves them to the law's defaults (StepOptions).
+    std::optional<Extension> extension;
+    std::optional<bool> arcs;  ///< see extension
+    /// ContourOptions::triangle_safeguard: the paper's for a named problem, off for a user's
+    /// curve (whose corners it would cut).
+    bool triangle_safeguard = true;
     std::vector<ProblemParameter> parameters;  ///< the problem's own parameters, in use
     StudyPlan study;                           ///< the settings of `slc study`
     /// The exact signed distance to Γ(t) at points, when known at time t (else nullopt).

@@ -24,8 +24,12 @@ namespace slc {
 enum class Extension {
     nearest_point,  ///< W(x) = u at the nearest point of Γ (the paper's choice)
     whitney,        ///< the continuous piecewise-linear Whitney extension on the distance tree
-    /// Sample the law itself, only for laws defined everywhere (flow fields): the foot of each
-    /// characteristic by the classical Runge–Kutta rule, one contour per step, fourth order in time
+    /// The law itself evaluated off the curve, for flow fields and normal laws only. A flow field
+    /// is sampled along each characteristic, its foot found by the classical Runge–Kutta rule:
+    /// one contour per step, fourth order in time. A normal law V(t, x, N) is evaluated at x with
+    /// the normal of the distance field there, N = sign F(x) (x − y)/|x − y|, y the nearest point
+    /// of Γ: the exact offset of the polygon under a constant speed, so a growing corner rounds
+    /// off and a shrinking one stays sharp, as in the exact (viscosity) solution.
     direct,
 };
 
@@ -33,7 +37,8 @@ enum class Extension {
 struct StepOptions {
     ContourOptions contour;  ///< K, P, ε, η, ρ of both contours
     int tree_depth = 0;      ///< L, the distance trees' depth; 0 means the default below
-    Extension extension = Extension::nearest_point;  ///< how W is extended off Γ
+    /// How W is extended off Γ; unset: resolved_extension().
+    std::optional<Extension> extension = std::nullopt;
     EmbeddedOptions embedded;  ///< M, E, S for laws that use the embedded geometry module
     /// σ of the arclength geometry module; unset: √k, above the 0.76 √k that an explicit step
     /// of curvature flow needs to be stable (docs/algorithms/geometry.md).
@@ -45,17 +50,23 @@ struct StepOptions {
     /// where the curve turns by more than arc_corner. The chords of a polygon inscribed in a
     /// smooth curve cut inside its convex parts by up to c²|C|/8, and each step's new vertices
     /// land on them: a loss that adds up over the steps. The arcs remove it to O(c³); corners stay
-    /// sharp (docs/algorithms/evolve.md).
-    bool arcs = false;
+    /// sharp (docs/algorithms/evolve.md). Unset: resolved_arcs().
+    std::optional<bool> arcs = std::nullopt;
     /// Turning angle at a vertex (radians) above which arcs treats it as a corner.
     static constexpr double arc_corner = 0.5;
 
     /// σ of the arclength module for a step of size k: arc_width as given, or √k.
     double resolved_arc_width(double k) const { return arc_width.value_or(std::sqrt(k)); }
+    /// The extension as given, or by default the law itself (direct) for flow fields and normal
+    /// laws, and the nearest-point extension for every other law.
+    Extension resolved_extension(const VelocityLaw& law) const;
+    /// arcs as given, or by default on for laws whose curvature comes from the arclength module
+    /// (curvature flow: the chords' loss would otherwise add up over the steps).
+    bool resolved_arcs(const VelocityLaw& law) const;
 
-    /// L as given, or by default K + ⌊P/2⌋ (K + P with the Whitney extension, whose accuracy
-    /// depends on L); refinement until converged counts as P = 4. Only the Whitney extension's
-    /// results depend on L: every other use of the trees is an exact distance.
+    /// L as given, or by default K + ⌊min(P, 4)/2⌋ (K + P with the Whitney extension, whose
+    /// accuracy depends on L); refinement until converged counts as P = 4. Only the Whitney
+    /// extension's results depend on L: every other use of the trees is an exact distance.
     int resolved_tree_depth() const;
 };
 

@@ -58,49 +58,46 @@ private:
 };
 
 /// `unit-normal`: constant normal speed, u = s·N (§4.5.1–4.5.2); s > 0 grows the curve.
-/// Normals from the intrinsic module unless told otherwise (the paper's choice for first-order
-/// geometric laws).
-class NormalSpeed final : public VelocityLaw {
+/// A normal law: at the vertices with the intrinsic module's normals unless told otherwise (the
+/// paper's choice for first-order geometric laws), off the curve with the distance field's.
+class NormalSpeed final : public NormalLaw {
 public:
-    /// speed: s, length per unit time (negative shrinks the curve); module: where N comes from.
-    explicit NormalSpeed(double speed = 1.0, GeometryModule module = GeometryModule::intrinsic)
-        : speed_(speed), module_(module) {}
+    /// speed: s, length per unit time (negative shrinks the curve); module: where vertex normals
+    /// come from.
+    explicit NormalSpeed(double speed = 1.0, std::optional<GeometryModule> module = std::nullopt)
+        : NormalLaw(module), speed_(speed) {}
     std::string name() const override { return "unit-normal"; }
-    GeometryNeeds needs() const override { return {.normals = true, .module = module_}; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override;
+    void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
+                       std::span<double> out) const override;
 
 private:
     double speed_;
-    GeometryModule module_;
 };
 
 /// `anisotropic`: u = v(θ)·N with v = R + ε cos(mθ), θ the normal angle, N = (cos θ, sin θ)
 /// (§4.5.3, Equation 12; the paper's Wulff-shape runs use R = −1 and ε = 5/(m² − 1)).
-class AnisotropicNormalSpeed final : public VelocityLaw {
+class AnisotropicNormalSpeed final : public NormalLaw {
 public:
     /// r: R, the isotropic part of the speed; m: the number of lobes of cos(mθ); eps: ε, their
-    /// amplitude; module: where N comes from.
+    /// amplitude; module: where vertex normals come from.
     AnisotropicNormalSpeed(double r, double m, double eps,
-                           GeometryModule module = GeometryModule::intrinsic)
-        : r_(r), m_(m), eps_(eps), module_(module) {}
+                           std::optional<GeometryModule> module = std::nullopt)
+        : NormalLaw(module), r_(r), m_(m), eps_(eps) {}
     std::string name() const override { return "anisotropic"; }
-    GeometryNeeds needs() const override { return {.normals = true, .module = module_}; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override;
+    void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
+                       std::span<double> out) const override;
 
 private:
     double r_, m_, eps_;
-    GeometryModule module_;
 };
 
 /// `curvature`: motion by curvature u = C·N (§4.6), which shrinks a circle as R(t)² = R(0)² − 2t.
-/// Normals and curvature from the embedded module unless told otherwise (the paper's choice for
-/// second-order laws).
+/// Normals and curvature from the arclength module unless told otherwise (stable at any step;
+/// the paper used the embedded module, which its named problems keep).
 class CurvatureFlow final : public VelocityLaw {
 public:
-    /// module: where N and C come from.
-    explicit CurvatureFlow(GeometryModule module = GeometryModule::embedded) : module_(module) {}
+    /// module: where N and C come from; unset: GeometryNeeds::resolved_module().
+    explicit CurvatureFlow(std::optional<GeometryModule> module = std::nullopt) : module_(module) {}
     std::string name() const override { return "curvature"; }
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = true, .module = module_};
@@ -109,16 +106,17 @@ public:
                                  const VertexGeometry& geometry) const override;
 
 private:
-    GeometryModule module_;
+    std::optional<GeometryModule> module_;
 };
 
 /// `volume-preserving-curvature`: the nonlocal law u = (C − C̄)·N, C̄ the arc-length mean of C
 /// over all components of Γ (§4.7, Equation 13). The mean normal speed is zero, so the enclosed
-/// area is conserved; small components give their area to large ones. Embedded module by default.
+/// area is conserved; small components give their area to large ones. Arclength module by
+/// default, as for CurvatureFlow.
 class VolumePreservingCurvatureFlow final : public VelocityLaw {
 public:
-    /// module: where N and C come from.
-    explicit VolumePreservingCurvatureFlow(GeometryModule module = GeometryModule::embedded)
+    /// module: where N and C come from; unset: GeometryNeeds::resolved_module().
+    explicit VolumePreservingCurvatureFlow(std::optional<GeometryModule> module = std::nullopt)
         : module_(module) {}
     std::string name() const override { return "volume-preserving-curvature"; }
     GeometryNeeds needs() const override {
@@ -128,7 +126,7 @@ public:
                                  const VertexGeometry& geometry) const override;
 
 private:
-    GeometryModule module_;
+    std::optional<GeometryModule> module_;
 };
 
 }  // namespace slc

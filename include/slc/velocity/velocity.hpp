@@ -6,6 +6,7 @@
 
 #include <concepts>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <type_traits>
@@ -28,12 +29,19 @@ enum class GeometryModule { intrinsic, embedded, arclength };
 
 /// What a law needs at the vertices besides their positions.
 struct GeometryNeeds {
-    bool normals = false;                               ///< outward unit normals N
-    bool curvature = false;                             ///< curvature C = −∇·N
-    GeometryModule module = GeometryModule::intrinsic;  ///< which module computes them
+    bool normals = false;    ///< outward unit normals N
+    bool curvature = false;  ///< curvature C = −∇·N
+    /// Which module computes them; unset: resolved_module().
+    std::optional<GeometryModule> module = std::nullopt;
 
     /// True when the law needs normals or curvature.
     bool any() const { return normals || curvature; }
+    /// The module as given, or by default the arclength module when curvature is needed (its
+    /// step is stable at any k and any h; docs/algorithms/geometry.md) and the intrinsic one for
+    /// normals alone.
+    GeometryModule resolved_module() const {
+        return module.value_or(curvature ? GeometryModule::arclength : GeometryModule::intrinsic);
+    }
 };
 
 /// A velocity law: the velocity u of every vertex of Γ at time t, points moving with dy/dt = u
@@ -58,6 +66,32 @@ public:
     /// The flow field at time t at every point; out.size() == points.size(). Throws InvalidInput
     /// unless is_field(). field_velocities() calls it and checks the answer.
     virtual void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const;
+
+    /// True for a normal law u = V(t, x, N)·N whose speed V is known for any point x and any unit
+    /// normal N (unit-normal, anisotropic, a user's V): the step can then evaluate it off the
+    /// curve with the normal of the distance field (Extension::direct), so that corners move as
+    /// the exact (viscosity) solution moves them.
+    virtual bool is_normal_law() const { return false; }
+    /// V(t, points[i], normals[i]) for every i; out.size() == points.size() == normals.size(),
+    /// normals of unit length. Throws InvalidInput unless is_normal_law().
+    virtual void normal_speeds(double t, std::span<const Vec2> points,
+                               std::span<const Vec2> normals, std::span<double> out) const;
+};
+
+/// The base of normal laws u = V(t, x, N)·N: velocities() evaluates V at the vertices with the
+/// normals of the geometry module (the intrinsic one unless told otherwise), and the step may
+/// evaluate it anywhere else with other normals. A law implements normal_speeds().
+class NormalLaw : public VelocityLaw {
+public:
+    /// module: where the vertex normals come from; unset: GeometryNeeds::resolved_module().
+    explicit NormalLaw(std::optional<GeometryModule> module = std::nullopt) : module_(module) {}
+    GeometryNeeds needs() const override { return {.normals = true, .module = module_}; }
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override;
+    bool is_normal_law() const override { return true; }
+
+private:
+    std::optional<GeometryModule> module_;
 };
 
 /// Where the geometry modules get what they need.
@@ -114,6 +148,28 @@ public:
     bool is_field() const override { return true; }
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override {
         parallel_for(points.size(), [&](std::size_t i) { out[i] = f_(t, points[i]); });
+    }
+
+private:
+    std::string name_;
+    F f_;
+};
+
+/// A normal law u = V(t, x, N)·N from a callable f(double t, Vec2 x, Vec2 N) -> double, called
+/// concurrently.
+template <class F>
+requires std::regular_invocable<const F&, double, Vec2, Vec2> &&
+    std::convertible_to < std::invoke_result_t<const F&, double, Vec2, Vec2>,
+double > class NormalSpeedLaw final : public NormalLaw {
+public:
+    /// name: the law's name in messages; f: the normal speed; module: where vertex normals come
+    /// from.
+    NormalSpeedLaw(std::string name, F f, std::optional<GeometryModule> module = std::nullopt)
+        : NormalLaw(module), name_(std::move(name)), f_(std::move(f)) {}
+    std::string name() const override { return name_; }
+    void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
+                       std::span<double> out) const override {
+        parallel_for(points.size(), [&](std::size_t i) { out[i] = f_(t, points[i], normals[i]); });
     }
 
 private:
@@ -181,7 +237,17 @@ template <class F>
 std::unique_ptr<VelocityLaw> field_law(std::string name, F f) {
     return std::make_unique<FieldLaw<F>>(std::move(name), std::move(f));
 }
-/// A LocalLaw owning f, for instance the normal speed 2:
+/// A NormalSpeedLaw owning f, for instance a speed that depends on the normal's direction:
+/// @code
+/// auto law = normal_law("faceted", [](double, Vec2, Vec2 n) { return 1.0 + 0.2 * n.x * n.x; });
+/// @endcode
+template <class F>
+std::unique_ptr<VelocityLaw> normal_law(std::string name, F f,
+                                        std::optional<GeometryModule> module = std::nullopt) {
+    return std::make_unique<NormalSpeedLaw<F>>(std::move(name), std::move(f), module);
+}
+/// A LocalLaw owning f, for instance the normal speed 2 at the vertices (normal_law() is the
+/// form the step can also evaluate off the curve):
 /// @code
 /// auto law = local_law("speed-2", {.normals = true},
 ///                      [](double, const VertexState& s) { return 2.0 * s.normal; });

@@ -36,10 +36,18 @@ TEST(MakeVelocity, BuildsEveryLawOfTheCatalogByName) {
     }
     EXPECT_TRUE(make_velocity("rotation")->is_field());
     EXPECT_TRUE(make_velocity("vortex")->is_field());
-    EXPECT_EQ(make_velocity("curvature")->needs().module, GeometryModule::embedded);
-    EXPECT_EQ(make_velocity("unit-normal")->needs().module, GeometryModule::intrinsic);
+    // Curvature from the arclength module (stable at any step), normals alone from the
+    // intrinsic one, unless told otherwise.
+    EXPECT_EQ(make_velocity("curvature")->needs().resolved_module(), GeometryModule::arclength);
+    EXPECT_EQ(make_velocity("volume-preserving-curvature")->needs().resolved_module(),
+              GeometryModule::arclength);
+    EXPECT_EQ(make_velocity("unit-normal")->needs().resolved_module(), GeometryModule::intrinsic);
     EXPECT_EQ(make_velocity("curvature", {}, GeometryModule::intrinsic)->needs().module,
               GeometryModule::intrinsic);
+    EXPECT_TRUE(make_velocity("unit-normal")->is_normal_law());
+    EXPECT_TRUE(make_velocity("anisotropic")->is_normal_law());
+    EXPECT_FALSE(make_velocity("curvature")->is_normal_law());
+    EXPECT_FALSE(make_velocity("rotation")->is_normal_law());
 }
 
 TEST(MakeVelocity, PassesParametersByName) {
