@@ -23,6 +23,7 @@
 #include "slc/geometry_modules/embedded.hpp"
 #include "slc/geometry_modules/intrinsic.hpp"
 #include "slc/io/interface_json.hpp"
+#include "slc/io/plot.hpp"
 #include "slc/io/render.hpp"
 #include "slc/io/vtk.hpp"
 #include "slc/velocity/factory.hpp"

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <ctime>
 
 #include "slc/core/error.hpp"
@@ -26,11 +27,15 @@ const char* to_string(RunStatus status) {
 
 namespace {
 
-double process_cpu_seconds() {
+/// The process's CPU time (all threads) in whole nanoseconds: a difference of two readings is
+/// exact, and seconds() of it the nearest double to the measured seconds.
+std::int64_t process_cpu_ns() {
     timespec ts{};
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+    return std::int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
 }
+
+double seconds(std::int64_t ns) { return static_cast<double>(ns) / 1e9; }
 
 void check(const RunOptions& o) {
     if (o.steps < 1) throw InvalidInput(fmt::format("steps must be at least 1, got {}", o.steps));
@@ -75,16 +80,17 @@ RunResult resume(const RunResult& from, const VelocityLaw& law, const Box& domai
     const double wall_before = from.wall_s;
     const double cpu_before = from.cpu_s;
     const auto wall_start = std::chrono::steady_clock::now();
-    const double cpu_start = process_cpu_seconds();
+    const std::int64_t cpu_start = process_cpu_ns();
     auto clocks = [&] {
         result.wall_s =
             wall_before +
             std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-        result.cpu_s = cpu_before + process_cpu_seconds() - cpu_start;
+        result.cpu_s = cpu_before + seconds(process_cpu_ns() - cpu_start);
     };
     for (int n = from.steps_done + 1; n <= options.steps; ++n) {
         const double t_next = time_after(options, n);
         StepResult step;
+        const std::int64_t step_cpu_start = process_cpu_ns();
         try {
             step = advance(result.curves, result.t, t_next - result.t, law, domain, options.step);
         } catch (const NumericalFailure& e) {
@@ -92,6 +98,7 @@ RunResult resume(const RunResult& from, const VelocityLaw& law, const Box& domai
             result.message = fmt::format("step {} from t = {}: {}", n, result.t, e.what());
             break;
         }
+        const double step_cpu_s = seconds(process_cpu_ns() - step_cpu_start);
         result.g_evals += step.stats.g_evals();
         result.vertices_produced += step.stats.vertices();
         result.curves = std::move(step.curves);
@@ -100,7 +107,7 @@ RunResult resume(const RunResult& from, const VelocityLaw& law, const Box& domai
         clocks();
         const bool go_on =
             !observer || observer(StepReport{n, options.steps, result.t, &result.curves,
-                                             &step.stats, result.wall_s, &result});
+                                             &step.stats, result.wall_s, step_cpu_s, &result});
         if (result.curves.empty()) {
             result.status = RunStatus::vanished;
             break;

@@ -25,9 +25,6 @@ using namespace render_detail;
 
 // ---- layers -----------------------------------------------------------------------------------
 
-using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
-using ContextPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
-
 /// The field as an image, one pixel per sample, top row = highest y; NaN transparent.
 SurfacePtr field_image(const FieldLayer& field) {
     const ScalarGrid& g = field.grid;
@@ -309,15 +306,15 @@ void check(cairo_status_t status, const std::filesystem::path& path) {
     }
 }
 
-std::string svg_bytes(const Page& page, const Layers& layers, const std::string& title,
+std::string svg_bytes(double width, double height, const DrawPage& draw,
                       const std::filesystem::path& path) {
     std::string bytes;
     const SurfacePtr surface(
-        cairo_svg_surface_create_for_stream(&append_bytes, &bytes, page.width, page.height),
+        cairo_svg_surface_create_for_stream(&append_bytes, &bytes, width, height),
         &cairo_surface_destroy);
     {
         const ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
-        render(cr.get(), page, layers, title);
+        draw(cr.get());
         check(cairo_status(cr.get()), path);
     }
     cairo_surface_finish(surface.get());
@@ -325,16 +322,16 @@ std::string svg_bytes(const Page& page, const Layers& layers, const std::string&
     return bytes;
 }
 
-std::string png_bytes(const Page& page, const Layers& layers, const std::string& title,
+std::string png_bytes(double width, double height, const DrawPage& draw,
                       const std::filesystem::path& path) {
     const SurfacePtr surface(
-        cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(png_scale * page.width),
-                                   static_cast<int>(png_scale * page.height)),
+        cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(png_scale * width),
+                                   static_cast<int>(png_scale * height)),
         &cairo_surface_destroy);
     {
         const ContextPtr cr(cairo_create(surface.get()), &cairo_destroy);
         cairo_scale(cr.get(), png_scale, png_scale);
-        render(cr.get(), page, layers, title);
+        draw(cr.get());
         check(cairo_status(cr.get()), path);
     }
     std::string bytes;
@@ -349,6 +346,26 @@ void check_positive(double v, const char* what) {
 }
 
 }  // namespace
+
+namespace render_detail {
+
+PictureFormat picture_format(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if (ext == ".svg") return PictureFormat::svg;
+    if (ext == ".png") return PictureFormat::png;
+    throw InvalidInput(
+        fmt::format("cannot save {}: the picture must end in .svg or .png", path.string()));
+}
+
+void write_picture(const std::filesystem::path& path, PictureFormat format, double width,
+                   double height, const DrawPage& draw) {
+    write_file_atomic(path, format == PictureFormat::svg ? svg_bytes(width, height, draw, path)
+                                                         : png_bytes(width, height, draw, path));
+}
+
+}  // namespace render_detail
 
 struct Figure::Layer {
     LayerItem item;
@@ -450,20 +467,14 @@ void Figure::add_arrows(std::span<const Vec2> at, std::span<const Vec2> vec, dou
 }
 
 void Figure::save(const std::filesystem::path& path) const {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    if (ext != ".svg" && ext != ".png") {
-        throw InvalidInput(
-            fmt::format("cannot save {}: the picture must end in .svg or .png", path.string()));
-    }
+    const PictureFormat format = picture_format(path);
     Layers layers;
     for (const auto& layer : layers_) layers.push_back(&layer->item);
     Page page = measured_layout(view_, title_, layers);
     page.x_name = x_name_;
     page.y_name = y_name_;
-    write_file_atomic(path, ext == ".svg" ? svg_bytes(page, layers, title_, path)
-                                          : png_bytes(page, layers, title_, path));
+    write_picture(path, format, page.width, page.height,
+                  [&](cairo_t* cr) { render(cr, page, layers, title_); });
 }
 
 }  // namespace slc

@@ -1,11 +1,14 @@
-// Internals of the picture module shared by its two sources: page constants, the layers a Figure
+// Internals of the picture module shared by its sources: page constants, the layers a Figure
 // holds, colour maps, tick and text helpers, and the page layout (render_layout.cpp); drawing and
-// output live in render.cpp.
+// output live in render.cpp, which also writes the line plots of plot.cpp.
 #pragma once
 
 #include <cairo.h>
 
 #include <array>
+#include <filesystem>
+#include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <utility>
@@ -122,6 +125,9 @@ struct Page {
     }
 };
 
+using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
+using ContextPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
+
 /// A colour from its hex code 0xRRGGBB.
 constexpr Color rgb(int hex) {
     return {((hex >> 16) & 0xff) / 255.0, ((hex >> 8) & 0xff) / 255.0, (hex & 0xff) / 255.0, 1.0};
@@ -155,5 +161,17 @@ double legend_height(const Layers& layers);
 double legend_width(cairo_t* cr, const Layers& layers);
 /// Places plot, title, legend and colour bar for a view and its layers.
 Page layout(cairo_t* cr, const Box& view, const std::string& title, const Layers& layers);
+
+// ---- output (render.cpp) ----
+
+enum class PictureFormat { svg, png };
+/// The format path's extension names, .svg or .png in any case; InvalidInput for any other.
+PictureFormat picture_format(const std::filesystem::path& path);
+/// Paints a whole page on cr, in layout pixels.
+using DrawPage = std::function<void(cairo_t* cr)>;
+/// Draws a width × height page (layout pixels; the PNG at png_scale) and writes it to path
+/// atomically. InvalidInput when cairo fails or the file cannot be written.
+void write_picture(const std::filesystem::path& path, PictureFormat format, double width,
+                   double height, const DrawPage& draw);
 
 }  // namespace slc::render_detail

@@ -2,8 +2,9 @@
 # interface, byte for byte (17 significant digits: the same doubles), as a run never stopped.
 source "$(dirname "$0")/lib.sh" "$1"
 
-same_run() {  # same_run NAME A B: final.json identical, and the summaries but for clocks and memory
+same_run() {  # same_run NAME A B: final.json identical, the history and the summaries but for clocks and memory
     check "$1: final.json identical" cmp -s "$2/final.json" "$3/final.json"
+    check "$1: history identical but cpu_s" diff <(cut -d, -f1-5 "$2/history.csv") <(cut -d, -f1-5 "$3/history.csv")
     check "$1: summary identical but clocks and memory" diff <(grep -vE '"(wall_s|cpu_s|cpu_s_per_step|peak_rss_mib)"' "$2/summary.json") \
         <(grep -vE '"(wall_s|cpu_s|cpu_s_per_step|peak_rss_mib)"' "$3/summary.json")
 }

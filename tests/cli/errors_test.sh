@@ -146,6 +146,10 @@ reject "--resume without a checkpoint" "cannot read nowhere/checkpoint.json" -- 
 mkdir -p broken && echo '{"format": "slc run checkpoint 1"}' >broken/checkpoint.json
 reject "--resume of a broken checkpoint" "broken/checkpoint.json: not a checkpoint of slc run" -- run --resume broken
 reject "--resume with other options" "--steps cannot be given with it" -- run --resume broken -N 3
+"$SLC" run --problem circle-curvature -N 4 -K 3 -P 0 --checkpoint-every 2 --out cut --quiet
+head -n 2 cut/history.csv >cut/history.csv.new && mv cut/history.csv.new cut/history.csv
+reject "--resume with a history shorter than the checkpoint" \
+    "cut/history.csv: the checkpoint after step 2 needs 3 time levels, the file has 1" -- run --resume cut
 reject "contour depth 21" "--depth: must be an integer from 0 to 20, got '21'" -- contour --initial square.json -K 21 --out x
 reject "study rows 6" "--rows: must be an integer from 1 to 5, got '6'" -- study --problem vortex --rows 6 --out x
 finish

@@ -12,6 +12,46 @@ done
 check "status ok" grep -q '"status": "ok"' mc/summary.json
 check "merged into one component" grep -q '"components": 1' mc/summary.json
 
+# The history: a header, the initial interface and one line per step; the last line is the final
+# interface of the summary (area and length compared as numbers: both are shortest round-trip).
+for f in history.csv history.png; do check "run writes $f" test -s "mc/$f"; done
+check "history header" test "$(head -n 1 mc/history.csv)" = "t,area,length,components,segments,cpu_s"
+check "history has N + 1 lines" test "$(tail -n +2 mc/history.csv | wc -l)" -eq 9
+check "history starts at t = 0 with three circles and cpu_s 0" grep -qE '^0,[^,]+,[^,]+,3,[0-9]+,0$' <(sed -n 2p mc/history.csv)
+summary_number() { sed -nE "s/^ *\"$2\": ([^,]+),?$/\1/p" "$1/summary.json"; }
+last_field() { tail -n 1 "$1/history.csv" | cut -d, -f"$2"; }
+check "history ends with the summary's area" \
+    awk -v a="$(last_field mc 2)" -v b="$(summary_number mc area)" 'BEGIN { exit !(a != "" && a + 0 == b + 0) }'
+check "history ends with the summary's length" \
+    awk -v a="$(last_field mc 3)" -v b="$(summary_number mc length)" 'BEGIN { exit !(a != "" && a + 0 == b + 0) }'
+check "history ends with the summary's segments" test "$(last_field mc 5)" = "$(summary_number mc segments)"
+
+# Curvature flow of a circle: the area falls at 2π per unit time (to 1% here).
+expect_ok "circle history" -- run --problem circle-curvature -N 12 -K 4 -P 1 --out circ --quiet
+check "circle: area falls at 2 pi" awk -F, 'NR == 2 { t0 = $1; a0 = $2 } END {
+    rate = (a0 - $2) / ($1 - t0); exit !(rate > 0.99 * 6.2832 && rate < 1.01 * 6.2832) }' circ/history.csv
+
+# Resumed from a checkpoint, the history is the uninterrupted run's but for the CPU seconds of the
+# steps done again. Lines after the checkpoint's step (10 of 12 here), as a run stopped later
+# would have left them, are dropped and written again.
+same_history() {  # same_history NAME A B: every column but cpu_s identical
+    check "$1" diff <(cut -d, -f1-5 "$2/history.csv") <(cut -d, -f1-5 "$3/history.csv")
+}
+expect_ok "circle checkpointed" -- run --problem circle-curvature -N 12 -K 4 -P 1 --checkpoint-every 5 \
+    --out circ_part --quiet
+same_history "checkpointing keeps the history" circ circ_part
+head -n 12 circ_part/history.csv >kept.csv
+{ cat kept.csv; echo "1.8333333333333333,0,0,0,0,0"; printf "1.9"; } >circ_part/history.csv
+rm circ_part/final.json circ_part/summary.json circ_part/history.png
+expect_ok "circle resumed" -- run --resume circ_part --quiet
+same_history "resumed history as the uninterrupted one" circ circ_part
+check "resume keeps the history's lines up to the checkpoint" cmp -s kept.csv <(head -n 12 circ_part/history.csv)
+check "resume draws the history" test -s circ_part/history.png
+head -n 8 circ_part/history.csv >short.csv && mv short.csv circ_part/history.csv
+expect_error "resume with a history shorter than the checkpoint" "history.csv: the checkpoint after step 10 needs 11 time levels, the file has 7" -- \
+    run --resume circ_part --quiet
+check "a history that cannot be continued changes nothing" test "$(wc -l <circ_part/history.csv)" -eq 8
+
 # Many frames: the overlay's legend names a few, so the picture keeps its size (a line per frame
 # made it 16220 pixels tall at 400 frames, and cairo refused it from about 1600) ...
 expect_ok "many frames" -- run --problem propeller-rotation -N 1800 -K 3 -P 0 --eps 1e-3 --frames 1800 \

@@ -1,5 +1,5 @@
 // slc run: moves an interface — a named problem or the user's curve and velocity law — and writes
-// summary.json, final.json, optional frames and pictures.
+// summary.json, final.json, the history of area and length, optional frames and pictures.
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -13,6 +13,7 @@
 #include "commands/checkpoint.hpp"
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
+#include "commands/history.hpp"
 #include "commands/run_options.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
@@ -160,6 +161,15 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     const Interface initial = prepare_interface(p.initial, p.domain).curves;
     const std::filesystem::path dir(o.out);
     std::filesystem::create_directories(dir);
+    // DIR/history.csv: written now, at each checkpoint and at the end; on --resume read back first,
+    // so that a history that cannot be continued stops the run before anything is written.
+    History history(dir);
+    if (from) {
+        history.resume(from->state.steps_done, from->state.t);
+    } else {
+        history.start(options.t_start, initial);
+        history.save_csv();
+    }
 
     // --vtk: DIR/frames.pvd over DIR/frames/frame_NNNN.vtp — the initial interface (or, after
     // --resume, the frames kept so far), the frames and the final one.
@@ -188,6 +198,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     std::signal(SIGINT, request_stop);
     std::signal(SIGTERM, request_stop);
     const Observer observer = [&](const StepReport& s) {
+        history.add(s.t, *s.curves, s.step_cpu_s);
         if (o.frames > 0 && (std::int64_t{s.step} * o.frames) % s.steps < o.frames) {
             keep_frame(s.t, *s.curves);
             vtk_step = s.step;
@@ -195,6 +206,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
         // Every n steps, and when stopped early, so that --resume loses nothing.
         if (o.checkpoint_every > 0 && s.step < s.steps && !s.curves->empty() &&
             (s.step % o.checkpoint_every == 0 || stop_requested)) {
+            history.save_csv();  // first: a checkpoint's history is never shorter than its run
             write_checkpoint(dir, {given, *s.run, overlay.count()});
         }
         if (progress && s.wall_s > 2.0) {
@@ -211,8 +223,10 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     if (progress) fmt::print(stderr, "\n");
 
     write_file_atomic(dir / "final.json", interface_json(r.curves, r.t));
+    history.save_csv();
     if (vtk && vtk_step != r.steps_done) vtk->add(r.t, r.curves);
     draw(dir, p, initial, r, overlay.shown(), overlay.count());
+    history.save_plot(p.name);
     nlohmann::json summary = run_summary(p, options, r, *law);
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     if (!o.quiet) {
@@ -249,7 +263,7 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
                     "Output folder (required, except with --resume): summary.json, final.json, "
-                    "final.svg/.png, frames");
+                    "final.svg/.png, history.csv/.png, frames");
     cmd->add_option(
            "--checkpoint-every", o->checkpoint_every,
            "Write DIR/checkpoint.json every n steps, and when stopped by Ctrl-C or SIGTERM")

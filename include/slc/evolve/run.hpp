@@ -39,6 +39,7 @@ struct StepReport {
     const Interface* curves = nullptr;  ///< Γ(t)
     const StepStats* stats = nullptr;   ///< what the step cost
     double wall_s = 0.0;                ///< seconds of the time loop so far
+    double step_cpu_s = 0.0;            ///< process CPU seconds of this step alone (all threads)
     /// The run so far (Γ, t, steps done, counters, clocks): what resume() continues from.
     const RunResult* run = nullptr;
 };

@@ -1,5 +1,5 @@
-// Tests of the time loop's resume: a run continued from the state an observer saw ends with the
-// same curves, bit for bit, and the same counters, as the run never stopped.
+// Tests of the time loop: a run continued from the state an observer saw ends with the same
+// curves, bit for bit, and the same counters, as the run never stopped; each step's CPU time.
 #include "slc/evolve/run.hpp"
 
 #include <gtest/gtest.h>
@@ -78,6 +78,23 @@ TEST(Run, ResumeRejectsAStateThatIsNotOfThisRun) {
     EXPECT_THROW(resume(from, law, domain, six_steps()), InvalidInput);
     from.steps_done = -1;
     EXPECT_THROW(resume(from, law, domain, six_steps()), InvalidInput);
+}
+
+TEST(Run, ReportsEachStepsCpuTimeWithinTheRunsTotal) {
+    const Interface square({{{-1, -1}, {0.5, -1}, {0.5, 0.5}, {-1, 0.5}}});
+    const Rotation law(2.0);
+    const Box domain = Box::centered_square(2.0);
+    double sum = 0.0;
+    int negative = 0;
+    const RunResult r = run(square, law, domain, six_steps(), [&](const StepReport& s) {
+        sum += s.step_cpu_s;
+        negative += s.step_cpu_s < 0.0;
+        return true;
+    });
+    ASSERT_EQ(r.status, RunStatus::ok);
+    EXPECT_EQ(negative, 0);
+    // The steps alone, without the loop's bookkeeping and the observer: at most the run's total.
+    EXPECT_LE(sum, r.cpu_s);
 }
 
 }  // namespace
