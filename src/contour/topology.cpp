@@ -526,7 +526,7 @@ void check_boundary(const Topology& topo, std::span<const std::uint8_t> on_bound
             if (on_boundary[a] && on_boundary[b] && (ga > 0.0) != (gb > 0.0)) {
                 const Vec2 p =
                     mesh.vertices[a] + ga / (ga - gb) * (mesh.vertices[b] - mesh.vertices[a]);
-                throw NumericalFailure(fmt::format(
+                throw LeftDomain(fmt::format(
                     "the contour crosses the domain boundary near {}; enlarge the domain",
                     place(p)));
             }

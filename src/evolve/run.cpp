@@ -9,6 +9,7 @@
 #include <ctime>
 
 #include "slc/core/error.hpp"
+#include "slc/tree/quadtree.hpp"
 
 namespace slc {
 
@@ -52,7 +53,51 @@ double time_after(const RunOptions& o, int n) {
     return n == o.steps ? o.t_end : o.t_start + n * k;
 }
 
+/// One step in the domain that holds Γ(t): doubled as domain_doublings_for says, then once more
+/// each time the contour reaches the edge. Counts the doublings in `result`.
+StepResult step_in_growing_domain(const RunResult& result, double k, const VelocityLaw& law,
+                                  const Box& domain, const RunOptions& options,
+                                  RunResult& counters) {
+    const int most = std::min(options.max_domain_doublings,
+                              Quadtree::max_supported_depth - options.step.contour.depth);
+    for (int j = domain_doublings_for(result.curves, domain, std::max(most, 0));; ++j) {
+        StepOptions o = options.step;
+        o.contour.depth += j;
+        if (j > 0 && o.embedded.mesh > 0) o.embedded.mesh <<= j;
+        try {
+            StepResult step =
+                advance(result.curves, result.t, k, law, doubled_domain(domain, j), o);
+            if (j > counters.domain_doublings) {
+                if (counters.domain_doublings == 0) counters.domain_grown_at = result.t;
+                counters.domain_doublings = j;
+            }
+            return step;
+        } catch (const LeftDomain&) {
+            if (j >= most) throw;
+        }
+    }
+}
+
 }  // namespace
+
+Box doubled_domain(const Box& domain, int times) {
+    const Vec2 c = 0.5 * (domain.lo + domain.hi);
+    const double scale = std::ldexp(1.0, times);
+    return {c + scale * (domain.lo - c), c + scale * (domain.hi - c)};
+}
+
+int domain_doublings_for(const Interface& curves, const Box& domain, int max_doublings) {
+    if (curves.empty()) return 0;
+    const Box b = bounding_box(curves.points());
+    for (int j = 0; j < max_doublings; ++j) {
+        const Box d = doubled_domain(domain, j);
+        const double margin = 0.125 * d.width();
+        if (b.lo.x - d.lo.x >= margin && b.lo.y - d.lo.y >= margin && d.hi.x - b.hi.x >= margin &&
+            d.hi.y - b.hi.y >= margin)
+            return j;
+    }
+    return max_doublings;
+}
 
 RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domain,
               const RunOptions& options, const Observer& observer) {
@@ -92,7 +137,7 @@ RunResult resume(const RunResult& from, const VelocityLaw& law, const Box& domai
         StepResult step;
         const std::int64_t step_cpu_start = process_cpu_ns();
         try {
-            step = advance(result.curves, result.t, t_next - result.t, law, domain, options.step);
+            step = step_in_growing_domain(result, t_next - result.t, law, domain, options, result);
         } catch (const NumericalFailure& e) {
             result.status = RunStatus::error;
             result.message = fmt::format("step {} from t = {}: {}", n, result.t, e.what());

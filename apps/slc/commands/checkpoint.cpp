@@ -62,6 +62,8 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     json["vertices_produced"] = s.vertices_produced;
     json["wall_s"] = s.wall_s;
     json["cpu_s"] = s.cpu_s;
+    json["domain_doublings"] = s.domain_doublings;
+    if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
     json["frames_kept"] = c.frames_kept;
     json["curves"] = curves_json(s.curves);
     write_file_atomic(checkpoint_path(dir), json.dump() + "\n");
@@ -85,6 +87,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
         s.vertices_produced = json.at("vertices_produced").get<std::size_t>();
         s.wall_s = json.at("wall_s").get<double>();
         s.cpu_s = json.at("cpu_s").get<double>();
+        s.domain_doublings = json.value("domain_doublings", 0);
+        if (s.domain_doublings > 0) s.domain_grown_at = json.at("domain_grown_at").get<double>();
         s.status = RunStatus::interrupted;
         c.frames_kept = json.at("frames_kept").get<int>();
         s.curves = curves_from(json.at("curves"));

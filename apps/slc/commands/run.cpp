@@ -66,11 +66,20 @@ Problem resolve_problem(const RunCommand& o) {
     p.velocity_params = params;
     p.steps = 40;
     p.depth = 5;
+    // Lengths relative to the curves' size, so that a curve scaled by any factor (and time by
+    // the factor for first-order laws, its square for curvature laws) runs alike.
+    const Box bounds = bounding_box(in.curves.points());
+    p.length_scale = 0.5 * std::max(bounds.width(), bounds.height());
+    p.eps = 1e-5 * p.length_scale;
+    p.eta = 1e-10 * p.length_scale;
     // Refinement to convergence: a pass splits only the segments whose midpoint misses ε, so
     // the cost goes where the curve needs it, and corners that the tree cuts are found again.
-    p.refine = ContourOptions::until_converged;
+    // Curvature laws take the paper's two passes: their curvature is noisier where refinement
+    // leaves the vertices unevenly spaced.
+    const GeometryNeeds needs = make_velocity(p.velocity, params, std::nullopt)->needs();
+    p.refine = needs.curvature ? 2 : ContourOptions::until_converged;
     p.triangle_safeguard = false;
-    p.eps = 1e-5;
+    p.max_domain_doublings = 6;
     return p;
 }
 
@@ -82,7 +91,9 @@ std::filesystem::path frame_path(const std::filesystem::path& dir, int i) {
 void draw(const std::filesystem::path& dir, const Problem& p, const Interface& initial,
           const RunResult& r, const std::vector<std::pair<double, Interface>>& frames,
           int frames_written) {
-    Figure final_picture(p.domain,
+    // The domain the curves ended in, when it grew to hold them.
+    const Box view = doubled_domain(p.domain, r.domain_doublings);
+    Figure final_picture(view,
                          fmt::format("{}: t = {:.4g} ({})", p.name, r.t, to_string(r.status)));
     final_picture.add_curves(initial, "t = 0", Color{0.6, 0.6, 0.6, 1});
     if (!r.curves.empty())
@@ -102,7 +113,7 @@ void draw(const std::filesystem::path& dir, const Problem& p, const Interface& i
     const std::string shown = frames.size() == static_cast<std::size_t>(frames_written)
                                   ? fmt::format("{} frames", frames_written)
                                   : fmt::format("{} of {} frames", frames.size(), frames_written);
-    Figure overlay(p.domain, fmt::format("{}: {}", p.name, shown));
+    Figure overlay(view, fmt::format("{}: {}", p.name, shown));
     for (std::size_t i = 0; i < frames.size(); ++i) {
         const double along = static_cast<double>(i) / static_cast<double>(last);
         overlay.add_curves(frames[i].second,
@@ -221,6 +232,15 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
     if (progress) fmt::print(stderr, "\n");
+    if (r.domain_doublings > 0) {
+        const Box d = doubled_domain(p.domain, r.domain_doublings);
+        fmt::print(
+            stderr,
+            "slc: note: the curves neared the domain's edge at t = {:.6g}; the domain grew "
+            "to [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] and K to {} (summary.json: domain_grown)\n",
+            r.domain_grown_at, d.lo.x, d.hi.x, d.lo.y, d.hi.y,
+            options.step.contour.depth + r.domain_doublings);
+    }
 
     write_file_atomic(dir / "final.json", interface_json(r.curves, r.t));
     history.save_csv();

@@ -60,9 +60,13 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                                    text);
             },
             "in [0, 64] or converged"));
-    cmd.add_option("--eps", o.eps, "epsilon: midpoint tolerance of refinement (default 10^-K)")
+    cmd.add_option("--eps", o.eps,
+                   "epsilon: midpoint tolerance of refinement (a problem's own; 10^-K with -K; "
+                   "1e-5 times the curves' half-width for --initial)")
         ->check(positive_number());
-    cmd.add_option("--eta", o.eta, "eta: root-finding tolerance (default 1e-10)")
+    cmd.add_option("--eta", o.eta,
+                   "eta: root-finding tolerance (default 1e-10, times the curves' half-width for "
+                   "--initial)")
         ->check(positive_number());
     cmd.add_option("--rho", o.rho, "rho: pruning ratio in [0, 1) (default 0.1)")
         ->check(fraction_below_one());
@@ -118,12 +122,13 @@ RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
     ContourOptions& c = r.step.contour;
     c.depth = m.depth.value_or(p.depth);
     c.refine_passes = m.refine.value_or(p.refine);
-    c.eps = m.eps ? *m.eps : (m.depth ? std::pow(10.0, -c.depth) : p.eps);
-    c.eta = m.eta;
+    c.eps = m.eps ? *m.eps : (m.depth ? std::pow(10.0, -c.depth) * p.length_scale : p.eps);
+    c.eta = m.eta.value_or(p.eta);
     c.rho = m.rho;
     c.triangle_safeguard = p.triangle_safeguard;
     if (*c.eps < c.eta)
         throw InvalidInput(fmt::format("--eps ({}) must not be below --eta ({})", *c.eps, c.eta));
+    r.max_domain_doublings = p.max_domain_doublings;
     r.step.tree_depth = m.tree_depth.value_or(0);
     r.step.extension = m.extension ? std::optional(extension_names.at(*m.extension)) : p.extension;
     r.step.embedded.mesh = m.mesh.value_or(default_mesh_size(c.depth));
@@ -191,6 +196,13 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"g_evals_per_vertex",
          r.vertices_produced > 0 ? static_cast<double>(r.g_evals) / r.vertices_produced : 0.0}};
     if (r.status == RunStatus::error) s["message"] = r.message;
+    if (r.domain_doublings > 0) {
+        const Box d = doubled_domain(p.domain, r.domain_doublings);
+        s["domain_grown"] = {{"at_t", r.domain_grown_at},
+                             {"doublings", r.domain_doublings},
+                             {"domain", {d.lo.x, d.lo.y, d.hi.x, d.hi.y}},
+                             {"K", c.depth + r.domain_doublings}};
+    }
     return s;
 }
 

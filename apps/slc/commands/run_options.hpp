@@ -21,7 +21,7 @@ struct MethodOptions {
     std::optional<int> depth;
     std::optional<int> refine;
     std::optional<double> eps;
-    double eta = 1e-10;
+    std::optional<double> eta;
     double rho = 0.1;
     std::optional<int> mesh;
     int eno_order = 3;

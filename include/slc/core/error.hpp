@@ -24,6 +24,14 @@ public:
     explicit NumericalFailure(const std::string& what) : std::runtime_error(what) {}
 };
 
+/// The zero set of a contoured function reaches the edge of its domain: a larger domain would
+/// hold it (the time loop may grow the domain and try again).
+class LeftDomain : public NumericalFailure {
+public:
+    /// what: the one-line message, naming the place.
+    explicit LeftDomain(const std::string& what) : NumericalFailure(what) {}
+};
+
 namespace detail {
 [[noreturn]] void assertion_failed(const char* condition, const char* invariant, const char* file,
                                    int line);

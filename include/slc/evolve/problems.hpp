@@ -41,15 +41,19 @@ struct Problem {
     std::string description;                 ///< what it is and where in the paper
     std::vector<std::vector<Vec2>> initial;  ///< the initial curves, not yet validated
     Box domain;                              ///< the square the curves must stay in
-    double t_start = 0.0;            ///< the initial curves' time (an interface file's "time")
-    double t_end = 1.0;              ///< a, the final time
-    int steps = 40;                  ///< N
-    int depth = 5;                   ///< K
-    int refine = 2;                  ///< P
-    double eps = 1e-5;               ///< ε
-    int smoothing = 0;               ///< S
-    std::string velocity;            ///< the built-in law, by make_velocity name
-    VelocityParams velocity_params;  ///< its parameters
+    double t_start = 0.0;  ///< the initial curves' time (an interface file's "time")
+    double t_end = 1.0;    ///< a, the final time
+    int steps = 40;        ///< N
+    int depth = 5;         ///< K
+    int refine = 2;        ///< P
+    double eps = 1e-5;     ///< ε
+    double eta = 1e-10;    ///< η
+    /// The size ℓ of the curves, which scales the lengths the command line defaults to (ε from
+    /// -K is 10^−K ℓ): 1 for a named problem, the half-width of a user's curves.
+    double length_scale = 1.0;
+    int smoothing = 0;                     ///< S
+    std::string velocity;                  ///< the built-in law, by make_velocity name
+    VelocityParams velocity_params;        ///< its parameters
     std::optional<GeometryModule> module;  ///< overrides the law's default geometry module
     /// The extension and arcs of the run; a named problem sets the paper's (nearest point,
     /// chords), a user's curve leaves them to the law's defaults (StepOptions).
@@ -58,6 +62,8 @@ struct Problem {
     /// ContourOptions::triangle_safeguard: the paper's for a named problem, off for a user's
     /// curve (whose corners it would cut).
     bool triangle_safeguard = true;
+    /// RunOptions::max_domain_doublings: 0 (the paper's fixed box) for a named problem.
+    int max_domain_doublings = 0;
     std::vector<ProblemParameter> parameters;  ///< the problem's own parameters, in use
     StudyPlan study;                           ///< the settings of `slc study`
     /// The exact signed distance to Γ(t) at points, when known at time t (else nullopt).

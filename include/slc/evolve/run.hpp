@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "slc/evolve/step.hpp"
@@ -27,6 +28,11 @@ struct RunOptions {
     double t_end = 1.0;    ///< a, the final time
     int steps = 40;        ///< N; k = (t_end − t_start) / N
     StepOptions step;      ///< K, P, ε, L, M, E, S, ... of each step
+    /// How many times the domain may double about its centre (each doubling adds a level to K, so
+    /// the finest cell stays the same) when the curves come near its edge. 0, the default, keeps
+    /// the domain fixed, as the paper's experiments do: a contour reaching its edge ends the run
+    /// with an error. `slc run --initial` allows 6 (a domain up to 64 times as wide).
+    int max_domain_doublings = 0;
 };
 
 struct RunResult;
@@ -58,9 +64,24 @@ struct RunResult {
     std::size_t vertices_produced = 0;  ///< every vertex every contour of the run produced
     double wall_s = 0.0;                ///< the time loop alone
     double cpu_s = 0.0;                 ///< process CPU seconds of the time loop (all threads)
+    /// The most times a step's domain was doubled (RunOptions::max_domain_doublings), and the
+    /// time at the start of the first step that doubled it (NaN if none did).
+    int domain_doublings = 0;
+    double domain_grown_at = std::numeric_limits<double>::quiet_NaN();
 };
 
-/// Runs initial (valid, inside domain) from t_start to t_end in `steps` steps under law.
+/// domain doubled about its centre `times` times (0: domain itself).
+Box doubled_domain(const Box& domain, int times);
+
+/// The domain of a step from Γ: domain doubled about its centre the fewest times (at most
+/// max_doublings) for which Γ's bounding box keeps an eighth of the doubled width from its edge.
+/// Returns the number of doublings.
+int domain_doublings_for(const Interface& curves, const Box& domain, int max_doublings);
+
+/// Runs initial (valid, inside domain) from t_start to t_end in `steps` steps under law. Each
+/// step runs in the domain doubled domain_doublings_for(Γ(t)) times, once more for each time its
+/// contour reaches the edge (RunOptions::max_domain_doublings), with K raised by a level per
+/// doubling; a step depends only on Γ and t, so resume() still continues bit for bit.
 /// Failures inside a step end the run with status error and a message naming the time; throws
 /// InvalidInput only for bad options (steps < 1, t_end ≤ t_start, non-finite times).
 RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domain,
