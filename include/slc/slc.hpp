@@ -11,6 +11,7 @@
 #include "slc/core/vec2.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/distance/extension.hpp"
+#include "slc/evolve/defaults.hpp"
 #include "slc/evolve/problems.hpp"
 #include "slc/evolve/run.hpp"
 #include "slc/evolve/step.hpp"

@@ -360,6 +360,7 @@ Problem make_problem(const std::string& name, const std::map<std::string, double
         // The paper's method unless a problem says otherwise: its tables are the reference.
         if (!p.extension) p.extension = Extension::nearest_point;
         if (!p.arcs) p.arcs = false;
+        if (!p.area_correction) p.area_correction = false;
         return p;
     }
     std::string known;

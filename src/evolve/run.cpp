@@ -145,6 +145,7 @@ RunResult resume(const RunResult& from, const VelocityLaw& law, const Box& domai
         }
         const double step_cpu_s = seconds(process_cpu_ns() - step_cpu_start);
         result.g_evals += step.stats.g_evals();
+        result.area_corrected += step.stats.area_correction;
         result.vertices_produced += step.stats.vertices();
         result.curves = std::move(step.curves);
         result.t = t_next;

@@ -48,6 +48,7 @@ RunOptions study_cell_options(const Problem& problem, int row, int refine, const
     o.step.embedded.smoothing = plan.smoothing[static_cast<std::size_t>(row)];
     if (!o.step.extension) o.step.extension = problem.extension;
     if (!o.step.arcs) o.step.arcs = problem.arcs;
+    if (!o.step.area_correction) o.step.area_correction = problem.area_correction;
     return o;
 }
 

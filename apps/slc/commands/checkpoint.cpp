@@ -63,6 +63,7 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     json["wall_s"] = s.wall_s;
     json["cpu_s"] = s.cpu_s;
     json["domain_doublings"] = s.domain_doublings;
+    json["area_corrected"] = s.area_corrected;
     if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
     json["frames_kept"] = c.frames_kept;
     json["curves"] = curves_json(s.curves);
@@ -88,6 +89,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
         s.wall_s = json.at("wall_s").get<double>();
         s.cpu_s = json.at("cpu_s").get<double>();
         s.domain_doublings = json.value("domain_doublings", 0);
+        s.area_corrected = json.value("area_corrected", 0.0);
         if (s.domain_doublings > 0) s.domain_grown_at = json.at("domain_grown_at").get<double>();
         s.status = RunStatus::interrupted;
         c.frames_kept = json.at("frames_kept").get<int>();

@@ -11,6 +11,7 @@
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/core/tolerances.hpp"
+#include "slc/evolve/defaults.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/tree/quadtree.hpp"
@@ -73,17 +74,7 @@ Box resolve_domain(const DomainOptions& options, const std::vector<std::vector<V
         return Box::centered_square(b);
     }
     if (options.box) return parse_box(*options.box);
-    Box bounds = Box::empty();  // of the finite points: the others are reported by validation
-    for (const auto& curve : raw) bounds = unite(bounds, bounding_box(curve));
-    if (bounds.is_empty()) throw InvalidInput("no curves: the interface is empty");
-    double half = 1.5 * std::max(0.5 * bounds.width(), 0.5 * bounds.height());
-    if (half == 0.0) half = 1.0;  // all points at one place: validation names the curve
-    if (!(2.0 * half >= tolerance::min_domain_width)) {
-        throw InvalidInput(fmt::format(
-            "the curves span only {:.3g}: give --domain or --box at least {:g} wide, or scale them",
-            std::max(bounds.width(), bounds.height()), tolerance::min_domain_width));
-    }
-    return Box::square(bounds.center(), half);
+    return default_domain(raw);
 }
 
 LoadedInterface load_interface(const std::string& path, const DomainOptions& domain) {

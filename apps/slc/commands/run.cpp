@@ -17,6 +17,7 @@
 #include "commands/run_options.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/evolve/defaults.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
@@ -64,22 +65,17 @@ Problem resolve_problem(const RunCommand& o) {
     p.t_end = *o.t_end;
     p.velocity = o.velocity;
     p.velocity_params = params;
-    p.steps = 40;
-    p.depth = 5;
-    // Lengths relative to the curves' size, so that a curve scaled by any factor (and time by
-    // the factor for first-order laws, its square for curvature laws) runs alike.
-    const Box bounds = bounding_box(in.curves.points());
-    p.length_scale = 0.5 * std::max(bounds.width(), bounds.height());
-    p.eps = 1e-5 * p.length_scale;
-    p.eta = 1e-10 * p.length_scale;
-    // Refinement to convergence: a pass splits only the segments whose midpoint misses ε, so
-    // the cost goes where the curve needs it, and corners that the tree cuts are found again.
-    // Curvature laws take the paper's two passes: their curvature is noisier where refinement
-    // leaves the vertices unevenly spaced.
-    const GeometryNeeds needs = make_velocity(p.velocity, params, std::nullopt)->needs();
-    p.refine = needs.curvature ? 2 : ContourOptions::until_converged;
-    p.triangle_safeguard = false;
-    p.max_domain_doublings = 6;
+    const auto law = make_velocity(p.velocity, params, std::nullopt);
+    const RunOptions defaults = default_run_options(in.curves, *law, p.t_start, p.t_end);
+    const ContourOptions& c = defaults.step.contour;
+    p.steps = defaults.steps;
+    p.depth = c.depth;
+    p.refine = c.refine_passes;
+    p.eps = *c.eps;
+    p.eta = c.eta;
+    p.length_scale = length_scale(in.curves);
+    p.triangle_safeguard = c.triangle_safeguard;
+    p.max_domain_doublings = defaults.max_domain_doublings;
     return p;
 }
 

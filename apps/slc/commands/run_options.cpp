@@ -135,6 +135,7 @@ RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
     r.step.embedded.eno_order = m.eno_order;
     r.step.embedded.smoothing = m.smooth.value_or(p.smoothing);
     r.step.arcs = m.arcs ? m.arcs : p.arcs;
+    r.step.area_correction = p.area_correction;
     r.step.arc_width = m.arc_width;
     return r;
 }
@@ -171,6 +172,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"velocity_params", p.velocity_params},
         {"extension", extension_name(o.step.resolved_extension(law))},
         {"arcs", o.step.resolved_arcs(law)},
+        {"area_correction", o.step.area_correction.value_or(law.preserves_area())},
         {"arc_width", o.step.resolved_arc_width((o.t_end - o.t_start) / o.steps)}};
     for (const auto& q : p.parameters) params["problem_params"][q.name] = q.value;
     nlohmann::json s = {
@@ -196,6 +198,8 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"g_evals_per_vertex",
          r.vertices_produced > 0 ? static_cast<double>(r.g_evals) / r.vertices_produced : 0.0}};
     if (r.status == RunStatus::error) s["message"] = r.message;
+    if (o.step.area_correction.value_or(law.preserves_area()))
+        s["area_corrected"] = r.area_corrected;
     if (r.domain_doublings > 0) {
         const Box d = doubled_domain(p.domain, r.domain_doublings);
         s["domain_grown"] = {{"at_t", r.domain_grown_at},

@@ -58,7 +58,8 @@ struct Problem {
     /// The extension and arcs of the run; a named problem sets the paper's (nearest point,
     /// chords), a user's curve leaves them to the law's defaults (StepOptions).
     std::optional<Extension> extension;
-    std::optional<bool> arcs;  ///< see extension
+    std::optional<bool> arcs;             ///< see extension
+    std::optional<bool> area_correction;  ///< see extension (StepOptions::area_correction)
     /// ContourOptions::triangle_safeguard: the paper's for a named problem, off for a user's
     /// curve (whose corners it would cut).
     bool triangle_safeguard = true;

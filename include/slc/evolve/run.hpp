@@ -67,6 +67,8 @@ struct RunResult {
     /// The most times a step's domain was doubled (RunOptions::max_domain_doublings), and the
     /// time at the start of the first step that doubled it (NaN if none did).
     int domain_doublings = 0;
+    /// The area StepOptions::area_correction gave back over the run, summed with signs.
+    double area_corrected = 0.0;
     double domain_grown_at = std::numeric_limits<double>::quiet_NaN();
 };
 

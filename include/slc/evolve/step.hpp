@@ -52,6 +52,11 @@ struct StepOptions {
     /// land on them: a loss that adds up over the steps. The arcs remove it to O(c³); corners stay
     /// sharp (docs/algorithms/evolve.md). Unset: resolved_arcs().
     std::optional<bool> arcs = std::nullopt;
+    /// For a law that keeps area (VelocityLaw::preserves_area): after the step, move every vertex
+    /// of Γ(t + k) along its normal by δ = (A(t) − A(t + k))/L, which gives back the area the
+    /// contours lost, to O(δ²); skipped when δ is not below a tenth of the shortest segment.
+    /// Unset: on for such laws.
+    std::optional<bool> area_correction = std::nullopt;
     /// Turning angle at a vertex (radians) above which arcs treats it as a corner.
     static constexpr double arc_corner = 0.5;
 
@@ -74,6 +79,8 @@ struct StepOptions {
 struct StepStats {
     ContourStats predictor;  ///< the contour of G̃ (CIR predictor); empty for a direct step
     ContourStats corrector;  ///< the contour of G (trapezoidal corrector)
+    /// The area given back by StepOptions::area_correction (0 when none was applied).
+    double area_correction = 0.0;
     /// Evaluations of G̃ and G together, and the vertices both contours produced.
     std::size_t g_evals() const { return predictor.g_evals + corrector.g_evals; }
     /// @copybrief g_evals

@@ -119,6 +119,7 @@ public:
     explicit VolumePreservingCurvatureFlow(std::optional<GeometryModule> module = std::nullopt)
         : module_(module) {}
     std::string name() const override { return "volume-preserving-curvature"; }
+    bool preserves_area() const override { return true; }
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = true, .module = module_};
     }

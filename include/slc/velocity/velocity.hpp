@@ -67,6 +67,10 @@ public:
     /// unless is_field(). field_velocities() calls it and checks the answer.
     virtual void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const;
 
+    /// True for a law whose exact flow keeps the enclosed area (the volume-preserving flow): the
+    /// step then restores the area each contour loses (StepOptions::area_correction).
+    virtual bool preserves_area() const { return false; }
+
     /// True for a normal law u = V(t, x, N)·N whose speed V is known for any point x and any unit
     /// normal N (unit-normal, anisotropic, a user's V): the step can then evaluate it off the
     /// curve with the normal of the distance field (Extension::direct), so that corners move as

@@ -1,0 +1,37 @@
+/// @file
+/// The settings slc uses for a user's own curves when none are given (docs/defaults.md measures
+/// them law by law): what `slc run --initial` and the Python package take, and what a C++ caller
+/// gets from one call. The named problems keep the paper's own settings instead (problems.hpp).
+#pragma once
+
+#include <vector>
+
+#include "slc/core/box.hpp"
+#include "slc/evolve/run.hpp"
+
+namespace slc {
+
+/// The default domain of curves: the square centred on their bounding box with 1.5 times its
+/// larger half-side (half-width 1 for curves at a single point). Throws InvalidInput when there
+/// are no points, or the curves span less than tolerance::min_domain_width.
+Box default_domain(const std::vector<std::vector<Vec2>>& curves);
+
+/// ℓ, the half-width of the curves' bounding box (its larger side): the length the defaults
+/// scale with. Precondition: curves is not empty.
+double length_scale(const Interface& curves);
+
+/// The run options for curves (valid, not empty) moved by law from t_start to t_end:
+/// - N = 40 steps, K = 5 (the finest cell 1/32 of the domain, which doubles, K one level deeper,
+///   up to 6 times when the curves near its edge: RunOptions::max_domain_doublings);
+/// - lengths relative to the curves' half-width ℓ: ε = 1e−5 ℓ, η = 1e−10 ℓ, so that a curve
+///   scaled by any factor runs alike;
+/// - a law that needs curvature: its module's default (arclength) with arcs, P = 2 passes;
+///   every other law: refinement until converged without the triangle safeguard, so that
+///   corners the tree cuts are found again (ContourOptions::triangle_safeguard);
+/// - the extension: the law itself where it is known off the curve (flow fields, normal laws),
+///   the nearest-point extension otherwise (StepOptions::resolved_extension).
+/// Throws InvalidInput for empty curves or t_end not after t_start.
+RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, double t_start,
+                               double t_end);
+
+}  // namespace slc

@@ -1,0 +1,60 @@
+// The settings for a user's own curves.
+#include "slc/evolve/defaults.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "slc/core/error.hpp"
+#include "slc/core/tolerances.hpp"
+
+namespace slc {
+
+Box default_domain(const std::vector<std::vector<Vec2>>& curves) {
+    Box bounds = Box::empty();  // of the finite points: validation reports the others
+    for (const auto& curve : curves) bounds = unite(bounds, bounding_box(curve));
+    if (bounds.is_empty()) throw InvalidInput("no curves: the interface is empty");
+    double half = 1.5 * std::max(0.5 * bounds.width(), 0.5 * bounds.height());
+    if (half == 0.0) half = 1.0;  // all points at one place: validation names the curve
+    if (!(2.0 * half >= tolerance::min_domain_width)) {
+        throw InvalidInput(fmt::format(
+            "the curves span only {:.3g}: give --domain or --box at least {:g} wide, or scale them",
+            std::max(bounds.width(), bounds.height()), tolerance::min_domain_width));
+    }
+    return Box::square(bounds.center(), half);
+}
+
+double length_scale(const Interface& curves) {
+    const Box bounds = bounding_box(curves.points());
+    return 0.5 * std::max(bounds.width(), bounds.height());
+}
+
+RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, double t_start,
+                               double t_end) {
+    if (curves.empty()) throw InvalidInput("no curves: the interface is empty");
+    if (!std::isfinite(t_start) || !std::isfinite(t_end) || !(t_end > t_start)) {
+        throw InvalidInput(fmt::format("t-end must be finite and after the start time {}, got {}",
+                                       t_start, t_end));
+    }
+    const double scale = length_scale(curves);
+    RunOptions o;
+    o.t_start = t_start;
+    o.t_end = t_end;
+    o.steps = 40;
+    o.max_domain_doublings = 6;
+    ContourOptions& c = o.step.contour;
+    c.depth = 5;
+    c.eps = 1e-5 * scale;
+    c.eta = 1e-10 * scale;
+    // Curvature is noisier where refinement leaves the vertices unevenly spaced: such laws take
+    // the paper's two passes. Elsewhere a pass splits only the segments whose midpoint misses ε,
+    // so refining to convergence puts the cost where the curve needs it.
+    const bool curvature = law.needs().curvature;
+    c.refine_passes = curvature ? 2 : ContourOptions::until_converged;
+    c.triangle_safeguard = false;
+    o.step.embedded.mesh = default_mesh_size(c.depth);
+    return o;
+}
+
+}  // namespace slc
