@@ -1,9 +1,11 @@
-// slc: the command-line tool. Bad input exits with status 2 and one line on stderr.
+// slc: the command-line tool. Bad input exits with status 2, a numerical failure with status 3,
+// each with one line on stderr.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include "commands/commands.hpp"
 #include "slc/core/error.hpp"
@@ -30,6 +32,14 @@ int main(int argc, char** argv) {
     } catch (const slc::InvalidInput& e) {
         fmt::print(stderr, "slc: {}\n", e.what());
         return 2;
+    } catch (const slc::NumericalFailure& e) {
+        fmt::print(stderr, "slc: error: {}\n", e.what());
+        return 3;
+    } catch (const std::bad_alloc&) {
+        fmt::print(stderr,
+                   "slc: error: out of memory: lower -K, -L or the number of points, or run on a "
+                   "larger machine\n");
+        return 3;
     } catch (const std::exception& e) {
         fmt::print(stderr, "slc: error: {}\n", e.what());
         return 1;

@@ -32,6 +32,17 @@ expect_ok() {
     pass
 }
 
+# expect_status NAME STATUS -- ARGS...: exit status STATUS and one line on stderr.
+expect_status() {
+    local name="$1" want="$2"
+    shift 3
+    "$SLC" "$@" >out.txt 2>err.txt
+    local status=$?
+    if [ "$status" -ne "$want" ]; then fail "$name: status $status, want $want ($(cat err.txt))"; return; fi
+    if [ "$(wc -l <err.txt)" -ne 1 ]; then fail "$name: want one line on stderr: $(cat err.txt)"; return; fi
+    pass
+}
+
 check() {  # check NAME CONDITION...
     local name="$1"
     shift

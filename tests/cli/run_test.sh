@@ -103,6 +103,29 @@ expect_error "zero steps" "steps" -- run --problem vortex -N 0 --out x
 expect_error "negative eps" "eps" -- run --problem vortex --eps -1 --out x
 expect_error "no input" "--problem|--initial" -- run --out x
 expect_error "missing t-end" "t-end" -- run --initial square.json --velocity rotation --domain 2 --out x
+# A user's curve with nothing set gets the law's defaults (docs/defaults.md): curvature laws the
+# arclength module with arcs and P = 2; normal laws and flow fields the law itself off the curve,
+# refined until converged; eps and eta relative to the curves' half-width (here 1).
+echo '{"curves": [{"points": [[1, 0], [0.5, 0.866], [-0.5, 0.866], [-1, 0], [-0.5, -0.866], [0.5, -0.866]]}]}' >hexagon.json
+expect_ok "default curvature run" -- run --initial hexagon.json --velocity curvature --t-end 0.05 --out dcurv --quiet
+check "curvature: arcs by default" grep -q '"arcs": true' dcurv/summary.json
+check "curvature: two passes" grep -q '"P": 2' dcurv/summary.json
+check "curvature: eps relative to the curve" grep -q '"eps": 1e-05' dcurv/summary.json
+expect_ok "no arcs" -- run --initial hexagon.json --velocity curvature --t-end 0.05 --no-arcs --out nocurv --quiet
+check "--no-arcs turns them off" grep -q '"arcs": false' nocurv/summary.json
+expect_ok "default normal-speed run" -- run --initial hexagon.json --velocity unit-normal --t-end 0.2 -N 10 \
+    --out dgrow --quiet
+check "normal law: direct" grep -q '"extension": "direct"' dgrow/summary.json
+check "normal law: refined until converged" grep -q '"P": "converged"' dgrow/summary.json
+expect_ok "-P converged on a named problem" -- run --problem triangle-normal -N 4 -K 4 -P converged --out pconv --quiet
+check "named problem keeps the nearest-point extension" grep -q '"extension": "nearest"' pconv/summary.json
+# Growing past the default domain (1.5 times the hexagon's half-width) doubles it, once, saying so.
+expect_ok "domain grows" -- run --initial hexagon.json --velocity unit-normal --t-end 1 -N 10 --out big --quiet
+check "domain grows: one note on stderr" test "$(grep -c "domain grew" err.txt)" -eq 1
+check "domain grows: summary says so" grep -q '"domain_grown"' big/summary.json
+check "domain grows: status ok" grep -q '"status": "ok"' big/summary.json
+# A named problem keeps the paper's fixed domain: leaving it is an error that names the setting.
+expect_status "named problem leaves its domain" 3 -- run --problem triangle-normal --t-end 3 -N 10 -K 4 -P 0 --out out3 --quiet
 expect_ok "help lists the problems" -- run --help
 check "help names zalesak" grep -q "zalesak" out.txt
 finish

@@ -87,8 +87,14 @@ std::filesystem::path frame_path(const std::filesystem::path& dir, int i) {
 void draw(const std::filesystem::path& dir, const Problem& p, const Interface& initial,
           const RunResult& r, const std::vector<std::pair<double, Interface>>& frames,
           int frames_written) {
-    // The domain the curves ended in, when it grew to hold them.
-    const Box view = doubled_domain(p.domain, r.domain_doublings);
+    // The domain, and when it grew, what the curves drawn reached beyond it.
+    Box view = p.domain;
+    if (r.domain_doublings > 0) {
+        Box reached = bounding_box(r.curves.points());
+        for (const auto& frame : frames)
+            reached = unite(reached, bounding_box(frame.second.points()));
+        if (!reached.is_empty()) view = unite(view, reached.inflated(0.05 * reached.width()));
+    }
     Figure final_picture(view,
                          fmt::format("{}: t = {:.4g} ({})", p.name, r.t, to_string(r.status)));
     final_picture.add_curves(initial, "t = 0", Color{0.6, 0.6, 0.6, 1});
