@@ -13,6 +13,7 @@
 #include "slc/distance/extension.hpp"
 #include "slc/evolve/problems.hpp"
 #include "slc/evolve/run.hpp"
+#include "slc/evolve/self_convergence.hpp"
 #include "slc/evolve/step.hpp"
 #include "slc/evolve/study.hpp"
 #include "slc/geometry/interface.hpp"
