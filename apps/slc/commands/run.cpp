@@ -261,10 +261,13 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
                    p.name, to_string(r.status), r.t, r.steps_done, summary["e_inf"].dump(), r.cpu_s,
                    dir.string());
         if (coarse) {
-            fmt::print("error estimate: {} (against {}: {})\n",
-                       summary["error_estimate"]["estimate"].dump(),
-                       summary["error_estimate"]["coarse"].get<std::string>(),
-                       summary["error_estimate"]["note"].get<std::string>());
+            const nlohmann::json& e = summary["error_estimate"];
+            if (e["estimate"].is_null())
+                fmt::print("{}\n", e["note"].get<std::string>());
+            else
+                fmt::print(
+                    "error estimate: {:.3g} (the distance to the run {} at half resolution)\n",
+                    e["estimate"].get<double>(), e["coarse"].get<std::string>());
         }
     }
     if (r.status == RunStatus::error) throw NumericalFailure(r.message);

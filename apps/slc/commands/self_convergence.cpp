@@ -101,8 +101,8 @@ std::string csv(const SelfConvergenceResult& s) {
         const std::string estimate =
             r + 1 == s.runs.size() && s.estimate ? fmt::format("{:.6g}", s.estimate->error) : "";
         out +=
-            fmt::format("{},{},{},{},{},{:.6g},{},{:.17g},{},{},{:.17g},{:.17g},{:.6g},{},{},{}\n",
-                        r, o.steps, o.step.embedded.smoothing, o.step.contour.depth,
+            fmt::format("{},{},{},{},{},{:.6g},{},{},{},{},{},{},{:.6g},{},{},{}\n", r, o.steps,
+                        o.step.embedded.smoothing, o.step.contour.depth,
                         refine_name(o.step.contour.refine_passes), o.step.contour.resolved_eps(),
                         to_string(res.status), res.t, res.curves.size(), res.curves.curve_count(),
                         area(res.curves), length(res.curves), res.cpu_s, d, order, estimate);

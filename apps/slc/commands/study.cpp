@@ -245,7 +245,7 @@ void add_study_command(CLI::App& app) {
     add_problem_source_options(*cmd, o->source);
     cmd->add_option("--rows", o->rows,
                     "Rows of the table to run, 1..5 (default 5); with --initial the resolutions, "
-                    "3..5 (default 3), each costing 4 to 8 times the one before")
+                    "3..5 (default 3), each costing about 4 times the one before or more")
         ->check(integer_in(1, 5));
     cmd->add_option("--reference", o->reference,
                     "The paper's tables as CSV (table,N,S,K,eps,P,E_inf,T_cpu_s_per_step) to print "
