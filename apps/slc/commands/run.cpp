@@ -125,8 +125,8 @@ private:
 /// the two final interfaces, summary.json's "error_estimate". If the error falls at least as
 /// fast as first order, e ≤ d/(2^1 − 1) = d: the estimate is d itself (a third of it at second
 /// order). Ctrl-C stops the extra run too.
-nlohmann::json error_estimate(const Interface& initial, const VelocityLaw& law, const Box& domain,
-                              const RunOptions& coarse, const RunResult& fine) {
+nlohmann::json estimate_json(const Interface& initial, const VelocityLaw& law, const Box& domain,
+                             const RunOptions& coarse, const RunResult& fine) {
     nlohmann::json e = {{"distance", nullptr}, {"coarse", run_name(coarse)}, {"estimate", nullptr}};
     if (fine.status != RunStatus::ok) {
         e["note"] = fmt::format("no estimate: the run ended with status {}, not at t_end",
@@ -251,7 +251,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     nlohmann::json summary = run_summary(p, options, r, *law);
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     if (coarse) {  // the summary is written once without it, in case the extra run is stopped
-        summary["error_estimate"] = error_estimate(initial, *law, p.domain, *coarse, r);
+        summary["error_estimate"] = estimate_json(initial, *law, p.domain, *coarse, r);
         write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     }
     std::signal(SIGINT, SIG_DFL);
