@@ -14,6 +14,7 @@
 #include "slc/evolve/defaults.hpp"
 #include "slc/evolve/problems.hpp"
 #include "slc/evolve/run.hpp"
+#include "slc/evolve/self_convergence.hpp"
 #include "slc/evolve/step.hpp"
 #include "slc/evolve/study.hpp"
 #include "slc/geometry/interface.hpp"

@@ -152,4 +152,12 @@ reject "--resume with a history shorter than the checkpoint" \
     "cut/history.csv: the checkpoint after step 2 needs 3 time levels, the file has 1" -- run --resume cut
 reject "contour depth 21" "--depth: must be an integer from 0 to 20, got '21'" -- contour --initial square.json -K 21 --out x
 reject "study rows 6" "--rows: must be an integer from 1 to 5, got '6'" -- study --problem vortex --rows 6 --out x
+reject "study of your curve with one row" "--rows must be 3 to 5 with --initial" -- \
+    study --initial square.json --velocity rotation --t-end 1 --domain 2 --rows 1 --out x
+reject "study of a problem and your curve" "--problem excludes --initial" -- \
+    study --problem vortex --initial square.json --out x
+reject "study deeper than K = 24" "the finest of 3 resolutions would have K = 25" -- \
+    study --initial square.json --velocity rotation --t-end 1 --domain 2 -K 23 --eps 1e-6 --out x
+reject "--estimate with one step" "--estimate compares with the run at half resolution" -- \
+    run --initial square.json --velocity rotation --t-end 1 --domain 2 -N 1 --estimate --out x
 finish

@@ -128,4 +128,21 @@ check "domain grows: status ok" grep -q '"status": "ok"' big/summary.json
 expect_status "named problem leaves its domain" 3 -- run --problem triangle-normal --t-end 3 -N 10 -K 4 -P 0 --out out3 --quiet
 expect_ok "help lists the problems" -- run --help
 check "help names zalesak" grep -q "zalesak" out.txt
+
+# --estimate: one more run at half resolution; summary.json gets the distance between the two.
+expect_ok "user run with --estimate" -- run --initial square.json --velocity rotation --t-end 0.5 -N 4 -K 4 \
+    --domain 2 --threads 1 --estimate --out est --quiet
+for key in error_estimate distance coarse estimate note coarse_status; do
+    check "estimate: summary has $key" grep -q "\"$key\":" est/summary.json
+done
+check "estimate: the coarse run is N/2, K - 1, 4 eps (eps = 1e-4 from -K 4)" grep -q '"coarse": "2/0/3/converged/4e-04"' est/summary.json
+check "estimate: a positive distance" grep -qE '"distance": [0-9.]+(e-?[0-9]+)?,' est/summary.json
+expect_ok "named problem with --estimate" -- run --problem circle-curvature -N 8 -K 4 -P 1 --threads 1 \
+    --estimate --out est_named --quiet
+check "estimate of a named problem" grep -q '"error_estimate":' est_named/summary.json
+check "without --estimate, no estimate" test -z "$(grep error_estimate user/summary.json)"
+expect_error "--estimate with one step" "--estimate .* N >= 2" -- run --initial square.json --velocity rotation \
+    --t-end 0.5 -N 1 --domain 2 --estimate --out est_bad
+expect_ok "help documents --estimate" -- run --help
+check "help names --estimate" grep -q -- "--estimate" out.txt
 finish

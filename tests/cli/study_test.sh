@@ -15,4 +15,44 @@ check "the paper's method's table names neither" test -z "$(grep -E 'arclength|-
 e_inf() { awk -F, '$1 == 1 && $6 == 4 { print $8 }' "$1/table.csv"; }
 check "arcs and the arclength module: E_inf at least 10 times smaller" \
     awk -v a="$(e_inf arcs)" -v b="$(e_inf paper)" 'BEGIN { exit !(a > 0 && 10 * a < b) }'
+
+# Self-convergence of a user's curve (no exact solution): three resolutions of a square turned
+# by rotation, each final interface compared with the next.
+square_json >square.json
+expect_ok "self-convergence study" -- study --initial square.json --velocity rotation --t-end 0.5 \
+    -N 4 -K 3 --domain 2 --threads 1 --out self --quiet
+for f in table.md table.csv table.json convergence.png convergence.svg final_0.json final_2.json; do
+    check "self-convergence writes $f" test -s "self/$f"
+done
+check "self-convergence csv header" test "$(head -n 1 self/table.csv)" = \
+    "r,N,S,K,P,eps,status,t,segments,components,area,length,cpu_s,distance_to_next,order,error_estimate"
+check "self-convergence csv has three resolutions" test "$(tail -n +2 self/table.csv | wc -l)" -eq 3
+check "resolutions refine N, K and eps (/4)" \
+    test "$(cut -d, -f2,4,6 self/table.csv | tail -n +2 | tr '\n' ' ')" = "4,3,0.001 8,4,0.00025 16,5,6.25e-05 "
+for key in resolutions pairs estimate N K eps P status segments components area length cpu_s \
+           distance order error order_observed note; do
+    check "table.json has $key" grep -q "\"$key\":" self/table.json
+done
+check "the finest row holds the estimate" awk -F, 'END { exit !($16 > 0) }' self/table.csv
+check "the table states the estimate" grep -q "Estimated error of the finest run" self/table.md
+
+# Runs that cannot be compared (all vanish before t-end) are reported, not a failure.
+echo '{"time": 0, "curves": [{"points": [[0.3, 0], [0, 0.3], [-0.3, 0], [0, -0.3]]}]}' >small.json
+expect_ok "self-convergence of vanishing curves" -- study --initial small.json --velocity curvature \
+    --t-end 0.1 -N 4 -K 3 --threads 1 --out vanish --quiet
+check "vanished runs: distance infinite in the csv" awk -F, 'NR == 2 { exit !($14 == "inf") }' vanish/table.csv
+check "vanished runs: no estimate" grep -q '"estimate": null' vanish/table.json
+check "vanished runs: the note says why" grep -q "cannot be compared" vanish/table.json
+
+expect_error "--rows 1 with --initial" "--rows must be 3 to 5 with --initial" -- \
+    study --initial square.json --velocity rotation --t-end 0.5 --rows 1 --out bad
+expect_error "--rows 6" "--rows" -- study --initial square.json --velocity rotation --t-end 0.5 --rows 6 --out bad
+expect_error "--problem and --initial" "excludes" -- \
+    study --problem circle-curvature --initial square.json --velocity rotation --t-end 0.5 --out bad
+expect_error "--initial without --velocity" "--initial needs --velocity" -- \
+    study --initial square.json --t-end 0.5 --out bad
+expect_error "neither --problem nor --initial" "give --problem NAME or --initial FILE" -- study --out bad
+expect_error "finest K too deep" "must not exceed 24" -- \
+    study --initial square.json --velocity rotation --t-end 0.5 -K 23 --eps 1e-6 --out bad
+check "bad input writes nothing" test ! -e bad
 finish

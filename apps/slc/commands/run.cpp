@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <filesystem>
@@ -14,10 +15,11 @@
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
 #include "commands/history.hpp"
+#include "commands/problem_source.hpp"
 #include "commands/run_options.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
-#include "slc/evolve/defaults.hpp"
+#include "slc/evolve/self_convergence.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
@@ -30,54 +32,16 @@ std::atomic<bool> stop_requested{false};
 extern "C" void request_stop(int) { stop_requested = true; }
 
 struct RunCommand {
-    std::string problem;
-    std::string initial;
-    std::string velocity;
-    std::optional<double> t_end;
-    DomainOptions domain;
+    ProblemSource source;
     MethodOptions method;
-    std::vector<std::string> params;
     int frames = 0;
     bool vtk = false;
     bool quiet = false;
     std::string out;
     int checkpoint_every = 0;
     std::string resume;
+    bool estimate = false;
 };
-
-/// The problem to run: a named one, or one assembled from the user's file and law.
-Problem resolve_problem(const RunCommand& o) {
-    const auto params = parse_params(o.params);
-    if (!o.problem.empty()) {
-        Problem p = make_problem(o.problem, params);
-        if (o.t_end) p.t_end = *o.t_end;
-        if (o.domain.half_width || o.domain.box) p.domain = resolve_domain(o.domain, p.initial);
-        return p;
-    }
-    if (o.velocity.empty()) throw InvalidInput("--initial needs --velocity NAME");
-    if (!o.t_end) throw InvalidInput("--initial needs --t-end");
-    LoadedInterface in = load_interface(o.initial, o.domain);
-    Problem p;
-    p.name = std::filesystem::path(o.initial).stem().string();
-    p.initial = in.curves.curves();
-    p.domain = in.domain;
-    p.t_start = in.time;
-    p.t_end = *o.t_end;
-    p.velocity = o.velocity;
-    p.velocity_params = params;
-    const auto law = make_velocity(p.velocity, params, std::nullopt);
-    const RunOptions defaults = default_run_options(in.curves, *law, p.t_start, p.t_end);
-    const ContourOptions& c = defaults.step.contour;
-    p.steps = defaults.steps;
-    p.depth = c.depth;
-    p.refine = c.refine_passes;
-    p.eps = *c.eps;
-    p.eta = c.eta;
-    p.length_scale = length_scale(in.curves);
-    p.triangle_safeguard = c.triangle_safeguard;
-    p.max_domain_doublings = defaults.max_domain_doublings;
-    return p;
-}
 
 /// Frames 0..n at evenly spaced steps; frame_path(i) names them.
 std::filesystem::path frame_path(const std::filesystem::path& dir, int i) {
@@ -163,12 +127,55 @@ private:
     std::optional<std::pair<double, Interface>> latest_;
 };
 
+/// --estimate: the run again at half resolution (coarse: N/2, K − 1, 4ε) and the distance between
+/// the two final interfaces, summary.json's "error_estimate". If the error falls at least as
+/// fast as first order, e ≤ d/(2^1 − 1) = d: the estimate is d itself (a third of it at second
+/// order). Ctrl-C stops the extra run too.
+nlohmann::json estimate_json(const Interface& initial, const VelocityLaw& law, const Box& domain,
+                             const RunOptions& coarse, const RunResult& fine) {
+    nlohmann::json e = {{"distance", nullptr}, {"coarse", run_name(coarse)}, {"estimate", nullptr}};
+    if (fine.status != RunStatus::ok) {
+        e["note"] = fmt::format("no estimate: the run ended with status {}, not at t_end",
+                                to_string(fine.status));
+        return e;
+    }
+    const RunResult c =
+        run(initial, law, domain, coarse, [](const StepReport&) { return !stop_requested; });
+    e["coarse_status"] = to_string(c.status);
+    e["coarse_cpu_s"] = c.cpu_s;
+    const double d = final_distance(fine, c);
+    if (!std::isfinite(d)) {
+        e["note"] = fmt::format(
+            "no estimate: the run at half resolution ended {} at t = {:.6g}{}, which cannot be "
+            "compared with this run's curves",
+            to_string(c.status), c.t, c.curves.empty() ? " with no curves" : "");
+        return e;
+    }
+    e["distance"] = d;
+    e["estimate"] = d;
+    e["note"] =
+        "distance between the final curves of this run and of the same run at half resolution "
+        "(N/2 steps, K - 1, 4 eps): an estimate of this run's error that holds if it converges "
+        "at first order or faster (at second order the error is about a third of it), not a bound";
+    return e;
+}
+
 /// Runs o from the start, or from a checkpoint; `given` are the options to store in checkpoints.
 void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  const Checkpoint* from) {
     apply_threads(o.method.threads);
-    const Problem p = resolve_problem(o);
+    const Problem p = resolve_problem(o.source);
     const RunOptions options = resolve_run_options(o.method, p);
+    // --estimate's run at half resolution, resolved first so that one it cannot have (N or K
+    // of 1) is an input error before anything runs.
+    if (o.estimate && (options.steps < 2 || options.step.contour.depth < 2)) {
+        throw InvalidInput(fmt::format(
+            "--estimate compares with the run at half resolution, which needs N >= 2 and K >= 2, "
+            "got N = {} and K = {}",
+            options.steps, options.step.contour.depth));
+    }
+    const std::optional<RunOptions> coarse =
+        o.estimate ? std::optional(resolution_options(options, -1)) : std::nullopt;
     const std::optional<GeometryModule> module = geometry_module(o.method);
     const auto law = make_velocity(p.velocity, p.velocity_params, module ? module : p.module);
     const Interface initial = prepare_interface(p.initial, p.domain).curves;
@@ -231,8 +238,6 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     };
     const RunResult r = from ? resume(from->state, *law, p.domain, options, observer)
                              : run(initial, *law, p.domain, options, observer);
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
     if (progress) fmt::print(stderr, "\n");
     if (r.domain_doublings > 0) {
         const Box d = doubled_domain(p.domain, r.domain_doublings);
@@ -251,28 +256,32 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     history.save_plot(p.name);
     nlohmann::json summary = run_summary(p, options, r, *law);
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+    if (coarse) {  // the summary is written once without it, in case the extra run is stopped
+        summary["error_estimate"] = estimate_json(initial, *law, p.domain, *coarse, r);
+        write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+    }
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
     if (!o.quiet) {
         fmt::print("{}: {} at t = {:.6g} after {} steps, e_inf = {}, {:.3g} s cpu; wrote {}\n",
                    p.name, to_string(r.status), r.t, r.steps_done, summary["e_inf"].dump(), r.cpu_s,
                    dir.string());
+        if (coarse) {
+            const nlohmann::json& e = summary["error_estimate"];
+            if (e["estimate"].is_null())
+                fmt::print("{}\n", e["note"].get<std::string>());
+            else
+                fmt::print(
+                    "error estimate: {:.3g} (the distance to the run {} at half resolution)\n",
+                    e["estimate"].get<double>(), e["coarse"].get<std::string>());
+        }
     }
     if (r.status == RunStatus::error) throw NumericalFailure(r.message);
 }
 
 /// The options of `slc run` (all but the action), so that --resume can parse a checkpoint's again.
 void add_run_options(CLI::App* cmd, RunCommand* o) {
-    auto* problem = cmd->add_option("--problem", o->problem, problem_help());
-    auto* initial = cmd->add_option("--initial", o->initial,
-                                    "Interface file (JSON) to move instead of a problem");
-    problem->excludes(initial);
-    cmd->add_option("--velocity", o->velocity, velocity_help())->excludes(problem);
-    cmd->add_option("--param", o->params,
-                    "key=value: a parameter of the velocity law or the problem (repeatable)");
-    cmd->add_option(
-        "--t-end", o->t_end,
-        "Final time a (a problem's own by default); with --initial the run starts at the "
-        "file's \"time\" (0 if absent)");
-    add_domain_options(*cmd, o->domain);
+    add_problem_source_options(*cmd, o->source);
     add_method_options(*cmd, o->method);
     cmd->add_option(
            "--frames", o->frames,
@@ -282,6 +291,12 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
     cmd->add_flag("--vtk", o->vtk,
                   "Also write the initial interface, the frames and the final one as VTK PolyData "
                   "(DIR/frames/*.vtp) and DIR/frames.pvd, a time series ParaView opens");
+    cmd->add_flag("--estimate", o->estimate,
+                  "After the run, run it again at half resolution (N/2 steps, K - 1, 4 eps; about "
+                  "a quarter of the cost or less) and write the distance between the two final "
+                  "interfaces to summary.json as \"error_estimate\": an estimate of this run's "
+                  "error, for curves without an exact solution (conservative: it assumes first "
+                  "order). For several resolutions and observed orders, see slc study --initial");
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
                     "Output folder (required, except with --resume): summary.json, final.json, "
@@ -300,10 +315,10 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
 /// to DIR/checkpoint-initial/ and the checkpoint names the copy, which --resume reads.
 std::vector<GivenOption> options_to_keep(const CLI::App& cmd, const RunCommand& o) {
     std::vector<GivenOption> given = given_options(cmd, {"--out", "--quiet", "--threads"});
-    if (o.checkpoint_every == 0 || o.initial.empty()) return given;
-    const std::filesystem::path name = std::filesystem::path(o.initial).filename();
+    if (o.checkpoint_every == 0 || o.source.initial.empty()) return given;
+    const std::filesystem::path name = std::filesystem::path(o.source.initial).filename();
     write_file_atomic(std::filesystem::path(o.out) / "checkpoint-initial" / name,
-                      read_text_file(o.initial));
+                      read_text_file(o.source.initial));
     for (auto& [option, values] : given)
         if (option == "--initial") values = {name.string()};
     return given;
@@ -345,7 +360,7 @@ void add_run_command(CLI::App& app) {
     add_run_options(cmd, o.get());
     cmd->callback([o, cmd] {
         if (!o->resume.empty()) return resume_command(*cmd, *o);
-        if (o->problem.empty() && o->initial.empty())
+        if (o->source.problem.empty() && o->source.initial.empty())
             throw InvalidInput("give --problem NAME or --initial FILE");
         if (o->out.empty()) throw InvalidInput("--out DIR is required");
         run_command(*o, options_to_keep(*cmd, *o), nullptr);

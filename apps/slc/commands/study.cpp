@@ -1,6 +1,6 @@
 // slc study: the paper's 5×5 convergence table for a problem with an exact solution (Tables 5–7),
 // with observed orders, the paper's numbers beside ours when given, and error against CPU time
-// (Fig. 10).
+// (Fig. 10); or, for the user's curve (--initial), a self-convergence study.
 #include "slc/evolve/study.hpp"
 
 #include <fmt/format.h>
@@ -13,7 +13,9 @@
 
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
+#include "commands/problem_source.hpp"
 #include "commands/run_options.hpp"
+#include "commands/self_convergence.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/io/interface_json.hpp"
@@ -23,9 +25,8 @@ namespace slc::cli {
 namespace {
 
 struct StudyCommand {
-    std::string problem;
-    int rows = 5;
-    std::vector<std::string> params;
+    ProblemSource source;
+    std::optional<int> rows;
     std::string reference;
     MethodOptions method;
     bool quiet = false;
@@ -164,16 +165,45 @@ void plot(const std::filesystem::path& dir, const Problem& p, const StudyResult&
     fig.save(dir / "error_vs_time.png");
 }
 
+/// The deepest contouring tree -K accepts.
+constexpr int max_depth = 24;
+
+/// --initial: runs at 3..5 resolutions compared with each other.
+void run_self_convergence(const StudyCommand& o) {
+    const int rows = o.rows.value_or(3);
+    if (rows < 3) {
+        throw InvalidInput(
+            fmt::format("--rows must be 3 to 5 with --initial (runs compared in pairs, and pairs "
+                        "for an order), got {}",
+                        rows));
+    }
+    const Problem p = resolve_problem(o.source);
+    const RunOptions base = resolve_run_options(o.method, p);
+    if (base.step.contour.depth + rows - 1 > max_depth) {
+        throw InvalidInput(
+            fmt::format("the finest of {} resolutions would have K = {}; K + rows - 1 "
+                        "must not exceed {}",
+                        rows, base.step.contour.depth + rows - 1, max_depth));
+    }
+    const std::optional<GeometryModule> module = geometry_module(o.method);
+    const auto law = make_velocity(p.velocity, p.velocity_params, module ? module : p.module);
+    const std::filesystem::path dir(o.out);
+    std::filesystem::create_directories(dir);
+    write_self_convergence_study(p, *law, base, rows, o.quiet, dir);
+}
+
 void run_study(const StudyCommand& o) {
     apply_threads(o.method.threads);
-    Problem p = make_problem(o.problem, parse_params(o.params));
+    if (!o.source.initial.empty()) return run_self_convergence(o);
+    if (o.source.problem.empty()) throw InvalidInput("give --problem NAME or --initial FILE");
+    Problem p = resolve_problem(o.source);
     if (const auto module = geometry_module(o.method)) p.module = module;
     if (!p.exact)
         throw InvalidInput(
             fmt::format("problem '{}' has no exact solution to measure errors against", p.name));
     const RunOptions base = resolve_run_options(o.method, p);
     const Paper paper = read_reference(o.reference, p.study.paper_table);
-    const StudyResult s = study(p, o.rows, base, [&](const StudyCell& c) {
+    const StudyResult s = study(p, o.rows.value_or(5), base, [&](const StudyCell& c) {
         if (!o.quiet) {
             fmt::print(stderr, "{}  P = {}: E_inf = {}, {:.3g} s/step\n", run_name(c.options),
                        c.refine, number(c.e_inf), c.cpu_s_per_step);
@@ -205,13 +235,18 @@ void add_study_command(CLI::App& app) {
     auto o = std::make_shared<StudyCommand>();
     auto* cmd = app.add_subcommand(
         "study",
-        "The paper's 5x5 convergence table for a problem with an exact solution: "
-        "table.md, table.csv, table.json and error_vs_time.svg/.png");
-    cmd->add_option("--problem", o->problem, problem_help())->required();
-    cmd->add_option("--rows", o->rows, "Rows of the table to run, 1..5 (default 5)")
+        "Convergence. --problem NAME: the paper's 5x5 table for a problem with an exact solution "
+        "(table.md, table.csv, table.json, error_vs_time.svg/.png). --initial FILE --velocity LAW "
+        "--t-end T: self-convergence of your curve, which has none: the run at --rows "
+        "resolutions (N doubled, K + 1 and eps / 4 each; the rest as slc run takes it), each "
+        "final interface compared with the next (Hausdorff distance at vertices and midpoints), "
+        "observed orders, and an estimate of the finest run's error (table.md, table.csv, "
+        "table.json, convergence.svg/.png)");
+    add_problem_source_options(*cmd, o->source);
+    cmd->add_option("--rows", o->rows,
+                    "Rows of the table to run, 1..5 (default 5); with --initial the resolutions, "
+                    "3..5 (default 3), each costing about 4 times the one before or more")
         ->check(integer_in(1, 5));
-    cmd->add_option("--param", o->params,
-                    "key=value: a parameter of the velocity law or the problem (repeatable)");
     cmd->add_option("--reference", o->reference,
                     "The paper's tables as CSV (table,N,S,K,eps,P,E_inf,T_cpu_s_per_step) to print "
                     "beside ours");

@@ -1,0 +1,60 @@
+// The problem of slc run and slc study: a named one, or the user's curve with its defaults.
+#include "commands/problem_source.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "commands/run_options.hpp"
+#include "slc/core/error.hpp"
+#include "slc/evolve/defaults.hpp"
+
+namespace slc::cli {
+
+void add_problem_source_options(CLI::App& cmd, ProblemSource& o) {
+    auto* problem = cmd.add_option("--problem", o.problem, problem_help());
+    auto* initial = cmd.add_option("--initial", o.initial,
+                                   "Interface file (JSON) to move instead of a problem");
+    problem->excludes(initial);
+    cmd.add_option("--velocity", o.velocity, velocity_help())->excludes(problem);
+    cmd.add_option("--param", o.params,
+                   "key=value: a parameter of the velocity law or the problem (repeatable)");
+    cmd.add_option("--t-end", o.t_end,
+                   "Final time a (a problem's own by default); with --initial the run starts at "
+                   "the file's \"time\" (0 if absent)");
+    add_domain_options(cmd, o.domain);
+}
+
+Problem resolve_problem(const ProblemSource& o) {
+    const auto params = parse_params(o.params);
+    if (!o.problem.empty()) {
+        Problem p = make_problem(o.problem, params);
+        if (o.t_end) p.t_end = *o.t_end;
+        if (o.domain.half_width || o.domain.box) p.domain = resolve_domain(o.domain, p.initial);
+        return p;
+    }
+    if (o.velocity.empty()) throw InvalidInput("--initial needs --velocity NAME");
+    if (!o.t_end) throw InvalidInput("--initial needs --t-end");
+    LoadedInterface in = load_interface(o.initial, o.domain);
+    Problem p;
+    p.name = std::filesystem::path(o.initial).stem().string();
+    p.initial = in.curves.curves();
+    p.domain = in.domain;
+    p.t_start = in.time;
+    p.t_end = *o.t_end;
+    p.velocity = o.velocity;
+    p.velocity_params = params;
+    const auto law = make_velocity(p.velocity, params, std::nullopt);
+    const RunOptions defaults = default_run_options(in.curves, *law, p.t_start, p.t_end);
+    const ContourOptions& c = defaults.step.contour;
+    p.steps = defaults.steps;
+    p.depth = c.depth;
+    p.refine = c.refine_passes;
+    p.eps = *c.eps;
+    p.eta = c.eta;
+    p.length_scale = length_scale(in.curves);
+    p.triangle_safeguard = c.triangle_safeguard;
+    p.max_domain_doublings = defaults.max_domain_doublings;
+    return p;
+}
+
+}  // namespace slc::cli

@@ -1,0 +1,214 @@
+// slc study --initial: runs at successive resolutions compared with each other (no exact
+// solution), with observed orders and a Richardson estimate of the finest run's error.
+#include "commands/self_convergence.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "commands/run_options.hpp"
+#include "slc/core/parallel.hpp"
+#include "slc/geometry/validate.hpp"
+#include "slc/io/interface_json.hpp"
+#include "slc/io/render.hpp"
+
+namespace slc::cli {
+namespace {
+
+std::string number(const std::optional<double>& v, const char* format = "{:.3g}") {
+    return v ? fmt::format(fmt::runtime(format), *v) : "—";
+}
+
+std::optional<double> finite(double v) {
+    return std::isfinite(v) ? std::optional(v) : std::nullopt;
+}
+
+nlohmann::json json_number(const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+/// What the estimate is, or why there is none, in one sentence.
+std::string estimate_note(const SelfConvergenceResult& s) {
+    const std::string finest = run_name(s.runs.back().options);
+    if (!s.estimate) {
+        const RunResult& a = s.runs[s.runs.size() - 2].result;
+        const RunResult& b = s.runs.back().result;
+        std::string why;
+        if (a.status != b.status) {
+            why = fmt::format("they ended differently, {} at t = {:.6g} and {} at t = {:.6g}",
+                              to_string(a.status), a.t, to_string(b.status), b.t);
+        } else if (a.curves.empty() || b.curves.empty()) {
+            why = fmt::format(
+                "curves that vanished (at t = {:.6g} and {:.6g}) leave nothing to compare", a.t,
+                b.t);
+        } else {
+            why = fmt::format("they ended at different times, t = {:.6g} and {:.6g}", a.t, b.t);
+        }
+        return fmt::format("No estimate: the two finest runs cannot be compared: {}.", why);
+    }
+    const ErrorEstimate& e = *s.estimate;
+    return fmt::format(
+        "Estimated error of the finest run ({}): {:.3g} = d / (2^p − 1), d = {:.3g} its distance "
+        "to the next coarser run and p = {:.2f} {}.",
+        finest, e.error, s.distances.back(), e.order,
+        e.observed ? "the last observed order, clamped to [0.5, 4]"
+                   : "assumed (first order: no order was observed)");
+}
+
+std::string markdown(const Problem& p, const SelfConvergenceResult& s) {
+    const int threads = thread_count();
+    std::string md = fmt::format("# Self-convergence study: {}\n\n", p.name);
+    md += fmt::format(
+        "The curves of {} under `{}` from t = {:.6g} to {:.6g}, without an exact solution: each "
+        "run is compared with the next finer one (twice the steps, one more level of K, ε/4). d "
+        "is the largest distance from a vertex or segment midpoint of either final interface to "
+        "the other (the symmetric Hausdorff distance, measured as Eq. 11 measures errors); the "
+        "order on row r is log2(d(r, r+1) / d(r+1, r+2)) (2: second order). CPU seconds of the "
+        "time loop, "
+        "on {} thread{}. The final curves of run r are in final_r.json (`slc render final_*.json` "
+        "overlays them).\n\n",
+        p.name, p.velocity, p.t_start, p.t_end, threads, threads == 1 ? "" : "s");
+    md +=
+        "| r | N/S/K/P/ε | status | segments | components | area | length | CPU s | d(r, r+1) | "
+        "order |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    for (std::size_t r = 0; r < s.runs.size(); ++r) {
+        const RunResult& res = s.runs[r].result;
+        const std::string d = r < s.distances.size() ? (std::isfinite(s.distances[r])
+                                                            ? fmt::format("{:.3g}", s.distances[r])
+                                                            : std::string("∞ (not comparable)"))
+                                                     : "";
+        const std::string order = r < s.orders.size() ? number(s.orders[r], "{:.2f}") : "";
+        md += fmt::format("| {} | {} | {} | {} | {} | {:.6g} | {:.6g} | {:.3g} | {} | {} |\n", r,
+                          run_name(s.runs[r].options), to_string(res.status), res.curves.size(),
+                          res.curves.curve_count(), area(res.curves), length(res.curves), res.cpu_s,
+                          d, order);
+    }
+    md += "\n" + estimate_note(s) + "\n";
+    return md;
+}
+
+std::string csv(const SelfConvergenceResult& s) {
+    std::string out =
+        "r,N,S,K,P,eps,status,t,segments,components,area,length,cpu_s,distance_to_next,order,"
+        "error_estimate\n";
+    for (std::size_t r = 0; r < s.runs.size(); ++r) {
+        const RunOptions& o = s.runs[r].options;
+        const RunResult& res = s.runs[r].result;
+        const std::string d = r < s.distances.size() ? fmt::format("{:.6g}", s.distances[r]) : "";
+        const std::string order =
+            r < s.orders.size() && s.orders[r] ? fmt::format("{:.4g}", *s.orders[r]) : "";
+        const std::string estimate =
+            r + 1 == s.runs.size() && s.estimate ? fmt::format("{:.6g}", s.estimate->error) : "";
+        out +=
+            fmt::format("{},{},{},{},{},{:.6g},{},{},{},{},{},{},{:.6g},{},{},{}\n", r, o.steps,
+                        o.step.embedded.smoothing, o.step.contour.depth,
+                        refine_name(o.step.contour.refine_passes), o.step.contour.resolved_eps(),
+                        to_string(res.status), res.t, res.curves.size(), res.curves.curve_count(),
+                        area(res.curves), length(res.curves), res.cpu_s, d, order, estimate);
+    }
+    return out;
+}
+
+nlohmann::json json(const Problem& p, const SelfConvergenceResult& s) {
+    nlohmann::json runs = nlohmann::json::array(), pairs = nlohmann::json::array();
+    for (const ResolutionRun& run_r : s.runs) {
+        const RunOptions& o = run_r.options;
+        const RunResult& res = run_r.result;
+        nlohmann::json j = {{"r", run_r.level},
+                            {"run", run_name(o)},
+                            {"N", o.steps},
+                            {"S", o.step.embedded.smoothing},
+                            {"K", o.step.contour.depth},
+                            {"P", o.step.contour.refine_passes == ContourOptions::until_converged
+                                      ? nlohmann::json("converged")
+                                      : nlohmann::json(o.step.contour.refine_passes)},
+                            {"eps", o.step.contour.resolved_eps()},
+                            {"eta", o.step.contour.eta},
+                            {"status", to_string(res.status)},
+                            {"t", res.t},
+                            {"segments", res.curves.size()},
+                            {"components", res.curves.curve_count()},
+                            {"area", area(res.curves)},
+                            {"length", length(res.curves)},
+                            {"cpu_s", res.cpu_s}};
+        if (res.status == RunStatus::error) j["message"] = res.message;
+        runs.push_back(std::move(j));
+    }
+    for (std::size_t r = 0; r < s.distances.size(); ++r) {
+        pairs.push_back({{"coarse", r},
+                         {"fine", r + 1},
+                         {"distance", json_number(finite(s.distances[r]))},
+                         {"order", r < s.orders.size() ? json_number(s.orders[r]) : nullptr}});
+    }
+    nlohmann::json estimate = nullptr;
+    if (s.estimate) {
+        estimate = {{"error", s.estimate->error},
+                    {"run", run_name(s.runs.back().options)},
+                    {"order", s.estimate->order},
+                    {"order_observed", s.estimate->observed}};
+    }
+    return {
+        {"problem", p.name},    {"velocity", p.velocity}, {"velocity_params", p.velocity_params},
+        {"t_start", p.t_start}, {"t_end", p.t_end},       {"resolutions", runs},
+        {"pairs", pairs},       {"estimate", estimate},   {"note", estimate_note(s)}};
+}
+
+/// log10 d(r − 1, r) against r, and the estimated error of the finest run beside it.
+void plot(const std::filesystem::path& dir, const Problem& p, const SelfConvergenceResult& s) {
+    std::vector<Vec2> line;
+    Box b = Box::empty();
+    auto add = [&](std::vector<Vec2>& to, double r, double d) {
+        if (!std::isfinite(d) || !(d > 0)) return;
+        const Vec2 q{r, std::log10(d)};
+        to.push_back(q);
+        b = unite(b, {q, q});
+    };
+    for (std::size_t r = 0; r < s.distances.size(); ++r)
+        add(line, static_cast<double>(r + 1), s.distances[r]);
+    std::vector<Vec2> estimate;
+    if (s.estimate) add(estimate, static_cast<double>(s.runs.size() - 1), s.estimate->error);
+    const bool empty = b.is_empty();
+    if (empty) b = Box::square({0.5 * static_cast<double>(s.runs.size() - 1), 0.0}, 1.0);
+    Figure fig(Box::square(b.center(), 0.55 * std::max({b.width(), b.height(), 1.0})),
+               fmt::format("{}: distance between successive resolutions{}", p.name,
+                           empty ? " (none comparable)" : ""));
+    fig.set_axis_names("resolution r (N, K, eps of run 0 refined r times)", "log10 distance");
+    if (!line.empty()) {
+        fig.add_polyline(line, "d(r - 1, r)", palette_color(0));
+        fig.add_points(line, palette_color(0), 2.5);
+    }
+    if (!estimate.empty()) {
+        fig.add_polyline(estimate, "estimated error of run r", palette_color(1));
+        fig.add_points(estimate, palette_color(1), 3.5);
+    }
+    fig.save(dir / "convergence.svg");
+    fig.save(dir / "convergence.png");
+}
+
+}  // namespace
+
+void write_self_convergence_study(const Problem& p, const VelocityLaw& law, const RunOptions& base,
+                                  int resolutions, bool quiet, const std::filesystem::path& dir) {
+    const Interface initial = prepare_interface(p.initial, p.domain).curves;
+    const SelfConvergenceResult s =
+        self_convergence(initial, law, p.domain, base, resolutions, [&](const ResolutionRun& r) {
+            if (!quiet) {
+                fmt::print(stderr, "{}: {} at t = {:.6g}, {} segments, {:.3g} s cpu\n",
+                           run_name(r.options), to_string(r.result.status), r.result.t,
+                           r.result.curves.size(), r.result.cpu_s);
+            }
+        });
+    // Each run's final curves, to overlay with slc render as the paper compared its runs.
+    for (const ResolutionRun& r : s.runs) {
+        write_file_atomic(dir / fmt::format("final_{}.json", r.level),
+                          interface_json(r.result.curves, r.result.t));
+    }
+    write_file_atomic(dir / "table.md", markdown(p, s));
+    write_file_atomic(dir / "table.csv", csv(s));
+    write_file_atomic(dir / "table.json", json(p, s).dump(2) + "\n");
+    plot(dir, p, s);
+    if (!quiet) fmt::print("{}\n", estimate_note(s));
+}
+
+}  // namespace slc::cli
