@@ -128,7 +128,6 @@ reject "rho 1" "--rho: must be a number in \[0, 1\), got '1'" -- run --problem v
 reject "t-end NaN" "t-end must be finite and after the start time 0, got nan" -- run --problem vortex --t-end nan --out x
 reject "t-end infinite" "t-end must be finite and after the start time 0, got inf" -- run --problem vortex --t-end inf --out x
 reject "t-end before the start" "t-end must be finite and after the start time 0, got -1" -- run --problem vortex --t-end -1 --out x
-reject "box not square" "--box must be a square, got 1 wide and 2 high" -- run --problem vortex --box 0,0,1,2 --out x
 reject "box of three numbers" "--box must be four numbers x0,y0,x1,y1, got '0,0,1'" -- run --problem vortex --box 0,0,1 --out x
 reject "box NaN" "--box must have x0 < x1 and y0 < y1, all finite" -- run --problem vortex --box 0,0,nan,nan --out x
 reject "box beyond the coordinate limit" "--box corners must lie within" -- run --problem vortex --box 0,0,1e200,1e200 --out x

@@ -126,6 +126,10 @@ check "domain grows: summary says so" grep -q '"domain_grown"' big/summary.json
 check "domain grows: status ok" grep -q '"status": "ok"' big/summary.json
 # A named problem keeps the paper's fixed domain: leaving it is an error that names the setting.
 expect_status "named problem leaves its domain" 3 -- run --problem triangle-normal --t-end 3 -N 10 -K 4 -P 0 --out out3 --quiet
+# A rectangular box is taken as the square around it.
+expect_ok "rectangular box" -- run --initial hexagon.json --velocity rotation --t-end 0.1 -N 2 --box -2,-1.5,2,1.5 \
+    --out rect --quiet
+check "rectangular box: the square around it" grep -q '"domain": \[' rect/summary.json
 expect_ok "help lists the problems" -- run --help
 check "help names zalesak" grep -q "zalesak" out.txt
 

@@ -23,7 +23,10 @@ void add_domain_options(CLI::App& cmd, DomainOptions& options) {
         cmd.add_option("--domain", options.half_width,
                        "Half-width b of the square domain [-b, b]^2 (default: the square "
                        "around the curves' bounding box, 1.5 times its larger half-side)");
-    auto* box = cmd.add_option("--box", options.box, "The square domain as x0,y0,x1,y1");
+    auto* box = cmd.add_option(
+        "--box", options.box,
+        "The domain as x0,y0,x1,y1; a rectangle is taken as the square around it, sharing its "
+        "centre");
     domain->excludes(box);
 }
 
@@ -54,10 +57,9 @@ Box parse_box(const std::string& text) {
         throw InvalidInput(fmt::format("--box corners must lie within ±{:g}, got '{}'",
                                        tolerance::max_coordinate, text));
     }
-    if (std::abs(b.width() - b.height()) > 1e-12 * b.width()) {
-        throw InvalidInput(
-            fmt::format("--box must be a square, got {} wide and {} high", b.width(), b.height()));
-    }
+    // The trees need a square: a rectangle becomes the square around it with the same centre.
+    if (std::abs(b.width() - b.height()) > 1e-12 * std::max(b.width(), b.height()))
+        return Box::square(b.center(), 0.5 * std::max(b.width(), b.height()));
     return {b.lo, {b.hi.x, b.lo.y + b.width()}};
 }
 
