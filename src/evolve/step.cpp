@@ -108,29 +108,31 @@ public:
     /// StepOptions::arcs.
     double distance(Vec2 x) const { return distance(tree_.closest_point(x)); }
 
-    /// What a normal law's step needs at x: F(x), the distance field's normal N there and the
-    /// law's speed V(t, x, N), from one closest-point query.
-    struct NormalSample {
-        double distance = 0.0;  ///< F(x), as distance() gives it
-        Vec2 normal;            ///< ∇F(x)
-        double speed = 0.0;     ///< V(t, x, N)
-    };
-    /// @copydoc NormalSample
-    NormalSample normal_sample(Vec2 x) const {
-        const ClosestPoint p = tree_.closest_point(x);
-        const Vec2 n = field_normal(x, p);
-        return {distance(p), n, normal_speed(x, n)};
+    /// What a normal law's step needs at a batch of points: F there and the distance field's
+    /// normal N, one closest-point query each, on all worker threads.
+    void distances_and_normals(std::span<const Vec2> xs, std::span<double> f,
+                               std::span<Vec2> n) const {
+        parallel_for(
+            xs.size(),
+            [&](std::size_t i) {
+                const ClosestPoint p = tree_.closest_point(xs[i]);
+                f[i] = distance(p);
+                n[i] = field_normal(xs[i], p);
+            },
+            expensive_grain);
     }
-    /// The normal law's speed V(t, x, n) at this level's time; NumericalFailure unless finite.
-    double normal_speed(Vec2 x, Vec2 n) const {
-        double v = 0.0;
-        law_.normal_speeds(t_, std::span<const Vec2>(&x, 1), std::span<const Vec2>(&n, 1),
-                           std::span<double>(&v, 1));
-        if (!std::isfinite(v)) {
-            throw NumericalFailure(fmt::format(
-                "velocity '{}' is not finite at t = {} near ({}, {})", law_.name(), t_, x.x, x.y));
+    /// The normal law's speeds V(t, x_i, n_i) at this level's time, one call of the law for the
+    /// batch; NumericalFailure naming the point unless all are finite.
+    void normal_speeds(std::span<const Vec2> xs, std::span<const Vec2> n,
+                       std::span<double> v) const {
+        law_.normal_speeds(t_, xs, n, v);
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            if (!std::isfinite(v[i])) {
+                throw NumericalFailure(
+                    fmt::format("velocity '{}' is not finite at t = {} near ({}, {})", law_.name(),
+                                t_, xs[i].x, xs[i].y));
+            }
         }
-        return v;
     }
     /// The closest point of this level's polygon (whatever StepOptions::arcs says) and W(x),
     /// from one closest-point query.
@@ -285,12 +287,15 @@ StepResult advance_normal(const Interface& curves, double t, double k, const Vel
             },
             expensive_grain);
     };
-    auto predictor = pointwise(
-        [&](Vec2 x) {
-            const Level::NormalSample s = now.normal_sample(x);
-            return s.distance - k * s.speed;
-        },
-        expensive_grain);
+    // G is evaluated a batch at a time, so that the law is called once per batch (a law written
+    // in Python, say, sees whole arrays).
+    auto predictor = [&](std::span<const Vec2> xs, std::span<double> g) {
+        std::vector<double> v(xs.size());
+        std::vector<Vec2> n(xs.size());
+        now.distances_and_normals(xs, g, n);
+        now.normal_speeds(xs, n, v);
+        for (std::size_t i = 0; i < xs.size(); ++i) g[i] -= k * v[i];
+    };
     ContourResult predicted = contour(predictor, domain, contour_options, bounds(predictor_reach));
     result.stats.predictor = predicted.stats;
     if (predicted.curves.empty()) return result;
@@ -298,13 +303,18 @@ StepResult advance_normal(const Interface& curves, double t, double k, const Vel
     const Level next(predicted.curves, t + k, k, law, domain, options);
     const double corrector_reach = 0.5 * k * (now.max_speed() + next.max_speed());
     contour_options.distance_slack = 2.0 * corrector_reach;
-    auto corrector = pointwise(
-        [&](Vec2 x) {
-            const Level::NormalSample s = now.normal_sample(x);
-            const double v_foot = now.normal_speed(x - k * s.speed * s.normal, s.normal);
-            return s.distance - 0.5 * k * (v_foot + next.normal_sample(x).speed);
-        },
-        expensive_grain);
+    auto corrector = [&](std::span<const Vec2> xs, std::span<double> g) {
+        const std::size_t m = xs.size();
+        std::vector<double> v(m), v_foot(m), f_next(m), v_next(m);
+        std::vector<Vec2> n(m), feet(m), n_next(m);
+        now.distances_and_normals(xs, g, n);
+        now.normal_speeds(xs, n, v);
+        for (std::size_t i = 0; i < m; ++i) feet[i] = xs[i] - k * v[i] * n[i];
+        now.normal_speeds(feet, n, v_foot);
+        next.distances_and_normals(xs, f_next, n_next);
+        next.normal_speeds(xs, n_next, v_next);
+        for (std::size_t i = 0; i < m; ++i) g[i] -= 0.5 * k * (v_foot[i] + v_next[i]);
+    };
     ContourResult corrected = contour(corrector, domain, contour_options, bounds(corrector_reach));
     result.stats.corrector = corrected.stats;
     result.curves = std::move(corrected.curves);
@@ -316,8 +326,8 @@ StepResult advance_normal(const Interface& curves, double t, double k, const Vel
 namespace {
 
 /// Γ moved along its vertex normals (the bisectors of its segments' normals) by
-/// δ = (target − A)/L, which makes its area target to O(δ²); Γ itself when the moved curves would
-/// cross (found in O(N log N)). Returns the curves and the area added.
+/// δ = (target − A)/L, which makes its area target to O(δ² |C| L); Γ itself when the moved curves
+/// would cross (found in O(N log N)). Returns the curves and the area added.
 std::pair<Interface, double> corrected_area(const Interface& curves, double target) {
     const double a = area(curves);
     const double delta = (target - a) / length(curves);
@@ -422,9 +432,14 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
                    const Box& domain, const StepOptions& options) {
     StepResult result = advance_contours(curves, t, k, law, domain, options);
     if (options.area_correction.value_or(law.preserves_area()) && !result.curves.empty()) {
-        auto [moved, added] = corrected_area(result.curves, area(curves));
-        result.curves = std::move(moved);
-        result.stats.area_correction = added;
+        // Each shift leaves O(δ²) of the area to give back: two more shifts leave rounding.
+        const double target = area(curves);
+        for (int shift = 0; shift < 3; ++shift) {
+            auto [moved, added] = corrected_area(result.curves, target);
+            if (added == 0.0) break;
+            result.curves = std::move(moved);
+            result.stats.area_correction += added;
+        }
     }
     return result;
 }

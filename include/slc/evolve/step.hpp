@@ -54,7 +54,8 @@ struct StepOptions {
     std::optional<bool> arcs = std::nullopt;
     /// For a law that keeps area (VelocityLaw::preserves_area): after the step, move every vertex
     /// of Γ(t + k) along its normal by δ = (A(t) − A(t + k))/L, which gives back the area the
-    /// contours lost, to O(δ²); skipped when δ is not below a tenth of the shortest segment.
+    /// contours lost to O(δ²), three times at most (to rounding); skipped where the moved curves
+    /// would cross.
     /// Unset: on for such laws.
     std::optional<bool> area_correction = std::nullopt;
     /// Turning angle at a vertex (radians) above which arcs treats it as a corner.
