@@ -33,7 +33,7 @@ expect_error "self-intersection" "curve 0" -- distance --initial bowtie.json --p
 echo '{"curves": [{"points": [[0, 0], [1, 0]]}]}' >short.json
 expect_error "too few points" "curve 0" -- distance --initial short.json --points points.csv
 expect_error "point outside the domain" "outside" -- distance --initial square.json --points points.csv --domain 0.5
-expect_error "non-square box" "square" -- distance --initial square.json --points points.csv --box -2,-2,2,3
+expect_ok "non-square box: the square around it" -- distance --initial square.json --points points.csv --box -2,-2,2,3
 expect_error "unknown option" "--frobnicate" -- distance --initial square.json --points points.csv --frobnicate
 expect_ok "help" -- distance --help
 check "help names the output columns" grep -q "nearest_x" out.txt
