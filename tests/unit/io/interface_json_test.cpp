@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "slc/core/error.hpp"
+#include "temp_dir.hpp"
 
 namespace slc {
 namespace {
@@ -24,34 +25,9 @@ namespace {
 namespace fs = std::filesystem;
 
 /// A fresh folder under the system's temporary folder, removed with everything in it.
-class TempDir {
-public:
-    TempDir() {
-        static int counter = 0;
-        path_ = fs::temp_directory_path() /
-                fmt::format("slc_interface_json_test_{}_{}", ::getpid(), counter++);
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
+using test_support::TempDir;
 
-private:
-    fs::path path_;
-};
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using test_support::slurp;
 
 /// Runs f, expects InvalidInput, and checks that its message holds every one of parts.
 void expect_invalid(const std::function<void()>& f, std::initializer_list<std::string> parts) {

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "slc/core/error.hpp"
+#include "temp_dir.hpp"
 
 namespace slc {
 namespace {
@@ -31,33 +32,9 @@ constexpr int top = 20;
 constexpr int title_room = 34;
 constexpr int png_scale = 2;
 
-class TempDir {
-public:
-    TempDir() {
-        static int counter = 0;
-        path_ =
-            fs::temp_directory_path() / fmt::format("slc_plot_test_{}_{}", ::getpid(), counter++);
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
+using test_support::TempDir;
 
-private:
-    fs::path path_;
-};
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using test_support::slurp;
 
 using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 

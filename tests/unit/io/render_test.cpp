@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "slc/core/error.hpp"
+#include "temp_dir.hpp"
 
 // Cairo's toy text API keeps fontconfig's configuration and font patterns in process-wide caches
 // that are never freed; LeakSanitizer (the SLC_SANITIZE build) would report them at exit. This
@@ -34,33 +35,9 @@ constexpr int plot_top = 20;
 constexpr int plot_size = 560;
 constexpr int png_scale = 2;
 
-class TempDir {
-public:
-    TempDir() {
-        static int counter = 0;
-        path_ =
-            fs::temp_directory_path() / fmt::format("slc_render_test_{}_{}", ::getpid(), counter++);
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
+using test_support::TempDir;
 
-private:
-    fs::path path_;
-};
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using test_support::slurp;
 
 using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 

@@ -18,39 +18,16 @@
 
 #include "random_interfaces.hpp"
 #include "slc/core/error.hpp"
+#include "temp_dir.hpp"
 
 namespace slc {
 namespace {
 
 namespace fs = std::filesystem;
 
-class TempDir {
-public:
-    TempDir() {
-        static int counter = 0;
-        path_ =
-            fs::temp_directory_path() / fmt::format("slc_vtk_test_{}_{}", ::getpid(), counter++);
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
+using test_support::TempDir;
 
-private:
-    fs::path path_;
-};
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using test_support::slurp;
 
 /// The text of the first element `<tag ...>` at or after `from`, up to its '>'; empty if none.
 std::string element(const std::string& xml, const std::string& tag, std::size_t from = 0) {
