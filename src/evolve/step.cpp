@@ -55,15 +55,9 @@ std::vector<double> arc_curvatures(const Interface& curves) {
     return kappa;
 }
 
-/// How a level evaluates W off Γ.
-enum class Off {
-    none,      ///< a flow field sampled directly: no W
-    extended,  ///< the vertex velocities extended (nearest point or Whitney)
-    normal,    ///< a normal law evaluated with the distance field's normal
-};
-
-/// Γ at one time level: its distance tree and, unless the law is sampled directly, its vertex
-/// velocities and their extension W off Γ.
+/// Γ at one time level: its distance tree and, unless the law is evaluated directly, its vertex
+/// velocities and their extension W off Γ; for a normal law evaluated directly, the field's
+/// normals and a bound on the law's speed.
 class Level {
 public:
     /// k: the step, which sets the arclength module's default width.
@@ -72,20 +66,18 @@ public:
         : law_(law),
           t_(t),
           extension_(options.resolved_extension(law)),
-          off_(extension_ != Extension::direct ? Off::extended
-               : law.is_field()                ? Off::none
-                                               : Off::normal),
           tree_(curves, domain,
                 {.depth = options.resolved_tree_depth(),
                  .triangulate = extension_ == Extension::whitney}) {
-        if (off_ == Off::extended) {
+        // Directly: a flow field needs no W here; a normal law, a bound on its speed.
+        if (extension_ != Extension::direct) {
             const GeometryContext context{.tree = &tree_,
                                           .embedded = options.embedded,
                                           .arc_width = options.resolved_arc_width(k)};
             u_ = vertex_velocities(law, t, curves, context);
             if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
             for (Vec2 u : u_) max_speed_ = std::max(max_speed_, norm(u));
-        } else if (off_ == Off::normal) {
+        } else if (law.is_normal_law()) {
             max_speed_ = max_normal_speed();
         }
         if (options.resolved_arcs(law)) {
@@ -228,7 +220,6 @@ private:
     const VelocityLaw& law_;
     double t_;
     Extension extension_;
-    Off off_;
     DistanceTree tree_;
     std::vector<Vec2> u_;
     double max_speed_ = 0.0;
