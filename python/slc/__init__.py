@@ -66,9 +66,10 @@ class Interface:
 
     __slots__ = ("_curves", "time")
 
-    def __init__(self, curves, time: float = 0.0):
+    def __init__(self, curves, time: float | None = None):
         if isinstance(curves, Interface):
-            self._curves, self.time = curves._curves, float(time or curves.time)
+            self._curves = curves._curves
+            self.time = curves.time if time is None else float(time)
             return
         if isinstance(curves, np.ndarray) and curves.ndim == 2:
             curves = [curves]
@@ -79,7 +80,7 @@ class Interface:
         for note in notes:
             warnings.warn(note, stacklevel=2)
         self._curves = _frozen(prepared)
-        self.time = float(time)
+        self.time = 0.0 if time is None else float(time)
 
     @classmethod
     def _trusted(cls, arrays, time: float = 0.0) -> "Interface":

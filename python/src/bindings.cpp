@@ -101,18 +101,27 @@ PreparedInterface prepare(const Curves& raw) { return prepare_interface(raw, def
 
 py::tuple prepare_arrays(const std::vector<Array>& arrays) {
     const Curves raw = curves_of(arrays);
-    PreparedInterface p = prepare(raw);
-    return py::make_tuple(arrays_of(p.curves), p.notes);
+    std::optional<PreparedInterface> p;
+    {
+        py::gil_scoped_release release;
+        p.emplace(prepare(raw));
+    }
+    return py::make_tuple(arrays_of(p->curves), p->notes);
 }
 
 py::tuple load(const std::string& path) {
-    const InterfaceFile file = read_interface_json(path);
-    try {
-        PreparedInterface p = prepare(file.curves);
-        return py::make_tuple(arrays_of(p.curves), file.time, p.notes);
-    } catch (const InvalidInput& e) {
-        throw InvalidInput(path + ": " + e.what());
+    std::optional<InterfaceFile> file;
+    std::optional<PreparedInterface> p;
+    {
+        py::gil_scoped_release release;
+        file.emplace(read_interface_json(path));
+        try {
+            p.emplace(prepare(file->curves));
+        } catch (const InvalidInput& e) {
+            throw InvalidInput(path + ": " + e.what());
+        }
     }
+    return py::make_tuple(arrays_of(p->curves), file->time, p->notes);
 }
 
 void save(const std::string& path, const std::vector<Array>& arrays, double time) {
@@ -390,6 +399,10 @@ py::dict summary(const RunOptions& o, const RunResult& r, const VelocityLaw& law
     p["area_correction"] = o.step.area_correction.value_or(law.preserves_area());
     p["arc_width"] = o.step.resolved_arc_width((o.t_end - o.t_start) / o.steps);
     py::dict s;
+    // The run's name N/S/K/P/ε as the paper writes it (summary.json "run").
+    s["run"] = std::to_string(o.steps) + "/" + std::to_string(o.step.embedded.smoothing) + "/" +
+               std::to_string(c.depth) + "/" + py::str(passes).cast<std::string>() + "/" +
+               py::str("{:.0e}").attr("format")(c.resolved_eps()).cast<std::string>();
     s["params"] = p;
     s["t_end"] = o.t_end;
     s["t"] = r.t;

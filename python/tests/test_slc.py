@@ -263,3 +263,27 @@ def test_ctrl_c_stops_a_run_between_steps():
 def test_a_vanishing_curve_ends_the_run():
     r = slc.run(slc.Interface(circle(0.2, 64)), "curvature", 0.05, steps=20)
     assert r.status == "vanished" and len(r.interface) == 0 and r.interface.area == 0.0
+
+
+def test_the_gil_is_released_while_the_library_works():
+    # A Python thread counts while the run is in C++: between the first and the last step it
+    # runs only if the run released the GIL (the observer's few lines hold it for microseconds).
+    count, done = [0], threading.Event()
+
+    def spin():
+        while not done.is_set():
+            count[0] += 1
+
+    seen = {}
+
+    def observer(step):
+        seen[step.step] = count[0]
+
+    worker = threading.Thread(target=spin)
+    worker.start()
+    try:
+        slc.run(slc.Interface(circle()), "curvature", 0.05, steps=20, threads=1, observer=observer)
+    finally:
+        done.set()
+        worker.join()
+    assert seen[20] - seen[1] > 10000
