@@ -7,7 +7,7 @@
 // on the calling thread, while the library's own loops run with the GIL released on all cores.
 // Errors: slc::InvalidInput becomes ValueError and slc::NumericalFailure RuntimeError, the same
 // one-line message; an exception raised in a callback reaches the caller unchanged.
-#include <pybind11/functional.h>
+#include <fmt/format.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -165,9 +165,9 @@ Box square_box(const std::vector<double>& v) {
     if (v.size() != 4) throw InvalidInput("box must be four numbers (x0, y0, x1, y1)");
     const Box b{{v[0], v[1]}, {v[2], v[3]}};
     if (!is_finite(b.lo) || !is_finite(b.hi) || !(b.width() > 0) || !(b.height() > 0)) {
-        throw InvalidInput("box must have x0 < x1 and y0 < y1, all finite, got (" +
-                           std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " +
-                           std::to_string(v[2]) + ", " + std::to_string(v[3]) + ")");
+        throw InvalidInput(
+            fmt::format("box must have x0 < x1 and y0 < y1, all finite, got ({}, {}, {}, {})", v[0],
+                        v[1], v[2], v[3]));
     }
     if (b.largest_magnitude() > tolerance::max_coordinate)
         throw InvalidInput("box corners must lie within the largest coordinate slc accepts");
@@ -182,8 +182,9 @@ void call_batch(const py::object& f, std::span<const Vec2> points, std::span<dou
     if (!a) throw InvalidInput("f must return an array of numbers");
     const Array v = a.cast<Array>();
     if (v.ndim() != 1 || static_cast<std::size_t>(v.shape(0)) != points.size()) {
-        throw InvalidInput("f must return an (m,) array for an (m, 2) array of points, got shape " +
-                           shape_text(v) + " for m = " + std::to_string(points.size()));
+        throw InvalidInput(fmt::format(
+            "f must return an (m,) array for an (m, 2) array of points, got shape {} for m = {}",
+            shape_text(v), points.size()));
     }
     std::memcpy(values.data(), v.data(), values.size() * sizeof(double));
 }
@@ -245,10 +246,10 @@ public:
         } else if (v.ndim() == 2 && v.shape(0) == n && v.shape(1) == 2) {
             u = vectors_of(v.data(), m);
         } else {
-            throw InvalidInput("velocity '" + name_ +
-                               "' must return (m,) normal speeds or (m, 2) " +
-                               "velocities for m = " + std::to_string(m) + " vertices, got shape " +
-                               shape_text(v));
+            throw InvalidInput(fmt::format(
+                "velocity '{}' must return (m,) normal speeds or (m, 2) velocities for m = {} "
+                "vertices, got shape {}",
+                name_, m, shape_text(v)));
         }
         return u;
     }
@@ -338,30 +339,29 @@ RunOptions resolve(const Interface& curves, const VelocityLaw& law, const RunReq
     ContourOptions& c = r.step.contour;
     if (q.steps) {
         if (*q.steps < 1)
-            throw InvalidInput("steps must be at least 1, got " + std::to_string(*q.steps));
+            throw InvalidInput(fmt::format("steps must be at least 1, got {}", *q.steps));
         r.steps = *q.steps;
     }
     if (q.depth) {
         if (*q.depth < 1 || *q.depth > 24)
-            throw InvalidInput("depth must be from 1 to 24, got " + std::to_string(*q.depth));
+            throw InvalidInput(fmt::format("depth must be from 1 to 24, got {}", *q.depth));
         c.depth = *q.depth;
         c.eps = std::pow(10.0, -c.depth) * length_scale(curves);
         r.step.embedded.mesh = default_mesh_size(c.depth);
     }
     if (q.refine) {
         if (*q.refine != ContourOptions::until_converged && (*q.refine < 0 || *q.refine > 64))
-            throw InvalidInput("refine must be from 0 to 64 or 'converged', got " +
-                               std::to_string(*q.refine));
+            throw InvalidInput(
+                fmt::format("refine must be from 0 to 64 or 'converged', got {}", *q.refine));
         c.refine_passes = *q.refine;
     }
     if (q.eps) {
         if (!(*q.eps > 0.0) || !std::isfinite(*q.eps))
-            throw InvalidInput("eps must be positive and finite, got " + std::to_string(*q.eps));
+            throw InvalidInput(fmt::format("eps must be positive and finite, got {}", *q.eps));
         c.eps = *q.eps;
     }
     if (*c.eps < c.eta) {
-        throw InvalidInput("eps (" + std::to_string(*c.eps) + ") must not be below eta (" +
-                           std::to_string(c.eta) + ")");
+        throw InvalidInput(fmt::format("eps ({}) must not be below eta ({})", *c.eps, c.eta));
     }
     if (q.extension) r.step.extension = named(extension_names, "extension", *q.extension);
     return r;
@@ -400,9 +400,8 @@ py::dict summary(const RunOptions& o, const RunResult& r, const VelocityLaw& law
     p["arc_width"] = o.step.resolved_arc_width((o.t_end - o.t_start) / o.steps);
     py::dict s;
     // The run's name N/S/K/P/ε as the paper writes it (summary.json "run").
-    s["run"] = std::to_string(o.steps) + "/" + std::to_string(o.step.embedded.smoothing) + "/" +
-               std::to_string(c.depth) + "/" + py::str(passes).cast<std::string>() + "/" +
-               py::str("{:.0e}").attr("format")(c.resolved_eps()).cast<std::string>();
+    s["run"] = fmt::format("{}/{}/{}/{}/{:.0e}", o.steps, o.step.embedded.smoothing, c.depth,
+                           py::str(passes).cast<std::string>(), c.resolved_eps());
     s["params"] = p;
     s["t_end"] = o.t_end;
     s["t"] = r.t;
@@ -452,8 +451,8 @@ struct History {
 };
 
 /// velocity: a built-in law's name, a callable (PythonCurveLaw) or, with field = true, a flow
-/// field. on_step(step, steps, t, curves, cpu_s) is called after every step when given, and
-/// after the frames' steps with the curves; it returns False to stop.
+/// field. on_step(step, steps, t, curves, cpu_s), when given, is called after every step; it
+/// returns False to stop.
 py::dict run_curves(const std::vector<Array>& arrays, const py::object& velocity, bool field,
                     const std::string& name, const VelocityParams& params,
                     std::optional<std::string> geometry, const RunRequest& q,
@@ -475,10 +474,9 @@ py::dict run_curves(const std::vector<Array>& arrays, const py::object& velocity
     const Interface initial(raw);
     const Box domain = default_domain(raw);
     const RunOptions options = resolve(initial, *law, q);
-    if (q.frames < 0)
-        throw InvalidInput("frames must be 0 or more, got " + std::to_string(q.frames));
+    if (q.frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", q.frames));
     if (q.threads < 0)
-        throw InvalidInput("threads must be 0 or more, got " + std::to_string(q.threads));
+        throw InvalidInput(fmt::format("threads must be 0 or more, got {}", q.threads));
 
     History history;
     history.add(options.t_start, initial, 0.0);
