@@ -8,6 +8,8 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
+#include <vector>
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
@@ -237,22 +239,30 @@ Vec2 finite(Vec2 w, const VelocityLaw& law, double t, Vec2 x) {
     return w;
 }
 
-/// The law sampled at one point.
-Vec2 sample(const VelocityLaw& law, double t, Vec2 x) {
-    Vec2 w;
-    law.sample(t, std::span<const Vec2>(&x, 1), std::span<Vec2>(&w, 1));
-    return finite(w, law, t, x);
+/// The law sampled at a batch of points, one call of the law (a law written in Python, say, sees
+/// whole arrays); NumericalFailure naming the point unless every velocity is finite.
+void sample(const VelocityLaw& law, double t, std::span<const Vec2> xs, std::span<Vec2> out) {
+    law.sample(t, xs, out);
+    for (std::size_t i = 0; i < xs.size(); ++i) finite(out[i], law, t, xs[i]);
 }
 
-/// Where the characteristic through x at t + k of a flow field was at t: dy/dt = u(y, t)
-/// integrated backward by the classical fourth-order Runge–Kutta rule.
-Vec2 departure_point(const VelocityLaw& law, double t, double k, Vec2 x) {
+/// Where the characteristics through xs at t + k of a flow field were at t: dy/dt = u(y, t)
+/// integrated backward by the classical fourth-order Runge–Kutta rule, each stage one batch.
+std::vector<Vec2> departure_points(const VelocityLaw& law, double t, double k,
+                                   std::span<const Vec2> xs) {
+    const std::size_t m = xs.size();
     const double half = 0.5 * k;
-    const Vec2 k1 = sample(law, t + k, x);
-    const Vec2 k2 = sample(law, t + half, x - half * k1);
-    const Vec2 k3 = sample(law, t + half, x - half * k2);
-    const Vec2 k4 = sample(law, t, x - k * k3);
-    return x - (k / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    std::vector<Vec2> k1(m), k2(m), k3(m), k4(m), y(m);
+    sample(law, t + k, xs, k1);
+    for (std::size_t i = 0; i < m; ++i) y[i] = xs[i] - half * k1[i];
+    sample(law, t + half, y, k2);
+    for (std::size_t i = 0; i < m; ++i) y[i] = xs[i] - half * k2[i];
+    sample(law, t + half, y, k3);
+    for (std::size_t i = 0; i < m; ++i) y[i] = xs[i] - k * k3[i];
+    sample(law, t, y, k4);
+    for (std::size_t i = 0; i < m; ++i)
+        y[i] = xs[i] - (k / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+    return y;
 }
 
 /// A normal law's step with the distance field's normal N = ∇F (Extension::direct). F is a
@@ -359,8 +369,14 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
     if (extension == Extension::direct) {
         // A flow field is known everywhere, so the foot of each characteristic needs no predicted
         // curve: G(x) = F(departure point of x; Γ(t)), one contour, fourth order in time.
-        auto g = pointwise([&](Vec2 x) { return now.distance(departure_point(law, t, k, x)); },
-                           expensive_grain);
+        // G is evaluated a batch at a time, so that the law is sampled once per Runge–Kutta
+        // stage of each batch.
+        auto g = [&](std::span<const Vec2> xs, std::span<double> values) {
+            const std::vector<Vec2> feet = departure_points(law, t, k, xs);
+            parallel_for(
+                xs.size(), [&](std::size_t i) { values[i] = now.distance(feet[i]); },
+                expensive_grain);
+        };
         ContourResult traced = contour(g, domain, options.contour);
         result.stats.corrector = traced.stats;
         result.curves = std::move(traced.curves);

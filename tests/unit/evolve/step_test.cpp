@@ -88,6 +88,37 @@ TEST(Advance, NormalLawIsCalledOncePerBatchAndNotPerPoint) {
     EXPECT_GT(static_cast<double>(points.load()) / static_cast<double>(calls.load()), 50.0);
 }
 
+TEST(Advance, FlowFieldSampledDirectlyIsCalledOncePerBatchAndNotPerPoint) {
+    // A rigid rotation sampled along each characteristic (Extension::direct): four calls of the
+    // field per batch of G, one per Runge–Kutta stage.
+    struct Counting final : public VelocityLaw {
+        std::atomic<std::size_t>& calls;
+        std::atomic<std::size_t>& points;
+        Counting(std::atomic<std::size_t>& c, std::atomic<std::size_t>& p) : calls(c), points(p) {}
+        std::string name() const override { return "counting"; }
+        std::vector<Vec2> velocities(double t, const Interface& curves,
+                                     const VertexGeometry&) const override {
+            std::vector<Vec2> u(curves.size());
+            sample(t, curves.points(), u);
+            return u;
+        }
+        bool is_field() const override { return true; }
+        void sample(double, std::span<const Vec2> x, std::span<Vec2> out) const override {
+            ++calls;
+            points += x.size();
+            for (std::size_t i = 0; i < x.size(); ++i) out[i] = {-x[i].y, x[i].x};
+        }
+    };
+    std::atomic<std::size_t> calls{0}, points{0};
+    const Counting law(calls, points);
+    const StepOptions o = converged();
+    ASSERT_EQ(o.resolved_extension(law), Extension::direct);
+    (void)advance(Interface({shapes::circle({0.2, 0}, 0.5, 64)}), 0.0, 0.05, law,
+                  Box::centered_square(1.0), o);
+    ASSERT_GT(calls.load(), 0u);
+    EXPECT_GT(static_cast<double>(points.load()) / static_cast<double>(calls.load()), 50.0);
+}
+
 TEST(Advance, NormalLawResultDoesNotDependOnTheThreadCount) {
     const Interface star(
         {{{1, 0}, {0.2, 0.2}, {0, 1}, {-0.2, 0.2}, {-1, 0}, {-0.2, -0.2}, {0, -1}, {0.2, -0.2}}});

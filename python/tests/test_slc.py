@@ -1,0 +1,289 @@
+"""Tests of the Python package slc: exact laws (area under curvature flow, Huygens' offset, a full
+rotation), the contour of an analytic function, bad input, callbacks and their errors."""
+
+import math
+import os
+import signal
+import threading
+
+import numpy as np
+import pytest
+
+import slc
+
+
+def circle(r=1.0, n=128, cx=0.0, cy=0.0):
+    th = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
+    return np.c_[cx + r * np.cos(th), cy + r * np.sin(th)]
+
+
+def ellipse(a=1.0, b=0.6, n=128):
+    th = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
+    return np.c_[a * np.cos(th), b * np.sin(th)]
+
+
+# ---- Interface ---------------------------------------------------------------------------------
+
+
+def test_interface_holds_oriented_read_only_curves_with_area_and_length():
+    square = np.array([[0, 0], [0, 1], [1, 1], [1, 0]])  # clockwise, integers
+    with pytest.warns(UserWarning, match="reoriented"):
+        curves = slc.Interface([square])
+    (c,) = curves.curves
+    assert c.dtype == np.float64 and c.shape == (4, 2)
+    assert not c.flags.writeable
+    assert curves.area == pytest.approx(1.0)
+    assert curves.length == pytest.approx(4.0)
+
+
+def test_interface_round_trips_through_a_file(tmp_path):
+    curves = slc.Interface([circle(1.0, 64), circle(0.3, 32)[::-1]], time=0.5)  # a hole
+    path = tmp_path / "shape.json"
+    curves.save(path)
+    back = slc.Interface.load(path)
+    assert back.time == 0.5
+    for a, b in zip(curves.curves, back.curves):
+        np.testing.assert_array_equal(a, b)
+    assert back.area == pytest.approx(curves.area)
+
+
+BAD_CURVES = {
+    "non-finite": ([np.array([[0, 0], [1, 0], [np.nan, 1]])], "finite"),
+    "self-crossing": ([np.array([[0, 0], [1, 1], [1, 0], [0, 1]])], "cross"),
+    "open (two points)": ([np.array([[0, 0], [1, 0]])], "3"),
+    "no curves": ([], "no curves"),
+    "curves crossing": ([circle(1.0, 32), circle(1.0, 32, cx=0.5)], "cross"),
+}
+
+
+@pytest.mark.parametrize("name", BAD_CURVES)
+def test_every_bad_interface_is_a_value_error_of_one_line(name):
+    curves, words = BAD_CURVES[name]
+    with pytest.raises(ValueError) as e:
+        slc.Interface(curves)
+    message = str(e.value)
+    assert "\n" not in message and words in message, message
+
+
+def test_a_bad_file_is_a_value_error_naming_it(tmp_path):
+    path = tmp_path / "bad.json"
+    path.write_text('{"curves": [{"points": [[0, 0], [1, 1], [1, 0], [0, 1]]}]}')
+    with pytest.raises(ValueError, match="bad.json") as e:
+        slc.Interface.load(path)
+    assert "\n" not in str(e.value)
+    with pytest.raises(ValueError, match="missing.json"):
+        slc.Interface.load(tmp_path / "missing.json")
+
+
+def test_shapes_and_dtypes_are_checked():
+    with pytest.raises(ValueError, match=r"curve 0 must be an \(n, 2\) array, got shape \(4, 3\)"):
+        slc.Interface([np.zeros((4, 3))])
+    with pytest.raises(TypeError, match="real numbers"):
+        slc.Interface([np.array([["a", "b"], ["c", "d"], ["e", "f"]])])
+    with pytest.raises(TypeError, match="real numbers"):
+        slc.Interface([circle(1.0, 8).astype(complex)])
+    with pytest.raises(TypeError):
+        slc.Interface(3.0)
+    curves = slc.Interface(circle())
+    with pytest.raises(ValueError, match="points must be an"):
+        slc.distance(curves, np.zeros(2))
+
+
+# ---- distance ----------------------------------------------------------------------------------
+
+
+def test_distance_is_signed_with_nearest_points():
+    square = slc.Interface([np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]])])
+    d, nearest = slc.distance(square, [[0, 0], [3, 0], [2, 2], [0.5, -0.5]])
+    np.testing.assert_allclose(d, [-1, 2, math.sqrt(2), -0.5], atol=1e-15)
+    np.testing.assert_allclose(nearest, [[nearest[0][0], nearest[0][1]], [1, 0], [1, 1], [0.5, -1]])
+    assert d.shape == (4,) and nearest.shape == (4, 2)
+
+
+# ---- contour -----------------------------------------------------------------------------------
+
+
+def test_contour_of_a_circle_is_within_eps():
+    r, eps = 0.6, 1e-6
+    calls = []
+
+    def g(p):  # G > 0 outside
+        calls.append(p.shape)
+        return np.hypot(p[:, 0], p[:, 1]) - r
+
+    curves = slc.contour(g, (-1, -1, 1, 1), 5, eps=eps)
+    assert len(curves) == 1
+    c = curves.curves[0]
+    mid = 0.5 * (c + np.roll(c, -1, axis=0))
+    assert np.abs(np.hypot(c[:, 0], c[:, 1]) - r).max() < 1e-9  # vertices: root tolerance
+    assert np.abs(np.hypot(mid[:, 0], mid[:, 1]) - r).max() <= eps
+    assert curves.area > 0.0  # counterclockwise around G < 0
+    assert all(len(s) == 2 and s[1] == 2 for s in calls)
+    assert max(s[0] for s in calls) > 100  # batches, not points
+
+
+def test_contour_checks_what_f_returns_and_passes_its_errors_on():
+    with pytest.raises(ValueError, match=r"f must return an \(m,\) array"):
+        slc.contour(lambda p: np.zeros((len(p), 2)), 1.0, 4)
+    with pytest.raises(RuntimeError, match="not finite"):
+        slc.contour(lambda p: np.full(len(p), np.nan), 1.0, 4)
+
+    class Mine(Exception):
+        pass
+
+    def boom(p):
+        raise Mine("from f")
+
+    with pytest.raises(Mine, match="from f"):
+        slc.contour(boom, 1.0, 4)
+    with pytest.raises(ValueError, match="depth"):
+        slc.contour(lambda p: p[:, 0], 1.0, 99)
+
+
+# ---- run ---------------------------------------------------------------------------------------
+
+
+def test_curvature_flow_loses_area_at_two_pi():
+    # dA/dt = −2π for any closed curve under curvature flow. The run reads the polygon as arcs
+    # through its vertices, so the area it starts from is the circle's, π: to 1e−3 of ΔA.
+    t = 0.1
+    r = slc.run(slc.Interface(circle(1.0, 256)), "curvature", t)
+    assert r.status == "ok" and r.t == pytest.approx(t)
+    loss = math.pi - r.interface.area
+    assert loss == pytest.approx(2 * math.pi * t, rel=1e-3)
+    h = r.history
+    assert set(h) >= {"t", "area", "length", "components", "segments"}
+    assert len(h["t"]) == 41 and h["t"][0] == 0.0 and h["t"][-1] == pytest.approx(t)
+    assert h["components"].dtype == np.int64 and (h["components"] == 1).all()
+    s = r.summary
+    assert s["status"] == "ok" and s["params"]["N"] == 40 and s["params"]["K"] == 5
+    assert s["params"]["P"] == 2 and s["params"]["eps"] == pytest.approx(1e-5)
+
+
+def test_python_normal_speed_gives_huygens_offset():
+    # Unit outward speed: Γ(t) is the offset of Γ(0) at distance t (Huygens), the distance to
+    # Γ(0) of every vertex equals t. The law is called once per stage with all vertices.
+    initial = slc.Interface(ellipse())
+    calls = []
+
+    def speed(t, points, normals, curvature):
+        calls.append(len(points))
+        assert points.shape == normals.shape == (len(points), 2)
+        assert curvature.shape == (len(points),)
+        return np.ones(len(points))
+
+    r = slc.run(initial, speed, 0.3, steps=20)
+    assert r.status == "ok"
+    d, _ = slc.distance(initial, r.interface.points)
+    assert np.abs(d - 0.3).max() < 3e-3
+    assert len(calls) == 2 * 20  # predictor and corrector of each step
+    assert min(calls) >= len(initial.curves[0])
+
+
+def test_python_vertex_velocity_and_flow_field_turn_a_full_circle():
+    # A rotation about the origin: after t = 2π the curve is back where it started. The field
+    # sampled along the characteristics (fourth order in time) comes back to 2e−4 of the ellipse's
+    # half-width 0.8, measured; vertex velocities extended from the nearest point take a callable's
+    # defaults, those of a curvature law (P = 2, arcs: measured 3.5e−2, as the star's rotation in
+    # docs/defaults.md). Tolerances: about twice the measured errors.
+    initial = slc.Interface(ellipse(0.8, 0.4, 128) + [0.2, 0.1])
+
+    def field(t, p):
+        return np.c_[-p[:, 1], p[:, 0]]
+
+    for velocity, tolerance in ((slc.FlowField(field), 5e-4), (lambda t, p, n, k: field(t, p), 7e-2)):
+        r = slc.run(initial, velocity, 2 * math.pi, frames=4)
+        assert r.status == "ok"
+        d, _ = slc.distance(initial, r.interface.points)
+        assert np.abs(d).max() < tolerance
+        assert [t for t, _ in r.frames] == pytest.approx(np.linspace(0, 2 * math.pi, 5))
+        assert r.interface.area == pytest.approx(initial.area, rel=1e-2)
+    assert r.summary["params"]["extension"] == "nearest"
+
+
+def test_built_in_law_with_params_matches_the_defaults():
+    r = slc.run(slc.Interface(circle(0.5, 64)), "rotation", math.pi, params={"omega": 2},
+                steps=10)
+    assert r.status == "ok" and r.summary["params"]["velocity_params"] == {"omega": 2.0}
+    assert r.summary["params"]["extension"] == "direct"
+    with pytest.raises(ValueError, match="unknown velocity"):
+        slc.run(slc.Interface(circle()), "nope", 1.0)
+    with pytest.raises(ValueError, match="omeg"):
+        slc.run(slc.Interface(circle()), "rotation", 1.0, params={"omeg": 1})
+    with pytest.raises(ValueError, match="t-end"):
+        slc.run(slc.Interface(circle()), "rotation", -1.0)
+    with pytest.raises(ValueError, match="extension must be one of"):
+        slc.run(slc.Interface(circle()), "rotation", 1.0, extension="far")
+
+
+def test_an_exception_in_a_callback_reaches_the_caller_unchanged():
+    class Mine(Exception):
+        pass
+
+    def law(t, p, n, k):
+        if t > 0.05:
+            raise Mine("from the law")
+        return np.zeros(len(p))
+
+    with pytest.raises(Mine, match="from the law"):
+        slc.run(slc.Interface(circle()), law, 0.2, steps=4)
+
+    def stop(step):
+        raise KeyError("from the observer")
+
+    with pytest.raises(KeyError, match="from the observer"):
+        slc.run(slc.Interface(circle()), "curvature", 0.01, steps=4, observer=stop)
+    with pytest.raises(ValueError, match="must return"):
+        slc.run(slc.Interface(circle()), lambda t, p, n, k: np.zeros(3), 0.1, steps=2)
+
+
+def test_an_observer_sees_every_step_and_may_stop_the_run():
+    seen = []
+
+    def observer(step):
+        seen.append((step.step, step.t, len(step.interface)))
+        return step.step < 3
+
+    r = slc.run(slc.Interface(circle()), "curvature", 0.01, steps=10, observer=observer)
+    assert r.status == "interrupted" and r.summary["steps_done"] == 3
+    assert [s[0] for s in seen] == [1, 2, 3] and len(r.history["t"]) == 4
+
+
+def test_ctrl_c_stops_a_run_between_steps():
+    # SIGINT from another thread while the run is in C++: the run stops after the step.
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        r = slc.run(slc.Interface(circle()), "unit-normal", 0.5, steps=100000)
+    finally:
+        timer.cancel()
+    assert r.status == "interrupted" and 0 < r.summary["steps_done"] < 100000
+
+
+def test_a_vanishing_curve_ends_the_run():
+    r = slc.run(slc.Interface(circle(0.2, 64)), "curvature", 0.05, steps=20)
+    assert r.status == "vanished" and len(r.interface) == 0 and r.interface.area == 0.0
+
+
+def test_the_gil_is_released_while_the_library_works():
+    # A Python thread counts while the run is in C++: between the first and the last step it
+    # runs only if the run released the GIL (the observer's few lines hold it for microseconds).
+    count, done = [0], threading.Event()
+
+    def spin():
+        while not done.is_set():
+            count[0] += 1
+
+    seen = {}
+
+    def observer(step):
+        seen[step.step] = count[0]
+
+    worker = threading.Thread(target=spin)
+    worker.start()
+    try:
+        slc.run(slc.Interface(circle()), "curvature", 0.05, steps=20, threads=1, observer=observer)
+    finally:
+        done.set()
+        worker.join()
+    assert seen[20] - seen[1] > 10000
