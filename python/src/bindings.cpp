@@ -128,15 +128,6 @@ void save(const std::string& path, const std::vector<Array>& arrays, double time
     write_file_atomic(path, interface_json(Interface(curves_of(arrays)), time));
 }
 
-/// The distance tree depth `slc distance` takes: cells about one mean segment wide.
-int default_tree_depth(const Interface& curves, const Box& domain) {
-    const double mean = length(curves) / static_cast<double>(curves.size());
-    const int level =
-        static_cast<int>(std::ceil(std::log2(domain.width() / std::max(mean, 1e-300))));
-    const int deepest = Quadtree::max_resolvable_depth(domain);
-    return std::clamp(level, std::min(2, deepest), std::min(16, deepest));
-}
-
 py::tuple distance(const std::vector<Array>& arrays, const Array& xs_array) {
     const Curves raw = curves_of(arrays);
     const std::vector<Vec2> xs = points_of(xs_array);
@@ -147,7 +138,8 @@ py::tuple distance(const std::vector<Array>& arrays, const Array& xs_array) {
         const Interface curves(raw);
         const Box domain = default_domain(raw);
         const DistanceTree tree(
-            curves, domain, {.depth = default_tree_depth(curves, domain), .triangulate = false});
+            curves, domain,
+            {.depth = DistanceTree::default_depth(curves, domain), .triangulate = false});
         const std::vector<ClosestPoint> answers = tree.closest_points(xs);
         for (std::size_t i = 0; i < xs.size(); ++i) {
             d[i] = answers[i].distance;

@@ -277,4 +277,12 @@ std::vector<double> DistanceTree::signed_distances(std::span<const Vec2> xs) con
     return out;
 }
 
+int DistanceTree::default_depth(const Interface& curves, const Box& domain) {
+    const double mean = length(curves) / static_cast<double>(curves.size());
+    const int level =
+        static_cast<int>(std::ceil(std::log2(domain.width() / std::max(mean, 1e-300))));
+    const int deepest = Quadtree::max_resolvable_depth(domain);
+    return std::clamp(level, std::min(2, deepest), std::min(16, deepest));
+}
+
 }  // namespace slc

@@ -206,16 +206,9 @@ private:
             }
         }
         std::vector<double> speeds(at.size());
-        law_.normal_speeds(t_, at, normals, speeds);
+        normal_speeds(at, normals, speeds);
         double most = 0.0;
-        for (std::size_t i = 0; i < speeds.size(); ++i) {
-            if (!std::isfinite(speeds[i])) {
-                throw NumericalFailure(
-                    fmt::format("velocity '{}' is not finite at t = {} at ({}, {})", law_.name(),
-                                t_, at[i].x, at[i].y));
-            }
-            most = std::max(most, std::abs(speeds[i]));
-        }
+        for (double v : speeds) most = std::max(most, std::abs(v));
         return 1.1 * most;
     }
 

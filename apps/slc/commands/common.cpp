@@ -96,14 +96,6 @@ LoadedInterface load_interface(const std::string& path, const DomainOptions& dom
     }
 }
 
-int default_tree_depth(const Interface& curves, const Box& domain) {
-    const double mean = length(curves) / static_cast<double>(curves.size());
-    const int level =
-        static_cast<int>(std::ceil(std::log2(domain.width() / std::max(mean, 1e-300))));
-    const int deepest = Quadtree::max_resolvable_depth(domain);
-    return std::clamp(level, std::min(2, deepest), std::min(16, deepest));
-}
-
 nlohmann::json box_json(const Box& b) { return {b.lo.x, b.lo.y, b.hi.x, b.hi.y}; }
 
 void apply_threads(int threads) { set_thread_count(threads); }

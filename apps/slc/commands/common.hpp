@@ -37,10 +37,6 @@ struct LoadedInterface {
 };
 LoadedInterface load_interface(const std::string& path, const DomainOptions& domain);
 
-/// Default distance-tree depth for an interface when none is given: the level whose cells are
-/// about as large as the mean segment, between 2 and 16.
-int default_tree_depth(const Interface& curves, const Box& domain);
-
 /// JSON for a box: [x0, y0, x1, y1].
 nlohmann::json box_json(const Box& b);
 

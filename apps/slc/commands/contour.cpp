@@ -156,7 +156,7 @@ void write_results(const ContourCommandOptions& o, const LoadedInterface& in,
 void run_contour(const ContourCommandOptions& o) {
     apply_threads(o.threads);
     const LoadedInterface in = load_interface(o.initial, o.domain);
-    const int tree_depth = o.tree_depth.value_or(default_tree_depth(in.curves, in.domain));
+    const int tree_depth = o.tree_depth.value_or(DistanceTree::default_depth(in.curves, in.domain));
     const ContourOptions options = library_options(o);
     nlohmann::json summary = summary_head(o, in, options, tree_depth);
 

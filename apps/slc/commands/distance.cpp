@@ -21,7 +21,7 @@ void run_distance(const DistanceOptions& o) {
     apply_threads(o.threads);
     const LoadedInterface in = load_interface(o.initial, o.domain);
     const std::vector<Vec2> xs = read_points_csv(o.points);
-    const int depth = o.depth.value_or(default_tree_depth(in.curves, in.domain));
+    const int depth = o.depth.value_or(DistanceTree::default_depth(in.curves, in.domain));
     const DistanceTree tree(in.curves, in.domain, {.depth = depth, .triangulate = false});
     const std::vector<ClosestPoint> answers = tree.closest_points(xs);
     std::string out = "x,y,distance,nearest_x,nearest_y\n";

@@ -43,6 +43,11 @@ public:
     /// Cost O(N log N) time and memory for N segments of similar size.
     DistanceTree(const Interface& curves, Box domain, Options options);
 
+    /// A depth for curves in domain when none is given: the level whose cells are about as
+    /// large as the mean segment, between 2 and 16 (and within what doubles resolve there).
+    /// Only the cost of a query depends on it. Precondition: curves is not empty.
+    static int default_depth(const Interface& curves, const Box& domain);
+
     /// Signed closest point of Γ to x (any x, also outside the domain): distance exact to
     /// rounding; sign right at corners (pseudo-normal at vertices); 0 on Γ. O(log N) near Γ.
     ClosestPoint closest_point(Vec2 x) const;
