@@ -57,4 +57,28 @@ RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, 
     return o;
 }
 
+Problem curve_problem(std::string name, const Interface& curves, const Box& domain, double t_start,
+                      double t_end, const VelocityLaw& law, std::string velocity,
+                      VelocityParams params) {
+    const RunOptions defaults = default_run_options(curves, law, t_start, t_end);
+    const ContourOptions& c = defaults.step.contour;
+    Problem p;
+    p.name = std::move(name);
+    p.initial = curves.curves();
+    p.domain = domain;
+    p.t_start = t_start;
+    p.t_end = t_end;
+    p.velocity = std::move(velocity);
+    p.velocity_params = std::move(params);
+    p.steps = defaults.steps;
+    p.depth = c.depth;
+    p.refine = c.refine_passes;
+    p.eps = *c.eps;
+    p.eta = c.eta;
+    p.length_scale = length_scale(curves);
+    p.triangle_safeguard = c.triangle_safeguard;
+    p.max_domain_doublings = defaults.max_domain_doublings;
+    return p;
+}
+
 }  // namespace slc

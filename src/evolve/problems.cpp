@@ -368,6 +368,26 @@ Problem make_problem(const std::string& name, const std::map<std::string, double
     throw InvalidInput(fmt::format("unknown problem '{}'; known: {}", name, known));
 }
 
+RunOptions problem_run_options(const Problem& p) {
+    RunOptions r;
+    r.t_start = p.t_start;
+    r.t_end = p.t_end;
+    r.steps = p.steps;
+    r.max_domain_doublings = p.max_domain_doublings;
+    ContourOptions& c = r.step.contour;
+    c.depth = p.depth;
+    c.refine_passes = p.refine;
+    c.eps = p.eps;
+    c.eta = p.eta;
+    c.triangle_safeguard = p.triangle_safeguard;
+    r.step.extension = p.extension;
+    r.step.arcs = p.arcs;
+    r.step.area_correction = p.area_correction;
+    r.step.embedded.mesh = default_mesh_size(c.depth);
+    r.step.embedded.smoothing = p.smoothing;
+    return r;
+}
+
 std::optional<double> max_error(const Problem& problem, const Interface& curves, double t) {
     if (!problem.exact || curves.empty()) return std::nullopt;
     const auto d = problem.exact(vertices_and_midpoints(curves), t);

@@ -35,26 +35,9 @@ Problem resolve_problem(const ProblemSource& o) {
     if (o.velocity.empty()) throw InvalidInput("--initial needs --velocity NAME");
     if (!o.t_end) throw InvalidInput("--initial needs --t-end");
     LoadedInterface in = load_interface(o.initial, o.domain);
-    Problem p;
-    p.name = std::filesystem::path(o.initial).stem().string();
-    p.initial = in.curves.curves();
-    p.domain = in.domain;
-    p.t_start = in.time;
-    p.t_end = *o.t_end;
-    p.velocity = o.velocity;
-    p.velocity_params = params;
-    const auto law = make_velocity(p.velocity, params, std::nullopt);
-    const RunOptions defaults = default_run_options(in.curves, *law, p.t_start, p.t_end);
-    const ContourOptions& c = defaults.step.contour;
-    p.steps = defaults.steps;
-    p.depth = c.depth;
-    p.refine = c.refine_passes;
-    p.eps = *c.eps;
-    p.eta = c.eta;
-    p.length_scale = length_scale(in.curves);
-    p.triangle_safeguard = c.triangle_safeguard;
-    p.max_domain_doublings = defaults.max_domain_doublings;
-    return p;
+    const auto law = make_velocity(o.velocity, params, std::nullopt);
+    return curve_problem(std::filesystem::path(o.initial).stem().string(), in.curves, in.domain,
+                         in.time, *o.t_end, *law, o.velocity, params);
 }
 
 }  // namespace slc::cli

@@ -2,7 +2,6 @@
 #include "commands/run_options.hpp"
 
 #include <fmt/format.h>
-#include <sys/resource.h>
 
 #include <cmath>
 
@@ -23,20 +22,6 @@ const std::map<std::string, GeometryModule> geometry_names = {
     {"intrinsic", GeometryModule::intrinsic},
     {"embedded", GeometryModule::embedded},
     {"arclength", GeometryModule::arclength}};
-
-/// The most memory the process has held so far (resident set, MiB): the check that long runs
-/// stay bounded (scripts/memcheck) reads it from summary.json.
-double peak_rss_mib() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
-}
-
-std::string extension_name(Extension e) {
-    for (const auto& [name, value] : extension_names)
-        if (value == e) return name;
-    return "nearest";
-}
 
 }  // namespace
 
@@ -115,99 +100,27 @@ std::optional<GeometryModule> geometry_module(const MethodOptions& method) {
 }
 
 RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
-    RunOptions r;
-    r.t_start = p.t_start;
-    r.t_end = p.t_end;
-    r.steps = m.steps.value_or(p.steps);
+    RunOptions r = problem_run_options(p);
+    if (m.steps) r.steps = *m.steps;
     ContourOptions& c = r.step.contour;
-    c.depth = m.depth.value_or(p.depth);
-    c.refine_passes = m.refine.value_or(p.refine);
-    c.eps = m.eps ? *m.eps : (m.depth ? std::pow(10.0, -c.depth) * p.length_scale : p.eps);
-    c.eta = m.eta.value_or(p.eta);
+    if (m.depth) {
+        c.depth = *m.depth;
+        c.eps = std::pow(10.0, -c.depth) * p.length_scale;
+    }
+    if (m.refine) c.refine_passes = *m.refine;
+    if (m.eps) c.eps = *m.eps;
+    if (m.eta) c.eta = *m.eta;
     c.rho = m.rho;
-    c.triangle_safeguard = p.triangle_safeguard;
     if (*c.eps < c.eta)
         throw InvalidInput(fmt::format("--eps ({}) must not be below --eta ({})", *c.eps, c.eta));
-    r.max_domain_doublings = p.max_domain_doublings;
     r.step.tree_depth = m.tree_depth.value_or(0);
-    r.step.extension = m.extension ? std::optional(extension_names.at(*m.extension)) : p.extension;
+    if (m.extension) r.step.extension = extension_names.at(*m.extension);
     r.step.embedded.mesh = m.mesh.value_or(default_mesh_size(c.depth));
     r.step.embedded.eno_order = m.eno_order;
-    r.step.embedded.smoothing = m.smooth.value_or(p.smoothing);
-    r.step.arcs = m.arcs ? m.arcs : p.arcs;
-    r.step.area_correction = p.area_correction;
+    if (m.smooth) r.step.embedded.smoothing = *m.smooth;
+    if (m.arcs) r.step.arcs = m.arcs;
     r.step.arc_width = m.arc_width;
     return r;
-}
-
-std::string run_name(const RunOptions& o) {
-    return fmt::format("{}/{}/{}/{}/{:.0e}", o.steps, o.step.embedded.smoothing,
-                       o.step.contour.depth, refine_name(o.step.contour.refine_passes),
-                       o.step.contour.resolved_eps());
-}
-
-std::string refine_name(int passes) {
-    return passes == ContourOptions::until_converged ? "converged" : std::to_string(passes);
-}
-
-nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResult& r,
-                           const VelocityLaw& law) {
-    const auto e_inf = max_error(p, r.curves, r.t);
-    const ContourOptions& c = o.step.contour;
-    nlohmann::json params = {
-        {"N", o.steps},
-        {"K", c.depth},
-        {"P", c.refine_passes == ContourOptions::until_converged ? nlohmann::json("converged")
-                                                                 : nlohmann::json(c.refine_passes)},
-        {"eps", c.resolved_eps()},
-        {"eta", c.eta},
-        {"rho", c.rho},
-        {"M", o.step.embedded.mesh},
-        {"E", o.step.embedded.eno_order},
-        {"S", o.step.embedded.smoothing},
-        {"L", o.step.resolved_tree_depth()},
-        {"domain", {p.domain.lo.x, p.domain.lo.y, p.domain.hi.x, p.domain.hi.y}},
-        {"t_end", o.t_end},
-        {"velocity", law.name()},
-        {"velocity_params", p.velocity_params},
-        {"extension", extension_name(o.step.resolved_extension(law))},
-        {"arcs", o.step.resolved_arcs(law)},
-        {"area_correction", o.step.area_correction.value_or(law.preserves_area())},
-        {"arc_width", o.step.resolved_arc_width((o.t_end - o.t_start) / o.steps)}};
-    for (const auto& q : p.parameters) params["problem_params"][q.name] = q.value;
-    nlohmann::json s = {
-        {"problem", p.name},
-        {"run", run_name(o)},
-        {"params", params},
-        {"t_end", o.t_end},
-        {"t", r.t},
-        {"steps", o.steps},
-        {"steps_done", r.steps_done},
-        {"status", to_string(r.status)},
-        {"e_inf", e_inf ? nlohmann::json(*e_inf) : nlohmann::json(nullptr)},
-        {"area", area(r.curves)},
-        {"length", length(r.curves)},
-        {"components", r.curves.curve_count()},
-        {"segments", r.curves.size()},
-        {"wall_s", r.wall_s},
-        {"cpu_s", r.cpu_s},
-        {"cpu_s_per_step", r.steps_done > 0 ? r.cpu_s / r.steps_done : 0.0},
-        {"threads", thread_count()},
-        {"g_evals", r.g_evals},
-        {"peak_rss_mib", peak_rss_mib()},
-        {"g_evals_per_vertex",
-         r.vertices_produced > 0 ? static_cast<double>(r.g_evals) / r.vertices_produced : 0.0}};
-    if (r.status == RunStatus::error) s["message"] = r.message;
-    if (o.step.area_correction.value_or(law.preserves_area()))
-        s["area_corrected"] = r.area_corrected;
-    if (r.domain_doublings > 0) {
-        const Box d = doubled_domain(p.domain, r.domain_doublings);
-        s["domain_grown"] = {{"at_t", r.domain_grown_at},
-                             {"doublings", r.domain_doublings},
-                             {"domain", {d.lo.x, d.lo.y, d.hi.x, d.hi.y}},
-                             {"K", c.depth + r.domain_doublings}};
-    }
-    return s;
 }
 
 std::map<std::string, double> parse_params(const std::vector<std::string>& params) {

@@ -11,6 +11,7 @@
 
 #include "slc/evolve/problems.hpp"
 #include "slc/evolve/run.hpp"
+#include "slc/io/summary.hpp"
 
 namespace slc::cli {
 
@@ -41,18 +42,6 @@ std::optional<GeometryModule> geometry_module(const MethodOptions& method);
 
 /// The run's options: command line over problem defaults over DESIGN §4 defaults.
 RunOptions resolve_run_options(const MethodOptions& method, const Problem& problem);
-
-/// summary.json of a run (DESIGN §6): problem, params, t_end, steps, status, e_inf, area, length,
-/// components, segments, wall_s, cpu_s, cpu_s_per_step, threads, g_evals, g_evals_per_vertex,
-/// peak_rss_mib (the process's peak resident memory). law: the law the run used, whose defaults
-/// resolve the extension and arcs.
-nlohmann::json run_summary(const Problem& problem, const RunOptions& options,
-                           const RunResult& result, const VelocityLaw& law);
-
-/// The run's name N/S/K/P/ε as in the paper.
-std::string run_name(const RunOptions& options);
-/// P as a name: the number of passes, or "converged".
-std::string refine_name(int passes);
 
 /// --param key=value pairs; InvalidInput for a malformed one.
 std::map<std::string, double> parse_params(const std::vector<std::string>& params);

@@ -4,9 +4,11 @@
 /// gets from one call. The named problems keep the paper's own settings instead (problems.hpp).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "slc/core/box.hpp"
+#include "slc/evolve/problems.hpp"
 #include "slc/evolve/run.hpp"
 
 namespace slc {
@@ -33,5 +35,12 @@ double length_scale(const Interface& curves);
 /// Throws InvalidInput for empty curves or t_end not after t_start.
 RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, double t_start,
                                double t_end);
+
+/// A user's curves (valid, not empty, inside domain) moved by law from t_start to t_end, as a
+/// Problem with the settings of default_run_options (ℓ = length_scale(curves)) and the law's
+/// own extension, arcs and area correction; velocity and params name the law in summary.json.
+Problem curve_problem(std::string name, const Interface& curves, const Box& domain, double t_start,
+                      double t_end, const VelocityLaw& law, std::string velocity,
+                      VelocityParams params);
 
 }  // namespace slc

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "slc/core/box.hpp"
+#include "slc/evolve/run.hpp"
 #include "slc/evolve/step.hpp"
 #include "slc/velocity/factory.hpp"
 
@@ -84,6 +85,11 @@ const std::vector<ProblemInfo>& problem_catalog();
 /// the others are velocity parameters (checked by make_velocity). Throws InvalidInput for an
 /// unknown problem ("unknown problem 'x'; known: ...").
 Problem make_problem(const std::string& name, const std::map<std::string, double>& params = {});
+
+/// The options of a run of the problem at its own settings: its time interval, N, K, P, ε, η, S,
+/// extension, arcs, area correction, triangle safeguard and domain doublings; M = 2^(K+1) and the
+/// rest the defaults of DESIGN §4.
+RunOptions problem_run_options(const Problem& problem);
 
 /// The error of the paper's Equation (11): the largest |F(x, t)| over the vertices and segment
 /// midpoints of curves, F the exact signed distance; nullopt when the problem has no exact solution

@@ -1,0 +1,37 @@
+/// @file
+/// summary.json of a run (DESIGN §6): the settings it used, how it ended and what it cost; the
+/// same keys from `slc run` and from Python's `slc.run(...).summary`.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "slc/evolve/problems.hpp"
+#include "slc/evolve/run.hpp"
+
+namespace slc {
+
+/// An extension's spelling in summary.json and on the command line: nearest, whitney, direct.
+const char* to_string(Extension extension);
+
+/// P as summary.json writes it: the number of passes, or "converged".
+std::string refine_name(int passes);
+
+/// The run's name N/S/K/P/ε as the paper writes it ("80/0/6/2/1e-06").
+std::string run_name(const RunOptions& options);
+
+/// The most memory the process has held so far (resident set, MiB): the check that long runs
+/// stay bounded (scripts/memcheck) reads it from summary.json.
+double peak_rss_mib();
+
+/// summary.json of a run: problem, run, params (N, K, P, ε, η, ρ, M, E, S, L, domain, the law and
+/// its parameters, extension, arcs, area correction, σ, the problem's own parameters), t_end, t,
+/// steps, steps_done, status, e_inf (Equation 11 where the problem has an exact solution, else
+/// null), area, length, components, segments, wall_s, cpu_s, cpu_s_per_step, threads, g_evals,
+/// peak_rss_mib, g_evals_per_vertex; message for an error, area_corrected when the correction was
+/// on, domain_grown when the domain doubled. law: the law the run used, whose defaults resolve the
+/// extension and arcs.
+nlohmann::json run_summary(const Problem& problem, const RunOptions& options,
+                           const RunResult& result, const VelocityLaw& law);
+
+}  // namespace slc

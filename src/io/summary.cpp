@@ -1,0 +1,99 @@
+// summary.json of a run (DESIGN §6).
+#include "slc/io/summary.hpp"
+
+#include <fmt/format.h>
+#include <sys/resource.h>
+
+#include "slc/core/parallel.hpp"
+
+namespace slc {
+
+const char* to_string(Extension extension) {
+    switch (extension) {
+        case Extension::nearest_point:
+            return "nearest";
+        case Extension::whitney:
+            return "whitney";
+        case Extension::direct:
+            return "direct";
+    }
+    return "nearest";
+}
+
+double peak_rss_mib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+std::string run_name(const RunOptions& o) {
+    return fmt::format("{}/{}/{}/{}/{:.0e}", o.steps, o.step.embedded.smoothing,
+                       o.step.contour.depth, refine_name(o.step.contour.refine_passes),
+                       o.step.contour.resolved_eps());
+}
+
+std::string refine_name(int passes) {
+    return passes == ContourOptions::until_converged ? "converged" : std::to_string(passes);
+}
+
+nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResult& r,
+                           const VelocityLaw& law) {
+    const auto e_inf = max_error(p, r.curves, r.t);
+    const ContourOptions& c = o.step.contour;
+    nlohmann::json params = {
+        {"N", o.steps},
+        {"K", c.depth},
+        {"P", c.refine_passes == ContourOptions::until_converged ? nlohmann::json("converged")
+                                                                 : nlohmann::json(c.refine_passes)},
+        {"eps", c.resolved_eps()},
+        {"eta", c.eta},
+        {"rho", c.rho},
+        {"M", o.step.embedded.mesh},
+        {"E", o.step.embedded.eno_order},
+        {"S", o.step.embedded.smoothing},
+        {"L", o.step.resolved_tree_depth()},
+        {"domain", {p.domain.lo.x, p.domain.lo.y, p.domain.hi.x, p.domain.hi.y}},
+        {"t_end", o.t_end},
+        {"velocity", law.name()},
+        {"velocity_params", p.velocity_params},
+        {"extension", to_string(o.step.resolved_extension(law))},
+        {"arcs", o.step.resolved_arcs(law)},
+        {"area_correction", o.step.area_correction.value_or(law.preserves_area())},
+        {"arc_width", o.step.resolved_arc_width((o.t_end - o.t_start) / o.steps)}};
+    for (const auto& q : p.parameters) params["problem_params"][q.name] = q.value;
+    nlohmann::json s = {
+        {"problem", p.name},
+        {"run", run_name(o)},
+        {"params", params},
+        {"t_end", o.t_end},
+        {"t", r.t},
+        {"steps", o.steps},
+        {"steps_done", r.steps_done},
+        {"status", to_string(r.status)},
+        {"e_inf", e_inf ? nlohmann::json(*e_inf) : nlohmann::json(nullptr)},
+        {"area", area(r.curves)},
+        {"length", length(r.curves)},
+        {"components", r.curves.curve_count()},
+        {"segments", r.curves.size()},
+        {"wall_s", r.wall_s},
+        {"cpu_s", r.cpu_s},
+        {"cpu_s_per_step", r.steps_done > 0 ? r.cpu_s / r.steps_done : 0.0},
+        {"threads", thread_count()},
+        {"g_evals", r.g_evals},
+        {"peak_rss_mib", peak_rss_mib()},
+        {"g_evals_per_vertex",
+         r.vertices_produced > 0 ? static_cast<double>(r.g_evals) / r.vertices_produced : 0.0}};
+    if (r.status == RunStatus::error) s["message"] = r.message;
+    if (o.step.area_correction.value_or(law.preserves_area()))
+        s["area_corrected"] = r.area_corrected;
+    if (r.domain_doublings > 0) {
+        const Box d = doubled_domain(p.domain, r.domain_doublings);
+        s["domain_grown"] = {{"at_t", r.domain_grown_at},
+                             {"doublings", r.domain_doublings},
+                             {"domain", {d.lo.x, d.lo.y, d.hi.x, d.hi.y}},
+                             {"K", c.depth + r.domain_doublings}};
+    }
+    return s;
+}
+
+}  // namespace slc
