@@ -3,7 +3,8 @@ slc_packages=(cmake ninja-build g++ pkg-config libcli11-dev nlohmann-json3-dev l
               libcairo2-dev libgtest-dev libgmock-dev libbenchmark-dev clang-format)
 # The Python package (scripts/python-env): Debian's interpreter, pybind11, numpy, pytest.
 slc_python_packages=(python3-dev python3-venv python3-setuptools python3-wheel python3-pybind11
-                     pybind11-dev python3-numpy python3-pytest)
+                     pybind11-dev python3-numpy python3-pytest python3-matplotlib python3-pandas
+                     python3-distributed)
 
 slc_install_deps() {
   local missing=()

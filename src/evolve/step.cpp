@@ -38,6 +38,8 @@ Extension StepOptions::resolved_extension(const VelocityLaw& law) const {
 
 bool StepOptions::resolved_arcs(const VelocityLaw& law) const {
     if (arcs) return *arcs;
+    if (resolved_extension(law) == Extension::direct && (law.is_normal_law() || law.is_field()))
+        return true;
     const GeometryNeeds needs = law.needs();
     return needs.curvature && needs.resolved_module() == GeometryModule::arclength;
 }
@@ -80,6 +82,7 @@ public:
             if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
             for (Vec2 u : u_) max_speed_ = std::max(max_speed_, norm(u));
         } else if (law.is_normal_law()) {
+            set_vertex_normals();
             max_speed_ = max_normal_speed();
         }
         if (options.resolved_arcs(law)) {
@@ -102,8 +105,8 @@ public:
     /// StepOptions::arcs.
     double distance(Vec2 x) const { return distance(tree_.closest_point(x)); }
 
-    /// What a normal law's step needs at a batch of points: F there and the distance field's
-    /// normal N, one closest-point query each, on all worker threads.
+    /// What a normal law's step needs at a batch of points: F there and the normal the law sees
+    /// (field_normal), one closest-point query each, on all worker threads.
     void distances_and_normals(std::span<const Vec2> xs, std::span<double> f,
                                std::span<Vec2> n) const {
         parallel_for(
@@ -168,23 +171,50 @@ private:
         return -perp(e) / norm(e);  // the outside is on the right
     }
 
-    /// ∇F at x, given its closest point p: the nearest segment's normal when p lies inside it,
-    /// else the direction from the nearest vertex, sign F (x − y)/|x − y|; at the vertex itself
-    /// (within a relative 1e−9 of its shorter segment) the pseudo-normal, the normalized sum of
-    /// its two segments' normals.
+    /// The normal a normal law sees at x, given its closest point p: ∇F, except that the
+    /// polygon's vertices where it turns by at most StepOptions::arc_corner are read as points of
+    /// a smooth curve. Inside a segment, the normal interpolated linearly between its ends' and
+    /// normalized, where an end's normal is its vertex's pseudo-normal (the normalized sum of its
+    /// two segments' normals) at a smooth vertex and the segment's own at a corner; nearest a
+    /// smooth vertex, its pseudo-normal; nearest a corner, the direction from it,
+    /// sign F (x − y)/|x − y| (its pseudo-normal within a relative 1e−9 of it). The field is then
+    /// continuous across the bisectors inside a smooth curve, where ∇F jumps by the turning angle
+    /// at every vertex (a jump a direction-dependent speed would turn into a jump of G), while
+    /// corners keep the exact field: the fan of normals in their wedge, the shock on the bisector.
     Vec2 field_normal(Vec2 x, const ClosestPoint& p) const {
-        if (p.t > 0.0 && p.t < 1.0) return segment_normal(p.segment);
         const Interface& curves = tree_.curves();
+        if (p.t > 0.0 && p.t < 1.0) {
+            const Vec2 own = segment_normal(p.segment);
+            const std::size_t b = curves.next(p.segment);
+            const Vec2 sum = (1.0 - p.t) * (smooth_[p.segment] ? vertex_normals_[p.segment] : own) +
+                             p.t * (smooth_[b] ? vertex_normals_[b] : own);
+            const double s = norm(sum);
+            return s > 0.0 ? sum / s : own;
+        }
         const std::size_t v = p.t == 0.0 ? p.segment : curves.next(p.segment);
+        if (smooth_[v]) return vertex_normals_[v];
         const std::size_t before = curves.prev(v);
         const Vec2 d = x - curves.point(v);
         const double r = norm(d);
         const double shorter = std::min(norm(curves.point(v) - curves.point(before)),
                                         norm(curves.point(curves.next(v)) - curves.point(v)));
         if (r > 1e-9 * shorter) return (p.distance < 0.0 ? -1.0 / r : 1.0 / r) * d;
-        const Vec2 sum = segment_normal(before) + segment_normal(v);
-        const double s = norm(sum);
-        return s > 0.0 ? sum / s : segment_normal(v);
+        return vertex_normals_[v];
+    }
+
+    /// Each vertex's pseudo-normal, and whether the polygon turns there by at most
+    /// StepOptions::arc_corner (field_normal).
+    void set_vertex_normals() {
+        const Interface& curves = tree_.curves();
+        vertex_normals_.resize(curves.size());
+        smooth_.resize(curves.size());
+        for (std::size_t v = 0; v < curves.size(); ++v) {
+            const Vec2 a = segment_normal(curves.prev(v)), b = segment_normal(v);
+            const Vec2 sum = a + b;
+            const double s = norm(sum);
+            vertex_normals_[v] = s > 0.0 ? sum / s : b;
+            smooth_[v] = std::abs(std::atan2(cross(a, b), dot(a, b))) <= StepOptions::arc_corner;
+        }
     }
 
     /// A bound on |V| over every normal of the distance field: V at each vertex for the normals
@@ -218,7 +248,9 @@ private:
     DistanceTree tree_;
     std::vector<Vec2> u_;
     double max_speed_ = 0.0;
-    std::vector<double> kappa_;  ///< arc curvatures at the vertices, empty without arcs
+    std::vector<double> kappa_;         ///< arc curvatures at the vertices, empty without arcs
+    std::vector<Vec2> vertex_normals_;  ///< pseudo-normals, for a normal law (field_normal)
+    std::vector<char> smooth_;          ///< turning by at most arc_corner, for a normal law
     double max_bulge_ = 0.0;
     std::optional<WhitneyExtension<Vec2>> whitney_;
 };

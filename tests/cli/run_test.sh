@@ -105,7 +105,7 @@ expect_error "no input" "--problem|--initial" -- run --out x
 expect_error "missing t-end" "t-end" -- run --initial square.json --velocity rotation --domain 2 --out x
 # A user's curve with nothing set gets the law's defaults (docs/defaults.md): curvature laws the
 # arclength module with arcs and P = 2; normal laws and flow fields the law itself off the curve,
-# refined until converged; eps and eta relative to the curves' half-width (here 1).
+# with arcs, refined until converged; eps and eta relative to the curves' half-width (here 1).
 echo '{"curves": [{"points": [[1, 0], [0.5, 0.866], [-0.5, 0.866], [-1, 0], [-0.5, -0.866], [0.5, -0.866]]}]}' >hexagon.json
 expect_ok "default curvature run" -- run --initial hexagon.json --velocity curvature --t-end 0.05 --out dcurv --quiet
 check "curvature: arcs by default" grep -q '"arcs": true' dcurv/summary.json
@@ -117,6 +117,7 @@ expect_ok "default normal-speed run" -- run --initial hexagon.json --velocity un
     --out dgrow --quiet
 check "normal law: direct" grep -q '"extension": "direct"' dgrow/summary.json
 check "normal law: refined until converged" grep -q '"P": "converged"' dgrow/summary.json
+check "normal law: arcs" grep -q '"arcs": true' dgrow/summary.json
 expect_ok "-P converged on a named problem" -- run --problem triangle-normal -N 4 -K 4 -P converged --out pconv --quiet
 check "named problem keeps the nearest-point extension" grep -q '"extension": "nearest"' pconv/summary.json
 # Growing past the default domain (1.5 times the hexagon's half-width) doubles it, once, saying so.

@@ -84,7 +84,8 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         "Read the curve as circular arcs through its vertices, not as chords, when G is "
         "evaluated (corners turning by more than 0.5 rad stay sharp): for smooth curves, "
         "whose chords lose a little area each step. Default: on for curvature laws with "
-        "the arclength module (their default), off otherwise and for named problems");
+        "the arclength module (their default) and for laws evaluated directly (normal laws, "
+        "flow fields), off otherwise and for named problems");
     cmd.add_option("--arc-width", o.arc_width,
                    "sigma: arc length over which the arclength geometry module averages the "
                    "curvature (default sqrt(k); curvature flow is stable from 0.76 sqrt(k))")

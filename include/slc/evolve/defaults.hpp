@@ -31,7 +31,8 @@ double length_scale(const Interface& curves);
 ///   every other law: refinement until converged without the triangle safeguard, so that
 ///   corners the tree cuts are found again (ContourOptions::triangle_safeguard);
 /// - the extension: the law itself where it is known off the curve (flow fields, normal laws),
-///   the nearest-point extension otherwise (StepOptions::resolved_extension).
+///   the nearest-point extension otherwise (StepOptions::resolved_extension); arcs for the
+///   curvature laws and the laws evaluated directly (StepOptions::resolved_arcs).
 /// Throws InvalidInput for empty curves or t_end not after t_start.
 RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, double t_start,
                                double t_end);

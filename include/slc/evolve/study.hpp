@@ -48,7 +48,7 @@ struct StudyResult {
 /// outside 0..4 or a refine outside 0..4.
 RunOptions study_cell_options(const Problem& problem, int row, int refine, const RunOptions& base);
 
-/// Called before each run with its row and column and after it with the finished cell.
+/// Called after each run with the finished cell.
 using StudyObserver = std::function<void(const StudyCell&)>;
 
 /// Runs `rows` rows (1..5) of the problem's study plan with method options `base` (η, ρ, E,

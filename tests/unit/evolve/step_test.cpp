@@ -166,7 +166,13 @@ TEST(StepOptions, DefaultsFollowTheLaw) {
     EXPECT_EQ(o.resolved_extension(CurvatureFlow()), Extension::nearest_point);
     EXPECT_TRUE(o.resolved_arcs(CurvatureFlow()));
     EXPECT_FALSE(o.resolved_arcs(CurvatureFlow(GeometryModule::embedded)));
-    EXPECT_FALSE(o.resolved_arcs(NormalSpeed()));
+    // Laws evaluated directly read the curve as arcs; given the nearest-point extension, chords.
+    EXPECT_TRUE(o.resolved_arcs(NormalSpeed()));
+    EXPECT_TRUE(o.resolved_arcs(Rotation()));
+    StepOptions nearest;
+    nearest.extension = Extension::nearest_point;
+    EXPECT_FALSE(nearest.resolved_arcs(NormalSpeed()));
+    EXPECT_FALSE(nearest.resolved_arcs(Rotation()));
 }
 
 }  // namespace

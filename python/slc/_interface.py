@@ -1,0 +1,159 @@
+"""Curves as numpy arrays: the Interface, exact distances, and the contour of a function."""
+
+from __future__ import annotations
+
+import numbers
+import warnings
+from typing import Any, Callable
+
+import numpy as np
+
+from . import _slc
+
+def _points(a, what: str) -> np.ndarray:
+    """a as a C-contiguous float64 (n, 2) array; TypeError or ValueError naming `what`."""
+    arr = np.asarray(a)
+    if arr.dtype.kind not in "iuf":
+        raise TypeError(f"{what} must hold real numbers, got dtype {arr.dtype}")
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{what} must be an (n, 2) array, got shape {arr.shape}")
+    return np.ascontiguousarray(arr, dtype=np.float64)
+
+
+def _frozen(arrays) -> list[np.ndarray]:
+    out = []
+    for a in arrays:
+        a = np.asarray(a, dtype=np.float64)
+        a.flags.writeable = False
+        out.append(a)
+    return out
+
+
+class Interface:
+    """Closed curves in the plane, each an (n, 2) array of its vertices (the closing segment
+    implicit), counterclockwise around their inside, holes clockwise.
+
+    ``Interface(curves)`` validates as the tool does its files: an open or self-crossing curve,
+    curves that cross, fewer than 3 distinct points, a non-finite coordinate raise ValueError with
+    one line naming the curve and vertex; consecutive duplicate points are dropped; a curve the
+    other way round is reversed, with a warning. A single (n, 2) array is one curve.
+    """
+
+    __slots__ = ("_curves", "time")
+
+    def __init__(self, curves, time: float | None = None):
+        if isinstance(curves, Interface):
+            self._curves = curves._curves
+            self.time = curves.time if time is None else float(time)
+            return
+        if isinstance(curves, np.ndarray) and curves.ndim == 2:
+            curves = [curves]
+        if isinstance(curves, (str, bytes)) or not hasattr(curves, "__iter__"):
+            raise TypeError(f"curves must be a list of (n, 2) arrays, got {type(curves).__name__}")
+        arrays = [_points(c, f"curve {i}") for i, c in enumerate(curves)]
+        prepared, notes = _slc.prepare(arrays)
+        for note in notes:
+            warnings.warn(note, stacklevel=2)
+        self._curves = _frozen(prepared)
+        self.time = 0.0 if time is None else float(time)
+
+    def __reduce__(self):
+        """Pickled (for dask workers, multiprocessing) as the trusted arrays and the time."""
+        return (Interface._trusted, ([np.array(c) for c in self._curves], self.time))
+
+    @classmethod
+    def _trusted(cls, arrays, time: float = 0.0) -> "Interface":
+        """Curves the library produced, valid already (or none: a run whose curves vanished)."""
+        out = cls.__new__(cls)
+        out._curves = _frozen(arrays)
+        out.time = float(time)
+        return out
+
+    @property
+    def curves(self) -> list[np.ndarray]:
+        """The curves, each a read-only (n, 2) float64 array."""
+        return list(self._curves)
+
+    @property
+    def area(self) -> float:
+        """Enclosed area: holes subtract."""
+        return _slc.area(self._curves)
+
+    @property
+    def length(self) -> float:
+        """Total length of all curves."""
+        return _slc.length(self._curves)
+
+    @property
+    def points(self) -> np.ndarray:
+        """All vertices, curve after curve, as one (N, 2) array."""
+        if not self._curves:
+            return np.empty((0, 2))
+        return np.concatenate(self._curves)
+
+    def __len__(self) -> int:
+        """Number of curves."""
+        return len(self._curves)
+
+    def __repr__(self) -> str:
+        n = sum(len(c) for c in self._curves)
+        return f"<slc.Interface: {len(self._curves)} curves, {n} vertices, t = {self.time:g}>"
+
+    @classmethod
+    def load(cls, path) -> "Interface":
+        """Reads an interface file ({"time": t, "curves": [{"points": [[x, y], ...]}, ...]}),
+        validated as ``slc run --initial`` does; its time becomes ``.time``."""
+        arrays, time, notes = _slc.load(str(path))
+        for note in notes:
+            warnings.warn(f"{path}: {note}", stacklevel=2)
+        return cls._trusted(arrays, time)
+
+    def save(self, path) -> None:
+        """Writes the interface file the tool reads, with ``.time`` and 17 significant digits."""
+        _slc.save(str(path), self._curves, self.time)
+
+
+def _interface(x) -> Interface:
+    return x if isinstance(x, Interface) else Interface(x)
+
+
+def distance(interface, points) -> tuple[np.ndarray, np.ndarray]:
+    """Signed distance (negative inside) and a nearest point of the curves for each of the (m, 2)
+    points: ``(distance (m,), nearest (m, 2))``, exact to rounding, as ``slc distance``."""
+    curves = _interface(interface)
+    return _slc.distance(curves._curves, _points(points, "points"))
+
+
+def _refine(refine) -> int:
+    if isinstance(refine, str):
+        if refine != "converged":
+            raise ValueError(f"refine must be a number of passes or 'converged', got '{refine}'")
+        return _slc.until_converged
+    if isinstance(refine, bool) or not isinstance(refine, numbers.Integral):
+        raise TypeError(f"refine must be an integer or 'converged', got {refine!r}")
+    if refine < 0:
+        raise ValueError(f"refine must be 0 or more, or 'converged', got {refine}")
+    return int(refine)
+
+
+def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None = None,
+            refine=None) -> Interface:
+    """The zero set of f, a vectorised function f((m, 2) array) -> (m,) array, in box, by the
+    adaptive contouring (paper §2): curves with f > 0 on their right (counterclockwise around
+    regions where f < 0).
+
+    box: (x0, y0, x1, y1), a rectangle taken as the square around it, or b for [-b, b]².
+    depth: K, the deepest level of the topology tree. eps: ε, the midpoint tolerance of
+    refinement (default 10^-K). refine: P passes, or "converged"; by default converged when eps
+    is given, none otherwise. f is called once per batch of points, on the calling thread.
+    """
+    if isinstance(box, numbers.Real):
+        box = (-box, -box, box, box)
+    box = [float(v) for v in box]
+    if refine is None:
+        refine = "converged" if eps is not None else 0
+    if isinstance(depth, bool) or not isinstance(depth, numbers.Integral):
+        raise TypeError(f"depth must be an integer, got {depth!r}")
+    arrays, _ = _slc.contour(f, box, int(depth), None if eps is None else float(eps),
+                             _refine(refine))
+    return Interface._trusted(arrays)

@@ -1,0 +1,336 @@
+"""Moving curves: velocity laws from Python, runs, the paper's named problems and convergence
+studies, on top of the module _slc (the library's run loop, with the GIL released)."""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass, field
+from typing import Any, Callable, NamedTuple
+
+import numpy as np
+
+from . import _slc
+from ._interface import Interface, _interface, _points, _refine
+
+
+class FlowField:
+    """A velocity field f(t, points (m, 2)) -> (m, 2) known everywhere, so that the step samples
+    it along each characteristic (fourth-order Runge–Kutta, one contour per step) instead of
+    extending vertex velocities. f is called once per batch and stage."""
+
+    def __init__(self, f: Callable[[float, np.ndarray], Any], name: str | None = None):
+        if not callable(f):
+            raise TypeError(f"FlowField needs a callable f(t, points), got {type(f).__name__}")
+        self.f = f
+        self.name = name or getattr(f, "__name__", "flow-field")
+
+
+class NormalSpeed:
+    """A normal speed f(t, points (m, 2), normals (m, 2)) -> (m,) known off the curve (u = v N,
+    v > 0 outward), such as a speed that depends on position, time and direction but not on
+    curvature. The step evaluates it where it needs it, with the normal of the distance field
+    (the direct extension), so offsets and corners move exactly; f is called once per batch."""
+
+    def __init__(self, f: Callable[[float, np.ndarray, np.ndarray], Any], name: str | None = None):
+        if not callable(f):
+            raise TypeError(
+                f"NormalSpeed needs a callable f(t, points, normals), got {type(f).__name__}")
+        self.f = f
+        self.name = name or getattr(f, "__name__", "normal-speed")
+
+
+class Step(NamedTuple):
+    """What an observer of run() sees after each step."""
+
+    step: int  #: 1..steps
+    steps: int  #: N
+    t: float  #: the time reached
+    interface: Interface  #: the curves at t
+    cpu_s: float  #: CPU seconds of this step
+
+
+@dataclass
+class RunResult:
+    """How a run ended: ``status`` is "ok", "vanished", "interrupted" (Ctrl-C, or an observer
+    returned False) or "error" (``message`` says why, naming the time)."""
+
+    interface: Interface
+    status: str
+    t: float
+    history: dict[str, np.ndarray]
+    frames: list[tuple[float, Interface]] = field(default_factory=list)
+    summary: dict[str, Any] = field(default_factory=dict)
+    message: str = ""
+
+    @property
+    def e_inf(self) -> float | None:
+        """The error of the paper's Eq. (11) at the end, for a problem with an exact solution."""
+        return self.summary.get("e_inf")
+
+
+class Problem:
+    """One of the paper's experiments or a standard benchmark (``slc.problem(name)``): initial
+    curves, law, final time and the paper's settings, and the exact solution where one is known.
+    ``slc.run(problem)`` runs it as ``slc run --problem NAME`` does."""
+
+    __slots__ = ("_p", "_params")
+
+    def __init__(self, name: str, params: dict[str, float] | None = None):
+        self._params = {k: float(v) for k, v in (params or {}).items()}
+        self._p = _slc.make_problem(name, self._params)
+
+    def _fresh(self, t_end: float | None):
+        p = _slc.make_problem(self._p.name, self._params)
+        if t_end is not None:
+            p.t_end = float(t_end)
+        return p
+
+    name = property(lambda self: self._p.name, doc="as in ``slc run --problem NAME``")
+    description = property(lambda self: self._p.description, doc="what it is, where in the paper")
+    t_end = property(lambda self: self._p.t_end, doc="the final time a")
+    velocity = property(lambda self: self._p.velocity, doc="the built-in law's name")
+    params = property(lambda self: dict(self._p.velocity_params), doc="the law's parameters")
+    parameters = property(lambda self: dict(self._p.parameters),
+                          doc="the problem's own parameters (R0, tilt, ...), in use")
+    domain = property(lambda self: self._p.domain, doc="(x0, y0, x1, y1), the square it runs in")
+    has_exact = property(lambda self: self._p.has_exact, doc="whether the exact solution is known")
+
+    @property
+    def settings(self) -> dict[str, Any]:
+        """The paper's settings: steps N, depth K, refine P, eps, eta, smoothing S."""
+        p = self._p
+        refine = p.refine if p.refine == "converged" else int(p.refine)
+        return {"steps": p.steps, "depth": p.depth, "refine": refine, "eps": p.eps,
+                "eta": p.eta, "smoothing": p.smoothing}
+
+    @property
+    def interface(self) -> Interface:
+        """The initial curves, at the problem's initial time."""
+        return Interface._trusted(self._p.initial, self._p.t_start)
+
+    def exact(self, points, t: float) -> np.ndarray | None:
+        """The exact signed distance to the curves at time t at each of the (m, 2) points, or
+        None where the exact solution is not known."""
+        return self._p.exact(_points(points, "points"), float(t))
+
+    def error(self, interface) -> float | None:
+        """The paper's Eq. (11) error of curves at their time: the largest |exact distance| over
+        their vertices and segment midpoints; None where the exact solution is not known."""
+        curves = _interface(interface)
+        return self._p.error(curves._curves, curves.time)
+
+    def __repr__(self) -> str:
+        return f"<slc.Problem {self.name}: {self.description}>"
+
+
+def problem(name: str, **params: float) -> Problem:
+    """The named problem with its own or its law's parameters set (``tilt=10``, ``omega=2``), as
+    ``slc run --problem NAME --param k=v``; ValueError for an unknown name or parameter."""
+    return Problem(name, params)
+
+
+def problems() -> dict[str, str]:
+    """The named problems, each with one line saying what it is."""
+    return dict(_slc.problems())
+
+
+def velocities() -> list[str]:
+    """The built-in velocity laws' names."""
+    return list(_slc.velocity_names())
+
+
+def _law(velocity, params, geometry):
+    """The _slc.LawSpec of a velocity argument."""
+    params = {k: float(v) for k, v in (params or {}).items()}
+    if isinstance(velocity, FlowField):
+        return _slc.LawSpec(velocity.f, "field", velocity.name, params, geometry)
+    if isinstance(velocity, NormalSpeed):
+        return _slc.LawSpec(velocity.f, "normal", velocity.name, params, geometry)
+    if isinstance(velocity, str):
+        return _slc.LawSpec(velocity, "builtin", velocity, params, geometry)
+    if callable(velocity):
+        return _slc.LawSpec(velocity, "curve", getattr(velocity, "__name__", "python"), params,
+                            geometry)
+    raise TypeError("velocity must be a law's name, a FlowField, a NormalSpeed or a callable "
+                    f"f(t, points, normals, curvature), got {type(velocity).__name__}")
+
+
+def _integer(name: str, value) -> int | None:
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name} must be an integer, got {value!r}")
+    return int(value)
+
+
+def _overrides(steps=None, depth=None, refine=None, eps=None, eta=None, smoothing=None,
+               extension=None, arcs=None, area_correction=None):
+    o = _slc.Overrides()
+    o.steps = _integer("steps", steps)
+    o.depth = _integer("depth", depth)
+    o.refine = None if refine is None else _refine(refine)
+    o.eps = None if eps is None else float(eps)
+    o.eta = None if eta is None else float(eta)
+    o.smoothing = _integer("smoothing", smoothing)
+    o.extension = extension
+    o.arcs = None if arcs is None else bool(arcs)
+    o.area_correction = None if area_correction is None else bool(area_correction)
+    return o
+
+
+def _subject(subject, velocity, t_end, params, geometry):
+    """(_slc.Problem, LawSpec or None) for a Problem or for curves under a velocity."""
+    if isinstance(subject, Problem):
+        if velocity is not None or params or geometry is not None:
+            raise ValueError("a named problem runs its own law: set its parameters with "
+                             "slc.problem(name, **params)")
+        return subject._fresh(t_end), None
+    curves = _interface(subject)
+    if velocity is None:
+        raise TypeError("run needs a velocity: a law's name, a FlowField, a NormalSpeed or a "
+                        "callable")
+    if t_end is None:
+        raise TypeError("run needs t_end, the final time")
+    law = _law(velocity, params, geometry)
+    return _slc.curve_problem(curves._curves, curves.time, float(t_end), law), law
+
+
+def run(interface, velocity=None, t_end: float | None = None, *, steps: int | None = None,
+        depth: int | None = None, refine=None, eps: float | None = None,
+        eta: float | None = None, smoothing: int | None = None,
+        params: dict[str, float] | None = None, geometry: str | None = None,
+        extension: str | None = None, arcs: bool | None = None,
+        area_correction: bool | None = None, frames: int = 0,
+        observer: Callable[[Step], Any] | None = None, threads: int = 0) -> RunResult:
+    """Moves curves from interface.time to t_end, as ``slc run --initial`` does, or runs a named
+    problem (``run(slc.problem("zalesak"))``, t_end optional) as ``slc run --problem`` does.
+
+    velocity: a built-in law's name (``velocities()``; its parameters in params), a FlowField, a
+    NormalSpeed, or a callable f(t, points (N, 2), normals (N, 2), curvature (N,)) returning
+    (N, 2) vertex velocities or (N,) normal speeds v (u = v N, v > 0 outward), called once per
+    stage with all vertices. Unset options take the tool's defaults (docs/defaults.md), or the
+    problem's: steps N, depth K (eps follows as 10^-K times the curves' half-width unless given),
+    refine P (passes or "converged"), eps, eta, smoothing S; geometry "intrinsic", "embedded" or
+    "arclength"; extension "nearest", "whitney" or "direct"; arcs; area_correction. frames: keep
+    this many frames besides the initial one. observer(step) after each step; returning False
+    stops the run (status "interrupted"), as Ctrl-C does between steps. threads: worker threads
+    (0: all cores); results do not depend on it.
+    """
+    p, law = _subject(interface, velocity, t_end, params, geometry)
+    if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
+        raise TypeError(f"frames must be an integer, got {frames!r}")
+
+    on_step = None
+    if observer is not None:
+        def on_step(step, n, t, arrays, cpu_s):
+            return observer(Step(step, n, t, Interface._trusted(arrays, t), cpu_s))
+
+    options = _overrides(steps, depth, refine, eps, eta, smoothing, extension, arcs,
+                         area_correction)
+    out = _slc.run(p, law, options, int(frames), int(threads), on_step)
+    return RunResult(
+        interface=Interface._trusted(out["curves"], out["t"]),
+        status=out["status"],
+        t=out["t"],
+        history=out["history"],
+        frames=[(t, Interface._trusted(a, t)) for t, a in out["frames"]],
+        summary=out["summary"],
+        message=out["message"],
+    )
+
+
+def _array(values) -> np.ndarray:
+    return np.array([math.nan if v is None else v for v in values], dtype=float)
+
+
+@dataclass
+class Study:
+    """The paper's convergence table (§4.2, Tables 5–7) of a problem with an exact solution: row
+    r runs N·2^r steps at depth K + r with eps/10^r, columns P = 0..4.
+
+    ``cells``: one dict per run (row, P, run, N, K, eps, S, status, e_inf, cpu_s_per_step,
+    g_evals_per_vertex, segments), row-major. ``errors`` and ``cpu_s_per_step``: rows x columns
+    arrays (NaN where a run has no error). ``row_orders`` (rows x columns-1): log2 of the error
+    ratio of neighbouring columns, about 1 while refinement controls the error;
+    ``column_orders`` (rows-1 x columns): of neighbouring rows, about 2 at P = 4 (second order
+    in time)."""
+
+    cells: list[dict[str, Any]]
+    errors: np.ndarray
+    cpu_s_per_step: np.ndarray
+    row_orders: np.ndarray
+    column_orders: np.ndarray
+
+    def table(self) -> str:
+        """The errors as a Markdown table, a row per N/S/K/eps and a column per P."""
+        rows, columns = self.errors.shape
+        lines = ["| run | " + " | ".join(f"P = {c}" for c in range(columns)) + " |",
+                 "|---|" + "---|" * columns]
+        for r in range(rows):
+            first = self.cells[r * columns]
+            name = f"{first['N']}/{first['S']}/{first['K']}/{first['eps']:.0e}"
+            lines.append(f"| {name} | " + " | ".join(
+                "—" if math.isnan(e) else f"{e:.2e}" for e in self.errors[r]) + " |")
+        return "\n".join(lines)
+
+
+@dataclass
+class SelfConvergence:
+    """Runs of the same curves and law at successive resolutions (N doubled, K + 1, eps/4 each),
+    for curves without an exact solution: ``runs`` (level, run, status, t, area, components,
+    segments, cpu_s, interface), ``distances`` between the final curves of neighbours,
+    ``orders`` observed from them (log2 of successive distance ratios) and ``estimate`` of the
+    finest run's error (a dict: error, order, observed) or None."""
+
+    runs: list[dict[str, Any]]
+    distances: np.ndarray
+    orders: np.ndarray
+    estimate: dict[str, Any] | None
+
+
+def study(subject, velocity=None, t_end: float | None = None, *, rows: int | None = None,
+          observer: Callable[[dict], Any] | None = None, threads: int = 0,
+          params: dict[str, float] | None = None, geometry: str | None = None,
+          **options) -> Study | SelfConvergence:
+    """A convergence study, as ``slc study`` does.
+
+    For a Problem with an exact solution: the paper's table (``Study``) of ``rows`` rows (1..5,
+    default 5) by P = 0..4. For curves under a velocity to t_end: a self-convergence study
+    (``SelfConvergence``) at ``rows`` resolutions (3..5, default 3). options are run()'s (steps,
+    depth, refine, eps, eta, smoothing, extension, arcs, area_correction) and set the coarsest
+    run. observer(dict) after each run.
+    """
+    p, law = _subject(subject, velocity, t_end, params, geometry)
+    o = _overrides(**options)
+    if isinstance(subject, Problem):
+        s = _slc.study(p, 5 if rows is None else _integer("rows", rows), o, int(threads),
+                       observer)
+        shape = (s["rows"], s["columns"])
+        cells = s["cells"]
+        return Study(
+            cells=cells,
+            errors=_array(c["e_inf"] for c in cells).reshape(shape),
+            cpu_s_per_step=_array(c["cpu_s_per_step"] for c in cells).reshape(shape),
+            row_orders=np.array([_array(r) for r in s["row_orders"]]),
+            column_orders=np.array([_array(r) for r in s["column_orders"][:-1]]).reshape(
+                shape[0] - 1, shape[1]),
+        )
+    on_run = None
+    if observer is not None:
+        def on_run(r):
+            return observer(_run_dict(r))
+    s = _slc.self_convergence(p, law, 3 if rows is None else _integer("rows", rows), o,
+                              int(threads), on_run)
+    return SelfConvergence(
+        runs=[_run_dict(r) for r in s["runs"]],
+        distances=np.array(s["distances"], dtype=float),
+        orders=_array(s["orders"]),
+        estimate=s["estimate"],
+    )
+
+
+def _run_dict(r: dict) -> dict:
+    r = dict(r)
+    r["interface"] = Interface._trusted(r.pop("curves"), r["t"])
+    return r

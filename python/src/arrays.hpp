@@ -1,0 +1,84 @@
+// Conversions between numpy arrays and the library's points, shared by the files of the module
+// slc._slc. Every array arriving here is C-contiguous float64: the package has checked its shape.
+#pragma once
+
+#include <fmt/format.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cstring>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "slc/core/error.hpp"
+#include "slc/geometry/interface.hpp"
+
+namespace slc::python {
+
+namespace py = pybind11;
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Curves = std::vector<std::vector<Vec2>>;
+
+static_assert(sizeof(Vec2) == 2 * sizeof(double), "Vec2 must be two packed doubles");
+
+/// n points from 2n doubles x0, y0, x1, y1, ...
+inline std::vector<Vec2> vectors_of(const double* xy, std::size_t n) {
+    std::vector<Vec2> out(n);
+    for (std::size_t i = 0; i < n; ++i) out[i] = {xy[2 * i], xy[2 * i + 1]};
+    return out;
+}
+
+/// The points of an (n, 2) array.
+inline std::vector<Vec2> points_of(const Array& a) {
+    if (a.ndim() != 2 || a.shape(1) != 2)
+        throw InvalidInput("points must be an (n, 2) array of numbers");
+    return vectors_of(a.data(), static_cast<std::size_t>(a.shape(0)));
+}
+
+inline Curves curves_of(const std::vector<Array>& arrays) {
+    Curves out;
+    out.reserve(arrays.size());
+    for (const Array& a : arrays) out.push_back(points_of(a));
+    return out;
+}
+
+/// An (n, 2) array holding points.
+inline Array array_of(std::span<const Vec2> points) {
+    Array a({static_cast<py::ssize_t>(points.size()), py::ssize_t{2}});
+    if (!points.empty()) std::memcpy(a.mutable_data(), points.data(), points.size() * sizeof(Vec2));
+    return a;
+}
+
+/// An (n,) array holding values.
+inline Array array_of(std::span<const double> values) {
+    Array a(static_cast<py::ssize_t>(values.size()));
+    if (!values.empty())
+        std::memcpy(a.mutable_data(), values.data(), values.size() * sizeof(double));
+    return a;
+}
+
+/// The curves as a list of (n, 2) arrays.
+inline py::list arrays_of(const Interface& curves) {
+    py::list out;
+    for (std::size_t c = 0; c < curves.curve_count(); ++c) out.append(array_of(curves.curve(c)));
+    return out;
+}
+
+/// The shape of an array as Python prints it: "(3,)", "(4, 3)".
+inline std::string shape_text(const py::array& a) {
+    std::string s = "(";
+    for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+    return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+/// What a callback returned, as an array of numbers: InvalidInput naming `what` otherwise.
+inline Array numbers_of(const py::object& result, const std::string& what) {
+    const auto a = py::array::ensure(result);
+    if (!a || a.dtype().kind() == 'O' || a.dtype().kind() == 'U' || a.dtype().kind() == 'S')
+        throw InvalidInput(what + " must return an array of numbers");
+    return a.cast<Array>();
+}
+
+}  // namespace slc::python

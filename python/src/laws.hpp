@@ -1,0 +1,33 @@
+// Velocity laws from Python: a built-in law by name, or a Python callable as a curve law (vertex
+// velocities or normal speeds from points, normals and curvature), a normal law (speeds from
+// points and normals, known off the curve) or a flow field (velocities from points).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "arrays.hpp"
+#include "slc/velocity/factory.hpp"
+
+namespace slc::python {
+
+/// What the package passes for a law: velocity is a law's name (kind "builtin") or a callable of
+/// kind "curve" f(t, points, normals, curvature), "normal" f(t, points, normals) or "field"
+/// f(t, points); name is what summary.json calls it.
+struct LawSpec {
+    py::object velocity;
+    std::string kind;
+    std::string name;
+    VelocityParams params;
+    std::optional<std::string> geometry;
+};
+
+/// The law spec describes; InvalidInput for an unknown built-in law, parameter or geometry, or
+/// params given to a Python law.
+std::unique_ptr<VelocityLaw> make_law(const LawSpec& spec);
+
+/// The geometry module named "intrinsic", "embedded" or "arclength"; InvalidInput otherwise.
+GeometryModule geometry_module(const std::string& name);
+
+}  // namespace slc::python

@@ -1,0 +1,401 @@
+// Runs, named problems and convergence studies on numpy arrays. A run is always a Problem: a
+// named one (its paper settings) or a user's curves with the defaults of `slc run --initial`
+// (curve_problem); options the caller sets override either, as the tool's flags do.
+#include "run.hpp"
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstdint>
+
+#include "arrays.hpp"
+#include "laws.hpp"
+#include "slc/core/parallel.hpp"
+#include "slc/evolve/defaults.hpp"
+#include "slc/evolve/problems.hpp"
+#include "slc/evolve/run.hpp"
+#include "slc/evolve/self_convergence.hpp"
+#include "slc/evolve/study.hpp"
+#include "slc/geometry/validate.hpp"
+#include "slc/io/summary.hpp"
+
+namespace slc::python {
+namespace {
+
+/// A JSON value as the Python object json.loads makes of it.
+py::object python_of(const nlohmann::json& j) {
+    return py::module_::import("json").attr("loads")(j.dump());
+}
+
+/// The run options the caller set (None for unset): steps, depth, refine, eps, eta, smoothing,
+/// extension, arcs, area_correction.
+struct Overrides {
+    std::optional<int> steps, depth, refine, smoothing;
+    std::optional<double> eps, eta;
+    std::optional<std::string> extension;
+    std::optional<bool> arcs, area_correction;
+};
+
+Extension extension_of(const std::string& name) {
+    for (const Extension e : {Extension::nearest_point, Extension::whitney, Extension::direct})
+        if (name == to_string(e)) return e;
+    throw InvalidInput("extension must be one of nearest, whitney, direct, got '" + name + "'");
+}
+
+/// The problem's own options with the caller's over them; ε follows K (10^−K ℓ) when K is set
+/// without ε, as `slc run -K` does.
+RunOptions resolve(const Problem& p, const Overrides& q) {
+    RunOptions r = problem_run_options(p);
+    ContourOptions& c = r.step.contour;
+    if (q.steps) {
+        if (*q.steps < 1 || *q.steps > 100'000'000)
+            throw InvalidInput(fmt::format("steps must be from 1 to 1e8, got {}", *q.steps));
+        r.steps = *q.steps;
+    }
+    if (q.depth) {
+        if (*q.depth < 1 || *q.depth > 24)
+            throw InvalidInput(fmt::format("depth must be from 1 to 24, got {}", *q.depth));
+        c.depth = *q.depth;
+        c.eps = std::pow(10.0, -c.depth) * p.length_scale;
+        r.step.embedded.mesh = default_mesh_size(c.depth);
+    }
+    if (q.refine) {
+        if (*q.refine != ContourOptions::until_converged && (*q.refine < 0 || *q.refine > 64))
+            throw InvalidInput(
+                fmt::format("refine must be from 0 to 64 or 'converged', got {}", *q.refine));
+        c.refine_passes = *q.refine;
+    }
+    for (const auto& [value, name] : {std::pair{q.eps, "eps"}, std::pair{q.eta, "eta"}}) {
+        if (value && (!(*value > 0.0) || !std::isfinite(*value)))
+            throw InvalidInput(fmt::format("{} must be positive and finite, got {}", name, *value));
+    }
+    if (q.eps) c.eps = *q.eps;
+    if (q.eta) c.eta = *q.eta;
+    if (*c.eps < c.eta)
+        throw InvalidInput(fmt::format("eps ({}) must not be below eta ({})", *c.eps, c.eta));
+    if (q.smoothing) {
+        if (*q.smoothing < 0 || *q.smoothing > 64)
+            throw InvalidInput(fmt::format("smoothing must be from 0 to 64, got {}", *q.smoothing));
+        r.step.embedded.smoothing = *q.smoothing;
+    }
+    if (q.extension) r.step.extension = extension_of(*q.extension);
+    if (q.arcs) r.step.arcs = q.arcs;
+    if (q.area_correction) r.step.area_correction = q.area_correction;
+    return r;
+}
+
+/// The history of a run: t, area, length, components, segments, cpu_s per row.
+struct History {
+    std::vector<double> t, area, length, cpu_s, components, segments;
+    void add(double time, const Interface& curves, double cpu) {
+        t.push_back(time);
+        area.push_back(slc::area(curves));
+        length.push_back(slc::length(curves));
+        components.push_back(static_cast<double>(curves.curve_count()));
+        segments.push_back(static_cast<double>(curves.size()));
+        cpu_s.push_back(cpu);
+    }
+    py::dict arrays() const {
+        py::dict h;
+        h["t"] = array_of(std::span<const double>(t));
+        h["area"] = array_of(std::span<const double>(area));
+        h["length"] = array_of(std::span<const double>(length));
+        h["components"] = array_of(std::span<const double>(components)).attr("astype")("int64");
+        h["segments"] = array_of(std::span<const double>(segments)).attr("astype")("int64");
+        h["cpu_s"] = array_of(std::span<const double>(cpu_s));
+        return h;
+    }
+};
+
+/// Sets the worker threads for the life of the object (0: all cores), and restores them.
+class ThreadScope {
+public:
+    explicit ThreadScope(int threads) : before_(thread_count()) {
+        if (threads < 0)
+            throw InvalidInput(fmt::format("threads must be 0 or more, got {}", threads));
+        set_thread_count(threads);
+    }
+    ~ThreadScope() { set_thread_count(before_); }
+    ThreadScope(const ThreadScope&) = delete;
+    ThreadScope& operator=(const ThreadScope&) = delete;
+
+private:
+    int before_;
+};
+
+/// Stops a long call at Ctrl-C: Python's handler has only set a flag while the GIL was released.
+/// Call with the GIL held; true when an interrupt was pending (and is now taken).
+bool interrupted() {
+    if (PyErr_CheckSignals() == 0) return false;
+    py::error_already_set interrupt;  // KeyboardInterrupt, taken and dropped: stop here
+    return true;
+}
+
+/// The problem's law: spec when given (a user's curves), else the problem's built-in one.
+std::unique_ptr<VelocityLaw> law_of(const Problem& p, const std::optional<LawSpec>& spec) {
+    if (spec) return make_law(*spec);
+    return make_velocity(p.velocity, p.velocity_params, p.module);
+}
+
+/// The problem's initial curves, validated in its domain.
+Interface initial_of(const Problem& p) { return prepare_interface(p.initial, p.domain).curves; }
+
+py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const Overrides& q,
+                     int frames, int threads, const py::object& on_step) {
+    if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
+    const std::unique_ptr<VelocityLaw> law = law_of(p, spec);
+    const Interface initial = initial_of(p);
+    const RunOptions options = resolve(p, q);
+
+    History history;
+    history.add(options.t_start, initial, 0.0);
+    py::list frame_list;
+    if (frames > 0) frame_list.append(py::make_tuple(options.t_start, arrays_of(initial)));
+    const Observer observer = [&](const StepReport& s) {
+        history.add(s.t, *s.curves, s.step_cpu_s);
+        py::gil_scoped_acquire hold;
+        if (frames > 0 && (std::int64_t{s.step} * frames) % s.steps < frames)
+            frame_list.append(py::make_tuple(s.t, arrays_of(*s.curves)));
+        if (interrupted()) return false;
+        if (on_step.is_none()) return true;
+        const py::object go_on = on_step(s.step, s.steps, s.t, arrays_of(*s.curves), s.step_cpu_s);
+        return go_on.is_none() || go_on.cast<bool>();
+    };
+
+    RunResult r;
+    {
+        const ThreadScope scope(threads);
+        py::gil_scoped_release release;
+        r = run(initial, *law, p.domain, options, observer);
+    }
+    py::dict out;
+    out["curves"] = arrays_of(r.curves);
+    out["t"] = r.t;
+    out["status"] = to_string(r.status);
+    out["message"] = r.message;
+    out["history"] = history.arrays();
+    out["frames"] = frame_list;
+    out["summary"] = python_of(run_summary(p, options, r, *law));
+    return out;
+}
+
+/// One cell of a study as a dict: row, P, run, N, K, eps, S, status, e_inf, cpu_s_per_step,
+/// g_evals_per_vertex, segments.
+py::dict cell_dict(const StudyCell& c) {
+    py::dict d;
+    d["row"] = c.row;
+    d["P"] = c.refine;
+    d["run"] = run_name(c.options);
+    d["N"] = c.options.steps;
+    d["K"] = c.options.step.contour.depth;
+    d["eps"] = c.options.step.contour.resolved_eps();
+    d["S"] = c.options.step.embedded.smoothing;
+    d["status"] = to_string(c.status);
+    d["e_inf"] = c.e_inf ? py::cast(*c.e_inf) : py::object(py::none());
+    d["cpu_s_per_step"] = c.cpu_s_per_step;
+    d["g_evals_per_vertex"] = c.g_evals_per_vertex;
+    d["segments"] = c.segments;
+    return d;
+}
+
+py::dict study_problem(const Problem& p, int rows, const Overrides& q, int threads,
+                       const py::object& on_cell) {
+    if (!p.exact)
+        throw InvalidInput("problem '" + p.name +
+                           "' has no exact solution; study a user's curves (self-convergence)");
+    const RunOptions base = resolve(p, q);
+    const StudyObserver observer = [&](const StudyCell& c) {
+        py::gil_scoped_acquire hold;
+        if (interrupted()) throw py::error_already_set();
+        if (!on_cell.is_none()) on_cell(cell_dict(c));
+    };
+    StudyResult s;
+    {
+        const ThreadScope scope(threads);
+        py::gil_scoped_release release;
+        s = study(p, rows, base, observer);
+    }
+    py::list cells;
+    for (const StudyCell& c : s.cells) cells.append(cell_dict(c));
+    auto order_table = [&s](auto order, int columns) {
+        py::list table;
+        for (int r = 0; r < s.rows; ++r) {
+            py::list row;
+            for (int c = 0; c < columns; ++c) {
+                const std::optional<double> o = order(r, c);
+                row.append(o ? py::cast(*o) : py::object(py::none()));
+            }
+            table.append(row);
+        }
+        return table;
+    };
+    py::dict out;
+    out["rows"] = s.rows;
+    out["columns"] = s.columns;
+    out["cells"] = cells;
+    out["row_orders"] =
+        order_table([&s](int r, int c) { return s.row_order(r, c); }, s.columns - 1);
+    out["column_orders"] = order_table(
+        [&s](int r, int c) { return r + 1 < s.rows ? s.column_order(r, c) : std::nullopt; },
+        s.columns);
+    return out;
+}
+
+py::dict self_convergence_problem(const Problem& p, const std::optional<LawSpec>& spec,
+                                  int resolutions, const Overrides& q, int threads,
+                                  const py::object& on_run) {
+    const std::unique_ptr<VelocityLaw> law = law_of(p, spec);
+    const Interface initial = initial_of(p);
+    const RunOptions base = resolve(p, q);
+    auto run_dict = [](const ResolutionRun& r) {
+        py::dict d;
+        d["level"] = r.level;
+        d["run"] = run_name(r.options);
+        d["status"] = to_string(r.result.status);
+        d["t"] = r.result.t;
+        d["area"] = area(r.result.curves);
+        d["components"] = r.result.curves.curve_count();
+        d["segments"] = r.result.curves.size();
+        d["cpu_s"] = r.result.cpu_s;
+        d["curves"] = arrays_of(r.result.curves);
+        return d;
+    };
+    const SelfConvergenceObserver observer = [&](const ResolutionRun& r) {
+        py::gil_scoped_acquire hold;
+        if (interrupted()) throw py::error_already_set();
+        if (!on_run.is_none()) on_run(run_dict(r));
+    };
+    SelfConvergenceResult s;
+    {
+        const ThreadScope scope(threads);
+        py::gil_scoped_release release;
+        s = self_convergence(initial, *law, p.domain, base, resolutions, observer);
+    }
+    py::list runs, orders;
+    for (const ResolutionRun& r : s.runs) runs.append(run_dict(r));
+    for (const auto& o : s.orders) orders.append(o ? py::cast(*o) : py::object(py::none()));
+    py::dict out;
+    out["runs"] = runs;
+    out["distances"] = s.distances;
+    out["orders"] = orders;
+    if (s.estimate) {
+        py::dict e;
+        e["error"] = s.estimate->error;
+        e["order"] = s.estimate->order;
+        e["observed"] = s.estimate->observed;
+        out["estimate"] = e;
+    } else {
+        out["estimate"] = py::none();
+    }
+    return out;
+}
+
+Problem curve_problem_of(const std::vector<Array>& arrays, double t_start, double t_end,
+                         const LawSpec& spec) {
+    const Curves raw = curves_of(arrays);
+    const Interface curves(raw);
+    const std::unique_ptr<VelocityLaw> law = make_law(spec);
+    return curve_problem(spec.name, curves, default_domain(raw), t_start, t_end, *law, spec.name,
+                         spec.params);
+}
+
+py::dict problem_parameters(const Problem& p) {
+    py::dict d;
+    for (const ProblemParameter& q : p.parameters) d[py::str(q.name)] = q.value;
+    return d;
+}
+
+}  // namespace
+
+void add_run_functions(py::module_& m) {
+    py::class_<LawSpec>(m, "LawSpec")
+        .def(py::init([](py::object velocity, std::string kind, std::string name,
+                         VelocityParams params, std::optional<std::string> geometry) {
+                 return LawSpec{std::move(velocity), std::move(kind), std::move(name),
+                                std::move(params), std::move(geometry)};
+             }),
+             py::arg("velocity"), py::arg("kind"), py::arg("name"), py::arg("params"),
+             py::arg("geometry"));
+    py::class_<Overrides>(m, "Overrides")
+        .def(py::init<>())
+        .def_readwrite("steps", &Overrides::steps)
+        .def_readwrite("depth", &Overrides::depth)
+        .def_readwrite("refine", &Overrides::refine)
+        .def_readwrite("smoothing", &Overrides::smoothing)
+        .def_readwrite("eps", &Overrides::eps)
+        .def_readwrite("eta", &Overrides::eta)
+        .def_readwrite("extension", &Overrides::extension)
+        .def_readwrite("arcs", &Overrides::arcs)
+        .def_readwrite("area_correction", &Overrides::area_correction);
+    py::class_<Problem>(m, "Problem")
+        .def_readonly("name", &Problem::name)
+        .def_readonly("description", &Problem::description)
+        .def_readonly("t_start", &Problem::t_start)
+        .def_readwrite("t_end", &Problem::t_end)
+        .def_readonly("steps", &Problem::steps)
+        .def_readonly("depth", &Problem::depth)
+        .def_property_readonly("refine", [](const Problem& p) { return refine_name(p.refine); })
+        .def_readonly("eps", &Problem::eps)
+        .def_readonly("eta", &Problem::eta)
+        .def_readonly("smoothing", &Problem::smoothing)
+        .def_readonly("length_scale", &Problem::length_scale)
+        .def_readonly("velocity", &Problem::velocity)
+        .def_readonly("velocity_params", &Problem::velocity_params)
+        .def_property_readonly("parameters", &problem_parameters)
+        .def_property_readonly("domain",
+                               [](const Problem& p) {
+                                   return py::make_tuple(p.domain.lo.x, p.domain.lo.y,
+                                                         p.domain.hi.x, p.domain.hi.y);
+                               })
+        .def_property_readonly("initial",
+                               [](const Problem& p) {
+                                   std::optional<Interface> curves;
+                                   {
+                                       py::gil_scoped_release release;
+                                       curves.emplace(initial_of(p));
+                                   }
+                                   return arrays_of(*curves);
+                               })
+        .def_property_readonly("has_exact", [](const Problem& p) { return bool(p.exact); })
+        .def(
+            "exact",
+            [](const Problem& p, const Array& xs, double t) -> py::object {
+                if (!p.exact) return py::none();
+                const std::vector<Vec2> points = points_of(xs);
+                const auto d = p.exact(points, t);
+                if (!d) return py::none();
+                return array_of(std::span<const double>(*d));
+            },
+            py::arg("points"), py::arg("t"))
+        .def(
+            "error",
+            [](const Problem& p, const std::vector<Array>& curves, double t) -> py::object {
+                const auto e = max_error(p, Interface(curves_of(curves)), t);
+                return e ? py::cast(*e) : py::object(py::none());
+            },
+            py::arg("curves"), py::arg("t"));
+    m.def(
+        "make_problem",
+        [](const std::string& name, const VelocityParams& params) {
+            Problem p = make_problem(name, params);
+            law_of(p, std::nullopt);  // a parameter neither the problem's nor its law's: refused
+            return p;
+        },
+        py::arg("name"), py::arg("params"));
+    m.def("problems", [] {
+        py::list out;
+        for (const ProblemInfo& p : problem_catalog())
+            out.append(py::make_tuple(p.name, p.summary));
+        return out;
+    });
+    m.def("curve_problem", &curve_problem_of, py::arg("curves"), py::arg("t_start"),
+          py::arg("t_end"), py::arg("law"));
+    m.def("run", &run_problem, py::arg("problem"), py::arg("law"), py::arg("options"),
+          py::arg("frames"), py::arg("threads"), py::arg("on_step"));
+    m.def("study", &study_problem, py::arg("problem"), py::arg("rows"), py::arg("options"),
+          py::arg("threads"), py::arg("on_cell"));
+    m.def("self_convergence", &self_convergence_problem, py::arg("problem"), py::arg("law"),
+          py::arg("resolutions"), py::arg("options"), py::arg("threads"), py::arg("on_run"));
+}
+
+}  // namespace slc::python
