@@ -56,7 +56,7 @@ RunOptions resolve(const Problem& p, const Overrides& q) {
         if (*q.depth < 1 || *q.depth > 24)
             throw InvalidInput(fmt::format("depth must be from 1 to 24, got {}", *q.depth));
         c.depth = *q.depth;
-        c.eps = std::pow(10.0, -c.depth) * p.length_scale;
+        c.eps = eps_for_depth(c.depth, p.length_scale);
         r.step.embedded.mesh = default_mesh_size(c.depth);
     }
     if (q.refine) {
@@ -70,7 +70,7 @@ RunOptions resolve(const Problem& p, const Overrides& q) {
             throw InvalidInput(fmt::format("{} must be positive and finite, got {}", name, *value));
     }
     if (q.eps) c.eps = *q.eps;
-    if (q.eta) c.eta = *q.eta;
+    c.eta = q.eta ? *q.eta : eta_for_eps(c.eta, *c.eps);
     if (*c.eps < c.eta)
         throw InvalidInput(fmt::format("eps ({}) must not be below eta ({})", *c.eps, c.eta));
     if (q.smoothing) {

@@ -57,6 +57,12 @@ RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, 
     return o;
 }
 
+double eps_for_depth(int depth, double length_scale) {
+    return std::max(std::pow(10.0, -depth), 1e-13) * length_scale;
+}
+
+double eta_for_eps(double eta, double eps) { return std::min(eta, 0.1 * eps); }
+
 Problem curve_problem(std::string name, const Interface& curves, const Box& domain, double t_start,
                       double t_end, const VelocityLaw& law, std::string velocity,
                       VelocityParams params) {

@@ -123,7 +123,7 @@ reject "eps 0" "--eps: must be a positive finite number, got '0'" -- run --probl
 reject "eps negative" "--eps: must be a positive finite number, got '-1e-3'" -- run --problem vortex --eps -1e-3 --out x
 reject "eps NaN" "--eps: must be a positive finite number, got 'nan'" -- run --problem vortex --eps nan --out x
 reject "eta infinite" "--eta: must be a positive finite number, got 'inf'" -- run --problem vortex --eta inf --out x
-reject "eps below eta" "--eps \(1e-12\) must not be below --eta \(1e-10\)" -- run --problem vortex --eps 1e-12 --out x
+reject "eps below eta" "--eps \(1e-12\) must not be below --eta \(1e-10\)" -- run --problem vortex --eps 1e-12 --eta 1e-10 --out x
 reject "rho 1" "--rho: must be a number in \[0, 1\), got '1'" -- run --problem vortex --rho 1 --out x
 reject "t-end NaN" "t-end must be finite and after the start time 0, got nan" -- run --problem vortex --t-end nan --out x
 reject "t-end infinite" "t-end must be finite and after the start time 0, got inf" -- run --problem vortex --t-end inf --out x

@@ -8,6 +8,7 @@
 #include "commands/common.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/evolve/defaults.hpp"
 
 namespace slc::cli {
 namespace {
@@ -46,12 +47,12 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
             },
             "in [0, 64] or converged"));
     cmd.add_option("--eps", o.eps,
-                   "epsilon: midpoint tolerance of refinement (a problem's own; 10^-K with -K; "
-                   "1e-5 times the curves' half-width for --initial)")
+                   "epsilon: midpoint tolerance of refinement (a problem's own; 10^-K with -K, "
+                   "not below 1e-13; 1e-5 times the curves' half-width for --initial)")
         ->check(positive_number());
     cmd.add_option("--eta", o.eta,
                    "eta: root-finding tolerance (default 1e-10, times the curves' half-width for "
-                   "--initial)")
+                   "--initial; lowered to eps/10 when eps is below it)")
         ->check(positive_number());
     cmd.add_option("--rho", o.rho, "rho: pruning ratio in [0, 1) (default 0.1)")
         ->check(fraction_below_one());
@@ -106,11 +107,14 @@ RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
     ContourOptions& c = r.step.contour;
     if (m.depth) {
         c.depth = *m.depth;
-        c.eps = std::pow(10.0, -c.depth) * p.length_scale;
+        c.eps = eps_for_depth(c.depth, p.length_scale);
     }
     if (m.refine) c.refine_passes = *m.refine;
     if (m.eps) c.eps = *m.eps;
-    if (m.eta) c.eta = *m.eta;
+    if (m.eta)
+        c.eta = *m.eta;
+    else
+        c.eta = eta_for_eps(c.eta, *c.eps);
     c.rho = m.rho;
     if (*c.eps < c.eta)
         throw InvalidInput(fmt::format("--eps ({}) must not be below --eta ({})", *c.eps, c.eta));

@@ -37,6 +37,14 @@ double length_scale(const Interface& curves);
 RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, double t_start,
                                double t_end);
 
+/// ε for a tree of depth K when only K is given: 10^−K ℓ, but not below 1e−13 ℓ (a few hundred
+/// units in the last place of coordinates of size ℓ, as fine as root finding can place a vertex).
+double eps_for_depth(int depth, double length_scale);
+
+/// η for a tolerance ε: the given η, lowered to ε/10 when ε is below it (so that any K up to
+/// Quadtree::max_supported_depth runs with the default η of 1e−10 ℓ).
+double eta_for_eps(double eta, double eps);
+
 /// A user's curves (valid, not empty, inside domain) moved by law from t_start to t_end, as a
 /// Problem with the settings of default_run_options (ℓ = length_scale(curves)) and the law's
 /// own extension, arcs and area correction; velocity and params name the law in summary.json.
