@@ -4,6 +4,9 @@
 /// factory.hpp.
 #pragma once
 
+#include <cmath>
+#include <numbers>
+
 #include "slc/velocity/velocity.hpp"
 
 namespace slc {
@@ -15,6 +18,7 @@ public:
     /// centre: the fixed point (cx, cy).
     explicit Rotation(double omega = 1.0, Vec2 centre = {}) : omega_(omega), centre_(centre) {}
     std::string name() const override { return "rotation"; }
+    Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
     std::vector<Vec2> velocities(double t, const Interface& curves,
                                  const VertexGeometry& geometry) const override;
     bool is_field() const override { return true; }
@@ -31,6 +35,7 @@ public:
     /// u: the velocity of every point, length per unit time.
     explicit Translation(Vec2 u) : u_(u) {}
     std::string name() const override { return "translation"; }
+    Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
     std::vector<Vec2> velocities(double t, const Interface& curves,
                                  const VertexGeometry& geometry) const override;
     bool is_field() const override { return true; }
@@ -48,6 +53,7 @@ public:
     /// Throws InvalidInput unless period > 0.
     explicit SingleVortex(double period = 8.0);
     std::string name() const override { return "vortex"; }
+    Invariants invariants() const override { return {.keeps_area = true}; }
     std::vector<Vec2> velocities(double t, const Interface& curves,
                                  const VertexGeometry& geometry) const override;
     bool is_field() const override { return true; }
@@ -67,6 +73,11 @@ public:
     explicit NormalSpeed(double speed = 1.0, std::optional<GeometryModule> module = std::nullopt)
         : NormalLaw(module), speed_(speed) {}
     std::string name() const override { return "unit-normal"; }
+    /// No motion at speed 0; a growing curve at speed > 0.
+    Invariants invariants() const override {
+        if (speed_ == 0.0) return {.keeps_area = true, .rigid = true};
+        return {.cannot_vanish = speed_ > 0.0};
+    }
     void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
                        std::span<double> out) const override;
 
@@ -84,6 +95,8 @@ public:
                            std::optional<GeometryModule> module = std::nullopt)
         : NormalLaw(module), r_(r), m_(m), eps_(eps) {}
     std::string name() const override { return "anisotropic"; }
+    /// Growing in every direction when R > |ε|.
+    Invariants invariants() const override { return {.cannot_vanish = r_ > std::abs(eps_)}; }
     void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
                        std::span<double> out) const override;
 
@@ -99,6 +112,10 @@ public:
     /// module: where N and C come from; unset: GeometryNeeds::resolved_module().
     explicit CurvatureFlow(std::optional<GeometryModule> module = std::nullopt) : module_(module) {}
     std::string name() const override { return "curvature"; }
+    /// dA/dt = −2π per counterclockwise curve, +2π per hole (the turning of each curve).
+    Invariants invariants() const override {
+        return {.area_rate_per_curve = -2.0 * std::numbers::pi};
+    }
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = true, .module = module_};
     }

@@ -19,6 +19,7 @@
 #include "slc/geometry_modules/arclength.hpp"
 #include "slc/geometry_modules/embedded.hpp"
 #include "slc/geometry_modules/vertex_geometry.hpp"
+#include "slc/velocity/invariants.hpp"
 
 namespace slc {
 
@@ -70,6 +71,9 @@ public:
     /// True for a law whose exact flow keeps the enclosed area (the volume-preserving flow): the
     /// step then restores the area each contour loses (StepOptions::area_correction).
     virtual bool preserves_area() const { return false; }
+    /// What the law's exact motion keeps or cannot do, which the run loop checks after every step
+    /// (evolve/guards.hpp). Default: the area when preserves_area(), nothing else.
+    virtual Invariants invariants() const { return {.keeps_area = preserves_area()}; }
 
     /// True for a normal law u = V(t, x, N)·N whose speed V is known for any point x and any unit
     /// normal N (unit-normal, anisotropic, a user's V): the step can then evaluate it off the

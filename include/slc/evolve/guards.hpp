@@ -1,0 +1,34 @@
+/// @file
+/// The run loop's physical guards (docs/errors.md, "What the guards catch"): after every step,
+/// what the law's exact motion keeps (Invariants) is compared with what the step did, within an
+/// error budget. A step that breaks it is retried in 2, 4, 8 and 16 sub-steps; a run that still
+/// breaks it ends with status unstable.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "slc/geometry/interface.hpp"
+#include "slc/velocity/invariants.hpp"
+
+namespace slc {
+
+/// The error budget of one step's area: max(area_fraction·|A|, eps_lengths·ε·L), with A the
+/// larger of the areas before and after, L the length before and ε the step's contour tolerance.
+/// The paper's experiments change the area of their area-keeping laws by at most 1.9e−3 of A in a
+/// step (the single vortex, whose filaments thin below a cell), and curvature flow's area falls
+/// within a quarter of 2πk per curve.
+struct GuardBudget {
+    double area_fraction = 1e-2;
+    double eps_lengths = 20.0;
+    double rate_fraction = 0.25;  ///< of the area a law with an area rate should change by
+};
+
+/// Why a step of length k from `before` to `after` breaks the law's invariants, in one line
+/// ("the area changed by 85% in one step under a law that keeps it"), or nothing when it keeps
+/// them within the budget. eps: the contour tolerance ε of the step.
+std::optional<std::string> invariant_violation(const Invariants& law, const Interface& before,
+                                               const Interface& after, double k, double eps,
+                                               const GuardBudget& budget = {});
+
+}  // namespace slc

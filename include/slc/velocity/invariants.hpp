@@ -1,0 +1,25 @@
+/// @file
+/// What a velocity law's exact motion keeps, or cannot do: the run loop checks every step against
+/// it (evolve/guards.hpp), so that a run whose numerics fail says so instead of ending "ok".
+#pragma once
+
+#include <optional>
+
+namespace slc {
+
+/// A law's invariants; the default claims nothing.
+struct Invariants {
+    /// The enclosed area is conserved: rigid motions, divergence-free flows, the
+    /// volume-preserving flow. The curves cannot vanish.
+    bool keeps_area = false;
+    /// Every curve keeps its shape (rotation, translation, no motion): the number of curves
+    /// cannot change.
+    bool rigid = false;
+    /// The curves cannot shrink away: a normal speed positive for every point and direction.
+    bool cannot_vanish = false;
+    /// dA/dt = rate × (counterclockwise curves − clockwise ones) while no curve vanishes
+    /// (curvature flow of embedded curves: −2π).
+    std::optional<double> area_rate_per_curve = std::nullopt;
+};
+
+}  // namespace slc

@@ -1,0 +1,65 @@
+// The run loop's physical guards: a step's curves against what the law's exact motion keeps.
+#include "slc/evolve/guards.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace slc {
+namespace {
+
+/// Counterclockwise curves (positive area) minus clockwise ones (holes).
+int signed_curve_count(const Interface& curves) {
+    int n = 0;
+    for (std::size_t c = 0; c < curves.curve_count(); ++c)
+        n += signed_area(curves.curve(c)) >= 0.0 ? 1 : -1;
+    return n;
+}
+
+}  // namespace
+
+std::optional<std::string> invariant_violation(const Invariants& law, const Interface& before,
+                                               const Interface& after, double k, double eps,
+                                               const GuardBudget& budget) {
+    if (before.empty()) return std::nullopt;
+    const double a0 = area(before), a1 = area(after);
+    const double tolerance = std::max(budget.area_fraction * std::max(std::abs(a0), std::abs(a1)),
+                                      budget.eps_lengths * eps * length(before));
+    if (after.empty()) {
+        if (law.keeps_area) return "the curves vanished under a law that keeps their area";
+        if (law.cannot_vanish) return "the curves vanished under a law that only grows them";
+        if (law.area_rate_per_curve) {
+            const double rate = *law.area_rate_per_curve * signed_curve_count(before);
+            // A curve vanishes within the step only if its area could be gone in about a step.
+            if (rate < 0.0 && std::abs(a0) > 2.0 * std::abs(rate) * k) {
+                return fmt::format(
+                    "the curves vanished with area {:.3g} left, which the law takes {:.3g} to "
+                    "lose",
+                    a0, std::abs(a0 / rate));
+            }
+        }
+        return std::nullopt;
+    }
+    if (law.rigid && after.curve_count() != before.curve_count()) {
+        return fmt::format("a rigid motion changed the number of curves from {} to {}",
+                           before.curve_count(), after.curve_count());
+    }
+    if (law.keeps_area && std::abs(a1 - a0) > tolerance) {
+        return fmt::format("the area changed by {:.3g}% in one step under a law that keeps it",
+                           100.0 * (a1 - a0) / std::abs(a0));
+    }
+    if (law.area_rate_per_curve && after.curve_count() == before.curve_count()) {
+        const double expected = *law.area_rate_per_curve * signed_curve_count(before) * k;
+        if (std::abs((a1 - a0) - expected) >
+            std::max(budget.rate_fraction * std::abs(expected), tolerance)) {
+            return fmt::format(
+                "the area changed by {:.3g} in one step where the law changes it "
+                "by {:.3g}",
+                a1 - a0, expected);
+        }
+    }
+    return std::nullopt;
+}
+
+}  // namespace slc
