@@ -100,6 +100,14 @@ expect_error "surface outside the domain" "cube.obj: vertex 0 \(-1, -1, -1\) lie
 expect_error "a 2D box for a surface" "--box must be six numbers" -- distance --initial cube.obj --points points.csv --box 0,0,1,1
 expect_ok "a box for a surface" -- distance --initial cube.obj --points points.csv --box -2,-2,-2,2,2,3
 check "a box gives the same answers" diff -u want.csv out.txt
+# slc tree on a surface: the octree in a slice, checked against brute force.
+expect_ok "tree of a surface" -- tree --initial cube.obj --out tree --slice 0.25
+for f in tree.svg tree.png distance.svg distance.png surface.vtp summary.json; do
+    check "tree writes $f" test -s "tree/$f"
+done
+check "the tree agrees with brute force" grep -q '"max_abs_difference": 0.0' tree/summary.json
+check "the summary has the surface's genus" grep -q '"genus": 0' tree/summary.json
+expect_error "slice outside the domain" "--slice must lie in the domain" -- tree --initial cube.obj --out tree2 --slice 9
 expect_ok "help names the 3D columns" -- distance --help
 check "help names nearest_z" grep -q "nearest_z" out.txt
 finish
