@@ -73,22 +73,40 @@ void SurfaceDistanceTree::build_lists() {
                 }
             },
             expensive_grain);
-        std::vector<std::uint32_t> children;
+        std::vector<std::uint32_t> parents;
         for (std::size_t c = begin; c < end; ++c) {
             if (!near[c - begin]) continue;
-            const std::uint32_t first = tree_.split(c);
-            for (std::uint32_t k = 0; k < 8; ++k) children.push_back(first + k);
+            tree_.split(c);
+            parents.push_back(static_cast<std::uint32_t>(c));
         }
-        if (children.empty()) break;
+        if (parents.empty()) break;
+        std::vector<std::uint32_t> children;
+        for (std::uint32_t p : parents)
+            for (std::uint32_t k = 0; k < 8; ++k) children.push_back(tree_.cell(p).first_child + k);
+        // One pass over each parent's list for its eight children: along each axis a triangle's
+        // box meets the triples of the low children, of the high ones, or both (child k is high
+        // along axis a when bit a of k is set), and a triple is met when it is along all three.
         std::vector<std::vector<std::uint32_t>> lists(children.size());
         parallel_for(
-            children.size(),
+            parents.size(),
             [&](std::size_t j) {
-                const std::uint32_t k = children[j];
-                const Box3 t =
-                    tree_.triple(k).inflated(triple_slack * tree_.edge(tree_.cell(k).level));
-                for (std::uint32_t s : cell_triangles(tree_.cell(k).parent))
-                    if (bounds[s].overlaps(t)) lists[j].push_back(s);
+                const std::uint32_t first = tree_.cell(parents[j]).first_child;
+                const double slack = triple_slack * tree_.edge(tree_.cell(first).level);
+                const Box3 low = tree_.triple(first).inflated(slack);
+                const Box3 high = tree_.triple(first + 7).inflated(slack);
+                for (std::uint32_t s : cell_triangles(parents[j])) {
+                    const Box3& b = bounds[s];
+                    unsigned sides[3];
+                    for (int a = 0; a < 3; ++a) {
+                        sides[a] = (b.lo[a] <= low.hi[a] && b.hi[a] >= low.lo[a] ? 1u : 0u) |
+                                   (b.lo[a] <= high.hi[a] && b.hi[a] >= high.lo[a] ? 2u : 0u);
+                    }
+                    for (unsigned k = 0; k < 8; ++k) {
+                        if ((sides[0] >> (k & 1u)) & (sides[1] >> ((k >> 1) & 1u)) &
+                            (sides[2] >> (k >> 2)) & 1u)
+                            lists[8 * j + k].push_back(s);
+                    }
+                }
             },
             expensive_grain);
         for (std::size_t j = 0; j < children.size(); ++j) {
