@@ -16,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
 
 #include "slc/geometry/segment.hpp"
@@ -188,6 +189,83 @@ int exact_orientation(Vec2 a, Vec2 b, Vec2 c) {
     return expansion_orientation(scaled(a), scaled(b), scaled(c));
 }
 
+/// Stage 1 of the 3D orientation: the sign of the determinant of the differences if rounding
+/// cannot have changed it (Shewchuk's bound for orient3d), else decided = false. Below
+/// smallest_safe_permanent a product may have lost bits to underflow, so the filter gives up.
+int filtered_orientation(Vec3 a, Vec3 b, Vec3 c, Vec3 d, bool& decided) {
+    constexpr double o3d_bound_a = (7.0 + 56.0 * epsilon) * epsilon;
+    constexpr double smallest_safe_permanent = 0x1p-800;
+    const Vec3 u = b - a, v = c - a, w = d - a;
+    const double m0 = v.y * w.z - v.z * w.y;
+    const double m1 = v.z * w.x - v.x * w.z;
+    const double m2 = v.x * w.y - v.y * w.x;
+    const double det = u.x * m0 + u.y * m1 + u.z * m2;
+    const double permanent = std::abs(u.x) * (std::abs(v.y * w.z) + std::abs(v.z * w.y)) +
+                             std::abs(u.y) * (std::abs(v.z * w.x) + std::abs(v.x * w.z)) +
+                             std::abs(u.z) * (std::abs(v.x * w.y) + std::abs(v.y * w.x));
+    decided = permanent >= smallest_safe_permanent &&
+              permanent <= std::numeric_limits<double>::max() &&
+              std::abs(det) > o3d_bound_a * permanent;
+    if (permanent == 0.0 && u == Vec3{} && v == Vec3{} && w == Vec3{}) decided = true;
+    return decided ? sign(det) : 0;
+}
+
+/// Stage 2 of the 3D orientation: det[b − a; c − a; d − a] = |b c d| − |a c d| + |a b d| − |a b c|
+/// (multilinearity in the rows, |p q r| the determinant of three points), 24 triple products of
+/// coordinates, each split without error into four doubles (two_product twice) and summed without
+/// error by Grow-Expansion. Precondition: nonzero inputs lie in [2^-300, 2^300], so that no
+/// product overflows and no low part underflows.
+int expansion_orientation(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    std::array<double, 96> e{};
+    std::size_t length = 0;
+    auto grow = [&](double q) {
+        for (std::size_t i = 0; i < length; ++i) two_sum(q, e[i], q, e[i]);
+        e[length++] = q;
+    };
+    auto add_product = [&](double x, double y, double z) {
+        const double p = x * y;
+        const double pe = std::fma(x, y, -p);
+        const double p1 = p * z, e1 = pe * z;
+        grow(std::fma(p, z, -p1));
+        grow(std::fma(pe, z, -e1));
+        grow(e1);
+        grow(p1);
+    };
+    // |p q r| = p·(q × r), six signed triple products.
+    auto add_det = [&](Vec3 p, Vec3 q, Vec3 r, double s) {
+        add_product(s * p.x, q.y, r.z);
+        add_product(-s * p.x, q.z, r.y);
+        add_product(s * p.y, q.z, r.x);
+        add_product(-s * p.y, q.x, r.z);
+        add_product(s * p.z, q.x, r.y);
+        add_product(-s * p.z, q.y, r.x);
+    };
+    add_det(b, c, d, 1.0);
+    add_det(a, c, d, -1.0);
+    add_det(a, b, d, 1.0);
+    add_det(a, b, c, -1.0);
+    for (std::size_t i = length; i-- > 0;) {
+        if (e[i] != 0.0) return sign(e[i]);
+    }
+    return 0;
+}
+
+/// Stages 2 for 3D: scales the inputs by 2^k (which scales the determinant by 2^3k, keeping its
+/// sign) so that the largest lies just below 2^300.
+int exact_orientation(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    int hi = std::numeric_limits<int>::min();
+    for (const Vec3 p : {a, b, c, d}) {
+        for (int i = 0; i < 3; ++i)
+            if (p[i] != 0.0) hi = std::max(hi, std::ilogb(p[i]));
+    }
+    if (hi == std::numeric_limits<int>::min()) return 0;  // all zero
+    const int k = 299 - hi;
+    auto scaled = [k](Vec3 p) {
+        return Vec3{std::ldexp(p.x, k), std::ldexp(p.y, k), std::ldexp(p.z, k)};
+    };
+    return expansion_orientation(scaled(a), scaled(b), scaled(c), scaled(d));
+}
+
 /// p lies in the bounding box of s; with p on the line of s, that means p lies on s.
 bool in_box(Segment s, Vec2 p) { return bounding_box(s).contains(p); }
 
@@ -197,6 +275,12 @@ int orientation(Vec2 a, Vec2 b, Vec2 c) {
     bool decided = false;
     const int s = filtered_orientation(a, b, c, decided);
     return decided ? s : exact_orientation(a, b, c);
+}
+
+int orientation(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    bool decided = false;
+    const int s = filtered_orientation(a, b, c, d, decided);
+    return decided ? s : exact_orientation(a, b, c, d);
 }
 
 bool segments_intersect(Segment s, Segment t) {

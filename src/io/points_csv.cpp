@@ -39,11 +39,13 @@ std::vector<std::string_view> split_fields(std::string_view line) {
     }
 }
 
-bool is_header(const std::vector<std::string_view>& fields) {
+/// "x,y" or "x,y,z" (either case) for `columns` 2 or 3.
+bool is_header(const std::vector<std::string_view>& fields, std::size_t columns) {
     auto is = [](std::string_view f, char c) {
         return f.size() == 1 && (f[0] == c || f[0] == c - 'a' + 'A');
     };
-    return fields.size() == 2 && is(fields[0], 'x') && is(fields[1], 'y');
+    return fields.size() == columns && is(fields[0], 'x') && is(fields[1], 'y') &&
+           (columns == 2 || is(fields[2], 'z'));
 }
 
 /// A field as it may appear in a one-line message: control and non-ASCII bytes as '?', at most
@@ -83,12 +85,13 @@ double parse_coordinate(std::string_view field, const char* name, const std::str
     return value;
 }
 
-}  // namespace
-
-std::vector<Vec2> parse_points_csv(const std::string& text, const std::string& source) {
+/// The coordinates of every point line, `columns` (2 or 3) to a point, one after another.
+std::vector<double> parse_columns(const std::string& text, const std::string& source,
+                                  std::size_t columns) {
+    static constexpr const char* names[3] = {"x", "y", "z"};
     std::string_view rest = text;
     if (rest.starts_with("\xEF\xBB\xBF")) rest.remove_prefix(3);  // a UTF-8 byte-order mark
-    std::vector<Vec2> points;
+    std::vector<double> values;
     bool first_content = true;
     for (std::size_t line_number = 1; !rest.empty(); ++line_number) {
         const std::size_t newline = rest.find('\n');
@@ -97,18 +100,39 @@ std::vector<Vec2> parse_points_csv(const std::string& text, const std::string& s
         if (line.empty()) continue;
 
         const std::vector<std::string_view> fields = split_fields(line);
-        const bool header = first_content && is_header(fields);
+        const bool header = first_content && is_header(fields, columns);
         first_content = false;
         if (header) continue;
         const std::string place = fmt::format("{}, line {}", source, line_number);
-        if (fields.size() != 2) {
-            throw InvalidInput(
-                fmt::format("{}: expected 2 columns x,y, got {}", place, fields.size()));
+        if (fields.size() != columns) {
+            throw InvalidInput(fmt::format("{}: expected {} columns {}, got {}", place, columns,
+                                           columns == 2 ? "x,y" : "x,y,z", fields.size()));
         }
-        points.push_back(
-            {parse_coordinate(fields[0], "x", place), parse_coordinate(fields[1], "y", place)});
+        for (std::size_t i = 0; i < columns; ++i)
+            values.push_back(parse_coordinate(fields[i], names[i], place));
     }
+    return values;
+}
+
+}  // namespace
+
+std::vector<Vec2> parse_points_csv(const std::string& text, const std::string& source) {
+    const std::vector<double> v = parse_columns(text, source, 2);
+    std::vector<Vec2> points(v.size() / 2);
+    for (std::size_t i = 0; i < points.size(); ++i) points[i] = {v[2 * i], v[2 * i + 1]};
     return points;
+}
+
+std::vector<Vec3> parse_points3_csv(const std::string& text, const std::string& source) {
+    const std::vector<double> v = parse_columns(text, source, 3);
+    std::vector<Vec3> points(v.size() / 3);
+    for (std::size_t i = 0; i < points.size(); ++i)
+        points[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+    return points;
+}
+
+std::vector<Vec3> read_points3_csv(const std::filesystem::path& path) {
+    return parse_points3_csv(read_text_file(path), path.string());
 }
 
 std::vector<Vec2> read_points_csv(const std::filesystem::path& path) {

@@ -152,6 +152,42 @@ std::string vtp_text(const Interface& curves, double time) {
     return out;
 }
 
+std::string vtp_text(const Surface& surface, double time) {
+    check_time(time);
+    std::vector<double> xyz;
+    xyz.reserve(3 * surface.vertices.size());
+    for (const Vec3 p : surface.vertices) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    std::vector<std::int64_t> connectivity, offsets;
+    connectivity.reserve(3 * surface.size());
+    for (const TriangleIndices& t : surface.triangles) {
+        connectivity.insert(connectivity.end(), t.begin(), t.end());
+        offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+    }
+    std::vector<std::int32_t> component;
+    for (const std::uint32_t c : component_labels(surface))
+        component.push_back(static_cast<std::int32_t>(c));
+    std::string out;
+    out.reserve(90 * surface.vertices.size() + 1200);
+    out += "<?xml version=\"1.0\"?>\n";
+    out += "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
+    out += "  <PolyData>\n    <FieldData>\n";
+    append_array(out, "Float64", "TimeValue", 1, std::vector<double>{time});
+    out += "    </FieldData>\n";
+    fmt::format_to(std::back_inserter(out),
+                   "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
+                   "NumberOfStrips=\"0\" NumberOfPolys=\"{}\">\n",
+                   surface.vertices.size(), surface.size());
+    out += "      <Points>\n";
+    append_array(out, "Float64", "Points", 3, xyz);
+    out += "      </Points>\n      <Polys>\n";
+    append_array(out, "Int64", "connectivity", 1, connectivity);
+    append_array(out, "Int64", "offsets", 1, offsets);
+    out += "      </Polys>\n      <CellData Scalars=\"component\">\n";
+    append_array(out, "Int32", "component", 1, component);
+    out += "      </CellData>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+    return out;
+}
+
 std::string pvd_text(std::span<const VtkFrame> frames) {
     std::string out;
     out += "<?xml version=\"1.0\"?>\n";

@@ -9,23 +9,13 @@
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/core/tolerances.hpp"
+#include "slc/tree/cell_depth.hpp"
 
 namespace slc {
 
 int Quadtree::max_resolvable_depth(const Box& root) {
-    const double w = root.width();
-    const double magnitude = root.largest_magnitude();
-    if (!(w >= tolerance::min_domain_width) || !(magnitude <= tolerance::max_coordinate) ||
-        root.height() != w) {
-        return -1;
-    }
-    // Cells halve with each level: the deepest l with w 2^-l ≥ min_relative_cell · magnitude.
-    int depth = 0;
-    while (depth < max_supported_depth &&
-           std::ldexp(w, -(depth + 1)) >= tolerance::min_relative_cell * magnitude) {
-        ++depth;
-    }
-    return depth;
+    if (root.height() != root.width()) return -1;
+    return resolvable_depth(root.width(), root.largest_magnitude(), max_supported_depth);
 }
 
 Quadtree::Quadtree(Box root, int max_depth) : root_(root), max_depth_(max_depth) {

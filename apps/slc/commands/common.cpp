@@ -13,7 +13,9 @@
 #include "slc/core/tolerances.hpp"
 #include "slc/evolve/defaults.hpp"
 #include "slc/geometry/validate.hpp"
+#include "slc/geometry/validate_surface.hpp"
 #include "slc/io/interface_json.hpp"
+#include "slc/io/surface_files.hpp"
 #include "slc/tree/quadtree.hpp"
 
 namespace slc::cli {
@@ -25,8 +27,8 @@ void add_domain_options(CLI::App& cmd, DomainOptions& options) {
                        "around the curves' bounding box, 1.5 times its larger half-side)");
     auto* box = cmd.add_option(
         "--box", options.box,
-        "The domain as x0,y0,x1,y1; a rectangle is taken as the square around it, sharing its "
-        "centre");
+        "The domain as x0,y0,x1,y1 (x0,y0,z0,x1,y1,z1 for a surface); a rectangle (box) is taken "
+        "as the square (cube) around it, sharing its centre");
     domain->excludes(box);
 }
 
@@ -63,7 +65,91 @@ Box parse_box(const std::string& text) {
     return {b.lo, {b.hi.x, b.lo.y + b.width()}};
 }
 
+/// The numbers of a comma-separated list, or nothing if one is not a number.
+std::optional<std::vector<double>> numbers(const std::string& text) {
+    std::vector<double> v;
+    std::stringstream in(text);
+    std::string field;
+    while (std::getline(in, field, ',')) {
+        try {
+            std::size_t used = 0;
+            v.push_back(std::stod(field, &used));
+            if (used != field.size()) return std::nullopt;
+        } catch (const std::exception&) {
+            return std::nullopt;
+        }
+    }
+    return v;
+}
+
+Box3 parse_box3(const std::string& text) {
+    const auto v = numbers(text);
+    if (!v || v->size() != 6) {
+        throw InvalidInput(fmt::format(
+            "--box must be six numbers x0,y0,z0,x1,y1,z1 for a surface, got '{}'", text));
+    }
+    const Box3 b{{(*v)[0], (*v)[1], (*v)[2]}, {(*v)[3], (*v)[4], (*v)[5]}};
+    if (!is_finite(b.lo) || !is_finite(b.hi) || !(b.extent(0) > 0) || !(b.extent(1) > 0) ||
+        !(b.extent(2) > 0)) {
+        throw InvalidInput(fmt::format(
+            "--box must have x0 < x1, y0 < y1 and z0 < z1, all finite, got '{}'", text));
+    }
+    if (b.largest_magnitude() > tolerance::max_coordinate) {
+        throw InvalidInput(fmt::format("--box corners must lie within ±{:g}, got '{}'",
+                                       tolerance::max_coordinate, text));
+    }
+    return Box3::cube(b.center(), 0.5 * std::max({b.extent(0), b.extent(1), b.extent(2)}));
+}
+
 }  // namespace
+
+Box3 resolve_domain3(const DomainOptions& options, const Box3& bounds) {
+    if (options.half_width) {
+        const double b = *options.half_width;
+        if (!(b > 0.0) || !(b <= tolerance::max_coordinate)) {
+            throw InvalidInput(
+                fmt::format("--domain must be a positive half-width up to {:g}, got {}",
+                            tolerance::max_coordinate, b));
+        }
+        return Box3::centered_cube(b);
+    }
+    if (options.box) return parse_box3(*options.box);
+    double half = 0.75 * std::max({bounds.extent(0), bounds.extent(1), bounds.extent(2)});
+    if (!(2.0 * half >= tolerance::min_domain_width)) {
+        throw InvalidInput(fmt::format(
+            "the surface spans only {:.3g}: give --domain or --box at least {:g} wide, or scale it",
+            2.0 * half / 1.5, tolerance::min_domain_width));
+    }
+    return Box3::cube(bounds.center(), half);
+}
+
+LoadedSurface load_surface(const std::string& path, const DomainOptions& domain) {
+    Surface raw = read_surface(path);
+    try {
+        PreparedSurface prepared = prepare_surface(std::move(raw));
+        for (const std::string& note : prepared.notes)
+            fmt::print(stderr, "slc: {}: {}\n", path, note);
+        const Box3 bounds = bounding_box(prepared.surface);
+        const Box3 box = resolve_domain3(domain, bounds);
+        if (!box.contains(bounds)) {
+            const auto& vs = prepared.surface.vertices;
+            std::size_t v = 0;
+            while (v < vs.size() && box.contains(vs[v])) ++v;
+            throw InvalidInput(fmt::format(
+                "vertex {} ({}, {}, {}) lies outside the domain [{}, {}]x[{}, {}]x[{}, {}]", v,
+                vs[v].x, vs[v].y, vs[v].z, box.lo.x, box.hi.x, box.lo.y, box.hi.y, box.lo.z,
+                box.hi.z));
+        }
+        return {std::move(prepared.surface), box};
+    } catch (const InvalidInput& e) {
+        if (domain.half_width || domain.box) {
+            // The options' own problems name the option, not the file.
+            const std::string what = e.what();
+            if (what.starts_with("--")) throw;
+        }
+        throw InvalidInput(fmt::format("{}: {}", path, e.what()));
+    }
+}
 
 Box resolve_domain(const DomainOptions& options, const std::vector<std::vector<Vec2>>& raw) {
     if (options.half_width) {

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "slc/core/box.hpp"
+#include "slc/core/box3.hpp"
 #include "slc/geometry/interface.hpp"
+#include "slc/geometry/surface.hpp"
 
 namespace slc::cli {
 
@@ -36,6 +38,20 @@ struct LoadedInterface {
     Box domain;
 };
 LoadedInterface load_interface(const std::string& path, const DomainOptions& domain);
+
+/// The cubic domain of a surface (DESIGN §8): from --domain b ([-b, b]^3) or --box
+/// x0,y0,z0,x1,y1,z1 (a box is taken as the cube around it, sharing its centre), else the cube
+/// centred on the surface's bounding box with half-width 1.5 times its largest half-side.
+Box3 resolve_domain3(const DomainOptions& options, const Box3& bounds);
+
+/// A surface read from an .obj, .stl or .ply file, validated (prepare_surface), with its domain
+/// resolved; every vertex must lie in the domain. Notes of what validation changed (reversed
+/// components) go to stderr, prefixed with the file name.
+struct LoadedSurface {
+    Surface surface;
+    Box3 domain;
+};
+LoadedSurface load_surface(const std::string& path, const DomainOptions& domain);
 
 /// JSON for a box: [x0, y0, x1, y1].
 nlohmann::json box_json(const Box& b);

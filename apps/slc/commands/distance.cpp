@@ -4,7 +4,9 @@
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
 #include "slc/distance/distance_tree.hpp"
+#include "slc/distance/surface_distance_tree.hpp"
 #include "slc/io/points_csv.hpp"
+#include "slc/io/surface_files.hpp"
 
 namespace slc::cli {
 namespace {
@@ -17,8 +19,28 @@ struct DistanceOptions {
     int threads = 0;
 };
 
+/// The 3D form (DESIGN §8): a surface file, x,y,z points.
+void run_surface_distance(const DistanceOptions& o) {
+    const LoadedSurface in = load_surface(o.initial, o.domain);
+    const std::vector<Vec3> xs = read_points3_csv(o.points);
+    const int depth = o.depth.value_or(SurfaceDistanceTree::default_depth(in.surface, in.domain));
+    const SurfaceDistanceTree tree(in.surface, in.domain, {.depth = depth});
+    const std::vector<SurfacePoint> answers = tree.closest_points(xs);
+    std::string out = "x,y,z,distance,nearest_x,nearest_y,nearest_z\n";
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+        const SurfacePoint& p = answers[i];
+        out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", xs[i].x,
+                           xs[i].y, xs[i].z, p.distance, p.point.x, p.point.y, p.point.z);
+    }
+    fmt::print("{}", out);
+}
+
 void run_distance(const DistanceOptions& o) {
     apply_threads(o.threads);
+    if (is_surface_file(o.initial)) {
+        run_surface_distance(o);
+        return;
+    }
     const LoadedInterface in = load_interface(o.initial, o.domain);
     const std::vector<Vec2> xs = read_points_csv(o.points);
     const int depth = o.depth.value_or(DistanceTree::default_depth(in.curves, in.domain));
@@ -40,9 +62,14 @@ void add_distance_command(CLI::App& app) {
     auto* cmd = app.add_subcommand(
         "distance",
         "Signed distance (negative inside) and nearest point of the interface for each x,y line of "
-        "a CSV file; prints x,y,distance,nearest_x,nearest_y with 17 significant digits");
-    cmd->add_option("--initial", o->initial, "Interface file (JSON)")->required();
-    cmd->add_option("--points", o->points, "Query points, one x,y per line (optional header x,y)")
+        "a CSV file; prints x,y,distance,nearest_x,nearest_y with 17 significant digits. For a "
+        "surface (.obj, .stl, .ply), x,y,z lines and x,y,z,distance,nearest_x,nearest_y,"
+        "nearest_z");
+    cmd->add_option("--initial", o->initial,
+                    "Interface file (JSON), or a closed surface (.obj, .stl, .ply): 3D")
+        ->required();
+    cmd->add_option("--points", o->points,
+                    "Query points, one x,y (x,y,z for a surface) per line (optional header)")
         ->required();
     add_domain_options(*cmd, o->domain);
     cmd->add_option("-L,--tree-depth", o->depth,

@@ -9,10 +9,13 @@
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
 #include "slc/distance/extension.hpp"
+#include "slc/distance/surface_distance_tree.hpp"
 #include "slc/geometry/shapes.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
+#include "slc/io/surface_files.hpp"
+#include "slc/io/vtk.hpp"
 
 namespace slc::cli {
 namespace {
@@ -22,6 +25,7 @@ struct TreeOptions {
     std::string shape;
     DomainOptions domain;
     std::optional<int> depth;
+    std::optional<double> slice;
     std::string out;
     int threads = 0;
 };
@@ -103,8 +107,102 @@ void draw_pictures(const DistanceTree& tree, const Box& domain, const std::files
     figure.save(dir / "tree.png");
 }
 
+/// The pieces of the surface's triangles in the plane z = z0, as two-point polylines in x, y.
+std::vector<std::array<Vec2, 2>> cross_section(const Surface& s, double z0) {
+    std::vector<std::array<Vec2, 2>> out;
+    for (std::size_t t = 0; t < s.size(); ++t) {
+        const Triangle3 tri = s.triangle(t);
+        std::vector<Vec2> ends;
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 a = tri[k], b = tri[(k + 1) % 3];
+            // Half-open in z, so that a corner on the plane counts for one edge of each pair.
+            if ((a.z <= z0) == (b.z <= z0)) continue;
+            const double u = (z0 - a.z) / (b.z - a.z);
+            ends.push_back({a.x + u * (b.x - a.x), a.y + u * (b.y - a.y)});
+        }
+        if (ends.size() == 2) out.push_back({ends[0], ends[1]});
+    }
+    return out;
+}
+
+/// slc tree on a surface (DESIGN §8): the octree, checked against brute force, drawn in the
+/// slice z = const through it.
+void run_surface_tree(const TreeOptions& o) {
+    const LoadedSurface in = load_surface(o.initial, o.domain);
+    const Box3& domain = in.domain;
+    const double z0 = o.slice.value_or(domain.center().z);
+    if (!(z0 >= domain.lo.z && z0 <= domain.hi.z)) {
+        throw InvalidInput(fmt::format("--slice must lie in the domain's z range [{}, {}], got {}",
+                                       domain.lo.z, domain.hi.z, z0));
+    }
+    const int depth = o.depth.value_or(SurfaceDistanceTree::default_depth(in.surface, domain));
+    auto start = std::chrono::steady_clock::now();
+    const SurfaceDistanceTree tree(in.surface, domain, {.depth = depth});
+    const double build_s = seconds_since(start);
+
+    // Brute-force check at random points of the domain.
+    std::mt19937 rng(2001);
+    std::uniform_real_distribution<double> ux(domain.lo.x, domain.hi.x),
+        uy(domain.lo.y, domain.hi.y), uz(domain.lo.z, domain.hi.z);
+    double worst = 0.0;
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 x{ux(rng), uy(rng), uz(rng)};
+        worst = std::max(
+            worst, std::abs(tree.closest_point(x).distance -
+                            closest_point_brute_force(in.surface, tree.normals(), x).distance));
+    }
+    // The slice: leaves cut by the plane, the signed distance on it, the surface's section.
+    const Box view{{domain.lo.x, domain.lo.y}, {domain.hi.x, domain.hi.y}};
+    std::vector<Box> cells;
+    for (std::uint32_t c : tree.tree().leaves()) {
+        const Box3 b = tree.tree().box(c);
+        if (b.lo.z <= z0 && z0 < b.hi.z) cells.push_back({{b.lo.x, b.lo.y}, {b.hi.x, b.hi.y}});
+    }
+    const int n = 320;
+    std::vector<Vec3> xs;
+    for (const Vec2 p : grid_points(view, n)) xs.push_back({p.x, p.y, z0});
+    const auto section = cross_section(in.surface, z0);
+    const std::filesystem::path dir(o.out);
+    for (const bool field : {false, true}) {
+        Figure figure(view, field ? fmt::format("Signed distance F in the slice z = {:g}", z0)
+                                  : fmt::format("Octree, depth {}, in the slice z = {:g}",
+                                                tree.tree().max_depth(), z0));
+        if (field) figure.add_field(ScalarGrid{view, n, n, tree.signed_distances(xs)}, "F", true);
+        figure.add_boxes(cells, Color{0, 0, 0, field ? 0.25 : 1.0});
+        for (const auto& piece : section) figure.add_polyline(piece, "", palette_color(1));
+        const std::string name = field ? "distance" : "tree";
+        figure.save(dir / (name + ".svg"));
+        figure.save(dir / (name + ".png"));
+    }
+    const Surface& s = in.surface;
+    const nlohmann::json summary = {
+        {"command", "tree"},
+        {"status", "ok"},
+        {"input", o.initial},
+        {"domain", {domain.lo.x, domain.lo.y, domain.lo.z, domain.hi.x, domain.hi.y, domain.hi.z}},
+        {"tree_depth", depth},
+        {"slice_z", z0},
+        {"triangles", s.size()},
+        {"components", component_count(s)},
+        {"genus", genus(s)},
+        {"area", area(s)},
+        {"volume", volume(s)},
+        {"cells", tree.tree().size()},
+        {"leaves", tree.tree().leaves().size()},
+        {"build_s", build_s},
+        {"brute_force_check", {{"points", 2000}, {"seed", 2001}, {"max_abs_difference", worst}}}};
+    write_file_atomic(dir / "surface.vtp", vtp_text(s, 0.0));
+    write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+    fmt::print("{} cells, {} triangles, built in {:.3g} s; wrote {}\n", tree.tree().size(),
+               s.size(), build_s, (dir / "summary.json").string());
+}
+
 void run_tree(const TreeOptions& o) {
     apply_threads(o.threads);
+    if (!o.initial.empty() && is_surface_file(o.initial)) {
+        run_surface_tree(o);
+        return;
+    }
     Interface curves;
     Box domain;
     if (!o.initial.empty()) {
@@ -154,13 +252,21 @@ void add_tree_command(CLI::App& app) {
         "tree",
         "Builds the distance tree of an interface, checks it against brute force and draws it: "
         "tree, signed distance, nearest-point and Whitney extensions of u = (-y, x)");
-    auto* initial = cmd->add_option("--initial", o->initial, "Interface file (JSON)");
+    auto* initial = cmd->add_option(
+        "--initial", o->initial,
+        "Interface file (JSON), or a closed surface (.obj, .stl, .ply): the octree is drawn in "
+        "a slice z = const");
     auto* shape = cmd->add_option("--shape", o->shape,
                                   "A built-in shape in [-1, 1]^2: propeller, circle, two-circles");
     initial->excludes(shape);
     add_domain_options(*cmd, o->domain);
-    cmd->add_option("-L,--tree-depth", o->depth, "Depth L of the distance tree (default 6)")
+    cmd->add_option("-L,--tree-depth", o->depth,
+                    "Depth L of the distance tree (default 6; for a surface, cells about one mean "
+                    "edge wide)")
         ->check(integer_in(0, 16));
+    cmd->add_option("--slice", o->slice,
+                    "For a surface: the height z of the slice drawn (default: the domain's "
+                    "middle)");
     cmd->add_option("--out", o->out,
                     "Output folder: summary.json, interface.json, tree/distance/extension/whitney "
                     ".svg and .png")

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "slc/core/vec2.hpp"
+#include "slc/core/vec3.hpp"
 #include "slc/geometry/interface.hpp"
 
 namespace slc {
@@ -16,5 +17,13 @@ int orientation(Vec2 a, Vec2 b, Vec2 c);
 /// True if the closed segments s and t share at least one point (touching and collinear overlap
 /// included). Exact.
 bool segments_intersect(Segment s, Segment t);
+
+/// Sign of (b − a) × (c − a) · (d − a): +1 if d lies on the side of the plane through a, b, c
+/// that the normal of the counterclockwise triangle a, b, c points to, −1 on the other side, 0
+/// if the four points are coplanar. O(1) almost always (a floating-point filter); exact for
+/// finite coordinates whose nonzero magnitudes span at most 2^600 (for instance 1e-80 beside
+/// 1e100). NOTE: beyond that span, which no mesh has in practice, the lowest bits of the exact
+/// tier may underflow.
+int orientation(Vec3 a, Vec3 b, Vec3 c, Vec3 d);
 
 }  // namespace slc

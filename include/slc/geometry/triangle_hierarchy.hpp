@@ -1,0 +1,69 @@
+/// @file
+/// TriangleHierarchy: a bounding-volume hierarchy over triangles of space, for the pairs of
+/// triangles whose boxes meet (the self-intersection check of surface validation, O(N log N) for
+/// a surface of similar triangles) and for the exact nearest triangle to points far from the
+/// surface, where the distance tree's cells are large and their lists long. The 3D counterpart of
+/// SegmentHierarchy; triangles in space have no natural order, so it is built by median splits.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "slc/core/box3.hpp"
+#include "slc/geometry/surface.hpp"
+#include "slc/geometry/triangle3.hpp"
+
+namespace slc {
+
+/// Boxes over triangles nested in a binary tree (each node splits its triangles at the median
+/// of their centroids along its longest axis); the triangles themselves stay with the caller.
+class TriangleHierarchy {
+public:
+    /// Triangles per leaf box, at most.
+    static constexpr std::uint32_t leaf_size = 4;
+
+    TriangleHierarchy() = default;
+    /// Builds the boxes over triangles (which the queries must be given again, unchanged).
+    /// O(N log N).
+    explicit TriangleHierarchy(std::span<const Triangle3> triangles);
+
+    /// Calls f(t) for every triangle t whose bounding box meets the closed box b, in no fixed
+    /// order. O(log N + answers) for well-shaped surfaces.
+    template <class F>
+    void for_each_overlapping(const Box3& b, F&& f) const {
+        if (nodes_.empty()) return;
+        std::uint32_t stack[64];
+        int top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const Node& n = nodes_[stack[--top]];
+            if (!n.box.overlaps(b)) continue;
+            if (n.count > 0) {
+                for (std::uint32_t i = n.first; i < n.first + n.count; ++i)
+                    if (boxes_[order_[i]].overlaps(b)) f(order_[i]);
+            } else {
+                stack[top++] = n.first;
+                stack[top++] = n.first + 1;
+            }
+        }
+    }
+
+    /// Lowers best to the least (distance2, triangle) over all triangles: exact, the same answer
+    /// as a scan of every triangle. A best already found only prunes more.
+    void nearest(std::span<const Triangle3> triangles, Vec3 x, NearestFacet& best) const;
+
+private:
+    /// A leaf (count > 0) holds order_[first, first + count); an inner node has children
+    /// nodes_[first] and nodes_[first + 1].
+    struct Node {
+        Box3 box;
+        std::uint32_t first = 0;
+        std::uint32_t count = 0;
+    };
+    std::vector<Node> nodes_;
+    std::vector<std::uint32_t> order_;  ///< triangle indices, grouped by leaf
+    std::vector<Box3> boxes_;           ///< each triangle's bounding box
+};
+
+}  // namespace slc

@@ -1,0 +1,238 @@
+// Validation of user-given surfaces: coordinates, indices, degeneracy, edge and vertex manifold
+// checks, self-intersections, and the orientation of nested components.
+#include "slc/geometry/validate_surface.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+#include "slc/core/tolerances.hpp"
+#include "slc/geometry/triangle_hierarchy.hpp"
+
+namespace slc {
+namespace {
+
+void check_coordinates(const Surface& s) {
+    if (s.empty()) throw InvalidInput("surface has no triangles");
+    for (std::size_t v = 0; v < s.vertices.size(); ++v) {
+        for (int i = 0; i < 3; ++i) {
+            const double c = s.vertices[v][i];
+            if (!std::isfinite(c))
+                throw InvalidInput(fmt::format("vertex {} has a non-finite coordinate", v));
+            if (std::abs(c) > tolerance::max_coordinate) {
+                throw InvalidInput(fmt::format("vertex {} has a coordinate {} beyond ±{:g}", v, c,
+                                               tolerance::max_coordinate));
+            }
+        }
+    }
+    for (std::size_t t = 0; t < s.size(); ++t) {
+        const TriangleIndices& tri = s.triangles[t];
+        for (std::uint32_t v : tri) {
+            if (v >= s.vertices.size()) {
+                throw InvalidInput(fmt::format("triangle {} refers to vertex {}, but there are {}",
+                                               t, v, s.vertices.size()));
+            }
+        }
+        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] ||
+            is_degenerate(s.triangle(t))) {
+            throw InvalidInput(fmt::format("triangle {} is degenerate (zero area)", t));
+        }
+    }
+}
+
+/// Every edge in exactly two triangles, traversed in opposite directions.
+void check_edges(const Surface& s) {
+    struct Half {
+        std::uint64_t key;    // the undirected edge
+        std::uint32_t from;   // the directed edge's first vertex
+        std::uint32_t owner;  // its triangle
+        auto operator<=>(const Half&) const = default;
+    };
+    std::vector<Half> halves;
+    halves.reserve(3 * s.size());
+    for (std::size_t t = 0; t < s.size(); ++t) {
+        for (int k = 0; k < 3; ++k) {
+            const std::uint64_t u = s.triangles[t][k], v = s.triangles[t][(k + 1) % 3];
+            halves.push_back({(std::min(u, v) << 32) | std::max(u, v),
+                              static_cast<std::uint32_t>(u), static_cast<std::uint32_t>(t)});
+        }
+    }
+    std::sort(halves.begin(), halves.end(), [](const Half& a, const Half& b) {
+        return std::tie(a.key, a.owner) < std::tie(b.key, b.owner);
+    });
+    for (std::size_t i = 0; i < halves.size();) {
+        std::size_t j = i;
+        while (j < halves.size() && halves[j].key == halves[i].key) ++j;
+        const auto u = static_cast<std::uint32_t>(halves[i].key >> 32);
+        const auto v = static_cast<std::uint32_t>(halves[i].key & 0xffffffffu);
+        if (j - i == 1) {
+            throw InvalidInput(fmt::format(
+                "triangle {} has an open edge (between vertices {} and {}): the surface is not "
+                "closed",
+                halves[i].owner, u, v));
+        }
+        if (j - i > 2) {
+            throw InvalidInput(
+                fmt::format("edge between vertices {} and {} is non-manifold: triangles {}, {} "
+                            "and {} share it",
+                            u, v, halves[i].owner, halves[i + 1].owner, halves[i + 2].owner));
+        }
+        if (halves[i].from == halves[i + 1].from) {
+            throw InvalidInput(fmt::format(
+                "triangles {} and {} are oriented inconsistently across their edge between "
+                "vertices {} and {}",
+                halves[i].owner, halves[i + 1].owner, u, v));
+        }
+        i = j;
+    }
+}
+
+/// The triangles around each vertex form one fan (edges already manifold and consistent).
+void check_vertices(const Surface& s) {
+    const auto neighbours = triangle_neighbours(s);
+    std::vector<std::uint32_t> corners(s.vertices.size(), 0);
+    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> first(s.vertices.size(), none);
+    for (std::uint32_t t = 0; t < s.size(); ++t) {
+        for (std::uint32_t v : s.triangles[t]) {
+            ++corners[v];
+            if (first[v] == none) first[v] = t;
+        }
+    }
+    for (std::uint32_t v = 0; v < s.vertices.size(); ++v) {
+        if (first[v] == none) continue;
+        // Walk around v: from a triangle with v at corner k, cross the edge ending at v (corner
+        // k − 1 to corner k) into the next triangle of the fan.
+        std::uint32_t t = first[v], steps = 0;
+        do {
+            const TriangleIndices& tri = s.triangles[t];
+            const int k = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+            t = neighbours[t][(k + 2) % 3];
+            ++steps;
+        } while (t != first[v] && steps <= corners[v]);
+        if (steps != corners[v]) {
+            throw InvalidInput(fmt::format(
+                "vertex {} is non-manifold: its {} triangles do not form a single fan (triangle {} "
+                "is in one)",
+                v, corners[v], first[v]));
+        }
+    }
+}
+
+/// The corners of triangles i and j with their shared vertices first, in the same order, and
+/// how many they share.
+int arrange_shared(const Surface& s, std::uint32_t i, std::uint32_t j, Triangle3& a, Triangle3& b) {
+    TriangleIndices p = s.triangles[i], q = s.triangles[j];
+    int shared = 0;
+    for (int k = 0; k < 3; ++k) {
+        for (int m = shared; m < 3; ++m) {
+            if (p[k] == q[m]) {
+                std::swap(p[shared], p[k]);
+                std::swap(q[shared], q[m]);
+                ++shared;
+                break;
+            }
+        }
+    }
+    a = {s.vertices[p[0]], s.vertices[p[1]], s.vertices[p[2]]};
+    b = {s.vertices[q[0]], s.vertices[q[1]], s.vertices[q[2]]};
+    return shared;
+}
+
+/// Reverses components whose orientation disagrees with their nesting; returns the notes.
+std::vector<std::string> orient_components(Surface& s) {
+    const auto label = component_labels(s);
+    const std::size_t count = *std::max_element(label.begin(), label.end()) + 1;
+    // Each component as a surface of its own over the same vertices (moved in and out of one
+    // scratch surface, so that the vertices are never copied).
+    std::vector<std::vector<TriangleIndices>> parts(count);
+    for (std::uint32_t t = 0; t < s.size(); ++t) parts[label[t]].push_back(s.triangles[t]);
+    std::vector<TriangleIndices> all = std::move(s.triangles);
+    std::vector<Box3> boxes(count);
+    std::vector<double> volumes(count);
+    for (std::size_t c = 0; c < count; ++c) {
+        s.triangles = std::move(parts[c]);
+        boxes[c] = bounding_box(s);
+        volumes[c] = volume(s);
+        parts[c] = std::move(s.triangles);
+    }
+    std::vector<int> depth(count, 0);
+    for (std::size_t d = 0; d < count; ++d) {
+        s.triangles = std::move(parts[d]);
+        for (std::size_t c = 0; c < count; ++c) {
+            // A component lies wholly inside or wholly outside another (no intersections), so
+            // one of its vertices decides; the winding number is ±1 inside and 0 outside.
+            const Vec3 probe = s.vertices[parts[c].empty() ? 0 : parts[c][0][0]];
+            if (c != d && boxes[d].contains(probe) && std::abs(winding_number(s, probe)) > 0.5)
+                ++depth[c];
+        }
+        parts[d] = std::move(s.triangles);
+    }
+    s.triangles = std::move(all);
+    std::vector<std::string> notes;
+    std::vector<std::uint8_t> reverse(count, 0);
+    for (std::size_t c = 0; c < count; ++c) {
+        const bool outward = volumes[c] > 0.0;
+        if (outward == (depth[c] % 2 == 0)) continue;
+        reverse[c] = 1;
+        const auto first = static_cast<std::size_t>(
+            std::find(label.begin(), label.end(), static_cast<std::uint32_t>(c)) - label.begin());
+        if (count == 1) {
+            notes.emplace_back("the surface was oriented inward; reversed its triangles");
+        } else {
+            notes.push_back(
+                fmt::format("component {} (from triangle {}) was oriented {}; reversed", c, first,
+                            outward ? "outward inside an odd number of others" : "inward"));
+        }
+    }
+    for (std::uint32_t t = 0; t < s.size(); ++t)
+        if (reverse[label[t]]) std::swap(s.triangles[t][1], s.triangles[t][2]);
+    return notes;
+}
+
+}  // namespace
+
+std::optional<TriangleContact> find_self_intersection(const Surface& s) {
+    std::vector<Triangle3> corners(s.size());
+    for (std::size_t t = 0; t < s.size(); ++t) corners[t] = s.triangle(t);
+    const TriangleHierarchy hierarchy(corners);
+    // For each triangle, the least later triangle it meets; the least pair is then found in
+    // index order, whatever the thread count.
+    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> partner(s.size(), none);
+    parallel_for(
+        s.size(),
+        [&](std::size_t i) {
+            hierarchy.for_each_overlapping(bounding_box(corners[i]), [&](std::uint32_t j) {
+                if (j <= i || j >= partner[i]) return;
+                Triangle3 a, b;
+                const int shared = arrange_shared(s, static_cast<std::uint32_t>(i), j, a, b);
+                if (triangles_overlap(a, b, shared)) partner[i] = j;
+            });
+        },
+        expensive_grain);
+    for (std::uint32_t i = 0; i < s.size(); ++i)
+        if (partner[i] != none) return TriangleContact{i, partner[i]};
+    return std::nullopt;
+}
+
+PreparedSurface prepare_surface(Surface raw) {
+    check_coordinates(raw);
+    check_edges(raw);
+    check_vertices(raw);
+    if (const auto contact = find_self_intersection(raw)) {
+        throw InvalidInput(
+            fmt::format("triangles {} and {} intersect", contact->first, contact->second));
+    }
+    PreparedSurface out;
+    out.notes = orient_components(raw);
+    out.surface = std::move(raw);
+    return out;
+}
+
+}  // namespace slc

@@ -1,0 +1,163 @@
+// Tests of surface validation: each kind of bad input refused with a message naming it, the
+// self-intersection search against all pairs, and the orientation of nested components.
+#include "slc/geometry/validate_surface.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "slc/core/error.hpp"
+#include "slc/geometry/surface_shapes.hpp"
+
+namespace slc {
+namespace {
+
+/// The message prepare_surface throws for s, or "" if it accepts s.
+std::string refusal(const Surface& s) {
+    try {
+        prepare_surface(s);
+    } catch (const InvalidInput& e) {
+        return e.what();
+    }
+    return "";
+}
+
+Surface tetrahedron(Vec3 o) {
+    Surface s;
+    s.vertices = {o, o + Vec3{1, 0, 0}, o + Vec3{0, 1, 0}, o + Vec3{0, 0, 1}};
+    s.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    return s;
+}
+
+TEST(PrepareSurface, AcceptsATetrahedron) {
+    const PreparedSurface p = prepare_surface(tetrahedron({0, 0, 0}));
+    EXPECT_TRUE(p.notes.empty());
+    EXPECT_NEAR(volume(p.surface), 1.0 / 6.0, 1e-15);
+}
+
+TEST(PrepareSurface, RefusesEmptyAndBadCoordinatesAndIndices) {
+    EXPECT_EQ(refusal(Surface{}), "surface has no triangles");
+    Surface s = tetrahedron({0, 0, 0});
+    s.vertices[2].y = NAN;
+    EXPECT_EQ(refusal(s), "vertex 2 has a non-finite coordinate");
+    s = tetrahedron({0, 0, 0});
+    s.triangles[3][1] = 7;
+    EXPECT_EQ(refusal(s), "triangle 3 refers to vertex 7, but there are 4");
+}
+
+TEST(PrepareSurface, RefusesDegenerateTriangles) {
+    Surface s = tetrahedron({0, 0, 0});
+    s.triangles[1] = {0, 1, 1};
+    EXPECT_EQ(refusal(s), "triangle 1 is degenerate (zero area)");
+    // A corner on the opposite edge: zero area with distinct corners.
+    s = tetrahedron({0, 0, 0});
+    s.vertices[3] = {0.5, 0.5, 0.0};
+    EXPECT_NE(refusal(s).find("degenerate"), std::string::npos);
+}
+
+TEST(PrepareSurface, RefusesOpenNonManifoldAndInconsistentEdges) {
+    Surface s = tetrahedron({0, 0, 0});
+    s.triangles.pop_back();
+    EXPECT_NE(refusal(s).find("open edge"), std::string::npos) << refusal(s);
+    s = tetrahedron({0, 0, 0});
+    std::swap(s.triangles[2][0], s.triangles[2][1]);
+    EXPECT_NE(refusal(s).find("oriented inconsistently"), std::string::npos) << refusal(s);
+    // A second tetrahedron hinged on edge (0, 1) of the first: four triangles on that edge.
+    s = tetrahedron({0, 0, 0});
+    s.vertices.push_back({0, -1, 0});
+    s.vertices.push_back({0, 0, -1});
+    for (TriangleIndices t : {TriangleIndices{0, 4, 1}, {0, 1, 5}, {0, 5, 4}, {1, 4, 5}})
+        s.triangles.push_back(t);
+    EXPECT_NE(refusal(s).find("non-manifold"), std::string::npos) << refusal(s);
+}
+
+TEST(PrepareSurface, RefusesANonManifoldVertex) {
+    // Two tetrahedra touching at one corner: every edge is fine, the vertex is not.
+    Surface a = tetrahedron({0, 0, 0});
+    Surface b;
+    b.vertices = {{0, 0, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+    b.triangles = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+    Surface s = join({a, b});
+    // Make the touching corner one vertex.
+    for (TriangleIndices& t : s.triangles)
+        for (std::uint32_t& v : t)
+            if (v == 4) v = 0;
+    EXPECT_EQ(refusal(s),
+              "vertex 0 is non-manifold: its 6 triangles do not form a single fan (triangle 0 is "
+              "in one)");
+}
+
+TEST(PrepareSurface, RefusesIntersectingSpheresNamingTheTriangles) {
+    const Surface s = join({sphere({0, 0, 0}, 1, 2), sphere({1.5, 0, 0}, 1, 2)});
+    const std::string message = refusal(s);
+    EXPECT_EQ(message.rfind("triangles ", 0), 0u) << message;
+    EXPECT_NE(message.find(" intersect"), std::string::npos) << message;
+    // Apart, they are fine; touching at a point is not.
+    EXPECT_EQ(refusal(join({sphere({0, 0, 0}, 1, 2), sphere({2.5, 0, 0}, 1, 2)})), "");
+    EXPECT_NE(
+        refusal(join({box_surface({0, 0, 0}, {1, 1, 1}, 1), box_surface({1, 1, 1}, {2, 2, 2}, 1)})),
+        "");
+}
+
+TEST(FindSelfIntersection, AgreesWithAllPairsOnJitteredSpheres) {
+    for (unsigned seed = 1; seed <= 20; ++seed) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        std::mt19937 rng(seed);
+        Surface s = sphere({0, 0, 0}, 1, 2);
+        // Large jitter of a few vertices folds the surface through itself, sometimes.
+        std::normal_distribution<double> jitter(0.0, 0.5);
+        std::uniform_int_distribution<std::size_t> pick(0, s.vertices.size() - 1);
+        for (int k = 0; k < 3; ++k)
+            s.vertices[pick(rng)] += Vec3{jitter(rng), jitter(rng), jitter(rng)};
+        bool degenerate = false;
+        for (std::size_t t = 0; t < s.size(); ++t) degenerate |= is_degenerate(s.triangle(t));
+        if (degenerate) continue;
+        std::optional<TriangleContact> want;
+        for (std::uint32_t i = 0; i < s.size() && !want; ++i) {
+            for (std::uint32_t j = i + 1; j < s.size() && !want; ++j) {
+                // Shared corners first, as triangles_overlap expects.
+                TriangleIndices p = s.triangles[i], q = s.triangles[j];
+                int shared = 0;
+                for (int a = 0; a < 3; ++a)
+                    for (int b = shared; b < 3; ++b)
+                        if (p[a] == q[b]) {
+                            std::swap(p[shared], p[a]);
+                            std::swap(q[shared], q[b]);
+                            ++shared;
+                            break;
+                        }
+                const Triangle3 ta{s.vertices[p[0]], s.vertices[p[1]], s.vertices[p[2]]};
+                const Triangle3 tb{s.vertices[q[0]], s.vertices[q[1]], s.vertices[q[2]]};
+                if (triangles_overlap(ta, tb, shared)) want = TriangleContact{i, j};
+            }
+        }
+        const auto got = find_self_intersection(s);
+        ASSERT_EQ(got.has_value(), want.has_value());
+        if (got) {
+            EXPECT_EQ(got->first, want->first);
+            EXPECT_EQ(got->second, want->second);
+        }
+    }
+}
+
+TEST(PrepareSurface, OrientsNestedComponentsOutwardAndCavitiesInward) {
+    Surface inward = sphere({0, 0, 0}, 1, 1);
+    for (TriangleIndices& t : inward.triangles) std::swap(t[1], t[2]);
+    PreparedSurface p = prepare_surface(inward);
+    ASSERT_EQ(p.notes.size(), 1u);
+    EXPECT_EQ(p.notes[0], "the surface was oriented inward; reversed its triangles");
+    EXPECT_GT(volume(p.surface), 0.0);
+    // A hollow ball: the inner sphere must point inward (into the cavity).
+    const Surface hollow = join({sphere({0, 0, 0}, 2, 2), sphere({0, 0, 0}, 1, 2)});
+    p = prepare_surface(hollow);
+    ASSERT_EQ(p.notes.size(), 1u);
+    EXPECT_NE(p.notes[0].find("component 1"), std::string::npos) << p.notes[0];
+    const double shell = 4.0 / 3.0 * 3.141592653589793 * (8 - 1);
+    EXPECT_NEAR(volume(p.surface), shell, 0.1 * shell);
+    EXPECT_TRUE(prepare_surface(p.surface).notes.empty());
+}
+
+}  // namespace
+}  // namespace slc
