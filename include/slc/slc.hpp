@@ -28,7 +28,9 @@
 #include "slc/io/plot.hpp"
 #include "slc/io/render.hpp"
 #include "slc/io/vtk.hpp"
+#include "slc/velocity/expression.hpp"
 #include "slc/velocity/factory.hpp"
+#include "slc/velocity/grid_field.hpp"
 #include "slc/velocity/laws.hpp"
 #include "slc/velocity/velocity.hpp"
 

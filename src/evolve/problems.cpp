@@ -14,6 +14,8 @@
 #include "slc/core/error.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/geometry/shapes.hpp"
+#include "slc/velocity/expression.hpp"
+#include "slc/velocity/grid_field.hpp"
 
 namespace slc {
 namespace {
@@ -386,6 +388,15 @@ RunOptions problem_run_options(const Problem& p) {
     r.step.embedded.mesh = default_mesh_size(c.depth);
     r.step.embedded.smoothing = p.smoothing;
     return r;
+}
+
+std::unique_ptr<VelocityLaw> problem_law(const Problem& p, std::optional<GeometryModule> module) {
+    if (p.velocity == "speed")
+        return speed_expression_law(p.velocity_expression, p.velocity_params, module);
+    if (p.velocity == "field")
+        return field_expression_law(p.velocity_expression, p.velocity_params);
+    if (p.velocity == "field-file") return grid_field_law(p.velocity_file);
+    return make_velocity(p.velocity, p.velocity_params, module);
 }
 
 std::optional<double> max_error(const Problem& problem, const Interface& curves, double t) {

@@ -78,6 +78,19 @@ StepResult step_in_growing_domain(const RunResult& result, double k, const Veloc
     }
 }
 
+/// Throws NumericalFailure when Γ(t) has left the region where the law is known (a velocity
+/// given on a grid): the step's curves are dropped, and the run ends with Γ still inside it.
+void require_inside_extent(const VelocityLaw& law, const Interface& curves, double t) {
+    const std::optional<std::size_t> i = vertex_outside_extent(law, curves);
+    if (!i) return;
+    const Box b = *law.extent();
+    const Vec2 p = curves.point(*i);
+    throw NumericalFailure(fmt::format(
+        "at t = {} the curves left the region where velocity '{}' is known, [{}, {}] x [{}, {}], "
+        "at ({}, {}): give the velocity on a larger grid, or end the run earlier (t-end)",
+        t, law.name(), b.lo.x, b.hi.x, b.lo.y, b.hi.y, p.x, p.y));
+}
+
 }  // namespace
 
 Box doubled_domain(const Box& domain, int times) {
@@ -110,6 +123,7 @@ RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domai
 RunResult resume(const RunResult& from, const VelocityLaw& law, const Box& domain,
                  const RunOptions& options, const Observer& observer) {
     check(options);
+    require_inside_extent(law, from.curves);
     if (from.steps_done < 0 || from.steps_done >= options.steps) {
         throw InvalidInput(fmt::format("cannot resume after step {} of a run of {} steps",
                                        from.steps_done, options.steps));
@@ -138,6 +152,7 @@ RunResult resume(const RunResult& from, const VelocityLaw& law, const Box& domai
         const std::int64_t step_cpu_start = process_cpu_ns();
         try {
             step = step_in_growing_domain(result, t_next - result.t, law, domain, options, result);
+            require_inside_extent(law, step.curves, t_next);
         } catch (const NumericalFailure& e) {
             result.status = RunStatus::error;
             result.message = fmt::format("step {} from t = {}: {}", n, result.t, e.what());

@@ -56,7 +56,7 @@ StudyResult study(const Problem& problem, int rows, const RunOptions& base,
                   const StudyObserver& observer) {
     if (rows < 1 || rows > 5)
         throw InvalidInput(fmt::format("rows must be between 1 and 5, got {}", rows));
-    const auto law = make_velocity(problem.velocity, problem.velocity_params, problem.module);
+    const auto law = problem_law(problem, problem.module);
     const Interface initial = prepare_interface(problem.initial, problem.domain).curves;
     StudyResult result{rows, 5, {}};
     for (int row = 0; row < rows; ++row) {

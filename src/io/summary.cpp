@@ -54,12 +54,15 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"L", o.step.resolved_tree_depth()},
         {"domain", {p.domain.lo.x, p.domain.lo.y, p.domain.hi.x, p.domain.hi.y}},
         {"t_end", o.t_end},
-        {"velocity", law.name()},
+        {"velocity", p.velocity.empty() ? law.name() : p.velocity},
         {"velocity_params", p.velocity_params},
         {"extension", to_string(o.step.resolved_extension(law))},
         {"arcs", o.step.resolved_arcs(law)},
         {"area_correction", o.step.area_correction.value_or(law.preserves_area())},
         {"arc_width", o.step.resolved_arc_width((o.t_end - o.t_start) / o.steps)}};
+    if (p.velocity == "speed" || p.velocity == "field")
+        params["velocity_expression"] = p.velocity_expression;
+    if (p.velocity == "field-file") params["velocity_file"] = p.velocity_file;
     for (const auto& q : p.parameters) params["problem_params"][q.name] = q.value;
     nlohmann::json s = {
         {"problem", p.name},

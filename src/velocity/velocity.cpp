@@ -34,6 +34,25 @@ void VelocityLaw::normal_speeds(double, std::span<const Vec2>, std::span<const V
     throw InvalidInput(fmt::format("velocity '{}' is not a normal speed law", name()));
 }
 
+std::optional<std::size_t> vertex_outside_extent(const VelocityLaw& law, const Interface& curves) {
+    const std::optional<Box> extent = law.extent();
+    if (!extent) return std::nullopt;
+    for (std::size_t i = 0; i < curves.size(); ++i)
+        if (!extent->contains(curves.point(i))) return i;
+    return std::nullopt;
+}
+
+void require_inside_extent(const VelocityLaw& law, const Interface& curves) {
+    const std::optional<std::size_t> i = vertex_outside_extent(law, curves);
+    if (!i) return;
+    const Box b = *law.extent();
+    const Vec2 p = curves.point(*i);
+    throw InvalidInput(fmt::format(
+        "the initial curves leave the region where velocity '{}' is known, [{}, {}] x [{}, {}]: "
+        "vertex {} at ({}, {})",
+        law.name(), b.lo.x, b.hi.x, b.lo.y, b.hi.y, *i, p.x, p.y));
+}
+
 std::vector<Vec2> NormalLaw::velocities(double t, const Interface& curves,
                                         const VertexGeometry& geometry) const {
     if (geometry.normals.size() != curves.size()) {

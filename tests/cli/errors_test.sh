@@ -159,4 +159,39 @@ reject "study deeper than K = 24" "the finest of 3 resolutions would have K = 25
     study --initial square.json --velocity rotation --t-end 1 --domain 2 -K 23 --eps 1e-6 --out x
 reject "--estimate with one step" "--estimate compares with the run at half resolution" -- \
     run --initial square.json --velocity rotation --t-end 1 --domain 2 -N 1 --estimate --out x
+
+section "velocity expressions and lattice files (--speed, --field, --field-file of slc run)"
+law=(run --initial square.json --t-end 1 --domain 2 --out x)
+reject "syntax error" "speed expression 'x \+': unexpected end of expression at position 4" -- "${law[@]}" --speed "x +"
+reject "unknown name" "speed expression 'a - k': unknown name 'k' at position 4 \(the variables are x, y, t, C, nx, ny; the constants a\)" -- \
+    "${law[@]}" --speed "a - k" --param a=1
+reject "unbalanced parenthesis" "speed expression 'sin\(x': missing parenthesis" -- "${law[@]}" --speed "sin(x"
+reject "empty expression" "speed expression is empty" -- "${law[@]}" --speed ""
+reject "two values for a speed" "speed expression '1, 2': gives 2 values separated by commas; a normal speed is one" -- "${law[@]}" --speed "1, 2"
+reject "one component for a field" "field expression '-y': gives 1 value; a flow field needs two, u and v" -- "${law[@]}" --field "-y"
+reject "curvature in a field" "field expression 'C, 0': unknown name 'C' at position 0 \(the variables are x, y, t\)" -- "${law[@]}" --field "C, 0"
+reject "constant named as a variable" "speed expression '1': the constant 'x' is a variable of the expression" -- \
+    "${law[@]}" --speed 1 --param x=1
+reject "constant named as a function" "speed expression '1': the constant 'sin' is a function of the expressions" -- \
+    "${law[@]}" --speed 1 --param sin=1
+reject "two laws" "give one velocity law of --velocity, --speed, --field and --field-file, got --velocity and --speed" -- \
+    "${law[@]}" --velocity rotation --speed 1
+reject "a law with a problem" "--problem excludes --speed" -- run --problem vortex --speed 1 --out x
+reject "missing lattice file" "cannot read nowhere.csv: No such file or directory" -- "${law[@]}" --field-file nowhere.csv
+printf 'x,y,u,v\n0,0,1,1\n1,0,1\n' >short.csv
+reject "lattice line of 3 numbers" "short.csv, line 3: expected 4 numbers x,y,u,v, got '1,0,1'" -- "${law[@]}" --field-file short.csv
+printf '0,0,1,1\n1,0,1,1\n0,1,1,1\n' >missing.csv
+reject "lattice point missing" "missing.csv: 3 lines for a lattice of 2 x 2 points; each point needs exactly one line" -- \
+    "${law[@]}" --field-file missing.csv
+printf '0,0,1,1\n1,0,1,1\n3,0,1,1\n0,1,1,1\n1,1,1,1\n3,1,1,1\n' >uneven.csv
+reject "lattice not uniform" "uneven.csv: the x values are not evenly spaced" -- "${law[@]}" --field-file uneven.csv
+printf '0,0,1,1\n1,0,1,1\n0,1,1,1\n0,1,2,2\n' >twice.csv
+reject "lattice point twice" "twice.csv, line 4: the point \(0, 1\) appears twice" -- "${law[@]}" --field-file twice.csv
+printf '# vtk DataFile Version 3.0\nv\nBINARY\n' >binary.vtk
+reject "binary VTK" "binary.vtk: only ASCII legacy VTK files are read, this one is 'BINARY'" -- "${law[@]}" --field-file binary.vtk
+printf '# vtk DataFile Version 3.0\nv\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 1\nORIGIN 0 0 0\nSPACING 1 1 1\nPOINT_DATA 4\nSCALARS p float\nLOOKUP_TABLE default\n1 2 3 4\n' >scalar.vtk
+reject "VTK without a vector array" "scalar.vtk: no point-data array with 2 or 3 components" -- "${law[@]}" --field-file scalar.vtk
+printf -- '-3,-3,1,0\n3,-3,1,0\n-3,3,1,0\n3,3,1,0\n' >small.csv
+reject "curves outside the lattice" "the initial curves leave the region where velocity 'field-file small.csv' is known, \[-3, 3\] x \[-3, 3\]" -- \
+    run --initial far.json --t-end 1 --out x --field-file small.csv
 finish

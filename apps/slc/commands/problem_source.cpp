@@ -1,6 +1,8 @@
 // The problem of slc run and slc study: a named one, or the user's curve with its defaults.
 #include "commands/problem_source.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <filesystem>
 
@@ -16,8 +18,25 @@ void add_problem_source_options(CLI::App& cmd, ProblemSource& o) {
                                    "Interface file (JSON) to move instead of a problem");
     problem->excludes(initial);
     cmd.add_option("--velocity", o.velocity, velocity_help())->excludes(problem);
+    cmd.add_option("--speed", o.speed,
+                   "Normal speed v as an expression of x, y, t, C (curvature, -1/R on a circle), "
+                   "nx, ny (outward unit normal) and --param constants: u = v N, v > 0 moves "
+                   "outward (\"1\" grows circles, \"C\" is curvature flow, \"a - C\" with "
+                   "--param a=0.5). Instead of --velocity")
+        ->excludes(problem);
+    cmd.add_option("--field", o.field,
+                   "Flow field u,v as two expressions of x, y, t and --param constants, separated "
+                   "by a comma (\"-y, x\" rotates about the origin). Instead of --velocity")
+        ->excludes(problem);
+    cmd.add_option("--field-file", o.field_file,
+                   "Steady flow field on a uniform lattice, bilinearly interpolated: CSV lines "
+                   "x,y,u,v (any order, header optional) or legacy VTK STRUCTURED_POINTS (.vtk, "
+                   "ASCII) with a 2- or 3-component point-data array. The curves must stay "
+                   "inside the lattice. Instead of --velocity")
+        ->excludes(problem);
     cmd.add_option("--param", o.params,
-                   "key=value: a parameter of the velocity law or the problem (repeatable)");
+                   "key=value: a parameter of the velocity law or the problem, or a constant of "
+                   "--speed and --field expressions (repeatable)");
     cmd.add_option("--t-end", o.t_end,
                    "Final time a (a problem's own by default); with --initial the run starts at "
                    "the file's \"time\" (0 if absent)");
@@ -32,12 +51,33 @@ Problem resolve_problem(const ProblemSource& o) {
         if (o.domain.half_width || o.domain.box) p.domain = resolve_domain(o.domain, p.initial);
         return p;
     }
-    if (o.velocity.empty()) throw InvalidInput("--initial needs --velocity NAME");
+    std::vector<std::string> laws;
+    if (!o.velocity.empty()) laws.push_back("--velocity");
+    if (o.speed) laws.push_back("--speed");
+    if (o.field) laws.push_back("--field");
+    if (o.field_file) laws.push_back("--field-file");
+    if (laws.empty())
+        throw InvalidInput("--initial needs --velocity NAME, or --speed, --field or --field-file");
+    if (laws.size() > 1) {
+        throw InvalidInput(fmt::format(
+            "give one velocity law of --velocity, --speed, --field and --field-file, got {} and {}",
+            laws[0], laws[1]));
+    }
     if (!o.t_end) throw InvalidInput("--initial needs --t-end");
     LoadedInterface in = load_interface(o.initial, o.domain);
-    const auto law = make_velocity(o.velocity, params, std::nullopt);
-    return curve_problem(std::filesystem::path(o.initial).stem().string(), in.curves, in.domain,
-                         in.time, *o.t_end, *law, o.velocity, params);
+    // The law first: its defaults are the run's, and a lattice must hold the curves.
+    Problem law_source;
+    law_source.velocity = o.velocity.empty() ? laws[0].substr(2) : o.velocity;  // "speed", ...
+    law_source.velocity_expression = o.speed ? *o.speed : o.field.value_or("");
+    law_source.velocity_file = o.field_file.value_or("");
+    law_source.velocity_params = params;
+    const auto law = problem_law(law_source, std::nullopt);
+    require_inside_extent(*law, in.curves);
+    Problem p = curve_problem(std::filesystem::path(o.initial).stem().string(), in.curves,
+                              in.domain, in.time, *o.t_end, *law, law_source.velocity, params);
+    p.velocity_expression = law_source.velocity_expression;
+    p.velocity_file = law_source.velocity_file;
+    return p;
 }
 
 }  // namespace slc::cli

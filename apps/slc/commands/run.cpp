@@ -177,7 +177,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     const std::optional<RunOptions> coarse =
         o.estimate ? std::optional(resolution_options(options, -1)) : std::nullopt;
     const std::optional<GeometryModule> module = geometry_module(o.method);
-    const auto law = make_velocity(p.velocity, p.velocity_params, module ? module : p.module);
+    const auto law = problem_law(p, module ? module : p.module);
     const Interface initial = prepare_interface(p.initial, p.domain).curves;
     const std::filesystem::path dir(o.out);
     std::filesystem::create_directories(dir);
@@ -311,16 +311,25 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
                     "and --quiet may be given with it");
 }
 
-/// The options of the first run, to keep in checkpoints. With --initial, a copy of the file goes
-/// to DIR/checkpoint-initial/ and the checkpoint names the copy, which --resume reads.
+/// The folders of DIR where checkpoints keep copies of the files the run read.
+const std::vector<std::pair<std::string, std::string>> copied_files = {
+    {"--initial", "checkpoint-initial"}, {"--field-file", "checkpoint-field"}};
+
+/// The options of the first run, to keep in checkpoints. With --initial (and --field-file), a
+/// copy of the file goes to DIR/checkpoint-initial/ (DIR/checkpoint-field/) and the checkpoint
+/// names the copy, which --resume reads.
 std::vector<GivenOption> options_to_keep(const CLI::App& cmd, const RunCommand& o) {
     std::vector<GivenOption> given = given_options(cmd, {"--out", "--quiet", "--threads"});
     if (o.checkpoint_every == 0 || o.source.initial.empty()) return given;
-    const std::filesystem::path name = std::filesystem::path(o.source.initial).filename();
-    write_file_atomic(std::filesystem::path(o.out) / "checkpoint-initial" / name,
-                      read_text_file(o.source.initial));
-    for (auto& [option, values] : given)
-        if (option == "--initial") values = {name.string()};
+    for (auto& [option, values] : given) {
+        for (const auto& [copied, folder] : copied_files) {
+            if (option != copied || values.size() != 1) continue;
+            const std::filesystem::path name = std::filesystem::path(values[0]).filename();
+            write_file_atomic(std::filesystem::path(o.out) / folder / name,
+                              read_text_file(values[0]));
+            values = {name.string()};
+        }
+    }
     return given;
 }
 
@@ -336,8 +345,11 @@ void resume_command(const CLI::App& cmd, const RunCommand& o) {
     const Checkpoint c = read_checkpoint(dir);
     std::vector<std::string> args = as_arguments(c.options);
     for (std::string& arg : args) {
-        if (arg.starts_with("--initial="))
-            arg = "--initial=" + (dir / "checkpoint-initial" / arg.substr(10)).string();
+        for (const auto& [option, folder] : copied_files) {
+            const std::string prefix = option + "=";
+            if (arg.starts_with(prefix))
+                arg = prefix + (dir / folder / arg.substr(prefix.size())).string();
+        }
     }
     args.push_back("--out=" + dir.string());
     if (o.quiet) args.push_back("--quiet");

@@ -58,6 +58,10 @@ std::string estimate_note(const SelfConvergenceResult& s) {
 
 std::string markdown(const Problem& p, const SelfConvergenceResult& s) {
     const int threads = thread_count();
+    // The law as given: its name, or the expression or file after the option's name.
+    const std::string given =
+        p.velocity_expression.empty() ? p.velocity_file : p.velocity_expression;
+    const std::string law_text = given.empty() ? p.velocity : p.velocity + " " + given;
     std::string md = fmt::format("# Self-convergence study: {}\n\n", p.name);
     md += fmt::format(
         "The curves of {} under `{}` from t = {:.6g} to {:.6g}, without an exact solution: each "
@@ -68,7 +72,7 @@ std::string markdown(const Problem& p, const SelfConvergenceResult& s) {
         "time loop, "
         "on {} thread{}. The final curves of run r are in final_r.json (`slc render final_*.json` "
         "overlays them).\n\n",
-        p.name, p.velocity, p.t_start, p.t_end, threads, threads == 1 ? "" : "s");
+        p.name, law_text, p.t_start, p.t_end, threads, threads == 1 ? "" : "s");
     md +=
         "| r | N/S/K/P/ε | status | segments | components | area | length | CPU s | d(r, r+1) | "
         "order |\n|---|---|---|---|---|---|---|---|---|---|\n";
@@ -148,10 +152,13 @@ nlohmann::json json(const Problem& p, const SelfConvergenceResult& s) {
                     {"order", s.estimate->order},
                     {"order_observed", s.estimate->observed}};
     }
-    return {
+    nlohmann::json j = {
         {"problem", p.name},    {"velocity", p.velocity}, {"velocity_params", p.velocity_params},
         {"t_start", p.t_start}, {"t_end", p.t_end},       {"resolutions", runs},
         {"pairs", pairs},       {"estimate", estimate},   {"note", estimate_note(s)}};
+    if (!p.velocity_expression.empty()) j["velocity_expression"] = p.velocity_expression;
+    if (!p.velocity_file.empty()) j["velocity_file"] = p.velocity_file;
+    return j;
 }
 
 /// log10 d(r − 1, r) against r, and the estimated error of the finest run beside it.

@@ -186,7 +186,7 @@ void run_self_convergence(const StudyCommand& o) {
                         rows, base.step.contour.depth + rows - 1, max_depth));
     }
     const std::optional<GeometryModule> module = geometry_module(o.method);
-    const auto law = make_velocity(p.velocity, p.velocity_params, module ? module : p.module);
+    const auto law = problem_law(p, module ? module : p.module);
     const std::filesystem::path dir(o.out);
     std::filesystem::create_directories(dir);
     write_self_convergence_study(p, *law, base, rows, o.quiet, dir);

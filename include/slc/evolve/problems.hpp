@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -52,9 +53,13 @@ struct Problem {
     /// The size ℓ of the curves, which scales the lengths the command line defaults to (ε from
     /// -K is 10^−K ℓ): 1 for a named problem, the half-width of a user's curves.
     double length_scale = 1.0;
-    int smoothing = 0;                     ///< S
-    std::string velocity;                  ///< the built-in law, by make_velocity name
-    VelocityParams velocity_params;        ///< its parameters
+    int smoothing = 0;  ///< S
+    /// The law: a built-in one by make_velocity name, or "speed" or "field" (velocity_expression
+    /// is its text) or "field-file" (velocity_file names the file); see problem_law().
+    std::string velocity;
+    VelocityParams velocity_params;        ///< its parameters, or the expression's constants
+    std::string velocity_expression;       ///< for "speed" and "field": the expression
+    std::string velocity_file;             ///< for "field-file": the lattice velocity's file
     std::optional<GeometryModule> module;  ///< overrides the law's default geometry module
     /// The extension and arcs of the run; a named problem sets the paper's (nearest point,
     /// chords), a user's curve leaves them to the law's defaults (StepOptions).
@@ -90,6 +95,13 @@ Problem make_problem(const std::string& name, const std::map<std::string, double
 /// extension, arcs, area correction, triangle safeguard and domain doublings; M = 2^(K+1) and the
 /// rest the defaults of DESIGN §4.
 RunOptions problem_run_options(const Problem& problem);
+
+/// The law of problem: speed_expression_law(velocity_expression, velocity_params, module) for
+/// velocity "speed", field_expression_law(velocity_expression, velocity_params) for "field",
+/// grid_field_law(velocity_file) for "field-file", else make_velocity(velocity,
+/// velocity_params, module). Throws InvalidInput as those do.
+std::unique_ptr<VelocityLaw> problem_law(const Problem& problem,
+                                         std::optional<GeometryModule> module);
 
 /// The error of the paper's Equation (11): the largest |F(x, t)| over the vertices and segment
 /// midpoints of curves, F the exact signed distance; nullopt when the problem has no exact solution

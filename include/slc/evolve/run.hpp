@@ -84,8 +84,10 @@ int domain_doublings_for(const Interface& curves, const Box& domain, int max_dou
 /// step runs in the domain doubled domain_doublings_for(Γ(t)) times, once more for each time its
 /// contour reaches the edge (RunOptions::max_domain_doublings), with K raised by a level per
 /// doubling; a step depends only on Γ and t, so resume() still continues bit for bit.
-/// Failures inside a step end the run with status error and a message naming the time; throws
-/// InvalidInput only for bad options (steps < 1, t_end ≤ t_start, non-finite times).
+/// Failures inside a step end the run with status error and a message naming the time, as do
+/// curves that leave the law's extent (VelocityLaw::extent); throws InvalidInput only for bad
+/// options (steps < 1, t_end ≤ t_start, non-finite times) and initial curves outside the law's
+/// extent.
 RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domain,
               const RunOptions& options, const Observer& observer = {});
 

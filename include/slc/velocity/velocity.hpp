@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "slc/core/box.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/geometry/interface.hpp"
@@ -84,7 +85,21 @@ public:
     /// normals of unit length. Throws InvalidInput unless is_normal_law().
     virtual void normal_speeds(double t, std::span<const Vec2> points,
                                std::span<const Vec2> normals, std::span<double> out) const;
+
+    /// The closed box outside which the law is not known (a velocity given on a grid), or
+    /// nothing for a law known everywhere. run() refuses initial curves that leave it and ends
+    /// with an error when the curves leave it; velocities() and sample() must still answer at
+    /// every point, since contouring samples the whole domain.
+    virtual std::optional<Box> extent() const { return std::nullopt; }
 };
+
+/// The first vertex of curves outside law.extent(), or nothing when every vertex lies inside it
+/// (always, for a law without an extent). O(number of vertices).
+std::optional<std::size_t> vertex_outside_extent(const VelocityLaw& law, const Interface& curves);
+
+/// Throws InvalidInput, naming the law, its extent and the vertex, when a vertex of curves lies
+/// outside law.extent().
+void require_inside_extent(const VelocityLaw& law, const Interface& curves);
 
 /// The base of normal laws u = V(t, x, N)·N: velocities() evaluates V at the vertices with the
 /// normals of the geometry module (the intrinsic one unless told otherwise), and the step may

@@ -1,5 +1,6 @@
 // Tests of the time loop: a run continued from the state an observer saw ends with the same
-// curves, bit for bit, and the same counters, as the run never stopped; each step's CPU time.
+// curves, bit for bit, and the same counters, as the run never stopped; each step's CPU time;
+// a law's extent, which the curves may not leave.
 #include "slc/evolve/run.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/geometry/shapes.hpp"
+#include "slc/velocity/grid_field.hpp"
 #include "slc/velocity/laws.hpp"
 
 namespace slc {
@@ -95,6 +97,27 @@ TEST(Run, ReportsEachStepsCpuTimeWithinTheRunsTotal) {
     EXPECT_EQ(negative, 0);
     // The steps alone, without the loop's bookkeeping and the observer: at most the run's total.
     EXPECT_LE(sum, r.cpu_s);
+}
+
+TEST(Run, EndsWithAnErrorWhenTheCurvesLeaveTheLawsExtent) {
+    // u = (1, 0) on the lattice [−1, 1]²: a circle of radius 0.2 about (0.5, 0) reaches x = 1
+    // at t = 0.3, between steps 2 and 3 of 0.125.
+    GridVelocity g{{-1, -1}, {1, 1}, 3, 3, std::vector<Vec2>(9, Vec2{1, 0})};
+    const GridField field(g, "lattice");
+    const Interface start({shapes::circle({0.5, 0}, 0.2, 64)});
+    RunOptions o = six_steps();
+    o.t_start = 0.0;
+    o.t_end = 0.75;
+    const RunResult r = run(start, field, Box::centered_square(2.0), o);
+    EXPECT_EQ(r.status, RunStatus::error);
+    EXPECT_EQ(r.steps_done, 2);
+    EXPECT_NE(r.message.find("the curves left the region where velocity 'lattice' is known"),
+              std::string::npos)
+        << r.message;
+    EXPECT_FALSE(vertex_outside_extent(field, r.curves));  // the last curves inside it
+    // Curves outside it from the start are bad input.
+    const Interface outside({shapes::circle({1.5, 0}, 0.2, 64)});
+    EXPECT_THROW(run(outside, field, Box::centered_square(2.0), o), InvalidInput);
 }
 
 }  // namespace
