@@ -16,18 +16,22 @@ vertices of a stage, or a batch of points), never per point; what it raises reac
 """
 
 from ._interface import Interface, contour, distance
-from ._run import (FlowField, NormalSpeed, Problem, RunResult, SelfConvergence, Step, Study,
-                   problem, problems, run, study, velocities)
+from ._run import (FieldExpression, FieldFile, FlowField, NormalSpeed, Problem, RunResult,
+                   SelfConvergence, SpeedExpression, Step, Study, problem, problems, run, study,
+                   velocities)
 from .plot import plot
 from .sweep import grid, sweep
 
 __all__ = [
     "Interface",
+    "FieldExpression",
+    "FieldFile",
     "FlowField",
     "NormalSpeed",
     "Problem",
     "RunResult",
     "SelfConvergence",
+    "SpeedExpression",
     "Step",
     "Study",
     "contour",

@@ -40,6 +40,43 @@ class NormalSpeed:
         self.name = name or getattr(f, "__name__", "normal-speed")
 
 
+class SpeedExpression:
+    """A normal speed typed as text, as ``slc run --speed``: v(x, y, t, C, nx, ny) with
+    muparser's operators and functions and the named constants given
+    (``SpeedExpression("a - C", a=0.5)``); v > 0 moves outward, C = -1/R on a circle. Without C
+    it is evaluated off the curve as a NormalSpeed is; with C it takes curvature defaults."""
+
+    kind = "speed"
+
+    def __init__(self, text: str, **constants: float):
+        if not isinstance(text, str):
+            raise TypeError(f"SpeedExpression needs a string, got {type(text).__name__}")
+        self.text = text
+        self.constants = {k: float(v) for k, v in constants.items()}
+
+
+class FieldExpression:
+    """A flow field typed as text, as ``slc run --field``: "U, V" in x, y, t and the named
+    constants (``FieldExpression("-y, x")``), sampled along the characteristics."""
+
+    kind = "field"
+
+    def __init__(self, text: str, **constants: float):
+        if not isinstance(text, str):
+            raise TypeError(f"FieldExpression needs a string, got {type(text).__name__}")
+        self.text = text
+        self.constants = {k: float(v) for k, v in constants.items()}
+
+
+class FieldFile:
+    """A steady flow field sampled on a uniform grid, as ``slc run --field-file``: CSV lines
+    x,y,u,v or legacy VTK STRUCTURED_POINTS, interpolated bilinearly; a run whose curves leave
+    the grid ends with status "error"."""
+
+    def __init__(self, path):
+        self.path = str(path)
+
+
 class Step(NamedTuple):
     """What an observer of run() sees after each step."""
 
@@ -53,7 +90,8 @@ class Step(NamedTuple):
 @dataclass
 class RunResult:
     """How a run ended: ``status`` is "ok", "vanished", "interrupted" (Ctrl-C, or an observer
-    returned False) or "error" (``message`` says why, naming the time)."""
+    returned False), "error" or "unstable" (a step broke what the law keeps — area, shape, its
+    area rate — even split into 16 sub-steps); ``message`` says why, naming the time."""
 
     interface: Interface
     status: str
@@ -144,7 +182,15 @@ def _law(velocity, params, geometry):
     """The _slc.LawSpec of a velocity argument."""
     params = {k: float(v) for k, v in (params or {}).items()}
     if isinstance(velocity, FlowField):
-        return _slc.LawSpec(velocity.f, "field", velocity.name, params, geometry)
+        return _slc.LawSpec(velocity.f, "flow-field", velocity.name, params, geometry)
+    if isinstance(velocity, (SpeedExpression, FieldExpression)):
+        if params:
+            raise ValueError("an expression's constants go to the expression itself: "
+                             "SpeedExpression(text, a=0.5)")
+        return _slc.LawSpec(velocity.text, velocity.kind, velocity.text, velocity.constants,
+                            geometry)
+    if isinstance(velocity, FieldFile):
+        return _slc.LawSpec(velocity.path, "field-file", velocity.path, params, geometry)
     if isinstance(velocity, NormalSpeed):
         return _slc.LawSpec(velocity.f, "normal", velocity.name, params, geometry)
     if isinstance(velocity, str):

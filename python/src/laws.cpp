@@ -2,6 +2,9 @@
 // a batch of points) on the thread that runs the step, with the GIL held for the call alone.
 #include "laws.hpp"
 
+#include "slc/velocity/expression.hpp"
+#include "slc/velocity/grid_field.hpp"
+
 #include <algorithm>
 #include <map>
 
@@ -124,9 +127,15 @@ std::unique_ptr<VelocityLaw> make_law(const LawSpec& spec) {
         spec.geometry ? std::optional(geometry_module(*spec.geometry)) : std::nullopt;
     if (spec.kind == "builtin")
         return make_velocity(spec.velocity.cast<std::string>(), spec.params, module);
+    if (spec.kind == "speed")
+        return speed_expression_law(spec.velocity.cast<std::string>(), spec.params, module);
+    if (spec.kind == "field")
+        return field_expression_law(spec.velocity.cast<std::string>(), spec.params);
+    if (spec.kind == "field-file") return grid_field_law(spec.velocity.cast<std::string>());
     if (!spec.params.empty())
         throw InvalidInput("params are for the built-in laws, not for a Python velocity");
-    if (spec.kind == "field") return std::make_unique<PythonFieldLaw>(spec.velocity, spec.name);
+    if (spec.kind == "flow-field")
+        return std::make_unique<PythonFieldLaw>(spec.velocity, spec.name);
     if (spec.kind == "normal") return std::make_unique<PythonNormalLaw>(spec.velocity, spec.name);
     return std::make_unique<PythonCurveLaw>(spec.velocity, spec.name, module);
 }

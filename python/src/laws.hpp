@@ -12,9 +12,10 @@
 
 namespace slc::python {
 
-/// What the package passes for a law: velocity is a law's name (kind "builtin") or a callable of
-/// kind "curve" f(t, points, normals, curvature), "normal" f(t, points, normals) or "field"
-/// f(t, points); name is what summary.json calls it.
+/// What the package passes for a law: velocity is a law's name (kind "builtin"), an expression
+/// (kind "speed" or "field", as `slc run --speed` and `--field`), a file (kind "field-file"), or
+/// a callable of kind "curve" f(t, points, normals, curvature), "normal" f(t, points, normals)
+/// or "flow-field" f(t, points); name is what summary.json calls it.
 struct LawSpec {
     py::object velocity;
     std::string kind;

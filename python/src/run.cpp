@@ -295,8 +295,16 @@ Problem curve_problem_of(const std::vector<Array>& arrays, double t_start, doubl
     const Curves raw = curves_of(arrays);
     const Interface curves(raw);
     const std::unique_ptr<VelocityLaw> law = make_law(spec);
-    return curve_problem(spec.name, curves, default_domain(raw), t_start, t_end, *law, spec.name,
-                         spec.params);
+    Problem p = curve_problem(spec.name, curves, default_domain(raw), t_start, t_end, *law,
+                              spec.name, spec.params);
+    if (spec.kind == "speed" || spec.kind == "field") {
+        p.velocity = spec.kind;
+        p.velocity_expression = spec.velocity.cast<std::string>();
+    } else if (spec.kind == "field-file") {
+        p.velocity = spec.kind;
+        p.velocity_file = spec.velocity.cast<std::string>();
+    }
+    return p;
 }
 
 py::dict problem_parameters(const Problem& p) {

@@ -584,27 +584,35 @@ std::size_t perturb(Topology& topo, BatchFunctionRef g, double eta) {
 }
 
 /// Stand-ins at vertices of triangles where G changes sign get their exact values: root finding
-/// starts from them. Their signs were certain, so no triangle changes state. One batch.
-void evaluate_crossed_stand_ins(Topology& topo, BatchFunctionRef g) {
+/// starts from them. Their signs were certain, so no triangle should change state; should a bound
+/// have been wrong (G's bound holds only to rounding, and a law may break it), the triangles the
+/// new values cross are evaluated in turn, and values within η perturbed, until no crossed
+/// triangle holds a stand-in. One batch per round, almost always one round. Returns the vertices
+/// perturbed.
+std::size_t evaluate_crossed_stand_ins(Topology& topo, BatchFunctionRef g, double eta) {
     const auto& mesh = topo.mesh;
-    std::vector<std::uint32_t> ids;
-    for (const auto& t : mesh.triangles) {
-        const bool positive = topo.values[t[0]] > 0.0;
-        if ((topo.values[t[1]] > 0.0) == positive && (topo.values[t[2]] > 0.0) == positive)
-            continue;
-        for (std::uint32_t v : t) {
-            if (topo.stand_in[v]) {
-                topo.stand_in[v] = 0;
-                ids.push_back(v);
+    std::size_t perturbed = 0;
+    for (;;) {
+        std::vector<std::uint32_t> ids;
+        for (const auto& t : mesh.triangles) {
+            const bool positive = topo.values[t[0]] > 0.0;
+            if ((topo.values[t[1]] > 0.0) == positive && (topo.values[t[2]] > 0.0) == positive)
+                continue;
+            for (std::uint32_t v : t) {
+                if (topo.stand_in[v]) {
+                    topo.stand_in[v] = 0;
+                    ids.push_back(v);
+                }
             }
         }
+        if (ids.empty()) return perturbed;
+        std::vector<Vec2> points;
+        for (std::uint32_t v : ids) points.push_back(mesh.vertices[v]);
+        std::vector<double> values(points.size());
+        g(points, values);
+        for (std::size_t i = 0; i < ids.size(); ++i) topo.values[ids[i]] = values[i];
+        perturbed += perturb(topo, g, eta);
     }
-    if (ids.empty()) return;
-    std::vector<Vec2> points;
-    for (std::uint32_t v : ids) points.push_back(mesh.vertices[v]);
-    std::vector<double> values(points.size());
-    g(points, values);
-    for (std::size_t i = 0; i < ids.size(); ++i) topo.values[ids[i]] = values[i];
 }
 
 }  // namespace
@@ -623,7 +631,7 @@ Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOp
     sampler.triangulate(topo, on_boundary);
     check_boundary(topo, on_boundary, options.eta);
     topo.perturbed = perturb(topo, g, options.eta);
-    evaluate_crossed_stand_ins(topo, g);
+    topo.perturbed += evaluate_crossed_stand_ins(topo, g, options.eta);
     topo.settled = static_cast<std::size_t>(
         std::count(topo.stand_in.begin(), topo.stand_in.end(), std::uint8_t{1}));
     return topo;

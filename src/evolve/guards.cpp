@@ -20,19 +20,22 @@ int signed_curve_count(const Interface& curves) {
 }  // namespace
 
 std::optional<std::string> invariant_violation(const Invariants& law, const Interface& before,
-                                               const Interface& after, double k, double eps,
+                                               double area_before, const Interface& after,
+                                               double area_after, double k, double eps,
                                                const GuardBudget& budget) {
     if (before.empty()) return std::nullopt;
-    const double a0 = area(before), a1 = area(after);
-    const double tolerance = std::max(budget.area_fraction * std::max(std::abs(a0), std::abs(a1)),
-                                      budget.eps_lengths * eps * length(before));
+    const double a0 = area_before, a1 = area_after;
+    const double eps_tolerance = budget.eps_lengths * eps * length(before);
+    const double tolerance =
+        std::max(budget.area_fraction * std::max(std::abs(a0), std::abs(a1)), eps_tolerance);
     if (after.empty()) {
         if (law.keeps_area) return "the curves vanished under a law that keeps their area";
         if (law.cannot_vanish) return "the curves vanished under a law that only grows them";
         if (law.area_rate_per_curve) {
             const double rate = *law.area_rate_per_curve * signed_curve_count(before);
             // A curve vanishes within the step only if its area could be gone in about a step.
-            if (rate < 0.0 && std::abs(a0) > 2.0 * std::abs(rate) * k) {
+            if (rate < 0.0 &&
+                std::abs(a0) > std::max(2.0 * std::abs(rate) * k, budget.resolved_area)) {
                 return fmt::format(
                     "the curves vanished with area {:.3g} left, which the law takes {:.3g} to "
                     "lose",
@@ -40,6 +43,12 @@ std::optional<std::string> invariant_violation(const Invariants& law, const Inte
             }
         }
         return std::nullopt;
+    }
+    if (law.cannot_split && after.curve_count() > before.curve_count()) {
+        return fmt::format(
+            "the number of curves rose from {} to {} under a law that cannot split "
+            "them",
+            before.curve_count(), after.curve_count());
     }
     if (law.rigid && after.curve_count() != before.curve_count()) {
         return fmt::format("a rigid motion changed the number of curves from {} to {}",
@@ -49,10 +58,12 @@ std::optional<std::string> invariant_violation(const Invariants& law, const Inte
         return fmt::format("the area changed by {:.3g}% in one step under a law that keeps it",
                            100.0 * (a1 - a0) / std::abs(a0));
     }
-    if (law.area_rate_per_curve && after.curve_count() == before.curve_count()) {
+    // Curves smaller than a cell are not resolved: their area moves as the tree allows.
+    if (law.area_rate_per_curve && after.curve_count() == before.curve_count() &&
+        std::abs(a0) > budget.resolved_area) {
         const double expected = *law.area_rate_per_curve * signed_curve_count(before) * k;
         if (std::abs((a1 - a0) - expected) >
-            std::max(budget.rate_fraction * std::abs(expected), tolerance)) {
+            std::max(budget.rate_fraction * std::abs(expected), eps_tolerance)) {
             return fmt::format(
                 "the area changed by {:.3g} in one step where the law changes it "
                 "by {:.3g}",

@@ -7,8 +7,10 @@
 #include <cmath>
 #include <cstdint>
 #include <ctime>
+#include <numbers>
 
 #include "slc/core/error.hpp"
+#include "slc/evolve/guards.hpp"
 #include "slc/tree/quadtree.hpp"
 
 namespace slc {
@@ -21,6 +23,8 @@ const char* to_string(RunStatus status) {
             return "vanished";
         case RunStatus::interrupted:
             return "interrupted";
+        case RunStatus::unstable:
+            return "unstable";
         default:
             return "error";
     }
@@ -55,20 +59,19 @@ double time_after(const RunOptions& o, int n) {
 
 /// One step in the domain that holds Γ(t): doubled as domain_doublings_for says, then once more
 /// each time the contour reaches the edge. Counts the doublings in `result`.
-StepResult step_in_growing_domain(const RunResult& result, double k, const VelocityLaw& law,
-                                  const Box& domain, const RunOptions& options,
-                                  RunResult& counters) {
+StepResult step_in_growing_domain(const Interface& curves, double t, double k,
+                                  const VelocityLaw& law, const Box& domain,
+                                  const RunOptions& options, RunResult& counters) {
     const int most = std::min(options.max_domain_doublings,
                               Quadtree::max_supported_depth - options.step.contour.depth);
-    for (int j = domain_doublings_for(result.curves, domain, std::max(most, 0));; ++j) {
+    for (int j = domain_doublings_for(curves, domain, std::max(most, 0));; ++j) {
         StepOptions o = options.step;
         o.contour.depth += j;
         if (j > 0 && o.embedded.mesh > 0) o.embedded.mesh <<= j;
         try {
-            StepResult step =
-                advance(result.curves, result.t, k, law, doubled_domain(domain, j), o);
+            StepResult step = advance(curves, t, k, law, doubled_domain(domain, j), o);
             if (j > counters.domain_doublings) {
-                if (counters.domain_doublings == 0) counters.domain_grown_at = result.t;
+                if (counters.domain_doublings == 0) counters.domain_grown_at = t;
                 counters.domain_doublings = j;
             }
             return step;
@@ -89,6 +92,74 @@ void require_inside_extent(const VelocityLaw& law, const Interface& curves, doub
         "at t = {} the curves left the region where velocity '{}' is known, [{}, {}] x [{}, {}], "
         "at ({}, {}): give the velocity on a larger grid, or end the run earlier (t-end)",
         t, law.name(), b.lo.x, b.hi.x, b.lo.y, b.hi.y, p.x, p.y));
+}
+
+/// A step that broke the law's invariants in every split RunOptions::max_substep_halvings allows.
+struct Unstable {
+    std::string message;
+};
+
+/// The step from Γ(t) (result's) to t_next: whole, or when it breaks the law's invariants
+/// (RunOptions::guards) split into 2, 4, ... sub-steps until each keeps them. Adds the G
+/// evaluations, vertices and area corrections of every sub-step that was kept to `counters`, and
+/// its split to counters.split_steps / most_substeps. A split whose step fails (NumericalFailure:
+/// a contour that leaves a fixed domain, say) is retried the same way. Throws Unstable when no
+/// split keeps the invariants, and the finest split's NumericalFailure when every split fails.
+StepResult guarded_step(const RunResult& result, double t_next, const VelocityLaw& law,
+                        const Box& domain, const RunOptions& options, RunResult& counters) {
+    const Invariants invariants = law.invariants();
+    const double eps = options.step.contour.resolved_eps();
+    const double h = std::ldexp(domain.width(), -options.step.contour.depth);
+    const GuardBudget budget{.resolved_area = std::numbers::pi * h * h};
+    const int halvings = options.guards ? std::max(options.max_substep_halvings, 0) : 0;
+    std::string violation;
+    for (int j = 0; j <= halvings; ++j) {
+        const int parts = 1 << j;
+        StepResult out{result.curves, {}};
+        double t = result.t;
+        std::size_t g_evals = 0, vertices = 0;
+        double corrected = 0.0;
+        bool kept = true;
+        for (int i = 1; i <= parts && !out.curves.empty(); ++i) {
+            const double t_to = i == parts ? t_next : result.t + (t_next - result.t) * i / parts;
+            StepResult s;
+            try {
+                s = step_in_growing_domain(out.curves, t, t_to - t, law, domain, options, counters);
+                require_inside_extent(law, s.curves, t_to);
+            } catch (const NumericalFailure&) {
+                // A step too large for the curves' features may fail where smaller ones do not.
+                if (j == halvings) throw;
+                kept = false;
+                break;
+            }
+            if (options.guards) {
+                const double a0 = step_area(out.curves, law, options.step);
+                const double a1 = step_area(s.curves, law, options.step);
+                if (auto v = invariant_violation(invariants, out.curves, a0, s.curves, a1, t_to - t,
+                                                 eps, budget)) {
+                    violation = fmt::format("at t = {}: {}", t, *v);
+                    kept = false;
+                    break;
+                }
+            }
+            g_evals += s.stats.g_evals();
+            vertices += s.stats.vertices();
+            corrected += s.stats.area_correction;
+            out = std::move(s);
+            t = t_to;
+        }
+        if (!kept) continue;
+        counters.g_evals += g_evals;
+        counters.vertices_produced += vertices;
+        counters.area_corrected += corrected;
+        if (parts > 1) {
+            ++counters.split_steps;
+            counters.most_substeps = std::max(counters.most_substeps, parts);
+        }
+        return out;
+    }
+    throw Unstable{fmt::format("{}, also in {} sub-steps: raise the steps N or the depth K",
+                               violation, 1 << halvings)};
 }
 
 }  // namespace
@@ -151,17 +222,17 @@ RunResult resume(const RunResult& from, const VelocityLaw& law, const Box& domai
         StepResult step;
         const std::int64_t step_cpu_start = process_cpu_ns();
         try {
-            step = step_in_growing_domain(result, t_next - result.t, law, domain, options, result);
-            require_inside_extent(law, step.curves, t_next);
+            step = guarded_step(result, t_next, law, domain, options, result);
         } catch (const NumericalFailure& e) {
             result.status = RunStatus::error;
             result.message = fmt::format("step {} from t = {}: {}", n, result.t, e.what());
             break;
+        } catch (const Unstable& e) {
+            result.status = RunStatus::unstable;
+            result.message = fmt::format("step {} from t = {}: {}", n, result.t, e.message);
+            break;
         }
         const double step_cpu_s = seconds(process_cpu_ns() - step_cpu_start);
-        result.g_evals += step.stats.g_evals();
-        result.area_corrected += step.stats.area_correction;
-        result.vertices_produced += step.stats.vertices();
         result.curves = std::move(step.curves);
         result.t = t_next;
         result.steps_done = n;

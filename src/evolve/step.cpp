@@ -59,6 +59,23 @@ std::vector<double> arc_curvatures(const Interface& curves) {
     return kappa;
 }
 
+}  // namespace
+
+double step_area(const Interface& curves, const VelocityLaw& law, const StepOptions& options) {
+    double a = area(curves);
+    if (curves.empty() || !options.resolved_arcs(law)) return a;
+    // Level::distance's arc lies ½ c² s (1 − s) κ(s) beyond the chord, κ linear along it.
+    const std::vector<double> kappa = arc_curvatures(curves);
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+        const std::size_t b = curves.next(i);
+        const double c = norm(curves.point(b) - curves.point(i));
+        a -= c * c * c * (kappa[i] + kappa[b]) / 24.0;
+    }
+    return a;
+}
+
+namespace {
+
 /// Γ at one time level: its distance tree and, unless the law is evaluated directly, its vertex
 /// velocities and their extension W off Γ; for a normal law evaluated directly, the field's
 /// normals and a bound on the law's speed.

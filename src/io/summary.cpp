@@ -86,7 +86,9 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"peak_rss_mib", peak_rss_mib()},
         {"g_evals_per_vertex",
          r.vertices_produced > 0 ? static_cast<double>(r.g_evals) / r.vertices_produced : 0.0}};
-    if (r.status == RunStatus::error) s["message"] = r.message;
+    if (r.status == RunStatus::error || r.status == RunStatus::unstable) s["message"] = r.message;
+    if (r.split_steps > 0)
+        s["substeps"] = {{"split_steps", r.split_steps}, {"most", r.most_substeps}};
     if (o.step.area_correction.value_or(law.preserves_area()))
         s["area_corrected"] = r.area_corrected;
     if (r.domain_doublings > 0) {

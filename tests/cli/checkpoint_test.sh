@@ -11,7 +11,7 @@ same_run() {  # same_run NAME A B: final.json identical, the history and the sum
 
 # Uninterrupted, then the same run checkpointed every 6 steps and resumed from its last checkpoint
 # (step 18 of 20): steps 19 and 20 again, with the frames written before (and their VTK series).
-run_args=(run --problem vortex -N 20 -K 5 -P 1 --frames 4 --vtk --quiet)
+run_args=(run --problem vortex -N 20 -K 6 -P 1 --frames 4 --vtk --quiet)
 expect_ok "uninterrupted" -- "${run_args[@]}" --out full
 expect_ok "checkpointed" -- "${run_args[@]}" --checkpoint-every 6 --out part
 check "checkpoint written" test -s part/checkpoint.json
@@ -49,7 +49,7 @@ same_run "user curve resumed from step 4" user_full user_part
 # Stopped by SIGTERM while running: status interrupted, a checkpoint at the step it stopped after,
 # and the resumed run ends as the uninterrupted one. (Should the run finish before the signal,
 # the last regular checkpoint is resumed: the comparison holds either way.)
-long_args=(run --problem vortex -N 100 -K 5 -P 0 --quiet)
+long_args=(run --problem vortex -N 100 -K 6 -P 0 --quiet)
 expect_ok "long run" -- "${long_args[@]}" --out long_full
 "$SLC" "${long_args[@]}" --checkpoint-every 1 --out long_part 2>err.txt &
 pid=$!

@@ -64,6 +64,8 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     json["cpu_s"] = s.cpu_s;
     json["domain_doublings"] = s.domain_doublings;
     json["area_corrected"] = s.area_corrected;
+    json["split_steps"] = s.split_steps;
+    json["most_substeps"] = s.most_substeps;
     if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
     json["frames_kept"] = c.frames_kept;
     json["curves"] = curves_json(s.curves);
@@ -90,6 +92,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
         s.cpu_s = json.at("cpu_s").get<double>();
         s.domain_doublings = json.value("domain_doublings", 0);
         s.area_corrected = json.value("area_corrected", 0.0);
+        s.split_steps = json.value("split_steps", 0);
+        s.most_substeps = json.value("most_substeps", 1);
         if (s.domain_doublings > 0) s.domain_grown_at = json.at("domain_grown_at").get<double>();
         s.status = RunStatus::interrupted;
         c.frames_kept = json.at("frames_kept").get<int>();

@@ -276,7 +276,8 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
                     e["estimate"].get<double>(), e["coarse"].get<std::string>());
         }
     }
-    if (r.status == RunStatus::error) throw NumericalFailure(r.message);
+    if (r.status == RunStatus::error || r.status == RunStatus::unstable)
+        throw NumericalFailure(r.message);
 }
 
 /// The options of `slc run` (all but the action), so that --resume can parse a checkpoint's again.

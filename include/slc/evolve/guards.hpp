@@ -13,22 +13,29 @@
 
 namespace slc {
 
-/// The error budget of one step's area: max(area_fraction·|A|, eps_lengths·ε·L), with A the
-/// larger of the areas before and after, L the length before and ε the step's contour tolerance.
-/// The paper's experiments change the area of their area-keeping laws by at most 1.9e−3 of A in a
-/// step (the single vortex, whose filaments thin below a cell), and curvature flow's area falls
-/// within a quarter of 2πk per curve.
+/// The error budget of one step's area: max(area_fraction·|A|, eps_lengths·ε·L) for a law that
+/// keeps it, max(rate_fraction·|ΔA|, eps_lengths·ε·L) for a law that changes it by ΔA in the step,
+/// with A the larger of the areas before and after, L the length before and ε the step's contour
+/// tolerance. The paper's experiments change the area of their area-keeping laws by at most 1.9e−3
+/// of A in a step (the single vortex, whose filaments thin below a cell), and curvature flow's area
+/// falls within a quarter of 2πk per curve.
 struct GuardBudget {
     double area_fraction = 1e-2;
     double eps_lengths = 20.0;
     double rate_fraction = 0.25;  ///< of the area a law with an area rate should change by
+    /// Under a law that shrinks curves at a rate, a curve may vanish once its area is below
+    /// 2|ΔA| or this, and below this its rate is not checked: π h² for the finest cell h of the
+    /// contouring tree, which need not resolve a curve smaller than a cell.
+    double resolved_area = 0.0;
 };
 
 /// Why a step of length k from `before` to `after` breaks the law's invariants, in one line
 /// ("the area changed by 85% in one step under a law that keeps it"), or nothing when it keeps
-/// them within the budget. eps: the contour tolerance ε of the step.
+/// them within the budget. area_before, area_after: their areas as the step reads them
+/// (step_area); eps: the contour tolerance ε of the step.
 std::optional<std::string> invariant_violation(const Invariants& law, const Interface& before,
-                                               const Interface& after, double k, double eps,
+                                               double area_before, const Interface& after,
+                                               double area_after, double k, double eps,
                                                const GuardBudget& budget = {});
 
 }  // namespace slc

@@ -17,6 +17,9 @@ enum class RunStatus {
     vanished,     ///< every component shrank away; the run ended at that time
     interrupted,  ///< the observer asked to stop
     error,        ///< a step failed (contour left the domain, velocity not finite): see message
+    /// a step broke what the law keeps (VelocityLaw::invariants) even split into sub-steps
+    /// (RunOptions::guards): see message
+    unstable,
 };
 
 /// The summary.json spelling of a status.
@@ -33,6 +36,11 @@ struct RunOptions {
     /// the domain fixed, as the paper's experiments do: a contour reaching its edge ends the run
     /// with an error. `slc run --initial` allows 6 (a domain up to 64 times as wide).
     int max_domain_doublings = 0;
+    /// Check every step against the law's invariants (evolve/guards.hpp): a step that breaks them
+    /// is retried in 2, 4, ... 2^max_substep_halvings sub-steps (the N steps the observer sees
+    /// stay N), and a run that still breaks them ends with status unstable.
+    bool guards = true;
+    int max_substep_halvings = 4;  ///< see guards
 };
 
 struct RunResult;
@@ -59,7 +67,7 @@ struct RunResult {
     double t = 0.0;                     ///< the time reached
     int steps_done = 0;                 ///< steps completed, N when status is ok
     RunStatus status = RunStatus::ok;   ///< how the run ended
-    std::string message;                ///< why, when status is error
+    std::string message;                ///< why, when status is error or unstable
     std::size_t g_evals = 0;            ///< every G evaluation of the run
     std::size_t vertices_produced = 0;  ///< every vertex every contour of the run produced
     double wall_s = 0.0;                ///< the time loop alone
@@ -70,6 +78,10 @@ struct RunResult {
     /// The area StepOptions::area_correction gave back over the run, summed with signs.
     double area_corrected = 0.0;
     double domain_grown_at = std::numeric_limits<double>::quiet_NaN();
+    /// Steps the guards split into sub-steps (RunOptions::guards), and the most sub-steps one
+    /// step took (1 when none was split).
+    int split_steps = 0;
+    int most_substeps = 1;
 };
 
 /// domain doubled about its centre `times` times (0: domain itself).

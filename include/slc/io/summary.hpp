@@ -28,7 +28,8 @@ double peak_rss_mib();
 /// its parameters, extension, arcs, area correction, σ, the problem's own parameters), t_end, t,
 /// steps, steps_done, status, e_inf (Equation 11 where the problem has an exact solution, else
 /// null), area, length, components, segments, wall_s, cpu_s, cpu_s_per_step, threads, g_evals,
-/// peak_rss_mib, g_evals_per_vertex; message for an error, area_corrected when the correction was
+/// peak_rss_mib, g_evals_per_vertex; message for an error or an unstable run, substeps
+/// (split_steps, most) when the guards split steps, area_corrected when the correction was
 /// on, domain_grown when the domain doubled. law: the law the run used, whose defaults resolve the
 /// extension and arcs.
 nlohmann::json run_summary(const Problem& problem, const RunOptions& options,

@@ -15,6 +15,8 @@ struct Invariants {
     /// Every curve keeps its shape (rotation, translation, no motion): the number of curves
     /// cannot change.
     bool rigid = false;
+    /// No curve can split into several (curvature flow of embedded curves, rigid motions).
+    bool cannot_split = false;
     /// The curves cannot shrink away: a normal speed positive for every point and direction.
     bool cannot_vanish = false;
     /// dA/dt = rate × (counterclockwise curves − clockwise ones) while no curve vanishes

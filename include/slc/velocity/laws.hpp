@@ -114,7 +114,7 @@ public:
     std::string name() const override { return "curvature"; }
     /// dA/dt = −2π per counterclockwise curve, +2π per hole (the turning of each curve).
     Invariants invariants() const override {
-        return {.area_rate_per_curve = -2.0 * std::numbers::pi};
+        return {.cannot_split = true, .area_rate_per_curve = -2.0 * std::numbers::pi};
     }
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = true, .module = module_};
