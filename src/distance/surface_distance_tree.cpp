@@ -2,6 +2,7 @@
 #include "slc/distance/surface_distance_tree.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -56,16 +57,17 @@ void SurfaceDistanceTree::build_lists() {
     // children's lists are computed on all worker threads, then packed in cell order, so the
     // tree is the same for any thread count.
     for (std::size_t begin = 0, end = tree_.size(); begin < end; begin = end, end = tree_.size()) {
+        const int level = tree_.cell(begin).level;
+        if (level == tree_.max_depth()) break;
+        const double h = tree_.edge(level);
         std::vector<std::uint8_t> near(end - begin, 0);
         parallel_for(
             end - begin,
             [&](std::size_t i) {
-                const std::size_t c = begin + i;
-                const int level = tree_.cell(c).level;
-                if (level == tree_.max_depth()) return;
-                const Box3 b = tree_.box(c);
-                const double h = tree_.edge(level);
-                for (std::uint32_t t : cell_triangles(c)) {
+                const Box3 b = tree_.box(begin + i);
+                for (std::uint32_t t : cell_triangles(begin + i)) {
+                    // The box distance alone rules out most triangles of a far cell.
+                    if (!(std::sqrt(distance2(bounds[t], b)) < h)) continue;
                     if (distance_lower_bound(corners_[t], b, h) < h) {
                         near[i] = 1;
                         return;
@@ -80,41 +82,71 @@ void SurfaceDistanceTree::build_lists() {
             parents.push_back(static_cast<std::uint32_t>(c));
         }
         if (parents.empty()) break;
-        std::vector<std::uint32_t> children;
-        for (std::uint32_t p : parents)
-            for (std::uint32_t k = 0; k < 8; ++k) children.push_back(tree_.cell(p).first_child + k);
-        // One pass over each parent's list for its eight children: along each axis a triangle's
-        // box meets the triples of the low children, of the high ones, or both (child k is high
-        // along axis a when bit a of k is set), and a triple is met when it is along all three.
-        std::vector<std::vector<std::uint32_t>> lists(children.size());
-        parallel_for(
-            parents.size(),
-            [&](std::size_t j) {
-                const std::uint32_t first = tree_.cell(parents[j]).first_child;
-                const double slack = triple_slack * tree_.edge(tree_.cell(first).level);
-                const Box3 low = tree_.triple(first).inflated(slack);
-                const Box3 high = tree_.triple(first + 7).inflated(slack);
-                for (std::uint32_t s : cell_triangles(parents[j])) {
-                    const Box3& b = bounds[s];
-                    unsigned sides[3];
-                    for (int a = 0; a < 3; ++a) {
-                        sides[a] = (b.lo[a] <= low.hi[a] && b.hi[a] >= low.lo[a] ? 1u : 0u) |
-                                   (b.lo[a] <= high.hi[a] && b.hi[a] >= high.lo[a] ? 2u : 0u);
-                    }
-                    for (unsigned k = 0; k < 8; ++k) {
-                        if ((sides[0] >> (k & 1u)) & (sides[1] >> ((k >> 1) & 1u)) &
-                            (sides[2] >> (k >> 2)) & 1u)
-                            lists[8 * j + k].push_back(s);
-                    }
-                }
-            },
-            expensive_grain);
-        for (std::size_t j = 0; j < children.size(); ++j) {
-            SLC_ASSERT(offsets_.size() == std::size_t{children[j]} + 1, "lists follow cell order");
-            triangles_.insert(triangles_.end(), lists[j].begin(), lists[j].end());
-            offsets_.push_back(static_cast<std::uint32_t>(triangles_.size()));
-        }
+        list_children(parents, bounds);
     }
+}
+
+void SurfaceDistanceTree::list_children(std::span<const std::uint32_t> parents,
+                                        std::span<const Box3> bounds) {
+    // Child k is high along axis a when bit a of k is set: the children low along x are
+    // 0, 2, 4, 6 (mask 0x55), high 1, 3, 5, 7 (0xaa); along y 0x33 and 0xcc; along z 0x0f and
+    // 0xf0. sides[a][s]: the children on the sides s (bit 0 low, bit 1 high) of axis a.
+    static constexpr std::uint8_t sides[3][4] = {
+        {0x00, 0x55, 0xaa, 0xff}, {0x00, 0x33, 0xcc, 0xff}, {0x00, 0x0f, 0xf0, 0xff}};
+    // First pass, one parent per iteration: for each triangle of the parent's list, the mask of
+    // the children whose triples its box meets (along each axis it meets the triples of the low
+    // children, of the high ones, or both), and the length of each child's list.
+    std::vector<std::size_t> entry(parents.size() + 1, 0);
+    for (std::size_t j = 0; j < parents.size(); ++j)
+        entry[j + 1] = entry[j] + cell_triangles(parents[j]).size();
+    std::vector<std::uint8_t> masks(entry.back());
+    std::vector<std::uint32_t> counts(8 * parents.size(), 0);
+    parallel_for(
+        parents.size(),
+        [&](std::size_t j) {
+            const std::uint32_t first = tree_.cell(parents[j]).first_child;
+            const double slack = triple_slack * tree_.edge(tree_.cell(first).level);
+            const Box3 low = tree_.triple(first).inflated(slack);
+            const Box3 high = tree_.triple(first + 7).inflated(slack);
+            std::uint32_t count[8] = {};
+            std::uint8_t* mask = masks.data() + entry[j];
+            for (std::uint32_t s : cell_triangles(parents[j])) {
+                const Box3& b = bounds[s];
+                unsigned m = 0xff;
+                for (int a = 0; a < 3; ++a) {
+                    const unsigned side =
+                        (b.lo[a] <= low.hi[a] && b.hi[a] >= low.lo[a] ? 1u : 0u) |
+                        (b.lo[a] <= high.hi[a] && b.hi[a] >= high.lo[a] ? 2u : 0u);
+                    m &= sides[a][side];
+                }
+                *mask++ = static_cast<std::uint8_t>(m);
+                for (unsigned k = 0; k < 8; ++k) count[k] += (m >> k) & 1u;
+            }
+            std::copy(count, count + 8, counts.begin() + static_cast<std::ptrdiff_t>(8 * j));
+        },
+        expensive_grain);
+    // The children follow their parents in order, so their lists are appended in cell order.
+    SLC_ASSERT(offsets_.size() == std::size_t{tree_.cell(parents[0]).first_child} + 1,
+               "lists follow cell order");
+    for (const std::uint32_t n : counts) {
+        SLC_ASSERT(offsets_.back() + std::uint64_t{n} <= 0xffffffffu, "lists fit 32-bit offsets");
+        offsets_.push_back(offsets_.back() + n);
+    }
+    triangles_.resize(offsets_.back());
+    // Second pass: each triangle to the lists its mask names, in the parent's (increasing) order.
+    parallel_for(
+        parents.size(),
+        [&](std::size_t j) {
+            const std::uint32_t first = tree_.cell(parents[j]).first_child;
+            std::uint32_t at[8];
+            for (unsigned k = 0; k < 8; ++k) at[k] = offsets_[first + k];
+            const std::uint8_t* mask = masks.data() + entry[j];
+            for (std::uint32_t s : cell_triangles(parents[j])) {
+                for (unsigned m = *mask++; m != 0; m &= m - 1)
+                    triangles_[at[std::countr_zero(m)]++] = s;
+            }
+        },
+        expensive_grain);
 }
 
 NearestFacet SurfaceDistanceTree::nearest_facet(Vec3 x) const {

@@ -72,6 +72,9 @@ public:
 
 private:
     void build_lists();
+    /// Appends the lists of the children of parents (just split, in increasing order, their
+    /// children the last cells) from their parents' lists and the triangles' bounding boxes.
+    void list_children(std::span<const std::uint32_t> parents, std::span<const Box3> bounds);
     /// The least (distance², triangle) pair over the surface at x.
     NearestFacet nearest_facet(Vec3 x) const;
 
