@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
@@ -17,7 +18,8 @@ namespace {
 /// triple only by rounding still makes the list, which can only lengthen it.
 constexpr double triple_slack = 1e-12;
 
-/// A query meeting a cell list longer than this turns to the triangle hierarchy.
+/// Cells whose lists would be longer than this keep none: a query reaching one turns to the
+/// triangle hierarchy.
 constexpr std::size_t longest_scanned_list = 48;
 
 /// Half the diagonal of a unit cube, √3/2.
@@ -33,6 +35,22 @@ double distance_lower_bound(const Triangle3& t, const Box3& b, double h) {
     return std::max(boxes, centre);
 }
 
+/// Bit k of an 8-bit mask m as byte k (0 or 1) of a word.
+constexpr std::uint64_t spread_bits(unsigned m) {
+    constexpr std::uint64_t ones = 0x0101010101010101ull;
+    // m in every byte; byte k keeps its bit k (0 or 2^k); adding 0x7f carries into bit 7 exactly
+    // when that bit is set.
+    const std::uint64_t bit = (m * ones) & 0x8040201008040201ull;
+    return ((bit + 0x7f * ones) >> 7) & ones;
+}
+static_assert(spread_bits(0xa5) == 0x0100010000010001ull);
+
+/// Adds byte k of bytes to count[k].
+inline void add_bytes(std::uint64_t bytes, std::uint32_t (&count)[8]) {
+    for (unsigned k = 0; k < 8; ++k)
+        count[k] += static_cast<std::uint32_t>((bytes >> (8 * k)) & 0xffu);
+}
+
 }  // namespace
 
 SurfaceDistanceTree::SurfaceDistanceTree(const Surface& surface, Box3 domain, Options options)
@@ -45,35 +63,45 @@ SurfaceDistanceTree::SurfaceDistanceTree(const Surface& surface, Box3 domain, Op
     build_lists();
 }
 
+/// The lists of the cells [begin, begin + offsets.size() - 1) of one level while the tree is
+/// built, for the cells that keep none for the queries (their lists are longer): the lists of
+/// the level's children are filtered from them. Two of these take turns, so that their arrays
+/// are allocated once.
+struct SurfaceDistanceTree::Level {
+    std::size_t begin = 0;
+    std::vector<std::size_t> offsets;  ///< cell begin + i: work[offsets[i], offsets[i + 1])
+    std::vector<std::uint32_t> work;   ///< the lists, one after another
+};
+
+std::span<const std::uint32_t> SurfaceDistanceTree::list_of(const Level& level,
+                                                            std::size_t c) const {
+    if (listed_[c]) return cell_triangles(c);
+    const std::size_t i = c - level.begin;
+    return {level.work.data() + level.offsets[i], level.work.data() + level.offsets[i + 1]};
+}
+
 void SurfaceDistanceTree::build_lists() {
     std::vector<Box3> bounds(corners_.size());
     for (std::size_t t = 0; t < corners_.size(); ++t) bounds[t] = bounding_box(corners_[t]);
-    triangles_.resize(corners_.size());
-    std::iota(triangles_.begin(), triangles_.end(), 0u);
-    offsets_ = {0, static_cast<std::uint32_t>(triangles_.size())};
+    // The root lists every triangle.
+    const auto n = static_cast<std::uint32_t>(corners_.size());
+    Level level{0, {0, 0}, {}}, next;
+    listed_ = {n <= longest_scanned_list ? std::uint8_t{1} : std::uint8_t{0}};
+    offsets_ = {0, listed_[0] ? n : 0};
+    std::vector<std::uint32_t>& root = listed_[0] ? triangles_ : level.work;
+    root.resize(n);
+    std::iota(root.begin(), root.end(), 0u);
+    level.offsets[1] = listed_[0] ? 0 : n;
     // Level by level (cells are appended breadth-first, so [begin, end) is one level): split a
     // cell while its edge exceeds its distance to the surface (§1.3). Only triangles on its list
     // can be that near, since the triple holds every point within one edge. The tests and the
     // children's lists are computed on all worker threads, then packed in cell order, so the
     // tree is the same for any thread count.
     for (std::size_t begin = 0, end = tree_.size(); begin < end; begin = end, end = tree_.size()) {
-        const int level = tree_.cell(begin).level;
-        if (level == tree_.max_depth()) break;
-        const double h = tree_.edge(level);
+        if (tree_.cell(begin).level == tree_.max_depth()) break;
         std::vector<std::uint8_t> near(end - begin, 0);
         parallel_for(
-            end - begin,
-            [&](std::size_t i) {
-                const Box3 b = tree_.box(begin + i);
-                for (std::uint32_t t : cell_triangles(begin + i)) {
-                    // The box distance alone rules out most triangles of a far cell.
-                    if (!(std::sqrt(distance2(bounds[t], b)) < h)) continue;
-                    if (distance_lower_bound(corners_[t], b, h) < h) {
-                        near[i] = 1;
-                        return;
-                    }
-                }
-            },
+            end - begin, [&](std::size_t i) { near[i] = is_near(level, begin + i, bounds); },
             expensive_grain);
         std::vector<std::uint32_t> parents;
         for (std::size_t c = begin; c < end; ++c) {
@@ -82,23 +110,36 @@ void SurfaceDistanceTree::build_lists() {
             parents.push_back(static_cast<std::uint32_t>(c));
         }
         if (parents.empty()) break;
-        list_children(parents, bounds);
+        list_children(level, parents, bounds, next);
+        std::swap(level, next);
     }
 }
 
-void SurfaceDistanceTree::list_children(std::span<const std::uint32_t> parents,
-                                        std::span<const Box3> bounds) {
+bool SurfaceDistanceTree::is_near(const Level& level, std::size_t c,
+                                  std::span<const Box3> bounds) const {
+    const Box3 b = tree_.box(c);
+    const double h = tree_.edge(tree_.cell(c).level);
+    // The box distance alone rules out most triangles of a far cell.
+    const auto list = list_of(level, c);
+    return std::any_of(list.begin(), list.end(), [&](std::uint32_t t) {
+        return std::sqrt(distance2(bounds[t], b)) < h &&
+               distance_lower_bound(corners_[t], b, h) < h;
+    });
+}
+
+void SurfaceDistanceTree::list_children(const Level& level, std::span<const std::uint32_t> parents,
+                                        std::span<const Box3> bounds, Level& next) {
     // Child k is high along axis a when bit a of k is set: the children low along x are
     // 0, 2, 4, 6 (mask 0x55), high 1, 3, 5, 7 (0xaa); along y 0x33 and 0xcc; along z 0x0f and
     // 0xf0. sides[a][s]: the children on the sides s (bit 0 low, bit 1 high) of axis a.
     static constexpr std::uint8_t sides[3][4] = {
         {0x00, 0x55, 0xaa, 0xff}, {0x00, 0x33, 0xcc, 0xff}, {0x00, 0x0f, 0xf0, 0xff}};
-    // First pass, one parent per iteration: for each triangle of the parent's list, the mask of
-    // the children whose triples its box meets (along each axis it meets the triples of the low
+    // First pass, one parent per iteration: for each triangle of its list, the mask of the
+    // children whose triples its box meets (along each axis it meets the triples of the low
     // children, of the high ones, or both), and the length of each child's list.
     std::vector<std::size_t> entry(parents.size() + 1, 0);
     for (std::size_t j = 0; j < parents.size(); ++j)
-        entry[j + 1] = entry[j] + cell_triangles(parents[j]).size();
+        entry[j + 1] = entry[j] + list_of(level, parents[j]).size();
     std::vector<std::uint8_t> masks(entry.back());
     std::vector<std::uint32_t> counts(8 * parents.size(), 0);
     parallel_for(
@@ -108,43 +149,67 @@ void SurfaceDistanceTree::list_children(std::span<const std::uint32_t> parents,
             const double slack = triple_slack * tree_.edge(tree_.cell(first).level);
             const Box3 low = tree_.triple(first).inflated(slack);
             const Box3 high = tree_.triple(first + 7).inflated(slack);
+            // The eight lengths as bytes of one word, added to from a mask by spreading its
+            // bit k to byte k, and emptied into count before a byte can overflow.
             std::uint32_t count[8] = {};
+            std::uint64_t bytes = 0;
+            unsigned pending = 0;
             std::uint8_t* mask = masks.data() + entry[j];
-            for (std::uint32_t s : cell_triangles(parents[j])) {
+            for (std::uint32_t s : list_of(level, parents[j])) {
                 const Box3& b = bounds[s];
                 unsigned m = 0xff;
                 for (int a = 0; a < 3; ++a) {
+                    // & rather than &&: no branch to mispredict.
                     const unsigned side =
-                        (b.lo[a] <= low.hi[a] && b.hi[a] >= low.lo[a] ? 1u : 0u) |
-                        (b.lo[a] <= high.hi[a] && b.hi[a] >= high.lo[a] ? 2u : 0u);
+                        (unsigned{b.lo[a] <= low.hi[a]} & unsigned{b.hi[a] >= low.lo[a]}) |
+                        (unsigned{b.lo[a] <= high.hi[a]} & unsigned{b.hi[a] >= high.lo[a]}) << 1;
                     m &= sides[a][side];
                 }
                 *mask++ = static_cast<std::uint8_t>(m);
-                for (unsigned k = 0; k < 8; ++k) count[k] += (m >> k) & 1u;
+                bytes += spread_bits(m);
+                if (++pending == 255) {
+                    add_bytes(bytes, count);
+                    bytes = 0;
+                    pending = 0;
+                }
             }
+            add_bytes(bytes, count);
             std::copy(count, count + 8, counts.begin() + static_cast<std::ptrdiff_t>(8 * j));
         },
         expensive_grain);
-    // The children follow their parents in order, so their lists are appended in cell order.
-    SLC_ASSERT(offsets_.size() == std::size_t{tree_.cell(parents[0]).first_child} + 1,
+    // The children follow their parents in order: the next level is exactly the children, and
+    // their stored lists are appended in cell order.
+    const std::size_t begin = tree_.cell(parents[0]).first_child;
+    SLC_ASSERT(offsets_.size() == begin + 1 && begin + counts.size() == tree_.size(),
                "lists follow cell order");
-    for (const std::uint32_t n : counts) {
-        SLC_ASSERT(offsets_.back() + std::uint64_t{n} <= 0xffffffffu, "lists fit 32-bit offsets");
-        offsets_.push_back(offsets_.back() + n);
+    next.begin = begin;
+    next.offsets.assign(counts.size() + 1, 0);
+    listed_.resize(tree_.size(), 0);
+    for (std::size_t i = 0; i < counts.size(); ++i) {
+        const std::uint32_t m = counts[i];
+        const bool stored = m <= longest_scanned_list;
+        SLC_ASSERT(!stored || offsets_.back() + std::uint64_t{m} <= 0xffffffffu,
+                   "lists fit 32-bit offsets");
+        offsets_.push_back(offsets_.back() + (stored ? m : 0));
+        listed_[begin + i] = stored ? 1 : 0;
+        next.offsets[i + 1] = next.offsets[i] + (stored ? 0 : m);
     }
     triangles_.resize(offsets_.back());
-    // Second pass: each triangle to the lists its mask names, in the parent's (increasing) order.
+    next.work.resize(next.offsets.back());
+    // Second pass: each triangle to the lists its mask names, in the parent's (increasing)
+    // order.
     parallel_for(
         parents.size(),
         [&](std::size_t j) {
-            const std::uint32_t first = tree_.cell(parents[j]).first_child;
-            std::uint32_t at[8];
-            for (unsigned k = 0; k < 8; ++k) at[k] = offsets_[first + k];
-            const std::uint8_t* mask = masks.data() + entry[j];
-            for (std::uint32_t s : cell_triangles(parents[j])) {
-                for (unsigned m = *mask++; m != 0; m &= m - 1)
-                    triangles_[at[std::countr_zero(m)]++] = s;
+            std::uint32_t* to[8];
+            for (std::size_t k = 0; k < 8; ++k) {
+                const std::size_t i = 8 * j + k;
+                to[k] = listed_[begin + i] ? triangles_.data() + offsets_[begin + i]
+                                           : next.work.data() + next.offsets[i];
             }
+            const std::uint8_t* mask = masks.data() + entry[j];
+            for (std::uint32_t s : list_of(level, parents[j]))
+                for (unsigned m = *mask++; m != 0; m &= m - 1) *to[std::countr_zero(m)]++ = s;
         },
         expensive_grain);
 }
@@ -153,12 +218,11 @@ NearestFacet SurfaceDistanceTree::nearest_facet(Vec3 x) const {
     std::uint32_t c = tree_.leaf_at(x);
     NearestFacet best;
     for (;;) {
-        const auto list = cell_triangles(c);
-        if (list.size() > longest_scanned_list) {
+        if (!listed_[c]) {
             hierarchy_.nearest(corners_, x, best);
             break;
         }
-        for (std::uint32_t t : list) best.offer(t, slc::closest_point(corners_[t], x));
+        for (std::uint32_t t : cell_triangles(c)) best.offer(t, slc::closest_point(corners_[t], x));
         if (best.distance2 < std::numeric_limits<double>::infinity()) {
             const double m = std::sqrt(best.distance2);
             if (tree_.triple(c).contains(Box3::cube(x, m))) break;

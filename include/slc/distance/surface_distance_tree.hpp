@@ -64,17 +64,27 @@ public:
     const PseudoNormals& normals() const { return normals_; }
     /// The octree: cells split to depth L near the surface.
     const Octree& tree() const { return tree_; }
+    /// True when cell c keeps a list: when at most 48 triangles' boxes meet its triple. A query
+    /// reaching a cell without one finishes in the triangle hierarchy.
+    bool is_listed(std::size_t c) const { return listed_[c] != 0; }
     /// Triangles listed by cell c: those whose bounding boxes meet its concentric triple, in
-    /// increasing order.
+    /// increasing order; empty when the cell keeps no list (is_listed).
     std::span<const std::uint32_t> cell_triangles(std::size_t c) const {
         return {triangles_.data() + offsets_[c], triangles_.data() + offsets_[c + 1]};
     }
 
 private:
+    /// The lists of one level's cells while the tree is built (defined with the build).
+    struct Level;
     void build_lists();
-    /// Appends the lists of the children of parents (just split, in increasing order, their
-    /// children the last cells) from their parents' lists and the triangles' bounding boxes.
-    void list_children(std::span<const std::uint32_t> parents, std::span<const Box3> bounds);
+    /// The list of cell c of level while the tree is built.
+    std::span<const std::uint32_t> list_of(const Level& level, std::size_t c) const;
+    /// True when cell c of level is nearer the surface than its edge, by distance_lower_bound.
+    bool is_near(const Level& level, std::size_t c, std::span<const Box3> bounds) const;
+    /// Lists the children of parents (just split, in increasing order, their children the last
+    /// cells): stored for queries when short, else kept in next for the level after.
+    void list_children(const Level& level, std::span<const std::uint32_t> parents,
+                       std::span<const Box3> bounds, Level& next);
     /// The least (distance², triangle) pair over the surface at x.
     NearestFacet nearest_facet(Vec3 x) const;
 
@@ -86,6 +96,7 @@ private:
     std::vector<std::uint32_t>
         offsets_;  ///< CSR: triangles of cell c are [offsets_[c], offsets_[c+1])
     std::vector<std::uint32_t> triangles_;  ///< the cells' lists, one after another
+    std::vector<std::uint8_t> listed_;      ///< 1 when cell c keeps a list
 };
 
 }  // namespace slc
