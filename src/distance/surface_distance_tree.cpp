@@ -14,6 +14,9 @@
 namespace slc {
 namespace {
 
+/// A grid position holding no cell of the level.
+constexpr std::uint32_t no_slot = 0xffffffffu;
+
 /// Relative growth of a triple before testing triangles against it: a triangle that misses the
 /// triple only by rounding still makes the list, which can only lengthen it.
 constexpr double triple_slack = 1e-12;
@@ -21,6 +24,15 @@ constexpr double triple_slack = 1e-12;
 /// Cells whose lists would be longer than this keep none: a query reaching one turns to the
 /// triangle hierarchy.
 constexpr std::size_t longest_scanned_list = 48;
+
+/// Levels above the binned one (coarse cells, few, with long lists) keep no working lists: they
+/// are tested for splitting in the triangle hierarchy, and the cells of the binned level get
+/// theirs by binning every triangle into a grid of the level's triples. Deeper levels filter
+/// their lists from their parents'. This spares the list work of the coarse levels, each about
+/// as costly as a fine one. The binned level is two above the deepest, at most 7 (a grid of
+/// 2^21 cells): the fastest of 0..4 above it on icospheres (bench/surface_distance_bench.cpp).
+constexpr int binned_level = 7;
+constexpr int levels_below_binned = 2;
 
 /// Half the diagonal of a unit cube, √3/2.
 constexpr double half_diagonal = 0.8660254037844386;
@@ -83,25 +95,26 @@ std::span<const std::uint32_t> SurfaceDistanceTree::list_of(const Level& level,
 void SurfaceDistanceTree::build_lists() {
     std::vector<Box3> bounds(corners_.size());
     for (std::size_t t = 0; t < corners_.size(); ++t) bounds[t] = bounding_box(corners_[t]);
-    // The root lists every triangle.
-    const auto n = static_cast<std::uint32_t>(corners_.size());
-    Level level{0, {0, 0}, {}}, next;
-    listed_ = {n <= longest_scanned_list ? std::uint8_t{1} : std::uint8_t{0}};
-    offsets_ = {0, listed_[0] ? n : 0};
-    std::vector<std::uint32_t>& root = listed_[0] ? triangles_ : level.work;
-    root.resize(n);
-    std::iota(root.begin(), root.end(), 0u);
-    level.offsets[1] = listed_[0] ? 0 : n;
+    const int binned = std::clamp(tree_.max_depth() - levels_below_binned, 0, binned_level);
+    Level level, next;
+    offsets_ = {0};
     // Level by level (cells are appended breadth-first, so [begin, end) is one level): split a
     // cell while its edge exceeds its distance to the surface (§1.3). Only triangles on its list
     // can be that near, since the triple holds every point within one edge. The tests and the
     // children's lists are computed on all worker threads, then packed in cell order, so the
     // tree is the same for any thread count.
     for (std::size_t begin = 0, end = tree_.size(); begin < end; begin = end, end = tree_.size()) {
-        if (tree_.cell(begin).level == tree_.max_depth()) break;
+        const int l = tree_.cell(begin).level;
+        if (l < binned) list_coarse(begin, end);
+        if (l == binned) bin_lists(begin, end, bounds, level);
+        if (l == tree_.max_depth()) break;
         std::vector<std::uint8_t> near(end - begin, 0);
         parallel_for(
-            end - begin, [&](std::size_t i) { near[i] = is_near(level, begin + i, bounds); },
+            end - begin,
+            [&](std::size_t i) {
+                near[i] = l < binned ? is_near_coarse(begin + i, bounds)
+                                     : is_near(level, begin + i, bounds);
+            },
             expensive_grain);
         std::vector<std::uint32_t> parents;
         for (std::size_t c = begin; c < end; ++c) {
@@ -110,8 +123,140 @@ void SurfaceDistanceTree::build_lists() {
             parents.push_back(static_cast<std::uint32_t>(c));
         }
         if (parents.empty()) break;
-        list_children(level, parents, bounds, next);
-        std::swap(level, next);
+        if (l >= binned) {
+            list_children(level, parents, bounds, next);
+            std::swap(level, next);
+        }
+    }
+}
+
+void SurfaceDistanceTree::place_lists(std::size_t begin, std::span<const std::uint32_t> counts,
+                                      Level& level) {
+    SLC_ASSERT(offsets_.size() == begin + 1 && begin + counts.size() == tree_.size(),
+               "lists follow cell order");
+    level.begin = begin;
+    level.offsets.assign(counts.size() + 1, 0);
+    listed_.resize(tree_.size(), 0);
+    for (std::size_t i = 0; i < counts.size(); ++i) {
+        const std::uint32_t m = counts[i];
+        const bool stored = m <= longest_scanned_list;
+        SLC_ASSERT(!stored || offsets_.back() + std::uint64_t{m} <= 0xffffffffu,
+                   "lists fit 32-bit offsets");
+        offsets_.push_back(offsets_.back() + (stored ? m : 0));
+        listed_[begin + i] = stored ? 1 : 0;
+        level.offsets[i + 1] = level.offsets[i] + (stored ? 0 : m);
+    }
+    triangles_.resize(offsets_.back());
+    level.work.resize(level.offsets.back());
+}
+
+std::uint32_t* SurfaceDistanceTree::list_start(Level& level, std::size_t c) {
+    return listed_[c] ? triangles_.data() + offsets_[c]
+                      : level.work.data() + level.offsets[c - level.begin];
+}
+
+void SurfaceDistanceTree::list_coarse(std::size_t begin, std::size_t end) {
+    // Up to one more than a stored list, from the hierarchy; the root's is every triangle.
+    std::vector<std::vector<std::uint32_t>> found(end - begin);
+    parallel_for(
+        end - begin,
+        [&](std::size_t i) {
+            const std::size_t c = begin + i;
+            std::vector<std::uint32_t>& got = found[i];
+            if (c == 0) {
+                got.resize(std::min(corners_.size(), longest_scanned_list + 1));
+                std::iota(got.begin(), got.end(), 0u);
+                return;
+            }
+            const double slack = triple_slack * tree_.edge(tree_.cell(c).level);
+            hierarchy_.any_overlapping(tree_.triple(c).inflated(slack), [&](std::uint32_t t) {
+                got.push_back(t);
+                return got.size() > longest_scanned_list;
+            });
+            std::sort(got.begin(), got.end());
+        },
+        expensive_grain);
+    listed_.resize(tree_.size(), 0);
+    for (std::size_t i = 0; i < found.size(); ++i) {
+        const bool stored = found[i].size() <= longest_scanned_list;
+        if (stored) triangles_.insert(triangles_.end(), found[i].begin(), found[i].end());
+        offsets_.push_back(static_cast<std::uint32_t>(triangles_.size()));
+        listed_[begin + i] = stored ? 1 : 0;
+    }
+}
+
+bool SurfaceDistanceTree::is_near_coarse(std::size_t c, std::span<const Box3> bounds) const {
+    const Box3 b = tree_.box(c);
+    const double h = tree_.edge(tree_.cell(c).level);
+    // The same triangles as its list: those whose boxes meet the triple (for the root, the
+    // others are farther than h).
+    return hierarchy_.any_overlapping(tree_.triple(c).inflated(triple_slack * h),
+                                      [&](std::uint32_t t) {
+                                          return std::sqrt(distance2(bounds[t], b)) < h &&
+                                                 distance_lower_bound(corners_[t], b, h) < h;
+                                      });
+}
+
+void SurfaceDistanceTree::bin_lists(std::size_t begin, std::size_t end,
+                                    std::span<const Box3> bounds, Level& level) {
+    const int l = tree_.cell(begin).level;
+    const std::uint32_t g = std::uint32_t{1} << l;
+    const double h = tree_.edge(l), slack = triple_slack * h;
+    // Along each axis, the triples' extents at this level, computed as Octree::triple and
+    // Box3::inflated compute them, so that the tests below are exactly the lists' tests. Both
+    // ends increase with the index: the triples a box meets along an axis are a range.
+    std::vector<double> lo[3], hi[3];
+    const Box3& root = tree_.root_box();
+    for (int a = 0; a < 3; ++a) {
+        lo[a].resize(g);
+        hi[a].resize(g);
+        for (std::uint32_t i = 0; i < g; ++i) {
+            const double cell_lo = root.lo[a] + i * h, cell_hi = cell_lo + h;
+            lo[a][i] = cell_lo - h - slack;
+            hi[a][i] = cell_hi + h + slack;
+        }
+    }
+    // The level's cells by grid position (the root's when the level is 0, the same way).
+    std::vector<std::uint32_t> slot(std::size_t{g} * g * g, no_slot);
+    for (std::size_t c = begin; c < end; ++c) {
+        const Octree::Cell& cell = tree_.cell(c);
+        slot[cell.ix + std::size_t{g} * (cell.iy + std::size_t{g} * cell.iz)] =
+            static_cast<std::uint32_t>(c - begin);
+    }
+    // Every triangle to the existing cells whose triples its box meets: counted, then written,
+    // in increasing triangle order (one thread: the order of the lists is the triangles').
+    auto for_each_cell = [&](std::uint32_t t, auto&& f) {
+        std::uint32_t from[3], to[3];
+        for (int a = 0; a < 3; ++a) {
+            // First triple reaching up to the box's low end; last starting below its high end.
+            from[a] = static_cast<std::uint32_t>(
+                std::lower_bound(hi[a].begin(), hi[a].end(), bounds[t].lo[a]) - hi[a].begin());
+            to[a] = static_cast<std::uint32_t>(
+                std::upper_bound(lo[a].begin(), lo[a].end(), bounds[t].hi[a]) - lo[a].begin());
+        }
+        for (std::uint32_t z = from[2]; z < to[2]; ++z)
+            for (std::uint32_t y = from[1]; y < to[1]; ++y)
+                for (std::uint32_t x = from[0]; x < to[0]; ++x) {
+                    const std::uint32_t i = slot[x + std::size_t{g} * (y + std::size_t{g} * z)];
+                    if (i != no_slot) f(i);
+                }
+    };
+    const auto n = static_cast<std::uint32_t>(corners_.size());
+    std::vector<std::uint32_t> counts(end - begin, 0);
+    if (begin == 0) {
+        counts[0] = n;  // the root lists every triangle
+    } else {
+        for (std::uint32_t t = 0; t < n; ++t)
+            for_each_cell(t, [&](std::uint32_t i) { ++counts[i]; });
+    }
+    place_lists(begin, counts, level);
+    std::vector<std::uint32_t*> to(end - begin);
+    for (std::size_t i = 0; i < to.size(); ++i) to[i] = list_start(level, begin + i);
+    if (begin == 0) {
+        std::iota(to[0], to[0] + n, 0u);
+    } else {
+        for (std::uint32_t t = 0; t < n; ++t)
+            for_each_cell(t, [&](std::uint32_t i) { *to[i]++ = t; });
     }
 }
 
@@ -180,33 +325,14 @@ void SurfaceDistanceTree::list_children(const Level& level, std::span<const std:
     // The children follow their parents in order: the next level is exactly the children, and
     // their stored lists are appended in cell order.
     const std::size_t begin = tree_.cell(parents[0]).first_child;
-    SLC_ASSERT(offsets_.size() == begin + 1 && begin + counts.size() == tree_.size(),
-               "lists follow cell order");
-    next.begin = begin;
-    next.offsets.assign(counts.size() + 1, 0);
-    listed_.resize(tree_.size(), 0);
-    for (std::size_t i = 0; i < counts.size(); ++i) {
-        const std::uint32_t m = counts[i];
-        const bool stored = m <= longest_scanned_list;
-        SLC_ASSERT(!stored || offsets_.back() + std::uint64_t{m} <= 0xffffffffu,
-                   "lists fit 32-bit offsets");
-        offsets_.push_back(offsets_.back() + (stored ? m : 0));
-        listed_[begin + i] = stored ? 1 : 0;
-        next.offsets[i + 1] = next.offsets[i] + (stored ? 0 : m);
-    }
-    triangles_.resize(offsets_.back());
-    next.work.resize(next.offsets.back());
+    place_lists(begin, counts, next);
     // Second pass: each triangle to the lists its mask names, in the parent's (increasing)
     // order.
     parallel_for(
         parents.size(),
         [&](std::size_t j) {
             std::uint32_t* to[8];
-            for (std::size_t k = 0; k < 8; ++k) {
-                const std::size_t i = 8 * j + k;
-                to[k] = listed_[begin + i] ? triangles_.data() + offsets_[begin + i]
-                                           : next.work.data() + next.offsets[i];
-            }
+            for (std::size_t k = 0; k < 8; ++k) to[k] = list_start(next, begin + 8 * j + k);
             const std::uint8_t* mask = masks.data() + entry[j];
             for (std::uint32_t s : list_of(level, parents[j]))
                 for (unsigned m = *mask++; m != 0; m &= m - 1) *to[std::countr_zero(m)]++ = s;

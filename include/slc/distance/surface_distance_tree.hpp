@@ -81,6 +81,18 @@ private:
     std::span<const std::uint32_t> list_of(const Level& level, std::size_t c) const;
     /// True when cell c of level is nearer the surface than its edge, by distance_lower_bound.
     bool is_near(const Level& level, std::size_t c, std::span<const Box3> bounds) const;
+    /// Stores the lists of the cells [begin, end) of a level above the binned one that are
+    /// short enough, from the hierarchy.
+    void list_coarse(std::size_t begin, std::size_t end);
+    /// is_near for a cell without a list, from the hierarchy.
+    bool is_near_coarse(std::size_t c, std::span<const Box3> bounds) const;
+    /// Lists the cells [begin, end) of a level by binning every triangle into its triples.
+    void bin_lists(std::size_t begin, std::size_t end, std::span<const Box3> bounds, Level& level);
+    /// Makes room for the lists of the cells [begin, begin + counts.size()) (the last ones) of
+    /// the given lengths: stored when short, else in level.
+    void place_lists(std::size_t begin, std::span<const std::uint32_t> counts, Level& level);
+    /// Where the list of cell c (placed by place_lists) is to be written.
+    std::uint32_t* list_start(Level& level, std::size_t c);
     /// Lists the children of parents (just split, in increasing order, their children the last
     /// cells): stored for queries when short, else kept in next for the level after.
     void list_children(const Level& level, std::span<const std::uint32_t> parents,

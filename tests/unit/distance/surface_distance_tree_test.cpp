@@ -12,6 +12,7 @@
 #include <string>
 
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/distance/surface_extension.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/geometry/validate_surface.hpp"
@@ -174,6 +175,24 @@ TEST(SurfaceDistanceTree, LeavesAboveTheDeepestLevelAreFartherThanTheirEdge) {
         ASSERT_TRUE(std::equal(got.begin(), got.end(), want.begin(), want.end())) << "cell " << c;
     }
     EXPECT_GT(unlisted, 0);
+}
+
+TEST(SurfaceDistanceTree, CellsAndListsDoNotDependOnThreadCount) {
+    // 20480 triangles at depth 7: every stage of the build (coarse cells, the binned level, the
+    // filtered levels) has enough work for every worker thread.
+    const Surface s = sphere({0.01, -0.02, 0.03}, 0.6, 5);
+    set_thread_count(1);
+    const SurfaceDistanceTree one(s, Box3::centered_cube(1.0), {.depth = 7});
+    set_thread_count(2);
+    const SurfaceDistanceTree two(s, Box3::centered_cube(1.0), {.depth = 7});
+    set_thread_count(0);
+    ASSERT_EQ(one.tree().size(), two.tree().size());
+    for (std::size_t c = 0; c < one.tree().size(); ++c) {
+        ASSERT_EQ(one.tree().cell(c).first_child, two.tree().cell(c).first_child) << "cell " << c;
+        ASSERT_EQ(one.is_listed(c), two.is_listed(c)) << "cell " << c;
+        const auto a = one.cell_triangles(c), b = two.cell_triangles(c);
+        ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << "cell " << c;
+    }
 }
 
 TEST(SurfaceDistanceTree, RefusesEmptySurfacesAndBadDomains) {
