@@ -73,6 +73,12 @@ SurfaceDistanceTree::SurfaceDistanceTree(const Surface& surface, Box3 domain, Op
     normals_ = pseudo_normals(surface);
     hierarchy_ = TriangleHierarchy(corners_);
     build_lists();
+    if (options.balanced) {
+        tree_.balance([&](std::size_t c) {
+            const std::size_t first = tree_.cell(c).first_child;
+            list_from_hierarchy(first, first + 8);
+        });
+    }
 }
 
 /// The lists of the cells [begin, begin + offsets.size() - 1) of one level while the tree is
@@ -105,7 +111,7 @@ void SurfaceDistanceTree::build_lists() {
     // tree is the same for any thread count.
     for (std::size_t begin = 0, end = tree_.size(); begin < end; begin = end, end = tree_.size()) {
         const int l = tree_.cell(begin).level;
-        if (l < binned) list_coarse(begin, end);
+        if (l < binned) list_from_hierarchy(begin, end);
         if (l == binned) bin_lists(begin, end, bounds, level);
         if (l == tree_.max_depth()) break;
         std::vector<std::uint8_t> near(end - begin, 0);
@@ -155,7 +161,7 @@ std::uint32_t* SurfaceDistanceTree::list_start(Level& level, std::size_t c) {
                       : level.work.data() + level.offsets[c - level.begin];
 }
 
-void SurfaceDistanceTree::list_coarse(std::size_t begin, std::size_t end) {
+void SurfaceDistanceTree::list_from_hierarchy(std::size_t begin, std::size_t end) {
     // Up to one more than a stored list, from the hierarchy; the root's is every triangle.
     std::vector<std::vector<std::uint32_t>> found(end - begin);
     parallel_for(

@@ -31,7 +31,8 @@ class SurfaceDistanceTree {
 public:
     /// The tree's parameters (paper Table 4: L).
     struct Options {
-        int depth = 6;  ///< L: deepest level of the octree
+        int depth = 6;          ///< L: deepest level of the octree
+        bool balanced = false;  ///< 2:1 balance the octree (for tetrahedral contouring)
     };
 
     /// Builds the tree for a valid surface inside domain (a cube). The surface must outlive the
@@ -62,7 +63,8 @@ public:
     const Surface& surface() const { return *surface_; }
     /// Its pseudo-normals.
     const PseudoNormals& normals() const { return normals_; }
-    /// The octree: cells split to depth L near the surface.
+    /// The octree: cells split to depth L near the surface; 2:1 balanced when asked
+    /// (Options::balanced), the cells that makes listed as the others.
     const Octree& tree() const { return tree_; }
     /// True when cell c keeps a list: when at most 48 triangles' boxes meet its triple. A query
     /// reaching a cell without one finishes in the triangle hierarchy.
@@ -81,9 +83,9 @@ private:
     std::span<const std::uint32_t> list_of(const Level& level, std::size_t c) const;
     /// True when cell c of level is nearer the surface than its edge, by distance_lower_bound.
     bool is_near(const Level& level, std::size_t c, std::span<const Box3> bounds) const;
-    /// Stores the lists of the cells [begin, end) of a level above the binned one that are
-    /// short enough, from the hierarchy.
-    void list_coarse(std::size_t begin, std::size_t end);
+    /// Stores the lists of the cells [begin, end) (the last ones) that are short enough, from
+    /// the hierarchy: the levels above the binned one, and the cells balancing makes.
+    void list_from_hierarchy(std::size_t begin, std::size_t end);
     /// is_near for a cell without a list, from the hierarchy.
     bool is_near_coarse(std::size_t c, std::span<const Box3> bounds) const;
     /// Lists the cells [begin, end) of a level by binning every triangle into its triples.

@@ -195,6 +195,38 @@ TEST(SurfaceDistanceTree, CellsAndListsDoNotDependOnThreadCount) {
     }
 }
 
+TEST(SurfaceDistanceTree, BalancedTreeListsItsNewCellsAndAgreesWithBruteForce) {
+    // The split rule grades the tree by itself almost everywhere; around this box's edges and
+    // corners at depth 6 it does not.
+    const Surface s = prepare_surface(box_surface({-0.6, -0.4, -0.5}, {0.5, 0.7, 0.3}, 1)).surface;
+    const PseudoNormals normals = pseudo_normals(s);
+    const Box3 domain = Box3::centered_cube(1.2);
+    const SurfaceDistanceTree plain(s, domain, {.depth = 6});
+    const SurfaceDistanceTree tree(s, domain, {.depth = 6, .balanced = true});
+    const Octree& t = tree.tree();
+    ASSERT_FALSE(plain.tree().is_balanced());  // so that balancing had work to do
+    EXPECT_TRUE(t.is_balanced());
+    EXPECT_GT(t.size(), plain.tree().size());
+    // The cells balancing made keep lists as the others do.
+    for (std::size_t c = plain.tree().size(); c < t.size(); ++c) {
+        std::vector<std::uint32_t> want;
+        const Box3 triple = t.triple(c).inflated(1e-12 * t.edge(t.cell(c).level));
+        for (std::uint32_t k = 0; k < s.size(); ++k)
+            if (bounding_box(s.triangle(k)).overlaps(triple)) want.push_back(k);
+        ASSERT_EQ(tree.is_listed(c), want.size() <= 48) << "cell " << c;
+        const auto got = tree.cell_triangles(c);
+        if (!tree.is_listed(c)) continue;
+        ASSERT_TRUE(std::equal(got.begin(), got.end(), want.begin(), want.end())) << "cell " << c;
+    }
+    std::mt19937 rng(29);
+    for (const Vec3 x : query_points(s, rng)) {
+        const SurfacePoint fast = tree.closest_point(x);
+        const SurfacePoint slow = closest_point_brute_force(s, normals, x);
+        ASSERT_NEAR(fast.distance, slow.distance, rounding * std::max(1.0, std::abs(slow.distance)))
+            << "at (" << x.x << ", " << x.y << ", " << x.z << ")";
+    }
+}
+
 TEST(SurfaceDistanceTree, RefusesEmptySurfacesAndBadDomains) {
     EXPECT_THROW(SurfaceDistanceTree(Surface{}, Box3::centered_cube(1), {}), InvalidInput);
     const Surface s = sphere({0, 0, 0}, 0.5, 1);
