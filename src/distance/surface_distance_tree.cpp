@@ -118,8 +118,8 @@ void SurfaceDistanceTree::build_lists() {
         parallel_for(
             end - begin,
             [&](std::size_t i) {
-                near[i] = l < binned ? is_near_coarse(begin + i, bounds)
-                                     : is_near(level, begin + i, bounds);
+                near[i] =
+                    l < binned ? is_near_coarse(begin + i) : is_near(level, begin + i, bounds);
             },
             expensive_grain);
         std::vector<std::uint32_t> parents;
@@ -191,16 +191,17 @@ void SurfaceDistanceTree::list_from_hierarchy(std::size_t begin, std::size_t end
     }
 }
 
-bool SurfaceDistanceTree::is_near_coarse(std::size_t c, std::span<const Box3> bounds) const {
+bool SurfaceDistanceTree::is_near_coarse(std::size_t c) const {
     const Box3 b = tree_.box(c);
     const double h = tree_.edge(tree_.cell(c).level);
-    // The same triangles as its list: those whose boxes meet the triple (for the root, the
-    // others are farther than h).
-    return hierarchy_.any_overlapping(tree_.triple(c).inflated(triple_slack * h),
-                                      [&](std::uint32_t t) {
-                                          return std::sqrt(distance2(bounds[t], b)) < h &&
-                                                 distance_lower_bound(corners_[t], b, h) < h;
-                                      });
+    // The same triangles as its list, those whose boxes meet the triple (for the root, the
+    // others are farther than h), less those whose boxes are h or more from the cell, which
+    // distance_lower_bound would rule out: a node's box is no farther than the boxes inside it,
+    // so a node that far holds none nearer.
+    const Box3 triple = tree_.triple(c).inflated(triple_slack * h);
+    return hierarchy_.any_of(
+        [&](const Box3& box) { return box.overlaps(triple) && std::sqrt(distance2(box, b)) < h; },
+        [&](std::uint32_t t) { return distance_lower_bound(corners_[t], b, h) < h; });
 }
 
 void SurfaceDistanceTree::bin_lists(std::size_t begin, std::size_t end,

@@ -3,12 +3,14 @@
 /// anywhere, fast (paper §1.3 with d = 3; DESIGN §8). The 3D counterpart of DistanceTree.
 ///
 /// An octree over the domain in which a cell is split (to depth L) while its edge exceeds its
-/// distance to the surface. Every cell lists the triangles that meet its concentric triple (the
-/// 3×3×3 block of same-size cells around it). A query starts in the leaf holding x and climbs
-/// ancestors, keeping the nearest triangle of their lists, until the cube of half-width m (the
-/// best distance so far) around x lies inside the cell's triple: every triangle nearer than m
-/// meets that cube and so is on the list, which makes the answer exact. Far from the surface,
-/// where cells are large and their lists long, a TriangleHierarchy finishes the search instead.
+/// distance to the surface. A cell lists the triangles that meet its concentric triple (the
+/// 3×3×3 block of same-size cells around it) when they are few (at most 48). A query starts in
+/// the leaf holding x and climbs ancestors, keeping the nearest triangle of their lists, until
+/// the cube of half-width m (the best distance so far) around x lies inside the cell's triple:
+/// every triangle nearer than m meets that cube and so is on the list, which makes the answer
+/// exact. At a cell with no list (far from the surface, where cells are large and their lists
+/// would be long), a TriangleHierarchy finishes the search instead. The build needs the long
+/// lists only of the few finest levels, and for one level at a time (see build_lists).
 /// The sign comes from the angle-weighted pseudo-normal of the face, edge or vertex holding the
 /// nearest point, which is right at edges and corners (Bærentzen and Aanæs 2005).
 #pragma once
@@ -87,7 +89,7 @@ private:
     /// the hierarchy: the levels above the binned one, and the cells balancing makes.
     void list_from_hierarchy(std::size_t begin, std::size_t end);
     /// is_near for a cell without a list, from the hierarchy.
-    bool is_near_coarse(std::size_t c, std::span<const Box3> bounds) const;
+    bool is_near_coarse(std::size_t c) const;
     /// Lists the cells [begin, end) of a level by binning every triangle into its triples.
     void bin_lists(std::size_t begin, std::size_t end, std::span<const Box3> bounds, Level& level);
     /// Makes room for the lists of the cells [begin, begin + counts.size()) (the last ones) of
