@@ -1,19 +1,24 @@
 // Benchmarks of the surface distance tree (paper §1.3 with d = 3, a 3D Table 1): octree cells,
 // build time and closest-point query time for icospheres of N = 1280..1310720 triangles, beside
 // a brute-force baseline (small N) and, when CGAL is found at configure time, CGAL's AABB_tree
-// closest-point queries on the same triangles and points. Single-threaded, so that the times
-// compare. CGAL's answers are checked against ours (counter "max_gap", the largest difference
-// of the two distances relative to the sphere's radius).
+// build and closest-point queries on the same triangles and points. Single-threaded, so that the
+// times compare. CGAL's answers are checked against ours (counter "max_gap", the largest
+// difference of the two distances relative to the sphere's radius). Writes
+// docs/tables/table1_3d.md itself.
 //
-// Usage: surface_distance_bench [google-benchmark flags]
+// Usage: surface_distance_bench [--table PATH] [google-benchmark flags]
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <random>
+#include <string>
 #include <vector>
 
+#include "bench_support.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/geometry/surface_shapes.hpp"
@@ -28,6 +33,11 @@
 namespace {
 
 using namespace slc;
+using namespace slc::bench;
+
+/// The icospheres measured: 20·4^k triangles for k = 3..8 (1280..1310720).
+constexpr int first_level = 3;
+constexpr int last_level = 8;
 
 const Box3 domain = Box3::centered_cube(1.0);
 
@@ -56,7 +66,6 @@ const std::vector<Vec3>& near_points() {
 }
 
 void BM_SurfaceTreeBuild(benchmark::State& state) {
-    set_thread_count(1);
     const Surface& s = sphere_of(static_cast<int>(state.range(0)));
     const int depth = SurfaceDistanceTree::default_depth(s, domain);
     std::size_t cells = 0;
@@ -71,7 +80,6 @@ void BM_SurfaceTreeBuild(benchmark::State& state) {
 }
 
 void BM_SurfaceTreeQuery(benchmark::State& state) {
-    set_thread_count(1);
     const Surface& s = sphere_of(static_cast<int>(state.range(0)));
     const SurfaceDistanceTree tree(s, domain,
                                    {.depth = SurfaceDistanceTree::default_depth(s, domain)});
@@ -158,14 +166,104 @@ void BM_CgalQuery(benchmark::State& state) {
         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-BENCHMARK(BM_CgalBuild)->DenseRange(3, 8)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_CgalQuery)->DenseRange(3, 8)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CgalBuild)->DenseRange(first_level, last_level)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CgalQuery)->DenseRange(first_level, last_level)->Unit(benchmark::kMillisecond);
+constexpr bool have_cgal = true;
+#else
+constexpr bool have_cgal = false;
 #endif
 
-BENCHMARK(BM_SurfaceTreeBuild)->DenseRange(3, 8)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_SurfaceTreeQuery)->DenseRange(3, 8)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_BruteForceQuery)->DenseRange(3, 5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SurfaceTreeBuild)->DenseRange(first_level, last_level)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SurfaceTreeQuery)->DenseRange(first_level, last_level)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BruteForceQuery)->DenseRange(first_level, 5)->Unit(benchmark::kMillisecond);
+
+/// A run's time as text in the given unit (1e3: ms, 1e6: µs), or "—" when it was not run.
+std::string time_of(const Recorder& rec, const std::string& name, double unit) {
+    const auto it = rec.results.find(name);
+    return it == rec.results.end() ? "—" : fmt::format("{:.3g}", seconds(it->second) * unit);
+}
+
+/// Seconds per query of a run that counts them (counter per_query), or a negative number.
+double per_query(const Recorder& rec, const std::string& name) {
+    const auto it = rec.results.find(name);
+    if (it == rec.results.end()) return -1.0;
+    return seconds(it->second) / static_cast<double>(near_points().size());
+}
+
+void write_table(const Recorder& rec, const std::string& path) {
+    std::string md =
+        "# Table 1 in 3D: surface distance tree beside CGAL's AABB_tree\n\n"
+        "Written by `bench/surface_distance_bench.cpp` (run `scripts/bench`); do not edit by "
+        "hand.\n\n"
+        "Icospheres of radius 0.5 near the origin with N = 20·4^k triangles in the domain "
+        "[−1, 1]³, the tree at its default depth (cells about one mean edge wide). CPU time on "
+        "one thread, the least of the repetitions. Build: the octree and its cells' triangle "
+        "lists (ours), the AABB tree with `accelerate_distance_queries()` (CGAL). Query: one "
+        "closest point (ours also signed) for each of 10^4 fixed points within 0.05 of the "
+        "sphere. Brute force: a scan of every triangle. The last build column is the build time "
+        "divided by N log₂ N: constant when the build is O(N log N).\n\n";
+    if (!have_cgal)
+        md +=
+            "NOTE: CGAL was not found when this benchmark was built (`apt-get install "
+            "libcgal-dev`, or `scripts/bench`), so its columns are empty.\n\n";
+    md +=
+        "| N | depth | cells | build ms | CGAL build ms | build ÷ CGAL | build ns / N log₂ N "
+        "| query µs | CGAL query µs | query ÷ CGAL | brute force µs |\n"
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    double gap = 0.0;
+    for (int k = first_level; k <= last_level; ++k) {
+        const auto& build = rec.results.at(fmt::format("BM_SurfaceTreeBuild/{}", k));
+        const double n = build.counters.at("triangles").value;
+        const double ours_build = seconds(build);
+        const double ours_query = per_query(rec, fmt::format("BM_SurfaceTreeQuery/{}", k));
+        const auto cgal_build = rec.results.find(fmt::format("BM_CgalBuild/{}", k));
+        const double cgal_query = per_query(rec, fmt::format("BM_CgalQuery/{}", k));
+        const auto cgal_run = rec.results.find(fmt::format("BM_CgalQuery/{}", k));
+        if (cgal_run != rec.results.end())
+            gap = std::max(gap, cgal_run->second.counters.at("max_gap").value);
+        const std::string build_ratio =
+            cgal_build == rec.results.end()
+                ? "—"
+                : fmt::format("{:.2f}", ours_build / seconds(cgal_build->second));
+        const std::string query_ratio =
+            cgal_query > 0.0 ? fmt::format("{:.2f}", ours_query / cgal_query) : "—";
+        const auto brute = rec.results.find(fmt::format("BM_BruteForceQuery/{}", k));
+        const std::string brute_us =
+            brute == rec.results.end() ? "" : fmt::format("{:.3g}", seconds(brute->second) * 1e4);
+        md += fmt::format(
+            "| {:.0f} | {:.0f} | {:.0f} | {:.3g} | {} | {} | {:.1f} | {:.3g} | {} | {} | {} |\n", n,
+            build.counters.at("depth").value, build.counters.at("cells").value, ours_build * 1e3,
+            time_of(rec, fmt::format("BM_CgalBuild/{}", k), 1e3), build_ratio,
+            ours_build / (n * std::log2(n)) * 1e9, ours_query * 1e6,
+            cgal_query > 0.0 ? fmt::format("{:.3g}", cgal_query * 1e6) : "—", query_ratio,
+            brute_us);
+    }
+    if (have_cgal)
+        md += fmt::format(
+            "\nThe two agree on every query point: the largest difference of the distances is "
+            "{:.1e} of the radius.\n",
+            gap);
+    std::ofstream(path) << md;
+}
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+    const std::string table = take_flag(argc, argv, "--table", "docs/tables/table1_3d.md");
+    slc::set_thread_count(1);
+    benchmark::Initialize(&argc, argv);
+    Recorder recorder;
+    benchmark::RunSpecifiedBenchmarks(&recorder);
+    // The table needs every row: a filtered run (--benchmark_filter) leaves it as it was.
+    bool complete = true;
+    for (int k = first_level; k <= last_level; ++k) {
+        for (const char* name :
+             {"BM_SurfaceTreeBuild", "BM_SurfaceTreeQuery", "BM_CgalBuild", "BM_CgalQuery"}) {
+            if (!have_cgal && std::string(name).starts_with("BM_Cgal")) continue;
+            complete = complete && recorder.results.count(fmt::format("{}/{}", name, k)) != 0;
+        }
+    }
+    if (complete) write_table(recorder, table);
+    benchmark::Shutdown();
+    return 0;
+}

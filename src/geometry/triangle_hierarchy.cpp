@@ -18,41 +18,56 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
     const auto n = static_cast<std::uint32_t>(triangles.size());
     if (n == 0) return;
     boxes_.resize(n);
-    std::vector<Vec3> centroid(n);
+    // The triangles' centroids (of their boxes) beside their indices, moved together while the
+    // nodes are split: contiguous, where an index into a centroid array would jump about.
+    struct Item {
+        Vec3 centre;
+        std::uint32_t t;
+    };
+    std::vector<Item> items(n);
     for (std::uint32_t t = 0; t < n; ++t) {
         boxes_[t] = bounding_box(triangles[t]);
-        centroid[t] = boxes_[t].center();
+        items[t] = {boxes_[t].center(), t};
     }
-    order_.resize(n);
-    std::iota(order_.begin(), order_.end(), 0u);
     nodes_.reserve(2 * (n / leaf_size + 1));
     nodes_.push_back({Box3::empty(), 0, n});
     // Nodes are split in creation order; a split node's children are appended side by side.
     // Depth stays below 64 (the stack of the queries): median splits halve the count.
     for (std::size_t i = 0; i < nodes_.size(); ++i) {
         const std::uint32_t first = nodes_[i].first, count = nodes_[i].count;
-        Box3 box = Box3::empty(), centres = Box3::empty();
-        for (std::uint32_t k = first; k < first + count; ++k) {
-            box = unite(box, boxes_[order_[k]]);
-            centres = unite(centres, {centroid[order_[k]], centroid[order_[k]]});
-        }
-        nodes_[i].box = box;
         if (count <= leaf_size) continue;
+        Box3 centres = Box3::empty();
+        for (std::uint32_t k = first; k < first + count; ++k)
+            centres = unite(centres, {items[k].centre, items[k].centre});
         int axis = 0;
         for (int a = 1; a < 3; ++a)
             if (centres.extent(a) > centres.extent(axis)) axis = a;
         const std::uint32_t half = count / 2;
         // Ties broken by index, so that the hierarchy does not depend on the sort's whims.
-        std::nth_element(order_.begin() + first, order_.begin() + first + half,
-                         order_.begin() + first + count, [&](std::uint32_t p, std::uint32_t q) {
-                             const double cp = centroid[p][axis], cq = centroid[q][axis];
-                             return cp < cq || (cp == cq && p < q);
+        std::nth_element(items.begin() + first, items.begin() + first + half,
+                         items.begin() + first + count, [&](const Item& p, const Item& q) {
+                             const double cp = p.centre[axis], cq = q.centre[axis];
+                             return cp < cq || (cp == cq && p.t < q.t);
                          });
         const auto child = static_cast<std::uint32_t>(nodes_.size());
         nodes_[i].first = child;
         nodes_[i].count = 0;
         nodes_.push_back({Box3::empty(), first, half});
         nodes_.push_back({Box3::empty(), first + half, count - half});
+    }
+    order_.resize(n);
+    for (std::uint32_t k = 0; k < n; ++k) order_[k] = items[k].t;
+    // Boxes bottom up: children come after their parent.
+    for (std::size_t i = nodes_.size(); i-- > 0;) {
+        Node& node = nodes_[i];
+        Box3 box = Box3::empty();
+        if (node.count > 0) {
+            for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
+                box = unite(box, boxes_[order_[k]]);
+        } else {
+            box = unite(nodes_[node.first].box, nodes_[node.first + 1].box);
+        }
+        node.box = box;
     }
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/tree/cell_depth.hpp"
 
@@ -63,6 +64,39 @@ std::uint32_t Octree::descend(std::uint32_t from, LatticePoint q) const {
             4u * static_cast<std::uint32_t>((q.iz >> shift) & 1u);
     }
     return c;
+}
+
+std::uint32_t Octree::neighbour(std::size_t c, int d) const {
+    if (c == 0) return no_cell;
+    // Direction d moves along axis d / 2, down when d is even. Child bit a of k is set when the
+    // child is high along axis a; moving along axis a flips that bit.
+    const unsigned axis = static_cast<unsigned>(d) / 2, bit = 1u << axis;
+    const bool up = (d & 1) != 0;
+    const std::uint32_t parent = cells_[c].parent;
+    const std::uint32_t k = static_cast<std::uint32_t>(c) - cells_[parent].first_child;
+    // Moving within the parent: the neighbour is a sibling.
+    if (((k & bit) != 0) != up) return cells_[parent].first_child + (k ^ bit);
+    // Otherwise the parent's neighbour, then its child on our side, if it has children.
+    const std::uint32_t across = neighbour(parent, d);
+    if (across == no_cell || is_leaf(across)) return across;
+    return cells_[across].first_child + (k ^ bit);
+}
+
+std::uint32_t Octree::coarser_neighbour(std::size_t c, int d) const {
+    const std::uint32_t n = neighbour(c, d);
+    return n != no_cell && cells_[n].level < cells_[c].level ? n : no_cell;
+}
+
+bool Octree::is_balanced() const {
+    // As Quadtree::is_balanced: face-adjacent leaves differ by at most one level iff every cell
+    // with children has all six same-level face neighbours (or the root box's face there).
+    std::vector<std::uint8_t> coarse(cells_.size(), 0);
+    parallel_for(cells_.size(), [&](std::size_t c) {
+        if (is_leaf(c)) return;
+        for (int d = 0; d < 6; ++d)
+            if (coarser_neighbour(c, d) != no_cell) coarse[c] = 1;
+    });
+    return std::find(coarse.begin(), coarse.end(), std::uint8_t{1}) == coarse.end();
 }
 
 std::vector<std::uint32_t> Octree::leaves() const {

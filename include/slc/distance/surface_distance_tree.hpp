@@ -3,12 +3,14 @@
 /// anywhere, fast (paper §1.3 with d = 3; DESIGN §8). The 3D counterpart of DistanceTree.
 ///
 /// An octree over the domain in which a cell is split (to depth L) while its edge exceeds its
-/// distance to the surface. Every cell lists the triangles that meet its concentric triple (the
-/// 3×3×3 block of same-size cells around it). A query starts in the leaf holding x and climbs
-/// ancestors, keeping the nearest triangle of their lists, until the cube of half-width m (the
-/// best distance so far) around x lies inside the cell's triple: every triangle nearer than m
-/// meets that cube and so is on the list, which makes the answer exact. Far from the surface,
-/// where cells are large and their lists long, a TriangleHierarchy finishes the search instead.
+/// distance to the surface. A cell lists the triangles that meet its concentric triple (the
+/// 3×3×3 block of same-size cells around it) when they are few (at most 48). A query starts in
+/// the leaf holding x and climbs ancestors, keeping the nearest triangle of their lists, until
+/// the cube of half-width m (the best distance so far) around x lies inside the cell's triple:
+/// every triangle nearer than m meets that cube and so is on the list, which makes the answer
+/// exact. At a cell with no list (far from the surface, where cells are large and their lists
+/// would be long), a TriangleHierarchy finishes the search instead. The build needs the long
+/// lists only of the few finest levels, and for one level at a time (see build_lists).
 /// The sign comes from the angle-weighted pseudo-normal of the face, edge or vertex holding the
 /// nearest point, which is right at edges and corners (Bærentzen and Aanæs 2005).
 #pragma once
@@ -31,7 +33,8 @@ class SurfaceDistanceTree {
 public:
     /// The tree's parameters (paper Table 4: L).
     struct Options {
-        int depth = 6;  ///< L: deepest level of the octree
+        int depth = 6;          ///< L: deepest level of the octree
+        bool balanced = false;  ///< 2:1 balance the octree (for tetrahedral contouring)
     };
 
     /// Builds the tree for a valid surface inside domain (a cube). The surface must outlive the
@@ -62,16 +65,42 @@ public:
     const Surface& surface() const { return *surface_; }
     /// Its pseudo-normals.
     const PseudoNormals& normals() const { return normals_; }
-    /// The octree: cells split to depth L near the surface.
+    /// The octree: cells split to depth L near the surface; 2:1 balanced when asked
+    /// (Options::balanced), the cells that makes listed as the others.
     const Octree& tree() const { return tree_; }
+    /// True when cell c keeps a list: when at most 48 triangles' boxes meet its triple. A query
+    /// reaching a cell without one finishes in the triangle hierarchy.
+    bool is_listed(std::size_t c) const { return listed_[c] != 0; }
     /// Triangles listed by cell c: those whose bounding boxes meet its concentric triple, in
-    /// increasing order.
+    /// increasing order; empty when the cell keeps no list (is_listed).
     std::span<const std::uint32_t> cell_triangles(std::size_t c) const {
         return {triangles_.data() + offsets_[c], triangles_.data() + offsets_[c + 1]};
     }
 
 private:
+    /// The lists of one level's cells while the tree is built (defined with the build).
+    struct Level;
     void build_lists();
+    /// The list of cell c of level while the tree is built.
+    std::span<const std::uint32_t> list_of(const Level& level, std::size_t c) const;
+    /// True when cell c of level is nearer the surface than its edge, by distance_lower_bound.
+    bool is_near(const Level& level, std::size_t c, std::span<const Box3> bounds) const;
+    /// Stores the lists of the cells [begin, end) (the last ones) that are short enough, from
+    /// the hierarchy: the levels above the binned one, and the cells balancing makes.
+    void list_from_hierarchy(std::size_t begin, std::size_t end);
+    /// is_near for a cell without a list, from the hierarchy.
+    bool is_near_coarse(std::size_t c) const;
+    /// Lists the cells [begin, end) of a level by binning every triangle into its triples.
+    void bin_lists(std::size_t begin, std::size_t end, std::span<const Box3> bounds, Level& level);
+    /// Makes room for the lists of the cells [begin, begin + counts.size()) (the last ones) of
+    /// the given lengths: stored when short, else in level.
+    void place_lists(std::size_t begin, std::span<const std::uint32_t> counts, Level& level);
+    /// Where the list of cell c (placed by place_lists) is to be written.
+    std::uint32_t* list_start(Level& level, std::size_t c);
+    /// Lists the children of parents (just split, in increasing order, their children the last
+    /// cells): stored for queries when short, else kept in next for the level after.
+    void list_children(const Level& level, std::span<const std::uint32_t> parents,
+                       std::span<const Box3> bounds, Level& next);
     /// The least (distance², triangle) pair over the surface at x.
     NearestFacet nearest_facet(Vec3 x) const;
 
@@ -83,6 +112,7 @@ private:
     std::vector<std::uint32_t>
         offsets_;  ///< CSR: triangles of cell c are [offsets_[c], offsets_[c+1])
     std::vector<std::uint32_t> triangles_;  ///< the cells' lists, one after another
+    std::vector<std::uint8_t> listed_;      ///< 1 when cell c keeps a list
 };
 
 }  // namespace slc

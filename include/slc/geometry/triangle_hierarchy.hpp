@@ -49,6 +49,35 @@ public:
         }
     }
 
+    /// Calls f(t) for triangles t whose bounding box passes enter(box), in a fixed order (depth
+    /// first), until f returns true; returns whether it did. enter must pass a box whenever it
+    /// passes a box inside it, so that nodes it fails are skipped whole. O(log N + triangles
+    /// visited).
+    template <class Enter, class F>
+    bool any_of(Enter&& enter, F&& f) const {
+        if (nodes_.empty()) return false;
+        std::uint32_t stack[64];
+        int top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const Node& n = nodes_[stack[--top]];
+            if (!enter(n.box)) continue;
+            if (n.count > 0) {
+                for (std::uint32_t i = n.first; i < n.first + n.count; ++i)
+                    if (enter(boxes_[order_[i]]) && f(order_[i])) return true;
+            } else {
+                stack[top++] = n.first;
+                stack[top++] = n.first + 1;
+            }
+        }
+        return false;
+    }
+    /// any_of for the triangles whose bounding box meets the closed box b.
+    template <class F>
+    bool any_overlapping(const Box3& b, F&& f) const {
+        return any_of([&](const Box3& box) { return box.overlaps(b); }, f);
+    }
+
     /// Lowers best to the least (distance2, triangle) over all triangles: exact, the same answer
     /// as a scan of every triangle. A best already found only prunes more.
     void nearest(std::span<const Triangle3> triangles, Vec3 x, NearestFacet& best) const;

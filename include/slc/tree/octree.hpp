@@ -3,8 +3,8 @@
 /// structure as Quadtree, one more coordinate: cells numbered in creation order, the eight
 /// children of a cell consecutive, integer coordinates per level, point location by the bits of
 /// a lattice point. The tree holds only structure; owners keep per-cell data in arrays indexed by
-/// cell number. NOTE: no 2:1 balance yet; the distance tree does not need it (the Whitney
-/// extension and tetrahedral contouring will).
+/// cell number. 2:1 balance (face-adjacent leaves at most one level apart) on request: the
+/// distance tree does not need it, tetrahedral contouring will.
 #pragma once
 
 #include <algorithm>
@@ -91,15 +91,62 @@ public:
     /// The leaf containing p. O(depth).
     std::uint32_t leaf_at(Vec3 p) const { return descend(0, lattice_point(p)); }
 
+    /// The cell of the same level as c sharing its face in direction d (0..5: −x, +x, −y, +y,
+    /// −z, +z), or the deepest existing cell containing that place; no_cell beyond the root
+    /// box. O(1) on average: it climbs only as far as the nearest common ancestor.
+    std::uint32_t neighbour(std::size_t c, int d) const;
+
+    /// Splits leaves until every two leaves that share part of a face differ by at most one
+    /// level. Calls on_split(c) after each split, in order. Cost O(cells) on average.
+    template <class OnSplit>
+    void balance(OnSplit&& on_split);
+    /// The same, with no callback.
+    void balance() {
+        balance([](std::size_t) {});
+    }
+
+    /// True when every two face-adjacent leaves differ by at most one level. On all worker
+    /// threads.
+    bool is_balanced() const;
+
     /// All leaves, in increasing cell number.
     std::vector<std::uint32_t> leaves() const;
 
 private:
+    /// The leaf bordering cell c in direction d when it is coarser than c, that is when c's
+    /// same-level neighbour there is missing; otherwise, or beyond the root box, no_cell.
+    std::uint32_t coarser_neighbour(std::size_t c, int d) const;
+
     Box3 root_;
     int max_depth_ = 0;
     int depth_ = 0;
     std::vector<double> edges_;
     std::vector<Cell> cells_;
 };
+
+template <class OnSplit>
+void Octree::balance(OnSplit&& on_split) {
+    if (is_balanced()) return;  // the common case, checked on all worker threads
+    // As Quadtree::balance: balanced iff every cell with children has its six same-level face
+    // neighbours. From the finest level to the coarsest, a missing neighbour of a cell at level
+    // l is a leaf above level l, split until the neighbour exists; the splits make cells with
+    // children above level l, handled when their own level comes up.
+    std::vector<std::vector<std::uint32_t>> by_level(static_cast<std::size_t>(max_depth_) + 1);
+    for (std::uint32_t c = 0; c < cells_.size(); ++c)
+        if (!is_leaf(c)) by_level[static_cast<std::size_t>(cells_[c].level)].push_back(c);
+    for (int level = depth_ - 1; level >= 1; --level) {
+        const auto& list = by_level[static_cast<std::size_t>(level)];
+        for (std::size_t k = 0; k < list.size(); ++k) {
+            for (int d = 0; d < 6; ++d) {
+                for (std::uint32_t n = coarser_neighbour(list[k], d); n != no_cell;
+                     n = coarser_neighbour(list[k], d)) {
+                    split(n);
+                    on_split(n);
+                    by_level[static_cast<std::size_t>(cells_[n].level)].push_back(n);
+                }
+            }
+        }
+    }
+}
 
 }  // namespace slc

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/distance/surface_extension.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/geometry/validate_surface.hpp"
@@ -156,14 +157,73 @@ TEST(SurfaceDistanceTree, LeavesAboveTheDeepestLevelAreFartherThanTheirEdge) {
     }
     EXPECT_GT(checked, 100);
     // And every cell's list is exactly the triangles whose boxes meet its triple, grown by the
-    // tree's slack of 1e-12 of an edge against rounding.
+    // tree's slack of 1e-12 of an edge against rounding; cells keep lists of at most 48 (the
+    // longest a query scans), the others none.
+    int unlisted = 0;
     for (std::size_t c = 0; c < t.size(); c += 7) {
         std::vector<std::uint32_t> want;
         const Box3 triple = t.triple(c).inflated(1e-12 * t.edge(t.cell(c).level));
         for (std::uint32_t k = 0; k < s.size(); ++k)
             if (bounding_box(s.triangle(k)).overlaps(triple)) want.push_back(k);
         const auto got = tree.cell_triangles(c);
+        ASSERT_EQ(tree.is_listed(c), want.size() <= 48) << "cell " << c;
+        if (!tree.is_listed(c)) {
+            EXPECT_TRUE(got.empty()) << "cell " << c;
+            ++unlisted;
+            continue;
+        }
         ASSERT_TRUE(std::equal(got.begin(), got.end(), want.begin(), want.end())) << "cell " << c;
+    }
+    EXPECT_GT(unlisted, 0);
+}
+
+TEST(SurfaceDistanceTree, CellsAndListsDoNotDependOnThreadCount) {
+    // 20480 triangles at depth 7: every stage of the build (coarse cells, the binned level, the
+    // filtered levels) has enough work for every worker thread.
+    const Surface s = sphere({0.01, -0.02, 0.03}, 0.6, 5);
+    set_thread_count(1);
+    const SurfaceDistanceTree one(s, Box3::centered_cube(1.0), {.depth = 7});
+    set_thread_count(2);
+    const SurfaceDistanceTree two(s, Box3::centered_cube(1.0), {.depth = 7});
+    set_thread_count(0);
+    ASSERT_EQ(one.tree().size(), two.tree().size());
+    for (std::size_t c = 0; c < one.tree().size(); ++c) {
+        ASSERT_EQ(one.tree().cell(c).first_child, two.tree().cell(c).first_child) << "cell " << c;
+        ASSERT_EQ(one.is_listed(c), two.is_listed(c)) << "cell " << c;
+        const auto a = one.cell_triangles(c), b = two.cell_triangles(c);
+        ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << "cell " << c;
+    }
+}
+
+TEST(SurfaceDistanceTree, BalancedTreeListsItsNewCellsAndAgreesWithBruteForce) {
+    // The split rule grades the tree by itself almost everywhere; around this box's edges and
+    // corners at depth 6 it does not.
+    const Surface s = prepare_surface(box_surface({-0.6, -0.4, -0.5}, {0.5, 0.7, 0.3}, 1)).surface;
+    const PseudoNormals normals = pseudo_normals(s);
+    const Box3 domain = Box3::centered_cube(1.2);
+    const SurfaceDistanceTree plain(s, domain, {.depth = 6});
+    const SurfaceDistanceTree tree(s, domain, {.depth = 6, .balanced = true});
+    const Octree& t = tree.tree();
+    ASSERT_FALSE(plain.tree().is_balanced());  // so that balancing had work to do
+    EXPECT_TRUE(t.is_balanced());
+    EXPECT_GT(t.size(), plain.tree().size());
+    // The cells balancing made keep lists as the others do.
+    for (std::size_t c = plain.tree().size(); c < t.size(); ++c) {
+        std::vector<std::uint32_t> want;
+        const Box3 triple = t.triple(c).inflated(1e-12 * t.edge(t.cell(c).level));
+        for (std::uint32_t k = 0; k < s.size(); ++k)
+            if (bounding_box(s.triangle(k)).overlaps(triple)) want.push_back(k);
+        ASSERT_EQ(tree.is_listed(c), want.size() <= 48) << "cell " << c;
+        const auto got = tree.cell_triangles(c);
+        if (!tree.is_listed(c)) continue;
+        ASSERT_TRUE(std::equal(got.begin(), got.end(), want.begin(), want.end())) << "cell " << c;
+    }
+    std::mt19937 rng(29);
+    for (const Vec3 x : query_points(s, rng)) {
+        const SurfacePoint fast = tree.closest_point(x);
+        const SurfacePoint slow = closest_point_brute_force(s, normals, x);
+        ASSERT_NEAR(fast.distance, slow.distance, rounding * std::max(1.0, std::abs(slow.distance)))
+            << "at (" << x.x << ", " << x.y << ", " << x.z << ")";
     }
 }
 
