@@ -300,11 +300,11 @@ std::string read_text_file(const std::filesystem::path& path) {
         return InvalidInput(
             fmt::format("cannot read {}: {}", path.string(), std::generic_category().message(err)));
     };
-    auto too_large = [&](std::uintmax_t bytes) {
+    auto too_large = [&](std::uintmax_t bytes, const char* more) {
         return InvalidInput(
-            fmt::format("{}: {} bytes or more, above the limit of {} bytes ({} MiB) "
+            fmt::format("{}: {}{} bytes, above the limit of {} bytes ({} MiB) "
                         "for an input file",
-                        path.string(), bytes, max_input_bytes, max_input_bytes >> 20));
+                        path.string(), more, bytes, max_input_bytes, max_input_bytes >> 20));
     };
     // Devices (/dev/zero never ends), pipes and folders are refused before they are opened.
     std::error_code ec;
@@ -314,7 +314,7 @@ std::string read_text_file(const std::filesystem::path& path) {
         throw InvalidInput(fmt::format("cannot read {}: not a regular file", path.string()));
     }
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (!ec && size > max_input_bytes) throw too_large(size);
+    if (!ec && size > max_input_bytes) throw too_large(size, "");
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
                                                          &std::fclose);
     if (!file) throw fail(errno);
@@ -323,7 +323,8 @@ std::string read_text_file(const std::filesystem::path& path) {
     std::size_t n = 0;
     while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) {
         text.append(buffer, n);
-        if (text.size() > max_input_bytes) throw too_large(text.size());  // it grew meanwhile
+        if (text.size() > max_input_bytes)
+            throw too_large(text.size(), "more than ");  // it grew meanwhile
     }
     if (std::ferror(file.get())) throw fail(errno);
     return text;
