@@ -66,6 +66,17 @@ if grep -q '"status": "ok"' long_part/summary.json; then rm long_part/summary.js
 expect_ok "resume after SIGTERM" -- run --resume long_part --quiet
 same_run "resumed after SIGTERM" long_full long_part
 
+# Ctrl-C (SIGINT) the same way: the results written whole, exit status 130.
+"$SLC" "${long_args[@]}" --checkpoint-every 1 --out int_part 2>err.txt &
+pid=$!
+for _ in $(seq 200); do [ -s int_part/checkpoint.json ] && break; sleep 0.05; done
+kill -INT "$pid"
+wait "$pid"
+status=$?
+check "SIGINT: exit status 130 (0 had it finished)" test "$status" -eq 130 -o "$status" -eq 0
+check "SIGINT: a whole summary" grep -qE '"status": "(interrupted|ok)"' int_part/summary.json
+check "SIGINT: no working folder left" test -z "$(ls -d int_part.slc-* int_part.lock 2>/dev/null)"
+
 # Output folders are replaced whole: a run without checkpoints into the folder of a run with
 # them leaves no frame, checkpoint or history of the first.
 expect_ok "run A, checkpointed, 4 frames" -- run --problem vortex -N 8 -K 4 -P 0 --frames 4 --checkpoint-every 2 --quiet --out mixed
