@@ -315,11 +315,16 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
     }
     if (r.status == RunStatus::error) throw NumericalFailure(r.message);
     if (stop_signal != 0) {
+        const char* name = stop_signal == SIGINT ? "SIGINT" : "SIGTERM";
+        if (r.status != RunStatus::interrupted) {  // the signal came during the final writes
+            throw Interrupted(stop_signal, fmt::format("{}: {} came after the last step; the "
+                                                       "results in {} are written whole",
+                                                       p.name, name, folder.target().string()));
+        }
         throw Interrupted(stop_signal,
-                          fmt::format("{}: interrupted by {} after step {} at t = {:.6g}; "
-                                      "{} holds the run up to there",
-                                      p.name, stop_signal == SIGINT ? "SIGINT" : "SIGTERM",
-                                      r.steps_done, r.t, folder.target().string()));
+                          fmt::format("{}: interrupted by {} after step {} at t = "
+                                      "{:.6g}; {} holds the run up to there",
+                                      p.name, name, r.steps_done, r.t, folder.target().string()));
     }
 }
 
