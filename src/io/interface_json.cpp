@@ -114,17 +114,18 @@ std::string overflow_message(const std::string& text, const std::string& source)
 }
 
 /// A SAX handler that counts the points of an interface file (arrays four levels below the root,
-/// as in {"curves": [{"points": [[x, y]]}]}) and stops the parse beyond max_interface_points, so
-/// that an enormous file is refused before its document is built.
+/// as in {"curves": [{"points": [[x, y]]}]}) and all its values, and stops the parse beyond
+/// max_interface_points or max_interface_values, so that an enormous file is refused before its
+/// document is built.
 class PointCounter final : public nlohmann::json_sax<Json> {
 public:
-    bool null() override { return true; }
-    bool boolean(bool) override { return true; }
-    bool number_integer(number_integer_t) override { return true; }
-    bool number_unsigned(number_unsigned_t) override { return true; }
-    bool number_float(number_float_t, const string_t&) override { return true; }
-    bool string(string_t&) override { return true; }
-    bool binary(binary_t&) override { return true; }
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
     bool start_object(std::size_t) override { return open(false); }
     bool key(string_t&) override { return true; }
     bool end_object() override { return close(); }
@@ -134,12 +135,14 @@ public:
         return false;
     }
     std::size_t points() const { return points_; }
+    std::size_t values() const { return values_; }
 
 private:
+    bool value() { return ++values_ <= max_interface_values; }
     bool open(bool is_array) {
         if (is_array && depth_ == 4) ++points_;
         ++depth_;
-        return points_ <= max_interface_points;
+        return value() && points_ <= max_interface_points;
     }
     bool close() {
         --depth_;
@@ -147,6 +150,7 @@ private:
     }
     int depth_ = 0;
     std::size_t points_ = 0;
+    std::size_t values_ = 0;
 };
 
 /// The document as JSON, or InvalidInput naming the source and the byte where parsing failed.
@@ -157,6 +161,12 @@ Json parse_document(const std::string& text, const std::string& source) {
         throw InvalidInput(
             fmt::format("{}: more than {} points; split the interface or thin it out", source,
                         max_interface_points));
+    }
+    if (counter.values() > max_interface_values) {
+        throw InvalidInput(
+            fmt::format("{}: more than {} JSON values, beyond what {} points need; an interface "
+                        "file holds its curves' points and little else",
+                        source, max_interface_values, max_interface_points));
     }
     try {
         return Json::parse(text);
@@ -290,13 +300,32 @@ std::string read_text_file(const std::filesystem::path& path) {
         return InvalidInput(
             fmt::format("cannot read {}: {}", path.string(), std::generic_category().message(err)));
     };
+    auto too_large = [&](std::uintmax_t bytes, const char* more) {
+        return InvalidInput(
+            fmt::format("{}: {}{} bytes, above the limit of {} bytes ({} MiB) "
+                        "for an input file",
+                        path.string(), more, bytes, max_input_bytes, max_input_bytes >> 20));
+    };
+    // Devices (/dev/zero never ends), pipes and folders are refused before they are opened.
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (ec) throw fail(ec.value());
+    if (!std::filesystem::is_regular_file(status)) {
+        throw InvalidInput(fmt::format("cannot read {}: not a regular file", path.string()));
+    }
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (!ec && size > max_input_bytes) throw too_large(size, "");
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
                                                          &std::fclose);
     if (!file) throw fail(errno);
     std::string text;
     char buffer[1 << 16];
     std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
+    while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) {
+        text.append(buffer, n);
+        if (text.size() > max_input_bytes)
+            throw too_large(text.size(), "more than ");  // it grew meanwhile
+    }
     if (std::ferror(file.get())) throw fail(errno);
     return text;
 }

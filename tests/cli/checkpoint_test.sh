@@ -56,11 +56,67 @@ pid=$!
 for _ in $(seq 200); do [ -s long_part/checkpoint.json ] && break; sleep 0.05; done
 kill -TERM "$pid"
 wait "$pid"
-check "SIGTERM: exit status 0" test $? -eq 0
+status=$?
+check "SIGTERM: exit status 143 (0 had it finished)" test "$status" -eq 143 -o "$status" -eq 0
 check "SIGTERM: status interrupted (or ok had it finished)" \
     grep -qE '"status": "(interrupted|ok)"' long_part/summary.json
+check "SIGTERM: one line on stderr" test "$(wc -l <err.txt)" -le 1
+# A run that finished has results newer than its last checkpoint, which --resume refuses.
+if grep -q '"status": "ok"' long_part/summary.json; then rm long_part/summary.json; fi
 expect_ok "resume after SIGTERM" -- run --resume long_part --quiet
 same_run "resumed after SIGTERM" long_full long_part
+
+# Ctrl-C (SIGINT) the same way: the results written whole, exit status 130.
+"$SLC" "${long_args[@]}" --checkpoint-every 1 --out int_part 2>err.txt &
+pid=$!
+for _ in $(seq 200); do [ -s int_part/checkpoint.json ] && break; sleep 0.05; done
+kill -INT "$pid"
+wait "$pid"
+status=$?
+check "SIGINT: exit status 130 (0 had it finished)" test "$status" -eq 130 -o "$status" -eq 0
+check "SIGINT: a whole summary" grep -qE '"status": "(interrupted|ok)"' int_part/summary.json
+check "SIGINT: no working folder left" test -z "$(ls -d int_part.slc-* int_part.lock 2>/dev/null)"
+
+# Output folders are replaced whole: a run without checkpoints into the folder of a run with
+# them leaves no frame, checkpoint or history of the first.
+expect_ok "run A, checkpointed, 4 frames" -- run --problem vortex -N 8 -K 4 -P 0 --frames 4 --checkpoint-every 2 --quiet --out mixed
+expect_ok "run B into the same folder" -- run --problem circle-curvature -N 2 -K 3 -P 0 --quiet --out mixed
+check "run B left no frame of A" test ! -e mixed/frames
+check "run B left no checkpoint of A" test ! -e mixed/checkpoint.json
+check "run B's summary" grep -q '"problem": "circle-curvature"' mixed/summary.json
+check "no working folder left" test -z "$(ls -d mixed.slc-* mixed.lock 2>/dev/null)"
+expect_error "resume B (no checkpoint)" "cannot read mixed/checkpoint.json" -- run --resume mixed
+
+# A checkpoint carries its run's identity: beside the results of another run it is refused, as
+# it is when the results are newer than it (the run finished after it).
+expect_ok "run C, checkpointed" -- run --problem circle-curvature -N 6 -K 4 -P 0 --checkpoint-every 2 --quiet --out other
+cp other/checkpoint.json mixed/checkpoint.json
+expect_error "resume a checkpoint beside another run's results" "mixed/summary.json: the results in the folder belong to another run" -- run --resume mixed
+expect_error "resume a finished run" "other/summary.json: the results are of step 6, after the checkpoint's step 4" -- run --resume other
+check "the refused resume left the results" grep -q '"steps_done": 6' other/summary.json
+
+# A checkpoint is read as an interface file is: crossing curves are bad input, not an internal error.
+rm other/summary.json
+sed -E 's/"curves":[^"]*,"domain/"curves":[[0.2,0.2,0.8,0.8,0.8,0.2,0.2,0.8]],"domain/' other/checkpoint.json >crossed.json
+mv crossed.json other/checkpoint.json
+expect_error "resume a checkpoint of crossing curves" "other/checkpoint.json: curve 0 crosses itself" -- run --resume other
+
+# A second writer of a folder is refused at once (here the lock is held by this shell).
+exec 9>busy.lock
+flock 9
+expect_error "a second writer" "--out busy: another slc is writing this folder" -- run --problem vortex -N 2 -K 3 --quiet --out busy
+exec 9>&-
+check "the refused writer wrote nothing" test ! -e busy
+
+# A full disk (here a file size limit) leaves the earlier results whole and no working folder.
+expect_ok "earlier run" -- run --problem circle-curvature -N 2 -K 3 -P 0 --quiet --out kept
+cp kept/summary.json kept_summary.json
+(trap '' XFSZ; ulimit -f 4; "$SLC" run --problem vortex -N 2 -K 5 -P 0 --frames 2 --quiet --out kept >out.txt 2>err.txt)
+check "disk full: exit status 2" test $? -eq 2
+check "disk full: one line naming the file" grep -q "cannot write .*File too large" err.txt
+check "disk full: earlier summary kept" cmp -s kept/summary.json kept_summary.json
+check "disk full: no frames of the failed run" test ! -e kept/frames
+check "disk full: no working folder left" test -z "$(ls -d kept.slc-* 2>/dev/null)"
 
 # Bad use of --resume.
 expect_error "resume with other options" "--steps cannot be given" -- run --resume part --steps 3

@@ -123,7 +123,7 @@ reject "eps 0" "--eps: must be a positive finite number, got '0'" -- run --probl
 reject "eps negative" "--eps: must be a positive finite number, got '-1e-3'" -- run --problem vortex --eps -1e-3 --out x
 reject "eps NaN" "--eps: must be a positive finite number, got 'nan'" -- run --problem vortex --eps nan --out x
 reject "eta infinite" "--eta: must be a positive finite number, got 'inf'" -- run --problem vortex --eta inf --out x
-reject "eps below eta" "--eps \(1e-12\) must not be below --eta \(1e-10\)" -- run --problem vortex --eps 1e-12 --eta 1e-10 --out x
+reject "eps below eta (both given; an η left unset is lowered to ε/10)" "--eps \(1e-12\) must not be below --eta \(1e-10\)" -- run --problem vortex --eps 1e-12 --eta 1e-10 --out x
 reject "rho 1" "--rho: must be a number in \[0, 1\), got '1'" -- run --problem vortex --rho 1 --out x
 reject "t-end NaN" "t-end must be finite and after the start time 0, got nan" -- run --problem vortex --t-end nan --out x
 reject "t-end infinite" "t-end must be finite and after the start time 0, got inf" -- run --problem vortex --t-end inf --out x
@@ -146,6 +146,7 @@ mkdir -p broken && echo '{"format": "slc run checkpoint 1"}' >broken/checkpoint.
 reject "--resume of a broken checkpoint" "broken/checkpoint.json: not a checkpoint of slc run" -- run --resume broken
 reject "--resume with other options" "--steps cannot be given with it" -- run --resume broken -N 3
 "$SLC" run --problem circle-curvature -N 4 -K 3 -P 0 --checkpoint-every 2 --out cut --quiet
+rm cut/summary.json  # a finished run is not resumed
 head -n 2 cut/history.csv >cut/history.csv.new && mv cut/history.csv.new cut/history.csv
 reject "--resume with a history shorter than the checkpoint" \
     "cut/history.csv: the checkpoint after step 2 needs 3 time levels, the file has 1" -- run --resume cut
@@ -194,4 +195,27 @@ reject "VTK without a vector array" "scalar.vtk: no point-data array with 2 or 3
 printf -- '-3,-3,1,0\n3,-3,1,0\n-3,3,1,0\n3,3,1,0\n' >small.csv
 reject "curves outside the lattice" "the initial curves leave the region where velocity 'field-file small.csv' is known, \[-3, 3\] x \[-3, 3\]" -- \
     run --initial far.json --t-end 1 --out x --field-file small.csv
+section "output folders, input sizes and memory"
+echo 'not a folder' >afile
+reject "--out at a file" "--out afile: a file exists and is not a folder" -- run --problem vortex -N 1 -K 3 --out afile
+reject "--out at /dev/null" "--out /dev/null: it exists and is not a folder" -- contour --initial square.json -K 3 --out /dev/null
+mkdir -p notes && echo 'my notes' >notes/notes.txt
+reject "--out at a folder of other files" "--out notes: the folder holds files that are not results of slc" -- \
+    study --problem vortex --rows 1 --out notes
+reject "--initial /dev/zero (not a regular file)" "cannot read /dev/zero: not a regular file" -- distance --initial /dev/zero --points origin.csv
+mkdir -p folder.json
+reject "--initial a folder" "cannot read folder.json: not a regular file" -- distance --initial folder.json --points origin.csv
+truncate -s 129M big.json
+reject "a file above 128 MiB" "big.json: 135266304 bytes, above the limit of 134217728 bytes \(128 MiB\)" -- \
+    distance --initial big.json --points origin.csv
+rm big.json
+# 8,000,001 values besides the curves: refused while counting, before the document is built.
+awk 'BEGIN { printf "{\"curves\": [{\"points\": [[0, 0], [1, 0], [0, 1]]}], \"pad\": [0"; for (i = 0; i < 8000000; ++i) printf ",0"; print "]}" }' >padded.json
+reject "a file padded with other values" "padded.json: more than 8000000 JSON values" -- distance --initial padded.json --points origin.csv
+rm padded.json
+reject "distance tree beyond memory" "--tree-depth 30 would need about .* GiB for its trees .* more than the .* GiB of memory this process may use; depth [0-9]+ fits" -- \
+    distance --initial square.json --points origin.csv -L 30
+reject "contouring tree beyond memory" "--depth 20 would need about .* GiB" -- contour --initial square.json -K 20 --out x
+reject "run depth beyond memory" "--depth 24 would need about .* GiB" -- run --problem vortex -K 24 -N 1 --out x
+check "refusals wrote no folder" test ! -e x
 finish

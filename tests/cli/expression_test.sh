@@ -120,13 +120,13 @@ cp rot_field.csv moved.csv
 ck_args=(run --initial tri.json --field-file moved.csv --t-end 1 -N 10 "${box[@]}" --quiet)
 expect_ok "lattice run" -- "${ck_args[@]}" --out ck_full
 expect_ok "lattice run checkpointed" -- "${ck_args[@]}" --checkpoint-every 4 --out ck_part
-rm moved.csv ck_part/final.json
+rm moved.csv ck_part/final.json ck_part/summary.json  # results newer than the checkpoint are not resumed
 expect_ok "lattice run resumed without its file" -- run --resume ck_part --quiet
 check "lattice run resumed: the same final curves" cmp -s ck_full/final.json ck_part/final.json
 sp_args=(run --initial circle.json --speed "a - C" --param a=0.25 --t-end 0.1 -N 10 --quiet)
 expect_ok "speed run" -- "${sp_args[@]}" --out sp_full
 expect_ok "speed run checkpointed" -- "${sp_args[@]}" --checkpoint-every 4 --out sp_part
-rm sp_part/final.json
+rm sp_part/final.json sp_part/summary.json
 expect_ok "speed run resumed" -- run --resume sp_part --quiet
 check "speed run resumed: the same final curves" cmp -s sp_full/final.json sp_part/final.json
 

@@ -47,9 +47,10 @@ check "vanished status" grep -q '"status": "vanished"' gone/summary.json
 last=$(grep -o 'file="[^"]*"' gone/frames.pvd | tail -1 | cut -d'"' -f2)
 check "empty last frame" test "$(number_of "gone/$last" NumberOfPoints)" -eq 0
 
-# A file in the way of the frames' folder: status 2, one line naming it.
+# A folder of other files (here one in the way of the frames' folder) is not replaced: status 2,
+# one line naming it.
 mkdir blocked && touch blocked/frames
-expect_error "frames folder blocked" "cannot write" -- run --initial small.json --velocity unit-normal \
+expect_error "frames folder blocked" "--out blocked: the folder holds files that are not results of slc" -- run --initial small.json --velocity unit-normal \
     --t-end 0.1 -N 1 -K 3 -P 0 --domain 1 --vtk --out blocked --quiet
 
 # VTK's own readers, when installed: every dataset of each collection, with its points and lines.

@@ -3,9 +3,13 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <cstdint>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "slc/core/error.hpp"
+#include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
 
 namespace slc::cli {
@@ -56,6 +60,7 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     Json json;
     json["format"] = format_name;
     json["options"] = options;
+    json["run_id"] = c.run_id;
     json["steps_done"] = s.steps_done;
     json["t"] = s.t;
     json["g_evals"] = s.g_evals;
@@ -83,6 +88,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
             c.options.emplace_back(option.at(0).get<std::string>(),
                                    option.at(1).get<std::vector<std::string>>());
         }
+        c.run_id = json.at("run_id").get<std::string>();
         RunResult& s = c.state;
         s.steps_done = json.at("steps_done").get<int>();
         s.t = json.at("t").get<double>();
@@ -104,6 +110,83 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
         throw InvalidInput(
             fmt::format("{}: not a checkpoint of slc run ({})", path.string(), e.what()));
     }
+}
+
+void check_checkpoint(const Checkpoint& c, const Box& domain, const RunOptions& options,
+                      const std::filesystem::path& dir) {
+    const std::string path = checkpoint_path(dir).string();
+    auto fail = [&](const std::string& why) {
+        return InvalidInput(fmt::format("{}: not a checkpoint of this run ({})", path, why));
+    };
+    const RunResult& s = c.state;
+    if (s.steps_done < 0 || s.steps_done >= options.steps) {
+        throw fail(fmt::format("steps_done {} is not below the run's {} steps", s.steps_done,
+                               options.steps));
+    }
+    if (!std::isfinite(s.t)) throw fail("t is not finite");
+    if (c.frames_kept < 0) throw fail(fmt::format("frames_kept is {}", c.frames_kept));
+    if (s.domain_doublings < 0 || s.domain_doublings > options.max_domain_doublings) {
+        throw fail(fmt::format("domain_doublings {} is not from 0 to {}", s.domain_doublings,
+                               options.max_domain_doublings));
+    }
+    // The curves as an interface file's: a checkpoint edited by hand must not reach the tree.
+    std::vector<std::vector<Vec2>> raw;
+    for (std::size_t i = 0; i < s.curves.curve_count(); ++i) {
+        const auto curve = s.curves.curve(i);
+        raw.emplace_back(curve.begin(), curve.end());
+    }
+    try {
+        const PreparedInterface prepared =
+            prepare_interface(raw, doubled_domain(domain, s.domain_doublings));
+        if (!prepared.notes.empty()) throw InvalidInput(prepared.notes.front());
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(fmt::format("{}: {}", path, e.what()));
+    }
+    // The results beside it: of this run, and not past the checkpoint.
+    const std::filesystem::path summary_path = dir / "summary.json";
+    if (!std::filesystem::exists(summary_path)) return;
+    Json summary;
+    try {
+        summary = Json::parse(read_text_file(summary_path));
+    } catch (const Json::exception&) {
+        return;  // a summary that is not JSON is not results to protect
+    }
+    if (summary.value("run_id", std::string()) != c.run_id) {
+        throw InvalidInput(fmt::format(
+            "{}: the results in the folder belong to another run (run_id {}, the checkpoint's "
+            "{}); resume refused",
+            summary_path.string(), summary.value("run_id", std::string("none")), c.run_id));
+    }
+    const int done = summary.value("steps_done", 0);
+    if (done > s.steps_done) {
+        throw InvalidInput(
+            fmt::format("{}: the results are of step {}, after the checkpoint's step {}; remove "
+                        "summary.json to run from the checkpoint again",
+                        summary_path.string(), done, s.steps_done));
+    }
+}
+
+std::string run_identity(const std::vector<GivenOption>& options, const std::set<std::string>& skip,
+                         const std::set<std::string>& files) {
+    // FNV-1a, 64 bits: stable across builds and machines, unlike std::hash.
+    std::uint64_t h = 14695981039346656037ull;
+    auto add = [&h](std::string_view bytes) {
+        for (const char b : bytes) {
+            h ^= static_cast<unsigned char>(b);
+            h *= 1099511628211ull;
+        }
+        h ^= 0xff;  // a separator, so that "ab","c" and "a","bc" differ
+        h *= 1099511628211ull;
+    };
+    for (const auto& [name, values] : options) {
+        if (skip.contains(name)) continue;
+        add(name);
+        for (const std::string& value : values) {
+            add(value);
+            if (files.contains(name)) add(read_text_file(value));
+        }
+    }
+    return fmt::format("{:016x}", h);
 }
 
 std::vector<GivenOption> given_options(const CLI::App& cmd, const std::set<std::string>& skip) {

@@ -19,6 +19,7 @@ using GivenOption = std::pair<std::string, std::vector<std::string>>;
 
 struct Checkpoint {
     std::vector<GivenOption> options;  ///< the run's options, to parse again on resume
+    std::string run_id;                ///< the run's identity (run_id), also in its summary.json
     RunResult state;                   ///< after state.steps_done steps
     int frames_kept = 0;               ///< frames written so far (DIR/frames/frame_0000.json ...)
 };
@@ -33,6 +34,18 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& checkp
 /// Reads DIR/checkpoint.json; InvalidInput (one line naming the file) when it is missing or not
 /// a checkpoint.
 Checkpoint read_checkpoint(const std::filesystem::path& dir);
+
+/// Checks a checkpoint read back as an interface file is checked (finite, inside the domain the
+/// run had reached, no crossings, oriented as slc writes them), its counters against the run's
+/// options, and the results in dir against it: a summary.json of another run, or of a later
+/// step, stops the resume. Throws InvalidInput, one line naming the file.
+void check_checkpoint(const Checkpoint& checkpoint, const Box& domain, const RunOptions& options,
+                      const std::filesystem::path& dir);
+
+/// The identity of a run: 16 hexadecimal digits hashing its options but those that do not change
+/// its results (`skip`) and the content of the files the options name (`files`: option names).
+std::string run_identity(const std::vector<GivenOption>& options, const std::set<std::string>& skip,
+                         const std::set<std::string>& files);
 
 /// The options given to cmd on its command line, except those named in skip.
 std::vector<GivenOption> given_options(const CLI::App& cmd, const std::set<std::string>& skip);

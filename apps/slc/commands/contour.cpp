@@ -12,6 +12,8 @@
 
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
+#include "commands/memory_budget.hpp"
+#include "commands/output_folder.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/distance_tree.hpp"
@@ -132,8 +134,9 @@ std::string picture_title(const ContourCommandOptions& o, const ContourResult& r
 
 /// final.json, the pictures, then summary.json (last, so that it marks a complete run).
 void write_results(const ContourCommandOptions& o, const LoadedInterface& in,
-                   const DistanceTree& tree, const ContourResult& r, nlohmann::json summary) {
-    const std::filesystem::path dir(o.out);
+                   const DistanceTree& tree, const ContourResult& r, nlohmann::json summary,
+                   OutputFolder& folder) {
+    const std::filesystem::path dir = folder.path();
     const ContourError e = measure_error(tree, r.curves);
     const double error = std::max(e.vertices, e.midpoints);
     summary["status"] = "ok";
@@ -146,11 +149,12 @@ void write_results(const ContourCommandOptions& o, const LoadedInterface& in,
     write_file_atomic(dir / "final.json", interface_json(r.curves, in.time));
     draw(r, in.curves, in.domain, picture_title(o, r, error), dir);
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+    folder.commit();
     fmt::print(
         "{} cells, {} segments, error {:.3g}, {} G evaluations ({:.2f} per vertex), {:.3g} s; "
         "wrote {}\n",
         r.stats.cells, r.stats.segments, error, r.stats.g_evals, r.stats.g_evals_per_vertex,
-        summary["cpu_s"].get<double>(), (dir / "summary.json").string());
+        summary["cpu_s"].get<double>(), (std::filesystem::path(o.out) / "summary.json").string());
 }
 
 void run_contour(const ContourCommandOptions& o) {
@@ -158,7 +162,12 @@ void run_contour(const ContourCommandOptions& o) {
     const LoadedInterface in = load_interface(o.initial, o.domain);
     const int tree_depth = o.tree_depth.value_or(DistanceTree::default_depth(in.curves, in.domain));
     const ContourOptions options = library_options(o);
+    check_tree_memory(fmt::format("--tree-depth {}", tree_depth), tree_depth, length(in.curves),
+                      in.domain.width(), distance_bytes_per_cell);
+    check_tree_memory(fmt::format("--depth {}", o.depth), o.depth, length(in.curves),
+                      in.domain.width(), contour_bytes_per_cell);
     nlohmann::json summary = summary_head(o, in, options, tree_depth);
+    OutputFolder folder(o.out, false);
 
     const DistanceTree tree(in.curves, in.domain, {.depth = tree_depth, .triangulate = false});
     const auto exact = [&tree](std::span<const Vec2> x, std::span<double> v) {
@@ -175,13 +184,14 @@ void run_contour(const ContourCommandOptions& o) {
         const std::string message = fmt::format("at t = {}: {}", in.time, e.what());
         summary["status"] = "error";
         summary["message"] = message;
-        write_file_atomic(std::filesystem::path(o.out) / "summary.json", summary.dump(2) + "\n");
+        write_file_atomic(folder.path() / "summary.json", summary.dump(2) + "\n");
+        folder.commit();
         throw NumericalFailure(message);
     }
     summary["cpu_s"] = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     summary["wall_s"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    write_results(o, in, tree, *result, std::move(summary));
+    write_results(o, in, tree, *result, std::move(summary), folder);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
+#include "commands/memory_budget.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/io/points_csv.hpp"
@@ -44,6 +45,8 @@ void run_distance(const DistanceOptions& o) {
     const LoadedInterface in = load_interface(o.initial, o.domain);
     const std::vector<Vec2> xs = read_points_csv(o.points);
     const int depth = o.depth.value_or(DistanceTree::default_depth(in.curves, in.domain));
+    check_tree_memory(fmt::format("--tree-depth {}", depth), depth, length(in.curves),
+                      in.domain.width(), distance_bytes_per_cell);
     const DistanceTree tree(in.curves, in.domain, {.depth = depth, .triangulate = false});
     const std::vector<ClosestPoint> answers = tree.closest_points(xs);
     std::string out = "x,y,distance,nearest_x,nearest_y\n";

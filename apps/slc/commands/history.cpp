@@ -59,8 +59,7 @@ void History::add(double t, const Interface& curves, double cpu_s) {
            fmt::format("{},{},{},{},{},{}\n", t, a, l, curves.curve_count(), curves.size(), cpu_s));
 }
 
-void History::resume(int steps_done, double t) {
-    const std::filesystem::path path = csv_path();
+void History::resume(int steps_done, double t, const std::filesystem::path& path) {
     const std::string text = read_text_file(path);
     auto fail = [&](const std::string& why) {
         return InvalidInput(

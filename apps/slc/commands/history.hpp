@@ -28,10 +28,11 @@ public:
     /// Starts with the initial interface at time t (cpu_s 0). Call this or resume() first, once.
     void start(double t, const Interface& curves);
     /// Continues the history of a run resumed after steps_done steps at time t: reads
-    /// DIR/history.csv back and keeps its first steps_done + 1 time levels, dropping any a run
-    /// stopped after its last checkpoint wrote. Throws InvalidInput naming the file when it is
-    /// missing, malformed, shorter than that, or not at time t after steps_done steps.
-    void resume(int steps_done, double t);
+    /// `csv` (the history.csv of the folder resumed) back and keeps its first steps_done + 1 time
+    /// levels, dropping any a run stopped after its last checkpoint wrote. Throws InvalidInput
+    /// naming the file when it is missing, malformed, shorter than that, or not at time t after
+    /// steps_done steps.
+    void resume(int steps_done, double t, const std::filesystem::path& csv);
     /// Records the interface after a step that ended at time t and took cpu_s CPU seconds.
     void add(double t, const Interface& curves, double cpu_s);
 

@@ -15,6 +15,8 @@
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
 #include "commands/history.hpp"
+#include "commands/memory_budget.hpp"
+#include "commands/output_folder.hpp"
 #include "commands/problem_source.hpp"
 #include "commands/run_options.hpp"
 #include "slc/core/error.hpp"
@@ -29,7 +31,32 @@ namespace slc::cli {
 namespace {
 
 std::atomic<bool> stop_requested{false};
-extern "C" void request_stop(int) { stop_requested = true; }
+std::atomic<int> stop_signal{0};
+/// The first SIGINT or SIGTERM stops the run after the current step, which then writes its results
+/// whole (status interrupted); a second one ends the process at once (the output folder keeps
+/// the results it held before).
+extern "C" void request_stop(int signal) {
+    stop_requested = true;
+    stop_signal = signal;
+    std::signal(signal, SIG_DFL);
+}
+
+/// Ctrl-C and SIGTERM handled from the start of a run to the end of its writes.
+class StopSignals {
+public:
+    StopSignals() {
+        stop_requested = false;
+        stop_signal = 0;
+        std::signal(SIGINT, request_stop);
+        std::signal(SIGTERM, request_stop);
+    }
+    ~StopSignals() {
+        std::signal(SIGINT, SIG_DFL);
+        std::signal(SIGTERM, SIG_DFL);
+    }
+    StopSignals(const StopSignals&) = delete;
+    StopSignals& operator=(const StopSignals&) = delete;
+};
 
 struct RunCommand {
     ProblemSource source;
@@ -160,9 +187,20 @@ nlohmann::json estimate_json(const Interface& initial, const VelocityLaw& law, c
     return e;
 }
 
-/// Runs o from the start, or from a checkpoint; `given` are the options to store in checkpoints.
-void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
-                 const Checkpoint* from) {
+/// Refuses K or L (= K + P unless given) beyond the machine's memory for the initial curves.
+void check_run_memory(const RunOptions& options, const Interface& initial, const Box& domain) {
+    const double l = length(initial);
+    const int k = options.step.contour.depth;
+    const int tree = options.step.resolved_tree_depth();
+    check_tree_memory(fmt::format("--depth {}", k), k, l, domain.width(), run_bytes_per_cell);
+    check_tree_memory(fmt::format("--tree-depth {}", tree), tree, l, domain.width(),
+                      distance_bytes_per_cell);
+}
+
+/// Runs o from the start, or from a checkpoint, writing into folder; `given` are the options to
+/// store in checkpoints, `id` the run's identity (run_id).
+void run_command(const RunCommand& o, const std::vector<GivenOption>& given, const std::string& id,
+                 const Checkpoint* from, OutputFolder& folder) {
     apply_threads(o.method.threads);
     const Problem p = resolve_problem(o.source);
     const RunOptions options = resolve_run_options(o.method, p);
@@ -179,13 +217,14 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     const std::optional<GeometryModule> module = geometry_module(o.method);
     const auto law = problem_law(p, module ? module : p.module);
     const Interface initial = prepare_interface(p.initial, p.domain).curves;
-    const std::filesystem::path dir(o.out);
-    std::filesystem::create_directories(dir);
+    check_run_memory(options, initial, p.domain);
+    if (from) check_checkpoint(*from, p.domain, options, folder.target());
+    const std::filesystem::path dir = folder.path();
     // DIR/history.csv: written now, at each checkpoint and at the end; on --resume read back first,
     // so that a history that cannot be continued stops the run before anything is written.
     History history(dir);
     if (from) {
-        history.resume(from->state.steps_done, from->state.t);
+        history.resume(from->state.steps_done, from->state.t, folder.target() / "history.csv");
     } else {
         history.start(options.t_start, initial);
         history.save_csv();
@@ -204,7 +243,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     };
     if (from) {  // the frames a checkpointed run wrote before it stopped, read back one by one
         for (int i = 0; i < from->frames_kept; ++i) {
-            const InterfaceFile f = read_interface_json(frame_path(dir, i));
+            const InterfaceFile f = read_interface_json(frame_path(folder.target(), i));
             const Interface curves(f.curves);
             overlay.add(f.time, curves);
             if (vtk) vtk->add(f.time, curves);
@@ -214,9 +253,6 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     }
     if (vtk && overlay.count() == 0) vtk->add(options.t_start, initial);
     const bool progress = !o.quiet && isatty(STDERR_FILENO);
-    stop_requested = false;
-    std::signal(SIGINT, request_stop);
-    std::signal(SIGTERM, request_stop);
     const Observer observer = [&](const StepReport& s) {
         history.add(s.t, *s.curves, s.step_cpu_s);
         if (o.frames > 0 && (std::int64_t{s.step} * o.frames) % s.steps < o.frames) {
@@ -227,7 +263,8 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
         if (o.checkpoint_every > 0 && s.step < s.steps && !s.curves->empty() &&
             (s.step % o.checkpoint_every == 0 || stop_requested)) {
             history.save_csv();  // first: a checkpoint's history is never shorter than its run
-            write_checkpoint(dir, {given, *s.run, overlay.count()});
+            write_checkpoint(dir, {given, id, *s.run, overlay.count()});
+            folder.publish();
         }
         if (progress && s.wall_s > 2.0) {
             const double left = s.wall_s * (s.steps - s.step) / s.step;
@@ -255,17 +292,17 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     draw(dir, p, initial, r, overlay.shown(), overlay.count());
     history.save_plot(p.name);
     nlohmann::json summary = run_summary(p, options, r, *law);
+    summary["run_id"] = id;
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     if (coarse) {  // the summary is written once without it, in case the extra run is stopped
         summary["error_estimate"] = estimate_json(initial, *law, p.domain, *coarse, r);
         write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     }
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
+    folder.commit();
     if (!o.quiet) {
         fmt::print("{}: {} at t = {:.6g} after {} steps, e_inf = {}, {:.3g} s cpu; wrote {}\n",
                    p.name, to_string(r.status), r.t, r.steps_done, summary["e_inf"].dump(), r.cpu_s,
-                   dir.string());
+                   folder.target().string());
         if (coarse) {
             const nlohmann::json& e = summary["error_estimate"];
             if (e["estimate"].is_null())
@@ -278,6 +315,18 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given,
     }
     if (r.status == RunStatus::error || r.status == RunStatus::unstable)
         throw NumericalFailure(r.message);
+    if (stop_signal != 0) {
+        const char* name = stop_signal == SIGINT ? "SIGINT" : "SIGTERM";
+        if (r.status != RunStatus::interrupted) {  // the signal came during the final writes
+            throw Interrupted(stop_signal, fmt::format("{}: {} came after the last step; the "
+                                                       "results in {} are written whole",
+                                                       p.name, name, folder.target().string()));
+        }
+        throw Interrupted(stop_signal,
+                          fmt::format("{}: interrupted by {} after step {} at t = "
+                                      "{:.6g}; {} holds the run up to there",
+                                      p.name, name, r.steps_done, r.t, folder.target().string()));
+    }
 }
 
 /// The options of `slc run` (all but the action), so that --resume can parse a checkpoint's again.
@@ -316,18 +365,22 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
 const std::vector<std::pair<std::string, std::string>> copied_files = {
     {"--initial", "checkpoint-initial"}, {"--field-file", "checkpoint-field"}};
 
+/// Options that do not change a run's results, left out of its identity.
+const std::set<std::string> options_outside_identity = {"--out", "--quiet", "--threads",
+                                                        "--checkpoint-every"};
+
 /// The options of the first run, to keep in checkpoints. With --initial (and --field-file), a
-/// copy of the file goes to DIR/checkpoint-initial/ (DIR/checkpoint-field/) and the checkpoint
-/// names the copy, which --resume reads.
-std::vector<GivenOption> options_to_keep(const CLI::App& cmd, const RunCommand& o) {
+/// copy of the file goes to DIR/checkpoint-initial/ (DIR/checkpoint-field/) in the working
+/// folder `work` and the checkpoint names the copy, which --resume reads.
+std::vector<GivenOption> options_to_keep(const CLI::App& cmd, const RunCommand& o,
+                                         const std::filesystem::path& work) {
     std::vector<GivenOption> given = given_options(cmd, {"--out", "--quiet", "--threads"});
     if (o.checkpoint_every == 0 || o.source.initial.empty()) return given;
     for (auto& [option, values] : given) {
         for (const auto& [copied, folder] : copied_files) {
             if (option != copied || values.size() != 1) continue;
             const std::filesystem::path name = std::filesystem::path(values[0]).filename();
-            write_file_atomic(std::filesystem::path(o.out) / folder / name,
-                              read_text_file(values[0]));
+            write_file_atomic(work / folder / name, read_text_file(values[0]));
             values = {name.string()};
         }
     }
@@ -336,6 +389,7 @@ std::vector<GivenOption> options_to_keep(const CLI::App& cmd, const RunCommand& 
 
 /// --resume DIR: the checkpoint's options parsed again, with DIR as the output folder.
 void resume_command(const CLI::App& cmd, const RunCommand& o) {
+    const StopSignals signals;
     const std::vector<GivenOption> extra = given_options(cmd, {"--resume", "--threads", "--quiet"});
     if (!extra.empty()) {
         throw InvalidInput(fmt::format(
@@ -343,7 +397,9 @@ void resume_command(const CLI::App& cmd, const RunCommand& o) {
             extra.front().first));
     }
     const std::filesystem::path dir(o.resume);
-    const Checkpoint c = read_checkpoint(dir);
+    read_checkpoint(dir);  // a folder without a checkpoint is refused before it is locked
+    OutputFolder out(dir, true);
+    const Checkpoint c = read_checkpoint(dir);  // again: another run may have replaced it
     std::vector<std::string> args = as_arguments(c.options);
     for (std::string& arg : args) {
         for (const auto& [option, folder] : copied_files) {
@@ -352,7 +408,7 @@ void resume_command(const CLI::App& cmd, const RunCommand& o) {
                 arg = prefix + (dir / folder / arg.substr(prefix.size())).string();
         }
     }
-    args.push_back("--out=" + dir.string());
+    args.push_back("--out=" + o.resume);
     if (o.quiet) args.push_back("--quiet");
     if (o.method.threads != 0) args.push_back(fmt::format("--threads={}", o.method.threads));
     CLI::App again;
@@ -360,7 +416,7 @@ void resume_command(const CLI::App& cmd, const RunCommand& o) {
     add_run_options(&again, &resumed);
     std::reverse(args.begin(), args.end());  // CLI11 takes a vector of arguments last first
     again.parse(args);
-    run_command(resumed, c.options, &c);
+    run_command(resumed, c.options, c.run_id, &c, out);
 }
 
 }  // namespace
@@ -376,7 +432,12 @@ void add_run_command(CLI::App& app) {
         if (o->source.problem.empty() && o->source.initial.empty())
             throw InvalidInput("give --problem NAME or --initial FILE");
         if (o->out.empty()) throw InvalidInput("--out DIR is required");
-        run_command(*o, options_to_keep(*cmd, *o), nullptr);
+        const StopSignals signals;
+        const std::vector<GivenOption> all = given_options(*cmd, {});
+        const std::string id =
+            run_identity(all, options_outside_identity, {"--initial", "--field-file"});
+        OutputFolder folder(o->out, false);
+        run_command(*o, options_to_keep(*cmd, *o, folder.path()), id, nullptr, folder);
     });
 }
 

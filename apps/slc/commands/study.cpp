@@ -13,6 +13,7 @@
 
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
+#include "commands/output_folder.hpp"
 #include "commands/problem_source.hpp"
 #include "commands/run_options.hpp"
 #include "commands/self_convergence.hpp"
@@ -187,9 +188,9 @@ void run_self_convergence(const StudyCommand& o) {
     }
     const std::optional<GeometryModule> module = geometry_module(o.method);
     const auto law = problem_law(p, module ? module : p.module);
-    const std::filesystem::path dir(o.out);
-    std::filesystem::create_directories(dir);
-    write_self_convergence_study(p, *law, base, rows, o.quiet, dir);
+    OutputFolder folder(o.out, false);
+    write_self_convergence_study(p, *law, base, rows, o.quiet, folder.path());
+    folder.commit();
 }
 
 void run_study(const StudyCommand& o) {
@@ -203,13 +204,14 @@ void run_study(const StudyCommand& o) {
             fmt::format("problem '{}' has no exact solution to measure errors against", p.name));
     const RunOptions base = resolve_run_options(o.method, p);
     const Paper paper = read_reference(o.reference, p.study.paper_table);
+    OutputFolder folder(o.out, false);
     const StudyResult s = study(p, o.rows.value_or(5), base, [&](const StudyCell& c) {
         if (!o.quiet) {
             fmt::print(stderr, "{}  P = {}: E_inf = {}, {:.3g} s/step\n", run_name(c.options),
                        c.refine, number(c.e_inf), c.cpu_s_per_step);
         }
     });
-    const std::filesystem::path dir(o.out);
+    const std::filesystem::path dir = folder.path();
     write_file_atomic(dir / "table.md", markdown(p, s, paper));
     write_file_atomic(dir / "table.csv", csv(s));
     nlohmann::json cells = nlohmann::json::array();
@@ -227,6 +229,7 @@ void run_study(const StudyCommand& o) {
         dir / "table.json",
         nlohmann::json{{"problem", p.name}, {"rows", s.rows}, {"cells", cells}}.dump(2) + "\n");
     plot(dir, p, s, paper);
+    folder.commit();
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -22,10 +23,19 @@ struct InterfaceFile {
 /// memory per million points, so larger files are refused before they are read into memory.
 inline constexpr std::size_t max_interface_points = 2'000'000;
 
+/// Most JSON values (numbers, arrays, objects, strings, ...) an interface file may hold: three
+/// per point and room for the rest, so that a file padded with other values is refused while it
+/// is counted, before its document is built.
+inline constexpr std::size_t max_interface_values = 4 * max_interface_points;
+
+/// Largest input file the tool reads (interfaces, points, surfaces, velocity lattices): 128 MiB.
+/// An interface of max_interface_points points as slc writes it takes about 110 MB.
+inline constexpr std::uintmax_t max_input_bytes = std::uintmax_t{128} << 20;
+
 /// Parses interface JSON text. `source` names the input in messages (a file name).
 /// Throws InvalidInput, one line naming the source and what is wrong: not JSON, no "curves"
 /// array, a curve without "points", a point that is not two numbers, a non-finite "time", more
-/// than max_interface_points points.
+/// than max_interface_points points or max_interface_values values.
 InterfaceFile parse_interface_json(const std::string& text, const std::string& source);
 
 /// Reads and parses an interface file; a missing or unreadable file is InvalidInput too.
@@ -34,7 +44,9 @@ InterfaceFile read_interface_json(const std::filesystem::path& path);
 /// The interface as JSON text, coordinates with 17 significant digits (round-trips exactly).
 std::string interface_json(const Interface& curves, double time);
 
-/// The whole content of a file; InvalidInput ("cannot read PATH: reason") when it cannot be read.
+/// The whole content of a file; InvalidInput ("cannot read PATH: reason") when it cannot be read,
+/// is not a regular file (a device such as /dev/zero, a pipe, a folder), or holds more than
+/// max_input_bytes (checked before it is read, and again while reading).
 std::string read_text_file(const std::filesystem::path& path);
 
 /// Writes text to path atomically: to a temporary file in the same folder, then renamed over

@@ -219,5 +219,32 @@ TEST(InterfaceJson, RefusesMoreThanTheLimitOfPointsBeforeBuildingTheDocument) {
                    {"big.json: more than 2000000 points"});
 }
 
+TEST(InterfaceJson, RefusesAFilePaddedWithOtherValuesBeforeBuildingTheDocument) {
+    std::string text = R"({"curves": [{"points": [[0, 0], [1, 0], [0, 1]]}], "pad": [0)";
+    for (std::size_t v = 0; v < max_interface_values; ++v) text += ",0";
+    text += "]}";
+    expect_invalid([&] { parse_interface_json(text, "padded.json"); },
+                   {"padded.json: more than 8000000 JSON values"});
+}
+
+TEST(ReadTextFile, RefusesDevicesAndFoldersBeforeReading) {
+    // /dev/zero never ends: it must be refused before a byte is read.
+    expect_invalid([] { read_text_file("/dev/zero"); },
+                   {"cannot read /dev/zero: not a regular file"});
+    const TempDir dir;
+    expect_invalid([&] { read_text_file(dir.path()); }, {"not a regular file"});
+}
+
+TEST(ReadTextFile, RefusesAFileAboveTheLimitBeforeReadingIt) {
+    const TempDir dir;
+    const fs::path big = dir.path() / "big.json";
+    { std::ofstream out(big); }
+    fs::resize_file(big, max_input_bytes + 1);  // sparse: no disk space taken
+    expect_invalid([&] { read_text_file(big); },
+                   {"big.json: 134217729 bytes, above the limit of 134217728 bytes (128 MiB)"});
+    fs::resize_file(big, 3);
+    EXPECT_EQ(read_text_file(big), std::string(3, '\0'));
+}
+
 }  // namespace
 }  // namespace slc
