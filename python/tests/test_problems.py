@@ -207,3 +207,32 @@ def test_a_sweep_refuses_a_case_it_cannot_run():
     with pytest.raises(ValueError, match="no 'interface'"):
         slc.sweep([dict(velocity="curvature", t_end=0.1)])
     assert slc.grid(a=[1, 2], b=["x"]) == [{"a": 1, "b": "x"}, {"a": 2, "b": "x"}]
+
+
+# ---- expressions and guards --------------------------------------------------------------------
+
+
+def test_expression_laws_move_curves_as_the_built_in_ones():
+    # As `slc run --speed` and `--field`: the same curves to the last bit.
+    circle = ellipse(1.0, 1.0, 200)
+    pairs = [(slc.SpeedExpression("a", a=1.0), "unit-normal", 0.3),
+             (slc.SpeedExpression("C"), "curvature", 0.1),
+             (slc.FieldExpression("-y, x"), "rotation", 1.0)]
+    for typed, built_in, t in pairs:
+        a, b = slc.run(circle, typed, t, steps=10), slc.run(circle, built_in, t, steps=10)
+        assert a.status == b.status == "ok"
+        for p, q in zip(a.interface.curves, b.interface.curves):
+            np.testing.assert_array_equal(p, q)
+    with pytest.raises(ValueError, match="speed expression '1 \\+'") as e:
+        slc.run(circle, slc.SpeedExpression("1 +"), 0.1)
+    assert "\n" not in str(e.value)
+
+
+def test_a_run_that_breaks_what_its_law_keeps_ends_unstable():
+    # Four steps of the single vortex lose area even split into sixteen: unstable, not "vanished".
+    r = slc.run(slc.problem("vortex"), steps=4)
+    assert r.status == "unstable" and "area changed" in r.message
+    # A rotation by 10 rad in 4 steps is rescued by sub-steps, which the summary counts.
+    r = slc.run(ellipse(1.0, 1.0, 64), "rotation", 1.0, steps=4, params={"omega": 10})
+    assert r.status == "ok" and r.summary["substeps"]["split_steps"] == 4
+    assert len(r.interface) == 1
