@@ -79,7 +79,7 @@ check "SIGINT: no working folder left" test -z "$(ls -d int_part.slc-* int_part.
 
 # Output folders are replaced whole: a run without checkpoints into the folder of a run with
 # them leaves no frame, checkpoint or history of the first.
-expect_ok "run A, checkpointed, 4 frames" -- run --problem vortex -N 8 -K 4 -P 0 --frames 4 --checkpoint-every 2 --quiet --out mixed
+expect_ok "run A, checkpointed, 4 frames" -- run --problem vortex -N 8 -K 6 -P 1 --frames 4 --checkpoint-every 2 --quiet --out mixed
 expect_ok "run B into the same folder" -- run --problem circle-curvature -N 2 -K 3 -P 0 --quiet --out mixed
 check "run B left no frame of A" test ! -e mixed/frames
 check "run B left no checkpoint of A" test ! -e mixed/checkpoint.json
