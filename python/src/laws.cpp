@@ -2,11 +2,11 @@
 // a batch of points) on the thread that runs the step, with the GIL held for the call alone.
 #include "laws.hpp"
 
-#include "slc/velocity/expression.hpp"
-#include "slc/velocity/grid_field.hpp"
-
 #include <algorithm>
 #include <map>
+
+#include "slc/velocity/expression.hpp"
+#include "slc/velocity/grid_field.hpp"
 
 namespace slc::python {
 namespace {
