@@ -318,9 +318,10 @@ StepResult advance_normal(const Interface& curves, double t, double k, const Vel
                           const Box& domain, const StepOptions& options) {
     StepResult result;
     const Level now(curves, t, k, law, domain, options);
-    // |G(x) − G(y)| ≤ |x − y| + 2k max|V|, and F(x) ± k max|V| bound G at one query.
+    // |G(x) − G(y)| ≤ |x − y| + 2k max|V|, and F(x) ± k max|V| bound G at one query; with arcs,
+    // F is the chords' distance plus a bulge of at most b, which adds b to both.
     ContourOptions contour_options = options.contour;
-    const double predictor_reach = k * now.max_speed();
+    const double predictor_reach = k * now.max_speed() + now.max_bulge();
     contour_options.distance_slack = 2.0 * predictor_reach;
     auto bounds = [&now](double reach) {
         return pointwise(
@@ -344,7 +345,8 @@ StepResult advance_normal(const Interface& curves, double t, double k, const Vel
     if (predicted.curves.empty()) return result;
 
     const Level next(predicted.curves, t + k, k, law, domain, options);
-    const double corrector_reach = 0.5 * k * (now.max_speed() + next.max_speed());
+    const double corrector_reach = 0.5 * k * (now.max_speed() + next.max_speed()) +
+                                   std::max(now.max_bulge(), next.max_bulge());
     contour_options.distance_slack = 2.0 * corrector_reach;
     auto corrector = [&](std::span<const Vec2> xs, std::span<double> g) {
         const std::size_t m = xs.size();
