@@ -40,7 +40,19 @@ class NormalSpeed:
         self.name = name or getattr(f, "__name__", "normal-speed")
 
 
-class SpeedExpression:
+class _Expression:
+    """Text for muparser with named constants; the subclass says which law it is."""
+
+    kind = ""
+
+    def __init__(self, text: str, **constants: float):
+        if not isinstance(text, str):
+            raise TypeError(f"{type(self).__name__} needs a string, got {type(text).__name__}")
+        self.text = text
+        self.constants = {k: float(v) for k, v in constants.items()}
+
+
+class SpeedExpression(_Expression):
     """A normal speed typed as text, as ``slc run --speed``: v(x, y, t, C, nx, ny) with
     muparser's operators and functions and the named constants given
     (``SpeedExpression("a - C", a=0.5)``); v > 0 moves outward, C = -1/R on a circle. Without C
@@ -48,24 +60,12 @@ class SpeedExpression:
 
     kind = "speed"
 
-    def __init__(self, text: str, **constants: float):
-        if not isinstance(text, str):
-            raise TypeError(f"SpeedExpression needs a string, got {type(text).__name__}")
-        self.text = text
-        self.constants = {k: float(v) for k, v in constants.items()}
 
-
-class FieldExpression:
+class FieldExpression(_Expression):
     """A flow field typed as text, as ``slc run --field``: "U, V" in x, y, t and the named
     constants (``FieldExpression("-y, x")``), sampled along the characteristics."""
 
     kind = "field"
-
-    def __init__(self, text: str, **constants: float):
-        if not isinstance(text, str):
-            raise TypeError(f"FieldExpression needs a string, got {type(text).__name__}")
-        self.text = text
-        self.constants = {k: float(v) for k, v in constants.items()}
 
 
 class FieldFile:
@@ -183,7 +183,7 @@ def _law(velocity, params, geometry):
     params = {k: float(v) for k, v in (params or {}).items()}
     if isinstance(velocity, FlowField):
         return _slc.LawSpec(velocity.f, "flow-field", velocity.name, params, geometry)
-    if isinstance(velocity, (SpeedExpression, FieldExpression)):
+    if isinstance(velocity, _Expression):
         if params:
             raise ValueError("an expression's constants go to the expression itself: "
                              "SpeedExpression(text, a=0.5)")

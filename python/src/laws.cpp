@@ -78,17 +78,10 @@ private:
 
 /// A flow field f(t, points) -> (m, 2) known everywhere: sampled off the curve along the
 /// characteristics, one call per batch and Runge–Kutta stage.
-class PythonFieldLaw final : public VelocityLaw {
+class PythonFieldLaw final : public FlowFieldLaw {
 public:
     PythonFieldLaw(py::object f, std::string name) : f_(std::move(f)), name_(std::move(name)) {}
     std::string name() const override { return name_; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry&) const override {
-        std::vector<Vec2> u(curves.size());
-        sample(t, curves.points(), u);
-        return u;
-    }
-    bool is_field() const override { return true; }
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override {
         py::gil_scoped_acquire hold;
         const Array v = numbers_of(f_(t, array_of(points)), "flow field '" + name_ + "'");

@@ -113,10 +113,13 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
     const GuardBudget budget{.resolved_area = std::numbers::pi * h * h};
     const int halvings = options.guards ? std::max(options.max_substep_halvings, 0) : 0;
     std::string violation;
+    // Γ(t)'s area as the step reads it, once: each sub-step's is the one before's after.
+    const double start_area = options.guards ? step_area(result.curves, law, options.step) : 0.0;
     for (int j = 0; j <= halvings; ++j) {
         const int parts = 1 << j;
         StepResult out{result.curves, {}};
         double t = result.t;
+        double a0 = start_area;
         std::size_t g_evals = 0, vertices = 0;
         double corrected = 0.0;
         bool kept = true;
@@ -133,7 +136,6 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
                 break;
             }
             if (options.guards) {
-                const double a0 = step_area(out.curves, law, options.step);
                 const double a1 = step_area(s.curves, law, options.step);
                 if (auto v = invariant_violation(invariants, out.curves, a0, s.curves, a1, t_to - t,
                                                  eps, budget)) {
@@ -141,6 +143,7 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
                     kept = false;
                     break;
                 }
+                a0 = a1;
             }
             g_evals += s.stats.g_evals();
             vertices += s.stats.vertices();

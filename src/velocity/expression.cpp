@@ -279,17 +279,10 @@ private:
 };
 
 /// (u, v)(x, y, t): a flow field.
-class FieldExpression final : public VelocityLaw {
+class FieldExpression final : public FlowFieldLaw {
 public:
     explicit FieldExpression(std::shared_ptr<const EvaluatorPool> pool) : pool_(std::move(pool)) {}
     std::string name() const override { return "field = (" + shown(pool_->spec().text) + ")"; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry&) const override {
-        std::vector<Vec2> u(curves.size());
-        sample(t, curves.points(), u);
-        return u;
-    }
-    bool is_field() const override { return true; }
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override {
         pool_->for_each(points.size(), [&](Evaluator& e, std::size_t i) {
             auto& v = e.variables();

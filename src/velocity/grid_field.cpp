@@ -62,13 +62,6 @@ Vec2 GridField::operator()(Vec2 x) const {
     return (1.0 - b) * below + b * above;
 }
 
-std::vector<Vec2> GridField::velocities(double t, const Interface& curves,
-                                        const VertexGeometry&) const {
-    std::vector<Vec2> u(curves.size());
-    sample(t, curves.points(), u);
-    return u;
-}
-
 void GridField::sample(double, std::span<const Vec2> points, std::span<Vec2> out) const {
     parallel_for(points.size(), [&](std::size_t i) { out[i] = (*this)(points[i]); });
 }

@@ -34,28 +34,11 @@ std::vector<Vec2> normal_velocities(const VelocityLaw& law, const Interface& cur
     return u;
 }
 
-/// Samples a field law at the vertices.
-std::vector<Vec2> at_vertices(const VelocityLaw& law, double t, const Interface& curves) {
-    std::vector<Vec2> u(curves.size());
-    law.sample(t, curves.points(), u);
-    return u;
-}
-
 }  // namespace
-
-std::vector<Vec2> Rotation::velocities(double t, const Interface& curves,
-                                       const VertexGeometry&) const {
-    return at_vertices(*this, t, curves);
-}
 
 void Rotation::sample(double, std::span<const Vec2> points, std::span<Vec2> out) const {
     parallel_for(points.size(),
                  [&](std::size_t i) { out[i] = omega_ * perp(points[i] - centre_); });
-}
-
-std::vector<Vec2> Translation::velocities(double t, const Interface& curves,
-                                          const VertexGeometry&) const {
-    return at_vertices(*this, t, curves);
 }
 
 void Translation::sample(double, std::span<const Vec2> points, std::span<Vec2> out) const {
@@ -66,11 +49,6 @@ SingleVortex::SingleVortex(double period) : period_(period) {
     if (!(period > 0.0) || !std::isfinite(period))
         throw InvalidInput(
             fmt::format("velocity 'vortex': period must be positive, got {}", period));
-}
-
-std::vector<Vec2> SingleVortex::velocities(double t, const Interface& curves,
-                                           const VertexGeometry&) const {
-    return at_vertices(*this, t, curves);
 }
 
 void SingleVortex::sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const {

@@ -53,6 +53,13 @@ void require_inside_extent(const VelocityLaw& law, const Interface& curves) {
         law.name(), b.lo.x, b.hi.x, b.lo.y, b.hi.y, *i, p.x, p.y));
 }
 
+std::vector<Vec2> FlowFieldLaw::velocities(double t, const Interface& curves,
+                                           const VertexGeometry&) const {
+    std::vector<Vec2> u(curves.size());
+    sample(t, curves.points(), u);
+    return u;
+}
+
 std::vector<Vec2> NormalLaw::velocities(double t, const Interface& curves,
                                         const VertexGeometry& geometry) const {
     if (geometry.normals.size() != curves.size()) {

@@ -37,15 +37,12 @@ struct GridVelocity {
 /// outside which run() refuses the curves; sample() answers outside it too, with the velocity at
 /// the nearest point of the box, since contouring samples the whole domain and characteristics
 /// of points near the curve may leave the box for part of a step.
-class GridField final : public VelocityLaw {
+class GridField final : public FlowFieldLaw {
 public:
     /// name: the law's name in messages. Throws InvalidInput naming `name` unless nx, ny ≥ 2,
     /// values.size() == nx·ny, the spacing is positive and everything is finite.
     GridField(GridVelocity grid, std::string name);
     std::string name() const override { return name_; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override;
-    bool is_field() const override { return true; }
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
     std::optional<Box> extent() const override { return grid_.box(); }
 

@@ -12,16 +12,13 @@
 namespace slc {
 
 /// `rotation`: rigid counterclockwise rotation u = ω (−(y − cy), x − cx) about centre (§4.4).
-class Rotation final : public VelocityLaw {
+class Rotation final : public FlowFieldLaw {
 public:
     /// omega: angular velocity ω in radians per unit time (counterclockwise when positive);
     /// centre: the fixed point (cx, cy).
     explicit Rotation(double omega = 1.0, Vec2 centre = {}) : omega_(omega), centre_(centre) {}
     std::string name() const override { return "rotation"; }
     Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override;
-    bool is_field() const override { return true; }
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
 
 private:
@@ -30,15 +27,12 @@ private:
 };
 
 /// `translation`: the constant velocity u = (ux, uy).
-class Translation final : public VelocityLaw {
+class Translation final : public FlowFieldLaw {
 public:
     /// u: the velocity of every point, length per unit time.
     explicit Translation(Vec2 u) : u_(u) {}
     std::string name() const override { return "translation"; }
     Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override;
-    bool is_field() const override { return true; }
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
 
 private:
@@ -48,15 +42,12 @@ private:
 /// `vortex`: LeVeque's time-reversed single vortex on [0, 1]², period T:
 /// u = sin²(πx) sin(2πy) cos(πt/T), v = −sin²(πy) sin(2πx) cos(πt/T). Divergence free; the
 /// flow reverses at t = T/2 and returns every point to its start at t = T.
-class SingleVortex final : public VelocityLaw {
+class SingleVortex final : public FlowFieldLaw {
 public:
     /// Throws InvalidInput unless period > 0.
     explicit SingleVortex(double period = 8.0);
     std::string name() const override { return "vortex"; }
     Invariants invariants() const override { return {.keeps_area = true}; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override;
-    bool is_field() const override { return true; }
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
 
 private:

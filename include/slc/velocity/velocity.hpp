@@ -101,6 +101,16 @@ std::optional<std::size_t> vertex_outside_extent(const VelocityLaw& law, const I
 /// outside law.extent().
 void require_inside_extent(const VelocityLaw& law, const Interface& curves);
 
+/// The base of flow fields u = f(t, x) known everywhere (rotation, a lattice, an expression):
+/// is_field() is true and the vertex velocities are the field sampled at the vertices. A law
+/// implements sample().
+class FlowFieldLaw : public VelocityLaw {
+public:
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const final;
+    bool is_field() const final { return true; }
+};
+
 /// The base of normal laws u = V(t, x, N)·N: velocities() evaluates V at the vertices with the
 /// normals of the geometry module (the intrinsic one unless told otherwise), and the step may
 /// evaluate it anywhere else with other normals. A law implements normal_speeds().
@@ -157,18 +167,11 @@ struct VertexState {
 template <class F>
 requires std::regular_invocable<const F&, double, Vec2> &&
     std::convertible_to<std::invoke_result_t<const F&, double, Vec2>, Vec2>
-class FieldLaw final : public VelocityLaw {
+class FieldLaw final : public FlowFieldLaw {
 public:
     /// name: the law's name in messages; f: the velocity field.
     FieldLaw(std::string name, F f) : name_(std::move(name)), f_(std::move(f)) {}
     std::string name() const override { return name_; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry&) const override {
-        std::vector<Vec2> u(curves.size());
-        sample(t, curves.points(), u);
-        return u;
-    }
-    bool is_field() const override { return true; }
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override {
         parallel_for(points.size(), [&](std::size_t i) { out[i] = f_(t, points[i]); });
     }
