@@ -59,6 +59,26 @@ void count_output(const Interface& curves, ContourStats& s) {
         curves.empty() ? 0.0 : static_cast<double>(s.g_evals) / static_cast<double>(curves.size());
 }
 
+/// The curves but those whose mean width 2|A|/L is below the root tolerance η: a loop that thin
+/// is not a component but the sign of G flickering along a line where G jumps across zero
+/// without a root (the medial axis of a curve about to vanish, where the step's feet part), and
+/// it has no interior for the next step's distance to see.
+Interface drop_slivers(Interface curves, double eta, std::size_t& dropped) {
+    std::vector<std::vector<Vec2>> kept;
+    for (std::size_t c = 0; c < curves.curve_count(); ++c) {
+        const auto curve = curves.curve(c);
+        double perimeter = 0.0;
+        for (std::size_t i = 0; i < curve.size(); ++i)
+            perimeter += norm(curve[(i + 1) % curve.size()] - curve[i]);
+        if (2.0 * std::abs(signed_area(curve)) < eta * perimeter) {
+            ++dropped;
+            continue;
+        }
+        kept.emplace_back(curve.begin(), curve.end());
+    }
+    return dropped == 0 ? curves : Interface(kept);
+}
+
 /// contour() with or without bounds on G.
 ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
                            std::optional<BatchBoundsRef> bounds) {
@@ -98,7 +118,7 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
     stats.max_midpoint_value = refined.max_midpoint_value;
     stats.g_evals = evaluations;
 
-    Interface curves = chain.to_interface();
+    Interface curves = drop_slivers(chain.to_interface(), options.eta, stats.slivers);
     count_output(curves, stats);
     return {std::move(curves), std::move(topo.tree), stats};
 }

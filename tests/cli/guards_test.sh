@@ -48,6 +48,28 @@ check "curvature: the area rate named" grep -q "where the law changes it by" err
 expect_status "zero speed drops a small circle" 3 -- run --initial two.json --velocity unit-normal \
     --param speed=0 --t-end 1 -N 1 --out still --quiet
 check "zero speed: unstable" grep -q '"status": "unstable"' still/summary.json
+# Nothing moves under zero speed: the unit circle alone is kept, area and all.
+expect_ok "zero speed keeps the circle" -- run --initial c.json --velocity unit-normal --param speed=0 \
+    --t-end 1 -N 1 --out still1 --quiet
+check "zero speed: one curve" test "$(tail -1 still1/history.csv | cut -d, -f4)" = 1
+# The 32-gon is read as arcs through its vertices, whose area is pi to 3e-5.
+check "zero speed: area pi to 1e-4" within "$(value still1 area)" 3.141592653589793 1e-4
+# A rigid motion cannot split a curve, a law that keeps area cannot vanish them.
+expect_status "zalesak in 1 step" 3 -- run --problem zalesak -N 1 --out z1 --quiet
+check "zalesak in 1 step: the rigid motion named" grep -q "a rigid motion changed the number of curves" err.txt
+expect_status "spiral in 10 steps" 3 -- run --problem spiral-nonlocal -N 10 --out s10 --quiet
+check "spiral in 10 steps: not vanished" grep -q '"status": "unstable"' s10/summary.json
+# One step of k = 2 with the paper's embedded curvature at K = 11: no contradictory defaults of
+# eps and eta, and no "vanished" while the exact curve keeps area pi.
+expect_status "circle-curvature -K 11 -N 1" 3 -- run --problem circle-curvature -K 11 -N 1 --out cc11 --quiet
+check "circle-curvature -K 11: unstable" grep -q '"status": "unstable"' cc11/summary.json
+# The thin ellipse 1 x 0.1 under curvature at defaults vanishes (exactly at t = 0.05), not ok.
+awk 'BEGIN { printf "{\"curves\": [{\"points\": ["; for (i = 0; i < 64; i++)
+    printf "%s[%.17g, %.17g]", (i ? ", " : ""), cos(2 * 3.141592653589793 * i / 64), 0.1 * sin(2 * 3.141592653589793 * i / 64)
+    print "]}]}" }' >thin.json
+expect_ok "thin ellipse under curvature" -- run --initial thin.json --velocity curvature --t-end 0.1 --out thin --quiet
+check "thin ellipse: vanished" grep -q '"status": "vanished"' thin/summary.json
+check "thin ellipse: vanished at 0.05 to 0.06" awk -v t="$(value thin t)" 'BEGIN { exit !(t >= 0.05 && t <= 0.06) }'
 # The same circle under curvature at defaults: area 2 pi t lost, to 1e-3.
 expect_ok "curvature at defaults, K 7" -- run --initial c.json --velocity curvature --t-end 0.1 -K 7 --out c7 --quiet
 check "curvature at K 7: area pi (1 - 0.2)" within "$(value c7 area)" 2.5132741228718345 1e-3

@@ -92,6 +92,9 @@ struct ContourStats {
     std::size_t splits = 0;         ///< vertices added by refinement
     std::size_t rejected = 0;       ///< split candidates refused (no bracket, or a safeguard)
     std::size_t pruned = 0;         ///< vertices removed by pruning
+    /// Closed polygons dropped as slivers: mean width 2|A|/L below η, the sign of G flickering
+    /// along a line where G jumps across zero, not a component.
+    std::size_t slivers = 0;
     /// Largest |G| at the midpoints of the final segments when the last refinement step evaluated
     /// them all (refinement ran to convergence); nullopt otherwise.
     std::optional<double> max_midpoint_value;

@@ -23,9 +23,9 @@ struct GuardBudget {
     double area_fraction = 1e-2;
     double eps_lengths = 20.0;
     double rate_fraction = 0.25;  ///< of the area a law with an area rate should change by
-    /// Under a law that shrinks curves at a rate, a curve may vanish once its area is below
-    /// 2|ΔA| or this, and below this its rate is not checked: π h² for the finest cell h of the
-    /// contouring tree, which need not resolve a curve smaller than a cell.
+    /// Under a law that shrinks curves at a rate, the curves may vanish in a step once their area
+    /// is below |ΔA| plus this, and below this their rate is not checked: π h² for the finest
+    /// cell h of the contouring tree, which need not resolve a curve smaller than a cell.
     double resolved_area = 0.0;
 };
 
