@@ -50,8 +50,8 @@ int main(int argc, char** argv) {
         return 3;
     } catch (const std::bad_alloc&) {
         fmt::print(stderr,
-                   "slc: error: out of memory: lower -K, -L or the number of points, or run on a "
-                   "larger machine\n");
+                   "slc: error: out of memory: lower -K, -L or the number of points, raise "
+                   "--eps, or run on a larger machine\n");
         return 3;
     } catch (const std::filesystem::filesystem_error& e) {
         // A path the user gave that cannot be read or written: bad input.

@@ -5,6 +5,8 @@
 // empty one; no crossing of any other segment) and pruning of segments shorter than ρ times both
 // neighbours. Each pass hands G one batch of midpoints, one or two of bracket ends, then one per
 // round of root finding.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -99,6 +101,7 @@ public:
             evaluate_midpoints();
             std::vector<Candidate> candidates = select();
             if (candidates.empty()) break;
+            check_vertex_limit(candidates.size());
             index_segments();  // read by the bracket, acceptance and pruning steps only
             bracket(candidates);
             solve(candidates);
@@ -111,6 +114,17 @@ public:
     }
 
 private:
+    /// Throws LimitExceeded when accepting every candidate would pass options_.max_vertices.
+    void check_vertex_limit(std::size_t candidates) const {
+        const auto alive = static_cast<std::size_t>(
+            std::count(chain_.alive.begin(), chain_.alive.end(), std::uint8_t{1}));
+        if (alive + candidates <= options_.max_vertices) return;
+        throw LimitExceeded(fmt::format(
+            "refining the contour to eps {:g} needs more than {} vertices (a pass would take "
+            "{} to {}): raise eps",
+            eps_, options_.max_vertices, alive, alive + candidates));
+    }
+
     /// A fresh grid of the segments for the safeguards, its cells twice the mean segment length:
     /// each pass halves the segments, and a grid sized for the first pass would put hundreds of
     /// segments in a cell by the last.

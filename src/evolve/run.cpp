@@ -129,6 +129,8 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
             try {
                 s = step_in_growing_domain(out.curves, t, t_to - t, law, domain, options, counters);
                 require_inside_extent(law, s.curves, t_to);
+            } catch (const LimitExceeded&) {
+                throw;  // a setting beyond a limit: smaller steps would not help
             } catch (const NumericalFailure&) {
                 // A step too large for the curves' features may fail where smaller ones do not.
                 if (j == halvings) throw;

@@ -217,5 +217,10 @@ reject "distance tree beyond memory" "--tree-depth 30 would need about .* GiB fo
     distance --initial square.json --points origin.csv -L 30
 reject "contouring tree beyond memory" "--depth 20 would need about .* GiB" -- contour --initial square.json -K 20 --out x
 reject "run depth beyond memory" "--depth 24 would need about .* GiB" -- run --problem vortex -K 24 -N 1 --out x
+# An eps below the rounding of G was met by rejecting every split, silently (error 3.1e-5).
+reject "eps below rounding" "eps 1e-16 is below what doubles resolve in this domain" -- \
+    contour --initial square.json -K 5 --refine 1000 --eps 1e-16 --eta 1e-16 --out x
+reject "run eps below rounding" "eps 1e-16 is below what doubles resolve" -- \
+    run --initial square.json --velocity curvature --t-end 0.1 --eps 1e-16 --out x
 check "refusals wrote no folder" test ! -e x
 finish

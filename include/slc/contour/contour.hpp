@@ -36,7 +36,9 @@ struct ContourOptions {
     /// P ≥ 0, or until_converged. Refinement also stops early when no midpoint exceeds ε or a
     /// pass changes nothing, so a large P runs to convergence too.
     int refine_passes = 0;
-    /// ε: midpoint tolerance of refinement, ε ≥ η; default 10^−K.
+    /// ε: midpoint tolerance of refinement, ε ≥ η; default 10^−K. Neither can go below what
+    /// doubles resolve in the domain, two ulps of its largest coordinate (2.2e−16 b in [−b, b]²):
+    /// a given ε below it is InvalidInput, the default 10^−K and η are raised to it.
     std::optional<double> eps;
     /// η > 0: root-finding tolerance, |G| ≤ η at every vertex.
     double eta = 1e-10;
@@ -46,6 +48,10 @@ struct ContourOptions {
     double gamma = 1.0;
     /// Cap on the passes of until_converged.
     int max_refine_passes = 64;
+    /// Refinement that would pass this many contour vertices throws LimitExceeded naming ε
+    /// (about 100 bytes a vertex: 420 MB). A smooth curve of length L and curvature κ refined to
+    /// ε needs about L·sqrt(κ/8ε) vertices: 2.2e7 for the unit circle at ε = 1e−14.
+    std::size_t max_vertices = std::size_t{1} << 22;
     /// The paper's triangle safeguard: a vertex added by refinement may stay in its segment's
     /// triangle or move into an adjacent one where G has no sign change, no farther. Off, it may
     /// go as far as its bracket reaches (at most three segment lengths, and short of every other

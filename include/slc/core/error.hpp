@@ -24,6 +24,14 @@ public:
     explicit NumericalFailure(const std::string& what) : std::runtime_error(what) {}
 };
 
+/// A setting asks for more than a limit allows (a contour refined to ε needing more vertices
+/// than ContourOptions::max_vertices): smaller time steps would not help, the setting must change.
+class LimitExceeded : public NumericalFailure {
+public:
+    /// what: the one-line message, naming the setting to change.
+    explicit LimitExceeded(const std::string& what) : NumericalFailure(what) {}
+};
+
 /// The zero set of a contoured function reaches the edge of its domain: a larger domain would
 /// hold it (the time loop may grow the domain and try again).
 class LeftDomain : public NumericalFailure {

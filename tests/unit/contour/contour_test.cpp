@@ -257,6 +257,38 @@ TEST(Contour, ALoopThinnerThanEtaIsASliverNotAComponent) {
     EXPECT_EQ(k.stats.slivers, 1u);
 }
 
+// Below two ulps of the domain's coordinates no root can be found: a given ε there is refused
+// (every split would be rejected, silently), η and the default ε are raised to it.
+TEST(Contour, ToleranceBelowRoundingIsRefusedOrRaised) {
+    // A square: refinement converges in a few passes once the corners are found.
+    const auto g =
+        pointwise([](Vec2 p) { return std::max(std::abs(p.x - 0.1), std::abs(p.y)) - 0.5; });
+    EXPECT_THROW(contour(g, unit_domain, options(5, 1000, 1e-16)), InvalidInput);
+    ContourOptions fine = options(5, 1000, 1e-15);
+    fine.eta = 1e-17;
+    fine.triangle_safeguard = false;  // so that the corners are found again
+    const ContourResult r = contour(g, unit_domain, fine);
+    EXPECT_LE(residuals(r.curves, g).midpoints, 1e-15);
+    EXPECT_EQ(r.stats.rejected, 0u);
+}
+
+// Refinement that would pass max_vertices stops with LimitExceeded naming eps, before the
+// pass that would: a circle refined to 1e-12 needs about 2.2e6 vertices.
+TEST(Contour, RefinementBeyondTheVertexLimitNamesEps) {
+    const auto g = pointwise(circle({0.1, 0.0}, 0.5));
+    ContourOptions o = options(5, ContourOptions::until_converged, 1e-12);
+    o.eta = 1e-13;
+    o.max_vertices = 5000;
+    try {
+        contour(g, unit_domain, o);
+        FAIL() << "refining past max_vertices must throw";
+    } catch (const LimitExceeded& e) {
+        EXPECT_NE(std::string(e.what()).find("raise eps"), std::string::npos) << e.what();
+    }
+    o.eps = 1e-6;  // about 1,100 vertices
+    EXPECT_NO_THROW(contour(g, unit_domain, o));
+}
+
 TEST(Contour, NoZeroGivesAnEmptyInterface) {
     for (double sign : {1.0, -1.0}) {
         const auto g = pointwise([=](Vec2 p) { return sign * (0.5 + norm2(p)); });
