@@ -66,6 +66,26 @@ if grep -q '"status": "ok"' long_part/summary.json; then rm long_part/summary.js
 expect_ok "resume after SIGTERM" -- run --resume long_part --quiet
 same_run "resumed after SIGTERM" long_full long_part
 
+# SIGTERM during the final writes (here during --estimate's second run, which follows
+# final.json): the writes are finished, then exit 143. (Should the run finish before the
+# signal, it exits 0 with the same files.)
+"$SLC" run --problem vortex -N 20 -K 6 --estimate --out late --quiet 2>err.txt &
+pid=$!
+for _ in $(seq 400); do ls late.slc-*/final.json >/dev/null 2>&1 && break; sleep 0.02; done
+kill -TERM "$pid"
+wait "$pid"
+status=$?
+check "SIGTERM in the final writes: exit 143 (0 had it finished)" test "$status" -eq 143 -o "$status" -eq 0
+for f in final.json final.png final.svg history.csv history.png summary.json; do
+    check "SIGTERM in the final writes: $f written" test -s "late/$f"
+done
+check "SIGTERM in the final writes: status ok" grep -q '"status": "ok"' late/summary.json
+if [ "$status" -eq 143 ]; then
+    check "SIGTERM in the final writes: one line saying so" grep -q "SIGTERM came after the last step; the results in late are written whole" err.txt
+    check "SIGTERM in the final writes: one line" test "$(wc -l <err.txt)" -eq 1
+fi
+check "SIGTERM in the final writes: no working folder left" test -z "$(ls -d late.slc-* late.lock 2>/dev/null)"
+
 # Ctrl-C (SIGINT) the same way: the results written whole, exit status 130.
 "$SLC" "${long_args[@]}" --checkpoint-every 1 --out int_part 2>err.txt &
 pid=$!
