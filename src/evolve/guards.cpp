@@ -56,6 +56,10 @@ std::optional<std::string> invariant_violation(const Invariants& law, const Inte
         return fmt::format("a rigid motion changed the number of curves from {} to {}",
                            before.curve_count(), after.curve_count());
     }
+    if (law.cannot_vanish && a1 < a0 - tolerance) {
+        return fmt::format("the area fell by {:.3g}% in one step under a law that only grows it",
+                           100.0 * (a0 - a1) / std::abs(a0));
+    }
     if (law.keeps_area && std::abs(a1 - a0) > tolerance) {
         return fmt::format("the area changed by {:.3g}% in one step under a law that keeps it",
                            100.0 * (a1 - a0) / std::abs(a0));

@@ -170,9 +170,8 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
 }  // namespace
 
 Box doubled_domain(const Box& domain, int times) {
-    const Vec2 c = 0.5 * (domain.lo + domain.hi);
-    const double scale = std::ldexp(1.0, times);
-    return {c + scale * (domain.lo - c), c + scale * (domain.hi - c)};
+    if (times == 0) return domain;
+    return Box::square(domain.center(), std::ldexp(0.5 * domain.width(), times));
 }
 
 int domain_doublings_for(const Interface& curves, const Box& domain, int max_doublings) {

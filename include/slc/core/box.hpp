@@ -18,9 +18,21 @@ struct Box {
 
     /// The square [−b, b]², the paper's standard domain.
     static constexpr Box centered_square(double b) { return {{-b, -b}, {b, b}}; }
-    /// The square of half-width b centred on c.
-    static constexpr Box square(Vec2 c, double b) {
-        return {{c.x - b, c.y - b}, {c.x + b, c.y + b}};
+    /// The square of half-width b centred on c: exactly square (width() == height()), which
+    /// c ± b need not be, as x and y round differently. Then its corners are snapped to a grid of
+    /// about 2^−24 of its width, outward, so that it still holds [c − b, c + b]².
+    static Box square(Vec2 c, double b) {
+        const Box naive{{c.x - b, c.y - b}, {c.x + b, c.y + b}};
+        if (naive.width() == naive.height() || !(b > 0.0) || !std::isfinite(b) ||
+            !std::isfinite(c.x) || !std::isfinite(c.y))
+            return naive;  // square already, or bad input that validation names
+        int e = 0;
+        (void)std::frexp(2.0 * b, &e);
+        const double q = std::ldexp(1.0, e - 24);  // 2b < 2^e: under 2^24 grid steps
+        // Multiples of q below 2^53 q add and subtract exactly: lo + w − lo is w.
+        const double w = std::ceil((2.0 * b + q) / q) * q;
+        const Vec2 lo{std::floor((c.x - b) / q) * q, std::floor((c.y - b) / q) * q};
+        return {lo, {lo.x + w, lo.y + w}};
     }
     /// The empty box (lo > hi): the identity of unite().
     static constexpr Box empty() {

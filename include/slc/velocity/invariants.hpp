@@ -17,7 +17,8 @@ struct Invariants {
     bool rigid = false;
     /// No curve can split into several (curvature flow of embedded curves, rigid motions).
     bool cannot_split = false;
-    /// The curves cannot shrink away: a normal speed positive for every point and direction.
+    /// The enclosed region only grows, so its area cannot fall and the curves cannot vanish: a
+    /// normal speed positive for every point and direction.
     bool cannot_vanish = false;
     /// dA/dt = rate × (counterclockwise curves − clockwise ones) while no curve vanishes
     /// (curvature flow of embedded curves: −2π).

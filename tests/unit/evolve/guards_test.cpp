@@ -1,0 +1,91 @@
+// invariant_violation: each claim of Invariants against steps that keep it within the budget and
+// steps that break it.
+#include "slc/evolve/guards.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "slc/geometry/shapes.hpp"
+
+namespace slc {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+constexpr double eps = 1e-9;  // small: the budgets below are the area fractions
+
+Interface disk(double r, Vec2 c = {}) {
+    return Interface(std::vector<std::vector<Vec2>>{shapes::circle(c, r, 256)});
+}
+
+Interface two_disks(double r) {
+    return Interface(std::vector<std::vector<Vec2>>{shapes::circle({0.0, 0.0}, r, 256),
+                                                    shapes::circle({3.0, 0.0}, r, 256)});
+}
+
+std::optional<std::string> check(const Invariants& law, const Interface& before,
+                                 const Interface& after, double k = 0.01,
+                                 const GuardBudget& budget = {}) {
+    return invariant_violation(law, before, area(before), after, area(after), k, eps, budget);
+}
+
+TEST(Guards, AreaKeptWithinOnePercent) {
+    const Invariants keeps{.keeps_area = true};
+    EXPECT_FALSE(check(keeps, disk(1.0), disk(1.004)));  // +0.8%
+    const auto v = check(keeps, disk(1.0), disk(1.01));  // +2%
+    ASSERT_TRUE(v);
+    EXPECT_NE(v->find("under a law that keeps it"), std::string::npos) << *v;
+    EXPECT_TRUE(check(keeps, disk(1.0), Interface{}));
+}
+
+TEST(Guards, RigidMotionKeepsTheNumberOfCurves) {
+    const Invariants rigid{.keeps_area = true, .rigid = true, .cannot_split = true};
+    EXPECT_FALSE(check(rigid, two_disks(1.0), two_disks(1.0)));
+    const auto v = check(rigid, two_disks(0.5), disk(std::sqrt(0.5)));  // same area, one curve
+    ASSERT_TRUE(v);
+    EXPECT_NE(v->find("from 2 to 1"), std::string::npos) << *v;
+}
+
+TEST(Guards, AGrowingRegionCannotLoseAreaOrVanish) {
+    const Invariants grows{.cannot_vanish = true};
+    EXPECT_FALSE(check(grows, disk(1.0), disk(2.0)));
+    EXPECT_FALSE(check(grows, disk(1.0), disk(0.999)));  // −0.2%: within the budget
+    const auto v = check(grows, disk(1.0), disk(0.05));
+    ASSERT_TRUE(v);
+    EXPECT_NE(v->find("only grows it"), std::string::npos) << *v;
+    EXPECT_TRUE(check(grows, disk(1.0), Interface{}));
+}
+
+TEST(Guards, CurvatureFlowLosesTwoPiPerCurve) {
+    const Invariants curvature{.cannot_split = true, .area_rate_per_curve = -2.0 * pi};
+    const double k = 0.01;
+    // R² − 2k exactly; then a step that loses 40% too much.
+    EXPECT_FALSE(check(curvature, disk(1.0), disk(std::sqrt(1.0 - 2.0 * k)), k));
+    EXPECT_TRUE(check(curvature, disk(1.0), disk(std::sqrt(1.0 - 2.8 * k)), k));
+    // Two curves lose twice as much.
+    EXPECT_FALSE(check(curvature, two_disks(1.0), two_disks(std::sqrt(1.0 - 2.0 * k)), k));
+    EXPECT_TRUE(check(curvature, two_disks(1.0), two_disks(std::sqrt(1.0 - 1.0 * k)), k));
+    // No curve may split.
+    EXPECT_TRUE(check(curvature, disk(1.0), two_disks(0.69), k));
+}
+
+TEST(Guards, CurvatureFlowVanishesOnlyWhenTheStepTakesTheArea) {
+    const Invariants curvature{.cannot_split = true, .area_rate_per_curve = -2.0 * pi};
+    const double k = 0.01;  // the step takes 2πk = 0.0628 of area: R² = 0.02
+    EXPECT_FALSE(check(curvature, disk(std::sqrt(0.019)), Interface{}, k));
+    const auto v = check(curvature, disk(std::sqrt(0.03)), Interface{}, k);
+    ASSERT_TRUE(v);
+    EXPECT_NE(v->find("which the law takes"), std::string::npos) << *v;
+    // Below a cell's area the tree need not resolve it.
+    EXPECT_FALSE(check(curvature, disk(std::sqrt(0.03)), Interface{}, k,
+                       GuardBudget{.resolved_area = pi * 0.04}));
+}
+
+TEST(Guards, ALawThatClaimsNothingIsNeverChecked) {
+    EXPECT_FALSE(check(Invariants{}, disk(1.0), Interface{}));
+    EXPECT_FALSE(check(Invariants{}, disk(1.0), two_disks(0.1)));
+}
+
+}  // namespace
+}  // namespace slc
