@@ -71,7 +71,9 @@ same_run "resumed after SIGTERM" long_full long_part
 # signal, it exits 0 with the same files.)
 "$SLC" run --problem vortex -N 20 -K 6 --estimate --out late --quiet 2>err.txt &
 pid=$!
-for _ in $(seq 400); do ls late.slc-*/final.json >/dev/null 2>&1 && break; sleep 0.02; done
+seen=0
+for _ in $(seq 3000); do ls late.slc-*/final.json >/dev/null 2>&1 && { seen=1; break; }; sleep 0.02; done
+check "SIGTERM in the final writes: final.json seen within 60 s" test "$seen" -eq 1
 kill -TERM "$pid"
 wait "$pid"
 status=$?
