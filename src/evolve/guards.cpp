@@ -56,9 +56,30 @@ std::optional<std::string> invariant_violation(const Invariants& law, const Inte
         return fmt::format("a rigid motion changed the number of curves from {} to {}",
                            before.curve_count(), after.curve_count());
     }
+    if (law.shortens) {
+        const double l0 = length(before), l1 = length(after);
+        if (l1 > l0 * (1.0 + budget.length_fraction) + eps_tolerance) {
+            return fmt::format(
+                "the length grew by {:.3g}% in one step under a law that shortens the curves",
+                100.0 * (l1 - l0) / l0);
+        }
+    }
     if (law.cannot_vanish && a1 < a0 - tolerance) {
         return fmt::format("the area fell by {:.3g}% in one step under a law that only grows it",
                            100.0 * (a0 - a1) / std::abs(a0));
+    }
+    if (law.rigid && budget.run_length > 0.0) {
+        const double share = budget.rigid_run_fraction * k / budget.run_length;
+        const double rigid_tolerance =
+            std::max(std::min(share, budget.area_fraction) * std::max(std::abs(a0), std::abs(a1)),
+                     eps_tolerance);
+        if (std::abs(a1 - a0) > rigid_tolerance) {
+            return fmt::format(
+                "the area changed by {:.3g}% in one step of a rigid motion, more than its share "
+                "{:.3g}% of the run's {:g}%",
+                100.0 * (a1 - a0) / std::abs(a0), 100.0 * std::min(share, budget.area_fraction),
+                100.0 * budget.rigid_run_fraction);
+        }
     }
     if (law.keeps_area && std::abs(a1 - a0) > tolerance) {
         return fmt::format("the area changed by {:.3g}% in one step under a law that keeps it",

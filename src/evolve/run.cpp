@@ -110,7 +110,8 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
     const Invariants invariants = law.invariants();
     const double eps = options.step.contour.resolved_eps();
     const double h = std::ldexp(domain.width(), -options.step.contour.depth);
-    const GuardBudget budget{.resolved_area = std::numbers::pi * h * h};
+    const GuardBudget budget{.run_length = options.t_end - options.t_start,
+                             .resolved_area = std::numbers::pi * h * h};
     const int halvings = options.guards ? std::max(options.max_substep_halvings, 0) : 0;
     std::string violation;
     // Γ(t)'s area as the step reads it, once: each sub-step's is the one before's after.

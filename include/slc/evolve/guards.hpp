@@ -21,6 +21,15 @@ namespace slc {
 /// falls within a quarter of 2πk per curve.
 struct GuardBudget {
     double area_fraction = 1e-2;
+    /// A law that shortens the curves may lengthen them by at most this fraction in a step
+    /// (the chords of a contour grow towards the arcs they cut as it is refined).
+    double length_fraction = 1e-2;
+    /// A rigid motion's area may move by at most this fraction over the whole run: a step of
+    /// length k of a run of length T gets rigid_run_fraction·k/T of the area when that is below
+    /// area_fraction (then steps each within their budget cannot add up to more).
+    double rigid_run_fraction = 5e-2;
+    /// T, the length of the run; 0 for no run-wide budget.
+    double run_length = 0.0;
     double eps_lengths = 20.0;
     double rate_fraction = 0.25;  ///< of the area a law with an area rate should change by
     /// Under a law that shrinks curves at a rate, the curves may vanish in a step once their area

@@ -20,6 +20,9 @@ struct Invariants {
     /// The enclosed region only grows, so its area cannot fall and the curves cannot vanish: a
     /// normal speed positive for every point and direction.
     bool cannot_vanish = false;
+    /// The total length cannot grow: curvature flow and the area-preserving curvature flow,
+    /// gradient flows of length. Noise that roughens the curves breaks it first.
+    bool shortens = false;
     /// dA/dt = rate × (counterclockwise curves − clockwise ones) while no curve vanishes
     /// (curvature flow of embedded curves: −2π).
     std::optional<double> area_rate_per_curve = std::nullopt;

@@ -105,7 +105,8 @@ public:
     std::string name() const override { return "curvature"; }
     /// dA/dt = −2π per counterclockwise curve, +2π per hole (the turning of each curve).
     Invariants invariants() const override {
-        return {.cannot_split = true, .area_rate_per_curve = -2.0 * std::numbers::pi};
+        return {
+            .cannot_split = true, .shortens = true, .area_rate_per_curve = -2.0 * std::numbers::pi};
     }
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = true, .module = module_};
@@ -128,6 +129,8 @@ public:
         : module_(module) {}
     std::string name() const override { return "volume-preserving-curvature"; }
     bool preserves_area() const override { return true; }
+    /// Keeps the area and shortens the curves: the gradient flow of length at fixed area.
+    Invariants invariants() const override { return {.keeps_area = true, .shortens = true}; }
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = true, .module = module_};
     }

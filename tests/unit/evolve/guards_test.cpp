@@ -47,6 +47,18 @@ TEST(Guards, RigidMotionKeepsTheNumberOfCurves) {
     EXPECT_NE(v->find("from 2 to 1"), std::string::npos) << *v;
 }
 
+// A rigid motion's steps share 5% of the area over the run: a step of a tenth of the run may
+// move it by 0.5%, not 0.8% (which the 1% of a step would allow).
+TEST(Guards, RigidMotionStepsShareTheRunsBudget) {
+    const Invariants rigid{.keeps_area = true, .rigid = true, .cannot_split = true};
+    const GuardBudget run{.run_length = 1.0};
+    EXPECT_FALSE(check(rigid, disk(1.0), disk(1.002), 0.1, run));   // +0.4%
+    const auto v = check(rigid, disk(1.0), disk(1.004), 0.1, run);  // +0.8%
+    ASSERT_TRUE(v);
+    EXPECT_NE(v->find("more than its share"), std::string::npos) << *v;
+    EXPECT_FALSE(check(rigid, disk(1.0), disk(1.004), 0.1));  // no run length: 1% a step
+}
+
 TEST(Guards, AGrowingRegionCannotLoseAreaOrVanish) {
     const Invariants grows{.cannot_vanish = true};
     EXPECT_FALSE(check(grows, disk(1.0), disk(2.0)));
@@ -80,6 +92,22 @@ TEST(Guards, CurvatureFlowVanishesOnlyWhenTheStepTakesTheArea) {
     // Below a cell's area the tree need not resolve it.
     EXPECT_FALSE(check(curvature, disk(std::sqrt(0.03)), Interface{}, k,
                        GuardBudget{.resolved_area = pi * 0.04}));
+}
+
+// Curvature flows shorten the curves: a step may lengthen them by 1% (a refined contour's chords
+// grow towards their arcs), not more, which is how noise that roughens a curve shows first.
+TEST(Guards, AShorteningFlowCannotLengthenTheCurves) {
+    const Invariants shortens{.keeps_area = true, .shortens = true};
+    const Interface circle = disk(1.0);
+    std::vector<Vec2> rough = shapes::circle({}, 1.0, 256);
+    for (std::size_t i = 0; i < rough.size(); ++i)  // a zigzag of ±1%, keeping the area
+        rough[i] = (i % 2 == 0 ? 1.01 : 0.99) * rough[i];
+    const Interface roughened(std::vector<std::vector<Vec2>>{rough});
+    ASSERT_LT(std::abs(area(roughened) - area(circle)), 0.01 * area(circle));
+    const auto v = check(shortens, circle, roughened);
+    ASSERT_TRUE(v);
+    EXPECT_NE(v->find("the length grew"), std::string::npos) << *v;
+    EXPECT_FALSE(check(shortens, roughened, circle));
 }
 
 TEST(Guards, ALawThatClaimsNothingIsNeverChecked) {
