@@ -19,6 +19,16 @@ int signed_curve_count(const Interface& curves) {
 
 }  // namespace
 
+std::optional<double> area_change_expected(const Invariants& law, const Interface& before,
+                                           double area_before, const Interface& after, double k,
+                                           const GuardBudget& budget) {
+    // Curves smaller than a cell are not resolved: their area moves as the tree allows.
+    if (!law.area_rate_per_curve || before.empty() || after.curve_count() != before.curve_count() ||
+        !(std::abs(area_before) > budget.resolved_area))
+        return std::nullopt;
+    return *law.area_rate_per_curve * signed_curve_count(before) * k;
+}
+
 std::optional<std::string> invariant_violation(const Invariants& law, const Interface& before,
                                                double area_before, const Interface& after,
                                                double area_after, double k, double eps,
@@ -85,16 +95,13 @@ std::optional<std::string> invariant_violation(const Invariants& law, const Inte
         return fmt::format("the area changed by {:.3g}% in one step under a law that keeps it",
                            100.0 * (a1 - a0) / std::abs(a0));
     }
-    // Curves smaller than a cell are not resolved: their area moves as the tree allows.
-    if (law.area_rate_per_curve && after.curve_count() == before.curve_count() &&
-        std::abs(a0) > budget.resolved_area) {
-        const double expected = *law.area_rate_per_curve * signed_curve_count(before) * k;
-        if (std::abs((a1 - a0) - expected) >
-            std::max(budget.rate_fraction * std::abs(expected), eps_tolerance)) {
+    if (const auto expected = area_change_expected(law, before, a0, after, k, budget)) {
+        if (std::abs((a1 - a0) - *expected) >
+            std::max(budget.rate_fraction * std::abs(*expected), eps_tolerance)) {
             return fmt::format(
                 "the area changed by {:.3g} in one step where the law changes it "
                 "by {:.3g}",
-                a1 - a0, expected);
+                a1 - a0, *expected);
         }
     }
     return std::nullopt;

@@ -122,7 +122,7 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
         double t = result.t;
         double a0 = start_area;
         std::size_t g_evals = 0, vertices = 0;
-        double corrected = 0.0;
+        double corrected = 0.0, lag = 0.0;
         bool kept = true;
         for (int i = 1; i <= parts && !out.curves.empty(); ++i) {
             const double t_to = i == parts ? t_next : result.t + (t_next - result.t) * i / parts;
@@ -146,6 +146,9 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
                     kept = false;
                     break;
                 }
+                if (const auto expected = area_change_expected(invariants, out.curves, a0, s.curves,
+                                                               t_to - t, budget))
+                    lag += (a1 - a0) - *expected;
                 a0 = a1;
             }
             g_evals += s.stats.g_evals();
@@ -155,6 +158,16 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
             t = t_to;
         }
         if (!kept) continue;
+        const double run_lag = counters.area_lag + lag;
+        if (options.guards && counters.start_area != 0.0 &&
+            std::abs(run_lag) > budget.run_lag_fraction * std::abs(counters.start_area)) {
+            throw Unstable{fmt::format(
+                "by t = {}: the area has changed by {:.3g} more than the law's rate gives, {:.3g}% "
+                "of the {:.3g} at the start: raise the steps N or the depth K",
+                t_next, run_lag, 100.0 * run_lag / std::abs(counters.start_area),
+                counters.start_area)};
+        }
+        counters.area_lag = run_lag;
         counters.g_evals += g_evals;
         counters.vertices_produced += vertices;
         counters.area_corrected += corrected;
@@ -193,6 +206,8 @@ RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domai
     RunResult start;  // resume() checks the options
     start.curves = initial;
     start.t = options.t_start;
+    if (options.guards && law.invariants().area_rate_per_curve)
+        start.start_area = step_area(initial, law, options.step);
     return resume(start, law, domain, options, observer);
 }
 

@@ -42,7 +42,7 @@ check "propeller: a rigid motion split" grep -q "rigid motion changed the number
 # Curvature flow of the paper's circle at K = 7 with the paper's embedded module: it ended ok
 # with an error of 0.94; its area cannot fall at 2 pi, and it says so.
 expect_status "circle-curvature -K 7" 3 -- run --problem circle-curvature -K 7 --out cc7 --quiet
-check "curvature: the area rate named" grep -q "where the law changes it by" err.txt
+check "curvature: the area rate named" grep -qE "where the law changes it by|more than the law's rate gives" err.txt
 # Nothing moves under zero speed: a circle smaller than a cell disappearing is a rigid motion
 # changing the number of curves.
 expect_status "zero speed drops a small circle" 3 -- run --initial two.json --velocity unit-normal \
@@ -63,11 +63,15 @@ check "spiral in 10 steps: not vanished" grep -q '"status": "unstable"' s10/summ
 # eps and eta, and no "vanished" while the exact curve keeps area pi.
 expect_status "circle-curvature -K 11 -N 1" 3 -- run --problem circle-curvature -K 11 -N 1 --out cc11 --quiet
 check "circle-curvature -K 11: unstable" grep -q '"status": "unstable"' cc11/summary.json
-# The thin ellipse 1 x 0.1 under curvature at defaults vanishes (exactly at t = 0.05), not ok.
+# The thin ellipse 1 x 0.1 under curvature (exact extinction at t = 0.05): at defaults its area
+# falls behind the law's by 5% of the start's (steps of 0.0025, a twentieth of its life), which
+# is unstable, naming N; at N = 80 it vanishes at 0.0525.
 awk 'BEGIN { printf "{\"curves\": [{\"points\": ["; for (i = 0; i < 64; i++)
     printf "%s[%.17g, %.17g]", (i ? ", " : ""), cos(2 * 3.141592653589793 * i / 64), 0.1 * sin(2 * 3.141592653589793 * i / 64)
     print "]}]}" }' >thin.json
-expect_ok "thin ellipse under curvature" -- run --initial thin.json --velocity curvature --t-end 0.1 --out thin --quiet
+expect_status "thin ellipse under curvature at defaults" 3 -- run --initial thin.json --velocity curvature --t-end 0.1 --out thin0 --quiet
+check "thin ellipse at defaults: raise N" grep -q "more than the law's rate gives.*raise the steps N" err.txt
+expect_ok "thin ellipse under curvature, N 80" -- run --initial thin.json --velocity curvature --t-end 0.1 -N 80 --out thin --quiet
 check "thin ellipse: vanished" grep -q '"status": "vanished"' thin/summary.json
 check "thin ellipse: vanished at 0.05 to 0.06" awk -v t="$(value thin t)" 'BEGIN { exit !(t >= 0.05 && t <= 0.06) }'
 # The same circle under curvature at defaults: area 2 pi t lost, to 1e-3.

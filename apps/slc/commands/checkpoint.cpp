@@ -71,6 +71,8 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     json["area_corrected"] = s.area_corrected;
     json["split_steps"] = s.split_steps;
     json["most_substeps"] = s.most_substeps;
+    json["start_area"] = s.start_area;
+    json["area_lag"] = s.area_lag;
     if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
     json["frames_kept"] = c.frames_kept;
     json["curves"] = curves_json(s.curves);
@@ -100,6 +102,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
         s.area_corrected = json.value("area_corrected", 0.0);
         s.split_steps = json.value("split_steps", 0);
         s.most_substeps = json.value("most_substeps", 1);
+        s.start_area = json.value("start_area", 0.0);
+        s.area_lag = json.value("area_lag", 0.0);
         if (s.domain_doublings > 0) s.domain_grown_at = json.at("domain_grown_at").get<double>();
         s.status = RunStatus::interrupted;
         c.frames_kept = json.at("frames_kept").get<int>();

@@ -28,6 +28,10 @@ struct GuardBudget {
     /// length k of a run of length T gets rigid_run_fraction·k/T of the area when that is below
     /// area_fraction (then steps each within their budget cannot add up to more).
     double rigid_run_fraction = 5e-2;
+    /// A law with an area rate: the steps' area changes, summed, may miss the law's by at most
+    /// this fraction of the area at the start (RunResult::area_lag): steps each within their
+    /// quarter, all lagging the same way, cannot add up to a wrong curve.
+    double run_lag_fraction = 5e-2;
     /// T, the length of the run; 0 for no run-wide budget.
     double run_length = 0.0;
     double eps_lengths = 20.0;
@@ -37,6 +41,12 @@ struct GuardBudget {
     /// cell h of the contouring tree, which need not resolve a curve smaller than a cell.
     double resolved_area = 0.0;
 };
+
+/// The area change the law's rate gives a step of length k from `before` to `after`, when the
+/// guards check it: the law has a rate, no curve appeared or vanished, and the area is resolved.
+std::optional<double> area_change_expected(const Invariants& law, const Interface& before,
+                                           double area_before, const Interface& after, double k,
+                                           const GuardBudget& budget = {});
 
 /// Why a step of length k from `before` to `after` breaks the law's invariants, in one line
 /// ("the area changed by 85% in one step under a law that keeps it"), or nothing when it keeps

@@ -82,6 +82,11 @@ struct RunResult {
     /// step took (1 when none was split).
     int split_steps = 0;
     int most_substeps = 1;
+    /// For a law with an area rate (curvature flow): the area at the start of the run, and the
+    /// sum over its steps of the area change minus the law's (area_change_expected), which the
+    /// guards keep within GuardBudget::run_lag_fraction of the start's area.
+    double start_area = 0.0;
+    double area_lag = 0.0;
 };
 
 /// domain doubled about its centre `times` times (0: domain itself).
