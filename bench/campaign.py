@@ -301,6 +301,8 @@ def write_doc(path, size, seed, c, defects):
              f"| {size}, seed {seed} | {c['runs']} | {c['ok']} | {c['vanished']} | {c['unstable']} "
              f"| {c['failed']} | {c['refused']} | {c['split']} | {c['impossible']} | {c['crash']} "
              f"| {c['mixed']} |"]
+    if defects:
+        lines.append("")
     for kind, shown, why in defects:
         lines.append(f"- {kind}: `{shown}`: {why}")
     lines.append(end)
