@@ -36,7 +36,7 @@ import tempfile
 import time
 
 SIZES = {"small": (30, 1), "large": (400, 2)}  # runs, seed
-TIMEOUT_S = 300.0
+TIMEOUT_S = float(os.environ.get("SLC_CAMPAIGN_TIMEOUT", "300"))
 
 
 def star(rng, centre, radius, spiky):
@@ -213,12 +213,15 @@ def main():
     p.add_argument("--seed", type=int)
     p.add_argument("--check", action="store_true", help="exit 1 when any defect is found")
     p.add_argument("--doc", help="write the counts into this file between campaign markers")
+    p.add_argument("--only", type=int, help="run only the case of this index (to reproduce it)")
+    p.add_argument("--keep", help="write the cases' files here and keep them")
     a = p.parse_args()
     runs, seed = SIZES[a.size]
     seed = a.seed if a.seed is not None else seed
     rng = random.Random(seed)
     slc = os.path.abspath(a.slc)
-    work = tempfile.mkdtemp(prefix="slc-campaign-")
+    work = os.path.abspath(a.keep) if a.keep else tempfile.mkdtemp(prefix="slc-campaign-")
+    os.makedirs(work, exist_ok=True)
     counts = {"runs": 0, "ok": 0, "vanished": 0, "unstable": 0, "failed": 0, "refused": 0,
               "impossible": 0, "crash": 0, "mixed": 0, "split": 0}
     defects = []
@@ -228,6 +231,8 @@ def main():
     try:
         for i in range(runs):
             case = random_case(rng, i)
+            if a.only is not None and i != a.only:
+                continue
             initial = os.path.join(work, f"case{i}.json")
             with open(initial, "w") as f:
                 json.dump({"curves": [{"points": c} for c in case["curves"]]}, f)
@@ -279,7 +284,8 @@ def main():
                 counts["impossible"] += 1
                 defects.append(("impossible", shown, why))
     finally:
-        shutil.rmtree(work, ignore_errors=True)
+        if not a.keep:
+            shutil.rmtree(work, ignore_errors=True)
     counts["seconds"] = round(time.time() - start)
     for kind, shown, why in defects:
         print(f"{kind}: {shown}: {why}")

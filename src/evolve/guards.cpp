@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace slc {
 namespace {
@@ -30,12 +31,12 @@ std::optional<double> area_change_expected(const Invariants& law, const Interfac
 }
 
 std::optional<std::string> invariant_violation(const Invariants& law, const Interface& before,
-                                               double area_before, const Interface& after,
-                                               double area_after, double k, double eps,
+                                               const CurveMeasures& m0, const Interface& after,
+                                               const CurveMeasures& m1, double k, double eps,
                                                const GuardBudget& budget) {
     if (before.empty()) return std::nullopt;
-    const double a0 = area_before, a1 = area_after;
-    const double eps_tolerance = budget.eps_lengths * eps * length(before);
+    const double a0 = m0.area, a1 = m1.area, l0 = m0.length, l1 = m1.length;
+    const double eps_tolerance = budget.eps_lengths * eps * l0;
     const double tolerance =
         std::max(budget.area_fraction * std::max(std::abs(a0), std::abs(a1)), eps_tolerance);
     if (after.empty()) {
@@ -67,7 +68,6 @@ std::optional<std::string> invariant_violation(const Invariants& law, const Inte
                            before.curve_count(), after.curve_count());
     }
     if (law.shortens) {
-        const double l0 = length(before), l1 = length(after);
         if (l1 > l0 * (1.0 + budget.length_fraction) + eps_tolerance) {
             return fmt::format(
                 "the length grew by {:.3g}% in one step under a law that shortens the curves",
@@ -78,17 +78,32 @@ std::optional<std::string> invariant_violation(const Invariants& law, const Inte
         return fmt::format("the area fell by {:.3g}% in one step under a law that only grows it",
                            100.0 * (a0 - a1) / std::abs(a0));
     }
-    if (law.rigid && budget.run_length > 0.0) {
-        const double share = budget.rigid_run_fraction * k / budget.run_length;
-        const double rigid_tolerance =
-            std::max(std::min(share, budget.area_fraction) * std::max(std::abs(a0), std::abs(a1)),
-                     eps_tolerance);
-        if (std::abs(a1 - a0) > rigid_tolerance) {
+    if (law.rigid) {
+        // A step of length k of a run of length T gets rigid_run_fraction·k/T of the area and
+        // of the length, at most a step's own fraction.
+        const double share = budget.run_length > 0.0
+                                 ? budget.rigid_run_fraction * k / budget.run_length
+                                 : std::numeric_limits<double>::infinity();
+        const auto allowed = [&](double fraction) {
+            return share < fraction ? fmt::format("its share {:.3g}% of the run's {:g}%",
+                                                  100.0 * share, 100.0 * budget.rigid_run_fraction)
+                                    : fmt::format("{:g}%", 100.0 * fraction);
+        };
+        const double area_share = std::min(share, budget.area_fraction);
+        if (std::abs(a1 - a0) >
+            std::max(area_share * std::max(std::abs(a0), std::abs(a1)), eps_tolerance)) {
             return fmt::format(
-                "the area changed by {:.3g}% in one step of a rigid motion, more than its share "
-                "{:.3g}% of the run's {:g}%",
-                100.0 * (a1 - a0) / std::abs(a0), 100.0 * std::min(share, budget.area_fraction),
-                100.0 * budget.rigid_run_fraction);
+                "the area changed by {:.3g}% in one step of a rigid motion, more than {}",
+                100.0 * (a1 - a0) / std::abs(a0), allowed(budget.area_fraction));
+        }
+        // The length is kept too, and a contour whose vertices lie on the moved curve cannot
+        // be longer than it (its chords cut the corners, so it may be shorter): noise that
+        // roughens the curves shows there before it shows in the area.
+        const double length_share = std::min(share, budget.length_fraction);
+        if (l1 > l0 * (1.0 + length_share) + budget.eps_lengths * eps) {
+            return fmt::format(
+                "the length grew by {:.3g}% in one step of a rigid motion, more than {}",
+                100.0 * (l1 - l0) / l0, allowed(budget.length_fraction));
         }
     }
     if (law.keeps_area && std::abs(a1 - a0) > tolerance) {

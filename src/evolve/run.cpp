@@ -114,13 +114,18 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
                              .resolved_area = std::numbers::pi * h * h};
     const int halvings = options.guards ? std::max(options.max_substep_halvings, 0) : 0;
     std::string violation;
-    // Γ(t)'s area as the step reads it, once: each sub-step's is the one before's after.
-    const double start_area = options.guards ? step_area(result.curves, law, options.step) : 0.0;
+    // Γ(t)'s area and length as the step reads them, once: each sub-step's are the one before's
+    // after.
+    const auto measures = [&](const Interface& curves) {
+        return CurveMeasures{step_area(curves, law, options.step),
+                             step_length(curves, law, options.step)};
+    };
+    const CurveMeasures start = options.guards ? measures(result.curves) : CurveMeasures{};
     for (int j = 0; j <= halvings; ++j) {
         const int parts = 1 << j;
         StepResult out{result.curves, {}};
         double t = result.t;
-        double a0 = start_area;
+        CurveMeasures m0 = start;
         std::size_t g_evals = 0, vertices = 0;
         double corrected = 0.0, lag = 0.0;
         bool kept = true;
@@ -139,17 +144,17 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
                 break;
             }
             if (options.guards) {
-                const double a1 = step_area(s.curves, law, options.step);
-                if (auto v = invariant_violation(invariants, out.curves, a0, s.curves, a1, t_to - t,
+                const CurveMeasures m1 = measures(s.curves);
+                if (auto v = invariant_violation(invariants, out.curves, m0, s.curves, m1, t_to - t,
                                                  eps, budget)) {
                     violation = fmt::format("at t = {}: {}", t, *v);
                     kept = false;
                     break;
                 }
-                if (const auto expected = area_change_expected(invariants, out.curves, a0, s.curves,
-                                                               t_to - t, budget))
-                    lag += (a1 - a0) - *expected;
-                a0 = a1;
+                if (const auto expected = area_change_expected(invariants, out.curves, m0.area,
+                                                               s.curves, t_to - t, budget))
+                    lag += (m1.area - m0.area) - *expected;
+                m0 = m1;
             }
             g_evals += s.stats.g_evals();
             vertices += s.stats.vertices();
@@ -166,6 +171,19 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
                 "of the {:.3g} at the start: raise the steps N or the depth K",
                 t_next, run_lag, 100.0 * run_lag / std::abs(counters.start_area),
                 counters.start_area)};
+        }
+        if (options.guards && invariants.rigid && !out.curves.empty()) {
+            if (counters.rigid_segments == 0) {
+                counters.rigid_segments = out.curves.size();
+            } else if (static_cast<double>(out.curves.size()) >
+                       budget.rigid_segments_growth *
+                           static_cast<double>(counters.rigid_segments)) {
+                throw Unstable{fmt::format(
+                    "by t = {}: the contour needs {} segments where the run's first needed {}, "
+                    "but a rigid motion keeps the shape: the steps roughen the curves; use "
+                    "--extension direct or raise --eps",
+                    t_next, out.curves.size(), counters.rigid_segments)};
+            }
         }
         counters.area_lag = run_lag;
         counters.g_evals += g_evals;

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -72,6 +73,28 @@ double step_area(const Interface& curves, const VelocityLaw& law, const StepOpti
         a -= c * c * c * (kappa[i] + kappa[b]) / 24.0;
     }
     return a;
+}
+
+double step_length(const Interface& curves, const VelocityLaw& law, const StepOptions& options) {
+    if (curves.empty() || !options.resolved_arcs(law)) return length(curves);
+    // The arc y(s) = ½ c² s (1 − s) κ(s) off the chord, κ(s) = κa (1 − s) + κb s: its length
+    // ∫ sqrt(c² + y'(s)²) ds by three-point Gauss–Legendre.
+    constexpr double node = 0.3872983346207417;  // sqrt(0.6) / 2
+    constexpr std::array<std::pair<double, double>, 3> gauss{
+        {{0.5 - node, 5.0 / 18.0}, {0.5, 8.0 / 18.0}, {0.5 + node, 5.0 / 18.0}}};
+    const std::vector<double> kappa = arc_curvatures(curves);
+    double l = 0.0;
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+        const std::size_t b = curves.next(i);
+        const double c = norm(curves.point(b) - curves.point(i));
+        const double ka = kappa[i], kb = kappa[b];
+        for (const auto& [s, w] : gauss) {
+            const double slope =
+                0.5 * c * c * (ka * (1.0 - 2.0 * s) + (kb - ka) * s * (2.0 - 3.0 * s));
+            l += w * std::sqrt(c * c + slope * slope);
+        }
+    }
+    return l;
 }
 
 namespace {

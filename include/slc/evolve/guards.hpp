@@ -32,6 +32,10 @@ struct GuardBudget {
     /// this fraction of the area at the start (RunResult::area_lag): steps each within their
     /// quarter, all lagging the same way, cannot add up to a wrong curve.
     double run_lag_fraction = 5e-2;
+    /// A rigid motion keeps the shape, so its contours need as many segments as its first one
+    /// did, to within the tree's alignment: more than this many times as many means the steps
+    /// roughen the curves (RunResult::rigid_segments).
+    double rigid_segments_growth = 4.0;
     /// T, the length of the run; 0 for no run-wide budget.
     double run_length = 0.0;
     double eps_lengths = 20.0;
@@ -48,13 +52,18 @@ std::optional<double> area_change_expected(const Invariants& law, const Interfac
                                            double area_before, const Interface& after, double k,
                                            const GuardBudget& budget = {});
 
+/// Curves' area and length as a step reads them (step_area, step_length).
+struct CurveMeasures {
+    double area = 0.0;
+    double length = 0.0;
+};
+
 /// Why a step of length k from `before` to `after` breaks the law's invariants, in one line
 /// ("the area changed by 85% in one step under a law that keeps it"), or nothing when it keeps
-/// them within the budget. area_before, area_after: their areas as the step reads them
-/// (step_area); eps: the contour tolerance ε of the step.
+/// them within the budget. m0, m1: their measures; eps: the contour tolerance ε of the step.
 std::optional<std::string> invariant_violation(const Invariants& law, const Interface& before,
-                                               double area_before, const Interface& after,
-                                               double area_after, double k, double eps,
+                                               const CurveMeasures& m0, const Interface& after,
+                                               const CurveMeasures& m1, double k, double eps,
                                                const GuardBudget& budget = {});
 
 }  // namespace slc

@@ -87,6 +87,9 @@ struct RunResult {
     /// guards keep within GuardBudget::run_lag_fraction of the start's area.
     double start_area = 0.0;
     double area_lag = 0.0;
+    /// For a rigid motion: the segments of the run's first contour (0 before it), which the
+    /// guards keep the later contours within GuardBudget::rigid_segments_growth of.
+    std::size_t rigid_segments = 0;
 };
 
 /// domain doubled about its centre `times` times (0: domain itself).

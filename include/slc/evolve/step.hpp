@@ -100,6 +100,10 @@ struct StepResult {
 /// when the step reads it as arcs (StepOptions::resolved_arcs).
 double step_area(const Interface& curves, const VelocityLaw& law, const StepOptions& options);
 
+/// The length of curves as a step reads them: the polygon's, or its arcs' when the step reads it
+/// as arcs.
+double step_length(const Interface& curves, const VelocityLaw& law, const StepOptions& options);
+
 /// Advances curves (inside domain, a square) from t to t + k under law. Components may vanish;
 /// an empty result means nothing is left. Throws InvalidInput for k ≤ 0 or a direct extension of
 /// a law that is not a flow field; NumericalFailure (from contouring or the law) when the contour

@@ -27,7 +27,8 @@ Interface two_disks(double r) {
 std::optional<std::string> check(const Invariants& law, const Interface& before,
                                  const Interface& after, double k = 0.01,
                                  const GuardBudget& budget = {}) {
-    return invariant_violation(law, before, area(before), after, area(after), k, eps, budget);
+    return invariant_violation(law, before, {area(before), length(before)}, after,
+                               {area(after), length(after)}, k, eps, budget);
 }
 
 TEST(Guards, AreaKeptWithinOnePercent) {
@@ -57,6 +58,32 @@ TEST(Guards, RigidMotionStepsShareTheRunsBudget) {
     ASSERT_TRUE(v);
     EXPECT_NE(v->find("more than its share"), std::string::npos) << *v;
     EXPECT_FALSE(check(rigid, disk(1.0), disk(1.004), 0.1));  // no run length: 1% a step
+}
+
+/// The unit circle with a ripple r = 1 + a cos(m θ): area π(1 + a²/2), length about
+/// 2π(1 + (m a)²/4).
+Interface rippled_disk(double a, int m) {
+    std::vector<Vec2> points;
+    for (int i = 0; i < 2048; ++i) {
+        const double t = 2.0 * pi * i / 2048, r = 1.0 + a * std::cos(m * t);
+        points.push_back({r * std::cos(t), r * std::sin(t)});
+    }
+    return Interface(std::vector<std::vector<Vec2>>{points});
+}
+
+TEST(Guards, RigidMotionCannotLengthenTheCurves) {
+    const Invariants rigid{.keeps_area = true, .rigid = true, .cannot_split = true};
+    const GuardBudget run{.run_length = 1.0};
+    // Area +0.005%, length +0.1% and +1%: a step of 0.1 of the run may move it by 0.5%.
+    EXPECT_FALSE(check(rigid, disk(1.0), rippled_disk(0.0032, 20), 0.1, run));
+    const auto v = check(rigid, disk(1.0), rippled_disk(0.01, 20), 0.1, run);
+    ASSERT_TRUE(v);
+    EXPECT_NE(v->find("the length grew by"), std::string::npos) << *v;
+    // Shorter is allowed: a contour's chords cut the corners of what it contours.
+    EXPECT_FALSE(check(rigid, rippled_disk(0.01, 20), disk(1.0), 0.1, run));
+    // Without a run length a step may move it by 1%.
+    EXPECT_FALSE(check(rigid, disk(1.0), rippled_disk(0.0095, 20), 0.1));
+    EXPECT_TRUE(check(rigid, disk(1.0), rippled_disk(0.011, 20), 0.1));
 }
 
 TEST(Guards, AGrowingRegionCannotLoseAreaOrVanish) {
