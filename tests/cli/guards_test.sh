@@ -54,6 +54,15 @@ expect_ok "zero speed keeps the circle" -- run --initial c.json --velocity unit-
 check "zero speed: one curve" test "$(tail -1 still1/history.csv | cut -d, -f4)" = 1
 # The 32-gon is read as arcs through its vertices, whose area is pi to 3e-5.
 check "zero speed: area pi to 1e-4" within "$(value still1 area)" 3.141592653589793 1e-4
+# The nearest-point extension of a rotation has kinks that a contour refined to convergence
+# resolves down to eps, and every step adds more (the campaign's runs without an end): a rigid
+# motion keeps the shape, so a contour needing over 4 times the first one's segments ends the run.
+expect_status "rotation, nearest, converged" 3 -- run --initial c.json --velocity rotation \
+    --param omega=3 --param cx=0.2 --param cy=-0.8 --t-end 1 -K 7 -P converged \
+    --extension nearest --out rough --quiet
+check "rotation, nearest: roughening named" grep -q "the steps roughen the curves; use --extension direct" err.txt
+expect_ok "rotation, direct, converged" -- run --initial c.json --velocity rotation \
+    --param omega=3 --param cx=0.2 --param cy=-0.8 --t-end 1 -K 7 -P converged --out smooth --quiet
 # A rigid motion cannot split a curve, a law that keeps area cannot vanish them.
 expect_status "zalesak in 1 step" 3 -- run --problem zalesak -N 1 --out z1 --quiet
 check "zalesak in 1 step: the rigid motion named" grep -q "a rigid motion changed the number of curves" err.txt

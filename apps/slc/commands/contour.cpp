@@ -208,7 +208,9 @@ void add_contour_command(CLI::App& app) {
     cmd->add_option("-K,--depth", o->depth, "Depth K of the contouring tree")
         ->required()
         ->check(integer_in(0, 20));
-    cmd->add_option("--eps", o->eps, "Midpoint tolerance eps of refinement (default 10^-K)")
+    cmd->add_option("--eps", o->eps,
+                    "Midpoint tolerance eps of refinement (default 10^-K; at least two ulps of "
+                    "the domain's largest coordinate)")
         ->check(positive_number());
     cmd->add_option("--refine", o->refine,
                     "Passes P of adaptive refinement (default 0: linear contour); refinement stops "

@@ -48,7 +48,8 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
             "in [0, 64] or converged"));
     cmd.add_option("--eps", o.eps,
                    "epsilon: midpoint tolerance of refinement (a problem's own; 10^-K with -K, "
-                   "not below 1e-13; 1e-5 times the curves' half-width for --initial)")
+                   "not below 1e-13; 1e-5 times the curves' half-width for --initial; at least "
+                   "two ulps of the domain's largest coordinate)")
         ->check(positive_number());
     cmd.add_option("--eta", o.eta,
                    "eta: root-finding tolerance (default 1e-10, times the curves' half-width for "
