@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <functional>
+#include <numbers>
 
 #include "slc/core/error.hpp"
 #include "slc/velocity/laws.hpp"
@@ -41,7 +42,8 @@ std::unique_ptr<VelocityLaw> make_anisotropic(const Resolved& p,
             m));
     }
     const double eps = p.has("eps") ? p["eps"] : 5.0 / (m * m - 1.0);
-    return std::make_unique<AnisotropicNormalSpeed>(p["R"], m, eps, module);
+    return std::make_unique<AnisotropicNormalSpeed>(p["R"], m, eps,
+                                                    p["tilt"] * std::numbers::pi / 180.0, module);
 }
 
 const std::vector<Entry>& entries() {
@@ -66,10 +68,11 @@ const std::vector<Entry>& entries() {
           {param("speed", 1, "normal speed, either sign")}},
          [](const Resolved& p, M m) { return std::make_unique<NormalSpeed>(p["speed"], m); }},
         {{"anisotropic",
-          "anisotropic normal speed u = (R + eps cos(m theta)) N",
+          "anisotropic normal speed u = (R + eps cos(m (theta - tilt))) N",
           {param("R", -1, "isotropic part of the normal speed"),
            param("m", 4, "number of facets"),
-           {"eps", std::nullopt, "5/(m²−1)", "amplitude of the anisotropy", false}}},
+           {"eps", std::nullopt, "5/(m²−1)", "amplitude of the anisotropy", false},
+           param("tilt", 0, "turn of the anisotropy's axes, degrees")}},
          make_anisotropic},
         {{"curvature", "motion by curvature u = C N (shrinks circles)", {}},
          [](const Resolved&, M m) { return std::make_unique<CurvatureFlow>(m); }},

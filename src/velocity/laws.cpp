@@ -71,7 +71,7 @@ void AnisotropicNormalSpeed::normal_speeds(double, std::span<const Vec2> points,
                                            std::span<double> out) const {
     parallel_for(points.size(), [&](std::size_t i) {
         const double theta = std::atan2(normals[i].y, normals[i].x);
-        out[i] = r_ + eps_ * std::cos(m_ * theta);
+        out[i] = r_ + eps_ * std::cos(m_ * (theta - tilt_));
     });
 }
 

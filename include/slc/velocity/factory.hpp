@@ -40,7 +40,8 @@ const std::vector<VelocityInfo>& velocity_catalog();
 ///   rotation        omega [1], cx [0], cy [0]      u = ω(−(y − cy), x − cx)
 ///   translation     ux, uy (both required)         u = (ux, uy)
 ///   unit-normal     speed [1]                      u = speed·N
-///   anisotropic     R [−1], m [4], eps [5/(m²−1)]   u = (R + eps·cos(mθ))·N
+///   anisotropic     R [−1], m [4], eps [5/(m²−1)], tilt [0, degrees]
+///                                                   u = (R + eps·cos(m(θ − tilt)))·N
 ///   curvature                                      u = C·N
 ///   volume-preserving-curvature                    u = (C − C̄)·N
 ///   vortex          period [8]                     LeVeque's single vortex on [0, 1]²

@@ -76,15 +76,16 @@ private:
     double speed_;
 };
 
-/// `anisotropic`: u = v(θ)·N with v = R + ε cos(mθ), θ the normal angle, N = (cos θ, sin θ)
-/// (§4.5.3, Equation 12; the paper's Wulff-shape runs use R = −1 and ε = 5/(m² − 1)).
+/// `anisotropic`: u = v(θ)·N with v = R + ε cos(m(θ − α)), θ the normal angle,
+/// N = (cos θ, sin θ), α the tilt of the anisotropy's axes (§4.5.3, Equation 12, with α = 0;
+/// the paper's Wulff-shape runs use R = −1 and ε = 5/(m² − 1), and tilt them by 10° and 180°/m).
 class AnisotropicNormalSpeed final : public NormalLaw {
 public:
     /// r: R, the isotropic part of the speed; m: the number of lobes of cos(mθ); eps: ε, their
-    /// amplitude; module: where vertex normals come from.
-    AnisotropicNormalSpeed(double r, double m, double eps,
+    /// amplitude; tilt: α, radians; module: where vertex normals come from.
+    AnisotropicNormalSpeed(double r, double m, double eps, double tilt = 0.0,
                            std::optional<GeometryModule> module = std::nullopt)
-        : NormalLaw(module), r_(r), m_(m), eps_(eps) {}
+        : NormalLaw(module), r_(r), m_(m), eps_(eps), tilt_(tilt) {}
     std::string name() const override { return "anisotropic"; }
     /// Growing in every direction when R > |ε|.
     Invariants invariants() const override { return {.cannot_vanish = r_ > std::abs(eps_)}; }
@@ -92,7 +93,7 @@ public:
                        std::span<double> out) const override;
 
 private:
-    double r_, m_, eps_;
+    double r_, m_, eps_, tilt_;
 };
 
 /// `curvature`: motion by curvature u = C·N (§4.6), which shrinks a circle as R(t)² = R(0)² − 2t.

@@ -10,6 +10,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/geometry/shapes.hpp"
+#include "slc/velocity/factory.hpp"
 
 namespace slc {
 namespace {
@@ -97,6 +98,26 @@ TEST(AnisotropicNormalSpeed, DependsOnTheNormalAngle) {
         EXPECT_NEAR(norm(u[static_cast<std::size_t>(k)] - (r + eps * std::cos(m * theta)) * normal),
                     0.0, rounding_tolerance);
     }
+}
+
+TEST(AnisotropicNormalSpeed, TiltTurnsTheAnisotropy) {
+    // v(θ) = R + ε cos(m(θ − α)): the tilted law at θ is the untilted one at θ − α.
+    const double r = -1.0, m = 3.0, eps = 5.0 / 8.0, tilt = 10.0 * pi / 180.0;
+    const int n = 36;
+    const Interface curves({shapes::circle({}, 0.5, n)});
+    const auto u = vertex_velocities(AnisotropicNormalSpeed(r, m, eps, tilt), 0.0, curves);
+    for (int k = 0; k < n; ++k) {
+        const double theta = 2 * pi * k / n;
+        const Vec2 normal{std::cos(theta), std::sin(theta)};
+        EXPECT_NEAR(norm(u[static_cast<std::size_t>(k)] -
+                         (r + eps * std::cos(m * (theta - tilt))) * normal),
+                    0.0, rounding_tolerance);
+    }
+    // Through the factory, in degrees.
+    const auto law = make_velocity("anisotropic", {{"m", 3.0}, {"tilt", 10.0}});
+    const auto v = vertex_velocities(*law, 0.0, curves);
+    for (std::size_t k = 0; k < u.size(); ++k)
+        EXPECT_NEAR(norm(v[k] - u[k]), 0.0, rounding_tolerance);
 }
 
 TEST(CurvatureFlow, ShrinksACircleAtSpeedOneOverR) {
