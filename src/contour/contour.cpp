@@ -69,10 +69,7 @@ Interface drop_slivers(Interface curves, double eta, std::size_t& dropped) {
     std::vector<std::vector<Vec2>> kept;
     for (std::size_t c = 0; c < curves.curve_count(); ++c) {
         const auto curve = curves.curve(c);
-        double perimeter = 0.0;
-        for (std::size_t i = 0; i < curve.size(); ++i)
-            perimeter += norm(curve[(i + 1) % curve.size()] - curve[i]);
-        if (2.0 * std::abs(signed_area(curve)) < eta * perimeter) {
+        if (2.0 * std::abs(signed_area(curve)) < eta * length(curve)) {
             ++dropped;
             continue;
         }

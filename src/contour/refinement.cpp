@@ -116,6 +116,8 @@ public:
 private:
     /// Throws LimitExceeded when accepting every candidate would pass options_.max_vertices.
     void check_vertex_limit(std::size_t candidates) const {
+        // Every vertex ever made bounds the alive ones: count those only near the limit.
+        if (chain_.points.size() + candidates <= options_.max_vertices) return;
         const auto alive = static_cast<std::size_t>(
             std::count(chain_.alive.begin(), chain_.alive.end(), std::uint8_t{1}));
         if (alive + candidates <= options_.max_vertices) return;

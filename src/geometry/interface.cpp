@@ -63,6 +63,13 @@ double area(const Interface& curves) {
     return total;
 }
 
+double length(std::span<const Vec2> curve) {
+    double total = 0.0;
+    for (std::size_t i = 0; i < curve.size(); ++i)
+        total += distance(curve[i], curve[(i + 1) % curve.size()]);
+    return total;
+}
+
 double length(const Interface& curves) {
     double total = 0.0;
     for (std::size_t i = 0; i < curves.size(); ++i) {

@@ -82,6 +82,8 @@ std::vector<Vec2> vertices_and_midpoints(const Interface& curves);
 double signed_area(std::span<const Vec2> curve);
 /// Total enclosed area of the interface: the sum of signed areas (holes, clockwise, subtract).
 double area(const Interface& curves);
+/// Length of one closed polygon, its closing segment included.
+double length(std::span<const Vec2> curve);
 /// Total length of all curves.
 double length(const Interface& curves);
 

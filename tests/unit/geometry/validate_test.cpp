@@ -361,6 +361,16 @@ const Curves unit_square{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
 const std::vector<Vec2> square_ccw{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
 const std::vector<Vec2> hole_cw{{-0.5, -0.5}, {-0.5, 0.5}, {0.5, 0.5}, {0.5, -0.5}};
 
+TEST(Interface, AreaAndLengthOfOneCurveAndOfAll) {
+    EXPECT_EQ(signed_area(square_ccw), 4.0);
+    EXPECT_EQ(signed_area(hole_cw), -1.0);
+    EXPECT_EQ(length(square_ccw), 8.0);  // the closing segment counted
+    EXPECT_EQ(length(hole_cw), 4.0);
+    const Interface both({square_ccw, hole_cw});
+    EXPECT_EQ(area(both), 3.0);
+    EXPECT_EQ(length(both), 12.0);
+}
+
 TEST(PrepareInterface, RejectsEmptyInput) {
     EXPECT_EQ(error_of({}), "no curves: the interface is empty");
 }
