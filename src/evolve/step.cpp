@@ -394,11 +394,13 @@ StepResult advance_normal(const Interface& curves, double t, double k, const Vel
 namespace {
 
 /// Γ moved along its vertex normals (the bisectors of its segments' normals) by
-/// δ = (target − A)/L, which makes its area target to O(δ² |C| L); Γ itself when the moved curves
-/// would cross (found in O(N log N)). Returns the curves and the area added.
-std::pair<Interface, double> corrected_area(const Interface& curves, double target) {
+/// δ = fraction·(target − A)/L, which makes its area target to O(δ² |C| L) for fraction 1; Γ
+/// itself when the moved curves would cross (found in O(N log N)). Returns the curves and the
+/// area added.
+std::pair<Interface, double> corrected_area(const Interface& curves, double target,
+                                            double fraction) {
     const double a = area(curves);
-    const double delta = (target - a) / length(curves);
+    const double delta = fraction * (target - a) / length(curves);
     std::vector<std::vector<Vec2>> moved = curves.curves();
     for (std::size_t c = 0, first = 0; c < moved.size(); first += moved[c].size(), ++c) {
         for (std::size_t j = 0; j < moved[c].size(); ++j) {
@@ -407,7 +409,12 @@ std::pair<Interface, double> corrected_area(const Interface& curves, double targ
             const Vec2 v = curves.point(curves.next(i)) - curves.point(i);
             const Vec2 n = -perp(u / norm(u) + v / norm(v));  // the outside is on the right
             const double len = norm(n);
-            if (len > 0.0) moved[c][j] = curves.point(i) + (delta / len) * n;
+            // At most a quarter of the shorter neighbouring segment: a sharp turn (len near 0)
+            // or a short segment would otherwise fold the curve; what it holds back, the next
+            // shift gives.
+            const double reach = 0.25 * std::min(norm(u), norm(v));
+            const double step = std::clamp(delta / len, -reach, reach);
+            if (len > 0.0) moved[c][j] = curves.point(i) + step * n;
         }
     }
     Interface out(moved);
@@ -506,13 +513,23 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
                    const Box& domain, const StepOptions& options) {
     StepResult result = advance_contours(curves, t, k, law, domain, options);
     if (options.area_correction.value_or(law.preserves_area()) && !result.curves.empty()) {
-        // Each shift leaves O(δ²) of the area to give back: two more shifts leave rounding.
+        // Each shift leaves O(δ²) of the area to give back, and more where vertices were held
+        // back: a few more shifts leave rounding.
+        // A shift that would make the curves cross is tried again at half its size, down to a
+        // sixteenth.
         const double target = area(curves);
-        for (int shift = 0; shift < 3; ++shift) {
-            auto [moved, added] = corrected_area(result.curves, target);
-            if (added == 0.0) break;
+        double fraction = 1.0;
+        for (int shift = 0; shift < 8;) {
+            auto [moved, added] = corrected_area(result.curves, target, fraction);
+            if (added == 0.0) {
+                if (fraction < 0.1) break;
+                fraction *= 0.5;
+                continue;
+            }
             result.curves = std::move(moved);
             result.stats.area_correction += added;
+            fraction = 1.0;
+            ++shift;
         }
     }
     return result;

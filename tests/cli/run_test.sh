@@ -149,6 +149,17 @@ check "estimate of a named problem" grep -q '"error_estimate":' est_named/summar
 check "without --estimate, no estimate" test -z "$(grep error_estimate user/summary.json)"
 expect_error "--estimate with one step" "--estimate .* N >= 2" -- run --initial square.json --velocity rotation \
     --t-end 0.5 -N 1 --domain 2 --estimate --out est_bad
+# The area correction keeps the area of the area-preserving flow at every step: the spiral's
+# thin turns, where shifting every vertex by the same amount would fold the curve, included.
+expect_ok "spiral with the area correction" -- run --problem spiral-nonlocal -N 40 --t-end 0.2 \
+    --area-correction --out spiral_kept --quiet
+check "spiral: area kept to 1e-10 at every step" awk -F, 'NR == 2 { a0 = $2 }
+    NR > 2 && ($2 - a0 > 1e-10 * a0 || a0 - $2 > 1e-10 * a0) { bad = 1 } END { exit bad }' spiral_kept/history.csv
+check "spiral: the correction reported" grep -q '"area_corrected"' spiral_kept/summary.json
+expect_ok "spiral without it" -- run --problem spiral-nonlocal -N 40 --t-end 0.2 --no-area-correction \
+    --out spiral_free --quiet
+check "spiral without it: the area moves by 1e-3" awk -F, 'NR == 2 { a0 = $2 }
+    NR > 2 && ($2 - a0 > 1e-3 * a0 || a0 - $2 > 1e-3 * a0) { moved = 1 } END { exit !moved }' spiral_free/history.csv
 expect_ok "help documents --estimate" -- run --help
 check "help names --estimate" grep -q -- "--estimate" out.txt
 finish

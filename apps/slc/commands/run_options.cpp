@@ -88,6 +88,13 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         "whose chords lose a little area each step. Default: on for curvature laws with "
         "the arclength module (their default) and for laws evaluated directly (normal laws, "
         "flow fields), off otherwise and for named problems");
+    cmd.add_flag_function(
+        "--area-correction,!--no-area-correction",
+        [&o](std::int64_t count) { o.area_correction = count > 0; },
+        "After each step under a law that keeps the area (volume-preserving curvature), shift "
+        "the curves along their normals by the area lost over the length, as summary.json's "
+        "area_corrected reports. Default: on for such laws, off for named problems (the "
+        "paper's method)");
     cmd.add_option("--arc-width", o.arc_width,
                    "sigma: arc length over which the arclength geometry module averages the "
                    "curvature (default sqrt(k); curvature flow is stable from 0.76 sqrt(k))")
@@ -125,6 +132,7 @@ RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
     r.step.embedded.eno_order = m.eno_order;
     if (m.smooth) r.step.embedded.smoothing = *m.smooth;
     if (m.arcs) r.step.arcs = m.arcs;
+    if (m.area_correction) r.step.area_correction = m.area_correction;
     r.step.arc_width = m.arc_width;
     return r;
 }

@@ -31,6 +31,9 @@ struct MethodOptions {
     std::optional<std::string> extension;  ///< unset: the problem's, else the law's default
     std::string geometry;                  ///< empty: the law's (or the problem's) own
     std::optional<bool> arcs;              ///< --arcs / --no-arcs; unset: as extension
+    /// --area-correction / --no-area-correction; unset: on for area-keeping laws, off for named
+    /// problems (StepOptions::area_correction)
+    std::optional<bool> area_correction;
     std::optional<double> arc_width;
     int threads = 0;
 };

@@ -53,9 +53,9 @@ struct StepOptions {
     /// sharp (docs/algorithms/evolve.md). Unset: resolved_arcs().
     std::optional<bool> arcs = std::nullopt;
     /// For a law that keeps area (VelocityLaw::preserves_area): after the step, move every vertex
-    /// of Γ(t + k) along its normal by δ = (A(t) − A(t + k))/L, which gives back the area the
-    /// contours lost to O(δ²), three times at most (to rounding); skipped where the moved curves
-    /// would cross.
+    /// of Γ(t + k) along its normal by δ = (A(t) − A(t + k))/L, each vertex by at most a quarter
+    /// of its shorter segment, which gives back the area the contours lost to O(δ²), eight
+    /// times at most (to rounding); a shift that would make the curves cross is not made.
     /// Unset: on for such laws.
     std::optional<bool> area_correction = std::nullopt;
     /// Turning angle at a vertex (radians) above which arcs treats it as a corner.
