@@ -117,8 +117,8 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
     // Γ(t)'s area and length as the step reads them, once: each sub-step's are the one before's
     // after.
     const auto measures = [&](const Interface& curves) {
-        return CurveMeasures{step_area(curves, law, options.step),
-                             step_length(curves, law, options.step)};
+        const auto [a, l] = step_area_and_length(curves, law, options.step);
+        return CurveMeasures{a, l};
     };
     const CurveMeasures start = options.guards ? measures(result.curves) : CurveMeasures{};
     for (int j = 0; j <= halvings; ++j) {

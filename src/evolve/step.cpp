@@ -62,39 +62,37 @@ std::vector<double> arc_curvatures(const Interface& curves) {
 
 }  // namespace
 
-double step_area(const Interface& curves, const VelocityLaw& law, const StepOptions& options) {
-    double a = area(curves);
-    if (curves.empty() || !options.resolved_arcs(law)) return a;
-    // Level::distance's arc lies ½ c² s (1 − s) κ(s) beyond the chord, κ linear along it.
-    const std::vector<double> kappa = arc_curvatures(curves);
-    for (std::size_t i = 0; i < curves.size(); ++i) {
-        const std::size_t b = curves.next(i);
-        const double c = norm(curves.point(b) - curves.point(i));
-        a -= c * c * c * (kappa[i] + kappa[b]) / 24.0;
-    }
-    return a;
-}
-
-double step_length(const Interface& curves, const VelocityLaw& law, const StepOptions& options) {
-    if (curves.empty() || !options.resolved_arcs(law)) return length(curves);
-    // The arc y(s) = ½ c² s (1 − s) κ(s) off the chord, κ(s) = κa (1 − s) + κb s: its length
-    // ∫ sqrt(c² + y'(s)²) ds by three-point Gauss–Legendre.
+std::pair<double, double> step_area_and_length(const Interface& curves, const VelocityLaw& law,
+                                               const StepOptions& options) {
+    if (curves.empty() || !options.resolved_arcs(law)) return {area(curves), length(curves)};
+    // Level::distance's arc lies y(s) = ½ c² s (1 − s) κ(s) beyond the chord, κ(s) = κa (1 − s)
+    // + κb s: it takes c³ (κa + κb) / 24 from the area, and its length is ∫ sqrt(c² + y'(s)²) ds,
+    // by three-point Gauss–Legendre.
     constexpr double node = 0.3872983346207417;  // sqrt(0.6) / 2
     constexpr std::array<std::pair<double, double>, 3> gauss{
         {{0.5 - node, 5.0 / 18.0}, {0.5, 8.0 / 18.0}, {0.5 + node, 5.0 / 18.0}}};
     const std::vector<double> kappa = arc_curvatures(curves);
-    double l = 0.0;
+    double a = area(curves), l = 0.0;
     for (std::size_t i = 0; i < curves.size(); ++i) {
         const std::size_t b = curves.next(i);
         const double c = norm(curves.point(b) - curves.point(i));
         const double ka = kappa[i], kb = kappa[b];
+        a -= c * c * c * (ka + kb) / 24.0;
         for (const auto& [s, w] : gauss) {
             const double slope =
                 0.5 * c * c * (ka * (1.0 - 2.0 * s) + (kb - ka) * s * (2.0 - 3.0 * s));
             l += w * std::sqrt(c * c + slope * slope);
         }
     }
-    return l;
+    return {a, l};
+}
+
+double step_area(const Interface& curves, const VelocityLaw& law, const StepOptions& options) {
+    return step_area_and_length(curves, law, options).first;
+}
+
+double step_length(const Interface& curves, const VelocityLaw& law, const StepOptions& options) {
+    return step_area_and_length(curves, law, options).second;
 }
 
 namespace {

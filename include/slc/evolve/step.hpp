@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstddef>
 #include <optional>
+#include <utility>
 
 #include "slc/contour/contour.hpp"
 #include "slc/core/box.hpp"
@@ -103,6 +104,9 @@ double step_area(const Interface& curves, const VelocityLaw& law, const StepOpti
 /// The length of curves as a step reads them: the polygon's, or its arcs' when the step reads it
 /// as arcs.
 double step_length(const Interface& curves, const VelocityLaw& law, const StepOptions& options);
+/// step_area and step_length at once, the arcs' curvatures computed once.
+std::pair<double, double> step_area_and_length(const Interface& curves, const VelocityLaw& law,
+                                               const StepOptions& options);
 
 /// Advances curves (inside domain, a square) from t to t + k under law. Components may vanish;
 /// an empty result means nothing is left. Throws InvalidInput for k ≤ 0 or a direct extension of
