@@ -2,6 +2,7 @@
 #include "slc/distance/surface_distance_tree.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -29,10 +30,10 @@ constexpr std::size_t longest_scanned_list = 48;
 /// are tested for splitting in the triangle hierarchy, and the cells of the binned level get
 /// theirs by binning every triangle into a grid of the level's triples. Deeper levels filter
 /// their lists from their parents'. This spares the list work of the coarse levels, each about
-/// as costly as a fine one. The binned level is two above the deepest, at most 7 (a grid of
+/// as costly as a fine one. The binned level is one above the deepest, at most 7 (a grid of
 /// 2^21 cells): the fastest of 0..4 above it on icospheres (bench/surface_distance_bench.cpp).
 constexpr int binned_level = 7;
-constexpr int levels_below_binned = 2;
+constexpr int levels_below_binned = 1;
 
 /// Half the diagonal of a unit cube, √3/2.
 constexpr double half_diagonal = 0.8660254037844386;
@@ -47,21 +48,24 @@ double distance_lower_bound(const Triangle3& t, const Box3& b, double h) {
     return std::max(boxes, centre);
 }
 
-/// Bit k of an 8-bit mask m as byte k (0 or 1) of a word.
-constexpr std::uint64_t spread_bits(unsigned m) {
-    constexpr std::uint64_t ones = 0x0101010101010101ull;
-    // m in every byte; byte k keeps its bit k (0 or 2^k); adding 0x7f carries into bit 7 exactly
-    // when that bit is set.
-    const std::uint64_t bit = (m * ones) & 0x8040201008040201ull;
-    return ((bit + 0x7f * ones) >> 7) & ones;
-}
-static_assert(spread_bits(0xa5) == 0x0100010000010001ull);
-
-/// Adds byte k of bytes to count[k].
-inline void add_bytes(std::uint64_t bytes, std::uint32_t (&count)[8]) {
-    for (unsigned k = 0; k < 8; ++k)
-        count[k] += static_cast<std::uint32_t>((bytes >> (8 * k)) & 0xffu);
-}
+/// The children of a cell whose triples a box meets, from where it meets them along each axis.
+/// Child k is high along axis a when bit a of k is set: the children low along x are 0, 2, 4, 6
+/// (mask 0x55), high 1, 3, 5, 7 (0xaa); along y 0x33 and 0xcc; along z 0x0f and 0xf0. A side
+/// code holds two bits an axis (bit 0: the box meets the low children's triples along it, bit 1:
+/// the high ones'), axis a at bits 2a and 2a + 1; the mask of that code is the children met.
+constexpr std::array<std::uint8_t, 64> children_met = [] {
+    constexpr std::uint8_t sides[3][4] = {
+        {0x00, 0x55, 0xaa, 0xff}, {0x00, 0x33, 0xcc, 0xff}, {0x00, 0x0f, 0xf0, 0xff}};
+    std::array<std::uint8_t, 64> out{};
+    for (unsigned code = 0; code < 64; ++code) {
+        unsigned m = 0xff;
+        for (unsigned a = 0; a < 3; ++a) m &= sides[a][(code >> (2 * a)) & 3u];
+        out[code] = static_cast<std::uint8_t>(m);
+    }
+    return out;
+}();
+static_assert(children_met[0b111111] == 0xff && children_met[0b010101] == 0x01 &&
+              children_met[0b101010] == 0x80);
 
 }  // namespace
 
@@ -143,6 +147,8 @@ void SurfaceDistanceTree::place_lists(std::size_t begin, std::span<const std::ui
     level.begin = begin;
     level.offsets.assign(counts.size() + 1, 0);
     listed_.resize(tree_.size(), 0);
+    // The deepest level's cells are never split, so a list too long to store is not needed.
+    const bool deepest = tree_.cell(begin).level == tree_.max_depth();
     for (std::size_t i = 0; i < counts.size(); ++i) {
         const std::uint32_t m = counts[i];
         const bool stored = m <= longest_scanned_list;
@@ -150,7 +156,7 @@ void SurfaceDistanceTree::place_lists(std::size_t begin, std::span<const std::ui
                    "lists fit 32-bit offsets");
         offsets_.push_back(offsets_.back() + (stored ? m : 0));
         listed_[begin + i] = stored ? 1 : 0;
-        level.offsets[i + 1] = level.offsets[i] + (stored ? 0 : m);
+        level.offsets[i + 1] = level.offsets[i] + (stored || deepest ? 0 : m);
     }
     triangles_.resize(offsets_.back());
     level.work.resize(level.offsets.back());
@@ -175,6 +181,7 @@ void SurfaceDistanceTree::list_from_hierarchy(std::size_t begin, std::size_t end
                 return;
             }
             const double slack = triple_slack * tree_.edge(tree_.cell(c).level);
+            got.reserve(longest_scanned_list + 1);
             hierarchy_.any_overlapping(tree_.triple(c).inflated(slack), [&](std::uint32_t t) {
                 got.push_back(t);
                 return got.size() > longest_scanned_list;
@@ -281,14 +288,8 @@ bool SurfaceDistanceTree::is_near(const Level& level, std::size_t c,
 
 void SurfaceDistanceTree::list_children(const Level& level, std::span<const std::uint32_t> parents,
                                         std::span<const Box3> bounds, Level& next) {
-    // Child k is high along axis a when bit a of k is set: the children low along x are
-    // 0, 2, 4, 6 (mask 0x55), high 1, 3, 5, 7 (0xaa); along y 0x33 and 0xcc; along z 0x0f and
-    // 0xf0. sides[a][s]: the children on the sides s (bit 0 low, bit 1 high) of axis a.
-    static constexpr std::uint8_t sides[3][4] = {
-        {0x00, 0x55, 0xaa, 0xff}, {0x00, 0x33, 0xcc, 0xff}, {0x00, 0x0f, 0xf0, 0xff}};
     // First pass, one parent per iteration: for each triangle of its list, the mask of the
-    // children whose triples its box meets (along each axis it meets the triples of the low
-    // children, of the high ones, or both), and the length of each child's list.
+    // children whose triples its box meets (children_met), and the length of each child's list.
     std::vector<std::size_t> entry(parents.size() + 1, 0);
     for (std::size_t j = 0; j < parents.size(); ++j)
         entry[j + 1] = entry[j] + list_of(level, parents[j]).size();
@@ -301,37 +302,34 @@ void SurfaceDistanceTree::list_children(const Level& level, std::span<const std:
             const double slack = triple_slack * tree_.edge(tree_.cell(first).level);
             const Box3 low = tree_.triple(first).inflated(slack);
             const Box3 high = tree_.triple(first + 7).inflated(slack);
-            // The eight lengths as bytes of one word, added to from a mask by spreading its
-            // bit k to byte k, and emptied into count before a byte can overflow.
-            std::uint32_t count[8] = {};
-            std::uint64_t bytes = 0;
-            unsigned pending = 0;
+            // The lengths from a histogram of the side codes: one increment per triangle.
+            std::uint32_t histogram[64] = {};
             std::uint8_t* mask = masks.data() + entry[j];
             for (std::uint32_t s : list_of(level, parents[j])) {
                 const Box3& b = bounds[s];
-                unsigned m = 0xff;
+                unsigned code = 0;
                 for (int a = 0; a < 3; ++a) {
                     // & rather than &&: no branch to mispredict.
                     const unsigned side =
                         (unsigned{b.lo[a] <= low.hi[a]} & unsigned{b.hi[a] >= low.lo[a]}) |
                         (unsigned{b.lo[a] <= high.hi[a]} & unsigned{b.hi[a] >= high.lo[a]}) << 1;
-                    m &= sides[a][side];
+                    code |= side << (2 * a);
                 }
-                *mask++ = static_cast<std::uint8_t>(m);
-                bytes += spread_bits(m);
-                if (++pending == 255) {
-                    add_bytes(bytes, count);
-                    bytes = 0;
-                    pending = 0;
-                }
+                *mask++ = children_met[code];
+                ++histogram[code];
             }
-            add_bytes(bytes, count);
+            std::uint32_t count[8] = {};
+            for (unsigned code = 0; code < 64; ++code)
+                if (histogram[code] != 0)
+                    for (unsigned m = children_met[code]; m != 0; m &= m - 1)
+                        count[std::countr_zero(m)] += histogram[code];
             std::copy(count, count + 8, counts.begin() + static_cast<std::ptrdiff_t>(8 * j));
         },
         expensive_grain);
     // The children follow their parents in order: the next level is exactly the children, and
     // their stored lists are appended in cell order.
     const std::size_t begin = tree_.cell(parents[0]).first_child;
+    const bool deepest = tree_.cell(begin).level == tree_.max_depth();
     place_lists(begin, counts, next);
     // Second pass: each triangle to the lists its mask names, in the parent's (increasing)
     // order.
@@ -339,10 +337,15 @@ void SurfaceDistanceTree::list_children(const Level& level, std::span<const std:
         parents.size(),
         [&](std::size_t j) {
             std::uint32_t* to[8];
-            for (std::size_t k = 0; k < 8; ++k) to[k] = list_start(next, begin + 8 * j + k);
+            unsigned wanted = 0;  // the children whose lists are kept
+            for (std::size_t k = 0; k < 8; ++k) {
+                to[k] = list_start(next, begin + 8 * j + k);
+                if (!deepest || listed_[begin + 8 * j + k]) wanted |= 1u << k;
+            }
             const std::uint8_t* mask = masks.data() + entry[j];
             for (std::uint32_t s : list_of(level, parents[j]))
-                for (unsigned m = *mask++; m != 0; m &= m - 1) *to[std::countr_zero(m)]++ = s;
+                for (unsigned m = *mask++ & wanted; m != 0; m &= m - 1)
+                    *to[std::countr_zero(m)]++ = s;
         },
         expensive_grain);
 }
@@ -403,8 +406,11 @@ int SurfaceDistanceTree::default_depth(const Surface& surface, const Box3& domai
         total += distance(tri.a, tri.b) + distance(tri.b, tri.c) + distance(tri.c, tri.a);
     }
     const double mean = total / (3.0 * static_cast<double>(surface.size()));
+    // Cells one to two mean edges wide. A level deeper (cells up to one edge wide) builds in
+    // about 1.5 times the time and answers queries near the surface no faster: its lists are
+    // mostly too long to keep (bench/surface_distance_bench.cpp).
     const int level =
-        static_cast<int>(std::ceil(std::log2(domain.width() / std::max(mean, 1e-300))));
+        static_cast<int>(std::ceil(std::log2(domain.width() / std::max(2.0 * mean, 1e-300))));
     const int deepest = Octree::max_resolvable_depth(domain);
     return std::clamp(level, std::min(2, deepest), std::min(10, deepest));
 }

@@ -36,23 +36,35 @@ Box3 bounding_box(const Surface& s) {
 }
 
 std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s) {
-    // Half-edge 3t + k runs from corner k to corner k + 1 of triangle t; sorted by their
-    // undirected edge, the two half-edges of each edge are side by side.
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> halves(3 * s.size());
-    for (std::size_t t = 0; t < s.size(); ++t) {
-        for (int k = 0; k < 3; ++k) {
-            const std::uint64_t u = s.triangles[t][k], v = s.triangles[t][(k + 1) % 3];
-            halves[3 * t + k] = {(std::min(u, v) << 32) | std::max(u, v),
-                                 static_cast<std::uint32_t>(3 * t + k)};
-        }
+    // Half-edge 3t + k runs from corner k to corner k + 1 of triangle t. The half-edges are
+    // bucketed by their lower vertex (a counting sort), each bucket holding (higher vertex,
+    // half-edge) pairs; sorted within the bucket (a few entries), the two half-edges of each
+    // edge are side by side. O(N + V) where a global sort would be O(N log N).
+    const std::size_t n = s.size();
+    auto ends = [&](std::size_t h) {
+        const std::uint32_t u = s.triangles[h / 3][h % 3], v = s.triangles[h / 3][(h + 1) % 3];
+        return std::pair{std::min(u, v), std::max(u, v)};
+    };
+    std::vector<std::uint32_t> start(s.vertices.size() + 1, 0);
+    for (std::size_t h = 0; h < 3 * n; ++h) ++start[ends(h).first + 1];
+    for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> halves(3 * n);
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t h = 0; h < 3 * n; ++h) {
+        const auto [lo, hi] = ends(h);
+        halves[fill[lo]++] = {hi, static_cast<std::uint32_t>(h)};
     }
-    std::sort(halves.begin(), halves.end());
-    std::vector<std::array<std::uint32_t, 3>> out(s.size());
-    for (std::size_t i = 0; i + 1 < halves.size(); i += 2) {
-        SLC_ASSERT(halves[i].first == halves[i + 1].first, "every edge has two triangles");
-        const std::uint32_t h = halves[i].second, g = halves[i + 1].second;
-        out[h / 3][h % 3] = g / 3;
-        out[g / 3][g % 3] = h / 3;
+    std::vector<std::array<std::uint32_t, 3>> out(n);
+    for (std::size_t v = 0; v + 1 < start.size(); ++v) {
+        const auto first = halves.begin() + start[v], last = halves.begin() + start[v + 1];
+        std::sort(first, last);
+        for (auto it = first; it != last; it += 2) {
+            SLC_ASSERT(it + 1 != last && it->first == (it + 1)->first,
+                       "every edge has two triangles");
+            const std::uint32_t h = it->second, g = (it + 1)->second;
+            out[h / 3][h % 3] = g / 3;
+            out[g / 3][g % 3] = h / 3;
+        }
     }
     return out;
 }

@@ -1,8 +1,9 @@
-// TriangleHierarchy: median-split construction and the pruned nearest-triangle descent.
+// TriangleHierarchy: construction on the Morton order and the pruned nearest-triangle descent.
 #include "slc/geometry/triangle_hierarchy.hpp"
 
 #include <algorithm>
-#include <numeric>
+#include <bit>
+#include <utility>
 
 namespace slc {
 namespace {
@@ -14,49 +15,73 @@ constexpr double prune_slack = 1.0 + 1e-12;
 
 }  // namespace
 
+namespace {
+
+/// Bits 0..20 of v spread to every third bit (bit k to bit 3k).
+std::uint64_t spread_by_three(std::uint64_t v) {
+    v &= 0x1fffffu;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+}
+
+}  // namespace
+
 TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
     const auto n = static_cast<std::uint32_t>(triangles.size());
     if (n == 0) return;
     boxes_.resize(n);
-    // The triangles' centroids (of their boxes) beside their indices, moved together while the
-    // nodes are split: contiguous, where an index into a centroid array would jump about.
-    struct Item {
-        Vec3 centre;
-        std::uint32_t t;
-    };
-    std::vector<Item> items(n);
+    Box3 centres = Box3::empty();
     for (std::uint32_t t = 0; t < n; ++t) {
         boxes_[t] = bounding_box(triangles[t]);
-        items[t] = {boxes_[t].center(), t};
+        const Vec3 c = boxes_[t].center();
+        centres = unite(centres, {c, c});
     }
+    // The triangles in the Morton order of their boxes' centres (21 bits an axis over the box
+    // of all centres; ties by index): every node is a range of this order, so a split is a cut
+    // of its range, where sorting each node's triangles along an axis would cost a selection.
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
+    for (std::uint32_t t = 0; t < n; ++t) {
+        const Vec3 c = boxes_[t].center();
+        std::uint64_t code = 0;
+        for (int a = 0; a < 3; ++a) {
+            const double extent = centres.extent(a);
+            const double q = extent > 0.0 ? (c[a] - centres.lo[a]) / extent * 2097151.0 : 0.0;
+            code |= spread_by_three(static_cast<std::uint64_t>(std::clamp(q, 0.0, 2097151.0))) << a;
+        }
+        keyed[t] = {code, t};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    order_.resize(n);
+    for (std::uint32_t k = 0; k < n; ++k) order_[k] = keyed[k].second;
     nodes_.reserve(2 * (n / leaf_size + 1));
     nodes_.push_back({Box3::empty(), 0, n});
-    // Nodes are split in creation order; a split node's children are appended side by side.
-    // Depth stays below 64 (the stack of the queries): median splits halve the count.
+    // Nodes are split in creation order; a split node's children are appended side by side. A
+    // node is cut where its highest differing Morton bit turns on, which separates space, when
+    // that leaves each side at least a third; otherwise in half. Depth stays below 64 (the stack
+    // of the queries): each side keeps at most two thirds.
     for (std::size_t i = 0; i < nodes_.size(); ++i) {
         const std::uint32_t first = nodes_[i].first, count = nodes_[i].count;
         if (count <= leaf_size) continue;
-        Box3 centres = Box3::empty();
-        for (std::uint32_t k = first; k < first + count; ++k)
-            centres = unite(centres, {items[k].centre, items[k].centre});
-        int axis = 0;
-        for (int a = 1; a < 3; ++a)
-            if (centres.extent(a) > centres.extent(axis)) axis = a;
-        const std::uint32_t half = count / 2;
-        // Ties broken by index, so that the hierarchy does not depend on the sort's whims.
-        std::nth_element(items.begin() + first, items.begin() + first + half,
-                         items.begin() + first + count, [&](const Item& p, const Item& q) {
-                             const double cp = p.centre[axis], cq = q.centre[axis];
-                             return cp < cq || (cp == cq && p.t < q.t);
-                         });
+        const std::uint64_t lo = keyed[first].first, hi = keyed[first + count - 1].first;
+        std::uint32_t cut = count / 2;
+        if (lo != hi) {
+            const std::uint64_t bit = std::uint64_t{1} << (63 - std::countl_zero(lo ^ hi));
+            const auto begin = keyed.begin() + first, end = begin + count;
+            const auto at = std::partition_point(
+                begin, end, [&](const auto& k) { return (k.first & bit) == 0; });
+            const auto split = static_cast<std::uint32_t>(at - begin);
+            if (3 * split >= count && 3 * (count - split) >= count) cut = split;
+        }
         const auto child = static_cast<std::uint32_t>(nodes_.size());
         nodes_[i].first = child;
         nodes_[i].count = 0;
-        nodes_.push_back({Box3::empty(), first, half});
-        nodes_.push_back({Box3::empty(), first + half, count - half});
+        nodes_.push_back({Box3::empty(), first, cut});
+        nodes_.push_back({Box3::empty(), first + cut, count - cut});
     }
-    order_.resize(n);
-    for (std::uint32_t k = 0; k < n; ++k) order_[k] = items[k].t;
     // Boxes bottom up: children come after their parent.
     for (std::size_t i = nodes_.size(); i-- > 0;) {
         Node& node = nodes_[i];

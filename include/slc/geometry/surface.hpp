@@ -48,11 +48,11 @@ Box3 bounding_box(const Surface& s);
 
 /// For each triangle and each of its edges k (corner k to corner k + 1), the triangle across
 /// that edge. Precondition: every edge is shared by exactly two triangles (a valid surface).
-/// O(N log N).
+/// O(N + V) for V vertices.
 std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s);
 
 /// The component of each triangle, numbered 0, 1, ... in order of first triangle.
-/// Precondition: as triangle_neighbours. O(N log N).
+/// Precondition: as triangle_neighbours. O(N + V).
 std::vector<std::uint32_t> component_labels(const Surface& s);
 /// Number of connected components. Precondition: as triangle_neighbours.
 std::size_t component_count(const Surface& s);
@@ -69,7 +69,7 @@ struct PseudoNormals {
     std::vector<std::array<Vec3, 3>> edge;  ///< per triangle and edge k: sum of the two normals
     std::vector<Vec3> vertex;               ///< per vertex: Σ (angle at the vertex) · normal
 };
-/// The pseudo-normals of a valid surface. O(N log N).
+/// The pseudo-normals of a valid surface. O(N + V).
 PseudoNormals pseudo_normals(const Surface& s);
 
 /// The nearest triangle found so far: the least (distance2, triangle) pair, so that the answer

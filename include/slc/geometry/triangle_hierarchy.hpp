@@ -3,7 +3,8 @@
 /// triangles whose boxes meet (the self-intersection check of surface validation, O(N log N) for
 /// a surface of similar triangles) and for the exact nearest triangle to points far from the
 /// surface, where the distance tree's cells are large and their lists long. The 3D counterpart of
-/// SegmentHierarchy; triangles in space have no natural order, so it is built by median splits.
+/// SegmentHierarchy; triangles in space have no natural order, so it is built on the Morton
+/// order of their boxes' centres.
 #pragma once
 
 #include <cstdint>
@@ -16,8 +17,10 @@
 
 namespace slc {
 
-/// Boxes over triangles nested in a binary tree (each node splits its triangles at the median
-/// of their centroids along its longest axis); the triangles themselves stay with the caller.
+/// Boxes over triangles nested in a binary tree: the triangles sorted in the Morton order of
+/// their boxes' centres, each node a range of that order, cut where its highest differing
+/// Morton bit turns on (or in half when that cut would leave one side under a third). The
+/// triangles themselves stay with the caller.
 class TriangleHierarchy {
 public:
     /// Triangles per leaf box, at most.

@@ -232,7 +232,7 @@ TEST(SurfaceDistanceTree, RefusesEmptySurfacesAndBadDomains) {
     const Surface s = sphere({0, 0, 0}, 0.5, 1);
     EXPECT_THROW(SurfaceDistanceTree(s, Box3{{0, 0, 0}, {1, 1, 2}}, {}), InvalidInput);
     EXPECT_THROW(SurfaceDistanceTree(s, Box3::centered_cube(1), {.depth = 40}), InvalidInput);
-    // Cells about one mean edge wide: h <= mean edge < 2h.
+    // Cells one to two mean edges wide: mean edge < h <= 2 mean edge.
     for (const int level : {1, 3, 5}) {
         const Surface fine = sphere({0, 0, 0}, 0.5, level);
         double total = 0.0;
@@ -243,8 +243,8 @@ TEST(SurfaceDistanceTree, RefusesEmptySurfacesAndBadDomains) {
         const double mean = total / (3.0 * static_cast<double>(fine.size()));
         const int depth = SurfaceDistanceTree::default_depth(fine, Box3::centered_cube(1));
         const double h = std::ldexp(2.0, -depth);
-        EXPECT_LE(h, mean);
-        EXPECT_LT(mean, 2 * h);
+        EXPECT_LT(mean, h);
+        EXPECT_LE(h, 2 * mean);
     }
 }
 
