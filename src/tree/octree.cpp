@@ -88,22 +88,10 @@ std::uint32_t Octree::coarser_neighbour(std::size_t c, int d) const {
 }
 
 bool Octree::is_balanced() const {
-    // As Quadtree::is_balanced: face-adjacent leaves differ by at most one level iff every cell
-    // with children has all six same-level face neighbours (or the root box's face there).
-    std::vector<std::uint8_t> coarse(cells_.size(), 0);
-    parallel_for(cells_.size(), [&](std::size_t c) {
-        if (is_leaf(c)) return;
-        for (int d = 0; d < 6; ++d)
-            if (coarser_neighbour(c, d) != no_cell) coarse[c] = 1;
-    });
-    return std::find(coarse.begin(), coarse.end(), std::uint8_t{1}) == coarse.end();
+    return tree_balance::is_balanced<6>(
+        *this, [this](std::size_t c, int d) { return coarser_neighbour(c, d); });
 }
 
-std::vector<std::uint32_t> Octree::leaves() const {
-    std::vector<std::uint32_t> out;
-    for (std::size_t c = 0; c < cells_.size(); ++c)
-        if (is_leaf(c)) out.push_back(static_cast<std::uint32_t>(c));
-    return out;
-}
+std::vector<std::uint32_t> Octree::leaves() const { return tree_balance::leaves(*this); }
 
 }  // namespace slc

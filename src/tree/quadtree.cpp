@@ -110,26 +110,10 @@ std::uint32_t Quadtree::coarser_neighbour(std::size_t c, int d) const {
 }
 
 bool Quadtree::is_balanced() const {
-    // Edge-adjacent leaves differ by at most one level iff every cell with children has all
-    // four same-level edge neighbours (or the root box's edge there): where one is missing, a
-    // leaf at least two levels coarser borders a leaf descendant of the cell, and where none
-    // is, the neighbours of a leaf are siblings or its parent's neighbours or their children.
-    // So only the cells with children are asked, a third as many as the leaves, each on one
-    // worker thread; the trees of a step have many thousands of cells.
-    std::vector<std::uint8_t> coarse(cells_.size(), 0);
-    parallel_for(cells_.size(), [&](std::size_t c) {
-        if (is_leaf(c)) return;
-        for (int d = 0; d < 4; ++d)
-            if (coarser_neighbour(c, d) != no_cell) coarse[c] = 1;
-    });
-    return std::find(coarse.begin(), coarse.end(), std::uint8_t{1}) == coarse.end();
+    return tree_balance::is_balanced<4>(
+        *this, [this](std::size_t c, int d) { return coarser_neighbour(c, d); });
 }
 
-std::vector<std::uint32_t> Quadtree::leaves() const {
-    std::vector<std::uint32_t> out;
-    for (std::size_t c = 0; c < cells_.size(); ++c)
-        if (is_leaf(c)) out.push_back(static_cast<std::uint32_t>(c));
-    return out;
-}
+std::vector<std::uint32_t> Quadtree::leaves() const { return tree_balance::leaves(*this); }
 
 }  // namespace slc

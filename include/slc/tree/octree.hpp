@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "slc/core/box3.hpp"
+#include "slc/tree/balance.hpp"
 
 namespace slc {
 
@@ -126,27 +127,8 @@ private:
 
 template <class OnSplit>
 void Octree::balance(OnSplit&& on_split) {
-    if (is_balanced()) return;  // the common case, checked on all worker threads
-    // As Quadtree::balance: balanced iff every cell with children has its six same-level face
-    // neighbours. From the finest level to the coarsest, a missing neighbour of a cell at level
-    // l is a leaf above level l, split until the neighbour exists; the splits make cells with
-    // children above level l, handled when their own level comes up.
-    std::vector<std::vector<std::uint32_t>> by_level(static_cast<std::size_t>(max_depth_) + 1);
-    for (std::uint32_t c = 0; c < cells_.size(); ++c)
-        if (!is_leaf(c)) by_level[static_cast<std::size_t>(cells_[c].level)].push_back(c);
-    for (int level = depth_ - 1; level >= 1; --level) {
-        const auto& list = by_level[static_cast<std::size_t>(level)];
-        for (std::size_t k = 0; k < list.size(); ++k) {
-            for (int d = 0; d < 6; ++d) {
-                for (std::uint32_t n = coarser_neighbour(list[k], d); n != no_cell;
-                     n = coarser_neighbour(list[k], d)) {
-                    split(n);
-                    on_split(n);
-                    by_level[static_cast<std::size_t>(cells_[n].level)].push_back(n);
-                }
-            }
-        }
-    }
+    tree_balance::balance<6>(
+        *this, [this](std::size_t c, int d) { return coarser_neighbour(c, d); }, on_split);
 }
 
 }  // namespace slc

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "slc/core/box.hpp"
+#include "slc/tree/balance.hpp"
 
 namespace slc {
 
@@ -133,27 +134,8 @@ private:
 
 template <class OnSplit>
 void Quadtree::balance(OnSplit&& on_split) {
-    if (is_balanced()) return;  // the common case, checked on all worker threads
-    // Balanced iff every cell with children has its four same-level edge neighbours (see
-    // is_balanced). Work from the finest level to the coarsest: a missing neighbour of a cell at
-    // level l is a leaf above level l, split until the neighbour exists; the splits make cells
-    // with children above level l, which are handled when their own level comes up.
-    std::vector<std::vector<std::uint32_t>> by_level(static_cast<std::size_t>(max_depth_) + 1);
-    for (std::uint32_t c = 0; c < cells_.size(); ++c)
-        if (!is_leaf(c)) by_level[static_cast<std::size_t>(cells_[c].level)].push_back(c);
-    for (int level = depth_ - 1; level >= 1; --level) {
-        const auto& list = by_level[static_cast<std::size_t>(level)];
-        for (std::size_t k = 0; k < list.size(); ++k) {
-            for (int d = 0; d < 4; ++d) {
-                for (std::uint32_t n = coarser_neighbour(list[k], d); n != no_cell;
-                     n = coarser_neighbour(list[k], d)) {
-                    split(n);
-                    on_split(n);
-                    by_level[static_cast<std::size_t>(cells_[n].level)].push_back(n);
-                }
-            }
-        }
-    }
+    tree_balance::balance<4>(
+        *this, [this](std::size_t c, int d) { return coarser_neighbour(c, d); }, on_split);
 }
 
 }  // namespace slc
