@@ -1,0 +1,254 @@
+// Tests of surface pictures: a sphere fills the middle of the PNG and leaves its margin white, and
+// is brighter on the lit side; a torus seen from above shows the background in its hole; +z is up
+// and the nearer of two surfaces hides the farther; SVG is written too; the same input gives the
+// same bytes; bad input is InvalidInput and writes nothing.
+#include "slc/io/surface_picture.hpp"
+
+#include <cairo.h>
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "slc/core/error.hpp"
+#include "slc/geometry/surface_shapes.hpp"
+#include "temp_dir.hpp"
+
+namespace slc {
+namespace {
+
+namespace fs = std::filesystem;
+using test_support::slurp;
+using test_support::TempDir;
+
+using ImagePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
+
+// The default picture: 800 × 800 pixels with a margin of 5 % of its side (40 pixels).
+constexpr int side = 800;
+constexpr int margin = 40;
+
+ImagePtr read_png(const fs::path& path) {
+    ImagePtr image(cairo_image_surface_create_from_png(path.c_str()), &cairo_surface_destroy);
+    EXPECT_EQ(cairo_surface_status(image.get()), CAIRO_STATUS_SUCCESS) << path;
+    cairo_surface_flush(image.get());
+    return image;
+}
+
+/// The colour of pixel (x, y), y down, as 0–255 components.
+struct Rgb {
+    int r, g, b;
+    bool is_background() const { return r == 255 && g == 255 && b == 255; }
+    int brightness() const { return (r + g + b) / 3; }
+};
+
+Rgb pixel(cairo_surface_t* image, int x, int y) {
+    const unsigned char* row =
+        cairo_image_surface_get_data(image) + y * cairo_image_surface_get_stride(image);
+    const std::uint32_t argb = reinterpret_cast<const std::uint32_t*>(row)[x];
+    return {static_cast<int>((argb >> 16) & 0xff), static_cast<int>((argb >> 8) & 0xff),
+            static_cast<int>(argb & 0xff)};
+}
+
+/// Mean brightness of the (2h + 1)² pixels around (x, y).
+double mean_brightness(cairo_surface_t* image, int x, int y, int h) {
+    double sum = 0.0;
+    for (int j = y - h; j <= y + h; ++j)
+        for (int i = x - h; i <= x + h; ++i) sum += pixel(image, i, j).brightness();
+    return sum / ((2 * h + 1) * (2 * h + 1));
+}
+
+/// True when every pixel of the picture's outer band `width` pixels wide is background.
+bool border_is_background(cairo_surface_t* image, int width) {
+    const int w = cairo_image_surface_get_width(image);
+    const int h = cairo_image_surface_get_height(image);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const bool inner = x >= width && x < w - width && y >= width && y < h - width;
+            if (!inner && !pixel(image, x, y).is_background()) return false;
+        }
+    }
+    return true;
+}
+
+TEST(SurfacePicture, SphereFillsTheMiddleAndLeavesTheMarginWhite) {
+    const TempDir dir;
+    save_surface_picture(sphere({1.0, 2.0, 3.0}, 0.5, 4), dir.path() / "sphere.png");
+    const ImagePtr image = read_png(dir.path() / "sphere.png");
+    ASSERT_EQ(cairo_image_surface_get_width(image.get()), side);
+    ASSERT_EQ(cairo_image_surface_get_height(image.get()), side);
+    EXPECT_FALSE(pixel(image.get(), side / 2, side / 2).is_background());
+    for (const int x : {0, side - 1})
+        for (const int y : {0, side - 1}) EXPECT_TRUE(pixel(image.get(), x, y).is_background());
+    // The sphere lies inside its bounding box's projection, which fills the page to the margin;
+    // a pixel less for the antialiased rim and the seam strokes.
+    EXPECT_TRUE(border_is_background(image.get(), margin - 1));
+}
+
+TEST(SurfacePicture, LitSideOfASphereIsBrighterThanTheSideAwayFromTheLight) {
+    const TempDir dir;
+    save_surface_picture(sphere({0.0, 0.0, 0.0}, 1.0, 5), dir.path() / "sphere.png");
+    const ImagePtr image = read_png(dir.path() / "sphere.png");
+    // The light comes from above left of the viewer. The sphere's disc has a radius of about 240
+    // pixels; patches 100 pixels up-left and down-right of its centre lie well inside it, where
+    // Lambert's law gives brightness 0.99 and 0.49 of the colour's. Half that difference of the
+    // palette blue's mean (122) is asserted.
+    constexpr int offset = 100;
+    constexpr int patch = 5;
+    constexpr double least_difference = 30.0;
+    const double lit = mean_brightness(image.get(), side / 2 - offset, side / 2 - offset, patch);
+    const double dark = mean_brightness(image.get(), side / 2 + offset, side / 2 + offset, patch);
+    EXPECT_GT(lit, dark + least_difference) << lit << " " << dark;
+    EXPECT_LT(lit, 255.0);
+}
+
+TEST(SurfacePicture, TorusSeenFromAboveShowsTheBackgroundInItsHole) {
+    const TempDir dir;
+    SurfaceView view;
+    view.elevation = 90.0;
+    const double major = 1.0;
+    save_surface_picture(torus({0.0, 0.0, 0.0}, major, 0.35, 64, 24), dir.path() / "torus.png",
+                         view);
+    const ImagePtr image = read_png(dir.path() / "torus.png");
+    EXPECT_TRUE(pixel(image.get(), side / 2, side / 2).is_background());
+    // The box [−1.35, 1.35]² turned by the azimuth (35°) spans 2.7 (cos 35° + sin 35°) = 3.76
+    // units across the 720 pixels inside the margin: the tube's centre circle is 191 pixels from
+    // the middle, in every direction.
+    const int ring = static_cast<int>(major * (side - 2 * margin) / (2.7 * 1.3927));
+    for (const auto& [dx, dy] : {std::pair{ring, 0}, {-ring, 0}, {0, ring}, {0, -ring}})
+        EXPECT_FALSE(pixel(image.get(), side / 2 + dx, side / 2 + dy).is_background());
+}
+
+/// True when the pixel has the hue of palette colour 0 (a blue) rather than 1 (an orange).
+bool is_blue(Rgb c) { return c.b > c.r + 20; }
+bool is_orange(Rgb c) { return c.r > c.b + 20; }
+
+TEST(SurfacePicture, ZIsUpAndEachSurfaceHasItsPaletteColour) {
+    const TempDir dir;
+    const std::vector<Surface> stacked = {sphere({0.0, 0.0, 1.5}, 1.0, 3),
+                                          sphere({0.0, 0.0, -1.5}, 1.0, 3)};
+    SurfaceView view;
+    view.azimuth = 0.0;
+    view.elevation = 0.0;
+    view.edges = false;
+    save_surface_picture(stacked, dir.path() / "stacked.png", view);
+    const ImagePtr image = read_png(dir.path() / "stacked.png");
+    // The box spans 5 units of height over 720 pixels: the centres are 216 pixels from the
+    // middle, the upper sphere (blue) above.
+    const Rgb upper = pixel(image.get(), side / 2, side / 2 - 216);
+    const Rgb lower = pixel(image.get(), side / 2, side / 2 + 216);
+    EXPECT_TRUE(is_blue(upper)) << upper.r << " " << upper.g << " " << upper.b;
+    EXPECT_TRUE(is_orange(lower)) << lower.r << " " << lower.g << " " << lower.b;
+}
+
+TEST(SurfacePicture, NearerSurfaceHidesTheFartherWhateverTheirOrder) {
+    const TempDir dir;
+    SurfaceView view;
+    view.azimuth = 0.0;  // looking along −x: the sphere at x = 2 is the nearer
+    view.elevation = 0.0;
+    const Surface near = sphere({2.0, 0.0, 0.0}, 1.0, 3);
+    const Surface far = sphere({-2.0, 0.0, 0.0}, 1.0, 3);
+    const std::vector<Surface> near_first = {near, far};
+    const std::vector<Surface> far_first = {far, near};
+    save_surface_picture(near_first, dir.path() / "near_first.png", view);
+    save_surface_picture(far_first, dir.path() / "far_first.png", view);
+    const Rgb a = pixel(read_png(dir.path() / "near_first.png").get(), side / 2, side / 2);
+    const Rgb b = pixel(read_png(dir.path() / "far_first.png").get(), side / 2, side / 2);
+    EXPECT_TRUE(is_blue(a)) << a.r << " " << a.g << " " << a.b;
+    EXPECT_TRUE(is_orange(b)) << b.r << " " << b.g << " " << b.b;
+}
+
+TEST(SurfacePicture, PngHasTheViewsSizeAndATitleAtTheTop) {
+    const TempDir dir;
+    SurfaceView view;
+    view.width = 640;
+    view.height = 400;
+    save_surface_picture(box_surface({0.0, 0.0, 0.0}, {1.0, 2.0, 0.5}, 3), dir.path() / "a.png",
+                         view);
+    view.title = "a box";
+    save_surface_picture(box_surface({0.0, 0.0, 0.0}, {1.0, 2.0, 0.5}, 3), dir.path() / "b.png",
+                         view);
+    const ImagePtr plain = read_png(dir.path() / "a.png");
+    const ImagePtr titled = read_png(dir.path() / "b.png");
+    for (cairo_surface_t* image : {plain.get(), titled.get()}) {
+        EXPECT_EQ(cairo_image_surface_get_width(image), 640);
+        EXPECT_EQ(cairo_image_surface_get_height(image), 400);
+        EXPECT_FALSE(pixel(image, 320, 220).is_background());
+    }
+    // The title's black letters in the band above the margin (20 pixels: 5 % of 400).
+    auto has_dark_pixel_on_top = [](cairo_surface_t* image) {
+        for (int y = 0; y < 20; ++y)
+            for (int x = 0; x < 640; ++x)
+                if (pixel(image, x, y).brightness() < 64) return true;
+        return false;
+    };
+    EXPECT_FALSE(has_dark_pixel_on_top(plain.get()));
+    EXPECT_TRUE(has_dark_pixel_on_top(titled.get()));
+}
+
+TEST(SurfacePicture, WritesSvg) {
+    const TempDir dir;
+    SurfaceView view;
+    view.title = "sphere";
+    save_surface_picture(sphere({0.0, 0.0, 0.0}, 1.0, 2), dir.path() / "sphere.SVG", view);
+    const std::string svg = slurp(dir.path() / "sphere.SVG");
+    EXPECT_TRUE(svg.starts_with("<?xml") || svg.starts_with("<svg")) << svg.substr(0, 40);
+    EXPECT_NE(svg.find("</svg>"), std::string::npos);
+}
+
+TEST(SurfacePicture, SameInputGivesTheSameBytes) {
+    const TempDir dir;
+    const std::vector<Surface> surfaces = {torus({0.0, 0.0, 0.0}, 1.0, 0.4, 48, 16), Surface{},
+                                           sphere({0.0, 0.0, 0.5}, 0.5, 3)};
+    save_surface_picture(surfaces, dir.path() / "a.png");
+    save_surface_picture(surfaces, dir.path() / "b.png");
+    const std::string a = slurp(dir.path() / "a.png");
+    EXPECT_GT(a.size(), 1000u);
+    EXPECT_EQ(a, slurp(dir.path() / "b.png"));
+}
+
+TEST(SurfacePicture, EdgesAreDrawnOnlyOnSurfacesOfAtMostTwentyThousandTriangles) {
+    const TempDir dir;
+    SurfaceView plain;
+    plain.edges = false;
+    auto differ = [&](const Surface& s) {
+        save_surface_picture(s, dir.path() / "edges.png");
+        save_surface_picture(s, dir.path() / "plain.png", plain);
+        return slurp(dir.path() / "edges.png") != slurp(dir.path() / "plain.png");
+    };
+    EXPECT_TRUE(differ(sphere({0.0, 0.0, 0.0}, 1.0, 2)));   // 320 triangles
+    EXPECT_FALSE(differ(sphere({0.0, 0.0, 0.0}, 1.0, 6)));  // 81920 triangles
+}
+
+TEST(SurfacePicture, RejectsBadInputAndWritesNothing) {
+    const TempDir dir;
+    const Surface ball = sphere({0.0, 0.0, 0.0}, 1.0, 1);
+    EXPECT_THROW(save_surface_picture(ball, dir.path() / "ball.jpg"), InvalidInput);
+    EXPECT_THROW(save_surface_picture(ball, dir.path() / "ball"), InvalidInput);
+    EXPECT_THROW(save_surface_picture(Surface{}, dir.path() / "empty.png"), InvalidInput);
+    const std::vector<Surface> empties(2);
+    EXPECT_THROW(save_surface_picture(empties, dir.path() / "empties.png"), InvalidInput);
+    EXPECT_THROW(save_surface_picture(std::span<const Surface>{}, dir.path() / "none.png"),
+                 InvalidInput);
+
+    for (const auto& [w, h] : {std::pair{0, 800}, {800, -1}, {40000, 800}}) {
+        SurfaceView view;
+        view.width = w;
+        view.height = h;
+        EXPECT_THROW(save_surface_picture(ball, dir.path() / "size.png", view), InvalidInput);
+    }
+    SurfaceView tilted;
+    tilted.elevation = NAN;
+    EXPECT_THROW(save_surface_picture(ball, dir.path() / "nan.png", tilted), InvalidInput);
+
+    Surface bad_index = ball;
+    bad_index.triangles[3][1] = static_cast<std::uint32_t>(ball.vertices.size());
+    EXPECT_THROW(save_surface_picture(bad_index, dir.path() / "index.png"), InvalidInput);
+    Surface bad_vertex = ball;
+    bad_vertex.vertices[0].z = INFINITY;
+    EXPECT_THROW(save_surface_picture(bad_vertex, dir.path() / "vertex.png"), InvalidInput);
+    EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+}  // namespace
+}  // namespace slc
