@@ -39,7 +39,12 @@ struct State {
     double t = 0.0;  ///< the iterate being evaluated
 };
 
-void check_bracket(const Bracket& b, std::size_t i) {
+/// The largest magnitude of a coordinate of p.
+double largest_magnitude(Vec2 p) { return std::max(std::abs(p.x), std::abs(p.y)); }
+double largest_magnitude(Vec3 p) { return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}); }
+
+template <class Point>
+void check_bracket(const BasicBracket<Point>& b, std::size_t i) {
     const bool finite =
         is_finite(b.a) && is_finite(b.b) && std::isfinite(b.ga) && std::isfinite(b.gb);
     if (!finite || !((b.ga <= 0.0 && b.gb >= 0.0) || (b.ga >= 0.0 && b.gb <= 0.0))) {
@@ -50,13 +55,13 @@ void check_bracket(const Bracket& b, std::size_t i) {
     }
 }
 
-State initial_state(const Bracket& br, double jump_slope) {
+template <class Point>
+State initial_state(const BasicBracket<Point>& br, double jump_slope) {
     State s;
     s.g_lo = s.f_lo = s.fa = br.ga;
     s.g_hi = s.f_hi = s.fb = s.fc = br.gb;
     const double length = distance(br.a, br.b);
-    const double scale =
-        std::max({std::abs(br.a.x), std::abs(br.a.y), std::abs(br.b.x), std::abs(br.b.y), length});
+    const double scale = std::max({largest_magnitude(br.a), largest_magnitude(br.b), length});
     s.tol =
         length > 0.0 ? stall_ulps * std::numeric_limits<double>::epsilon() * scale / length : 1.0;
     s.jump = jump_slope * length;
@@ -138,7 +143,8 @@ std::optional<double> brent_next(State& s) {
 
 /// The point reported when a bracket stalls (G jumps across zero): the better end of the tiny
 /// bracket that was evaluated (never a given end, so the root stays strictly inside).
-Root stalled_root(const State& s, const Bracket& br, RootMethod method) {
+template <class Point>
+BasicRoot<Point> stalled_root(const State& s, const BasicBracket<Point>& br, RootMethod method) {
     double t, g;
     if (method == RootMethod::brent) {
         const bool b_given = s.b == 0.0 || s.b == 1.0;
@@ -152,10 +158,10 @@ Root stalled_root(const State& s, const Bracket& br, RootMethod method) {
     return {br.a + t * (br.b - br.a), t, g, s.steps, false};
 }
 
-}  // namespace
-
-std::vector<Root> find_roots(BatchFunctionRef g, std::span<const Bracket> brackets,
-                             const RootOptions& options) {
+/// find_roots for points of either dimension.
+template <class Point, class G>
+std::vector<BasicRoot<Point>> find_roots_in(G g, std::span<const BasicBracket<Point>> brackets,
+                                            const RootOptions& options) {
     if (!(options.eta > 0.0) || !std::isfinite(options.eta)) {
         throw InvalidInput(fmt::format("find_roots: eta must be positive, got {}", options.eta));
     }
@@ -164,10 +170,10 @@ std::vector<Root> find_roots(BatchFunctionRef g, std::span<const Bracket> bracke
             fmt::format("find_roots: jump_slope must be positive, got {}", options.jump_slope));
     }
     std::vector<State> states(brackets.size());
-    std::vector<Root> roots(brackets.size());
+    std::vector<BasicRoot<Point>> roots(brackets.size());
     std::vector<std::size_t> active;
     for (std::size_t i = 0; i < brackets.size(); ++i) {
-        const Bracket& br = brackets[i];
+        const auto& br = brackets[i];
         check_bracket(br, i);
         states[i] = initial_state(br, options.jump_slope);
         if (std::abs(br.ga) <= options.eta || std::abs(br.gb) <= options.eta) {
@@ -178,7 +184,7 @@ std::vector<Root> find_roots(BatchFunctionRef g, std::span<const Bracket> bracke
         }
     }
     const bool brent = options.method == RootMethod::brent;
-    std::vector<Vec2> points;
+    std::vector<Point> points;
     std::vector<double> values;
     while (!active.empty()) {
         // Next iterates; stalled brackets leave the round.
@@ -218,6 +224,18 @@ std::vector<Root> find_roots(BatchFunctionRef g, std::span<const Bracket> bracke
         active.resize(kept);
     }
     return roots;
+}
+
+}  // namespace
+
+std::vector<Root> find_roots(BatchFunctionRef g, std::span<const Bracket> brackets,
+                             const RootOptions& options) {
+    return find_roots_in<Vec2>(g, brackets, options);
+}
+
+std::vector<Root3> find_roots(SpaceFunctionRef g, std::span<const Bracket3> brackets,
+                              const RootOptions& options) {
+    return find_roots_in<Vec3>(g, brackets, options);
 }
 
 }  // namespace slc

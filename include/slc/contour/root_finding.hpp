@@ -1,9 +1,9 @@
 /// @file
-/// Bracketed root finding along segments of the plane, many brackets at once (paper §2.1
-/// "Bisection" and §2.2 "Bisect"). The paper bisects; by default we use Brent's method, which keeps
-/// the bracket like bisection but converges superlinearly on smooth G (secant and inverse quadratic
-/// steps), and falls back to bisection steps whenever interpolation does not shrink the bracket
-/// fast enough, so that it is never much slower than bisection on a bad G.
+/// Bracketed root finding along segments of the plane or of space, many brackets at once (paper
+/// §2.1 "Bisection" and §2.2 "Bisect"). The paper bisects; by default we use Brent's method, which
+/// keeps the bracket like bisection but converges superlinearly on smooth G (secant and inverse
+/// quadratic steps), and falls back to bisection steps whenever interpolation does not shrink the
+/// bracket fast enough, so that it is never much slower than bisection on a bad G.
 #pragma once
 
 #include <limits>
@@ -12,6 +12,7 @@
 
 #include "slc/contour/implicit_function.hpp"
 #include "slc/core/vec2.hpp"
+#include "slc/core/vec3.hpp"
 
 namespace slc {
 
@@ -23,12 +24,17 @@ enum class RootMethod {
 };
 
 /// A segment [a, b] on whose ends G has opposite signs: ga = G(a), gb = G(b), ga·gb ≤ 0.
-struct Bracket {
-    Vec2 a;           ///< one end
-    Vec2 b;           ///< the other end
+template <class Point>
+struct BasicBracket {
+    Point a;          ///< one end
+    Point b;          ///< the other end
     double ga = 0.0;  ///< G(a)
     double gb = 0.0;  ///< G(b), of the opposite sign (or zero)
 };
+/// A bracket in the plane.
+using Bracket = BasicBracket<Vec2>;
+/// A bracket in space.
+using Bracket3 = BasicBracket<Vec3>;
 
 /// Tolerances of find_roots.
 struct RootOptions {
@@ -41,8 +47,9 @@ struct RootOptions {
 };
 
 /// The result for one bracket.
-struct Root {
-    Vec2 point;           ///< a + t (b − a)
+template <class Point>
+struct BasicRoot {
+    Point point;          ///< a + t (b − a)
     double t = 0.0;       ///< in (0, 1); 0 or 1 only when |G| ≤ η at that given end
     double value = 0.0;   ///< G(point)
     int evaluations = 0;  ///< G evaluations spent on this bracket
@@ -51,6 +58,10 @@ struct Root {
     /// the better end of that bracket.
     bool converged = false;
 };
+/// A root in the plane.
+using Root = BasicRoot<Vec2>;
+/// A root in space.
+using Root3 = BasicRoot<Vec3>;
 
 /// Shrinks every bracket until G at its current iterate satisfies |G| ≤ η, keeping a sign change
 /// inside at every step. Each round evaluates the iterates of all unfinished brackets in one batch
@@ -64,5 +75,8 @@ struct Root {
 /// eta is not positive.
 std::vector<Root> find_roots(BatchFunctionRef g, std::span<const Bracket> brackets,
                              const RootOptions& options);
+/// The same in space.
+std::vector<Root3> find_roots(SpaceFunctionRef g, std::span<const Bracket3> brackets,
+                              const RootOptions& options);
 
 }  // namespace slc

@@ -61,6 +61,12 @@ TEST(Orientation3, DecidesPointsNearlyOnAPlane) {
     const double nz = cross(b - a, c - a).z;
     EXPECT_EQ(orientation(a, b, c, Vec3{b.x, b.y, std::nextafter(b.z, 10.0)}), nz > 0 ? 1 : -1);
     EXPECT_EQ(orientation(a, b, c, Vec3{b.x, b.y, std::nextafter(b.z, -10.0)}), nz > 0 ? -1 : 1);
+    // Magnitudes far apart, so that the differences of the points are not exact doubles: the
+    // plane z = 0, whose normal ((q − p) × (r − p)).z = −6·2^60 − 26 is negative.
+    const Vec3 p{0x1p60, 0, 0}, q{-3, 1, 0}, r{5, 7, 0};
+    EXPECT_EQ(orientation(p, q, r, Vec3{1, 2, 0}), 0);
+    EXPECT_EQ(orientation(p, q, r, Vec3{1, 2, 0x1p-80}), -1);
+    EXPECT_EQ(orientation(p, q, r, Vec3{1, 2, -0x1p-80}), 1);
 }
 
 /// The nearest point by another construction: the projection on the plane when it falls inside

@@ -1,0 +1,66 @@
+/// @file
+/// Contouring in space (paper §2 with d = 3, DESIGN §8): the zero surface of a function G given
+/// only by evaluation, as a closed, oriented triangle surface. Topology resolution as in the
+/// plane: an octree split where |G| is small against γ times the cell's edge (γ doubled until
+/// the tree is 2:1 balanced), its conforming tetrahedral mesh (tetrahedralize()), G at the mesh
+/// vertices, vertices with |G| ≤ η moved off zero, and the zero set of the piecewise-linear
+/// interpolant: one or two triangles a tetrahedron, their vertices the roots of G on the
+/// tetrahedra's edges (find_roots). A root depends only on its edge, which the tetrahedra around
+/// it share, so the surface is watertight and manifold by construction, and its triangles face
+/// the side where G > 0 (outward for a signed distance negative inside).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+
+#include "slc/contour/implicit_function.hpp"
+#include "slc/contour/root_finding.hpp"
+#include "slc/core/box3.hpp"
+#include "slc/geometry/surface.hpp"
+
+namespace slc {
+
+/// Parameters of contour_surface (paper Table 4, as ContourOptions in the plane).
+struct SurfaceContourOptions {
+    /// K: deepest level of the topology octree, 0..max_tetrahedralized_depth.
+    int depth = 5;
+    /// η > 0: root-finding tolerance, |G| ≤ η at every vertex.
+    double eta = 1e-10;
+    /// γ > 0: starting estimate of the gradient bound |∇G| ≤ γ, doubled until the tree balances.
+    double gamma = 1.0;
+    /// How brackets are shrunk.
+    RootMethod root_method = RootMethod::brent;
+};
+
+/// What a surface contour cost and what it produced.
+struct SurfaceContourStats {
+    std::size_t cells = 0;              ///< cells of the topology octree, all levels
+    std::size_t leaves = 0;             ///< leaves of the octree
+    std::size_t tetrahedra = 0;         ///< tetrahedra of its mesh
+    std::size_t triangles = 0;          ///< triangles of the result
+    std::size_t vertices = 0;           ///< vertices of the result
+    std::size_t g_evals = 0;            ///< all evaluations of G, each point counted once
+    std::size_t g_evals_tree = 0;       ///< of which: the tree, the mesh vertices and perturbation
+    std::size_t g_evals_roots = 0;      ///< of which: root finding on the tetrahedra's edges
+    double g_evals_per_vertex = 0.0;    ///< g_evals / vertices; 0 for an empty result
+    double gamma = 0.0;                 ///< the gradient bound at which the tree balanced
+    std::size_t perturbed = 0;          ///< mesh vertices moved off |G| ≤ η
+    std::size_t unconverged_roots = 0;  ///< roots where G jumps across zero (|G| > η there)
+};
+
+/// A contoured surface and its statistics.
+struct SurfaceContour {
+    Surface surface;
+    SurfaceContourStats stats;
+};
+
+/// Contours the zero set of G inside domain (a cube). The result is a closed surface (possibly
+/// empty, possibly several components) whose triangles face G > 0; its vertices satisfy
+/// |G| ≤ η. Deterministic: the same for any thread count. Throws InvalidInput for bad options
+/// or a domain that is not a cube; LeftDomain when the zero set reaches the domain's boundary;
+/// NumericalFailure when G is not finite somewhere it is evaluated, or stays within η of zero
+/// around a mesh vertex.
+SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
+                               const SurfaceContourOptions& options);
+
+}  // namespace slc

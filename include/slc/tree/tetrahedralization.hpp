@@ -1,0 +1,48 @@
+/// @file
+/// Conforming tetrahedral mesh of a 2:1-balanced octree (paper §2.1 in 3D, "tetrahedra replace
+/// triangles"): the 3D counterpart of triangulate(). Each leaf is a set of cones from its centre
+/// over the triangles of its six faces. A face is split into its four quarters when the
+/// neighbour across it is finer; each face (or quarter) is a fan from its centre over its
+/// boundary ring, which holds its four corners and every leaf corner lying on its edges. A face
+/// shared by two leaves is seen the same way from both sides, so every triangle of the mesh has
+/// exactly two tetrahedra (one on the root box's faces) and no vertex lies inside another
+/// tetrahedron's edge or face.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "slc/core/vec3.hpp"
+#include "slc/tree/octree.hpp"
+
+namespace slc {
+
+/// Vertices, positively oriented tetrahedra, and for each cell the range of its tetrahedra.
+struct Tetrahedralization {
+    /// Corners, face centres and centres of the leaves.
+    std::vector<Vec3> vertices;
+    /// Integer coordinates of each vertex on the grid of half the finest cell edge (the root
+    /// box's low corner at 0): equal for equal points, whichever cell names them.
+    std::vector<std::array<std::uint32_t, 3>> grid;
+    /// Vertex indices, (b − a) · ((c − a) × (d − a)) > 0. The first vertex of each is the
+    /// centre of its leaf.
+    std::vector<std::array<std::uint32_t, 4>> tetrahedra;
+    /// Tetrahedra of cell c are [cell_offsets[c], cell_offsets[c + 1]); empty for inner cells.
+    std::vector<std::uint32_t> cell_offsets;
+
+    /// The key of a grid point: its three coordinates in 21 bits each.
+    static std::uint64_t key(std::uint64_t gx, std::uint64_t gy, std::uint64_t gz) {
+        return (gx << 42) | (gy << 21) | gz;
+    }
+};
+
+/// The deepest octree tetrahedralize() takes: grid coordinates (half the finest edge) fit 21 bits.
+inline constexpr int max_tetrahedralized_depth = 20;
+
+/// Tetrahedralizes a balanced octree: 24 to 96 tetrahedra a leaf (24 when all six neighbours are
+/// leaves of its size). Cost O(leaves · depth). Throws InvalidInput if the tree is not 2:1
+/// balanced or deeper than max_tetrahedralized_depth.
+Tetrahedralization tetrahedralize(const Octree& tree);
+
+}  // namespace slc

@@ -1,0 +1,179 @@
+#include "slc/contour/surface_contour.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+#include "slc/distance/surface_distance_tree.hpp"
+#include "slc/geometry/surface_shapes.hpp"
+#include "slc/geometry/validate_surface.hpp"
+
+namespace slc {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+/// A sphere's signed distance.
+auto sphere_g(Vec3 c, double r) {
+    return pointwise<Vec3>([c, r](Vec3 x) { return distance(x, c) - r; });
+}
+
+/// A torus about the z axis: major radius R, minor r.
+auto torus_g(double big, double small) {
+    return pointwise<Vec3>([big, small](Vec3 x) {
+        const double q = std::hypot(x.x, x.y) - big;
+        return std::hypot(q, x.z) - small;
+    });
+}
+
+/// Each edge in exactly two triangles, once each way; returns false with a message otherwise.
+::testing::AssertionResult closed_and_oriented(const Surface& s) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+    for (const auto& t : s.triangles)
+        for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+    for (const auto& [e, count] : directed) {
+        if (count != 1) return ::testing::AssertionFailure() << "edge used twice the same way";
+        if (!directed.contains({e.second, e.first}))
+            return ::testing::AssertionFailure() << "an open edge";
+    }
+    return ::testing::AssertionSuccess();
+}
+
+/// The largest |G| at the surface's vertices, edge midpoints and centroids, for exact distance.
+template <class F>
+double largest_error(const Surface& s, F exact) {
+    double worst = 0.0;
+    for (std::size_t t = 0; t < s.size(); ++t) {
+        const Triangle3 tri = s.triangle(t);
+        for (Vec3 p : {tri.a, 0.5 * (tri.a + tri.b), 0.5 * (tri.b + tri.c), 0.5 * (tri.c + tri.a),
+                       (tri.a + tri.b + tri.c) / 3.0})
+            worst = std::max(worst, std::abs(exact(p)));
+    }
+    return worst;
+}
+
+TEST(SurfaceContour, SphereIsAValidClosedSurfaceFacingOutward) {
+    const Vec3 c{0.03, -0.02, 0.01};
+    const auto g = sphere_g(c, 0.6);
+    const SurfaceContour got =
+        contour_surface(g, Box3::centered_cube(1.0), {.depth = 5, .eta = 1e-12});
+    ASSERT_GT(got.surface.size(), 1000u);
+    EXPECT_TRUE(closed_and_oriented(got.surface));
+    // prepare_surface finds nothing to refuse (degenerate, crossing or non-manifold triangles)
+    // and nothing to turn.
+    const PreparedSurface checked = prepare_surface(got.surface);
+    EXPECT_TRUE(checked.notes.empty());
+    EXPECT_EQ(component_count(got.surface), 1u);
+    EXPECT_EQ(euler_characteristic(got.surface), 2);
+    const double exact = 4.0 / 3.0 * pi * 0.6 * 0.6 * 0.6;
+    EXPECT_GT(volume(got.surface), 0.0);
+    EXPECT_NEAR(volume(got.surface), exact, 0.02 * exact);
+    // Every vertex is a root: |G| ≤ η.
+    for (const Vec3 v : got.surface.vertices) EXPECT_LE(std::abs(distance(v, c) - 0.6), 1e-12);
+    EXPECT_EQ(got.stats.unconverged_roots, 0u);
+    EXPECT_EQ(got.stats.triangles, got.surface.size());
+    EXPECT_EQ(got.stats.g_evals, got.stats.g_evals_tree + got.stats.g_evals_roots);
+}
+
+TEST(SurfaceContour, TorusKeepsItsHandleAndTwoSpheresStayApart) {
+    const auto torus = torus_g(0.55, 0.2);
+    const SurfaceContour ring = contour_surface(torus, Box3::centered_cube(1.0), {.depth = 5});
+    EXPECT_TRUE(closed_and_oriented(ring.surface));
+    EXPECT_TRUE(prepare_surface(ring.surface).notes.empty());
+    EXPECT_EQ(genus(ring.surface), 1);
+    EXPECT_EQ(component_count(ring.surface), 1u);
+
+    // Two spheres 0.04 apart: the gradient bound splits the gap down to the finest cells.
+    const auto two = pointwise<Vec3>([](Vec3 x) {
+        return std::min(distance(x, {-0.32, 0, 0}) - 0.3, distance(x, {0.32, 0, 0}) - 0.3);
+    });
+    const SurfaceContour pair = contour_surface(two, Box3::centered_cube(1.0), {.depth = 6});
+    EXPECT_TRUE(closed_and_oriented(pair.surface));
+    EXPECT_TRUE(prepare_surface(pair.surface).notes.empty());
+    EXPECT_EQ(component_count(pair.surface), 2u);
+    EXPECT_EQ(euler_characteristic(pair.surface), 4);
+}
+
+TEST(SurfaceContour, LinearContourConvergesAtSecondOrder) {
+    // The piecewise-linear zero set is within O(h²) of the sphere: the largest |G| over vertices,
+    // edge midpoints and centroids falls about fourfold a level.
+    const Vec3 c{0.011, 0.007, -0.013};
+    const auto g = sphere_g(c, 0.55);
+    std::vector<double> errors;
+    for (int depth = 4; depth <= 6; ++depth) {
+        const SurfaceContour got = contour_surface(g, Box3::centered_cube(1.0), {.depth = depth});
+        errors.push_back(largest_error(got.surface, [&](Vec3 p) { return distance(p, c) - 0.55; }));
+    }
+    for (std::size_t k = 1; k < errors.size(); ++k) {
+        const double order = std::log2(errors[k - 1] / errors[k]);
+        EXPECT_GT(order, 1.6) << "levels " << k + 3 << " to " << k + 4 << ": errors "
+                              << errors[k - 1] << ", " << errors[k];
+    }
+}
+
+TEST(SurfaceContour, ContoursTheExactDistanceOfABoxSurface) {
+    // The signed distance of a triangle surface, from the distance tree: the contour is closed,
+    // oriented and encloses the box's volume up to the corners the tetrahedra cut.
+    const Surface box = box_surface({-0.5, -0.4, -0.3}, {0.45, 0.35, 0.5}, 4);
+    const SurfaceDistanceTree tree(box, Box3::centered_cube(1.0), {.depth = 4});
+    const auto g = pointwise<Vec3>([&](Vec3 x) { return tree.closest_point(x).distance; });
+    const SurfaceContour got = contour_surface(g, Box3::centered_cube(1.0), {.depth = 5});
+    EXPECT_TRUE(closed_and_oriented(got.surface));
+    EXPECT_TRUE(prepare_surface(got.surface).notes.empty());
+    EXPECT_EQ(euler_characteristic(got.surface), 2);
+    const double exact = 0.95 * 0.75 * 0.8;
+    EXPECT_NEAR(volume(got.surface), exact, 0.03 * exact);
+    for (const Vec3 v : got.surface.vertices)
+        EXPECT_LE(std::abs(tree.closest_point(v).distance), 1e-10);
+}
+
+TEST(SurfaceContour, NoZeroGivesAnEmptySurface) {
+    const auto g = pointwise<Vec3>([](Vec3 x) { return 1.0 + norm(x); });
+    const SurfaceContour got = contour_surface(g, Box3::centered_cube(1.0), {.depth = 4});
+    EXPECT_TRUE(got.surface.triangles.empty());
+    EXPECT_EQ(got.stats.vertices, 0u);
+    EXPECT_EQ(got.stats.g_evals_per_vertex, 0.0);
+}
+
+TEST(SurfaceContour, ZeroSetAtTheBoundaryIsLeftDomain) {
+    const auto g = sphere_g({0.5, 0, 0}, 0.7);  // pokes out through x = 1
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.depth = 4}), LeftDomain);
+}
+
+TEST(SurfaceContour, VertexOnTheZeroSetIsMovedOff) {
+    // The plane-like sphere through tree vertices: G = 0 exactly at grid points, perturbed.
+    const auto g = sphere_g({0, 0, 0}, 0.5);
+    const SurfaceContour got = contour_surface(g, Box3::centered_cube(1.0), {.depth = 4});
+    EXPECT_GT(got.stats.perturbed, 0u);
+    EXPECT_TRUE(closed_and_oriented(got.surface));
+    EXPECT_TRUE(prepare_surface(got.surface).notes.empty());
+    EXPECT_EQ(euler_characteristic(got.surface), 2);
+}
+
+TEST(SurfaceContour, BadInputAndNonFiniteValues) {
+    const auto g = sphere_g({0, 0, 0}, 0.5);
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.depth = -1}), InvalidInput);
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.depth = 21}), InvalidInput);
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.eta = 0.0}), InvalidInput);
+    EXPECT_THROW(contour_surface(g, Box3{{0, 0, 0}, {1, 2, 1}}, {}), InvalidInput);
+    const auto nan = pointwise<Vec3>([](Vec3 x) { return x.x > 0.3 ? std::nan("") : x.x; });
+    EXPECT_THROW(contour_surface(nan, Box3::centered_cube(1.0), {.depth = 3}), NumericalFailure);
+}
+
+TEST(SurfaceContour, SameSurfaceForAnyThreadCount) {
+    const auto g = torus_g(0.5, 0.22);
+    set_thread_count(1);
+    const SurfaceContour one = contour_surface(g, Box3::centered_cube(1.0), {.depth = 5});
+    set_thread_count(2);
+    const SurfaceContour two = contour_surface(g, Box3::centered_cube(1.0), {.depth = 5});
+    set_thread_count(0);
+    EXPECT_EQ(one.surface.vertices, two.surface.vertices);
+    EXPECT_EQ(one.surface.triangles, two.surface.triangles);
+}
+
+}  // namespace
+}  // namespace slc

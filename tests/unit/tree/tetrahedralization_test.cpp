@@ -1,0 +1,127 @@
+#include "slc/tree/tetrahedralization.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+
+#include "slc/core/error.hpp"
+
+namespace slc {
+namespace {
+
+double signed_volume(const Tetrahedralization& mesh, const std::array<std::uint32_t, 4>& t) {
+    const Vec3 a = mesh.vertices[t[0]];
+    return dot(mesh.vertices[t[1]] - a, cross(mesh.vertices[t[2]] - a, mesh.vertices[t[3]] - a)) /
+           6.0;
+}
+
+/// Every triangle of the tetrahedra's faces, counted; conforming means each inner triangle twice
+/// and each triangle on the root box's boundary once.
+void expect_conforming(const Octree& tree, const Tetrahedralization& mesh) {
+    std::map<std::array<std::uint32_t, 3>, int> faces;
+    for (const auto& t : mesh.tetrahedra) {
+        for (int skip = 0; skip < 4; ++skip) {
+            std::array<std::uint32_t, 3> f{};
+            for (int k = 0, j = 0; k < 4; ++k)
+                if (k != skip) f[j++] = t[k];
+            std::sort(f.begin(), f.end());
+            ++faces[f];
+        }
+    }
+    const Box3& root = tree.root_box();
+    auto on_boundary = [&](std::uint32_t v) {
+        const Vec3 p = mesh.vertices[v];
+        for (int a = 0; a < 3; ++a)
+            if (p[a] == root.lo[a] || p[a] == root.hi[a]) return true;
+        return false;
+    };
+    for (const auto& [f, n] : faces) {
+        if (n == 2) continue;
+        ASSERT_EQ(n, 1) << "a triangle in more than two tetrahedra";
+        // A boundary triangle has its three vertices on one face of the root box.
+        bool same_face = false;
+        for (int a = 0; a < 3; ++a) {
+            for (double side : {root.lo[a], root.hi[a]}) {
+                same_face |= mesh.vertices[f[0]][a] == side && mesh.vertices[f[1]][a] == side &&
+                             mesh.vertices[f[2]][a] == side;
+            }
+        }
+        ASSERT_TRUE(on_boundary(f[0]) && same_face) << "a triangle with one tetrahedron inside";
+    }
+}
+
+TEST(Tetrahedralization, UniformTreeIs24TetrahedraPerLeafFillingTheBox) {
+    Octree tree(Box3::centered_cube(1.0), 2);
+    tree.split(0);
+    for (std::uint32_t c = 1; c <= 8; ++c) tree.split(c);
+    const Tetrahedralization mesh = tetrahedralize(tree);
+    EXPECT_EQ(mesh.tetrahedra.size(), 64u * 24u);
+    double volume = 0.0;
+    for (const auto& t : mesh.tetrahedra) {
+        const double v = signed_volume(mesh, t);
+        EXPECT_GT(v, 0.0);
+        volume += v;
+    }
+    EXPECT_NEAR(volume, 8.0, 1e-12);
+    // Corners (5³), face centres (3 · 4 · 4 · 5) and leaf centres (4³), each once.
+    EXPECT_EQ(mesh.vertices.size(), 125u + 240u + 64u);
+    expect_conforming(tree, mesh);
+}
+
+TEST(Tetrahedralization, RandomBalancedTreesConform) {
+    std::mt19937 rng(7);
+    for (int trial = 0; trial < 6; ++trial) {
+        Octree tree(Box3{{-1.0, -0.5, 0.0}, {1.0, 1.5, 2.0}}, 5);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        for (std::size_t c = 0; c < tree.size(); ++c) {
+            const int level = tree.cell(c).level;
+            if (level < 5 && u(rng) < (level < 2 ? 0.9 : 0.25)) tree.split(c);
+        }
+        tree.balance();
+        const Tetrahedralization mesh = tetrahedralize(tree);
+        double volume = 0.0;
+        for (std::size_t c = 0; c < tree.size(); ++c) {
+            const auto first = mesh.cell_offsets[c], last = mesh.cell_offsets[c + 1];
+            EXPECT_EQ(last > first, tree.is_leaf(c));
+            for (auto t = first; t < last; ++t) {
+                const double v = signed_volume(mesh, mesh.tetrahedra[t]);
+                ASSERT_GT(v, 0.0);
+                volume += v;
+                // The first vertex is the leaf's centre, and every vertex lies in the leaf.
+                EXPECT_EQ(mesh.vertices[mesh.tetrahedra[t][0]], tree.box(c).center());
+                for (std::uint32_t v4 : mesh.tetrahedra[t])
+                    EXPECT_TRUE(tree.box(c).contains(mesh.vertices[v4]));
+            }
+        }
+        // The sum of some 10^4 volumes, each rounded.
+        EXPECT_NEAR(volume, 8.0, 1e-10);
+        expect_conforming(tree, mesh);
+    }
+}
+
+TEST(Tetrahedralization, GridCoordinatesNameTheVertices) {
+    Octree tree(Box3::centered_cube(1.0), 3);
+    tree.split(0);
+    tree.split(1);
+    tree.balance();
+    const Tetrahedralization mesh = tetrahedralize(tree);
+    const double step = 2.0 / 16.0;  // half the finest edge, 2 / 2^3 / 2
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+        for (int a = 0; a < 3; ++a) EXPECT_EQ(mesh.vertices[v][a], -1.0 + mesh.grid[v][a] * step);
+    }
+}
+
+TEST(Tetrahedralization, RefusesAnUnbalancedTree) {
+    Octree tree(Box3::centered_cube(1.0), 4);
+    const std::uint32_t low = tree.split(0);      // cells 1..8 at level 1
+    const std::uint32_t inner = tree.split(low);  // cell 1's children, level 2
+    // Cell 1's child on the +x side, split: level 3 cells beside cell 2, a level 1 leaf.
+    tree.split(inner + 1);
+    ASSERT_FALSE(tree.is_balanced());
+    EXPECT_THROW(tetrahedralize(tree), InvalidInput);
+}
+
+}  // namespace
+}  // namespace slc
