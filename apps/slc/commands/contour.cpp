@@ -14,11 +14,13 @@
 #include "commands/common.hpp"
 #include "commands/memory_budget.hpp"
 #include "commands/output_folder.hpp"
+#include "commands/surface_contour.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
+#include "slc/io/surface_files.hpp"
 #include "slc/tree/triangulation.hpp"
 
 namespace slc::cli {
@@ -26,6 +28,7 @@ namespace {
 
 struct ContourCommandOptions {
     std::string initial;
+    std::string function;
     int depth = 0;
     std::optional<double> eps;
     int refine = 0;
@@ -204,7 +207,13 @@ void add_contour_command(CLI::App& app) {
         "final.json, summary.json (cells, segments, mean segment length, error = max |F| over "
         "vertices and segment midpoints, cpu_s, g_evals, g_evals_per_vertex) and final.svg/.png "
         "(tree and contour)");
-    cmd->add_option("--initial", o->initial, "Interface file (JSON)")->required();
+    auto* initial = cmd->add_option(
+        "--initial", o->initial,
+        "Interface file (JSON), or a closed surface (.obj, .stl, .ply) contoured in space");
+    auto* function = cmd->add_option(
+        "--function", o->function,
+        "Instead of --initial, a built-in implicit surface in [-1, 1]^3: sphere, torus, cassini");
+    initial->excludes(function);
     cmd->add_option("-K,--depth", o->depth, "Depth K of the contouring tree")
         ->required()
         ->check(integer_in(0, 20));
@@ -230,7 +239,17 @@ void add_contour_command(CLI::App& app) {
     cmd->add_option("--out", o->out, "Output folder")->required();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
         ->check(integer_in(0, 1024));
-    cmd->callback([o] { run_contour(*o); });
+    cmd->callback([o, initial, function] {
+        if (initial->count() == 0 && function->count() == 0)
+            throw InvalidInput("give --initial FILE or --function NAME");
+        if (!o->function.empty() || is_surface_file(o->initial)) {
+            apply_threads(o->threads);
+            run_surface_contour({o->initial, o->function, o->depth, o->refine, o->eps, o->eta,
+                                 o->domain, o->tree_depth, o->out});
+            return;
+        }
+        run_contour(*o);
+    });
 }
 
 }  // namespace slc::cli

@@ -58,4 +58,28 @@ void check_tree_memory(const std::string& what, int depth, double length, double
         what, bytes(depth) / gib, length, memory / gib, fits));
 }
 
+double octree_cells(int depth, double area, double width) {
+    double cells = 0.0;
+    for (int l = 0; l <= depth; ++l) {
+        const double h = width / std::ldexp(1.0, l);
+        cells += std::min(std::ldexp(1.0, 3 * l), cells_per_width * area / (h * h));
+    }
+    return cells;
+}
+
+void check_octree_memory(const std::string& what, int depth, double area, double width,
+                         double bytes_per_cell) {
+    const double memory = static_cast<double>(physical_memory());
+    if (!(memory > 0.0) || !(area > 0.0) || !(width > 0.0)) return;  // nothing to compare
+    auto bytes = [&](int d) { return octree_cells(d, area, width) * bytes_per_cell; };
+    if (bytes(depth) <= memory) return;
+    int fits = depth;
+    while (fits > 0 && bytes(fits) > memory) --fits;
+    constexpr double gib = 1024.0 * 1024.0 * 1024.0;
+    throw InvalidInput(fmt::format(
+        "{} would need about {:.3g} GiB for its octree along a surface of area {:.4g}, more "
+        "than the {:.3g} GiB of memory this process may use; depth {} fits",
+        what, bytes(depth) / gib, area, memory / gib, fits));
+}
+
 }  // namespace slc::cli

@@ -15,6 +15,9 @@ namespace slc::cli {
 inline constexpr double distance_bytes_per_cell = 40.0;
 inline constexpr double contour_bytes_per_cell = 6000.0;
 inline constexpr double run_bytes_per_cell = 400.0;
+/// slc contour on a surface: the octree, its tetrahedra (24 or more a leaf) and G at their
+/// vertices. Provisional, from the sizes of the arrays: not yet measured as peak memory.
+inline constexpr double surface_contour_bytes_per_cell = 1500.0;
 
 /// Cells of a quadtree refined to `depth` along curves of total length `length` in a square
 /// domain of width `width`: at level l about cells_per_width · length / (width / 2^l) cells (those
@@ -30,5 +33,14 @@ std::uint64_t physical_memory();
 /// physical_memory().
 void check_tree_memory(const std::string& what, int depth, double length, double width,
                        double bytes_per_cell);
+
+/// Cells of an octree refined to `depth` along a surface of area `area` in a cubic domain of
+/// width `width`: at level l about cells_per_width · area / h² cells (h the level's edge), at
+/// most 8^l, summed over the levels.
+double octree_cells(int depth, double area, double width);
+
+/// As check_tree_memory, for an octree along a surface of the given area.
+void check_octree_memory(const std::string& what, int depth, double area, double width,
+                         double bytes_per_cell);
 
 }  // namespace slc::cli

@@ -1,0 +1,179 @@
+// slc contour on a surface: topology resolution in space (contour_surface) of the exact signed
+// distance of a surface file or of a built-in implicit surface, its error against the exact
+// distance, and the files.
+#include "commands/surface_contour.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <functional>
+
+#include "commands/memory_budget.hpp"
+#include "commands/output_folder.hpp"
+#include "slc/contour/implicit_surfaces.hpp"
+#include "slc/contour/surface_contour.hpp"
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+#include "slc/distance/surface_distance_tree.hpp"
+#include "slc/io/interface_json.hpp"
+#include "slc/io/surface_files.hpp"
+#include "slc/io/surface_picture.hpp"
+#include "slc/io/vtk.hpp"
+
+namespace slc::cli {
+namespace {
+
+/// Largest |F| over the vertices, the edge midpoints and the centroids of the triangles.
+struct SurfaceError {
+    double vertices = 0.0;
+    double midpoints = 0.0;
+    double centroids = 0.0;
+};
+
+SurfaceError measure_error(const Surface& s, const std::function<double(Vec3)>& exact) {
+    std::vector<double> v(s.vertices.size()), m(3 * s.size()), c(s.size());
+    parallel_for(
+        s.vertices.size(), [&](std::size_t i) { v[i] = std::abs(exact(s.vertices[i])); },
+        expensive_grain);
+    parallel_for(
+        s.size(),
+        [&](std::size_t t) {
+            const Triangle3 tri = s.triangle(t);
+            for (int k = 0; k < 3; ++k)
+                m[3 * t + k] = std::abs(exact(0.5 * (tri[k] + tri[(k + 1) % 3])));
+            c[t] = std::abs(exact((tri.a + tri.b + tri.c) / 3.0));
+        },
+        expensive_grain);
+    auto largest = [](const std::vector<double>& x) {
+        return x.empty() ? 0.0 : *std::max_element(x.begin(), x.end());
+    };
+    return {largest(v), largest(m), largest(c)};
+}
+
+/// The contoured function, its exact distance where known, the domain and a name for it.
+struct Source {
+    std::string name;
+    Box3 domain;
+    std::optional<Surface> surface;  ///< the input surface, for --initial
+    std::function<double(Vec3)> g;
+    std::function<double(Vec3)> exact;
+};
+
+}  // namespace
+
+void run_surface_contour(const SurfaceContourRequest& r) {
+    if (r.refine != 0) {
+        throw InvalidInput(
+            "--refine: adaptive refinement of surfaces is not available yet; give --refine 0 "
+            "(the linear contour)");
+    }
+    Source source;
+    std::optional<SurfaceDistanceTree> tree;
+    if (!r.function.empty()) {
+        const ImplicitSurface f = implicit_surface(r.function);
+        source.name = r.function;
+        source.domain = r.domain.half_width || r.domain.box
+                            ? resolve_domain3(r.domain, Box3::centered_cube(1.0 / 1.5))
+                            : Box3::centered_cube(1.0);
+        source.g = f.g;
+        source.exact = f.distance;
+    } else {
+        LoadedSurface in = load_surface(r.initial, r.domain);
+        source.name = r.initial;
+        source.domain = in.domain;
+        source.surface = std::move(in.surface);
+    }
+    const double width = source.domain.width();
+    // The octree hugs the surface: about area / h² cells at the finest level. A function's area
+    // is not known before it is contoured; six faces of the domain bound any reasonable one.
+    const double surface_area = source.surface ? area(*source.surface) : 6.0 * width * width;
+    check_octree_memory(fmt::format("--depth {}", r.depth), r.depth, surface_area, width,
+                        surface_contour_bytes_per_cell);
+    nlohmann::json summary = {
+        {"command", "contour"},
+        {r.function.empty() ? "input" : "function", source.name},
+        {"domain",
+         {source.domain.lo.x, source.domain.lo.y, source.domain.lo.z, source.domain.hi.x,
+          source.domain.hi.y, source.domain.hi.z}},
+        {"params", {{"K", r.depth}, {"P", r.refine}, {"eta", r.eta}, {"threads", thread_count()}}}};
+    OutputFolder folder(r.out, false);
+    if (source.surface) {
+        const int depth = r.tree_depth.value_or(
+            SurfaceDistanceTree::default_depth(*source.surface, source.domain));
+        summary["params"]["L"] = depth;
+        tree.emplace(*source.surface, source.domain, SurfaceDistanceTree::Options{.depth = depth});
+        source.g = [&tree](Vec3 x) { return tree->closest_point(x).distance; };
+        source.exact = source.g;
+    }
+    const auto g = pointwise<Vec3>([&](Vec3 x) { return source.g(x); }, expensive_grain);
+    SurfaceContourOptions options{.depth = r.depth, .eta = r.eta};
+    // cpu_s and wall_s time the contour alone, evaluations of G included.
+    const std::clock_t cpu_start = std::clock();
+    const auto wall_start = std::chrono::steady_clock::now();
+    std::optional<SurfaceContour> result;
+    try {
+        result = contour_surface(g, source.domain, options);
+    } catch (const NumericalFailure& e) {
+        summary["status"] = "error";
+        summary["message"] = e.what();
+        write_file_atomic(folder.path() / "summary.json", summary.dump(2) + "\n");
+        folder.commit();
+        throw;
+    }
+    summary["cpu_s"] = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    summary["wall_s"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    const Surface& s = result->surface;
+    const SurfaceContourStats& st = result->stats;
+    summary["status"] = "ok";
+    summary["params"]["gamma"] = st.gamma;
+    summary.update({{"cells", st.cells},
+                    {"leaves", st.leaves},
+                    {"tetrahedra", st.tetrahedra},
+                    {"triangles", st.triangles},
+                    {"vertices", st.vertices},
+                    {"components", component_count(s)},
+                    {"genus", s.triangles.empty() ? 0 : genus(s)},
+                    {"area", area(s)},
+                    {"volume", volume(s)},
+                    {"g_evals", st.g_evals},
+                    {"g_evals_tree", st.g_evals_tree},
+                    {"g_evals_roots", st.g_evals_roots},
+                    {"g_evals_per_vertex", st.g_evals_per_vertex},
+                    {"perturbed", st.perturbed},
+                    {"unconverged_roots", st.unconverged_roots}});
+    std::optional<double> error;
+    if (source.exact && !s.triangles.empty()) {
+        const SurfaceError e = measure_error(s, source.exact);
+        error = std::max({e.vertices, e.midpoints, e.centroids});
+        summary["error"] = *error;
+        summary["error_vertices"] = e.vertices;
+        summary["error_midpoints"] = e.midpoints;
+        summary["error_centroids"] = e.centroids;
+    } else {
+        summary["error"] = nullptr;
+    }
+    const std::filesystem::path dir = folder.path();
+    write_file_atomic(dir / "final.obj", obj_text(s));
+    write_file_atomic(dir / "final.vtp", vtp_text(s, 0.0));
+    if (!s.triangles.empty()) {
+        const std::string title =
+            error ? fmt::format("Linear contour, K = {}: {} triangles, error {:.2e}", r.depth,
+                                st.triangles, *error)
+                  : fmt::format("Linear contour, K = {}: {} triangles", r.depth, st.triangles);
+        save_surface_picture(s, dir / "final.png", {.title = title});
+    }
+    write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+    folder.commit();
+    fmt::print(
+        "{} cells, {} triangles, error {}, {} G evaluations ({:.2f} per vertex), {:.3g} s; "
+        "wrote {}\n",
+        st.cells, st.triangles, error ? fmt::format("{:.3g}", *error) : "n/a", st.g_evals,
+        st.g_evals_per_vertex, summary["cpu_s"].get<double>(),
+        (std::filesystem::path(r.out) / "summary.json").string());
+}
+
+}  // namespace slc::cli

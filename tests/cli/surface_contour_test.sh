@@ -1,0 +1,54 @@
+# slc contour in space (DESIGN §8): a built-in implicit surface and a surface file contoured into
+# closed, oriented surfaces that slc reads back; the same output for any thread count; errors.
+source "$(dirname "$0")/lib.sh" "$1"
+
+json() {  # json FILE EXPRESSION: prints a Python expression of the parsed file `s`
+    python3 -c "import json, sys; s = json.load(open(sys.argv[1])); print($2)" "$1"
+}
+
+expect_ok "torus contours" -- contour --function torus -K 5 --out torus
+check "summary says ok" test "$(json torus/summary.json 's["status"]')" = ok
+check "the torus keeps its handle" test "$(json torus/summary.json 's["genus"], s["components"]')" = "1 1"
+check "linear contour error below 5e-3" test "$(json torus/summary.json 's["error"] < 5e-3')" = True
+check "vertices are roots" test "$(json torus/summary.json 's["error_vertices"] < 1e-9')" = True
+check "final.obj, final.vtp and final.png written" test -s torus/final.obj -a -s torus/final.vtp -a -s torus/final.png
+# final.obj is a valid closed surface: slc reads it back (validation refuses open, non-manifold,
+# crossing or inconsistently oriented triangles) and finds the origin outside, 0.35 from it.
+printf 'x,y,z\n0,0,0\n0.55,0,0\n' >points.csv
+expect_ok "final.obj reads back" -- distance --initial torus/final.obj --points points.csv --domain 1
+check "origin outside the torus" test "$(sed -n 2p out.txt | cut -d, -f4 | python3 -c 'print(abs(float(input()) - 0.35) < 2e-3)')" = True
+check "tube centre inside" test "$(sed -n 3p out.txt | cut -d, -f4 | python3 -c 'print(abs(float(input()) + 0.2) < 2e-3)')" = True
+
+expect_ok "one thread" -- contour --function cassini -K 5 --threads 1 --out one
+expect_ok "two threads" -- contour --function cassini -K 5 --threads 2 --out two
+check "the same surface for any thread count" cmp -s one/final.obj two/final.obj
+check "no exact distance for cassini: error null" test "$(json one/summary.json 's["error"]')" = None
+
+cat >box.obj <<'OBJ'
+v -0.5 -0.4 -0.3
+v 0.45 -0.4 -0.3
+v 0.45 0.35 -0.3
+v -0.5 0.35 -0.3
+v -0.5 -0.4 0.5
+v 0.45 -0.4 0.5
+v 0.45 0.35 0.5
+v -0.5 0.35 0.5
+f 1 4 3 2
+f 5 6 7 8
+f 1 2 6 5
+f 2 3 7 6
+f 3 4 8 7
+f 4 1 5 8
+OBJ
+expect_ok "a surface file contours its exact distance" -- contour --initial box.obj -K 5 --out box
+check "box volume within 2%" test "$(json box/summary.json 'abs(s["volume"] / (0.95 * 0.75 * 0.8) - 1) < 0.02')" = True
+check "box vertices on the box" test "$(json box/summary.json 's["error_vertices"] < 1e-9')" = True
+
+expect_error "refinement not yet in space" "--refine" -- contour --function torus -K 4 --refine 2 --out x
+expect_error "unknown function" "unknown function 'blob'; known: sphere, torus, cassini" -- contour --function blob -K 4 --out x
+expect_error "neither input" "give --initial FILE or --function NAME" -- contour -K 4 --out x
+expect_status "a domain too small" 3 -- contour --function torus -K 4 --domain 0.5 --out small
+check "enlarge the domain" grep -q "enlarge the domain" err.txt
+check "summary records the error" test "$(json small/summary.json 's["status"]')" = error
+expect_error "depth beyond memory" "would need about .* GiB .* depth [0-9]+ fits" -- contour --function sphere -K 20 --out x
+finish
