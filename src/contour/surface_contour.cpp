@@ -17,6 +17,7 @@
 #include "slc/core/key_map.hpp"
 #include "slc/tree/octree.hpp"
 #include "slc/tree/tetrahedralization.hpp"
+#include "surface_stages.hpp"
 
 namespace slc {
 namespace {
@@ -40,6 +41,13 @@ void validate(const SurfaceContourOptions& o, const Box3& domain) {
     if (!positive(o.eta)) throw InvalidInput(fmt::format("eta must be positive, got {}", o.eta));
     if (!positive(o.gamma))
         throw InvalidInput(fmt::format("gamma must be positive, got {}", o.gamma));
+    if (o.refine_passes < 0 && o.refine_passes != SurfaceContourOptions::until_converged) {
+        throw InvalidInput(
+            fmt::format("refinement passes P must be >= 0, got {}", o.refine_passes));
+    }
+    if (o.eps && (!positive(*o.eps) || *o.eps < o.eta)) {
+        throw InvalidInput(fmt::format("eps must be at least eta = {}, got {}", o.eta, *o.eps));
+    }
     const double w = domain.width();
     if (!(w > 0.0) || !std::isfinite(w) || !is_finite(domain.lo) || !domain.is_cube()) {
         throw InvalidInput(fmt::format(
@@ -49,27 +57,7 @@ void validate(const SurfaceContourOptions& o, const Box3& domain) {
     }
 }
 
-/// G evaluated in batches, counted, and checked finite: a non-finite value is NumericalFailure
-/// naming the point, so that no NaN reaches a sign test.
-class Evaluator {
-public:
-    Evaluator(SpaceFunctionRef g, std::size_t& count) : g_(g), count_(&count) {}
-    void operator()(std::span<const Vec3> points, std::span<double> values) const {
-        if (points.empty()) return;
-        g_(points, values);
-        *count_ += points.size();
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            if (!std::isfinite(values[i])) {
-                throw NumericalFailure(
-                    fmt::format("the contoured function is {} at {}", values[i], place(points[i])));
-            }
-        }
-    }
-
-private:
-    SpaceFunctionRef g_;
-    std::size_t* count_;
-};
+using Evaluator = contouring::SpaceEvaluator;
 
 /// G at the grid points of the tree's cells (corners and centres, on the grid of half the finest
 /// edge), each evaluated once, and the least |G| at each cell's nine points.
@@ -387,13 +375,26 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
         }
     }
     out.surface.triangles = std::move(triangles);
+    if (options.refine_passes != 0 && !out.surface.triangles.empty()) {
+        const Evaluator refine_g(g, stats.g_evals_refine);
+        const contouring::SurfaceRefinement r = contouring::refine_surface(
+            out.surface, refine_g, options.resolved_eps(),
+            RootOptions{.eta = options.eta, .method = options.root_method}, options.refine_passes,
+            options.max_refine_passes, options.max_vertices);
+        stats.passes = r.passes;
+        stats.splits = r.splits;
+        stats.rejected = r.rejected;
+        stats.converged = r.converged != 0;
+    }
     stats.triangles = out.surface.triangles.size();
     stats.vertices = out.surface.vertices.size();
-    stats.g_evals = stats.g_evals_tree + stats.g_evals_roots;
+    stats.g_evals = stats.g_evals_tree + stats.g_evals_roots + stats.g_evals_refine;
     stats.g_evals_per_vertex = stats.vertices == 0 ? 0.0
                                                    : static_cast<double>(stats.g_evals) /
                                                          static_cast<double>(stats.vertices);
     return out;
 }
+
+double SurfaceContourOptions::resolved_eps() const { return eps.value_or(std::pow(10.0, -depth)); }
 
 }  // namespace slc

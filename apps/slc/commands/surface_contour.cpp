@@ -65,11 +65,6 @@ struct Source {
 }  // namespace
 
 void run_surface_contour(const SurfaceContourRequest& r) {
-    if (r.refine != 0) {
-        throw InvalidInput(
-            "--refine: adaptive refinement of surfaces is not available yet; give --refine 0 "
-            "(the linear contour)");
-    }
     Source source;
     std::optional<SurfaceDistanceTree> tree;
     if (!r.function.empty()) {
@@ -109,7 +104,9 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         source.exact = source.g;
     }
     const auto g = pointwise<Vec3>([&](Vec3 x) { return source.g(x); }, expensive_grain);
-    SurfaceContourOptions options{.depth = r.depth, .eta = r.eta};
+    const SurfaceContourOptions options{
+        .depth = r.depth, .refine_passes = r.refine, .eps = r.eps, .eta = r.eta};
+    summary["params"]["eps"] = options.resolved_eps();
     // cpu_s and wall_s time the contour alone, evaluations of G included.
     const std::clock_t cpu_start = std::clock();
     const auto wall_start = std::chrono::steady_clock::now();
@@ -142,6 +139,11 @@ void run_surface_contour(const SurfaceContourRequest& r) {
                     {"g_evals", st.g_evals},
                     {"g_evals_tree", st.g_evals_tree},
                     {"g_evals_roots", st.g_evals_roots},
+                    {"g_evals_refine", st.g_evals_refine},
+                    {"passes", st.passes},
+                    {"splits", st.splits},
+                    {"rejected", st.rejected},
+                    {"converged", st.converged},
                     {"g_evals_per_vertex", st.g_evals_per_vertex},
                     {"perturbed", st.perturbed},
                     {"unconverged_roots", st.unconverged_roots}});
@@ -160,10 +162,12 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     write_file_atomic(dir / "final.obj", obj_text(s));
     write_file_atomic(dir / "final.vtp", vtp_text(s, 0.0));
     if (!s.triangles.empty()) {
-        const std::string title =
-            error ? fmt::format("Linear contour, K = {}: {} triangles, error {:.2e}", r.depth,
-                                st.triangles, *error)
-                  : fmt::format("Linear contour, K = {}: {} triangles", r.depth, st.triangles);
+        std::string title =
+            r.refine == 0
+                ? fmt::format("Linear contour, K = {}: {} triangles", r.depth, st.triangles)
+                : fmt::format("Contour K = {}, eps = {:.0e}, {} passes: {} triangles", r.depth,
+                              options.resolved_eps(), st.passes, st.triangles);
+        if (error) title += fmt::format(", error {:.2e}", *error);
         save_surface_picture(s, dir / "final.png", {.title = title});
     }
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");

@@ -7,7 +7,10 @@
 /// interpolant: one or two triangles a tetrahedron, their vertices the roots of G on the
 /// tetrahedra's edges (find_roots). A root depends only on its edge, which the tetrahedra around
 /// it share, so the surface is watertight and manifold by construction, and its triangles face
-/// the side where G > 0 (outward for a signed distance negative inside).
+/// the side where G > 0 (outward for a signed distance negative inside). Adaptive refinement
+/// (§2.2) then splits edges until G at every edge midpoint and triangle centroid is within ε, the
+/// new vertices roots of G along the surface's normal, under safeguards that keep the surface
+/// closed, manifold, oriented and free of crossings.
 #pragma once
 
 #include <cstddef>
@@ -22,14 +25,30 @@ namespace slc {
 
 /// Parameters of contour_surface (paper Table 4, as ContourOptions in the plane).
 struct SurfaceContourOptions {
+    /// refine_passes value meaning: refine until no midpoint or centroid exceeds ε, or a pass
+    /// changes nothing, but at most max_refine_passes passes.
+    static constexpr int until_converged = -1;
+
     /// K: deepest level of the topology octree, 0..max_tetrahedralized_depth.
     int depth = 5;
+    /// P ≥ 0, or until_converged: passes of adaptive refinement (§2.2); 0 is the linear contour.
+    int refine_passes = 0;
+    /// ε ≥ η: refinement splits edges whose midpoint, and triangles whose centroid, has
+    /// |G| > ε; default 10^−K.
+    std::optional<double> eps = std::nullopt;
+    /// Cap on the passes of until_converged.
+    int max_refine_passes = 64;
+    /// Refinement that would pass this many vertices throws LimitExceeded naming ε.
+    std::size_t max_vertices = std::size_t{1} << 23;
     /// η > 0: root-finding tolerance, |G| ≤ η at every vertex.
     double eta = 1e-10;
     /// γ > 0: starting estimate of the gradient bound |∇G| ≤ γ, doubled until the tree balances.
     double gamma = 1.0;
     /// How brackets are shrunk.
     RootMethod root_method = RootMethod::brent;
+
+    /// ε as given, or its default 10^−K.
+    double resolved_eps() const;
 };
 
 /// What a surface contour cost and what it produced.
@@ -42,10 +61,15 @@ struct SurfaceContourStats {
     std::size_t g_evals = 0;            ///< all evaluations of G, each point counted once
     std::size_t g_evals_tree = 0;       ///< of which: the tree, the mesh vertices and perturbation
     std::size_t g_evals_roots = 0;      ///< of which: root finding on the tetrahedra's edges
+    std::size_t g_evals_refine = 0;     ///< of which: adaptive refinement
     double g_evals_per_vertex = 0.0;    ///< g_evals / vertices; 0 for an empty result
     double gamma = 0.0;                 ///< the gradient bound at which the tree balanced
     std::size_t perturbed = 0;          ///< mesh vertices moved off |G| ≤ η
     std::size_t unconverged_roots = 0;  ///< roots where G jumps across zero (|G| > η there)
+    int passes = 0;                     ///< refinement passes that split something
+    std::size_t splits = 0;             ///< edges split by refinement
+    std::size_t rejected = 0;           ///< splits refused by a safeguard
+    bool converged = false;  ///< refinement stopped with no midpoint or centroid beyond ε
 };
 
 /// A contoured surface and its statistics.

@@ -1,0 +1,364 @@
+// Adaptive refinement of a contoured surface (paper §2.2 in space): edges split where G at their
+// midpoint (or at a triangle's centroid) exceeds ε, the new vertex the root of G along the normal,
+// with safeguards that keep the surface closed, manifold, oriented and free of crossings.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <vector>
+
+#include "slc/core/error.hpp"
+#include "slc/core/key_map.hpp"
+#include "slc/geometry/validate_surface.hpp"
+#include "surface_stages.hpp"
+
+namespace slc::contouring {
+namespace {
+
+/// A child triangle may turn at most this far from its parent (cos 60°).
+constexpr double min_normal_cosine = 0.5;
+/// Brackets reach this far along the normal, in edge lengths: ½, 1, then 2.
+constexpr double bracket_reach[] = {0.5, 1.0, 2.0};
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t{a} << 32) | b;
+}
+
+Vec3 area_normal(const Surface& s, const TriangleIndices& t) {
+    const Vec3 a = s.vertices[t[0]];
+    return cross(s.vertices[t[1]] - a, s.vertices[t[2]] - a);
+}
+
+/// The edges of a closed surface: their ends, their two triangles, and each triangle's edges
+/// (edge k from corner k to corner k + 1).
+struct Edges {
+    std::vector<std::array<std::uint32_t, 2>> ends;
+    std::vector<std::array<std::uint32_t, 2>> triangles;
+    std::vector<std::array<std::uint32_t, 3>> of_triangle;
+
+    explicit Edges(const Surface& s) : index_(3 * s.size()) {
+        of_triangle.resize(s.size());
+        for (std::uint32_t t = 0; t < s.size(); ++t) {
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
+                const auto [e, fresh] =
+                    index_.try_emplace(edge_key(a, b), static_cast<std::uint32_t>(ends.size()));
+                if (fresh) {
+                    ends.push_back({a, b});
+                    triangles.push_back({t, t});
+                } else {
+                    triangles[*e][1] = t;
+                }
+                of_triangle[t][k] = *e;
+            }
+        }
+    }
+    std::size_t size() const { return ends.size(); }
+
+private:
+    KeyMap<std::uint32_t> index_;
+};
+
+/// The triangles that replace t = (v0, v1, v2) when the edges flagged in `split` (bit k: edge
+/// from corner k to corner k + 1) get the vertices w[k], oriented as t.
+void children(const Surface& s, const TriangleIndices& t, unsigned split,
+              const std::array<std::uint32_t, 3>& w, std::vector<TriangleIndices>& out) {
+    const int count = std::popcount(split);
+    if (count == 0) {
+        out.push_back(t);
+        return;
+    }
+    if (count == 3) {
+        out.push_back({t[0], w[0], w[2]});
+        out.push_back({w[0], t[1], w[1]});
+        out.push_back({w[2], w[1], t[2]});
+        out.push_back({w[0], w[1], w[2]});
+        return;
+    }
+    if (count == 1) {
+        const int k = std::countr_zero(split);
+        out.push_back({t[k], w[k], t[(k + 2) % 3]});
+        out.push_back({w[k], t[(k + 1) % 3], t[(k + 2) % 3]});
+        return;
+    }
+    // Two: edges k and k + 1 split, edge k + 2 whole. The corner at k + 1 is cut off, and the
+    // quadrilateral left is split along its shorter diagonal.
+    const int k = (split & 1u) == 0 ? 1 : ((split & 2u) == 0 ? 2 : 0);
+    const std::uint32_t a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+    const std::uint32_t p = w[k], q = w[(k + 1) % 3];
+    out.push_back({p, b, q});
+    const auto& x = s.vertices;
+    if (distance(x[a], x[q]) <= distance(x[p], x[c])) {
+        out.push_back({a, p, q});
+        out.push_back({a, q, c});
+    } else {
+        out.push_back({a, p, c});
+        out.push_back({p, q, c});
+    }
+}
+
+/// True when every child keeps area and turns less than 60° from the parent.
+bool children_sound(const Surface& s, const TriangleIndices& parent,
+                    std::span<const TriangleIndices> kids) {
+    const Vec3 n = area_normal(s, parent);
+    const double parent_norm = norm(n);
+    for (const TriangleIndices& kid : kids) {
+        const Vec3 m = area_normal(s, kid);
+        const double kid_norm = norm(m);
+        if (!(kid_norm > 0.0) || dot(m, n) <= min_normal_cosine * kid_norm * parent_norm)
+            return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+void SpaceEvaluator::operator()(std::span<const Vec3> points, std::span<double> values) const {
+    if (points.empty()) return;
+    g_(points, values);
+    *count_ += points.size();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (!std::isfinite(values[i])) {
+            throw NumericalFailure(
+                fmt::format("the contoured function is {} at ({:.6g}, {:.6g}, "
+                            "{:.6g})",
+                            values[i], points[i].x, points[i].y, points[i].z));
+        }
+    }
+}
+
+SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps,
+                                 const RootOptions& roots, int passes, int max_passes,
+                                 std::size_t max_vertices) {
+    SurfaceRefinement result;
+    KeyMap<double> midpoint_value;  // G at the midpoint of edge (a, b); vertices never move
+    KeyMap<std::uint8_t> frozen;    // edges whose split a safeguard refused
+    std::vector<double> centroid_value(s.size(), nan);
+    const int limit = passes < 0 ? max_passes : std::min(passes, max_passes);
+    for (int pass = 0; pass < limit; ++pass) {
+        const Edges edges(s);
+        const std::size_t m = edges.size();
+        auto midpoint = [&](std::uint32_t e) {
+            return 0.5 * (s.vertices[edges.ends[e][0]] + s.vertices[edges.ends[e][1]]);
+        };
+        // G at the midpoints and centroids not yet known, one batch.
+        std::vector<double> mid(m);
+        {
+            std::vector<Vec3> points;
+            std::vector<std::uint32_t> which;
+            for (std::uint32_t e = 0; e < m; ++e) {
+                if (const double* v =
+                        midpoint_value.find(edge_key(edges.ends[e][0], edges.ends[e][1]))) {
+                    mid[e] = *v;
+                } else {
+                    points.push_back(midpoint(e));
+                    which.push_back(e);
+                }
+            }
+            const std::size_t edge_points = points.size();
+            for (std::uint32_t t = 0; t < s.size(); ++t) {
+                if (!std::isnan(centroid_value[t])) continue;
+                const Triangle3 tri = s.triangle(t);
+                points.push_back((tri.a + tri.b + tri.c) / 3.0);
+                which.push_back(t);
+            }
+            std::vector<double> values(points.size());
+            g(points, values);
+            for (std::size_t i = 0; i < points.size(); ++i) {
+                if (i < edge_points) {
+                    const std::uint32_t e = which[i];
+                    mid[e] = values[i];
+                    midpoint_value.assign(edge_key(edges.ends[e][0], edges.ends[e][1]), values[i]);
+                } else {
+                    centroid_value[which[i]] = values[i];
+                }
+            }
+        }
+        // The edges to split: midpoints beyond ε, and the longest edge of each triangle whose
+        // centroid is.
+        std::vector<std::uint8_t> wanted(m, 0);
+        for (std::uint32_t e = 0; e < m; ++e) wanted[e] = std::abs(mid[e]) > eps;
+        for (std::uint32_t t = 0; t < s.size(); ++t) {
+            if (!(std::abs(centroid_value[t]) > eps)) continue;
+            std::uint32_t longest = edges.of_triangle[t][0];
+            double length = 0.0;
+            for (const std::uint32_t e : edges.of_triangle[t]) {
+                const double l =
+                    distance(s.vertices[edges.ends[e][0]], s.vertices[edges.ends[e][1]]);
+                if (l > length) longest = e, length = l;
+            }
+            wanted[longest] = 1;
+        }
+        const bool any_beyond = std::find(wanted.begin(), wanted.end(), 1) != wanted.end();
+        for (std::uint32_t e = 0; e < m; ++e)
+            if (wanted[e] && frozen.contains(edge_key(edges.ends[e][0], edges.ends[e][1])))
+                wanted[e] = 0;
+        std::vector<std::uint32_t> candidates;
+        for (std::uint32_t e = 0; e < m; ++e)
+            if (wanted[e]) candidates.push_back(e);
+        if (!any_beyond) result.converged = 1;
+        if (candidates.empty()) break;
+        if (s.vertices.size() + candidates.size() > max_vertices) {
+            throw LimitExceeded(fmt::format(
+                "refining the surface to eps {:.3g} needs more than {} vertices (it has {} and "
+                "would add {}): raise eps",
+                eps, max_vertices, s.vertices.size(), candidates.size()));
+        }
+
+        // Brackets along the normal at the midpoint, reaching ½, 1, then 2 edge lengths.
+        auto refuse = [&](std::uint32_t e) {
+            frozen.assign(edge_key(edges.ends[e][0], edges.ends[e][1]), 1);
+            ++result.rejected;
+        };
+        std::vector<Bracket3> brackets;
+        std::vector<std::uint32_t> bracketed;
+        {
+            std::vector<Vec3> direction(candidates.size());
+            std::vector<double> length(candidates.size());
+            std::vector<std::size_t> open;
+            for (std::size_t i = 0; i < candidates.size(); ++i) {
+                const std::uint32_t e = candidates[i];
+                const auto [t0, t1] = edges.triangles[e];
+                const Vec3 n = area_normal(s, s.triangles[t0]) + area_normal(s, s.triangles[t1]);
+                const double size = norm(n);
+                length[i] = distance(s.vertices[edges.ends[e][0]], s.vertices[edges.ends[e][1]]);
+                if (!(size > 0.0)) {
+                    refuse(e);
+                    continue;
+                }
+                // Towards the zero set: against the normal where G > 0 (outside).
+                direction[i] = (mid[e] > 0.0 ? -1.0 : 1.0) / size * n;
+                open.push_back(i);
+            }
+            for (const double reach : bracket_reach) {
+                if (open.empty()) break;
+                std::vector<Vec3> points;
+                for (const std::size_t i : open)
+                    points.push_back(midpoint(candidates[i]) + reach * length[i] * direction[i]);
+                std::vector<double> values(points.size());
+                g(points, values);
+                std::vector<std::size_t> still;
+                for (std::size_t k = 0; k < open.size(); ++k) {
+                    const std::uint32_t e = candidates[open[k]];
+                    if ((values[k] > 0.0) != (mid[e] > 0.0)) {
+                        brackets.push_back({midpoint(e), points[k], mid[e], values[k]});
+                        bracketed.push_back(e);
+                    } else {
+                        still.push_back(open[k]);
+                    }
+                }
+                open = std::move(still);
+            }
+            for (const std::size_t i : open) refuse(candidates[i]);
+        }
+        const std::vector<Root3> found = find_roots(
+            [&](std::span<const Vec3> x, std::span<double> v) { g(x, v); }, brackets, roots);
+        // The new vertices, numbered after the old ones in edge order.
+        std::vector<std::uint32_t> vertex_of(m, std::numeric_limits<std::uint32_t>::max());
+        const auto old_vertices = static_cast<std::uint32_t>(s.vertices.size());
+        std::vector<Vec3> added;
+        for (std::size_t i = 0; i < found.size(); ++i) {
+            if (!found[i].converged) {
+                refuse(bracketed[i]);
+                continue;
+            }
+            vertex_of[bracketed[i]] = old_vertices + static_cast<std::uint32_t>(added.size());
+            added.push_back(found[i].point);
+        }
+        s.vertices.insert(s.vertices.end(), added.begin(), added.end());
+
+        // Children, refusing the splits of a triangle whose children are unsound, until none is;
+        // then the same for crossings of the rest of the surface.
+        std::vector<std::uint8_t> split(m, 0);
+        for (std::uint32_t e = 0; e < m; ++e)
+            split[e] = vertex_of[e] != std::numeric_limits<std::uint32_t>::max();
+        auto mask_of = [&](std::uint32_t t) {
+            unsigned mask = 0;
+            std::array<std::uint32_t, 3> w{};
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t e = edges.of_triangle[t][k];
+                if (split[e]) mask |= 1u << k, w[k] = vertex_of[e];
+            }
+            return std::pair{mask, w};
+        };
+        auto refuse_splits_of = [&](std::uint32_t t) {
+            for (const std::uint32_t e : edges.of_triangle[t]) {
+                if (!split[e]) continue;
+                split[e] = 0;
+                refuse(e);
+            }
+        };
+        Surface next;
+        std::vector<double> next_centroid;
+        std::vector<std::uint32_t> parent;
+        for (;;) {
+            bool changed = false;
+            std::vector<TriangleIndices> kids;
+            for (std::uint32_t t = 0; t < s.size(); ++t) {
+                const auto [mask, w] = mask_of(t);
+                if (mask == 0) continue;
+                kids.clear();
+                children(s, s.triangles[t], mask, w, kids);
+                if (!children_sound(s, s.triangles[t], kids)) {
+                    refuse_splits_of(t);
+                    changed = true;
+                }
+            }
+            if (changed) continue;
+            next.vertices = s.vertices;
+            next.triangles.clear();
+            next_centroid.clear();
+            parent.clear();
+            for (std::uint32_t t = 0; t < s.size(); ++t) {
+                const auto [mask, w] = mask_of(t);
+                const std::size_t first = next.triangles.size();
+                children(s, s.triangles[t], mask, w, next.triangles);
+                for (std::size_t k = first; k < next.triangles.size(); ++k) {
+                    next_centroid.push_back(mask == 0 ? centroid_value[t] : nan);
+                    parent.push_back(t);
+                }
+            }
+            const std::optional<TriangleContact> contact = find_self_intersection(next);
+            if (!contact) break;
+            const std::uint32_t p = parent[contact->first], q = parent[contact->second];
+            const bool p_split = mask_of(p).first != 0, q_split = mask_of(q).first != 0;
+            if (!p_split && !q_split) {
+                throw NumericalFailure(fmt::format(
+                    "the contour's triangles {} and {} meet before refinement; raise the depth K",
+                    p, q));
+            }
+            if (p_split) refuse_splits_of(p);
+            if (q_split) refuse_splits_of(q);
+        }
+        // Vertices no triangle uses (their splits refused) are dropped.
+        std::vector<std::uint32_t> renumber(next.vertices.size(),
+                                            std::numeric_limits<std::uint32_t>::max());
+        for (std::uint32_t v = 0; v < old_vertices; ++v) renumber[v] = v;
+        std::uint32_t kept = old_vertices;
+        for (std::uint32_t e = 0; e < m; ++e)
+            if (split[e]) renumber[vertex_of[e]] = kept++;
+        std::vector<Vec3> vertices(kept);
+        for (std::uint32_t v = 0; v < next.vertices.size(); ++v)
+            if (renumber[v] != std::numeric_limits<std::uint32_t>::max())
+                vertices[renumber[v]] = next.vertices[v];
+        for (TriangleIndices& t : next.triangles)
+            for (std::uint32_t& v : t) v = renumber[v];
+        const std::size_t splits = kept - old_vertices;
+        s.vertices = std::move(vertices);
+        s.triangles = std::move(next.triangles);
+        centroid_value = std::move(next_centroid);
+        if (splits == 0) break;
+        result.splits += splits;
+        ++result.passes;
+    }
+    return result;
+}
+
+}  // namespace slc::contouring
