@@ -384,6 +384,8 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
         stats.passes = r.passes;
         stats.splits = r.splits;
         stats.rejected = r.rejected;
+        stats.collapses = r.collapses;
+        stats.flips = r.flips;
         stats.converged = r.converged != 0;
     }
     stats.triangles = out.surface.triangles.size();

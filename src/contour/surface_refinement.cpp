@@ -36,34 +36,50 @@ Vec3 area_normal(const Surface& s, const TriangleIndices& t) {
     return cross(s.vertices[t[1]] - a, s.vertices[t[2]] - a);
 }
 
-/// The edges of a closed surface: their ends, their two triangles, and each triangle's edges
-/// (edge k from corner k to corner k + 1).
+/// The edges of a closed surface: their ends (lower vertex first), their two triangles, and each
+/// triangle's edges (edge k from corner k to corner k + 1). The half-edges are bucketed by their
+/// lower vertex (a counting sort) and paired within each bucket: O(N + V), no hashing.
 struct Edges {
     std::vector<std::array<std::uint32_t, 2>> ends;
     std::vector<std::array<std::uint32_t, 2>> triangles;
     std::vector<std::array<std::uint32_t, 3>> of_triangle;
 
-    explicit Edges(const Surface& s) : index_(3 * s.size()) {
-        of_triangle.resize(s.size());
-        for (std::uint32_t t = 0; t < s.size(); ++t) {
-            for (int k = 0; k < 3; ++k) {
-                const std::uint32_t a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
-                const auto [e, fresh] =
-                    index_.try_emplace(edge_key(a, b), static_cast<std::uint32_t>(ends.size()));
-                if (fresh) {
-                    ends.push_back({a, b});
-                    triangles.push_back({t, t});
-                } else {
-                    triangles[*e][1] = t;
-                }
-                of_triangle[t][k] = *e;
+    explicit Edges(const Surface& s) {
+        const std::size_t n = s.size();
+        auto lo_hi = [&](std::size_t h) {
+            const std::uint32_t a = s.triangles[h / 3][h % 3], b = s.triangles[h / 3][(h + 1) % 3];
+            return std::pair{std::min(a, b), std::max(a, b)};
+        };
+        std::vector<std::uint32_t> start(s.vertices.size() + 1, 0);
+        for (std::size_t h = 0; h < 3 * n; ++h) ++start[lo_hi(h).first + 1];
+        for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> halves(3 * n);  // (hi, half-edge)
+        {
+            std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+            for (std::size_t h = 0; h < 3 * n; ++h) {
+                const auto [lo, hi] = lo_hi(h);
+                halves[fill[lo]++] = {hi, static_cast<std::uint32_t>(h)};
+            }
+        }
+        of_triangle.resize(n);
+        ends.reserve(3 * n / 2);
+        triangles.reserve(3 * n / 2);
+        for (std::size_t v = 0; v + 1 < start.size(); ++v) {
+            const auto first = halves.begin() + start[v], last = halves.begin() + start[v + 1];
+            std::sort(first, last);
+            for (auto it = first; it != last; it += 2) {
+                SLC_ASSERT(it + 1 != last && it->first == (it + 1)->first,
+                           "every edge of a closed surface has two triangles");
+                const auto e = static_cast<std::uint32_t>(ends.size());
+                const std::uint32_t h = it->second, k = (it + 1)->second;
+                ends.push_back({static_cast<std::uint32_t>(v), it->first});
+                triangles.push_back({h / 3, k / 3});
+                of_triangle[h / 3][h % 3] = e;
+                of_triangle[k / 3][k % 3] = e;
             }
         }
     }
     std::size_t size() const { return ends.size(); }
-
-private:
-    KeyMap<std::uint32_t> index_;
 };
 
 /// The triangles that replace t = (v0, v1, v2) when the edges flagged in `split` (bit k: edge
@@ -104,18 +120,195 @@ void children(const Surface& s, const TriangleIndices& t, unsigned split,
     }
 }
 
-/// True when every child keeps area and turns less than 60° from the parent.
-bool children_sound(const Surface& s, const TriangleIndices& parent,
-                    std::span<const TriangleIndices> kids) {
-    const Vec3 n = area_normal(s, parent);
-    const double parent_norm = norm(n);
-    for (const TriangleIndices& kid : kids) {
-        const Vec3 m = area_normal(s, kid);
-        const double kid_norm = norm(m);
-        if (!(kid_norm > 0.0) || dot(m, n) <= min_normal_cosine * kid_norm * parent_norm)
-            return false;
+/// The normal of the surface around triangle t: the area-weighted normals of t and of its three
+/// neighbours summed. A needle or a cap has a normal of no meaning; its neighbours give one.
+Vec3 normal_around(const Surface& s, const Edges& edges, std::uint32_t t) {
+    Vec3 n = area_normal(s, s.triangles[t]);
+    for (const std::uint32_t e : edges.of_triangle[t]) {
+        const auto [t0, t1] = edges.triangles[e];
+        n += area_normal(s, s.triangles[t0 == t ? t1 : t0]);
     }
+    return n;
+}
+
+/// True when triangle `now` has area and turns less than the angle of `cosine` from n.
+bool along(const Surface& s, Vec3 n, const TriangleIndices& now, double cosine) {
+    const Vec3 m = area_normal(s, now);
+    const double mm = norm(m);
+    return mm > 0.0 && dot(n, m) > cosine * norm(n) * mm;
+}
+
+/// True when every child keeps area and turns less than 60° from the surface around its parent.
+bool children_sound(const Surface& s, Vec3 around, std::span<const TriangleIndices> kids) {
+    for (const TriangleIndices& kid : kids)
+        if (!along(s, around, kid, min_normal_cosine)) return false;
     return true;
+}
+
+/// An improving move may turn a triangle at most this far (cos 30°).
+constexpr double improve_normal_cosine = 0.8660254037844386;
+/// An edge shorter than this fraction of the shortest other edge of its two triangles is a
+/// needle's and is collapsed.
+constexpr double needle_ratio = 0.25;
+/// Rounds of collapses and flips before each pass.
+constexpr int improve_rounds = 8;
+
+/// The angle at corner k of triangle t.
+double corner_angle(const Surface& s, const TriangleIndices& t, int k) {
+    const Vec3 a = s.vertices[t[k]];
+    const Vec3 u = s.vertices[t[(k + 1) % 3]] - a, v = s.vertices[t[(k + 2) % 3]] - a;
+    return std::atan2(norm(cross(u, v)), dot(u, v));
+}
+
+/// One round of needle collapses: an edge much shorter than the other edges of its two
+/// triangles is collapsed onto its first vertex (both ends lie on the zero set), when the
+/// surface's topology allows it (the link condition: the two ends share exactly the two opposite
+/// vertices as neighbours) and no triangle around the removed vertex turns more than 30°. Each
+/// triangle takes part in one move a round. Dead triangles are marked by a first index of
+/// `dead`. Returns the collapses.
+std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
+    constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
+    const Edges edges(s);
+    // Triangles around each vertex (CSR).
+    std::vector<std::uint32_t> start(s.vertices.size() + 1, 0), around(3 * s.size());
+    for (const TriangleIndices& t : s.triangles)
+        for (const std::uint32_t v : t) ++start[v + 1];
+    for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+    {
+        std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+        for (std::uint32_t t = 0; t < s.size(); ++t)
+            for (const std::uint32_t v : s.triangles[t]) around[fill[v]++] = t;
+    }
+    auto ring = [&](std::uint32_t v) {
+        return std::span<const std::uint32_t>(around.data() + start[v], start[v + 1] - start[v]);
+    };
+    std::vector<std::uint8_t> touched(s.size(), 0);
+    std::size_t collapses = 0;
+    std::vector<std::uint32_t> neighbours_a, neighbours_b;
+    for (std::uint32_t e = 0; e < edges.size(); ++e) {
+        const auto [t0, t1] = edges.triangles[e];
+        const std::uint32_t a = edges.ends[e][0], b = edges.ends[e][1];
+        const double length = distance(s.vertices[a], s.vertices[b]);
+        double shortest_other = std::numeric_limits<double>::infinity();
+        for (const std::uint32_t t : {t0, t1})
+            for (const std::uint32_t f : edges.of_triangle[t])
+                if (f != e)
+                    shortest_other = std::min(
+                        shortest_other,
+                        distance(s.vertices[edges.ends[f][0]], s.vertices[edges.ends[f][1]]));
+        if (!(length < needle_ratio * shortest_other)) continue;
+        bool free = true;
+        for (const std::uint32_t t : ring(a)) free &= !touched[t];
+        for (const std::uint32_t t : ring(b)) free &= !touched[t];
+        if (!free || ring(a).size() <= 3 || ring(b).size() <= 3) continue;
+        // The link condition.
+        auto neighbours = [&](std::uint32_t v, std::vector<std::uint32_t>& out) {
+            out.clear();
+            for (const std::uint32_t t : ring(v))
+                for (const std::uint32_t w : s.triangles[t])
+                    if (w != v) out.push_back(w);
+            std::sort(out.begin(), out.end());
+            out.erase(std::unique(out.begin(), out.end()), out.end());
+        };
+        neighbours(a, neighbours_a);
+        neighbours(b, neighbours_b);
+        std::size_t common = 0;
+        for (const std::uint32_t w : neighbours_a)
+            common += std::binary_search(neighbours_b.begin(), neighbours_b.end(), w) ? 1 : 0;
+        if (common != 2) continue;
+        // The triangles around b but t0 and t1 take a instead: none may turn far.
+        bool sound = true;
+        for (const std::uint32_t t : ring(b)) {
+            if (t == t0 || t == t1) continue;
+            TriangleIndices moved = s.triangles[t];
+            for (std::uint32_t& v : moved)
+                if (v == b) v = a;
+            sound &= along(s, normal_around(s, edges, t), moved, improve_normal_cosine);
+        }
+        if (!sound) continue;
+        for (const std::uint32_t t : ring(b)) {
+            if (t == t0 || t == t1) continue;
+            for (std::uint32_t& v : s.triangles[t])
+                if (v == b) v = a;
+            changed[t] = 1;
+        }
+        s.triangles[t0][0] = dead;
+        s.triangles[t1][0] = dead;
+        for (const std::uint32_t t : ring(a)) touched[t] = 1;
+        for (const std::uint32_t t : ring(b)) touched[t] = 1;
+        ++collapses;
+    }
+    return collapses;
+}
+
+/// One round of edge flips: edge (a, b) between triangles (a, b, c) and (b, a, d) becomes
+/// (c, d) when the angles at c and d sum beyond π (the Delaunay rule, on the surface), the edge
+/// (c, d) is new, and neither new triangle turns more than 30° from the surface around the two.
+/// Each triangle takes part in one flip a round. Returns the flips.
+std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
+    const Edges edges(s);
+    KeyMap<std::uint8_t> exists(2 * edges.size());
+    for (const auto& [a, b] : edges.ends) exists.assign(edge_key(a, b), 1);
+    std::vector<std::uint8_t> touched(s.size(), 0);
+    std::size_t flips = 0;
+    for (std::uint32_t e = 0; e < edges.size(); ++e) {
+        const auto [t0, t1] = edges.triangles[e];
+        if (touched[t0] || touched[t1]) continue;
+        // Orient: t0 holds a → b, t1 holds b → a.
+        const TriangleIndices& p = s.triangles[t0];
+        const TriangleIndices& q = s.triangles[t1];
+        int i = 0;
+        while (!(p[i] == edges.ends[e][0] || p[i] == edges.ends[e][1]) ||
+               !(p[(i + 1) % 3] == edges.ends[e][0] || p[(i + 1) % 3] == edges.ends[e][1]))
+            ++i;
+        const std::uint32_t a = p[i], b = p[(i + 1) % 3], c = p[(i + 2) % 3];
+        int j = 0;
+        while (q[j] == a || q[j] == b) ++j;
+        const std::uint32_t d = q[j];
+        if (c == d || exists.contains(edge_key(c, d))) continue;
+        const double opposite = corner_angle(s, p, (i + 2) % 3) + corner_angle(s, q, j);
+        if (!(opposite > std::numbers::pi * (1.0 + 1e-6))) continue;
+        const TriangleIndices u{c, a, d}, v{d, b, c};
+        const Vec3 n = normal_around(s, edges, t0) + normal_around(s, edges, t1);
+        if (!along(s, n, u, improve_normal_cosine) || !along(s, n, v, improve_normal_cosine))
+            continue;
+        s.triangles[t0] = u;
+        s.triangles[t1] = v;
+        exists.assign(edge_key(c, d), 1);
+        touched[t0] = touched[t1] = 1;
+        changed[t0] = changed[t1] = 1;
+        ++flips;
+    }
+    return flips;
+}
+
+/// Collapses needles and flips edges, in rounds, until a round changes nothing. Triangles that
+/// changed lose their cached centroid value; collapsed ones are removed (vertices stay, unused).
+void improve(Surface& s, std::vector<double>& centroid_value, SurfaceRefinement& result) {
+    constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
+    for (int round = 0; round < improve_rounds; ++round) {
+        std::vector<std::uint8_t> changed(s.size(), 0);
+        const std::size_t collapses = collapse_needles(s, changed);
+        if (collapses > 0) {
+            std::size_t kept = 0;
+            for (std::size_t t = 0; t < s.size(); ++t) {
+                if (s.triangles[t][0] == dead) continue;
+                s.triangles[kept] = s.triangles[t];
+                centroid_value[kept] = changed[t] ? nan : centroid_value[t];
+                ++kept;
+            }
+            s.triangles.resize(kept);
+            centroid_value.resize(kept);
+            changed.assign(kept, 0);
+        }
+        const std::size_t flips = flip_edges(s, changed);
+        for (std::size_t t = 0; t < s.size(); ++t)
+            if (changed[t]) centroid_value[t] = nan;
+        result.collapses += collapses;
+        result.flips += flips;
+        // A round that changes under one triangle in a thousand is the last.
+        if (1000 * (collapses + flips) < s.size()) break;
+    }
 }
 
 }  // namespace
@@ -143,6 +336,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
     std::vector<double> centroid_value(s.size(), nan);
     const int limit = passes < 0 ? max_passes : std::min(passes, max_passes);
     for (int pass = 0; pass < limit; ++pass) {
+        improve(s, centroid_value, result);
         const Edges edges(s);
         const std::size_t m = edges.size();
         auto midpoint = [&](std::uint32_t e) {
@@ -306,7 +500,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
                 if (mask == 0) continue;
                 kids.clear();
                 children(s, s.triangles[t], mask, w, kids);
-                if (!children_sound(s, s.triangles[t], kids)) {
+                if (!children_sound(s, normal_around(s, edges, t), kids)) {
                     refuse_splits_of(t);
                     changed = true;
                 }
@@ -358,6 +552,19 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         result.splits += splits;
         ++result.passes;
     }
+    // The vertices collapses left unused are dropped, the others keeping their order.
+    std::vector<std::uint32_t> renumber(s.vertices.size(), 0);
+    for (const TriangleIndices& t : s.triangles)
+        for (const std::uint32_t v : t) renumber[v] = 1;
+    std::uint32_t used = 0;
+    for (std::size_t v = 0; v < s.vertices.size(); ++v) {
+        if (!renumber[v]) continue;
+        s.vertices[used] = s.vertices[v];
+        renumber[v] = used++;
+    }
+    s.vertices.resize(used);
+    for (TriangleIndices& t : s.triangles)
+        for (std::uint32_t& v : t) v = renumber[v];
     return result;
 }
 

@@ -25,15 +25,19 @@ private:
 
 /// What refinement did.
 struct SurfaceRefinement {
-    int passes = 0;            ///< passes that split something
-    std::size_t splits = 0;    ///< edges split (a vertex added on the zero set)
-    std::size_t rejected = 0;  ///< splits refused by a safeguard (never retried)
+    int passes = 0;             ///< passes that split something
+    std::size_t splits = 0;     ///< edges split (a vertex added on the zero set)
+    std::size_t rejected = 0;   ///< splits refused by a safeguard (never retried)
+    std::size_t collapses = 0;  ///< needle edges collapsed
+    std::size_t flips = 0;      ///< edges flipped
     /// 1 when refinement stopped because a pass found no midpoint or centroid beyond ε.
     std::size_t converged = 0;
 };
 
 /// Adaptive refinement of a closed surface on the zero set of G (§2.2 in space): up to `passes`
-/// passes (until converged when negative, at most max_passes), each splitting every edge whose
+/// passes (until converged when negative, at most max_passes). Each pass first improves the
+/// triangles' shapes — needle edges collapsed, edges flipped to the Delaunay rule, no triangle
+/// turned more than 30° — then splits every edge whose
 /// midpoint has |G| > ε and the longest edge of every triangle whose centroid has |G| > ε. The
 /// new vertex is the root of G along the surface's normal at the midpoint (a bracket out to the
 /// edge's length each way). Safeguards refuse a split, for good, when no bracket is found, when

@@ -44,7 +44,12 @@ expect_ok "a surface file contours its exact distance" -- contour --initial box.
 check "box volume within 2%" test "$(json box/summary.json 'abs(s["volume"] / (0.95 * 0.75 * 0.8) - 1) < 0.02')" = True
 check "box vertices on the box" test "$(json box/summary.json 's["error_vertices"] < 1e-9')" = True
 
-expect_error "refinement not yet in space" "--refine" -- contour --function torus -K 4 --refine 2 --out x
+expect_ok "refined until converged" -- contour --function torus -K 4 --refine 100 --eps 1e-4 --out refined
+check "refinement converged" test "$(json refined/summary.json 's["converged"]')" = True
+check "midpoints and centroids within eps" test "$(json refined/summary.json 's["error"] <= 1e-4')" = True
+check "refined torus keeps its handle" test "$(json refined/summary.json 's["genus"]')" = 1
+expect_ok "refined final.obj reads back" -- distance --initial refined/final.obj --points points.csv --domain 1
+expect_error "eps below eta" "eps must be at least eta" -- contour --function torus -K 4 --refine 1 --eps 1e-12 --out x
 expect_error "unknown function" "unknown function 'blob'; known: sphere, torus, cassini" -- contour --function blob -K 4 --out x
 expect_error "neither input" "give --initial FILE or --function NAME" -- contour -K 4 --out x
 expect_status "a domain too small" 3 -- contour --function torus -K 4 --domain 0.5 --out small

@@ -143,6 +143,8 @@ void run_surface_contour(const SurfaceContourRequest& r) {
                     {"passes", st.passes},
                     {"splits", st.splits},
                     {"rejected", st.rejected},
+                    {"collapses", st.collapses},
+                    {"flips", st.flips},
                     {"converged", st.converged},
                     {"g_evals_per_vertex", st.g_evals_per_vertex},
                     {"perturbed", st.perturbed},

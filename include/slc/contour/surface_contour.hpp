@@ -69,6 +69,8 @@ struct SurfaceContourStats {
     int passes = 0;                     ///< refinement passes that split something
     std::size_t splits = 0;             ///< edges split by refinement
     std::size_t rejected = 0;           ///< splits refused by a safeguard
+    std::size_t collapses = 0;          ///< needle edges collapsed by refinement
+    std::size_t flips = 0;              ///< edges flipped by refinement
     bool converged = false;  ///< refinement stopped with no midpoint or centroid beyond ε
 };
 

@@ -131,6 +131,60 @@ TEST(SurfaceContour, ContoursTheExactDistanceOfABoxSurface) {
         EXPECT_LE(std::abs(tree.closest_point(v).distance), 1e-10);
 }
 
+TEST(SurfaceContour, RefinementMeetsEpsAndKeepsTheSurfaceValid) {
+    // Refined until converged: G within ε at every edge midpoint and centroid, within η at the
+    // vertices, and the surface still closed, oriented, free of crossings, of genus one.
+    const auto exact = [](Vec3 x) { return std::hypot(std::hypot(x.x, x.y) - 0.55, x.z) - 0.2; };
+    const auto g = pointwise<Vec3>(exact);
+    for (const double eps : {1e-3, 1e-4}) {
+        SCOPED_TRACE(eps);
+        const SurfaceContour got = contour_surface(
+            g, Box3::centered_cube(1.0),
+            {.depth = 4, .refine_passes = SurfaceContourOptions::until_converged, .eps = eps});
+        EXPECT_TRUE(got.stats.converged);
+        EXPECT_GT(got.stats.splits, 0u);
+        EXPECT_LE(largest_error(got.surface, exact), eps);
+        for (const Vec3 v : got.surface.vertices) ASSERT_LE(std::abs(exact(v)), 1e-10);
+        EXPECT_TRUE(closed_and_oriented(got.surface));
+        EXPECT_TRUE(prepare_surface(got.surface).notes.empty());
+        EXPECT_EQ(genus(got.surface), 1);
+        EXPECT_EQ(component_count(got.surface), 1u);
+        EXPECT_EQ(got.stats.g_evals,
+                  got.stats.g_evals_tree + got.stats.g_evals_roots + got.stats.g_evals_refine);
+    }
+}
+
+TEST(SurfaceContour, RefinedTrianglesGrowAsOneOverEps) {
+    // A surface within ε of a smooth one needs triangles of edge about sqrt(ε/κ): their number
+    // grows as 1/ε, the square of the plane's 1/sqrt(ε) for curves.
+    const auto g = sphere_g({0.03, -0.02, 0.01}, 0.6);
+    std::vector<double> triangles;
+    for (const double eps : {1e-3, 1e-4}) {
+        const SurfaceContour got = contour_surface(
+            g, Box3::centered_cube(1.0),
+            {.depth = 3, .refine_passes = SurfaceContourOptions::until_converged, .eps = eps});
+        ASSERT_TRUE(got.stats.converged);
+        triangles.push_back(static_cast<double>(got.surface.size()));
+    }
+    const double order = std::log10(triangles[1] / triangles[0]);
+    EXPECT_GT(order, 0.8);
+    EXPECT_LT(order, 1.2);
+}
+
+TEST(SurfaceContour, RefinementRefusesTooManyVertices) {
+    const auto g = sphere_g({0.03, -0.02, 0.01}, 0.6);
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0),
+                                 {.depth = 3,
+                                  .refine_passes = SurfaceContourOptions::until_converged,
+                                  .eps = 1e-6,
+                                  .max_vertices = 20000}),
+                 LimitExceeded);
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.depth = 3, .refine_passes = -2}),
+                 InvalidInput);
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.depth = 3, .eps = 1e-12}),
+                 InvalidInput);
+}
+
 TEST(SurfaceContour, NoZeroGivesAnEmptySurface) {
     const auto g = pointwise<Vec3>([](Vec3 x) { return 1.0 + norm(x); });
     const SurfaceContour got = contour_surface(g, Box3::centered_cube(1.0), {.depth = 4});
@@ -166,10 +220,11 @@ TEST(SurfaceContour, BadInputAndNonFiniteValues) {
 
 TEST(SurfaceContour, SameSurfaceForAnyThreadCount) {
     const auto g = torus_g(0.5, 0.22);
+    const SurfaceContourOptions options{.depth = 4, .refine_passes = 3, .eps = 1e-3};
     set_thread_count(1);
-    const SurfaceContour one = contour_surface(g, Box3::centered_cube(1.0), {.depth = 5});
+    const SurfaceContour one = contour_surface(g, Box3::centered_cube(1.0), options);
     set_thread_count(2);
-    const SurfaceContour two = contour_surface(g, Box3::centered_cube(1.0), {.depth = 5});
+    const SurfaceContour two = contour_surface(g, Box3::centered_cube(1.0), options);
     set_thread_count(0);
     EXPECT_EQ(one.surface.vertices, two.surface.vertices);
     EXPECT_EQ(one.surface.triangles, two.surface.triangles);
