@@ -154,6 +154,23 @@ TEST(SurfaceContour, RefinementMeetsEpsAndKeepsTheSurfaceValid) {
     }
 }
 
+TEST(SurfaceContour, NearContactStaysApartWhenRefined) {
+    // Two spheres 0.02 apart, refined to ε: brackets along the normal reach across the gap, and
+    // the crossing safeguard keeps the two apart.
+    const auto exact = [](Vec3 x) {
+        return std::min(distance(x, {-0.31, 0.003, 0.002}) - 0.3,
+                        distance(x, {0.31, 0.003, 0.002}) - 0.3);
+    };
+    const SurfaceContour got = contour_surface(
+        pointwise<Vec3>(exact), Box3::centered_cube(1.0),
+        {.depth = 6, .refine_passes = SurfaceContourOptions::until_converged, .eps = 1e-4});
+    EXPECT_TRUE(got.stats.converged);
+    EXPECT_LE(largest_error(got.surface, exact), 1e-4);
+    EXPECT_TRUE(closed_and_oriented(got.surface));
+    EXPECT_TRUE(prepare_surface(got.surface).notes.empty());
+    EXPECT_EQ(component_count(got.surface), 2u);
+}
+
 TEST(SurfaceContour, RefinedTrianglesGrowAsOneOverEps) {
     // A surface within ε of a smooth one needs triangles of edge about sqrt(ε/κ): their number
     // grows as 1/ε, the square of the plane's 1/sqrt(ε) for curves.
