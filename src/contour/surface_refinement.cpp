@@ -342,7 +342,8 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         auto midpoint = [&](std::uint32_t e) {
             return 0.5 * (s.vertices[edges.ends[e][0]] + s.vertices[edges.ends[e][1]]);
         };
-        // G at the midpoints and centroids not yet known, one batch.
+        // G at the midpoints not yet known, one batch; then at the centroids not yet known of
+        // the triangles that no midpoint beyond ε splits anyway, another.
         std::vector<double> mid(m);
         {
             std::vector<Vec3> points;
@@ -356,24 +357,34 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
                     which.push_back(e);
                 }
             }
-            const std::size_t edge_points = points.size();
+            std::vector<double> values(points.size());
+            g(points, values);
+            for (std::size_t i = 0; i < points.size(); ++i) {
+                const std::uint32_t e = which[i];
+                mid[e] = values[i];
+                midpoint_value.assign(edge_key(edges.ends[e][0], edges.ends[e][1]), values[i]);
+            }
+        }
+        {
+            auto splits_anyway = [&](std::uint32_t t) {
+                for (const std::uint32_t e : edges.of_triangle[t]) {
+                    if (std::abs(mid[e]) > eps &&
+                        !frozen.contains(edge_key(edges.ends[e][0], edges.ends[e][1])))
+                        return true;
+                }
+                return false;
+            };
+            std::vector<Vec3> points;
+            std::vector<std::uint32_t> which;
             for (std::uint32_t t = 0; t < s.size(); ++t) {
-                if (!std::isnan(centroid_value[t])) continue;
+                if (!std::isnan(centroid_value[t]) || splits_anyway(t)) continue;
                 const Triangle3 tri = s.triangle(t);
                 points.push_back((tri.a + tri.b + tri.c) / 3.0);
                 which.push_back(t);
             }
             std::vector<double> values(points.size());
             g(points, values);
-            for (std::size_t i = 0; i < points.size(); ++i) {
-                if (i < edge_points) {
-                    const std::uint32_t e = which[i];
-                    mid[e] = values[i];
-                    midpoint_value.assign(edge_key(edges.ends[e][0], edges.ends[e][1]), values[i]);
-                } else {
-                    centroid_value[which[i]] = values[i];
-                }
-            }
+            for (std::size_t i = 0; i < points.size(); ++i) centroid_value[which[i]] = values[i];
         }
         // The edges to split: midpoints beyond ε, and the longest edge of each triangle whose
         // centroid is.

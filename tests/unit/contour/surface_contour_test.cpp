@@ -171,6 +171,28 @@ TEST(SurfaceContour, NearContactStaysApartWhenRefined) {
     EXPECT_EQ(component_count(got.surface), 2u);
 }
 
+TEST(SurfaceContour, ThinSlabIsOneClosedSurface) {
+    // A slab 0.1 thick (1.6 finest cells at K = 5) with sharp edges: one closed surface, no holes,
+    // linear and refined.
+    const auto exact = [](Vec3 x) {
+        const Vec3 q{std::abs(x.x - 0.01) - 0.6, std::abs(x.y + 0.02) - 0.5,
+                     std::abs(x.z - 0.013) - 0.05};
+        const Vec3 out{std::max(q.x, 0.0), std::max(q.y, 0.0), std::max(q.z, 0.0)};
+        return norm(out) + std::min(std::max({q.x, q.y, q.z}), 0.0);
+    };
+    for (const int passes : {0, SurfaceContourOptions::until_converged}) {
+        SCOPED_TRACE(passes);
+        const SurfaceContour got =
+            contour_surface(pointwise<Vec3>(exact), Box3::centered_cube(1.0),
+                            {.depth = 5, .refine_passes = passes, .eps = 1e-2});
+        EXPECT_TRUE(closed_and_oriented(got.surface));
+        EXPECT_TRUE(prepare_surface(got.surface).notes.empty());
+        EXPECT_EQ(component_count(got.surface), 1u);
+        EXPECT_EQ(genus(got.surface), 0);
+        EXPECT_NEAR(volume(got.surface), 1.2 * 1.0 * 0.1, 0.1 * 0.12);
+    }
+}
+
 TEST(SurfaceContour, RefinedTrianglesGrowAsOneOverEps) {
     // A surface within ε of a smooth one needs triangles of edge about sqrt(ε/κ): their number
     // grows as 1/ε, the square of the plane's 1/sqrt(ε) for curves.
