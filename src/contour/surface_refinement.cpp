@@ -283,8 +283,10 @@ std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
 }
 
 /// Collapses needles and flips edges, in rounds, until a round changes nothing. Triangles that
-/// changed lose their cached centroid value; collapsed ones are removed (vertices stay, unused).
-void improve(Surface& s, std::vector<double>& centroid_value, SurfaceRefinement& result) {
+/// changed lose their cached centroid value and are marked dirty (their crossings unchecked);
+/// collapsed ones are removed (vertices stay, unused).
+void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::uint8_t>& dirty,
+             SurfaceRefinement& result) {
     constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
     for (int round = 0; round < improve_rounds; ++round) {
         std::vector<std::uint8_t> changed(s.size(), 0);
@@ -295,15 +297,20 @@ void improve(Surface& s, std::vector<double>& centroid_value, SurfaceRefinement&
                 if (s.triangles[t][0] == dead) continue;
                 s.triangles[kept] = s.triangles[t];
                 centroid_value[kept] = changed[t] ? nan : centroid_value[t];
+                dirty[kept] = dirty[t] | changed[t];
                 ++kept;
             }
             s.triangles.resize(kept);
             centroid_value.resize(kept);
+            dirty.resize(kept);
             changed.assign(kept, 0);
         }
         const std::size_t flips = flip_edges(s, changed);
-        for (std::size_t t = 0; t < s.size(); ++t)
-            if (changed[t]) centroid_value[t] = nan;
+        for (std::size_t t = 0; t < s.size(); ++t) {
+            if (!changed[t]) continue;
+            centroid_value[t] = nan;
+            dirty[t] = 1;
+        }
         result.collapses += collapses;
         result.flips += flips;
         // A round that changes under one triangle in a thousand is the last.
@@ -334,9 +341,11 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
     KeyMap<double> midpoint_value;  // G at the midpoint of edge (a, b); vertices never move
     KeyMap<std::uint8_t> frozen;    // edges whose split a safeguard refused
     std::vector<double> centroid_value(s.size(), nan);
+    // Triangles changed since the last crossing check; the linear contour is embedded.
+    std::vector<std::uint8_t> dirty(s.size(), 0);
     const int limit = passes < 0 ? max_passes : std::min(passes, max_passes);
     for (int pass = 0; pass < limit; ++pass) {
-        improve(s, centroid_value, result);
+        improve(s, centroid_value, dirty, result);
         const Edges edges(s);
         const std::size_t m = edges.size();
         auto midpoint = [&](std::uint32_t e) {
@@ -503,6 +512,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         Surface next;
         std::vector<double> next_centroid;
         std::vector<std::uint32_t> parent;
+        std::vector<std::uint8_t> next_dirty;
         for (;;) {
             bool changed = false;
             std::vector<TriangleIndices> kids;
@@ -521,6 +531,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
             next.triangles.clear();
             next_centroid.clear();
             parent.clear();
+            next_dirty.clear();
             for (std::uint32_t t = 0; t < s.size(); ++t) {
                 const auto [mask, w] = mask_of(t);
                 const std::size_t first = next.triangles.size();
@@ -528,9 +539,11 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
                 for (std::size_t k = first; k < next.triangles.size(); ++k) {
                     next_centroid.push_back(mask == 0 ? centroid_value[t] : nan);
                     parent.push_back(t);
+                    next_dirty.push_back(mask != 0 || dirty[t] ? 1 : 0);
                 }
             }
-            const std::optional<TriangleContact> contact = find_self_intersection(next);
+            // Pairs of triangles neither of which changed since the last check cannot meet.
+            const std::optional<TriangleContact> contact = find_self_intersection(next, next_dirty);
             if (!contact) break;
             const std::uint32_t p = parent[contact->first], q = parent[contact->second];
             const bool p_split = mask_of(p).first != 0, q_split = mask_of(q).first != 0;
@@ -559,6 +572,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         s.vertices = std::move(vertices);
         s.triangles = std::move(next.triangles);
         centroid_value = std::move(next_centroid);
+        dirty.assign(s.triangles.size(), 0);
         if (splits == 0) break;
         result.splits += splits;
         ++result.passes;

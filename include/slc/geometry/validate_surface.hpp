@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,11 @@ struct TriangleContact {
 /// N) for a surface of similar triangles) and exact predicates. Touching, overlapping and
 /// crossing all count. Precondition: no triangle is degenerate.
 std::optional<TriangleContact> find_self_intersection(const Surface& s);
+/// The same among the pairs with at least one triangle flagged in `changed` (one flag a
+/// triangle): when the others are known not to meet, the answer of the whole check, for the cost
+/// of the flagged triangles' pairs.
+std::optional<TriangleContact> find_self_intersection(const Surface& s,
+                                                      std::span<const std::uint8_t> changed);
 
 /// What prepare_surface did to the input besides checking it.
 struct PreparedSurface {
