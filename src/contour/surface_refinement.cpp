@@ -286,11 +286,11 @@ std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
 /// changed lose their cached centroid value and are marked dirty (their crossings unchecked);
 /// collapsed ones are removed (vertices stay, unused).
 void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::uint8_t>& dirty,
-             SurfaceRefinement& result) {
+             bool collapse, SurfaceRefinement& result) {
     constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
     for (int round = 0; round < improve_rounds; ++round) {
         std::vector<std::uint8_t> changed(s.size(), 0);
-        const std::size_t collapses = collapse_needles(s, changed);
+        const std::size_t collapses = collapse ? collapse_needles(s, changed) : 0;
         if (collapses > 0) {
             std::size_t kept = 0;
             for (std::size_t t = 0; t < s.size(); ++t) {
@@ -345,7 +345,9 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
     std::vector<std::uint8_t> dirty(s.size(), 0);
     const int limit = passes < 0 ? max_passes : std::min(passes, max_passes);
     for (int pass = 0; pass < limit; ++pass) {
-        improve(s, centroid_value, dirty, result);
+        // Needles come from the linear contour, where a root falls near a mesh vertex; splits
+        // make none, and collapsing what splits made could undo them pass after pass.
+        improve(s, centroid_value, dirty, pass == 0, result);
         const Edges edges(s);
         const std::size_t m = edges.size();
         auto midpoint = [&](std::uint32_t e) {
@@ -543,17 +545,20 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
                 }
             }
             // Pairs of triangles neither of which changed since the last check cannot meet.
-            const std::optional<TriangleContact> contact = find_self_intersection(next, next_dirty);
-            if (!contact) break;
-            const std::uint32_t p = parent[contact->first], q = parent[contact->second];
-            const bool p_split = mask_of(p).first != 0, q_split = mask_of(q).first != 0;
-            if (!p_split && !q_split) {
-                throw NumericalFailure(fmt::format(
-                    "the contour's triangles {} and {} meet before refinement; raise the depth K",
-                    p, q));
+            const std::vector<TriangleContact> contacts = find_self_intersections(next, next_dirty);
+            if (contacts.empty()) break;
+            for (const TriangleContact& contact : contacts) {
+                const std::uint32_t p = parent[contact.first], q = parent[contact.second];
+                const bool p_split = mask_of(p).first != 0, q_split = mask_of(q).first != 0;
+                if (!p_split && !q_split) {
+                    throw NumericalFailure(fmt::format(
+                        "the contour's triangles {} and {} meet before refinement; raise the "
+                        "depth K",
+                        p, q));
+                }
+                if (p_split) refuse_splits_of(p);
+                if (q_split) refuse_splits_of(q);
             }
-            if (p_split) refuse_splits_of(p);
-            if (q_split) refuse_splits_of(q);
         }
         // Vertices no triangle uses (their splits refused) are dropped.
         std::vector<std::uint32_t> renumber(next.vertices.size(),

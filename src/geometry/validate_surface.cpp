@@ -201,49 +201,50 @@ std::optional<TriangleContact> find_self_intersection(const Surface& s) {
     return find_self_intersection(s, std::vector<std::uint8_t>(s.size(), 1));
 }
 
-std::optional<TriangleContact> find_self_intersection(const Surface& s,
-                                                      std::span<const std::uint8_t> changed) {
+std::vector<TriangleContact> find_self_intersections(const Surface& s,
+                                                     std::span<const std::uint8_t> changed) {
     SLC_ASSERT(changed.size() == s.size(), "one flag a triangle");
     std::vector<Triangle3> corners(s.size());
     for (std::size_t t = 0; t < s.size(); ++t) corners[t] = s.triangle(t);
     const TriangleHierarchy hierarchy(corners);
-    // For each triangle, the least later triangle it meets; the least pair is then found in
-    // index order, whatever the thread count.
+    // From each flagged triangle i, the pairs it makes with the triangles its box meets: with a
+    // later one, the least it meets (partner); with an earlier unflagged one, the least it meets
+    // (reverse, moved to that one's slot after). Pairs of two flagged triangles are tested from
+    // the smaller. Each slot is written by the one thread that owns i, so the answer does not
+    // depend on the thread count.
     constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
     std::vector<std::uint32_t> partner(s.size(), none);
-    std::vector<std::uint32_t> reverse(s.size(), none);  // least j < i that i meets
+    std::vector<std::uint32_t> reverse(s.size(), none);
     parallel_for(
         s.size(),
         [&](std::size_t i) {
-            // Pair (i, j), i < j, is tested from i when i changed, else from j when j did; the
-            // answer per i is still the least j it meets.
+            if (!changed[i]) return;
+            const auto me = static_cast<std::uint32_t>(i);
             hierarchy.for_each_overlapping(bounding_box(corners[i]), [&](std::uint32_t j) {
-                if (j == i) return;
-                if (!changed[i] && !changed[j]) return;
-                if (j < i) {
-                    if (changed[j]) return;  // tested from j
-                    Triangle3 a, b;
-                    const int shared = arrange_shared(s, j, static_cast<std::uint32_t>(i), a, b);
-                    if (triangles_overlap(a, b, shared)) {
-                        // Recorded under j, the smaller, by the one thread that owns i: kept
-                        // apart per i so that threads never write one slot.
-                        reverse[i] = std::min(reverse[i], j);
-                    }
-                    return;
-                }
-                if (j >= partner[i]) return;
+                if (j == me || (j < me && changed[j])) return;
+                if (j > me && j >= partner[i]) return;
+                if (j < me && j >= reverse[i]) return;
                 Triangle3 a, b;
-                const int shared = arrange_shared(s, static_cast<std::uint32_t>(i), j, a, b);
-                if (triangles_overlap(a, b, shared)) partner[i] = j;
+                const int shared =
+                    j > me ? arrange_shared(s, me, j, a, b) : arrange_shared(s, j, me, a, b);
+                if (!triangles_overlap(a, b, shared)) return;
+                (j > me ? partner[i] : reverse[i]) = j;
             });
         },
         expensive_grain);
-    // Contacts found from the larger index move to the smaller one's slot.
     for (std::uint32_t i = 0; i < s.size(); ++i)
         if (reverse[i] != none) partner[reverse[i]] = std::min(partner[reverse[i]], i);
+    std::vector<TriangleContact> out;
     for (std::uint32_t i = 0; i < s.size(); ++i)
-        if (partner[i] != none) return TriangleContact{i, partner[i]};
-    return std::nullopt;
+        if (partner[i] != none) out.push_back({i, partner[i]});
+    return out;
+}
+
+std::optional<TriangleContact> find_self_intersection(const Surface& s,
+                                                      std::span<const std::uint8_t> changed) {
+    const std::vector<TriangleContact> all = find_self_intersections(s, changed);
+    if (all.empty()) return std::nullopt;
+    return all.front();
 }
 
 PreparedSurface prepare_surface(Surface raw) {

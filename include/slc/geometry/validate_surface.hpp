@@ -29,6 +29,11 @@ std::optional<TriangleContact> find_self_intersection(const Surface& s);
 /// of the flagged triangles' pairs.
 std::optional<TriangleContact> find_self_intersection(const Surface& s,
                                                       std::span<const std::uint8_t> changed);
+/// Contacts among the pairs with a triangle flagged: for each triangle i, in increasing order,
+/// the least j > i it meets, when there is one. The first is find_self_intersection's answer.
+/// Cost: the flagged triangles' pairs.
+std::vector<TriangleContact> find_self_intersections(const Surface& s,
+                                                     std::span<const std::uint8_t> changed);
 
 /// What prepare_surface did to the input besides checking it.
 struct PreparedSurface {
