@@ -5,6 +5,8 @@ The C++ library on numpy arrays (docs/python.md), with the defaults of ``slc run
 - ``Interface(curves)``: closed curves, each an (n, 2) array, validated like the tool's files;
 - ``distance(interface, points)``: signed distances (negative inside) and nearest points;
 - ``contour(f, box, depth)``: the zero set of a vectorised function f((m, 2)) -> (m,);
+- ``contour_surface(f, box, depth)``: the same in space, f((m, 3)) -> (m,): a closed triangle
+  surface as (vertices, triangles, stats);
 - ``run(interface, velocity, t_end)``: the curves moved by a built-in law or a Python one;
 - ``problem(name)``, ``run(problem)``, ``study(...)``: the paper's experiments and convergence;
 - ``plot(obj)``: an interface, a run's frames or its history, with matplotlib;
@@ -15,7 +17,7 @@ message; a numerical failure RuntimeError. A Python callback is called with whol
 vertices of a stage, or a batch of points), never per point; what it raises reaches the caller.
 """
 
-from ._interface import Interface, contour, distance
+from ._interface import Interface, contour, contour_surface, distance
 from ._run import (FieldExpression, FieldFile, FlowField, NormalSpeed, Problem, RunResult,
                    SelfConvergence, SpeedExpression, Step, Study, problem, problems, run, study,
                    velocities)
@@ -35,6 +37,7 @@ __all__ = [
     "Step",
     "Study",
     "contour",
+    "contour_surface",
     "distance",
     "grid",
     "plot",

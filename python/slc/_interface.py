@@ -157,3 +157,25 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
     arrays, _ = _slc.contour(f, box, int(depth), None if eps is None else float(eps),
                              _refine(refine))
     return Interface._trusted(arrays)
+
+
+def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None = None,
+                    refine=None):
+    """The zero set of f, a vectorised function f((m, 3) array) -> (m,) array, in box, by the
+    contouring of space (paper §2 with d = 3): a closed, oriented triangle surface facing f > 0.
+
+    box: (x0, y0, z0, x1, y1, z1), a box taken as the cube around it, or b for [-b, b]³.
+    depth: K, the deepest level of the octree. eps: ε, the tolerance of refinement at edge
+    midpoints and centroids (default 10^-K). refine: P passes, or "converged"; by default
+    converged when eps is given, none otherwise. Returns (vertices (n, 3) float array,
+    triangles (m, 3) int array of vertex indices, stats dict).
+    """
+    if isinstance(box, numbers.Real):
+        box = (-box, -box, -box, box, box, box)
+    box = [float(v) for v in box]
+    if refine is None:
+        refine = "converged" if eps is not None else 0
+    if isinstance(depth, bool) or not isinstance(depth, numbers.Integral):
+        raise TypeError(f"depth must be an integer, got {depth!r}")
+    return _slc.contour_surface(f, box, int(depth), None if eps is None else float(eps),
+                                _refine(refine))

@@ -22,6 +22,7 @@
 #include "arrays.hpp"
 #include "run.hpp"
 #include "slc/contour/contour.hpp"
+#include "slc/contour/surface_contour.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/distance/distance_tree.hpp"
@@ -147,6 +148,75 @@ py::tuple contour_function(const py::object& f, const std::vector<double>& box, 
     return py::make_tuple(arrays_of(r.curves), stats);
 }
 
+/// A cubic domain from (x0, y0, z0, x1, y1, z1), a box taken as the cube around it.
+Box3 cubic_box(const std::vector<double>& v) {
+    if (v.size() != 6) throw InvalidInput("box must be six numbers (x0, y0, z0, x1, y1, z1)");
+    const Box3 b{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+    if (!is_finite(b.lo) || !is_finite(b.hi) || !(b.extent(0) > 0) || !(b.extent(1) > 0) ||
+        !(b.extent(2) > 0)) {
+        throw InvalidInput(fmt::format(
+            "box must have x0 < x1, y0 < y1 and z0 < z1, all finite, got ({}, {}, {}, {}, {}, {})",
+            v[0], v[1], v[2], v[3], v[4], v[5]));
+    }
+    const double half = 0.5 * std::max({b.extent(0), b.extent(1), b.extent(2)});
+    const Vec3 c = b.center();
+    return {{c.x - half, c.y - half, c.z - half}, {c.x + half, c.y + half, c.z + half}};
+}
+
+/// Calls a Python f((m, 3) array) -> (m,) array for a batch, with the GIL held for the call.
+void call_batch3(const py::object& f, std::span<const Vec3> points, std::span<double> values) {
+    py::gil_scoped_acquire hold;
+    Array x({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
+    static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed doubles");
+    if (!points.empty()) std::memcpy(x.mutable_data(), points.data(), points.size() * sizeof(Vec3));
+    const Array v = numbers_of(f(x), "f");
+    if (v.ndim() != 1 || static_cast<std::size_t>(v.shape(0)) != points.size()) {
+        throw InvalidInput(fmt::format(
+            "f must return an (m,) array for an (m, 3) array of points, got shape {} for m = {}",
+            shape_text(v), points.size()));
+    }
+    std::memcpy(values.data(), v.data(), values.size() * sizeof(double));
+}
+
+py::tuple contour_surface_function(const py::object& f, const std::vector<double>& box, int depth,
+                                   std::optional<double> eps, int refine) {
+    const Box3 domain = cubic_box(box);
+    const SurfaceContourOptions options{.depth = depth, .refine_passes = refine, .eps = eps};
+    auto g = [&f](std::span<const Vec3> points, std::span<double> values) {
+        call_batch3(f, points, values);
+    };
+    std::optional<SurfaceContour> result;
+    {
+        py::gil_scoped_release release;
+        result.emplace(contour_surface(g, domain, options));
+    }
+    const Surface& surface = result->surface;
+    py::array_t<double> vertices(
+        {static_cast<py::ssize_t>(surface.vertices.size()), py::ssize_t{3}});
+    if (!surface.vertices.empty()) {
+        std::memcpy(vertices.mutable_data(), surface.vertices.data(),
+                    surface.vertices.size() * sizeof(Vec3));
+    }
+    py::array_t<std::int64_t> triangles({static_cast<py::ssize_t>(surface.size()), py::ssize_t{3}});
+    auto t = triangles.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < surface.size(); ++i)
+        for (int k = 0; k < 3; ++k)
+            t(static_cast<py::ssize_t>(i), k) = static_cast<std::int64_t>(surface.triangles[i][k]);
+    const SurfaceContourStats& st = result->stats;
+    py::dict stats;
+    stats["cells"] = st.cells;
+    stats["tetrahedra"] = st.tetrahedra;
+    stats["triangles"] = st.triangles;
+    stats["g_evals"] = st.g_evals;
+    stats["g_evals_per_vertex"] = st.g_evals_per_vertex;
+    stats["passes"] = st.passes;
+    stats["converged"] = st.converged;
+    stats["eps"] = options.resolved_eps();
+    stats["domain"] = py::make_tuple(domain.lo.x, domain.lo.y, domain.lo.z, domain.hi.x,
+                                     domain.hi.y, domain.hi.z);
+    return py::make_tuple(vertices, triangles, stats);
+}
+
 py::list velocity_names() {
     py::list out;
     for (const VelocityInfo& v : velocity_catalog()) out.append(v.name);
@@ -178,6 +248,8 @@ PYBIND11_MODULE(_slc, m) {
     m.def("distance", &distance, py::arg("curves"), py::arg("points"));
     m.def("contour", &contour_function, py::arg("f"), py::arg("box"), py::arg("depth"),
           py::arg("eps"), py::arg("refine"));
+    m.def("contour_surface", &contour_surface_function, py::arg("f"), py::arg("box"),
+          py::arg("depth"), py::arg("eps"), py::arg("refine"));
     add_run_functions(m);
     m.def("velocity_names", &velocity_names);
     m.attr("until_converged") = slc::ContourOptions::until_converged;

@@ -140,6 +140,33 @@ def test_contour_checks_what_f_returns_and_passes_its_errors_on():
         slc.contour(lambda p: p[:, 0], 1.0, 99)
 
 
+def test_contour_surface_of_a_torus_is_closed_and_within_eps():
+    eps = 1e-3
+
+    def g(p):  # a torus about the z axis, G > 0 outside
+        return np.hypot(np.hypot(p[:, 0], p[:, 1]) - 0.55, p[:, 2]) - 0.2
+
+    vertices, triangles, stats = slc.contour_surface(g, 1.0, 4, eps=eps)
+    assert vertices.shape[1] == 3 and triangles.shape[1] == 3
+    assert stats["converged"] and stats["triangles"] == len(triangles)
+    assert np.abs(g(vertices)).max() < 1e-9  # vertices: root tolerance
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    for p in (0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (a + b + c) / 3):
+        assert np.abs(g(p)).max() <= eps
+    # Closed and oriented: every directed edge once, and its reverse present.
+    edges = {(int(t[k]), int(t[(k + 1) % 3])) for t in triangles for k in range(3)}
+    assert len(edges) == 3 * len(triangles)
+    assert all((j, i) in edges for (i, j) in edges)
+    # Euler characteristic V - E + F = 0 for a torus; the volume is positive (faces outward).
+    assert len(vertices) - len(edges) // 2 + len(triangles) == 0
+    volume = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6
+    assert abs(volume / (2 * np.pi**2 * 0.55 * 0.2**2) - 1) < 0.01
+    with pytest.raises(ValueError, match="box must be six numbers"):
+        slc.contour_surface(g, (0, 0, 1, 1), 4)
+    with pytest.raises(ValueError, match=r"f must return an \(m,\) array"):
+        slc.contour_surface(lambda p: p, 1.0, 3)
+
+
 # ---- run ---------------------------------------------------------------------------------------
 
 
