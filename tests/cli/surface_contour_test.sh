@@ -49,6 +49,15 @@ check "refinement converged" test "$(json refined/summary.json 's["converged"]')
 check "midpoints and centroids within eps" test "$(json refined/summary.json 's["error"] <= 1e-4')" = True
 check "refined torus keeps its handle" test "$(json refined/summary.json 's["genus"]')" = 1
 expect_ok "refined final.obj reads back" -- distance --initial refined/final.obj --points points.csv --domain 1
+# Refinement that cannot reach eps (the box's edges at K = 3 and 1e-3: splits that would fold
+# them are refused) writes everything, says "unconverged" and exits with status 3 naming the
+# settings to change; P passes spent before eps is reached end the same way.
+expect_status "refinement short of eps" 3 -- contour --initial box.obj -K 3 --refine 100 --eps 1e-3 --out coarse
+check "one line naming -K and --eps" grep -q "^slc: error: refinement stopped .* raise -K or --eps" err.txt
+check "summary says unconverged" test "$(json coarse/summary.json 's["status"], s["converged"]')" = "unconverged False"
+check "its files are written" test -s coarse/final.obj -a -s coarse/final.png
+expect_status "one pass short of eps" 3 -- contour --function torus -K 4 --refine 1 --eps 1e-4 --out short
+check "names --refine too" grep -q "raise -K or --eps or --refine" err.txt
 expect_error "eps below eta" "eps must be at least eta" -- contour --function torus -K 4 --refine 1 --eps 1e-12 --out x
 expect_error "unknown function" "unknown function 'blob'; known: sphere, torus, cassini" -- contour --function blob -K 4 --out x
 expect_error "neither input" "give --initial FILE or --function NAME" -- contour -K 4 --out x

@@ -23,8 +23,9 @@ namespace slc::cli {
 void add_domain_options(CLI::App& cmd, DomainOptions& options) {
     auto* domain =
         cmd.add_option("--domain", options.half_width,
-                       "Half-width b of the square domain [-b, b]^2 (default: the square "
-                       "around the curves' bounding box, 1.5 times its larger half-side)");
+                       "Half-width b of the square domain [-b, b]^2, or cube [-b, b]^3 for a "
+                       "surface (default: the square or cube around the bounding box, 1.5 "
+                       "times its largest half-side)");
     auto* box = cmd.add_option(
         "--box", options.box,
         "The domain as x0,y0,x1,y1 (x0,y0,z0,x1,y1,z1 for a surface); a rectangle (box) is taken "

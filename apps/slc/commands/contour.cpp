@@ -218,13 +218,15 @@ void add_contour_command(CLI::App& app) {
         ->required()
         ->check(integer_in(0, 20));
     cmd->add_option("--eps", o->eps,
-                    "Midpoint tolerance eps of refinement (default 10^-K; at least two ulps of "
-                    "the domain's largest coordinate)")
+                    "Tolerance eps of refinement on |G| at segment midpoints (for a surface: "
+                    "edge midpoints and triangle centroids); default 10^-K, at least two ulps "
+                    "of the domain's largest coordinate")
         ->check(positive_number());
     cmd->add_option("--refine", o->refine,
                     "Passes P of adaptive refinement (default 0: linear contour); refinement stops "
                     "early when no midpoint exceeds eps or a pass changes nothing, so a large P "
-                    "means 'until converged'")
+                    "means 'until converged'; a surface left beyond eps ends with status "
+                    "'unconverged' and exit status 3")
         ->check(integer_in(0, 1000000));
     cmd->add_option("--eta", o->eta,
                     "Root-finding tolerance eta: |G| <= eta at every vertex (default 1e-10)")
@@ -234,7 +236,8 @@ void add_contour_command(CLI::App& app) {
     add_domain_options(*cmd, o->domain);
     cmd->add_option("-L,--tree-depth", o->tree_depth,
                     "Depth L of the distance tree that evaluates F (default: cells about one mean "
-                    "segment wide; it sets the speed, not the error)")
+                    "segment, or one to two mean edges of a surface, wide; it sets the speed, "
+                    "not the error)")
         ->check(integer_in(0, 30));
     cmd->add_option("--out", o->out, "Output folder")->required();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")

@@ -172,8 +172,20 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         if (error) title += fmt::format(", error {:.2e}", *error);
         save_surface_picture(s, dir / "final.png", {.title = title});
     }
+    // A refinement that stops with midpoints or centroids beyond ε (its splits refused, or P
+    // spent) says so: the files are written, and the status and the exit status tell.
+    const bool unconverged = r.refine != 0 && !s.triangles.empty() && !st.converged;
+    if (unconverged) summary["status"] = "unconverged";
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     folder.commit();
+    if (unconverged) {
+        throw NumericalFailure(fmt::format(
+            "refinement stopped after {} passes with |G| above eps = {:g}{} at a midpoint or "
+            "centroid; raise -K or --eps{} (results written to {})",
+            st.passes, options.resolved_eps(),
+            error ? fmt::format(" (largest {:.3g})", *error) : std::string(),
+            st.passes >= r.refine ? " or --refine" : "", r.out));
+    }
     fmt::print(
         "{} cells, {} triangles, error {}, {} G evaluations ({:.2f} per vertex), {:.3g} s; "
         "wrote {}\n",
