@@ -4,35 +4,94 @@
 
 #include <fmt/format.h>
 
+#include <string>
+
 #include "slc/core/error.hpp"
 #include "slc/geometry_modules/intrinsic.hpp"
 
 namespace slc {
 namespace {
 
+/// "(x, y)" or "(x, y, z)".
+std::string point_text(Vec2 p) { return fmt::format("({}, {})", p.x, p.y); }
+std::string point_text(Vec3 p) { return fmt::format("({}, {}, {})", p.x, p.y, p.z); }
+
 /// Throws NumericalFailure at the first non-finite velocity, naming `what` (vertex or point).
-void check_finite(const VelocityLaw& law, double t, std::span<const Vec2> at,
-                  std::span<const Vec2> u, const char* what) {
+template <int dim>
+void check_finite(const BasicVelocityLaw<dim>& law, double t,
+                  std::span<const typename Space<dim>::Point> at,
+                  std::span<const typename Space<dim>::Point> u, const char* what) {
     for (std::size_t i = 0; i < u.size(); ++i) {
         if (!is_finite(u[i])) {
             throw NumericalFailure(
-                fmt::format("velocity '{}' is not finite at t = {}, {} {} ({}, {}): ({}, {})",
-                            law.name(), t, what, i, at[i].x, at[i].y, u[i].x, u[i].y));
+                fmt::format("velocity '{}' is not finite at t = {}, {} {} {}: {}", law.name(), t,
+                            what, i, point_text(at[i]), point_text(u[i])));
         }
     }
 }
 
+/// The vertex velocities of law on interface with geometry, checked.
+template <int dim>
+std::vector<typename Space<dim>::Point> checked_velocities(
+    const BasicVelocityLaw<dim>& law, double t, const typename Space<dim>::Shape& interface,
+    const typename Space<dim>::Geometry& geometry) {
+    auto u = law.velocities(t, interface, geometry);
+    const auto x = vertex_points(interface);
+    if (u.size() != x.size()) {
+        throw InvalidInput(
+            fmt::format("velocity '{}' returned {} velocities for {} vertices at t = {}",
+                        law.name(), u.size(), x.size(), t));
+    }
+    check_finite<dim>(law, t, x, u, "vertex");
+    return u;
+}
+
+/// A flow field at points, checked.
+template <int dim>
+std::vector<typename Space<dim>::Point> checked_field(
+    const BasicVelocityLaw<dim>& law, double t,
+    std::span<const typename Space<dim>::Point> points) {
+    std::vector<typename Space<dim>::Point> u(points.size());
+    law.sample(t, points, u);
+    check_finite<dim>(law, t, points, u, "point");
+    return u;
+}
+
 }  // namespace
 
-void VelocityLaw::sample(double, std::span<const Vec2>, std::span<Vec2>) const {
+template <int dim>
+void BasicVelocityLaw<dim>::sample(double, std::span<const Point>, std::span<Point>) const {
     throw InvalidInput(
         fmt::format("velocity '{}' is defined only on the interface, not everywhere", name()));
 }
 
-void VelocityLaw::normal_speeds(double, std::span<const Vec2>, std::span<const Vec2>,
-                                std::span<double>) const {
+template <int dim>
+void BasicVelocityLaw<dim>::normal_speeds(double, std::span<const Point>, std::span<const Point>,
+                                          std::span<double>) const {
     throw InvalidInput(fmt::format("velocity '{}' is not a normal speed law", name()));
 }
+
+template class BasicVelocityLaw<2>;
+template class BasicVelocityLaw<3>;
+
+template <int dim>
+std::vector<typename BasicNormalLaw<dim>::Point> BasicNormalLaw<dim>::velocities(
+    double t, const Shape& interface, const Geometry& geometry) const {
+    const std::span<const Point> x = vertex_points(interface);
+    if (geometry.normals.size() != x.size()) {
+        throw InvalidInput(fmt::format(
+            "velocity '{}' needs the normals at the vertices (vertex_velocities computes them)",
+            this->name()));
+    }
+    std::vector<double> v(x.size());
+    this->normal_speeds(t, x, geometry.normals, v);
+    std::vector<Point> u(v.size());
+    for (std::size_t i = 0; i < u.size(); ++i) u[i] = v[i] * geometry.normals[i];
+    return u;
+}
+
+template class BasicNormalLaw<2>;
+template class BasicNormalLaw<3>;
 
 std::optional<std::size_t> vertex_outside_extent(const VelocityLaw& law, const Interface& curves) {
     const std::optional<Box> extent = law.extent();
@@ -53,27 +112,6 @@ void require_inside_extent(const VelocityLaw& law, const Interface& curves) {
         law.name(), b.lo.x, b.hi.x, b.lo.y, b.hi.y, *i, p.x, p.y));
 }
 
-std::vector<Vec2> FlowFieldLaw::velocities(double t, const Interface& curves,
-                                           const VertexGeometry&) const {
-    std::vector<Vec2> u(curves.size());
-    sample(t, curves.points(), u);
-    return u;
-}
-
-std::vector<Vec2> NormalLaw::velocities(double t, const Interface& curves,
-                                        const VertexGeometry& geometry) const {
-    if (geometry.normals.size() != curves.size()) {
-        throw InvalidInput(fmt::format(
-            "velocity '{}' needs the normals at the vertices (vertex_velocities computes them)",
-            name()));
-    }
-    std::vector<double> v(curves.size());
-    normal_speeds(t, curves.points(), geometry.normals, v);
-    std::vector<Vec2> u(v.size());
-    for (std::size_t i = 0; i < u.size(); ++i) u[i] = v[i] * geometry.normals[i];
-    return u;
-}
-
 VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curves,
                                const GeometryContext& context) {
     if (!needs.any()) return {};
@@ -90,22 +128,32 @@ VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curv
 
 std::vector<Vec2> vertex_velocities(const VelocityLaw& law, double t, const Interface& curves,
                                     const GeometryContext& context) {
-    const VertexGeometry geometry = vertex_geometry(law.needs(), curves, context);
-    std::vector<Vec2> u = law.velocities(t, curves, geometry);
-    if (u.size() != curves.size()) {
+    return checked_velocities<2>(law, t, curves, vertex_geometry(law.needs(), curves, context));
+}
+
+SurfaceGeometry vertex_geometry(const GeometryNeeds& needs, const Surface& surface,
+                                SurfaceGeometryOptions options) {
+    if (!needs.any()) return {};
+    if (needs.module) {
         throw InvalidInput(
-            fmt::format("velocity '{}' returned {} velocities for {} vertices at t = {}",
-                        law.name(), u.size(), curves.size(), t));
+            "surfaces have one geometry module: leave the law's geometry module unset");
     }
-    check_finite(law, t, curves.points(), u, "vertex");
-    return u;
+    options.curvature = needs.curvature;
+    return surface_geometry(surface, options);
+}
+
+std::vector<Vec3> vertex_velocities(const SurfaceVelocityLaw& law, double t, const Surface& surface,
+                                    const SurfaceGeometryOptions& options) {
+    return checked_velocities<3>(law, t, surface, vertex_geometry(law.needs(), surface, options));
 }
 
 std::vector<Vec2> field_velocities(const VelocityLaw& law, double t, std::span<const Vec2> points) {
-    std::vector<Vec2> u(points.size());
-    law.sample(t, points, u);
-    check_finite(law, t, points, u, "point");
-    return u;
+    return checked_field<2>(law, t, points);
+}
+
+std::vector<Vec3> field_velocities(const SurfaceVelocityLaw& law, double t,
+                                   std::span<const Vec3> points) {
+    return checked_field<3>(law, t, points);
 }
 
 }  // namespace slc

@@ -1,7 +1,8 @@
 /// @file
 /// Velocity laws (DESIGN §3, paper §3 and §4.3 "Velocity(t, Γ)"): the interface a law implements,
 /// the call that hands it the vertex geometry it asks for and checks what it returns, and adapters
-/// that turn a small callable into a law.
+/// that turn a small callable into a law. Written once for curves (dim = 2: VelocityLaw) and
+/// surfaces (dim = 3: SurfaceVelocityLaw, DESIGN §8); Space<dim> names the types that differ.
 #pragma once
 
 #include <concepts>
@@ -14,19 +15,49 @@
 #include <vector>
 
 #include "slc/core/box.hpp"
+#include "slc/core/box3.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/geometry/interface.hpp"
+#include "slc/geometry/surface.hpp"
 #include "slc/geometry_modules/arclength.hpp"
 #include "slc/geometry_modules/embedded.hpp"
+#include "slc/geometry_modules/surface_geometry.hpp"
 #include "slc/geometry_modules/vertex_geometry.hpp"
 #include "slc/velocity/invariants.hpp"
 
 namespace slc {
 
-/// Which geometry module computes the vertex normals and curvature a law needs: intrinsic (paper
-/// §3.1, Equations 7, 8; no mesh), embedded (§3.2, Equation 9 on a local mesh; needs a distance
-/// tree), or arclength (circumcircle curvature averaged along the curve; no mesh).
+/// The types of dimension dim: the point, the interface (curves or a surface), the domain (a
+/// square or a cube) and the geometry at the interface's vertices.
+template <int dim>
+struct Space;
+/// Curves in the plane.
+template <>
+struct Space<2> {
+    using Point = Vec2;               ///< a point
+    using Shape = Interface;          ///< the interface
+    using Region = Box;               ///< the domain
+    using Geometry = VertexGeometry;  ///< normals and curvature at the vertices
+};
+/// Surfaces in space.
+template <>
+struct Space<3> {
+    using Point = Vec3;                ///< a point
+    using Shape = Surface;             ///< the interface
+    using Region = Box3;               ///< the domain
+    using Geometry = SurfaceGeometry;  ///< normals and mean curvature at the vertices
+};
+
+/// The vertices of curves, in Interface::points() order.
+inline std::span<const Vec2> vertex_points(const Interface& curves) { return curves.points(); }
+/// The vertices of a surface.
+inline std::span<const Vec3> vertex_points(const Surface& surface) { return surface.vertices; }
+
+/// Which geometry module computes the vertex normals and curvature a law on curves needs:
+/// intrinsic (paper §3.1, Equations 7, 8; no mesh), embedded (§3.2, Equation 9 on a local mesh;
+/// needs a distance tree), or arclength (circumcircle curvature averaged along the curve; no
+/// mesh). Surfaces have one module (surface_geometry()), and a law on surfaces leaves it unset.
 enum class GeometryModule { intrinsic, embedded, arclength };
 
 /// What a law needs at the vertices besides their positions.
@@ -47,30 +78,37 @@ struct GeometryNeeds {
 };
 
 /// A velocity law: the velocity u of every vertex of Γ at time t, points moving with dy/dt = u
-/// (DESIGN §1), so u = v·N moves the curve outward for normal speed v > 0.
-class VelocityLaw {
+/// (DESIGN §1), so u = v·N moves the interface outward for normal speed v > 0. dim = 2 for curves
+/// (VelocityLaw), 3 for surfaces (SurfaceVelocityLaw).
+template <int dim>
+class BasicVelocityLaw {
 public:
-    virtual ~VelocityLaw() = default;
+    using Point = typename Space<dim>::Point;        ///< Vec2 or Vec3
+    using Shape = typename Space<dim>::Shape;        ///< Interface or Surface
+    using Region = typename Space<dim>::Region;      ///< Box or Box3
+    using Geometry = typename Space<dim>::Geometry;  ///< VertexGeometry or SurfaceGeometry
+
+    virtual ~BasicVelocityLaw() = default;
 
     /// The law's name, used in error messages ("rotation", or the user's).
     virtual std::string name() const = 0;
     /// The vertex geometry velocities() needs; the default is none.
     virtual GeometryNeeds needs() const { return {}; }
-    /// u at every vertex of curves at time t. geometry holds normals and curvature (one per
-    /// vertex) from the module needs() names when needs().any(), and is empty otherwise. Must
-    /// return curves.size() vectors.
-    virtual std::vector<Vec2> velocities(double t, const Interface& curves,
-                                         const VertexGeometry& geometry) const = 0;
+    /// u at every vertex of the interface at time t. geometry holds normals and curvature (one
+    /// per vertex) from the module needs() names when needs().any(), and is empty otherwise.
+    /// Must return one vector per vertex.
+    virtual std::vector<Point> velocities(double t, const Shape& interface,
+                                          const Geometry& geometry) const = 0;
 
     /// True for a law defined everywhere (a flow field such as rotation), which can then be
     /// sampled at any points instead of extended from the vertices.
     virtual bool is_field() const { return false; }
     /// The flow field at time t at every point; out.size() == points.size(). Throws InvalidInput
     /// unless is_field(). field_velocities() calls it and checks the answer.
-    virtual void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const;
+    virtual void sample(double t, std::span<const Point> points, std::span<Point> out) const;
 
-    /// True for a law whose exact flow keeps the enclosed area (the volume-preserving flow): the
-    /// step then restores the area each contour loses (StepOptions::area_correction).
+    /// True for a law whose exact flow keeps the enclosed area (volume, for surfaces): the step
+    /// then restores what each contour loses (StepOptions::area_correction).
     virtual bool preserves_area() const { return false; }
     /// What the law's exact motion keeps or cannot do, which the run loop checks after every step
     /// (evolve/guards.hpp). Default: the area when preserves_area(), nothing else.
@@ -78,20 +116,28 @@ public:
 
     /// True for a normal law u = V(t, x, N)·N whose speed V is known for any point x and any unit
     /// normal N (unit-normal, anisotropic, a user's V): the step can then evaluate it off the
-    /// curve with the normal of the distance field (Extension::direct), so that corners move as
-    /// the exact (viscosity) solution moves them.
+    /// interface with the normal of the distance field (Extension::direct), so that corners move
+    /// as the exact (viscosity) solution moves them.
     virtual bool is_normal_law() const { return false; }
     /// V(t, points[i], normals[i]) for every i; out.size() == points.size() == normals.size(),
     /// normals of unit length. Throws InvalidInput unless is_normal_law().
-    virtual void normal_speeds(double t, std::span<const Vec2> points,
-                               std::span<const Vec2> normals, std::span<double> out) const;
+    virtual void normal_speeds(double t, std::span<const Point> points,
+                               std::span<const Point> normals, std::span<double> out) const;
 
     /// The closed box outside which the law is not known (a velocity given on a grid), or
     /// nothing for a law known everywhere. run() refuses initial curves that leave it and ends
     /// with an error when the curves leave it; velocities() and sample() must still answer at
     /// every point, since contouring samples the whole domain.
-    virtual std::optional<Box> extent() const { return std::nullopt; }
+    virtual std::optional<Region> extent() const { return std::nullopt; }
 };
+
+/// A law moving curves in the plane.
+using VelocityLaw = BasicVelocityLaw<2>;
+/// A law moving surfaces in space.
+using SurfaceVelocityLaw = BasicVelocityLaw<3>;
+
+extern template class BasicVelocityLaw<2>;
+extern template class BasicVelocityLaw<3>;
 
 /// The first vertex of curves outside law.extent(), or nothing when every vertex lies inside it
 /// (always, for a law without an extent). O(number of vertices).
@@ -104,28 +150,53 @@ void require_inside_extent(const VelocityLaw& law, const Interface& curves);
 /// The base of flow fields u = f(t, x) known everywhere (rotation, a lattice, an expression):
 /// is_field() is true and the vertex velocities are the field sampled at the vertices. A law
 /// implements sample().
-class FlowFieldLaw : public VelocityLaw {
+template <int dim>
+class BasicFlowFieldLaw : public BasicVelocityLaw<dim> {
 public:
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const final;
+    using typename BasicVelocityLaw<dim>::Point;
+    using typename BasicVelocityLaw<dim>::Shape;
+    using typename BasicVelocityLaw<dim>::Geometry;
+    std::vector<Point> velocities(double t, const Shape& interface, const Geometry&) const final {
+        const std::span<const Point> x = vertex_points(interface);
+        std::vector<Point> u(x.size());
+        this->sample(t, x, u);
+        return u;
+    }
     bool is_field() const final { return true; }
 };
+/// A flow field moving curves.
+using FlowFieldLaw = BasicFlowFieldLaw<2>;
+/// A flow field moving surfaces.
+using SurfaceFlowFieldLaw = BasicFlowFieldLaw<3>;
 
 /// The base of normal laws u = V(t, x, N)·N: velocities() evaluates V at the vertices with the
-/// normals of the geometry module (the intrinsic one unless told otherwise), and the step may
-/// evaluate it anywhere else with other normals. A law implements normal_speeds().
-class NormalLaw : public VelocityLaw {
+/// normals of the geometry module (the intrinsic one for curves unless told otherwise), and the
+/// step may evaluate it anywhere else with other normals. A law implements normal_speeds().
+template <int dim>
+class BasicNormalLaw : public BasicVelocityLaw<dim> {
 public:
-    /// module: where the vertex normals come from; unset: GeometryNeeds::resolved_module().
-    explicit NormalLaw(std::optional<GeometryModule> module = std::nullopt) : module_(module) {}
+    using typename BasicVelocityLaw<dim>::Point;
+    using typename BasicVelocityLaw<dim>::Shape;
+    using typename BasicVelocityLaw<dim>::Geometry;
+    /// module: where the vertex normals of curves come from; unset:
+    /// GeometryNeeds::resolved_module(). Surfaces have one module: leave it unset.
+    explicit BasicNormalLaw(std::optional<GeometryModule> module = std::nullopt)
+        : module_(module) {}
     GeometryNeeds needs() const override { return {.normals = true, .module = module_}; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override;
+    std::vector<Point> velocities(double t, const Shape& interface,
+                                  const Geometry& geometry) const override;
     bool is_normal_law() const override { return true; }
 
 private:
     std::optional<GeometryModule> module_;
 };
+/// A normal law moving curves.
+using NormalLaw = BasicNormalLaw<2>;
+/// A normal law moving surfaces.
+using SurfaceNormalLaw = BasicNormalLaw<3>;
+
+extern template class BasicNormalLaw<2>;
+extern template class BasicNormalLaw<3>;
 
 /// Where the geometry modules get what they need.
 struct GeometryContext {
@@ -150,29 +221,67 @@ VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curv
 std::vector<Vec2> vertex_velocities(const VelocityLaw& law, double t, const Interface& curves,
                                     const GeometryContext& context = {});
 
+/// The vertex geometry a law on surfaces asks for: empty when it needs none, else normals and
+/// (when asked) mean curvature by surface_geometry() with options (its `curvature` set from
+/// needs).
+SurfaceGeometry vertex_geometry(const GeometryNeeds& needs, const Surface& surface,
+                                SurfaceGeometryOptions options);
+
+/// Velocity(t, S) of a surface: as vertex_velocities for curves.
+std::vector<Vec3> vertex_velocities(const SurfaceVelocityLaw& law, double t, const Surface& surface,
+                                    const SurfaceGeometryOptions& options = {});
+
 /// A flow field sampled at points, checked like vertex_velocities (the message names the point).
 std::vector<Vec2> field_velocities(const VelocityLaw& law, double t, std::span<const Vec2> points);
+/// @copydoc field_velocities
+std::vector<Vec3> field_velocities(const SurfaceVelocityLaw& law, double t,
+                                   std::span<const Vec3> points);
 
 // ---- adapters: a user's law from a small callable ----------------------------------------------
 
 /// What a local law sees at one vertex. normal and curvature are set when the law asked for them.
-struct VertexState {
-    std::size_t index = 0;   ///< vertex number in Interface::points()
-    Vec2 point;              ///< its position
-    Vec2 normal;             ///< outward unit normal N, or (0, 0) when not asked for
-    double curvature = 0.0;  ///< C = −∇·N (−1/R on a circle), or 0 when not asked for
+template <int dim>
+struct BasicVertexState {
+    using Point = typename Space<dim>::Point;  ///< Vec2 or Vec3
+    std::size_t index = 0;                     ///< vertex number
+    Point point;                               ///< its position
+    Point normal;                              ///< outward unit normal N, or 0 when not asked for
+    /// C = −∇·N (−1/R on a circle, −2/R on a sphere), or 0 when not asked for
+    double curvature = 0.0;
 };
+/// What a local law on curves sees at a vertex.
+using VertexState = BasicVertexState<2>;
+/// What a local law on surfaces sees at a vertex.
+using SurfaceVertexState = BasicVertexState<3>;
 
-/// A law u = f(t, x) defined everywhere: f(double t, Vec2 x) -> Vec2, called concurrently.
+/// The dimension of a field callable f(double, Point) -> Point: 2 when it takes a Vec2 (also a
+/// generic callable), 3 when it takes only a Vec3.
 template <class F>
-requires std::regular_invocable<const F&, double, Vec2> &&
-    std::convertible_to<std::invoke_result_t<const F&, double, Vec2>, Vec2>
-class FieldLaw final : public FlowFieldLaw {
+inline constexpr int field_dimension = std::regular_invocable<const F&, double, Vec2> ? 2 : 3;
+/// The dimension of a normal-speed callable f(double, Point, Point) -> double.
+template <class F>
+inline constexpr int normal_speed_dimension =
+    std::regular_invocable<const F&, double, Vec2, Vec2> ? 2 : 3;
+/// The dimension of a local callable f(double, const BasicVertexState<dim>&) -> Point.
+template <class F>
+inline constexpr int local_dimension =
+    std::regular_invocable<const F&, double, const VertexState&> ? 2 : 3;
+/// The dimension of a nonlocal callable f(double, const Shape&, const Geometry&).
+template <class F>
+inline constexpr int curve_dimension =
+    std::regular_invocable<const F&, double, const Interface&, const VertexGeometry&> ? 2 : 3;
+
+/// A law u = f(t, x) defined everywhere: f(double t, Point x) -> Point, called concurrently.
+template <class F, int dim = field_dimension<F>>
+requires std::regular_invocable<const F&, double, typename Space<dim>::Point> &&
+    std::convertible_to < std::invoke_result_t<const F&, double, typename Space<dim>::Point>,
+typename Space<dim>::Point > class FieldLaw final : public BasicFlowFieldLaw<dim> {
 public:
+    using Point = typename Space<dim>::Point;  ///< Vec2 or Vec3
     /// name: the law's name in messages; f: the velocity field.
     FieldLaw(std::string name, F f) : name_(std::move(name)), f_(std::move(f)) {}
     std::string name() const override { return name_; }
-    void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override {
+    void sample(double t, std::span<const Point> points, std::span<Point> out) const override {
         parallel_for(points.size(), [&](std::size_t i) { out[i] = f_(t, points[i]); });
     }
 
@@ -181,19 +290,22 @@ private:
     F f_;
 };
 
-/// A normal law u = V(t, x, N)·N from a callable f(double t, Vec2 x, Vec2 N) -> double, called
+/// A normal law u = V(t, x, N)·N from a callable f(double t, Point x, Point N) -> double, called
 /// concurrently.
-template <class F>
-requires std::regular_invocable<const F&, double, Vec2, Vec2> &&
-    std::convertible_to < std::invoke_result_t<const F&, double, Vec2, Vec2>,
-double > class NormalSpeedLaw final : public NormalLaw {
+template <class F, int dim = normal_speed_dimension<F>>
+requires std::regular_invocable < const F&, double, typename Space<dim>::Point,
+typename Space<dim>::Point >
+    &&std::convertible_to<std::invoke_result_t<const F&, double, typename Space<dim>::Point,
+                                               typename Space<dim>::Point>,
+                          double> class NormalSpeedLaw final : public BasicNormalLaw<dim> {
 public:
-    /// name: the law's name in messages; f: the normal speed; module: where vertex normals come
-    /// from.
+    using Point = typename Space<dim>::Point;  ///< Vec2 or Vec3
+    /// name: the law's name in messages; f: the normal speed; module: where vertex normals of
+    /// curves come from.
     NormalSpeedLaw(std::string name, F f, std::optional<GeometryModule> module = std::nullopt)
-        : NormalLaw(module), name_(std::move(name)), f_(std::move(f)) {}
+        : BasicNormalLaw<dim>(module), name_(std::move(name)), f_(std::move(f)) {}
     std::string name() const override { return name_; }
-    void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
+    void normal_speeds(double t, std::span<const Point> points, std::span<const Point> normals,
                        std::span<double> out) const override {
         parallel_for(points.size(), [&](std::size_t i) { out[i] = f_(t, points[i], normals[i]); });
     }
@@ -203,22 +315,26 @@ private:
     F f_;
 };
 
-/// A local law u_i = f(t, state_i) at each vertex: f(double t, const VertexState&) -> Vec2,
-/// called concurrently.
-template <class F>
-requires std::regular_invocable<const F&, double, const VertexState&>
-class LocalLaw final : public VelocityLaw {
+/// A local law u_i = f(t, state_i) at each vertex: f(double t, const BasicVertexState<dim>&) ->
+/// Point, called concurrently.
+template <class F, int dim = local_dimension<F>>
+requires std::regular_invocable < const F&, double, const BasicVertexState<dim>
+& > class LocalLaw final : public BasicVelocityLaw<dim> {
 public:
+    using Point = typename Space<dim>::Point;        ///< Vec2 or Vec3
+    using Shape = typename Space<dim>::Shape;        ///< Interface or Surface
+    using Geometry = typename Space<dim>::Geometry;  ///< VertexGeometry or SurfaceGeometry
     /// name: the law's name in messages; needs: the vertex geometry f reads; f: the law.
     LocalLaw(std::string name, GeometryNeeds needs, F f)
         : name_(std::move(name)), needs_(needs), f_(std::move(f)) {}
     std::string name() const override { return name_; }
     GeometryNeeds needs() const override { return needs_; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override {
-        std::vector<Vec2> u(curves.size());
+    std::vector<Point> velocities(double t, const Shape& interface,
+                                  const Geometry& geometry) const override {
+        const std::span<const Point> x = vertex_points(interface);
+        std::vector<Point> u(x.size());
         parallel_for(u.size(), [&](std::size_t i) {
-            VertexState s{i, curves.point(i), {}, 0.0};
+            BasicVertexState<dim> s{i, x[i], {}, 0.0};
             if (!geometry.normals.empty()) s.normal = geometry.normals[i];
             if (!geometry.curvature.empty()) s.curvature = geometry.curvature[i];
             u[i] = f_(t, s);
@@ -232,21 +348,25 @@ private:
     F f_;
 };
 
-/// A law that sees the whole curve (nonlocal): f(double t, const Interface&, const
-/// VertexGeometry&) -> std::vector<Vec2>.
-template <class F>
-requires std::regular_invocable<const F&, double, const Interface&, const VertexGeometry&>
-class CurveLaw final : public VelocityLaw {
+/// A law that sees the whole interface (nonlocal): f(double t, const Shape&, const Geometry&) ->
+/// std::vector<Point>.
+template <class F, int dim = curve_dimension<F>>
+requires std::regular_invocable<const F&, double, const typename Space<dim>::Shape&,
+                                const typename Space<dim>::Geometry&> class CurveLaw final
+    : public BasicVelocityLaw<dim> {
 public:
+    using Point = typename Space<dim>::Point;        ///< Vec2 or Vec3
+    using Shape = typename Space<dim>::Shape;        ///< Interface or Surface
+    using Geometry = typename Space<dim>::Geometry;  ///< VertexGeometry or SurfaceGeometry
     /// name: the law's name in messages; needs: the vertex geometry f reads; f: the law, which
     /// must return one velocity per vertex.
     CurveLaw(std::string name, GeometryNeeds needs, F f)
         : name_(std::move(name)), needs_(needs), f_(std::move(f)) {}
     std::string name() const override { return name_; }
     GeometryNeeds needs() const override { return needs_; }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override {
-        return f_(t, curves, geometry);
+    std::vector<Point> velocities(double t, const Shape& interface,
+                                  const Geometry& geometry) const override {
+        return f_(t, interface, geometry);
     }
 
 private:
@@ -255,12 +375,14 @@ private:
     F f_;
 };
 
-/// A FieldLaw owning f, for instance a rigid rotation:
+/// A FieldLaw owning f, for instance a rigid rotation, of curves or of surfaces by the type f
+/// takes:
 /// @code
 /// auto law = field_law("swirl", [](double, Vec2 x) { return Vec2{-x.y, x.x}; });
+/// auto spin = field_law("spin", [](double, Vec3 x) { return Vec3{-x.y, x.x, 0.0}; });
 /// @endcode
 template <class F>
-std::unique_ptr<VelocityLaw> field_law(std::string name, F f) {
+std::unique_ptr<BasicVelocityLaw<field_dimension<F>>> field_law(std::string name, F f) {
     return std::make_unique<FieldLaw<F>>(std::move(name), std::move(f));
 }
 /// A NormalSpeedLaw owning f, for instance a speed that depends on the normal's direction:
@@ -268,8 +390,8 @@ std::unique_ptr<VelocityLaw> field_law(std::string name, F f) {
 /// auto law = normal_law("faceted", [](double, Vec2, Vec2 n) { return 1.0 + 0.2 * n.x * n.x; });
 /// @endcode
 template <class F>
-std::unique_ptr<VelocityLaw> normal_law(std::string name, F f,
-                                        std::optional<GeometryModule> module = std::nullopt) {
+std::unique_ptr<BasicVelocityLaw<normal_speed_dimension<F>>> normal_law(
+    std::string name, F f, std::optional<GeometryModule> module = std::nullopt) {
     return std::make_unique<NormalSpeedLaw<F>>(std::move(name), std::move(f), module);
 }
 /// A LocalLaw owning f, for instance the normal speed 2 at the vertices (normal_law() is the
@@ -279,16 +401,18 @@ std::unique_ptr<VelocityLaw> normal_law(std::string name, F f,
 ///                      [](double, const VertexState& s) { return 2.0 * s.normal; });
 /// @endcode
 template <class F>
-std::unique_ptr<VelocityLaw> local_law(std::string name, GeometryNeeds needs, F f) {
+std::unique_ptr<BasicVelocityLaw<local_dimension<F>>> local_law(std::string name,
+                                                                GeometryNeeds needs, F f) {
     return std::make_unique<LocalLaw<F>>(std::move(name), needs, std::move(f));
 }
-/// A CurveLaw owning f, for laws that see the whole curve (an integral over Γ, say):
+/// A CurveLaw owning f, for laws that see the whole interface (an integral over Γ, say):
 /// @code
 /// auto law = curve_law("mine", {.normals = true},
 ///                      [](double t, const Interface& c, const VertexGeometry& g) { ... });
 /// @endcode
 template <class F>
-std::unique_ptr<VelocityLaw> curve_law(std::string name, GeometryNeeds needs, F f) {
+std::unique_ptr<BasicVelocityLaw<curve_dimension<F>>> curve_law(std::string name,
+                                                                GeometryNeeds needs, F f) {
     return std::make_unique<CurveLaw<F>>(std::move(name), needs, std::move(f));
 }
 
