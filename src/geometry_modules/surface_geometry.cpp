@@ -1,0 +1,223 @@
+// Normals and mean curvature at the vertices of a surface by local quadric fits; vertex areas.
+#include "slc/geometry_modules/surface_geometry.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+
+namespace slc {
+namespace {
+
+/// v scaled to unit length.
+Vec3 unit(Vec3 v) { return v / norm(v); }
+
+/// An orthonormal pair spanning the plane normal to the unit vector n.
+std::pair<Vec3, Vec3> tangent_frame(Vec3 n) {
+    const Vec3 a = std::abs(n.x) < 0.6 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+    const Vec3 e1 = unit(cross(n, a));
+    return {e1, cross(n, e1)};
+}
+
+/// Solves the symmetric positive definite 5×5 system A x = b by Cholesky; false when a pivot
+/// falls below tiny times the largest diagonal entry (too few or too collinear neighbours).
+bool solve_spd(std::array<std::array<double, 5>, 5> a, std::array<double, 5>& b) {
+    constexpr int n = 5;
+    double largest = 0.0;
+    for (int i = 0; i < n; ++i) largest = std::max(largest, a[i][i]);
+    for (int j = 0; j < n; ++j) {
+        double d = a[j][j];
+        for (int k = 0; k < j; ++k) d -= a[j][k] * a[j][k];
+        if (!(d > 1e-10 * largest)) return false;
+        a[j][j] = std::sqrt(d);
+        for (int i = j + 1; i < n; ++i) {
+            double s = a[i][j];
+            for (int k = 0; k < j; ++k) s -= a[i][k] * a[j][k];
+            a[i][j] = s / a[j][j];
+        }
+    }
+    for (int i = 0; i < n; ++i) {
+        double s = b[i];
+        for (int k = 0; k < i; ++k) s -= a[i][k] * b[k];
+        b[i] = s / a[i][i];
+    }
+    for (int i = n - 1; i >= 0; --i) {
+        double s = b[i];
+        for (int k = i + 1; k < n; ++k) s -= a[k][i] * b[k];
+        b[i] = s / a[i][i];
+    }
+    return true;
+}
+
+/// The vertices within two rings of vertex i, i excluded, in increasing order.
+void two_ring(const VertexRings& rings, std::size_t i, std::vector<std::uint32_t>& out) {
+    out.clear();
+    for (const std::uint32_t j : rings.of(i)) {
+        out.push_back(j);
+        for (const std::uint32_t k : rings.of(j))
+            if (k != i) out.push_back(k);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+/// The curvature of the sphere through the one-ring of p tangent to the plane normal to n:
+/// the mean of 2 (q − p)·n / |q − p|² over the neighbours q, doubled.
+double one_ring_curvature(const Surface& s, const VertexRings& rings, std::size_t i, Vec3 n) {
+    double sum = 0.0;
+    const auto ring = rings.of(i);
+    for (const std::uint32_t j : ring) {
+        const Vec3 d = s.vertices[j] - s.vertices[i];
+        sum += 2.0 * dot(d, n) / dot(d, d);
+    }
+    return ring.empty() ? 0.0 : 2.0 * sum / static_cast<double>(ring.size());
+}
+
+}  // namespace
+
+VertexRings vertex_rings(const Surface& s) {
+    const std::size_t nv = s.vertices.size();
+    VertexRings r;
+    r.start.assign(nv + 1, 0);
+    for (const TriangleIndices& t : s.triangles)
+        for (const std::uint32_t v : t) r.start[v + 1] += 2;
+    for (std::size_t i = 0; i < nv; ++i) r.start[i + 1] += r.start[i];
+    std::vector<std::uint32_t> all(r.start[nv]);
+    std::vector<std::size_t> fill(r.start.begin(), r.start.end() - 1);
+    for (const TriangleIndices& t : s.triangles) {
+        for (int k = 0; k < 3; ++k) {
+            all[fill[t[k]]++] = t[(k + 1) % 3];
+            all[fill[t[k]]++] = t[(k + 2) % 3];
+        }
+    }
+    // Each edge of a closed surface is met from both its triangles: sort each row, keep one.
+    std::vector<std::size_t> kept(nv + 1, 0);
+    r.ring.reserve(all.size() / 2);
+    for (std::size_t i = 0; i < nv; ++i) {
+        const auto first = all.begin() + static_cast<std::ptrdiff_t>(r.start[i]);
+        const auto last = all.begin() + static_cast<std::ptrdiff_t>(r.start[i + 1]);
+        std::sort(first, last);
+        const auto end = std::unique(first, last);
+        r.ring.insert(r.ring.end(), first, end);
+        kept[i + 1] = r.ring.size();
+    }
+    r.start = std::move(kept);
+    return r;
+}
+
+std::vector<Vec3> angle_weighted_normals(const Surface& s) {
+    std::vector<Vec3> n = pseudo_normals(s).vertex;
+    for (Vec3& v : n) {
+        const double len = norm(v);
+        if (len > 0.0) v = v / len;
+    }
+    return n;
+}
+
+std::vector<double> vertex_areas(const Surface& s) {
+    std::vector<double> w(s.vertices.size(), 0.0);
+    for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+        const Triangle3 tri = s.triangle(t);
+        const double a = 0.5 * norm(cross(tri.b - tri.a, tri.c - tri.a)) / 3.0;
+        for (const std::uint32_t v : s.triangles[t]) w[v] += a;
+    }
+    return w;
+}
+
+double area_mean(const Surface& s, std::span<const double> g) {
+    SLC_ASSERT(g.size() == s.vertices.size() && !g.empty(), "one value per vertex");
+    const std::vector<double> w = vertex_areas(s);
+    double integral = 0.0, total = 0.0;
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        integral += g[i] * w[i];
+        total += w[i];
+    }
+    return integral / total;
+}
+
+SurfaceGeometry surface_geometry(const Surface& s, const SurfaceGeometryOptions& options) {
+    if (!(options.smoothing >= 0.0) || !std::isfinite(options.smoothing))
+        throw InvalidInput("surface geometry: smoothing must be finite and non-negative");
+    const std::size_t nv = s.vertices.size();
+    SurfaceGeometry g;
+    g.normals = angle_weighted_normals(s);
+    const VertexRings rings = vertex_rings(s);
+    if (options.curvature) g.curvature.assign(nv, 0.0);
+    std::vector<Vec3> fitted(g.normals);
+    parallel_for(
+        nv,
+        [&](std::size_t i) {
+            if (rings.of(i).empty()) return;  // a vertex no triangle uses
+            thread_local std::vector<std::uint32_t> near;
+            two_ring(rings, i, near);
+            const Vec3 p = s.vertices[i];
+            const Vec3 n = g.normals[i];
+            const auto [e1, e2] = tangent_frame(n);
+            // Coordinates scaled by the mean distance h to the neighbours keep the normal
+            // equations well conditioned at any size.
+            double h = 0.0;
+            for (const std::uint32_t j : near) h += norm(s.vertices[j] - p);
+            h /= static_cast<double>(near.size());
+            std::array<std::array<double, 5>, 5> a{};
+            std::array<double, 5> rhs{};
+            for (const std::uint32_t j : near) {
+                const Vec3 d = (s.vertices[j] - p) / h;
+                const double u = dot(d, e1), v = dot(d, e2), w = dot(d, n);
+                const std::array<double, 5> row{u * u, u * v, v * v, u, v};
+                const double weight = 1.0 / dot(d, d);
+                for (int r = 0; r < 5; ++r) {
+                    rhs[r] += weight * row[r] * w;
+                    for (int c = 0; c < 5; ++c) a[r][c] += weight * row[r] * row[c];
+                }
+            }
+            if (near.size() < 5 || !solve_spd(a, rhs)) {
+                if (options.curvature) g.curvature[i] = one_ring_curvature(s, rings, i, n);
+                return;
+            }
+            // Back to unscaled coordinates: second derivatives gain 1/h, first ones stay.
+            const double ca = rhs[0] / h, cb = rhs[1] / h, cc = rhs[2] / h;
+            const double cd = rhs[3], ce = rhs[4];
+            fitted[i] = unit(n - cd * e1 - ce * e2);
+            if (options.curvature) {
+                const double q = 1.0 + cd * cd + ce * ce;
+                g.curvature[i] =
+                    ((1.0 + ce * ce) * 2.0 * ca - 2.0 * cd * ce * cb + (1.0 + cd * cd) * 2.0 * cc) /
+                    (q * std::sqrt(q));
+            }
+        },
+        expensive_grain);
+    g.normals = std::move(fitted);
+    if (options.curvature && options.smoothing > 0.0 && !s.triangles.empty()) {
+        double h = 0.0;
+        std::size_t edges = 0;
+        for (std::size_t i = 0; i < nv; ++i) {
+            for (const std::uint32_t j : rings.of(i)) {
+                h += norm(s.vertices[j] - s.vertices[i]);
+                ++edges;
+            }
+        }
+        h /= static_cast<double>(edges);
+        const double ratio = options.smoothing / h;
+        const int rounds = static_cast<int>(
+            std::min<double>(std::ceil(ratio * ratio), options.max_smoothing_rounds));
+        std::vector<double> next(nv);
+        for (int round = 0; round < rounds; ++round) {
+            parallel_for(nv, [&](std::size_t i) {
+                const auto ring = rings.of(i);
+                if (ring.empty()) {
+                    next[i] = g.curvature[i];
+                    return;
+                }
+                double sum = 0.0;
+                for (const std::uint32_t j : ring) sum += g.curvature[j];
+                next[i] = 0.5 * g.curvature[i] + 0.5 * sum / static_cast<double>(ring.size());
+            });
+            g.curvature.swap(next);
+        }
+    }
+    return g;
+}
+
+}  // namespace slc
