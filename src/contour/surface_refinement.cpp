@@ -284,11 +284,16 @@ std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
 
 /// Collapses needles and flips edges, in rounds, until a round changes nothing. Triangles that
 /// changed lose their cached centroid value and are marked dirty (their crossings unchecked);
-/// collapsed ones are removed (vertices stay, unused).
+/// collapsed ones are removed (vertices stay, unused). A round whose changes make triangles meet
+/// (a flip or collapse across a thin gap, decided by exact predicates among the changed
+/// triangles) is undone, and improvement ends for this pass.
 void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::uint8_t>& dirty,
              bool collapse, SurfaceRefinement& result) {
     constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
     for (int round = 0; round < improve_rounds; ++round) {
+        const std::vector<TriangleIndices> triangles_before = s.triangles;
+        const std::vector<double> centroids_before = centroid_value;
+        const std::vector<std::uint8_t> dirty_before = dirty;
         std::vector<std::uint8_t> changed(s.size(), 0);
         const std::size_t collapses = collapse ? collapse_needles(s, changed) : 0;
         if (collapses > 0) {
@@ -298,14 +303,21 @@ void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::u
                 s.triangles[kept] = s.triangles[t];
                 centroid_value[kept] = changed[t] ? nan : centroid_value[t];
                 dirty[kept] = dirty[t] | changed[t];
+                changed[kept] = changed[t];
                 ++kept;
             }
             s.triangles.resize(kept);
             centroid_value.resize(kept);
             dirty.resize(kept);
-            changed.assign(kept, 0);
+            changed.resize(kept);
         }
         const std::size_t flips = flip_edges(s, changed);
+        if (collapses + flips > 0 && !find_self_intersections(s, changed).empty()) {
+            s.triangles = triangles_before;
+            centroid_value = centroids_before;
+            dirty = dirty_before;
+            return;
+        }
         for (std::size_t t = 0; t < s.size(); ++t) {
             if (!changed[t]) continue;
             centroid_value[t] = nan;
