@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
@@ -73,6 +74,46 @@ double one_ring_curvature(const Surface& s, const VertexRings& rings, std::size_
         sum += 2.0 * dot(d, n) / dot(d, d);
     }
     return ring.empty() ? 0.0 : 2.0 * sum / static_cast<double>(ring.size());
+}
+
+/// The Gaussian mean of vertex values c at every vertex: Σ w_j A_j c_j / Σ w_j A_j over the
+/// vertices j within 3σ of vertex i (found by a walk along edges from i), w_j = exp(−|x_j −
+/// x_i|²/2σ²), A_j the vertex areas. Independent of how the surface is meshed, to O(h²).
+std::vector<double> gaussian_mean(const Surface& s, const VertexRings& rings,
+                                  const std::vector<double>& c, double sigma) {
+    const std::size_t nv = s.vertices.size();
+    const std::vector<double> areas = vertex_areas(s);
+    const double reach2 = 9.0 * sigma * sigma;
+    std::vector<double> out(nv);
+    parallel_for(
+        nv,
+        [&](std::size_t i) {
+            thread_local std::vector<std::uint32_t> queue;
+            thread_local std::vector<std::uint32_t> seen_at;  // i for the vertices i met so far
+            if (seen_at.size() != nv) seen_at.assign(nv, std::numeric_limits<std::uint32_t>::max());
+            const Vec3 x = s.vertices[i];
+            const auto mark = static_cast<std::uint32_t>(i);
+            queue.assign(1, mark);
+            seen_at[i] = mark;
+            double sum = 0.0, weight = 0.0;
+            for (std::size_t q = 0; q < queue.size(); ++q) {
+                const std::uint32_t j = queue[q];
+                const double d2 = norm2(s.vertices[j] - x);
+                const double w = std::exp(-d2 / (2.0 * sigma * sigma)) * areas[j];
+                sum += w * c[j];
+                weight += w;
+                for (const std::uint32_t k : rings.of(j)) {
+                    if (seen_at[k] == mark || norm2(s.vertices[k] - x) > reach2) continue;
+                    seen_at[k] = mark;
+                    queue.push_back(k);
+                }
+            }
+            out[i] = weight > 0.0 ? sum / weight : c[i];
+            for (const std::uint32_t j : queue)
+                seen_at[j] = std::numeric_limits<std::uint32_t>::max();
+        },
+        expensive_grain);
+    return out;
 }
 
 }  // namespace
@@ -189,34 +230,8 @@ SurfaceGeometry surface_geometry(const Surface& s, const SurfaceGeometryOptions&
         },
         expensive_grain);
     g.normals = std::move(fitted);
-    if (options.curvature && options.smoothing > 0.0 && !s.triangles.empty()) {
-        double h = 0.0;
-        std::size_t edges = 0;
-        for (std::size_t i = 0; i < nv; ++i) {
-            for (const std::uint32_t j : rings.of(i)) {
-                h += norm(s.vertices[j] - s.vertices[i]);
-                ++edges;
-            }
-        }
-        h /= static_cast<double>(edges);
-        const double ratio = options.smoothing / h;
-        const int rounds = static_cast<int>(
-            std::min<double>(std::ceil(ratio * ratio), options.max_smoothing_rounds));
-        std::vector<double> next(nv);
-        for (int round = 0; round < rounds; ++round) {
-            parallel_for(nv, [&](std::size_t i) {
-                const auto ring = rings.of(i);
-                if (ring.empty()) {
-                    next[i] = g.curvature[i];
-                    return;
-                }
-                double sum = 0.0;
-                for (const std::uint32_t j : ring) sum += g.curvature[j];
-                next[i] = 0.5 * g.curvature[i] + 0.5 * sum / static_cast<double>(ring.size());
-            });
-            g.curvature.swap(next);
-        }
-    }
+    if (options.curvature && options.smoothing > 0.0 && !s.triangles.empty())
+        g.curvature = gaussian_mean(s, rings, g.curvature, options.smoothing);
     return g;
 }
 
