@@ -17,6 +17,7 @@
 #include "slc/distance/extension.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/geometry_modules/arclength.hpp"
+#include "characteristics.hpp"
 
 namespace slc {
 
@@ -302,32 +303,6 @@ Vec2 finite(Vec2 w, const VelocityLaw& law, double t, Vec2 x) {
     return w;
 }
 
-/// The law sampled at a batch of points, one call of the law (a law written in Python, say, sees
-/// whole arrays); NumericalFailure naming the point unless every velocity is finite.
-void sample(const VelocityLaw& law, double t, std::span<const Vec2> xs, std::span<Vec2> out) {
-    law.sample(t, xs, out);
-    for (std::size_t i = 0; i < xs.size(); ++i) finite(out[i], law, t, xs[i]);
-}
-
-/// Where the characteristics through xs at t + k of a flow field were at t: dy/dt = u(y, t)
-/// integrated backward by the classical fourth-order Runge–Kutta rule, each stage one batch.
-std::vector<Vec2> departure_points(const VelocityLaw& law, double t, double k,
-                                   std::span<const Vec2> xs) {
-    const std::size_t m = xs.size();
-    const double half = 0.5 * k;
-    std::vector<Vec2> k1(m), k2(m), k3(m), k4(m), y(m);
-    sample(law, t + k, xs, k1);
-    for (std::size_t i = 0; i < m; ++i) y[i] = xs[i] - half * k1[i];
-    sample(law, t + half, y, k2);
-    for (std::size_t i = 0; i < m; ++i) y[i] = xs[i] - half * k2[i];
-    sample(law, t + half, y, k3);
-    for (std::size_t i = 0; i < m; ++i) y[i] = xs[i] - k * k3[i];
-    sample(law, t, y, k4);
-    for (std::size_t i = 0; i < m; ++i)
-        y[i] = xs[i] - (k / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-    return y;
-}
-
 /// A normal law's step with the distance field's normal N = ∇F (Extension::direct). F is a
 /// distance, so moving x by a along N changes it by a while x stays on its normal line: the
 /// semi-Lagrangian value F(x − k V N) is F(x) − k V. Written so, it also holds where the foot
@@ -444,7 +419,7 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
         // G is evaluated a batch at a time, so that the law is sampled once per Runge–Kutta
         // stage of each batch.
         auto g = [&](std::span<const Vec2> xs, std::span<double> values) {
-            const std::vector<Vec2> feet = departure_points(law, t, k, xs);
+            const std::vector<Vec2> feet = detail::departure_points(law, t, k, xs);
             parallel_for(
                 xs.size(), [&](std::size_t i) { values[i] = now.distance(feet[i]); },
                 expensive_grain);
