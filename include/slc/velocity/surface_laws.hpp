@@ -1,0 +1,120 @@
+/// @file
+/// The built-in velocity laws of surfaces (DESIGN §8; the 3D counterparts of laws.hpp): rigid
+/// rotation about an axis and translation, Enright's deformation field, constant and anisotropic
+/// normal speed, mean curvature flow and its volume-preserving form (paper Eq. 13 in space).
+#pragma once
+
+#include <optional>
+
+#include "slc/velocity/velocity.hpp"
+
+namespace slc {
+
+/// `rotation`: rigid rotation u = ω a × (x − c) about the axis a through c, counterclockwise seen
+/// from the tip of a.
+class SurfaceRotation final : public SurfaceFlowFieldLaw {
+public:
+    /// omega: ω, radians per unit time; axis: a, any non-zero vector (scaled to unit length);
+    /// centre: c, a point of the axis. Throws InvalidInput for a zero or non-finite axis.
+    explicit SurfaceRotation(double omega = 1.0, Vec3 axis = {0.0, 0.0, 1.0}, Vec3 centre = {});
+    std::string name() const override { return "rotation"; }
+    Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
+    void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override;
+
+private:
+    double omega_;
+    Vec3 axis_, centre_;
+};
+
+/// `translation`: the constant velocity u.
+class SurfaceTranslation final : public SurfaceFlowFieldLaw {
+public:
+    /// u: the velocity of every point, length per unit time.
+    explicit SurfaceTranslation(Vec3 u) : u_(u) {}
+    std::string name() const override { return "translation"; }
+    Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
+    void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override;
+
+private:
+    Vec3 u_;
+};
+
+/// `enright`: LeVeque's deformation field on the unit cube as used by Enright, Fedkiw, Ferziger
+/// and Mitchell (J. Comput. Phys. 183, 2002), period T:
+/// u = 2 sin²(πx) sin(2πy) sin(2πz) c, v = −sin(2πx) sin²(πy) sin(2πz) c,
+/// w = −sin(2πx) sin(2πy) sin²(πz) c, c = cos(πt/T). Divergence free; it reverses at T/2 and
+/// returns every point to its start at T.
+class EnrightField final : public SurfaceFlowFieldLaw {
+public:
+    /// Throws InvalidInput unless period > 0.
+    explicit EnrightField(double period = 3.0);
+    std::string name() const override { return "enright"; }
+    Invariants invariants() const override { return {.keeps_area = true}; }
+    void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override;
+
+private:
+    double period_;
+};
+
+/// `unit-normal`: constant normal speed u = s·N; s > 0 grows the surface.
+class SurfaceNormalSpeed final : public SurfaceNormalLaw {
+public:
+    /// speed: s, length per unit time.
+    explicit SurfaceNormalSpeed(double speed = 1.0) : speed_(speed) {}
+    std::string name() const override { return "unit-normal"; }
+    /// No motion at speed 0; a growing surface at speed > 0.
+    Invariants invariants() const override {
+        if (speed_ == 0.0) return {.keeps_area = true, .rigid = true};
+        return {.cannot_vanish = speed_ > 0.0};
+    }
+    void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
+                       std::span<double> out) const override;
+
+private:
+    double speed_;
+};
+
+/// `anisotropic`: u = v(N)·N with v = R + ε (n_x⁴ + n_y⁴ + n_z⁴ − 3/5), a cubic anisotropy
+/// whose mean over directions is R: fastest along the axes for ε > 0.
+class SurfaceAnisotropicNormalSpeed final : public SurfaceNormalLaw {
+public:
+    /// r: R, the isotropic part; eps: ε, the amplitude of the cubic part.
+    SurfaceAnisotropicNormalSpeed(double r, double eps) : r_(r), eps_(eps) {}
+    std::string name() const override { return "anisotropic"; }
+    /// Growing in every direction when R exceeds the anisotropy's range.
+    Invariants invariants() const override {
+        return {.cannot_vanish =
+                    r_ - 0.4 * std::abs(eps_) > 0.0};  // the cubic part lies in [−4/15, 2/5]
+    }
+    void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
+                       std::span<double> out) const override;
+
+private:
+    double r_, eps_;
+};
+
+/// `curvature`: motion by mean curvature u = C·N, C = −∇·N the sum of the principal
+/// curvatures, which shrinks a sphere as R(t)² = R(0)² − 4t.
+class SurfaceMeanCurvatureFlow final : public SurfaceVelocityLaw {
+public:
+    std::string name() const override { return "curvature"; }
+    /// The area only falls (the flow is area's gradient flow); surfaces may pinch and split.
+    Invariants invariants() const override { return {.shortens = true}; }
+    GeometryNeeds needs() const override { return {.normals = true, .curvature = true}; }
+    std::vector<Vec3> velocities(double t, const Surface& surface,
+                                 const SurfaceGeometry& geometry) const override;
+};
+
+/// `volume-preserving-curvature`: u = (C − C̄)·N, C̄ the area mean of C over the whole surface
+/// (paper Eq. 13 in space): the enclosed volume is kept, the area falls.
+class SurfaceVolumePreservingFlow final : public SurfaceVelocityLaw {
+public:
+    std::string name() const override { return "volume-preserving-curvature"; }
+    bool preserves_area() const override { return true; }
+    Invariants invariants() const override { return {.keeps_area = true, .shortens = true}; }
+    GeometryNeeds needs() const override { return {.normals = true, .curvature = true}; }
+    std::vector<Vec3> velocities(double t, const Surface& surface,
+                                 const SurfaceGeometry& geometry) const override;
+};
+
+}  // namespace slc

@@ -1,0 +1,96 @@
+// The built-in velocity laws of surfaces.
+#include "slc/velocity/surface_laws.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "slc/core/error.hpp"
+
+namespace slc {
+namespace {
+
+/// Throws InvalidInput unless g holds normals and curvature at every vertex.
+void require_curvature(const SurfaceVelocityLaw& law, const Surface& s, const SurfaceGeometry& g) {
+    if (g.normals.size() != s.vertices.size() || g.curvature.size() != s.vertices.size()) {
+        throw InvalidInput(fmt::format(
+            "velocity '{}' needs the normals and curvature at the vertices (vertex_velocities "
+            "computes them)",
+            law.name()));
+    }
+}
+
+}  // namespace
+
+SurfaceRotation::SurfaceRotation(double omega, Vec3 axis, Vec3 centre)
+    : omega_(omega), centre_(centre) {
+    const double length = norm(axis);
+    if (!(length > 0.0) || !std::isfinite(length))
+        throw InvalidInput(fmt::format(
+            "velocity 'rotation': the axis ({}, {}, {}) has no direction", axis.x, axis.y, axis.z));
+    axis_ = axis / length;
+}
+
+void SurfaceRotation::sample(double, std::span<const Vec3> points, std::span<Vec3> out) const {
+    parallel_for(points.size(),
+                 [&](std::size_t i) { out[i] = omega_ * cross(axis_, points[i] - centre_); });
+}
+
+void SurfaceTranslation::sample(double, std::span<const Vec3> points, std::span<Vec3> out) const {
+    std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(points.size()), u_);
+}
+
+EnrightField::EnrightField(double period) : period_(period) {
+    if (!(period > 0.0) || !std::isfinite(period))
+        throw InvalidInput(
+            fmt::format("velocity 'enright': period must be positive, got {}", period));
+}
+
+void EnrightField::sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const {
+    using std::numbers::pi;
+    const double c = std::cos(pi * t / period_);
+    parallel_for(points.size(), [&](std::size_t i) {
+        const Vec3 x = points[i];
+        const double sx = std::sin(pi * x.x), sy = std::sin(pi * x.y), sz = std::sin(pi * x.z);
+        const double s2x = std::sin(2 * pi * x.x), s2y = std::sin(2 * pi * x.y),
+                     s2z = std::sin(2 * pi * x.z);
+        out[i] = c * Vec3{2.0 * sx * sx * s2y * s2z, -s2x * sy * sy * s2z, -s2x * s2y * sz * sz};
+    });
+}
+
+void SurfaceNormalSpeed::normal_speeds(double, std::span<const Vec3> points, std::span<const Vec3>,
+                                       std::span<double> out) const {
+    std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(points.size()), speed_);
+}
+
+void SurfaceAnisotropicNormalSpeed::normal_speeds(double, std::span<const Vec3> points,
+                                                  std::span<const Vec3> normals,
+                                                  std::span<double> out) const {
+    parallel_for(points.size(), [&](std::size_t i) {
+        const Vec3 n = normals[i];
+        const double quartic =
+            n.x * n.x * n.x * n.x + n.y * n.y * n.y * n.y + n.z * n.z * n.z * n.z;
+        out[i] = r_ + eps_ * (quartic - 0.6);
+    });
+}
+
+std::vector<Vec3> SurfaceMeanCurvatureFlow::velocities(double, const Surface& surface,
+                                                       const SurfaceGeometry& g) const {
+    require_curvature(*this, surface, g);
+    std::vector<Vec3> u(g.normals.size());
+    parallel_for(u.size(), [&](std::size_t i) { u[i] = g.curvature[i] * g.normals[i]; });
+    return u;
+}
+
+std::vector<Vec3> SurfaceVolumePreservingFlow::velocities(double, const Surface& surface,
+                                                          const SurfaceGeometry& g) const {
+    require_curvature(*this, surface, g);
+    const double mean = area_mean(surface, g.curvature);
+    std::vector<Vec3> u(g.normals.size());
+    parallel_for(u.size(), [&](std::size_t i) { u[i] = (g.curvature[i] - mean) * g.normals[i]; });
+    return u;
+}
+
+}  // namespace slc
