@@ -1,0 +1,250 @@
+// The predictor–corrector step of surfaces (paper §1.2 Eqs. 4, 5 with d = 3).
+#include "slc/evolve/surface_step.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include "characteristics.hpp"
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+#include "slc/distance/surface_distance_tree.hpp"
+#include "slc/distance/surface_extension.hpp"
+#include "slc/geometry_modules/surface_geometry.hpp"
+
+namespace slc {
+
+Extension SurfaceStepOptions::resolved_extension(const SurfaceVelocityLaw& law) const {
+    if (extension) return *extension;
+    return law.is_field() || law.is_normal_law() ? Extension::direct : Extension::nearest_point;
+}
+
+namespace {
+
+/// A vertex where some incident triangle's normal turns more than this (radians) from the vertex
+/// normal is a corner for the field normal of a normal law.
+constexpr double corner_angle = 0.5;
+
+/// Everything a step reads of the surface at one time: its distance tree, and the vertex
+/// velocities (nearest-point extension) or vertex normals (normal laws) it extends.
+class SurfaceLevel {
+public:
+    SurfaceLevel(const Surface& surface, double t, double k, const SurfaceVelocityLaw& law,
+                 const Box3& domain, const SurfaceStepOptions& options, Extension extension)
+        : surface_(surface),
+          tree_(surface, domain,
+                {.depth = options.tree_depth > 0
+                              ? options.tree_depth
+                              : SurfaceDistanceTree::default_depth(surface, domain)}),
+          law_(law),
+          t_(t) {
+        if (extension == Extension::nearest_point)
+            u_ = vertex_velocities(law, t, surface, {.smoothing = options.resolved_smoothing(k)});
+        normals_ = surface_geometry(surface, {.curvature = false}).normals;
+        corner_.assign(surface.vertices.size(), 0);
+        const std::vector<Vec3>& face = tree_.normals().face;
+        const double limit = std::cos(corner_angle);
+        for (std::size_t f = 0; f < surface.triangles.size(); ++f)
+            for (const std::uint32_t v : surface.triangles[f])
+                if (dot(face[f], normals_[v]) < limit) corner_[v] = 1;
+        if (options.patches) {
+            bulge_.resize(surface.triangles.size());
+            for (std::size_t f = 0; f < surface.triangles.size(); ++f) {
+                const TriangleIndices& tri = surface.triangles[f];
+                for (int e = 0; e < 3; ++e) {
+                    const std::uint32_t a = tri[e], b = tri[(e + 1) % 3];
+                    bulge_[f][e] = corner_[a] || corner_[b]
+                                       ? 0.0
+                                       : 0.5 * dot(normals_[b] - normals_[a],
+                                                   surface.vertices[b] - surface.vertices[a]);
+                }
+            }
+        }
+    }
+
+    /// F(x): the signed distance to this level's surface read as curved patches
+    /// (SurfaceStepOptions::patches), or to its triangles.
+    double distance(Vec3 x) const { return distance(tree_.closest_point(x)); }
+    /// W(x): the vertex velocities at the nearest point of the surface (nearest-point extension).
+    Vec3 velocity(Vec3 x) const {
+        return nearest_point_extension<Vec3>(surface_, u_, tree_.nearest_point(x));
+    }
+
+    /// F and the normal a normal law sees (field_normal) at a batch of points, in parallel.
+    void distances_and_normals(std::span<const Vec3> xs, std::span<double> f,
+                               std::span<Vec3> n) const {
+        parallel_for(
+            xs.size(),
+            [&](std::size_t i) {
+                const SurfacePoint p = tree_.closest_point(xs[i]);
+                f[i] = distance(p);
+                n[i] = field_normal(xs[i], p);
+            },
+            expensive_grain);
+    }
+    /// V(t, x_i, n_i) at this level's time for a batch, one call of the law; NumericalFailure
+    /// naming the point unless all are finite.
+    void normal_speeds(std::span<const Vec3> xs, std::span<const Vec3> n,
+                       std::span<double> v) const {
+        law_.normal_speeds(t_, xs, n, v);
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            if (!std::isfinite(v[i])) {
+                throw NumericalFailure(
+                    fmt::format("velocity '{}' is not finite at t = {} near ({}, {}, {})",
+                                law_.name(), t_, xs[i].x, xs[i].y, xs[i].z));
+            }
+        }
+    }
+
+private:
+    /// F at a point whose closest point of the triangles is p: p's distance less the height of
+    /// the patch over p's triangle, Σ w_a w_b β_ab over its edges ab, β_ab = ½ (N_b − N_a)·(x_b −
+    /// x_a) (zero at corners), with w p's barycentric weights. For a quadric through the vertices
+    /// with normals N, the height of the surface over the plane of three of its points is this
+    /// sum to O(h³); it is zero at the vertices and depends only on an edge's ends along it, so
+    /// the patches meet continuously.
+    double distance(const SurfacePoint& p) const {
+        if (bulge_.empty()) return p.distance;
+        const std::array<double, 3>& beta = bulge_[p.triangle];
+        const std::array<double, 3>& w = p.weights;
+        return p.distance - (w[0] * w[1] * beta[0] + w[1] * w[2] * beta[1] + w[2] * w[0] * beta[2]);
+    }
+
+    /// The normal of the distance field at x, p its closest point: the vertex normals
+    /// interpolated at p where p's triangle has no corner among the vertices p depends on, so
+    /// that a direction-dependent speed does not jump across the planes where ∇F turns from one
+    /// triangle to the next on a smooth surface; at corners and sharp edges the exact ∇F, the
+    /// fan of normals (x − p)/F, which rounds a growing edge and keeps a shrinking one sharp.
+    Vec3 field_normal(Vec3 x, const SurfacePoint& p) const {
+        const TriangleIndices& tri = surface_.triangles[p.triangle];
+        bool smooth = true;
+        for (int c = 0; c < 3; ++c)
+            if (p.weights[c] > 0.0 && corner_[tri[c]]) smooth = false;
+        if (smooth) {
+            const Vec3 sum = p.weights[0] * normals_[tri[0]] + p.weights[1] * normals_[tri[1]] +
+                             p.weights[2] * normals_[tri[2]];
+            const double s = norm(sum);
+            if (s > 0.0) return sum / s;
+        }
+        const Vec3 d = x - p.point;
+        const double length = norm(d);
+        if (length > 0.0) return (p.distance < 0.0 ? -1.0 : 1.0) * d / length;
+        return tree_.normals().face[p.triangle];
+    }
+
+    const Surface& surface_;
+    SurfaceDistanceTree tree_;
+    const SurfaceVelocityLaw& law_;
+    double t_;
+    std::vector<Vec3> u_;        ///< vertex velocities, for the nearest-point extension
+    std::vector<Vec3> normals_;  ///< vertex normals, for a normal law
+    std::vector<char> corner_;   ///< vertices at a corner or sharp edge
+    std::vector<std::array<double, 3>> bulge_;  ///< β of each triangle's edges, for patches
+};
+
+/// A normal law's step with the distance field's normal N: F(x − k V N) = F(x) − k V along the
+/// normal line, which also holds where the foot would cross the medial axis, so the level set is
+/// the exact offset. The trapezoidal rule averages V at the foot at t and at x at t + k.
+SurfaceStepResult advance_normal(const Surface& surface, double t, double k,
+                                 const SurfaceVelocityLaw& law, const Box3& domain,
+                                 const SurfaceStepOptions& options) {
+    SurfaceStepResult result;
+    const SurfaceLevel now(surface, t, k, law, domain, options, Extension::direct);
+    const auto predictor = [&](std::span<const Vec3> xs, std::span<double> g) {
+        std::vector<double> v(xs.size());
+        std::vector<Vec3> n(xs.size());
+        now.distances_and_normals(xs, g, n);
+        now.normal_speeds(xs, n, v);
+        for (std::size_t i = 0; i < xs.size(); ++i) g[i] -= k * v[i];
+    };
+    SurfaceContour predicted = contour_surface(predictor, domain, options.contour);
+    result.stats.predictor = predicted.stats;
+    if (predicted.surface.empty()) return result;
+
+    const SurfaceLevel next(predicted.surface, t + k, k, law, domain, options, Extension::direct);
+    const auto corrector = [&](std::span<const Vec3> xs, std::span<double> g) {
+        const std::size_t m = xs.size();
+        std::vector<double> v(m), v_foot(m), f_next(m), v_next(m);
+        std::vector<Vec3> n(m), feet(m), n_next(m);
+        now.distances_and_normals(xs, g, n);
+        now.normal_speeds(xs, n, v);
+        for (std::size_t i = 0; i < m; ++i) feet[i] = xs[i] - k * v[i] * n[i];
+        now.normal_speeds(feet, n, v_foot);
+        next.distances_and_normals(xs, f_next, n_next);
+        next.normal_speeds(xs, n_next, v_next);
+        for (std::size_t i = 0; i < m; ++i) g[i] -= 0.5 * k * (v_foot[i] + v_next[i]);
+    };
+    SurfaceContour corrected = contour_surface(corrector, domain, options.contour);
+    result.stats.corrector = corrected.stats;
+    result.surface = std::move(corrected.surface);
+    return result;
+}
+
+}  // namespace
+
+SurfaceStepResult advance(const Surface& surface, double t, double k, const SurfaceVelocityLaw& law,
+                          const Box3& domain, const SurfaceStepOptions& options) {
+    if (!(k > 0.0) || !std::isfinite(k))
+        throw InvalidInput(fmt::format("time step must be positive and finite, got {}", k));
+    if (surface.empty()) throw InvalidInput("the surface to advance has no triangles");
+    const Extension extension = options.resolved_extension(law);
+    if (extension == Extension::whitney)
+        throw InvalidInput("the Whitney extension is for curves: use nearest-point or direct");
+    if (extension == Extension::direct && !law.is_field() && !law.is_normal_law()) {
+        throw InvalidInput(
+            fmt::format("velocity '{}' is not defined off the surface: use the nearest-point "
+                        "extension",
+                        law.name()));
+    }
+    if (extension == Extension::direct && law.is_normal_law())
+        return advance_normal(surface, t, k, law, domain, options);
+
+    SurfaceStepResult result;
+    const SurfaceLevel now(surface, t, k, law, domain, options, extension);
+    if (extension == Extension::direct) {
+        // A flow field: G(x) = F(foot of the characteristic through x), one contour.
+        const auto g = [&](std::span<const Vec3> xs, std::span<double> values) {
+            const std::vector<Vec3> feet = detail::departure_points(law, t, k, xs);
+            parallel_for(
+                xs.size(), [&](std::size_t i) { values[i] = now.distance(feet[i]); },
+                expensive_grain);
+        };
+        SurfaceContour traced = contour_surface(g, domain, options.contour);
+        result.stats.corrector = traced.stats;
+        result.surface = std::move(traced.surface);
+        return result;
+    }
+
+    // Predictor (Eq. 4): G̃(x) = F(x − k W(x); S(t)).
+    const auto predictor = [&](std::span<const Vec3> xs, std::span<double> values) {
+        parallel_for(
+            xs.size(),
+            [&](std::size_t i) { values[i] = now.distance(xs[i] - k * now.velocity(xs[i])); },
+            expensive_grain);
+    };
+    SurfaceContour predicted = contour_surface(predictor, domain, options.contour);
+    result.stats.predictor = predicted.stats;
+    if (predicted.surface.empty()) return result;  // everything vanished within the step
+
+    // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x.
+    const SurfaceLevel next(predicted.surface, t + k, k, law, domain, options, extension);
+    const auto corrector = [&](std::span<const Vec3> xs, std::span<double> values) {
+        parallel_for(
+            xs.size(),
+            [&](std::size_t i) {
+                const Vec3 x = xs[i];
+                const Vec3 foot = x - k * now.velocity(x);
+                values[i] = now.distance(x - (0.5 * k) * (now.velocity(foot) + next.velocity(x)));
+            },
+            expensive_grain);
+    };
+    SurfaceContour corrected = contour_surface(corrector, domain, options.contour);
+    result.stats.corrector = corrected.stats;
+    result.surface = std::move(corrected.surface);
+    return result;
+}
+
+}  // namespace slc
