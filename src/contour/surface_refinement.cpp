@@ -559,6 +559,9 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
             // Pairs of triangles neither of which changed since the last check cannot meet.
             const std::vector<TriangleContact> contacts = find_self_intersections(next, next_dirty);
             if (contacts.empty()) break;
+            // Which parents this round splits, read before any refusal: refusing one
+            // triangle's splits also unsplits its neighbours' shared edges.
+            std::vector<std::uint32_t> to_refuse;
             for (const TriangleContact& contact : contacts) {
                 const std::uint32_t p = parent[contact.first], q = parent[contact.second];
                 const bool p_split = mask_of(p).first != 0, q_split = mask_of(q).first != 0;
@@ -568,9 +571,10 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
                         "depth K",
                         p, q));
                 }
-                if (p_split) refuse_splits_of(p);
-                if (q_split) refuse_splits_of(q);
+                if (p_split) to_refuse.push_back(p);
+                if (q_split) to_refuse.push_back(q);
             }
+            for (const std::uint32_t t : to_refuse) refuse_splits_of(t);
         }
         // Vertices no triangle uses (their splits refused) are dropped.
         std::vector<std::uint32_t> renumber(next.vertices.size(),
