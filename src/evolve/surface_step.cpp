@@ -27,6 +27,9 @@ namespace {
 /// A vertex where some incident triangle's normal turns more than this (radians) from the vertex
 /// normal is a corner for the field normal of a normal law.
 constexpr double corner_angle = 0.5;
+/// An edge along which the vertex normals turn more than this (radians) is read flat: the
+/// surface bends there faster than the fitted normals follow (a radius below about three edges).
+constexpr double patch_angle = 0.35;
 
 /// Everything a step reads of the surface at one time: its distance tree, and the vertex
 /// velocities (nearest-point extension) or vertex normals (normal laws) it extends.
@@ -43,23 +46,41 @@ public:
           t_(t) {
         if (extension == Extension::nearest_point)
             u_ = vertex_velocities(law, t, surface, {.smoothing = options.resolved_smoothing(k)});
-        normals_ = surface_geometry(surface, {.curvature = false}).normals;
+        // Corners: a triangle turns more than corner_angle from the angle-weighted normal. The
+        // fitted normals are second order on smooth parts, but a fit across a corner tilts
+        // them: within two rings of a corner the angle-weighted normal (the face's own on a
+        // flat face) is kept.
+        const std::vector<Vec3> weighted = angle_weighted_normals(surface);
         corner_.assign(surface.vertices.size(), 0);
         const std::vector<Vec3>& face = tree_.normals().face;
         const double limit = std::cos(corner_angle);
         for (std::size_t f = 0; f < surface.triangles.size(); ++f)
             for (const std::uint32_t v : surface.triangles[f])
-                if (dot(face[f], normals_[v]) < limit) corner_[v] = 1;
+                if (dot(face[f], weighted[v]) < limit) corner_[v] = 1;
+        normals_ = surface_geometry(surface, {.curvature = false}).normals;
+        const VertexRings rings = vertex_rings(surface);
+        for (std::size_t v = 0; v < surface.vertices.size(); ++v) {
+            bool near = corner_[v] != 0;
+            for (const std::uint32_t w : rings.of(v)) {
+                near = near || corner_[w];
+                for (const std::uint32_t u : rings.of(w)) near = near || corner_[u];
+            }
+            if (near) normals_[v] = weighted[v];
+        }
         if (options.patches) {
+            const double patch_limit = std::cos(patch_angle);
             bulge_.resize(surface.triangles.size());
             for (std::size_t f = 0; f < surface.triangles.size(); ++f) {
                 const TriangleIndices& tri = surface.triangles[f];
                 for (int e = 0; e < 3; ++e) {
                     const std::uint32_t a = tri[e], b = tri[(e + 1) % 3];
-                    bulge_[f][e] = corner_[a] || corner_[b]
-                                       ? 0.0
-                                       : 0.5 * dot(normals_[b] - normals_[a],
-                                                   surface.vertices[b] - surface.vertices[a]);
+                    // Flat at a corner, and where the normals turn too fast along the edge
+                    // for a quadric to follow.
+                    const bool flat =
+                        corner_[a] || corner_[b] || dot(normals_[a], normals_[b]) < patch_limit;
+                    bulge_[f][e] = flat ? 0.0
+                                        : 0.5 * dot(normals_[b] - normals_[a],
+                                                    surface.vertices[b] - surface.vertices[a]);
                 }
             }
         }

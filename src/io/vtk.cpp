@@ -204,15 +204,15 @@ VtkSeries::VtkSeries(std::filesystem::path pvd) : pvd_(std::move(pvd)) {
             fmt::format("VTK collection needs a file name, got '{}'", pvd_.string()));
 }
 
-void VtkSeries::write_frame(double time, const Interface& curves) {
+void VtkSeries::write_frame(double time, const std::string& vtp) {
     const std::string name =
         fmt::format("{}/frame_{:04d}.vtp", pvd_.stem().string(), frames_.size());
-    write_file_atomic(pvd_.parent_path() / name, vtp_text(curves, time));
+    write_file_atomic(pvd_.parent_path() / name, vtp);
     frames_.push_back({time, name});
 }
 
-void VtkSeries::add(double time, const Interface& curves) {
-    write_frame(time, curves);
+void VtkSeries::add_frame(double time, const std::string& vtp) {
+    write_frame(time, vtp);
     const std::string line = dataset_line(frames_.back());
     if (pvd_size_ > 0 && append_to_collection(pvd_, pvd_size_, line)) {
         pvd_size_ += line.size();
@@ -221,8 +221,16 @@ void VtkSeries::add(double time, const Interface& curves) {
     write_collection();
 }
 
+void VtkSeries::add(double time, const Interface& curves) {
+    add_frame(time, vtp_text(curves, time));
+}
+
+void VtkSeries::add(double time, const Surface& surface) {
+    add_frame(time, vtp_text(surface, time));
+}
+
 void VtkSeries::add(std::span<const std::pair<double, Interface>> frames) {
-    for (const auto& [time, curves] : frames) write_frame(time, curves);
+    for (const auto& [time, curves] : frames) write_frame(time, vtp_text(curves, time));
     if (!frames.empty()) write_collection();
 }
 

@@ -19,6 +19,7 @@
 #include "commands/output_folder.hpp"
 #include "commands/problem_source.hpp"
 #include "commands/run_options.hpp"
+#include "commands/surface_run.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/evolve/self_convergence.hpp"
@@ -419,6 +420,41 @@ void resume_command(const CLI::App& cmd, const RunCommand& o) {
     run_command(resumed, c.options, c.run_id, &c, out);
 }
 
+/// slc run on a surface: the options that apply to surfaces, the others refused by name.
+void surface_command(const RunCommand& o) {
+    const std::vector<std::pair<bool, const char*>> curve_only = {
+        {o.source.speed.has_value(), "--speed"},
+        {o.source.field.has_value(), "--field"},
+        {o.source.field_file.has_value(), "--field-file"},
+        {o.checkpoint_every != 0, "--checkpoint-every"},
+        {o.estimate, "--estimate"},
+        {o.method.mesh.has_value(), "--mesh"},
+        {o.method.smooth.has_value(), "-S/--smooth"},
+        {o.method.extension.has_value(), "--extension"},
+        {!o.method.geometry.empty(), "--geometry"},
+        {o.method.arcs.has_value(), "--arcs"},
+        {o.method.area_correction.has_value(), "--area-correction"},
+        {o.method.arc_width.has_value(), "--arc-width"}};
+    for (const auto& [given, name] : curve_only)
+        if (given) throw InvalidInput(fmt::format("{} is for curves, not surfaces", name));
+    apply_threads(o.method.threads);
+    run_surface({.problem = o.source.problem,
+                 .initial = o.source.initial,
+                 .velocity = o.source.velocity,
+                 .params = o.source.params,
+                 .t_end = o.source.t_end,
+                 .domain = o.source.domain,
+                 .steps = o.method.steps,
+                 .depth = o.method.depth,
+                 .refine = o.method.refine,
+                 .eps = o.method.eps,
+                 .eta = o.method.eta,
+                 .tree_depth = o.method.tree_depth,
+                 .frames = o.frames,
+                 .quiet = o.quiet,
+                 .out = o.out});
+}
+
 }  // namespace
 
 void add_run_command(CLI::App& app) {
@@ -432,6 +468,7 @@ void add_run_command(CLI::App& app) {
         if (o->source.problem.empty() && o->source.initial.empty())
             throw InvalidInput("give --problem NAME or --initial FILE");
         if (o->out.empty()) throw InvalidInput("--out DIR is required");
+        if (is_surface_run(o->source.problem, o->source.initial)) return surface_command(*o);
         const StopSignals signals;
         const std::vector<GivenOption> all = given_options(*cmd, {});
         const std::string id =

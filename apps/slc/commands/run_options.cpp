@@ -9,6 +9,7 @@
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/evolve/defaults.hpp"
+#include "slc/evolve/surface_problems.hpp"
 
 namespace slc::cli {
 namespace {
@@ -163,6 +164,9 @@ std::map<std::string, double> parse_params(const std::vector<std::string>& param
 std::string problem_help() {
     std::string text = "A named problem:";
     for (const auto& p : problem_catalog()) text += fmt::format("\n  {}: {}", p.name, p.summary);
+    text += "\nA named problem of a surface:";
+    for (const std::string& name : surface_problem_names())
+        text += fmt::format("\n  {}: {}", name, surface_problem_summary(name));
     return text;
 }
 
@@ -175,6 +179,15 @@ std::string velocity_help() {
                                   q.default_text.empty() ? "required" : q.default_text);
         text += fmt::format("\n  {}:{} — {}", v.name, params, v.summary);
     }
+    text +=
+        "\nVelocity law for --initial with a surface (.obj, .stl, .ply):"
+        "\n  rotation: omega[1] ax[0] ay[0] az[1] cx[0] cy[0] cz[0] — u = omega a x (x - c)"
+        "\n  translation: ux uy uz[required] — constant velocity"
+        "\n  enright: period[3] — Enright's deformation field on the unit cube"
+        "\n  unit-normal: speed[1] — u = speed N"
+        "\n  anisotropic: R[1] eps[0.5] — u = (R + eps (nx^4 + ny^4 + nz^4 - 3/5)) N"
+        "\n  curvature — mean curvature flow u = C N (spheres: R^2 = R0^2 - 4t)"
+        "\n  volume-preserving-curvature — u = (C - mean C) N";
     return text;
 }
 

@@ -61,6 +61,8 @@ public:
     /// Throws InvalidInput for a non-finite time or when a file cannot be written (the message
     /// names it).
     void add(double time, const Interface& curves);
+    /// Writes a surface at time as the next frame and lists it in the collection; as above.
+    void add(double time, const Surface& surface);
     /// Writes each (time, curves) as the next frame, then the collection once: O(total N + F).
     /// Throws as add() does.
     void add(std::span<const std::pair<double, Interface>> frames);
@@ -71,8 +73,10 @@ public:
     const std::filesystem::path& pvd() const { return pvd_; }
 
 private:
-    /// Writes the next frame's .vtp and records it; the collection is not rewritten.
-    void write_frame(double time, const Interface& curves);
+    /// Writes the next frame's .vtp text and records it; the collection is not rewritten.
+    void write_frame(double time, const std::string& vtp);
+    /// write_frame, then lists the frame in the collection.
+    void add_frame(double time, const std::string& vtp);
     /// Writes the whole collection atomically.
     void write_collection();
 

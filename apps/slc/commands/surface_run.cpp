@@ -1,0 +1,237 @@
+// slc run on a surface: a named surface problem or the user's surface under a law of surfaces;
+// writes summary.json, final.obj/.vtp/.png, history.csv/.png and frames.
+#include "commands/surface_run.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "commands/output_folder.hpp"
+#include "commands/run_options.hpp"
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+#include "slc/evolve/surface_problems.hpp"
+#include "slc/io/interface_json.hpp"
+#include "slc/io/plot.hpp"
+#include "slc/io/surface_files.hpp"
+#include "slc/io/surface_picture.hpp"
+#include "slc/io/vtk.hpp"
+
+namespace slc::cli {
+namespace {
+
+/// The largest |exact(t, x)| over the vertices and triangle centroids of s, or NaN when the
+/// exact surface is not known at t.
+double e_inf(const SurfaceProblem& p, double t, const Surface& s) {
+    if (!p.exact || s.empty()) return std::nan("");
+    double e = 0.0;
+    for (const Vec3& v : s.vertices) e = std::max(e, std::abs(p.exact(t, v)));
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const Triangle3 tri = s.triangle(i);
+        e = std::max(e, std::abs(p.exact(t, (tri.a + tri.b + tri.c) / 3.0)));
+    }
+    return e;
+}
+
+nlohmann::json number_or_null(double x) {
+    return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+}
+
+/// One line of history.csv, and what the history plot shows.
+struct HistoryRow {
+    int step = 0;
+    double t = 0.0, volume = 0.0, area = 0.0;
+    std::size_t triangles = 0, components = 0;
+};
+
+std::string history_line(const HistoryRow& h) {
+    return fmt::format("{},{:.17g},{:.17g},{:.17g},{},{}\n", h.step, h.t, h.volume, h.area,
+                       h.triangles, h.components);
+}
+
+HistoryRow row_of(int step, double t, const Surface& s) {
+    return {step, t, volume(s), area(s), s.size(), s.empty() ? 0 : component_count(s)};
+}
+
+void draw_history(const std::vector<HistoryRow>& rows, const std::string& title,
+                  const std::filesystem::path& path) {
+    LinePlot plot{.title = title, .x_name = "t", .panels = {}};
+    PlotSeries v, a;
+    for (const HistoryRow& h : rows) {
+        v.x.push_back(h.t);
+        v.y.push_back(h.volume);
+        a.x.push_back(h.t);
+        a.y.push_back(h.area);
+    }
+    plot.panels.push_back({"volume", {v}});
+    plot.panels.push_back({"area", {a}});
+    save_plot(plot, path);
+}
+
+}  // namespace
+
+bool is_surface_run(const std::string& problem, const std::string& initial) {
+    return (!problem.empty() && is_surface_problem(problem)) ||
+           (!initial.empty() && is_surface_file(initial));
+}
+
+void run_surface(const SurfaceRunRequest& r) {
+    const VelocityParams params = parse_params(r.params);
+    SurfaceProblem p;
+    SurfaceRunOptions options;
+    if (!r.problem.empty()) {
+        p = make_surface_problem(r.problem, params);
+        if (r.t_end) p.t_end = *r.t_end;
+        if (r.domain.half_width || r.domain.box) {
+            p.domain = resolve_domain3(r.domain, bounding_box(p.initial));
+            for (const Vec3& v : p.initial.vertices) {
+                if (!p.domain.contains(v))
+                    throw InvalidInput("the problem's surface leaves the domain given");
+            }
+        }
+        options.t_end = p.t_end;
+        options.steps = p.steps;
+        options.step.contour = {.depth = p.depth,
+                                .refine_passes = SurfaceContourOptions::until_converged,
+                                .eps = p.eps};
+    } else {
+        if (r.velocity.empty())
+            throw InvalidInput("--initial with a surface needs --velocity NAME");
+        if (!r.t_end) throw InvalidInput("--initial needs --t-end");
+        LoadedSurface in = load_surface(r.initial, r.domain);
+        p.name = std::filesystem::path(r.initial).stem().string();
+        p.initial = std::move(in.surface);
+        p.domain = in.domain;
+        p.law = make_surface_velocity(r.velocity, params);
+        p.t_end = *r.t_end;
+        options = default_surface_run_options(p.initial, 0.0, p.t_end);
+    }
+    if (r.steps) options.steps = *r.steps;
+    if (r.depth) options.step.contour.depth = *r.depth;
+    if (r.refine) options.step.contour.refine_passes = *r.refine;
+    if (r.eps) options.step.contour.eps = *r.eps;
+    if (r.eta) options.step.contour.eta = *r.eta;
+    if (r.tree_depth) options.step.tree_depth = *r.tree_depth;
+    const SurfaceContourOptions& c = options.step.contour;
+    if (c.resolved_eps() < c.eta) {
+        throw InvalidInput(
+            fmt::format("eps must be at least eta = {:g}, got {:g}", c.eta, c.resolved_eps()));
+    }
+    const double k = (options.t_end - options.t_start) / options.steps;
+
+    OutputFolder folder(r.out, false);
+    const std::filesystem::path dir = folder.path();
+    nlohmann::json summary = {{"problem", p.name},
+                              {"velocity", p.law->name()},
+                              {"dimension", 3},
+                              {"domain",
+                               {p.domain.lo.x, p.domain.lo.y, p.domain.lo.z, p.domain.hi.x,
+                                p.domain.hi.y, p.domain.hi.z}},
+                              {"t_end", options.t_end},
+                              {"params",
+                               {{"N", options.steps},
+                                {"k", k},
+                                {"K", c.depth},
+                                {"P", c.refine_passes < 0 ? nlohmann::json("until converged")
+                                                          : nlohmann::json(c.refine_passes)},
+                                {"eps", c.resolved_eps()},
+                                {"eta", c.eta},
+                                {"threads", thread_count()}}}};
+    const double volume0 = volume(p.initial), area0 = area(p.initial);
+    std::vector<HistoryRow> history{row_of(0, 0.0, p.initial)};
+    std::string history_text =
+        "step,t,volume,area,triangles,components\n" + history_line(history.back());
+    write_file_atomic(dir / "initial.obj", obj_text(p.initial));
+
+    // Frames 0..F at evenly spaced steps, as .vtp (with a .pvd collection) and shaded PNGs.
+    const int frames = std::min(r.frames, options.steps);
+    std::optional<VtkSeries> series;
+    auto frame_png = [&](int i) { return dir / "frames" / fmt::format("frame_{:04d}.png", i); };
+    int frames_written = 0;
+    auto write_frame = [&](double t, const Surface& s) {
+        series->add(t, s);
+        if (!s.empty()) {
+            save_surface_picture(s, frame_png(frames_written),
+                                 {.title = fmt::format("{}: t = {:.4g}", p.name, t)});
+        }
+        ++frames_written;
+    };
+    if (frames > 0) {
+        series.emplace(dir / "frames.pvd");
+        write_frame(options.t_start, p.initial);
+    }
+    const SurfaceObserver observer = [&](const SurfaceStepReport& report) {
+        history.push_back(row_of(report.step, report.t, *report.surface));
+        history_text += history_line(history.back());
+        if (frames > 0) {
+            // Step n ends frame j when n = ⌈j N / F⌉.
+            const long long j = static_cast<long long>(report.step) * frames / report.steps;
+            const long long first_step_of_j =
+                (j * report.steps + frames - 1) / frames;  // ⌈j N / F⌉
+            if (j >= frames_written && first_step_of_j == report.step)
+                write_frame(report.t, *report.surface);
+        }
+        if (!r.quiet) {
+            fmt::print("step {}/{}  t = {:.6g}  {} triangles  volume {:.6g}\n", report.step,
+                       report.steps, report.t, report.surface->size(), volume(*report.surface));
+            std::fflush(stdout);
+        }
+        return true;
+    };
+    const SurfaceRunResult result = run(p.initial, *p.law, p.domain, options, observer);
+
+    const Surface& s = result.surface;
+    const double e = e_inf(p, result.t, s);
+    summary.update({{"status", to_string(result.status)},
+                    {"t", result.t},
+                    {"steps", options.steps},
+                    {"steps_done", result.steps_done},
+                    {"triangles", s.size()},
+                    {"vertices", s.vertices.size()},
+                    {"components", s.empty() ? 0 : component_count(s)},
+                    {"genus", s.empty() ? 0 : genus(s)},
+                    {"volume", volume(s)},
+                    {"area", area(s)},
+                    {"volume_initial", volume0},
+                    {"area_initial", area0},
+                    {"volume_change", volume0 != 0.0 ? (volume(s) - volume0) / volume0 : 0.0},
+                    {"e_inf", number_or_null(e)},
+                    {"g_evals", result.g_evals},
+                    {"split_steps", result.split_steps},
+                    {"most_substeps", result.most_substeps},
+                    {"cpu_s", result.cpu_s},
+                    {"wall_s", result.wall_s}});
+    if (!result.message.empty()) summary["message"] = result.message;
+    write_file_atomic(dir / "history.csv", history_text);
+    draw_history(history, fmt::format("{}: volume and area", p.name), dir / "history.png");
+    write_file_atomic(dir / "final.obj", obj_text(s));
+    write_file_atomic(dir / "final.vtp", vtp_text(s, result.t));
+    const std::string title = fmt::format(
+        "{}: t = {:.4g} ({}), {} triangles{}", p.name, result.t, to_string(result.status), s.size(),
+        std::isfinite(e) ? fmt::format(", e_inf {:.2e}", e) : std::string());
+    if (!s.empty()) {
+        save_surface_picture(s, dir / "final.png", {.title = title});
+    } else {
+        save_surface_picture(
+            p.initial, dir / "final.png",
+            {.title = fmt::format("{}: everything vanished by t = {:.4g}", p.name, result.t)});
+    }
+    write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+    folder.commit();
+    if (result.status == RunStatus::error || result.status == RunStatus::unstable)
+        throw NumericalFailure(result.message);
+    if (!r.quiet) {
+        fmt::print(
+            "{} steps to t = {:.6g}: {}, {} triangles, volume change {:.3g}{}, {:.3g} s; "
+            "wrote {}\n",
+            result.steps_done, result.t, to_string(result.status), s.size(),
+            summary["volume_change"].get<double>(),
+            std::isfinite(e) ? fmt::format(", e_inf {:.3g}", e) : std::string(), result.cpu_s,
+            (std::filesystem::path(r.out) / "summary.json").string());
+    }
+}
+
+}  // namespace slc::cli

@@ -1,0 +1,40 @@
+// slc run on a surface (DESIGN §8): a named surface problem, or the user's surface file under a
+// built-in law of surfaces.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands/common.hpp"
+
+namespace slc::cli {
+
+/// What `slc run` was given, for a surface.
+struct SurfaceRunRequest {
+    std::string problem;              ///< a surface problem, or empty
+    std::string initial;              ///< a surface file, or empty
+    std::string velocity;             ///< the law of --initial
+    std::vector<std::string> params;  ///< key=value
+    std::optional<double> t_end;
+    DomainOptions domain;
+    std::optional<int> steps;
+    std::optional<int> depth;
+    std::optional<int> refine;
+    std::optional<double> eps;
+    std::optional<double> eta;
+    std::optional<int> tree_depth;
+    int frames = 0;
+    bool quiet = false;
+    std::string out;
+};
+
+/// True when `slc run` was given a surface problem or a surface file.
+bool is_surface_run(const std::string& problem, const std::string& initial);
+
+/// Runs, writes final.obj, final.vtp, final.png, history.csv/.png, frames (frames.pvd,
+/// frames/*.vtp and *.png) and summary.json (last) into out. Throws NumericalFailure after
+/// writing everything when the run ends with status error or unstable.
+void run_surface(const SurfaceRunRequest& request);
+
+}  // namespace slc::cli

@@ -1,0 +1,68 @@
+/// @file
+/// The named problems of moving surfaces (`slc run --problem NAME`, DESIGN §8) and the built-in
+/// laws of surfaces by name (`slc run --initial S.obj --velocity NAME`).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "slc/core/box3.hpp"
+#include "slc/evolve/surface_run.hpp"
+#include "slc/geometry/surface.hpp"
+#include "slc/velocity/factory.hpp"
+#include "slc/velocity/velocity.hpp"
+
+namespace slc {
+
+/// A named problem: the initial surface, its law, domain, time and default parameters, and the
+/// exact solution where one is known.
+struct SurfaceProblem {
+    std::string name;                         ///< as in --problem NAME
+    std::string description;                  ///< one line
+    Surface initial;                          ///< the surface at t = 0
+    std::unique_ptr<SurfaceVelocityLaw> law;  ///< its law
+    Box3 domain;                              ///< a cube
+    double t_end = 1.0;                       ///< the final time
+    int steps = 20;                           ///< N
+    int depth = 5;                            ///< K
+    double eps = 1e-4;                        ///< ε of refinement (until converged)
+    /// The exact signed distance (or a function with the same zero set) at time t, NaN where the
+    /// exact surface is not known at t; empty when it is never known.
+    std::function<double(double t, Vec3 x)> exact;
+};
+
+/// The problems' names: sphere-rotation, enright, zalesak-sphere, sphere-curvature,
+/// merging-spheres, box-normal, peanut-volume.
+const std::vector<std::string>& surface_problem_names();
+/// The one-line summary of a problem, empty for an unknown name.
+std::string surface_problem_summary(const std::string& name);
+/// True for one of surface_problem_names().
+bool is_surface_problem(const std::string& name);
+
+/// The problem `name`; params: `speed` of box-normal (1: growing edges round off; −1: shrinking
+/// edges stay sharp). Throws InvalidInput for an unknown name or parameter.
+SurfaceProblem make_surface_problem(const std::string& name, const VelocityParams& params = {});
+
+/// The built-in law of surfaces `name` with the given parameters (missing ones take defaults):
+///   rotation        omega [1], ax [0], ay [0], az [1], cx, cy, cz [0]   u = ω a × (x − c)
+///   translation     ux, uy, uz (required)                              u = (ux, uy, uz)
+///   enright         period [3]                                          Enright's field
+///   unit-normal     speed [1]                                           u = speed·N
+///   anisotropic     R [1], eps [0.5]                     u = (R + eps (Σ n_i⁴ − 3/5))·N
+///   curvature                                                           u = C·N
+///   volume-preserving-curvature                                         u = (C − C̄)·N
+/// Throws InvalidInput for an unknown law or parameter, a missing required or a non-finite
+/// value.
+std::unique_ptr<SurfaceVelocityLaw> make_surface_velocity(const std::string& name,
+                                                          const VelocityParams& params = {});
+
+/// The run options for a user's surface (valid, not empty) from t_start to t_end, lengths
+/// relative to ℓ, the largest half-side of its bounding box: N = 20 steps, K = 5 (the finest
+/// cell 1/32 of the domain), refinement until converged with ε = 1e−3 ℓ (triangles grow as 1/ε:
+/// a sphere takes about 20,000), η = 1e−10 ℓ; the law's own extension, and the curvature
+/// smoothed over √k. Throws InvalidInput for an empty surface or t_end not after t_start.
+SurfaceRunOptions default_surface_run_options(const Surface& surface, double t_start, double t_end);
+
+}  // namespace slc

@@ -1,0 +1,75 @@
+/// @file
+/// The time loop of surfaces (paper §4.3 with d = 3): N steps of advance() on a surface, with an
+/// observer that sees every step and may stop the run, the guards of what the law keeps (volume,
+/// shape, growth, area), and the run's statistics. The statuses are those of curves (run.hpp).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "slc/evolve/run.hpp"
+#include "slc/evolve/surface_step.hpp"
+
+namespace slc {
+
+/// The time interval, the number of steps and the parameters of every step.
+struct SurfaceRunOptions {
+    double t_start = 0.0;     ///< the initial surface's time
+    double t_end = 1.0;       ///< the final time
+    int steps = 20;           ///< N; k = (t_end − t_start) / N
+    SurfaceStepOptions step;  ///< K, P, ε, L of each step
+    /// Check every step against the law's invariants (surface_invariant_violation): a step that
+    /// breaks them is retried in 2, 4, ... 2^max_substep_halvings sub-steps, and a run that still
+    /// breaks them ends with status unstable.
+    bool guards = true;
+    int max_substep_halvings = 4;  ///< see guards
+};
+
+struct SurfaceRunResult;
+
+/// What the observer sees after each step.
+struct SurfaceStepReport {
+    int step = 0;                             ///< 1..N
+    int steps = 0;                            ///< N
+    double t = 0.0;                           ///< time reached
+    const Surface* surface = nullptr;         ///< S(t)
+    const SurfaceStepStats* stats = nullptr;  ///< what the step cost (its last sub-step)
+    const SurfaceRunResult* run = nullptr;    ///< the run so far
+};
+
+/// Called after every step; returning false stops the run (status interrupted).
+using SurfaceObserver = std::function<bool(const SurfaceStepReport&)>;
+
+/// How a run ended and what it cost.
+struct SurfaceRunResult {
+    Surface surface;                   ///< S at the end (empty when vanished)
+    double t = 0.0;                    ///< the time reached
+    int steps_done = 0;                ///< steps completed, N when status is ok
+    RunStatus status = RunStatus::ok;  ///< how the run ended
+    std::string message;               ///< why, when status is error or unstable
+    std::size_t g_evals = 0;           ///< every G evaluation of the run
+    double wall_s = 0.0;               ///< the time loop alone
+    double cpu_s = 0.0;                ///< process CPU seconds of the time loop (all threads)
+    /// Steps the guards split into sub-steps, and the most sub-steps one step took.
+    int split_steps = 0;
+    int most_substeps = 1;
+};
+
+/// Why a step of length k from `before` to `after` breaks what the law keeps, in one line, or
+/// nothing when it keeps it within the budget: a kept volume may move in a step by at most the
+/// larger of 1% of it and 20 ε A (A the area before); a rigid motion keeps the number of
+/// components and the genus; a surface that cannot vanish does not; a law that shrinks area (the
+/// mean curvature flows) may grow it in a step by at most the larger of 1% and 20 ε times its
+/// square root. eps: the step's contour tolerance.
+std::optional<std::string> surface_invariant_violation(const Invariants& law, const Surface& before,
+                                                       const Surface& after, double k, double eps);
+
+/// Runs initial (valid, inside domain) from t_start to t_end in `steps` steps under law.
+/// Failures inside a step end the run with status error and a message naming the time; throws
+/// InvalidInput only for bad options (steps < 1, t_end ≤ t_start, non-finite times) or an empty
+/// initial surface. Deterministic: the same for any thread count.
+SurfaceRunResult run(const Surface& initial, const SurfaceVelocityLaw& law, const Box3& domain,
+                     const SurfaceRunOptions& options, const SurfaceObserver& observer = {});
+
+}  // namespace slc

@@ -1,0 +1,160 @@
+// The time loop of surfaces: steps, sub-steps the guards ask for, vanishing, failures, clocks.
+#include "slc/evolve/surface_run.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+
+#include "slc/core/error.hpp"
+
+namespace slc {
+namespace {
+
+double process_cpu_s() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+void check(const SurfaceRunOptions& o) {
+    if (o.steps < 1) throw InvalidInput(fmt::format("steps must be at least 1, got {}", o.steps));
+    if (!std::isfinite(o.t_start) || !std::isfinite(o.t_end) || !(o.t_end > o.t_start)) {
+        throw InvalidInput(fmt::format("t-end must be finite and after the start time {}, got {}",
+                                       o.t_start, o.t_end));
+    }
+    if (o.max_substep_halvings < 0 || o.max_substep_halvings > 10) {
+        throw InvalidInput(
+            fmt::format("max_substep_halvings must be in 0..10, got {}", o.max_substep_halvings));
+    }
+}
+
+/// The time after n of the N steps, from the step count so that the last step ends at t_end.
+double time_after(const SurfaceRunOptions& o, int n) {
+    return n == o.steps ? o.t_end : o.t_start + n * ((o.t_end - o.t_start) / o.steps);
+}
+
+}  // namespace
+
+std::optional<std::string> surface_invariant_violation(const Invariants& law, const Surface& before,
+                                                       const Surface& after, double, double eps) {
+    if (before.empty()) return std::nullopt;
+    constexpr double fraction = 1e-2, eps_multiple = 20.0;
+    const double a0 = area(before);
+    if (after.empty()) {
+        if (law.keeps_area) return "the surface vanished under a law that keeps its volume";
+        if (law.cannot_vanish) return "the surface vanished under a law that only grows it";
+        if (law.rigid) return "the surface vanished under a rigid motion";
+        return std::nullopt;
+    }
+    if (law.rigid) {
+        const std::size_t c0 = component_count(before), c1 = component_count(after);
+        if (c0 != c1) {
+            return fmt::format("a rigid motion changed the number of components from {} to {}", c0,
+                               c1);
+        }
+        const long long g0 = genus(before), g1 = genus(after);
+        if (g0 != g1) return fmt::format("a rigid motion changed the genus from {} to {}", g0, g1);
+    }
+    if (law.keeps_area) {
+        const double v0 = volume(before), v1 = volume(after);
+        const double tolerance =
+            std::max(fraction * std::max(std::abs(v0), std::abs(v1)), eps_multiple * eps * a0);
+        if (std::abs(v1 - v0) > tolerance) {
+            return fmt::format(
+                "the volume changed by {:.3g}% in one step under a law that keeps it",
+                100.0 * (v1 - v0) / std::abs(v0));
+        }
+    }
+    if (law.cannot_vanish && volume(after) < volume(before) - eps_multiple * eps * a0)
+        return "the volume fell in one step under a law that only grows the surface";
+    if (law.shortens) {
+        const double a1 = area(after);
+        if (a1 > a0 * (1.0 + fraction) + eps_multiple * eps * std::sqrt(a0)) {
+            return fmt::format("the area grew by {:.3g}% in one step under a law that shrinks it",
+                               100.0 * (a1 - a0) / a0);
+        }
+    }
+    return std::nullopt;
+}
+
+SurfaceRunResult run(const Surface& initial, const SurfaceVelocityLaw& law, const Box3& domain,
+                     const SurfaceRunOptions& options, const SurfaceObserver& observer) {
+    check(options);
+    if (initial.empty()) throw InvalidInput("the initial surface has no triangles");
+    SurfaceRunResult r;
+    r.surface = initial;
+    r.t = options.t_start;
+    const Invariants invariants = law.invariants();
+    const double eps = options.step.contour.resolved_eps();
+    const auto wall_start = std::chrono::steady_clock::now();
+    const double cpu_start = process_cpu_s();
+    auto clocks = [&] {
+        r.wall_s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+        r.cpu_s = process_cpu_s() - cpu_start;
+    };
+    for (int n = 1; n <= options.steps; ++n) {
+        const double t0 = time_after(options, n - 1), t1 = time_after(options, n);
+        SurfaceStepStats stats;
+        try {
+            // The step, in 1, 2, 4, ... sub-steps until it keeps what the law keeps.
+            for (int halvings = 0;; ++halvings) {
+                const int pieces = 1 << halvings;
+                const double k = (t1 - t0) / pieces;
+                Surface s = r.surface;
+                std::optional<std::string> broken;
+                for (int j = 0; j < pieces && !s.empty(); ++j) {
+                    SurfaceStepResult step = advance(s, t0 + j * k, k, law, domain, options.step);
+                    r.g_evals += step.stats.g_evals();
+                    stats = step.stats;
+                    if (options.guards) {
+                        broken = surface_invariant_violation(invariants, s, step.surface, k, eps);
+                        if (broken) break;
+                    }
+                    s = std::move(step.surface);
+                }
+                if (!broken) {
+                    if (pieces > 1) {
+                        ++r.split_steps;
+                        r.most_substeps = std::max(r.most_substeps, pieces);
+                    }
+                    r.surface = std::move(s);
+                    break;
+                }
+                if (halvings == options.max_substep_halvings) {
+                    r.status = RunStatus::unstable;
+                    r.message = fmt::format(
+                        "at t = {}: {} (also in {} sub-steps); refine the "
+                        "time step (-N) or the contours (-K, --eps)",
+                        t0, *broken, pieces);
+                    clocks();
+                    return r;
+                }
+            }
+        } catch (const NumericalFailure& e) {
+            r.status = RunStatus::error;
+            r.message = fmt::format("at t = {}: {}", t0, e.what());
+            clocks();
+            return r;
+        }
+        r.t = t1;
+        r.steps_done = n;
+        clocks();
+        if (r.surface.empty()) {
+            r.status = RunStatus::vanished;
+            return r;
+        }
+        if (observer) {
+            const SurfaceStepReport report{n, options.steps, r.t, &r.surface, &stats, &r};
+            if (!observer(report) && n < options.steps) {
+                r.status = RunStatus::interrupted;
+                return r;
+            }
+        }
+    }
+    return r;
+}
+
+}  // namespace slc

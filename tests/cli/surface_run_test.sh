@@ -1,0 +1,54 @@
+# slc run on surfaces (DESIGN §8): a user's surface under built-in laws of surfaces against exact
+# motions (offsets, rotation, mean curvature), a named problem, frames, the same output for any
+# thread count, and errors.
+source "$(dirname "$0")/lib.sh" "$1"
+
+json() {  # json FILE EXPRESSION: prints a Python expression of the parsed file `s`
+    python3 -c "import json, sys; s = json.load(open(sys.argv[1])); print($2)" "$1"
+}
+
+# A sphere of radius 0.6 about (0.03, -0.02, 0.01), as slc contours it.
+expect_ok "a sphere to move" -- contour --function sphere -K 4 --refine 100 --eps 1e-3 --out ball
+cp ball/final.obj ball.obj
+
+# Unit normal speed: the sphere of radius 0.6 + t (defaults: 20 steps, K = 5, eps 1e-3 l).
+expect_ok "unit normal speed" -- run --initial ball.obj --velocity unit-normal --t-end 0.1 --out grow --quiet
+check "status ok" test "$(json grow/summary.json 's["status"]')" = ok
+check "radius 0.7: volume within 0.5%" test "$(json grow/summary.json 'abs(s["volume"] / (4 / 3 * 3.141592653589793 * 0.7**3) - 1) < 5e-3')" = True
+check "final.obj, .vtp, .png, history" test -s grow/final.obj -a -s grow/final.vtp -a -s grow/final.png -a -s grow/history.png
+check "history has the start and 20 steps" test "$(wc -l <grow/history.csv)" = 22
+printf 'x,y,z\n0.73,-0.02,0.01\n0.03,-0.02,0.01\n' >points.csv
+expect_ok "final.obj reads back" -- distance --initial grow/final.obj --points points.csv --domain 1.5
+check "on the sphere of radius 0.7" test "$(sed -n 2p out.txt | cut -d, -f4 | python3 -c 'print(abs(float(input())) < 2e-3)')" = True
+
+# A rigid turn about the x axis through the sphere's centre's neighbour keeps volume and shape.
+expect_ok "rotation about x" -- run --initial ball.obj --velocity rotation --param ax=1 --param az=0 --param cy=0.1 --t-end 1.5707963 -N 8 -K 4 --out turn --quiet --frames 2
+check "volume kept within 0.2%" test "$(json turn/summary.json 'abs(s["volume_change"]) < 2e-3')" = True
+check "one component, genus 0" test "$(json turn/summary.json 's["components"], s["genus"]')" = "1 0"
+check "frames: the start and two more" test "$(grep -c '<DataSet' turn/frames.pvd)" = 3
+check "frame pictures" test -s turn/frames/frame_0000.png -a -s turn/frames/frame_0002.png
+
+# Mean curvature flow: R^2 = 0.36 - 4t, so t = 0.05 leaves R = 0.4.
+expect_ok "mean curvature" -- run --initial ball.obj --velocity curvature --t-end 0.05 -N 10 -K 4 --out shrink --quiet
+check "radius 0.4: volume within 2%" test "$(json shrink/summary.json 'abs(s["volume"] / (4 / 3 * 3.141592653589793 * 0.4**3) - 1) < 2e-2')" = True
+
+expect_ok "one thread" -- run --initial ball.obj --velocity enright --param period=1 --t-end 0.1 -N 2 -K 4 --threads 1 --out one --quiet
+expect_ok "two threads" -- run --initial ball.obj --velocity enright --param period=1 --t-end 0.1 -N 2 -K 4 --threads 2 --out two --quiet
+check "the same surface for any thread count" cmp -s one/final.obj two/final.obj
+
+# A named problem: two spheres grow into one.
+expect_ok "merging spheres" -- run --problem merging-spheres -K 4 --eps 1e-3 --out merge --quiet
+check "they merged" test "$(json merge/summary.json 's["components"], s["genus"]')" = "1 0"
+check "e_inf within 3e-3" test "$(json merge/summary.json 's["e_inf"] < 3e-3')" = True
+
+# Errors.
+expect_error "unknown law" "unknown velocity 'spin' for a surface; known: rotation" -- run --initial ball.obj --velocity spin --t-end 1 --out x
+expect_error "a law of curves' options" "--speed is for curves, not surfaces" -- run --initial ball.obj --speed 1 --t-end 1 --out x
+expect_error "no law" "--initial with a surface needs --velocity NAME" -- run --initial ball.obj --t-end 1 --out x
+expect_error "no end" "--initial needs --t-end" -- run --initial ball.obj --velocity curvature --out x
+expect_error "unknown parameter" "problem 'sphere-rotation' has no parameter 'x'; it takes none" -- run --problem sphere-rotation --param x=1 --out x
+expect_error "missing parameter" "velocity 'translation' needs --param uz=VALUE" -- run --initial ball.obj --velocity translation --param ux=1 --param uy=0 --t-end 1 --out x
+expect_status "carried out of the domain" 3 -- run --initial ball.obj --velocity translation --param ux=2 --param uy=0 --param uz=0 --t-end 1 -N 2 -K 3 --out away
+check "names the boundary" grep -q "domain boundary" err.txt
+check "summary records the error" test "$(json away/summary.json 's["status"]')" = error
+finish
