@@ -1,0 +1,140 @@
+// Tests of the run loop of surfaces: a run to the end, a sphere that vanishes under mean
+// curvature, an observer that stops the run, a failure inside a step, a law that breaks what it
+// claims to keep (unstable), bad options; and the named problems and laws by name.
+#include "slc/evolve/surface_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "slc/core/error.hpp"
+#include "slc/evolve/surface_problems.hpp"
+#include "slc/geometry/surface_shapes.hpp"
+#include "slc/geometry/validate_surface.hpp"
+#include "slc/velocity/surface_laws.hpp"
+
+namespace slc {
+namespace {
+
+const Box3 domain{{-1.0, -1.0, -1.0}, {1.0, 1.0, 1.0}};
+
+SurfaceRunOptions coarse(double t_end, int steps) {
+    SurfaceRunOptions o;
+    o.t_end = t_end;
+    o.steps = steps;
+    o.step.contour = {
+        .depth = 4, .refine_passes = SurfaceContourOptions::until_converged, .eps = 1e-3};
+    return o;
+}
+
+TEST(SurfaceRun, RunsToTheEndAndReportsEveryStep) {
+    int seen = 0;
+    const SurfaceRunResult r = run(sphere({0.2, 0.0, 0.0}, 0.3, 3), SurfaceRotation(), domain,
+                                   coarse(1.0, 4), [&](const SurfaceStepReport& s) {
+                                       ++seen;
+                                       EXPECT_EQ(s.step, seen);
+                                       EXPECT_NEAR(s.t, 0.25 * seen, 1e-15);
+                                       return true;
+                                   });
+    EXPECT_EQ(r.status, RunStatus::ok);
+    EXPECT_EQ(seen, 4);
+    EXPECT_EQ(r.steps_done, 4);
+    EXPECT_EQ(r.t, 1.0);
+    EXPECT_GT(r.g_evals, 0u);
+    EXPECT_NEAR(volume(r.surface) / (4.0 / 3.0 * std::numbers::pi * 0.027), 1.0, 5e-3);
+}
+
+TEST(SurfaceRun, SphereVanishesUnderMeanCurvature) {
+    // R0 = 0.3 vanishes at t = 0.09/4 = 0.0225.
+    const SurfaceRunResult r =
+        run(sphere({}, 0.3, 3), SurfaceMeanCurvatureFlow(), domain, coarse(0.03, 6));
+    EXPECT_EQ(r.status, RunStatus::vanished);
+    EXPECT_TRUE(r.surface.empty());
+    EXPECT_GE(r.t, 0.0225 - 0.005);
+    EXPECT_LE(r.t, 0.0225 + 0.005 + 1e-12);
+}
+
+TEST(SurfaceRun, ObserverStops) {
+    const SurfaceRunResult r =
+        run(sphere({}, 0.3, 2), SurfaceNormalSpeed(0.5), domain, coarse(0.1, 5),
+            [](const SurfaceStepReport& s) { return s.step < 2; });
+    EXPECT_EQ(r.status, RunStatus::interrupted);
+    EXPECT_EQ(r.steps_done, 2);
+    EXPECT_FALSE(r.surface.empty());
+}
+
+TEST(SurfaceRun, FailureInsideAStepEndsWithError) {
+    const SurfaceRunResult r =
+        run(sphere({}, 0.3, 2), SurfaceTranslation({2.0, 0.0, 0.0}), domain, coarse(1.0, 2));
+    EXPECT_EQ(r.status, RunStatus::error);
+    EXPECT_NE(r.message.find("at t = 0"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("domain boundary"), std::string::npos) << r.message;
+    EXPECT_EQ(r.steps_done, 0);
+    EXPECT_FALSE(r.surface.empty());  // the last surface reached is kept
+}
+
+/// A law that grows the surface while claiming to keep its volume.
+class FalseClaim final : public SurfaceNormalLaw {
+public:
+    std::string name() const override { return "false-claim"; }
+    Invariants invariants() const override { return {.keeps_area = true}; }
+    void normal_speeds(double, std::span<const Vec3> x, std::span<const Vec3>,
+                       std::span<double> out) const override {
+        std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(x.size()), 1.0);
+    }
+};
+
+TEST(SurfaceRun, BrokenInvariantIsUnstable) {
+    SurfaceRunOptions o = coarse(0.1, 1);
+    o.max_substep_halvings = 1;
+    const SurfaceRunResult r = run(sphere({}, 0.3, 2), FalseClaim(), domain, o);
+    EXPECT_EQ(r.status, RunStatus::unstable);
+    EXPECT_NE(r.message.find("the volume changed by"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("also in 2 sub-steps"), std::string::npos) << r.message;
+    // The same run without guards ends ok.
+    o.guards = false;
+    EXPECT_EQ(run(sphere({}, 0.3, 2), FalseClaim(), domain, o).status, RunStatus::ok);
+}
+
+TEST(SurfaceRun, BadOptions) {
+    const Surface s = sphere({}, 0.3, 1);
+    EXPECT_THROW(run(s, SurfaceRotation(), domain, coarse(1.0, 0)), InvalidInput);
+    EXPECT_THROW(run(s, SurfaceRotation(), domain, coarse(-1.0, 2)), InvalidInput);
+    EXPECT_THROW(run(Surface{}, SurfaceRotation(), domain, coarse(1.0, 2)), InvalidInput);
+}
+
+TEST(SurfaceProblems, EveryProblemStartsValidInsideItsDomain) {
+    for (const std::string& name : surface_problem_names()) {
+        const SurfaceProblem p = make_surface_problem(name);
+        EXPECT_EQ(p.name, name);
+        EXPECT_FALSE(p.description.empty());
+        EXPECT_TRUE(prepare_surface(p.initial).notes.empty()) << name;
+        for (const Vec3& v : p.initial.vertices) ASSERT_TRUE(p.domain.contains(v)) << name;
+        if (p.exact) {
+            // Where the exact surface is known at t = 0, the initial surface lies on it.
+            double e = 0.0;
+            for (const Vec3& v : p.initial.vertices) e = std::max(e, std::abs(p.exact(0.0, v)));
+            EXPECT_LT(e, 1e-6) << name;
+        }
+    }
+    EXPECT_THROW(make_surface_problem("teapot"), InvalidInput);
+    EXPECT_THROW(make_surface_problem("sphere-rotation", {{"x", 1.0}}), InvalidInput);
+    EXPECT_EQ(make_surface_problem("box-normal", {{"speed", -1.0}}).law->invariants().cannot_vanish,
+              false);
+}
+
+TEST(SurfaceProblems, LawsByName) {
+    for (const char* name : {"rotation", "enright", "unit-normal", "anisotropic", "curvature",
+                             "volume-preserving-curvature"})
+        EXPECT_EQ(make_surface_velocity(name)->name(), name);
+    EXPECT_EQ(make_surface_velocity("translation", {{"ux", 1}, {"uy", 0}, {"uz", 0}})->name(),
+              "translation");
+    EXPECT_THROW(make_surface_velocity("translation", {{"ux", 1}}), InvalidInput);
+    EXPECT_THROW(make_surface_velocity("spin"), InvalidInput);
+    EXPECT_THROW(make_surface_velocity("rotation", {{"omega", NAN}}), InvalidInput);
+    EXPECT_THROW(make_surface_velocity("rotation", {{"ax", 0}, {"az", 0}}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace slc
