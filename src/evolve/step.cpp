@@ -17,7 +17,7 @@
 #include "slc/distance/extension.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/geometry_modules/arclength.hpp"
-#include "characteristics.hpp"
+#include "step_common.hpp"
 
 namespace slc {
 
@@ -161,14 +161,7 @@ public:
     /// batch; NumericalFailure naming the point unless all are finite.
     void normal_speeds(std::span<const Vec2> xs, std::span<const Vec2> n,
                        std::span<double> v) const {
-        law_.normal_speeds(t_, xs, n, v);
-        for (std::size_t i = 0; i < v.size(); ++i) {
-            if (!std::isfinite(v[i])) {
-                throw NumericalFailure(
-                    fmt::format("velocity '{}' is not finite at t = {} near ({}, {})", law_.name(),
-                                t_, xs[i].x, xs[i].y));
-            }
-        }
+        detail::checked_normal_speeds(law_, t_, xs, n, v);
     }
     /// The closest point of this level's polygon (whatever StepOptions::arcs says) and W(x),
     /// from one closest-point query.
@@ -329,12 +322,8 @@ StepResult advance_normal(const Interface& curves, double t, double k, const Vel
     };
     // G is evaluated a batch at a time, so that the law is called once per batch (a law written
     // in Python, say, sees whole arrays).
-    auto predictor = [&](std::span<const Vec2> xs, std::span<double> g) {
-        std::vector<double> v(xs.size());
-        std::vector<Vec2> n(xs.size());
-        now.distances_and_normals(xs, g, n);
-        now.normal_speeds(xs, n, v);
-        for (std::size_t i = 0; i < xs.size(); ++i) g[i] -= k * v[i];
+    const auto predictor = [&](std::span<const Vec2> xs, std::span<double> g) {
+        detail::normal_predictor(now, k, xs, g);
     };
     ContourResult predicted = contour(predictor, domain, contour_options, bounds(predictor_reach));
     result.stats.predictor = predicted.stats;
@@ -344,17 +333,8 @@ StepResult advance_normal(const Interface& curves, double t, double k, const Vel
     const double corrector_reach = 0.5 * k * (now.max_speed() + next.max_speed()) +
                                    std::max(now.max_bulge(), next.max_bulge());
     contour_options.distance_slack = 2.0 * corrector_reach;
-    auto corrector = [&](std::span<const Vec2> xs, std::span<double> g) {
-        const std::size_t m = xs.size();
-        std::vector<double> v(m), v_foot(m), f_next(m), v_next(m);
-        std::vector<Vec2> n(m), feet(m), n_next(m);
-        now.distances_and_normals(xs, g, n);
-        now.normal_speeds(xs, n, v);
-        for (std::size_t i = 0; i < m; ++i) feet[i] = xs[i] - k * v[i] * n[i];
-        now.normal_speeds(feet, n, v_foot);
-        next.distances_and_normals(xs, f_next, n_next);
-        next.normal_speeds(xs, n_next, v_next);
-        for (std::size_t i = 0; i < m; ++i) g[i] -= 0.5 * k * (v_foot[i] + v_next[i]);
+    const auto corrector = [&](std::span<const Vec2> xs, std::span<double> g) {
+        detail::normal_corrector(now, next, k, xs, g);
     };
     ContourResult corrected = contour(corrector, domain, contour_options, bounds(corrector_reach));
     result.stats.corrector = corrected.stats;

@@ -8,12 +8,12 @@
 #include <span>
 #include <vector>
 
-#include "characteristics.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/distance/surface_extension.hpp"
 #include "slc/geometry_modules/surface_geometry.hpp"
+#include "step_common.hpp"
 
 namespace slc {
 
@@ -110,14 +110,7 @@ public:
     /// naming the point unless all are finite.
     void normal_speeds(std::span<const Vec3> xs, std::span<const Vec3> n,
                        std::span<double> v) const {
-        law_.normal_speeds(t_, xs, n, v);
-        for (std::size_t i = 0; i < v.size(); ++i) {
-            if (!std::isfinite(v[i])) {
-                throw NumericalFailure(
-                    fmt::format("velocity '{}' is not finite at t = {} near ({}, {}, {})",
-                                law_.name(), t_, xs[i].x, xs[i].y, xs[i].z));
-            }
-        }
+        detail::checked_normal_speeds(law_, t_, xs, n, v);
     }
 
 private:
@@ -175,11 +168,7 @@ SurfaceStepResult advance_normal(const Surface& surface, double t, double k,
     SurfaceStepResult result;
     const SurfaceLevel now(surface, t, k, law, domain, options, Extension::direct);
     const auto predictor = [&](std::span<const Vec3> xs, std::span<double> g) {
-        std::vector<double> v(xs.size());
-        std::vector<Vec3> n(xs.size());
-        now.distances_and_normals(xs, g, n);
-        now.normal_speeds(xs, n, v);
-        for (std::size_t i = 0; i < xs.size(); ++i) g[i] -= k * v[i];
+        detail::normal_predictor(now, k, xs, g);
     };
     SurfaceContour predicted = contour_surface(predictor, domain, options.contour);
     result.stats.predictor = predicted.stats;
@@ -187,16 +176,7 @@ SurfaceStepResult advance_normal(const Surface& surface, double t, double k,
 
     const SurfaceLevel next(predicted.surface, t + k, k, law, domain, options, Extension::direct);
     const auto corrector = [&](std::span<const Vec3> xs, std::span<double> g) {
-        const std::size_t m = xs.size();
-        std::vector<double> v(m), v_foot(m), f_next(m), v_next(m);
-        std::vector<Vec3> n(m), feet(m), n_next(m);
-        now.distances_and_normals(xs, g, n);
-        now.normal_speeds(xs, n, v);
-        for (std::size_t i = 0; i < m; ++i) feet[i] = xs[i] - k * v[i] * n[i];
-        now.normal_speeds(feet, n, v_foot);
-        next.distances_and_normals(xs, f_next, n_next);
-        next.normal_speeds(xs, n_next, v_next);
-        for (std::size_t i = 0; i < m; ++i) g[i] -= 0.5 * k * (v_foot[i] + v_next[i]);
+        detail::normal_corrector(now, next, k, xs, g);
     };
     SurfaceContour corrected = contour_surface(corrector, domain, options.contour);
     result.stats.corrector = corrected.stats;
