@@ -148,21 +148,6 @@ py::tuple contour_function(const py::object& f, const std::vector<double>& box, 
     return py::make_tuple(arrays_of(r.curves), stats);
 }
 
-/// A cubic domain from (x0, y0, z0, x1, y1, z1), a box taken as the cube around it.
-Box3 cubic_box(const std::vector<double>& v) {
-    if (v.size() != 6) throw InvalidInput("box must be six numbers (x0, y0, z0, x1, y1, z1)");
-    const Box3 b{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
-    if (!is_finite(b.lo) || !is_finite(b.hi) || !(b.extent(0) > 0) || !(b.extent(1) > 0) ||
-        !(b.extent(2) > 0)) {
-        throw InvalidInput(fmt::format(
-            "box must have x0 < x1, y0 < y1 and z0 < z1, all finite, got ({}, {}, {}, {}, {}, {})",
-            v[0], v[1], v[2], v[3], v[4], v[5]));
-    }
-    const double half = 0.5 * std::max({b.extent(0), b.extent(1), b.extent(2)});
-    const Vec3 c = b.center();
-    return {{c.x - half, c.y - half, c.z - half}, {c.x + half, c.y + half, c.z + half}};
-}
-
 /// Calls a Python f((m, 3) array) -> (m,) array for a batch, with the GIL held for the call.
 void call_batch3(const py::object& f, std::span<const Vec3> points, std::span<double> values) {
     py::gil_scoped_acquire hold;
@@ -180,7 +165,7 @@ void call_batch3(const py::object& f, std::span<const Vec3> points, std::span<do
 
 py::tuple contour_surface_function(const py::object& f, const std::vector<double>& box, int depth,
                                    std::optional<double> eps, int refine) {
-    const Box3 domain = cubic_box(box);
+    const Box3 domain = cube_around_corners(box, "box");
     const SurfaceContourOptions options{.depth = depth, .refine_passes = refine, .eps = eps};
     auto g = [&f](std::span<const Vec3> points, std::span<double> values) {
         call_batch3(f, points, values);

@@ -89,17 +89,7 @@ Box3 parse_box3(const std::string& text) {
         throw InvalidInput(fmt::format(
             "--box must be six numbers x0,y0,z0,x1,y1,z1 for a surface, got '{}'", text));
     }
-    const Box3 b{{(*v)[0], (*v)[1], (*v)[2]}, {(*v)[3], (*v)[4], (*v)[5]}};
-    if (!is_finite(b.lo) || !is_finite(b.hi) || !(b.extent(0) > 0) || !(b.extent(1) > 0) ||
-        !(b.extent(2) > 0)) {
-        throw InvalidInput(fmt::format(
-            "--box must have x0 < x1, y0 < y1 and z0 < z1, all finite, got '{}'", text));
-    }
-    if (b.largest_magnitude() > tolerance::max_coordinate) {
-        throw InvalidInput(fmt::format("--box corners must lie within ±{:g}, got '{}'",
-                                       tolerance::max_coordinate, text));
-    }
-    return Box3::cube(b.center(), 0.5 * std::max({b.extent(0), b.extent(1), b.extent(2)}));
+    return cube_around_corners(*v, "--box");
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <string_view>
 
 #include "slc/core/vec3.hpp"
 
@@ -99,5 +100,11 @@ inline double distance2(const Box3& a, const Box3& b) {
     }
     return d2;
 }
+
+/// The cube around the box with corners (x0, y0, z0) and (x1, y1, z1) given as six numbers: the
+/// same centre, half-width the box's largest half-side (a domain, DESIGN §8). Throws InvalidInput
+/// naming `name` ("--box", "box") unless there are six finite numbers with x0 < x1, y0 < y1 and
+/// z0 < z1 within ±tolerance::max_coordinate.
+Box3 cube_around_corners(std::span<const double> six, std::string_view name);
 
 }  // namespace slc
