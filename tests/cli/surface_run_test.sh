@@ -41,6 +41,19 @@ expect_ok "merging spheres" -- run --problem merging-spheres -K 4 --eps 1e-3 --o
 check "they merged" test "$(json merge/summary.json 's["components"], s["genus"]')" = "1 0"
 check "e_inf within 3e-3" test "$(json merge/summary.json 's["e_inf"] < 3e-3')" = True
 
+# SIGTERM between steps: the run ends after its current step, writes its results whole with
+# status interrupted and exits 143 (0 had it finished first).
+"$SLC" run --problem sphere-curvature --out stopped --quiet 2>err.txt &
+pid=$!
+sleep 4
+kill -TERM "$pid"
+wait "$pid"
+status=$?
+check "SIGTERM: exit status 143 (0 had it finished)" test "$status" -eq 143 -o "$status" -eq 0
+check "SIGTERM: status interrupted (or ok)" grep -qE '"status": "(interrupted|ok)"' stopped/summary.json
+check "SIGTERM: the surface reached is written" test -s stopped/final.obj -a -s stopped/history.csv
+check "SIGTERM: one line on stderr" test "$(wc -l <err.txt)" -le 1
+
 # Errors.
 expect_error "unknown law" "unknown velocity 'spin' for a surface; known: rotation" -- run --initial ball.obj --velocity spin --t-end 1 --out x
 expect_error "a law of curves' options" "--speed is for curves, not surfaces" -- run --initial ball.obj --speed 1 --t-end 1 --out x

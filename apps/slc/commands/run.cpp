@@ -438,6 +438,7 @@ void surface_command(const RunCommand& o) {
     for (const auto& [given, name] : curve_only)
         if (given) throw InvalidInput(fmt::format("{} is for curves, not surfaces", name));
     apply_threads(o.method.threads);
+    const StopSignals signals;
     run_surface({.problem = o.source.problem,
                  .initial = o.source.initial,
                  .velocity = o.source.velocity,
@@ -452,7 +453,8 @@ void surface_command(const RunCommand& o) {
                  .tree_depth = o.method.tree_depth,
                  .frames = o.frames,
                  .quiet = o.quiet,
-                 .out = o.out});
+                 .out = o.out,
+                 .stop_signal = &stop_signal});
 }
 
 }  // namespace

@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "commands/commands.hpp"
 #include "commands/output_folder.hpp"
 #include "commands/run_options.hpp"
 #include "slc/core/error.hpp"
@@ -179,7 +181,7 @@ void run_surface(const SurfaceRunRequest& r) {
                        report.steps, report.t, report.surface->size(), volume(*report.surface));
             std::fflush(stdout);
         }
-        return true;
+        return r.stop_signal == nullptr || *r.stop_signal == 0;
     };
     const SurfaceRunResult result = run(p.initial, *p.law, p.domain, options, observer);
 
@@ -223,6 +225,18 @@ void run_surface(const SurfaceRunRequest& r) {
     folder.commit();
     if (result.status == RunStatus::error || result.status == RunStatus::unstable)
         throw NumericalFailure(result.message);
+    if (r.stop_signal != nullptr && *r.stop_signal != 0) {
+        const int signal = *r.stop_signal;
+        const char* name = signal == SIGINT ? "SIGINT" : "SIGTERM";
+        if (result.status != RunStatus::interrupted) {  // the signal came during the writes
+            throw Interrupted(signal, fmt::format("{}: {} came after the last step; the results "
+                                                  "in {} are written whole",
+                                                  p.name, name, r.out));
+        }
+        throw Interrupted(signal, fmt::format("{}: interrupted by {} after step {} at t = {:.6g}; "
+                                              "{} holds the run up to there",
+                                              p.name, name, result.steps_done, result.t, r.out));
+    }
     if (!r.quiet) {
         fmt::print(
             "{} steps to t = {:.6g}: {}, {} triangles, volume change {:.3g}{}, {:.3g} s; "

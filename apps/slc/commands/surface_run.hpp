@@ -2,6 +2,7 @@
 // built-in law of surfaces.
 #pragma once
 
+#include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,10 @@ struct SurfaceRunRequest {
     int frames = 0;
     bool quiet = false;
     std::string out;
+    /// The signal that asked the run to stop (SIGINT, SIGTERM; 0 while none did), read after
+    /// every step: the run then ends with status interrupted, writes its results whole and
+    /// throws Interrupted.
+    const std::atomic<int>* stop_signal = nullptr;
 };
 
 /// True when `slc run` was given a surface problem or a surface file.
@@ -34,7 +39,8 @@ bool is_surface_run(const std::string& problem, const std::string& initial);
 
 /// Runs, writes final.obj, final.vtp, final.png, history.csv/.png, frames (frames.pvd,
 /// frames/*.vtp and *.png) and summary.json (last) into out. Throws NumericalFailure after
-/// writing everything when the run ends with status error or unstable.
+/// writing everything when the run ends with status error or unstable, Interrupted when a signal
+/// stopped it.
 void run_surface(const SurfaceRunRequest& request);
 
 }  // namespace slc::cli
