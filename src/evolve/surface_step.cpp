@@ -3,15 +3,19 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/distance/surface_extension.hpp"
+#include "slc/geometry/validate_surface.hpp"
 #include "slc/geometry_modules/surface_geometry.hpp"
 #include "step_common.hpp"
 
@@ -184,10 +188,32 @@ SurfaceStepResult advance_normal(const Surface& surface, double t, double k,
     return result;
 }
 
-}  // namespace
+/// The surface moved along its vertex normals (angle-weighted) by δ = fraction·(target − V)/A,
+/// each vertex by at most a quarter of its shortest edge, which makes its volume target to
+/// O(δ²); the surface itself when the moved one would meet itself (exact predicates). Returns the
+/// surface and the volume added.
+std::pair<Surface, double> corrected_volume(const Surface& s, double target, double fraction) {
+    const double v = volume(s);
+    const double delta = fraction * (target - v) / area(s);
+    const std::vector<Vec3> n = angle_weighted_normals(s);
+    const VertexRings rings = vertex_rings(s);
+    Surface moved = s;
+    for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+        double shortest = std::numeric_limits<double>::infinity();
+        for (const std::uint32_t j : rings.of(i))
+            shortest = std::min(shortest, distance(s.vertices[i], s.vertices[j]));
+        if (rings.of(i).empty()) continue;
+        const double reach = 0.25 * shortest;
+        moved.vertices[i] = s.vertices[i] + std::clamp(delta, -reach, reach) * n[i];
+    }
+    if (find_self_intersection(moved)) return {s, 0.0};
+    const double added = volume(moved) - v;
+    return {std::move(moved), added};
+}
 
-SurfaceStepResult advance(const Surface& surface, double t, double k, const SurfaceVelocityLaw& law,
-                          const Box3& domain, const SurfaceStepOptions& options) {
+SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
+                                   const SurfaceVelocityLaw& law, const Box3& domain,
+                                   const SurfaceStepOptions& options) {
     if (!(k > 0.0) || !std::isfinite(k))
         throw InvalidInput(fmt::format("time step must be positive and finite, got {}", k));
     if (surface.empty()) throw InvalidInput("the surface to advance has no triangles");
@@ -245,6 +271,33 @@ SurfaceStepResult advance(const Surface& surface, double t, double k, const Surf
     SurfaceContour corrected = contour_surface(corrector, domain, options.contour);
     result.stats.corrector = corrected.stats;
     result.surface = std::move(corrected.surface);
+    return result;
+}
+
+}  // namespace
+
+SurfaceStepResult advance(const Surface& surface, double t, double k, const SurfaceVelocityLaw& law,
+                          const Box3& domain, const SurfaceStepOptions& options) {
+    SurfaceStepResult result = advance_contours(surface, t, k, law, domain, options);
+    if (options.volume_correction.value_or(law.preserves_area()) && !result.surface.empty()) {
+        // Each shift leaves O(δ²) of the volume to give back, more where vertices were held
+        // back; a shift that would make the surface meet itself is tried at half its size,
+        // down to a sixteenth.
+        const double target = volume(surface);
+        double fraction = 1.0;
+        for (int shift = 0; shift < 8;) {
+            auto [moved, added] = corrected_volume(result.surface, target, fraction);
+            if (added == 0.0) {
+                if (fraction < 0.1) break;
+                fraction *= 0.5;
+                continue;
+            }
+            result.surface = std::move(moved);
+            result.stats.volume_correction += added;
+            fraction = 1.0;
+            ++shift;
+        }
+    }
     return result;
 }
 

@@ -35,6 +35,11 @@ struct SurfaceStepOptions {
     /// parts by up to h²|C|/12, and each step's new vertices land on them: a loss that adds up
     /// over the steps, which the patches remove to O(h³), as arcs do for curves.
     bool patches = true;
+    /// For a law that keeps the volume (VelocityLaw::preserves_area): after the step, move every
+    /// vertex of S(t + k) along its normal by δ = (V(t) − V(t + k))/A, each by at most a quarter
+    /// of its shortest edge, eight times at most (to rounding); a shift that would make the
+    /// surface meet itself is halved, down to a sixteenth, or not made. Unset: on for such laws.
+    std::optional<bool> volume_correction = std::nullopt;
 
     /// The extension as given, or the law itself (direct) for flow fields and normal laws and
     /// the nearest-point extension for every other law.
@@ -47,6 +52,8 @@ struct SurfaceStepOptions {
 struct SurfaceStepStats {
     SurfaceContourStats predictor;  ///< the contour of G̃; empty for a flow field
     SurfaceContourStats corrector;  ///< the contour of G
+    /// The volume given back by SurfaceStepOptions::volume_correction (0 when none was applied).
+    double volume_correction = 0.0;
     /// Evaluations of G̃ and G together.
     std::size_t g_evals() const { return predictor.g_evals + corrector.g_evals; }
 };
