@@ -57,6 +57,15 @@ std::optional<std::string> surface_invariant_violation(const Invariants& law, co
         const long long g0 = genus(before), g1 = genus(after);
         if (g0 != g1) return fmt::format("a rigid motion changed the genus from {} to {}", g0, g1);
     }
+    if (law.cannot_split && !law.rigid) {
+        const std::size_t c0 = component_count(before), c1 = component_count(after);
+        if (c1 > c0) {
+            return fmt::format(
+                "the number of components rose from {} to {} under a law that cannot split the "
+                "surface (a part thinner than the contours resolve tore)",
+                c0, c1);
+        }
+    }
     if (law.keeps_area) {
         const double v0 = volume(before), v1 = volume(after);
         const double tolerance =
@@ -88,6 +97,7 @@ SurfaceRunResult run(const Surface& initial, const SurfaceVelocityLaw& law, cons
     r.t = options.t_start;
     const Invariants invariants = law.invariants();
     const double eps = options.step.contour.resolved_eps();
+    const double volume0 = volume(initial);
     const auto wall_start = std::chrono::steady_clock::now();
     const double cpu_start = process_cpu_s();
     auto clocks = [&] {
@@ -142,6 +152,17 @@ SurfaceRunResult run(const Surface& initial, const SurfaceVelocityLaw& law, cons
         r.t = t1;
         r.steps_done = n;
         clocks();
+        if (options.guards && invariants.keeps_area && !r.surface.empty()) {
+            const double drift = volume(r.surface) / volume0 - 1.0;
+            if (std::abs(drift) > options.volume_drift) {
+                r.status = RunStatus::unstable;
+                r.message = fmt::format(
+                    "at t = {}: the volume drifted by {:.3g}% since the start under a law that "
+                    "keeps it (more than {:.3g}%); refine the contours (-K, --eps)",
+                    t1, 100.0 * drift, 100.0 * options.volume_drift);
+                return r;
+            }
+        }
         if (r.surface.empty()) {
             r.status = RunStatus::vanished;
             return r;

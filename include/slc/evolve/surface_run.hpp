@@ -24,6 +24,11 @@ struct SurfaceRunOptions {
     /// breaks them ends with status unstable.
     bool guards = true;
     int max_substep_halvings = 4;  ///< see guards
+    /// With guards, under a law that keeps the volume: the run ends unstable once the volume has
+    /// drifted from the start's by more than this fraction (steps each within their budget may
+    /// otherwise add up: a sheet thinner than the contours resolve loses volume step after
+    /// step).
+    double volume_drift = 0.01;
 };
 
 struct SurfaceRunResult;
@@ -59,9 +64,10 @@ struct SurfaceRunResult {
 /// Why a step of length k from `before` to `after` breaks what the law keeps, in one line, or
 /// nothing when it keeps it within the budget: a kept volume may move in a step by at most the
 /// larger of 1% of it and 20 ε A (A the area before); a rigid motion keeps the number of
-/// components and the genus; a surface that cannot vanish does not; a law that shrinks area (the
-/// mean curvature flows) may grow it in a step by at most the larger of 1% and 20 ε times its
-/// square root. eps: the step's contour tolerance.
+/// components and the genus; a law that cannot split the surface (a smooth flow field) does not
+/// raise the number of components; a surface that cannot vanish does not; a law that shrinks
+/// area (the mean curvature flows) may grow it in a step by at most the larger of 1% and 20 ε
+/// times its square root. eps: the step's contour tolerance.
 std::optional<std::string> surface_invariant_violation(const Invariants& law, const Surface& before,
                                                        const Surface& after, double k, double eps);
 

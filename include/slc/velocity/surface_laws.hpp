@@ -49,7 +49,8 @@ public:
     /// Throws InvalidInput unless period > 0.
     explicit EnrightField(double period = 3.0);
     std::string name() const override { return "enright"; }
-    Invariants invariants() const override { return {.keeps_area = true}; }
+    /// A smooth divergence-free flow: it keeps the volume and cannot tear the surface.
+    Invariants invariants() const override { return {.keeps_area = true, .cannot_split = true}; }
     void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override;
 
 private:

@@ -97,6 +97,52 @@ TEST(SurfaceRun, BrokenInvariantIsUnstable) {
     EXPECT_EQ(run(sphere({}, 0.3, 2), FalseClaim(), domain, o).status, RunStatus::ok);
 }
 
+/// A flow field u = f(x) claiming the given invariants.
+template <class F>
+class ClaimingField final : public SurfaceFlowFieldLaw {
+public:
+    ClaimingField(Invariants claims, F f) : claims_(claims), f_(f) {}
+    std::string name() const override { return "claiming"; }
+    Invariants invariants() const override { return claims_; }
+    void sample(double, std::span<const Vec3> x, std::span<Vec3> out) const override {
+        for (std::size_t i = 0; i < x.size(); ++i) out[i] = f_(x[i]);
+    }
+
+private:
+    Invariants claims_;
+    F f_;
+};
+
+TEST(SurfaceRun, GuardsOfTheLawsInvariants) {
+    // A smooth flow cannot split a surface: one that tore under the contours is caught.
+    const Surface one = sphere({}, 0.3, 2);
+    const Surface two = join({sphere({-0.4, 0, 0}, 0.2, 2), sphere({0.4, 0, 0}, 0.2, 2)});
+    const auto torn = surface_invariant_violation({.cannot_split = true}, one, two, 0.1, 1e-3);
+    ASSERT_TRUE(torn);
+    EXPECT_NE(torn->find("the number of components rose from 1 to 2"), std::string::npos);
+    EXPECT_FALSE(surface_invariant_violation({.cannot_split = true}, two, one, 0.1, 1e-3));
+    // A rigid motion keeps components and genus; a growing surface does not vanish.
+    EXPECT_TRUE(surface_invariant_violation({.rigid = true}, one, two, 0.1, 1e-3));
+    const Surface ring = torus({}, 0.5, 0.2, 24, 12);
+    EXPECT_TRUE(surface_invariant_violation({.rigid = true}, one, ring, 0.1, 1e-3));
+    EXPECT_TRUE(surface_invariant_violation({.cannot_vanish = true}, one, Surface{}, 0.1, 1e-3));
+    // The area of a shrinking flow may not grow by more than 1%.
+    const Surface bigger = sphere({}, 0.31, 2);
+    EXPECT_TRUE(surface_invariant_violation({.shortens = true}, one, bigger, 0.1, 1e-6));
+    EXPECT_FALSE(surface_invariant_violation({.shortens = true}, bigger, one, 0.1, 1e-6));
+}
+
+TEST(SurfaceRun, VolumeDriftOverTheRunIsUnstable) {
+    // A slow contraction loses 0.75% of the volume a step, within a step's budget; after two
+    // steps the run has lost more than 1% of it. (A fine start: a coarse icosphere's own
+    // deficit would hide a step's loss.)
+    const ClaimingField squeeze({.keeps_area = true}, [](Vec3 x) { return -0.05 * x; });
+    const SurfaceRunResult r = run(sphere({}, 0.5, 5), squeeze, domain, coarse(0.2, 4));
+    EXPECT_EQ(r.status, RunStatus::unstable);
+    EXPECT_EQ(r.steps_done, 2) << r.message;
+    EXPECT_NE(r.message.find("the volume drifted by -1."), std::string::npos) << r.message;
+}
+
 TEST(SurfaceRun, BadOptions) {
     const Surface s = sphere({}, 0.3, 1);
     EXPECT_THROW(run(s, SurfaceRotation(), domain, coarse(1.0, 0)), InvalidInput);
