@@ -30,10 +30,17 @@ namespace {
 double e_inf(const SurfaceProblem& p, double t, const Surface& s) {
     if (!p.exact || s.empty()) return std::nan("");
     double e = 0.0;
-    for (const Vec3& v : s.vertices) e = std::max(e, std::abs(p.exact(t, v)));
-    for (std::size_t i = 0; i < s.size(); ++i) {
+    auto offer = [&](Vec3 x) {
+        const double d = p.exact(t, x);
+        e = std::isnan(d) ? d : std::max(e, std::abs(d));  // NaN: not known at t
+    };
+    for (const Vec3& v : s.vertices) {
+        offer(v);
+        if (std::isnan(e)) return e;
+    }
+    for (std::size_t i = 0; i < s.size() && !std::isnan(e); ++i) {
         const Triangle3 tri = s.triangle(i);
-        e = std::max(e, std::abs(p.exact(t, (tri.a + tri.b + tri.c) / 3.0)));
+        offer((tri.a + tri.b + tri.c) / 3.0);
     }
     return e;
 }
