@@ -156,6 +156,7 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
         p.depth = 6;
         p.law =
             std::make_unique<SurfaceRotation>(2.0 * pi, Vec3{0.0, 0.0, 1.0}, Vec3{0.5, 0.5, 0.5});
+        p.azimuth = -90.0;  // from the axis's side, into the slot
         // A sphere of radius 0.15 about (0.5, 0.75, 0.5) less a slot 0.05 wide cut 0.125 deep
         // from its bottom (towards the axis), through all of it in z.
         const auto slotted = [](Vec3 x) {

@@ -54,6 +54,14 @@ check "SIGTERM: status interrupted (or ok)" grep -qE '"status": "(interrupted|ok
 check "SIGTERM: the surface reached is written" test -s stopped/final.obj -a -s stopped/history.csv
 check "SIGTERM: one line on stderr" test "$(wc -l <err.txt)" -le 1
 
+# The view of the pictures: another direction draws another picture.
+expect_ok "a view from below" -- run --initial ball.obj --velocity unit-normal --t-end 0.01 -N 1 -K 3 --view 0,-60 --out below --quiet
+expect_ok "the default view" -- run --initial ball.obj --velocity unit-normal --t-end 0.01 -N 1 -K 3 --out above --quiet
+check "the pictures differ" test "$(cmp -s below/final.png above/final.png && echo same)" != same
+check "the surfaces do not" cmp -s below/final.obj above/final.obj
+expect_error "a view of one number" "--view must be two finite numbers AZ,EL in degrees, got '30'" -- run --initial ball.obj --velocity curvature --t-end 1 --view 30 --out x
+expect_error "a view for curves" "--view is for surfaces, not curves" -- run --problem vortex --view 30,20 --out x
+
 # Errors.
 expect_error "unknown law" "unknown velocity 'spin' for a surface; known: rotation" -- run --initial ball.obj --velocity spin --t-end 1 --out x
 expect_error "a law of curves' options" "--speed is for curves, not surfaces" -- run --initial ball.obj --speed 1 --t-end 1 --out x

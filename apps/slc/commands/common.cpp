@@ -94,6 +94,8 @@ Box3 parse_box3(const std::string& text) {
 
 }  // namespace
 
+std::optional<std::vector<double>> comma_numbers(const std::string& text) { return numbers(text); }
+
 Box3 resolve_domain3(const DomainOptions& options, const Box3& bounds) {
     if (options.half_width) {
         const double b = *options.half_width;

@@ -56,6 +56,9 @@ LoadedSurface load_surface(const std::string& path, const DomainOptions& domain)
 /// JSON for a box: [x0, y0, x1, y1].
 nlohmann::json box_json(const Box& b);
 
+/// The numbers of a comma-separated list ("35,25"), or nothing when a field is not a number.
+std::optional<std::vector<double>> comma_numbers(const std::string& text);
+
 /// Applies --threads (0 = all cores).
 void apply_threads(int threads);
 

@@ -63,6 +63,7 @@ struct RunCommand {
     ProblemSource source;
     MethodOptions method;
     int frames = 0;
+    std::optional<std::string> view;
     bool vtk = false;
     bool quiet = false;
     std::string out;
@@ -339,6 +340,9 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
            "Write this many frames (plus the initial one) to DIR/frames/ and draw them overlaid "
            "in DIR/frames.svg/.png (at most 64: every n-th and the last)")
         ->check(integer_in(0, 100000));
+    cmd->add_option("--view", o->view,
+                    "For a surface: the direction its pictures look from, AZ,EL in degrees (about "
+                    "the z axis from +x, and above the xy plane; default the problem's, or 35,25)");
     cmd->add_flag("--vtk", o->vtk,
                   "Also write the initial interface, the frames and the final one as VTK PolyData "
                   "(DIR/frames/*.vtp) and DIR/frames.pvd, a time series ParaView opens");
@@ -452,6 +456,7 @@ void surface_command(const RunCommand& o) {
                  .eta = o.method.eta,
                  .tree_depth = o.method.tree_depth,
                  .frames = o.frames,
+                 .view = o.view,
                  .quiet = o.quiet,
                  .out = o.out,
                  .stop_signal = &stop_signal});
@@ -471,6 +476,7 @@ void add_run_command(CLI::App& app) {
             throw InvalidInput("give --problem NAME or --initial FILE");
         if (o->out.empty()) throw InvalidInput("--out DIR is required");
         if (is_surface_run(o->source.problem, o->source.initial)) return surface_command(*o);
+        if (o->view) throw InvalidInput("--view is for surfaces, not curves");
         const StopSignals signals;
         const std::vector<GivenOption> all = given_options(*cmd, {});
         const std::string id =

@@ -130,6 +130,24 @@ void run_surface(const SurfaceRunRequest& r) {
             fmt::format("eps must be at least eta = {:g}, got {:g}", c.eta, c.resolved_eps()));
     }
     const double k = (options.t_end - options.t_start) / options.steps;
+    SurfaceView view;
+    view.azimuth = p.azimuth;
+    view.elevation = p.elevation;
+    if (r.view) {
+        const auto angles = comma_numbers(*r.view);
+        if (!angles || angles->size() != 2 || !std::isfinite((*angles)[0]) ||
+            !std::isfinite((*angles)[1])) {
+            throw InvalidInput(fmt::format(
+                "--view must be two finite numbers AZ,EL in degrees, got '{}'", *r.view));
+        }
+        view.azimuth = (*angles)[0];
+        view.elevation = (*angles)[1];
+    }
+    auto titled = [&view](std::string title) {
+        SurfaceView v = view;
+        v.title = std::move(title);
+        return v;
+    };
 
     OutputFolder folder(r.out, false);
     const std::filesystem::path dir = folder.path();
@@ -164,7 +182,7 @@ void run_surface(const SurfaceRunRequest& r) {
         series->add(t, s);
         if (!s.empty()) {
             save_surface_picture(s, frame_png(frames_written),
-                                 {.title = fmt::format("{}: t = {:.4g}", p.name, t)});
+                                 titled(fmt::format("{}: t = {:.4g}", p.name, t)));
         }
         ++frames_written;
     };
@@ -222,11 +240,11 @@ void run_surface(const SurfaceRunRequest& r) {
         "{}: t = {:.4g} ({}), {} triangles{}", p.name, result.t, to_string(result.status), s.size(),
         std::isfinite(e) ? fmt::format(", e_inf {:.2e}", e) : std::string());
     if (!s.empty()) {
-        save_surface_picture(s, dir / "final.png", {.title = title});
+        save_surface_picture(s, dir / "final.png", titled(title));
     } else {
         save_surface_picture(
             p.initial, dir / "final.png",
-            {.title = fmt::format("{}: everything vanished by t = {:.4g}", p.name, result.t)});
+            titled(fmt::format("{}: everything vanished by t = {:.4g}", p.name, result.t)));
     }
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     folder.commit();

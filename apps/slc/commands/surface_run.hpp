@@ -26,6 +26,7 @@ struct SurfaceRunRequest {
     std::optional<double> eta;
     std::optional<int> tree_depth;
     int frames = 0;
+    std::optional<std::string> view;  ///< "AZ,EL" in degrees
     bool quiet = false;
     std::string out;
     /// The signal that asked the run to stop (SIGINT, SIGTERM; 0 while none did), read after

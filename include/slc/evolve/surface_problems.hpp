@@ -31,6 +31,10 @@ struct SurfaceProblem {
     /// The exact signed distance (or a function with the same zero set) at time t, NaN where the
     /// exact surface is not known at t; empty when it is never known.
     std::function<double(double t, Vec3 x)> exact;
+    /// The direction its pictures look from: degrees about the z axis from the +x axis, and
+    /// above the xy plane (SurfaceView).
+    double azimuth = 35.0;
+    double elevation = 25.0;
 };
 
 /// The problems' names: sphere-rotation, enright, zalesak-sphere, sphere-curvature,
