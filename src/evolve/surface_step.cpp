@@ -48,20 +48,29 @@ public:
                               : SurfaceDistanceTree::default_depth(surface, domain)}),
           law_(law),
           t_(t) {
-        if (extension == Extension::nearest_point)
-            u_ = vertex_velocities(law, t, surface, {.smoothing = options.resolved_smoothing(k)});
-        // Corners: a triangle turns more than corner_angle from the angle-weighted normal. The
-        // fitted normals are second order on smooth parts, but a fit across a corner tilts
-        // them: within two rings of a corner the angle-weighted normal (the face's own on a
-        // flat face) is kept.
-        const std::vector<Vec3> weighted = angle_weighted_normals(surface);
+        // The fitted normals, from the geometry the law's velocities need when it needs any.
+        SurfaceGeometry geometry;
+        if (extension == Extension::nearest_point) {
+            geometry =
+                vertex_geometry(law.needs(), surface, {.smoothing = options.resolved_smoothing(k)});
+            u_ = vertex_velocities(law, t, surface, geometry);
+        }
+        normals_ = geometry.normals.empty()
+                       ? surface_geometry(surface, {.curvature = false}).normals
+                       : std::move(geometry.normals);
+        // Corners: a triangle turns more than corner_angle from the angle-weighted normal (the
+        // tree's vertex pseudo-normal, scaled to unit length). The fitted normals are second
+        // order on smooth parts, but a fit across a corner tilts them: within two rings of a
+        // corner the angle-weighted normal (the face's own on a flat face) is kept.
+        std::vector<Vec3> weighted = tree_.normals().vertex;
+        for (Vec3& n : weighted)
+            if (const double length = norm(n); length > 0.0) n = n / length;
         corner_.assign(surface.vertices.size(), 0);
         const std::vector<Vec3>& face = tree_.normals().face;
         const double limit = std::cos(corner_angle);
         for (std::size_t f = 0; f < surface.triangles.size(); ++f)
             for (const std::uint32_t v : surface.triangles[f])
                 if (dot(face[f], weighted[v]) < limit) corner_[v] = 1;
-        normals_ = surface_geometry(surface, {.curvature = false}).normals;
         const VertexRings rings = vertex_rings(surface);
         for (std::size_t v = 0; v < surface.vertices.size(); ++v) {
             bool near = corner_[v] != 0;

@@ -147,6 +147,11 @@ std::vector<Vec3> vertex_velocities(const SurfaceVelocityLaw& law, double t, con
     return checked_velocities<3>(law, t, surface, vertex_geometry(law.needs(), surface, options));
 }
 
+std::vector<Vec3> vertex_velocities(const SurfaceVelocityLaw& law, double t, const Surface& surface,
+                                    const SurfaceGeometry& geometry) {
+    return checked_velocities<3>(law, t, surface, geometry);
+}
+
 std::vector<Vec2> field_velocities(const VelocityLaw& law, double t, std::span<const Vec2> points) {
     return checked_field<2>(law, t, points);
 }

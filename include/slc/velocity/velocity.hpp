@@ -230,6 +230,9 @@ SurfaceGeometry vertex_geometry(const GeometryNeeds& needs, const Surface& surfa
 /// Velocity(t, S) of a surface: as vertex_velocities for curves.
 std::vector<Vec3> vertex_velocities(const SurfaceVelocityLaw& law, double t, const Surface& surface,
                                     const SurfaceGeometryOptions& options = {});
+/// The same with the geometry already computed (vertex_geometry of the law's needs).
+std::vector<Vec3> vertex_velocities(const SurfaceVelocityLaw& law, double t, const Surface& surface,
+                                    const SurfaceGeometry& geometry);
 
 /// A flow field sampled at points, checked like vertex_velocities (the message names the point).
 std::vector<Vec2> field_velocities(const VelocityLaw& law, double t, std::span<const Vec2> points);
