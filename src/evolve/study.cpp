@@ -10,26 +10,6 @@
 
 namespace slc {
 
-namespace {
-
-std::optional<double> order(const std::optional<double>& coarse,
-                            const std::optional<double>& fine) {
-    if (!coarse || !fine || !(*coarse > 0.0) || !(*fine > 0.0)) return std::nullopt;
-    return std::log2(*coarse / *fine);
-}
-
-}  // namespace
-
-std::optional<double> StudyResult::row_order(int row, int column) const {
-    if (column + 1 >= columns) return std::nullopt;
-    return order(at(row, column).e_inf, at(row, column + 1).e_inf);
-}
-
-std::optional<double> StudyResult::column_order(int row, int column) const {
-    if (row + 1 >= rows) return std::nullopt;
-    return order(at(row, column).e_inf, at(row + 1, column).e_inf);
-}
-
 RunOptions study_cell_options(const Problem& problem, int row, int refine, const RunOptions& base) {
     if (row < 0 || row > 4 || refine < 0 || refine > 4) {
         throw InvalidInput(

@@ -133,6 +133,7 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
         p.domain = centred_cube;
         p.t_end = 2.0 * pi;
         p.steps = 32;
+        p.study = SurfaceStudyPlan{.steps = 16, .depth = 5, .eps = 4e-4};
         p.law = std::make_unique<SurfaceRotation>();
         p.exact = [c0, r](double t, Vec3 x) {
             return distance(x, rotated(c0, {0.0, 0.0, 1.0}, {}, t)) - r;
@@ -172,6 +173,7 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
         p.domain = centred_cube;
         p.t_end = 0.05;
         p.steps = 20;
+        p.study = SurfaceStudyPlan{.steps = 5, .depth = 5, .eps = 4e-4};
         p.law = std::make_unique<SurfaceMeanCurvatureFlow>();
         p.exact = [](double t, Vec3 x) { return norm(x) - std::sqrt(0.25 - 4.0 * t); };
     } else if (name == "merging-spheres") {
@@ -180,6 +182,7 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
         p.domain = centred_cube;
         p.t_end = 0.15;
         p.steps = 10;
+        p.study = SurfaceStudyPlan{.steps = 5, .depth = 5, .eps = 4e-4};
         p.law = std::make_unique<SurfaceNormalSpeed>(1.0);
         p.exact = [a, b](double t, Vec3 x) {
             return std::min(distance(x, a), distance(x, b)) - (0.25 + t);

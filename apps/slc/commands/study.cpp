@@ -19,8 +19,10 @@
 #include "commands/self_convergence.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/evolve/surface_study.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
+#include "slc/io/surface_files.hpp"
 
 namespace slc::cli {
 namespace {
@@ -28,6 +30,7 @@ namespace {
 struct StudyCommand {
     ProblemSource source;
     std::optional<int> rows;
+    std::optional<int> columns;
     std::string reference;
     MethodOptions method;
     bool quiet = false;
@@ -56,6 +59,40 @@ Paper read_reference(const std::string& path, const std::string& table) {
 
 std::string number(const std::optional<double>& v, const char* format = "{:.3g}") {
     return v ? fmt::format(fmt::runtime(format), *v) : "—";
+}
+
+/// The observed orders of a study's table, as markdown: down each column and along each row.
+template <class Result>
+std::string orders_markdown(const Result& s, const std::string& along_note) {
+    std::string header = "|", rule = "|---|";
+    for (int c = 0; c < s.columns; ++c) {
+        header += fmt::format(" P = {} |", c);
+        rule += "---|";
+    }
+    std::string md = fmt::format(
+        "\n## Observed orders\n\nDown each column (log2 of successive errors; k halves per "
+        "row: 2 means second order in time):\n\n| rows {}\n{}\n",
+        header, rule);
+    for (int r = 0; r + 1 < s.rows; ++r) {
+        md += fmt::format("| {}→{} |", r + 1, r + 2);
+        for (int c = 0; c < s.columns; ++c)
+            md += fmt::format(" {} |", number(s.column_order(r, c), "{:.2f}"));
+        md += "\n";
+    }
+    md += fmt::format("\nAlong each row (log2 of successive errors; {}):\n\n| row |", along_note);
+    std::string along_rule = "|---|";
+    for (int c = 0; c + 1 < s.columns; ++c) {
+        md += fmt::format(" {}→{} |", c, c + 1);
+        along_rule += "---|";
+    }
+    md += "\n" + along_rule + "\n";
+    for (int r = 0; r < s.rows; ++r) {
+        md += fmt::format("| {} |", r + 1);
+        for (int c = 0; c + 1 < s.columns; ++c)
+            md += fmt::format(" {} |", number(s.row_order(r, c), "{:.2f}"));
+        md += "\n";
+    }
+    return md;
 }
 
 std::string markdown(const Problem& p, const StudyResult& s, const Paper& paper) {
@@ -92,26 +129,7 @@ std::string markdown(const Problem& p, const StudyResult& s, const Paper& paper)
         }
         md += e_line + "\n" + t_line + "\n";
     }
-    md +=
-        "\n## Observed orders\n\nDown each column (log2 of successive errors; k halves per row: 2 "
-        "means second order in time):\n\n| rows | P = 0 | P = 1 | P = 2 | P = 3 | P = 4 "
-        "|\n|---|---|---|---|---|---|\n";
-    for (int r = 0; r + 1 < s.rows; ++r) {
-        md += fmt::format("| {}→{} |", r + 1, r + 2);
-        for (int c = 0; c < s.columns; ++c)
-            md += fmt::format(" {} |", number(s.column_order(r, c), "{:.2f}"));
-        md += "\n";
-    }
-    md +=
-        "\nAlong each row (log2 of successive errors; segments halve per pass: 1 means first "
-        "order):\n\n"
-        "| row | 0→1 | 1→2 | 2→3 | 3→4 |\n|---|---|---|---|---|\n";
-    for (int r = 0; r < s.rows; ++r) {
-        md += fmt::format("| {} |", r + 1);
-        for (int c = 0; c + 1 < s.columns; ++c)
-            md += fmt::format(" {} |", number(s.row_order(r, c), "{:.2f}"));
-        md += "\n";
-    }
+    md += orders_markdown(s, "segments halve per pass: 1 means first order");
     return md;
 }
 
@@ -128,42 +146,210 @@ std::string csv(const StudyResult& s) {
     return out;
 }
 
-/// Fig. 10: log10 E_inf against log10 T, a line per row, the paper's rows in grey.
-void plot(const std::filesystem::path& dir, const Problem& p, const StudyResult& s,
-          const Paper& paper) {
-    std::vector<std::vector<Vec2>> ours(static_cast<std::size_t>(s.rows)), theirs(ours.size());
+/// One line of an error-against-time plot: (CPU seconds per step, E_inf) pairs.
+struct ErrorLine {
+    std::string label;
+    std::vector<Vec2> points;
+};
+
+/// Fig. 10: log10 E_inf against log10 T, a line per row, the paper's rows (`grey`) in grey.
+void plot_error_vs_time(const std::filesystem::path& dir, const std::string& title,
+                        std::vector<ErrorLine> ours, std::vector<ErrorLine> grey) {
     Box b = Box::empty();
-    auto add = [&](std::vector<Vec2>& line, double t, double e) {
-        if (!(t > 0) || !(e > 0)) return;
-        const Vec2 q{std::log10(t), std::log10(e)};
-        line.push_back(q);
-        b = unite(b, {q, q});
-    };
-    for (const StudyCell& c : s.cells) {
-        if (c.e_inf) add(ours[static_cast<std::size_t>(c.row)], c.cpu_s_per_step, *c.e_inf);
-        auto it = paper.find({c.options.steps, c.refine});
-        if (it != paper.end())
-            add(theirs[static_cast<std::size_t>(c.row)], it->second.second, it->second.first);
+    for (auto* lines : {&ours, &grey}) {
+        for (ErrorLine& line : *lines) {
+            std::vector<Vec2> logs;
+            for (const Vec2 p : line.points) {
+                if (!(p.x > 0) || !(p.y > 0)) continue;
+                logs.push_back({std::log10(p.x), std::log10(p.y)});
+                b = unite(b, {logs.back(), logs.back()});
+            }
+            line.points = std::move(logs);
+        }
     }
     if (b.is_empty()) return;
-    Figure fig(Box::square(b.center(), 0.55 * std::max({b.width(), b.height(), 1.0})),
-               fmt::format("{}{}{}: error against CPU time per step", p.name,
-                           p.module == GeometryModule::arclength ? ", arclength module" : "",
-                           s.rows > 0 && s.at(0, 0).options.step.arcs == true ? ", arcs" : ""));
+    Figure fig(Box::square(b.center(), 0.55 * std::max({b.width(), b.height(), 1.0})), title);
     fig.set_axis_names("log10 CPU seconds per step", "log10 E_inf");
+    for (std::size_t r = 0; r < grey.size(); ++r) {
+        if (grey[r].points.size() >= 2)
+            fig.add_polyline(grey[r].points, grey[r].label, Color{0.6, 0.6, 0.6, 1}, 1.0);
+    }
     for (std::size_t r = 0; r < ours.size(); ++r) {
-        if (theirs[r].size() >= 2)
-            fig.add_polyline(theirs[r], r == 0 ? "paper" : "", Color{0.6, 0.6, 0.6, 1}, 1.0);
-        if (ours[r].size() >= 2) {
-            const RunOptions& o = s.at(static_cast<int>(r), 0).options;
-            fig.add_polyline(ours[r],
-                             fmt::format("ours N = {}, K = {}", o.steps, o.step.contour.depth),
-                             palette_color(r));
-            fig.add_points(ours[r], palette_color(r), 2.5);
+        if (ours[r].points.size() >= 2) {
+            fig.add_polyline(ours[r].points, ours[r].label, palette_color(r));
+            fig.add_points(ours[r].points, palette_color(r), 2.5);
         }
     }
     fig.save(dir / "error_vs_time.svg");
     fig.save(dir / "error_vs_time.png");
+}
+
+/// Fig. 10 for a study of curves, the paper's rows beside ours.
+void plot(const std::filesystem::path& dir, const Problem& p, const StudyResult& s,
+          const Paper& paper) {
+    std::vector<ErrorLine> ours(static_cast<std::size_t>(s.rows)), theirs(ours.size());
+    for (std::size_t r = 0; r < ours.size(); ++r) {
+        const RunOptions& o = s.at(static_cast<int>(r), 0).options;
+        ours[r].label = fmt::format("ours N = {}, K = {}", o.steps, o.step.contour.depth);
+        theirs[r].label = r == 0 ? "paper" : "";
+    }
+    for (const StudyCell& c : s.cells) {
+        if (c.e_inf)
+            ours[static_cast<std::size_t>(c.row)].points.push_back({c.cpu_s_per_step, *c.e_inf});
+        auto it = paper.find({c.options.steps, c.refine});
+        if (it != paper.end()) {
+            theirs[static_cast<std::size_t>(c.row)].points.push_back(
+                {it->second.second, it->second.first});
+        }
+    }
+    plot_error_vs_time(
+        dir,
+        fmt::format("{}{}{}: error against CPU time per step", p.name,
+                    p.module == GeometryModule::arclength ? ", arclength module" : "",
+                    s.rows > 0 && s.at(0, 0).options.step.arcs == true ? ", arcs" : ""),
+        std::move(ours), std::move(theirs));
+}
+
+/// The table of a study of surfaces, as markdown.
+std::string surface_markdown(const SurfaceProblem& p, const SurfaceStudyResult& s) {
+    const int threads = thread_count();
+    std::string md = fmt::format(
+        "# Convergence study: {}\n\n{}\n\nE_inf is the largest |exact signed distance| over "
+        "the final vertices and triangle centroids; T is process CPU seconds per step, on {} "
+        "thread{}. Rows refine N, K and ε together (N doubled, K + 1, ε / 4); columns add "
+        "passes P of adaptive refinement (the initial surface is contoured with the same K, P "
+        "and ε). Triangles: of the final surface.\n\n| N/K/ε | |",
+        p.name, p.description, threads, threads == 1 ? "" : "s");
+    std::string rule = "|---|---|";
+    for (int c = 0; c < s.columns; ++c) {
+        md += fmt::format(" P = {} |", c);
+        rule += "---|";
+    }
+    md += "\n" + rule + "\n";
+    for (int r = 0; r < s.rows; ++r) {
+        const SurfaceRunOptions& o = s.at(r, 0).options;
+        std::string e_line = fmt::format("| {}/{}/{:.2g} | E_inf |", o.steps, o.step.contour.depth,
+                                         o.step.contour.resolved_eps());
+        std::string t_line = "| | T |", n_line = "| | triangles |";
+        for (int c = 0; c < s.columns; ++c) {
+            const SurfaceStudyCell& cell = s.at(r, c);
+            e_line += cell.status == RunStatus::ok ? fmt::format(" {} |", number(cell.e_inf))
+                                                   : fmt::format(" {} |", to_string(cell.status));
+            t_line += fmt::format(" {:.2e} |", cell.cpu_s_per_step);
+            n_line += fmt::format(" {} |", cell.triangles);
+        }
+        md += e_line + "\n" + t_line + "\n" + n_line + "\n";
+    }
+    return md + orders_markdown(s, "triangle edges halve per pass: 2 means second order");
+}
+
+std::string surface_csv(const SurfaceStudyResult& s) {
+    std::string out =
+        "row,N,K,eps,P,status,E_inf,T_cpu_s_per_step,wall_s,initial_triangles,triangles\n";
+    for (const SurfaceStudyCell& c : s.cells) {
+        const auto& o = c.options;
+        out += fmt::format("{},{},{},{:.6g},{},{},{},{:.6g},{:.6g},{},{}\n", c.row + 1, o.steps,
+                           o.step.contour.depth, o.step.contour.resolved_eps(), c.refine,
+                           to_string(c.status), c.e_inf ? fmt::format("{:.6g}", *c.e_inf) : "",
+                           c.cpu_s_per_step, c.wall_s, c.initial_triangles, c.triangles);
+    }
+    return out;
+}
+
+/// slc study --problem NAME for a problem of surfaces.
+void run_surface_study(const StudyCommand& o) {
+    const MethodOptions& m = o.method;
+    const std::vector<std::pair<bool, const char*>> fixed = {
+        {m.steps.has_value(), "-N/--steps"},
+        {m.depth.has_value(), "-K/--depth"},
+        {m.refine.has_value(), "-P/--refine"},
+        {m.eps.has_value(), "--eps"},
+        {m.eta.has_value(), "--eta"},
+        {m.mesh.has_value(), "--mesh"},
+        {m.smooth.has_value(), "-S/--smooth"},
+        {m.tree_depth.has_value(), "-L/--tree-depth"},
+        {m.extension.has_value(), "--extension"},
+        {!m.geometry.empty(), "--geometry"},
+        {m.arcs.has_value(), "--arcs"},
+        {m.area_correction.has_value(), "--area-correction"},
+        {m.arc_width.has_value(), "--arc-width"},
+        {!o.reference.empty(), "--reference"},
+        {!o.source.params.empty(), "--param"},
+        {o.source.t_end.has_value(), "--t-end"}};
+    for (const auto& [given, name] : fixed) {
+        if (given) {
+            throw InvalidInput(fmt::format(
+                "{} does not apply to the study of a surface, whose table sets every run", name));
+        }
+    }
+    if (o.source.domain.half_width || o.source.domain.box)
+        throw InvalidInput("--domain and --box do not apply to the study of a surface");
+    const SurfaceProblem p = make_surface_problem(o.source.problem);
+    if (!p.study) {
+        throw InvalidInput(
+            fmt::format("problem '{}' has no convergence study; studies: sphere-rotation, "
+                        "sphere-curvature, merging-spheres",
+                        p.name));
+    }
+    OutputFolder folder(o.out, false);
+    const SurfaceStudyResult s =
+        surface_study(p, o.rows.value_or(3), o.columns.value_or(4), [&](const SurfaceStudyCell& c) {
+            if (!o.quiet) {
+                fmt::print(stderr, "N {} K {} eps {:.2g}  P = {}: {}, E_inf = {}, {:.3g} s/step\n",
+                           c.options.steps, c.options.step.contour.depth,
+                           c.options.step.contour.resolved_eps(), c.refine, to_string(c.status),
+                           number(c.e_inf), c.cpu_s_per_step);
+            }
+        });
+    const std::filesystem::path dir = folder.path();
+    write_file_atomic(dir / "table.md", surface_markdown(p, s));
+    write_file_atomic(dir / "table.csv", surface_csv(s));
+    nlohmann::json cells = nlohmann::json::array();
+    for (const SurfaceStudyCell& c : s.cells) {
+        cells.push_back({{"row", c.row + 1},
+                         {"N", c.options.steps},
+                         {"K", c.options.step.contour.depth},
+                         {"eps", c.options.step.contour.resolved_eps()},
+                         {"P", c.refine},
+                         {"status", to_string(c.status)},
+                         {"e_inf", c.e_inf ? nlohmann::json(*c.e_inf) : nlohmann::json(nullptr)},
+                         {"cpu_s_per_step", c.cpu_s_per_step},
+                         {"wall_s", c.wall_s},
+                         {"triangles", c.triangles}});
+    }
+    nlohmann::json orders = nlohmann::json::object();
+    auto json_orders = [&](auto order, int rows, int columns) {
+        nlohmann::json out = nlohmann::json::array();
+        for (int r = 0; r < rows; ++r) {
+            nlohmann::json line = nlohmann::json::array();
+            for (int c = 0; c < columns; ++c) {
+                const std::optional<double> q = order(r, c);
+                line.push_back(q ? nlohmann::json(*q) : nlohmann::json(nullptr));
+            }
+            out.push_back(line);
+        }
+        return out;
+    };
+    orders["down_columns"] =
+        json_orders([&](int r, int c) { return s.column_order(r, c); }, s.rows - 1, s.columns);
+    orders["along_rows"] =
+        json_orders([&](int r, int c) { return s.row_order(r, c); }, s.rows, s.columns - 1);
+    write_file_atomic(dir / "table.json", nlohmann::json{{"problem", p.name},
+                                                         {"rows", s.rows},
+                                                         {"columns", s.columns},
+                                                         {"cells", cells},
+                                                         {"orders", orders}}
+                                                  .dump(2) +
+                                              "\n");
+    std::vector<ErrorLine> lines(static_cast<std::size_t>(s.rows));
+    for (const SurfaceStudyCell& c : s.cells) {
+        ErrorLine& line = lines[static_cast<std::size_t>(c.row)];
+        line.label = fmt::format("N = {}, K = {}", c.options.steps, c.options.step.contour.depth);
+        if (c.e_inf) line.points.push_back({c.cpu_s_per_step, *c.e_inf});
+    }
+    plot_error_vs_time(dir, fmt::format("{}: error against CPU time per step", p.name),
+                       std::move(lines), {});
+    folder.commit();
 }
 
 /// The deepest contouring tree -K accepts.
@@ -195,8 +381,18 @@ void run_self_convergence(const StudyCommand& o) {
 
 void run_study(const StudyCommand& o) {
     apply_threads(o.method.threads);
-    if (!o.source.initial.empty()) return run_self_convergence(o);
+    if (!o.source.initial.empty()) {
+        if (is_surface_file(o.source.initial)) {
+            throw InvalidInput(
+                "--initial with a surface: a study of surfaces takes --problem (sphere-rotation, "
+                "sphere-curvature, merging-spheres)");
+        }
+        if (o.columns) throw InvalidInput("--columns is for the study of a surface");
+        return run_self_convergence(o);
+    }
     if (o.source.problem.empty()) throw InvalidInput("give --problem NAME or --initial FILE");
+    if (is_surface_problem(o.source.problem)) return run_surface_study(o);
+    if (o.columns) throw InvalidInput("--columns is for the study of a surface");
     Problem p = resolve_problem(o.source);
     if (const auto module = geometry_module(o.method)) p.module = module;
     if (!p.exact)
@@ -239,7 +435,9 @@ void add_study_command(CLI::App& app) {
     auto* cmd = app.add_subcommand(
         "study",
         "Convergence. --problem NAME: the paper's 5x5 table for a problem with an exact solution "
-        "(table.md, table.csv, table.json, error_vs_time.svg/.png). --initial FILE --velocity LAW "
+        "(table.md, table.csv, table.json, error_vs_time.svg/.png); for a problem of surfaces "
+        "(sphere-rotation, sphere-curvature, merging-spheres) --rows x --columns of it. --initial "
+        "FILE --velocity LAW "
         "--t-end T: self-convergence of your curve, which has none: the run at --rows "
         "resolutions (N doubled, K + 1 and eps / 4 each; the rest as slc run takes it), each "
         "final interface compared with the next (Hausdorff distance at vertices and midpoints), "
@@ -248,7 +446,12 @@ void add_study_command(CLI::App& app) {
     add_problem_source_options(*cmd, o->source);
     cmd->add_option("--rows", o->rows,
                     "Rows of the table to run, 1..5 (default 5); with --initial the resolutions, "
-                    "3..5 (default 3), each costing about 4 times the one before or more")
+                    "3..5 (default 3), each costing about 4 times the one before or more; for a "
+                    "surface 1..5 (default 3), each costing about 8 times the one before")
+        ->check(integer_in(1, 5));
+    cmd->add_option("--columns", o->columns,
+                    "For a surface: columns P = 0 .. C - 1 of passes of refinement, 1..5 "
+                    "(default 4)")
         ->check(integer_in(1, 5));
     cmd->add_option("--reference", o->reference,
                     "The paper's tables as CSV (table,N,S,K,eps,P,E_inf,T_cpu_s_per_step) to print "

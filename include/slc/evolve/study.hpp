@@ -4,6 +4,7 @@
 /// refinement (P = 0..4), with the observed orders of convergence.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -25,23 +26,41 @@ struct StudyCell {
     std::size_t segments = 0;          ///< segments of the final curves
 };
 
-/// The table of a study: rows × columns runs with their errors and costs.
-struct StudyResult {
-    int rows = 0;                  ///< runs refining N, K, ε together
-    int columns = 0;               ///< P = 0..columns − 1
-    std::vector<StudyCell> cells;  ///< row-major
+/// log2(coarse / fine), the observed order between two errors; nullopt where one is missing or
+/// not positive.
+inline std::optional<double> observed_order(const std::optional<double>& coarse,
+                                            const std::optional<double>& fine) {
+    if (!coarse || !fine || !(*coarse > 0.0) || !(*fine > 0.0)) return std::nullopt;
+    return std::log2(*coarse / *fine);
+}
+
+/// The table of a study: rows × columns runs (cells with e_inf) with their errors and costs.
+template <class Cell>
+struct BasicStudyResult {
+    int rows = 0;             ///< runs refining N, K, ε together
+    int columns = 0;          ///< P = 0..columns − 1
+    std::vector<Cell> cells;  ///< row-major
 
     /// The cell in row `row` and column `column` (P = column).
-    const StudyCell& at(int row, int column) const {
+    const Cell& at(int row, int column) const {
         return cells[static_cast<std::size_t>(row * columns + column)];
     }
     /// log2(E(row, P) / E(row, P + 1)): about 1 while refinement controls the error (first order
     /// in the segment length, which halves per pass). nullopt where an error is missing or zero.
-    std::optional<double> row_order(int row, int column) const;
+    std::optional<double> row_order(int row, int column) const {
+        if (column + 1 >= columns) return std::nullopt;
+        return observed_order(at(row, column).e_inf, at(row, column + 1).e_inf);
+    }
     /// log2(E(row, P) / E(row + 1, P)): about 2 in the P = 4 column (second order in time, k
     /// halving per row), 1 where the spatial error still dominates.
-    std::optional<double> column_order(int row, int column) const;
+    std::optional<double> column_order(int row, int column) const {
+        if (row + 1 >= rows) return std::nullopt;
+        return observed_order(at(row, column).e_inf, at(row + 1, column).e_inf);
+    }
 };
+
+/// The table of a study of curves.
+using StudyResult = BasicStudyResult<StudyCell>;
 
 /// The options of one cell of the problem's study plan: `base` (η, ρ, E, extension, ... kept)
 /// with N, K, ε, S and M of row `row` (0-based) and P = refine. Throws InvalidInput for a row

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,13 @@
 #include "slc/velocity/velocity.hpp"
 
 namespace slc {
+
+/// The first row of a problem's convergence study (surface_study): N, K and ε of refinement.
+struct SurfaceStudyPlan {
+    int steps = 0;     ///< N
+    int depth = 0;     ///< K
+    double eps = 0.0;  ///< ε
+};
 
 /// A named problem: the initial surface, its law, domain, time and default parameters, and the
 /// exact solution where one is known.
@@ -35,6 +43,8 @@ struct SurfaceProblem {
     /// above the xy plane (SurfaceView).
     double azimuth = 35.0;
     double elevation = 25.0;
+    /// Its convergence study's first row; unset for a problem without one.
+    std::optional<SurfaceStudyPlan> study;
 };
 
 /// The problems' names: sphere-rotation, enright, zalesak-sphere, sphere-curvature,

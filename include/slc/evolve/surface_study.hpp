@@ -1,0 +1,51 @@
+/// @file
+/// Convergence studies of surfaces (paper §4.2, Tables 5–7, in space): a table of runs whose
+/// rows refine N, K and ε together (N ← 2N, K ← K + 1, ε ← ε/4: the finest cell halves and ε,
+/// a sag, follows its square) and whose columns add passes of adaptive refinement (P = 0, 1,
+/// ...), with the observed orders.
+#pragma once
+
+#include <functional>
+#include <optional>
+
+#include "slc/evolve/study.hpp"
+#include "slc/evolve/surface_problems.hpp"
+
+namespace slc {
+
+/// One run of a study of surfaces.
+struct SurfaceStudyCell {
+    int row = 0;                        ///< N, K and ε refined `row` times
+    int refine = 0;                     ///< P, the column
+    SurfaceRunOptions options;          ///< the run's settings
+    RunStatus status = RunStatus::ok;   ///< how the run ended
+    std::optional<double> e_inf;        ///< surface_error at the end
+    double cpu_s_per_step = 0.0;        ///< process CPU seconds of the time loop / N
+    double wall_s = 0.0;                ///< wall seconds of the time loop
+    std::size_t triangles = 0;          ///< triangles of the final surface
+    std::size_t initial_triangles = 0;  ///< triangles of the initial surface
+};
+
+/// The table of a study of surfaces.
+using SurfaceStudyResult = BasicStudyResult<SurfaceStudyCell>;
+
+/// The largest |exact(t, x)| over the vertices and triangle centroids of s; nullopt when the
+/// problem has no exact solution at t (or s is empty).
+std::optional<double> surface_error(const SurfaceProblem& problem, double t, const Surface& s);
+
+/// The options of the run in row `row` and column `refine` of the problem's study: N, K, ε of
+/// its plan refined `row` times, P = refine, from 0 to t_end. Throws InvalidInput for a problem
+/// without a plan, a row outside 0..4 or P outside 0..4.
+SurfaceRunOptions surface_study_cell_options(const SurfaceProblem& problem, int row, int refine);
+
+/// Called after each run with the finished cell.
+using SurfaceStudyObserver = std::function<void(const SurfaceStudyCell&)>;
+
+/// Runs rows × columns cells (rows 1..5, columns 1..5: P = 0..columns − 1) of the problem's
+/// plan. Each run starts from the exact initial surface contoured with the cell's K, P and ε, so
+/// that the table measures the whole method at that resolution. Throws InvalidInput for a
+/// problem without a plan or an exact solution, or rows or columns out of range.
+SurfaceStudyResult surface_study(const SurfaceProblem& problem, int rows, int columns,
+                                 const SurfaceStudyObserver& observer = {});
+
+}  // namespace slc
