@@ -1,4 +1,4 @@
-"""slc: semi-Lagrangian contouring for moving curves in the plane.
+"""slc: semi-Lagrangian contouring for moving curves in the plane and surfaces in space.
 
 The C++ library on numpy arrays (docs/python.md), with the defaults of ``slc run --initial``:
 
@@ -7,7 +7,9 @@ The C++ library on numpy arrays (docs/python.md), with the defaults of ``slc run
 - ``contour(f, box, depth)``: the zero set of a vectorised function f((m, 2)) -> (m,);
 - ``contour_surface(f, box, depth)``: the same in space, f((m, 3)) -> (m,): a closed triangle
   surface as (vertices, triangles, stats);
+- ``Surface(vertices, triangles)``: a closed triangle surface, validated like the tool's files;
 - ``run(interface, velocity, t_end)``: the curves moved by a built-in law or a Python one;
+  ``run(surface, velocity, t_end)`` the same for a surface;
 - ``problem(name)``, ``run(problem)``, ``study(...)``: the paper's experiments and convergence;
 - ``plot(obj)``: an interface, a run's frames or its history, with matplotlib;
 - ``sweep(cases)``: many runs on a dask cluster, gathered into one table.
@@ -18,6 +20,7 @@ vertices of a stage, or a batch of points), never per point; what it raises reac
 """
 
 from ._interface import Interface, contour, contour_surface, distance
+from ._surface import Surface, SurfaceProblem, SurfaceRunResult, SurfaceStep, SurfaceStudy
 from ._run import (FieldExpression, FieldFile, FlowField, NormalSpeed, Problem, RunResult,
                    SelfConvergence, SpeedExpression, Step, Study, problem, problems, run, study,
                    velocities)
@@ -35,6 +38,11 @@ __all__ = [
     "SelfConvergence",
     "SpeedExpression",
     "Step",
+    "Surface",
+    "SurfaceProblem",
+    "SurfaceRunResult",
+    "SurfaceStep",
+    "SurfaceStudy",
     "Study",
     "contour",
     "contour_surface",

@@ -12,6 +12,8 @@ import numpy as np
 
 from . import _slc
 from ._interface import Interface, _interface, _points, _refine
+from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, run_surface,
+                       study_surface)
 
 
 class FlowField:
@@ -162,19 +164,31 @@ class Problem:
         return f"<slc.Problem {self.name}: {self.description}>"
 
 
-def problem(name: str, **params: float) -> Problem:
+def problem(name: str, **params: float) -> Problem | SurfaceProblem:
     """The named problem with its own or its law's parameters set (``tilt=10``, ``omega=2``), as
-    ``slc run --problem NAME --param k=v``; ValueError for an unknown name or parameter."""
+    ``slc run --problem NAME --param k=v``: a Problem of curves, or a SurfaceProblem for a
+    problem of surfaces (``sphere-rotation``, ``enright``, ...); ValueError for an unknown name
+    or parameter."""
+    if name in dict(_slc.surface_problems()):
+        return SurfaceProblem(name, params)
     return Problem(name, params)
 
 
 def problems() -> dict[str, str]:
-    """The named problems, each with one line saying what it is."""
-    return dict(_slc.problems())
+    """The named problems, of curves and of surfaces, each with one line saying what it is."""
+    return dict(_slc.problems()) | dict(_slc.surface_problems())
 
 
-def velocities() -> list[str]:
-    """The built-in velocity laws' names."""
+_SURFACE_VELOCITIES = ["rotation", "translation", "enright", "unit-normal", "anisotropic",
+                       "curvature", "volume-preserving-curvature"]
+
+
+def velocities(dimension: int = 2) -> list[str]:
+    """The built-in velocity laws' names: of curves (dimension 2) or of surfaces (3)."""
+    if dimension == 3:
+        return list(_SURFACE_VELOCITIES)
+    if dimension != 2:
+        raise ValueError(f"dimension must be 2 or 3, got {dimension}")
     return list(_slc.velocity_names())
 
 
@@ -242,6 +256,22 @@ def _subject(subject, velocity, t_end, params, geometry):
     return _slc.curve_problem(curves._curves, curves.time, float(t_end), law), law
 
 
+def _surface_subject(subject, velocity, t_end, params):
+    """The _slc.SurfaceProblem of a SurfaceProblem or of a Surface under a velocity."""
+    if isinstance(subject, SurfaceProblem):
+        if velocity is not None or params:
+            raise ValueError("a named problem runs its own law: set its parameters with "
+                             "slc.problem(name, **params)")
+        return subject._fresh(t_end)
+    if velocity is None:
+        raise TypeError("run needs a velocity: a law's name, a FlowField, a NormalSpeed or a "
+                        "callable")
+    if t_end is None:
+        raise TypeError("run needs t_end, the final time")
+    return _slc.user_surface_problem(subject.vertices, subject.triangles, subject.time,
+                                     float(t_end), _law(velocity, params, None))
+
+
 def run(interface, velocity=None, t_end: float | None = None, *, steps: int | None = None,
         depth: int | None = None, refine=None, eps: float | None = None,
         eta: float | None = None, smoothing: int | None = None,
@@ -250,7 +280,10 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
         area_correction: bool | None = None, frames: int = 0,
         observer: Callable[[Step], Any] | None = None, threads: int = 0) -> RunResult:
     """Moves curves from interface.time to t_end, as ``slc run --initial`` does, or runs a named
-    problem (``run(slc.problem("zalesak"))``, t_end optional) as ``slc run --problem`` does.
+    problem (``run(slc.problem("zalesak"))``, t_end optional) as ``slc run --problem`` does. A
+    Surface (or a SurfaceProblem) moves the same way and gives a SurfaceRunResult; its velocity
+    takes (m, 3) arrays, and the options of curves alone (smoothing, geometry, extension, arcs,
+    area_correction) are refused.
 
     velocity: a built-in law's name (``velocities()``; its parameters in params), a FlowField, a
     NormalSpeed, or a callable f(t, points (N, 2), normals (N, 2), curvature (N,)) returning
@@ -263,6 +296,15 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     stops the run (status "interrupted"), as Ctrl-C does between steps. threads: worker threads
     (0: all cores); results do not depend on it.
     """
+    if isinstance(interface, (Surface, SurfaceProblem)):
+        curve_only = {"smoothing": smoothing, "geometry": geometry, "extension": extension,
+                      "arcs": arcs, "area_correction": area_correction}
+        for name, value in curve_only.items():
+            if value is not None:
+                raise ValueError(f"{name} is for curves, not surfaces")
+        p = _surface_subject(interface, velocity, t_end, params)
+        return run_surface(p, frames, observer, threads, steps=steps, depth=depth,
+                           refine=refine, eps=eps, eta=eta)
     p, law = _subject(interface, velocity, t_end, params, geometry)
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
         raise TypeError(f"frames must be an integer, got {frames!r}")
@@ -338,15 +380,27 @@ class SelfConvergence:
 def study(subject, velocity=None, t_end: float | None = None, *, rows: int | None = None,
           observer: Callable[[dict], Any] | None = None, threads: int = 0,
           params: dict[str, float] | None = None, geometry: str | None = None,
-          **options) -> Study | SelfConvergence:
+          **options) -> Study | SelfConvergence | SurfaceStudy:
     """A convergence study, as ``slc study`` does.
 
     For a Problem with an exact solution: the paper's table (``Study``) of ``rows`` rows (1..5,
-    default 5) by P = 0..4. For curves under a velocity to t_end: a self-convergence study
+    default 5) by P = 0..4. For a SurfaceProblem with a study (sphere-rotation,
+    sphere-curvature, merging-spheres): ``SurfaceStudy`` of ``rows`` (default 3) by ``columns``
+    (default 4) runs, as ``slc study --problem`` on a surface. For curves under a velocity to t_end: a self-convergence study
     (``SelfConvergence``) at ``rows`` resolutions (3..5, default 3). options are run()'s (steps,
     depth, refine, eps, eta, smoothing, extension, arcs, area_correction) and set the coarsest
     run. observer(dict) after each run.
     """
+    if isinstance(subject, SurfaceProblem):
+        if velocity is not None or t_end is not None or params or geometry is not None or (
+                set(options) - {"columns"}):
+            raise ValueError("the study of a surface problem sets every run: give rows, "
+                             "columns, observer and threads only")
+        return study_surface(subject, 3 if rows is None else _integer("rows", rows),
+                             _integer("columns", options.get("columns", 4)), observer, threads)
+    if isinstance(subject, Surface):
+        raise ValueError("a study of surfaces takes a SurfaceProblem with an exact solution "
+                         "(sphere-rotation, sphere-curvature, merging-spheres)")
     p, law = _subject(subject, velocity, t_end, params, geometry)
     o = _overrides(**options)
     if isinstance(subject, Problem):

@@ -6,13 +6,16 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <cstdint>
 #include <cstring>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "slc/core/error.hpp"
 #include "slc/geometry/interface.hpp"
+#include "slc/geometry/surface.hpp"
 
 namespace slc::python {
 
@@ -28,6 +31,23 @@ inline std::vector<Vec2> vectors_of(const double* xy, std::size_t n) {
     std::vector<Vec2> out(n);
     for (std::size_t i = 0; i < n; ++i) out[i] = {xy[2 * i], xy[2 * i + 1]};
     return out;
+}
+
+/// n points from 3n doubles x0, y0, z0, x1, ...
+inline std::vector<Vec3> vectors3_of(const double* xyz, std::size_t n) {
+    std::vector<Vec3> out(n);
+    for (std::size_t i = 0; i < n; ++i) out[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+    return out;
+}
+
+/// The n points of 2n (Vec2) or 3n (Vec3) doubles.
+template <class Point>
+std::vector<Point> points_from(const double* data, std::size_t n) {
+    if constexpr (std::is_same_v<Point, Vec2>) {
+        return vectors_of(data, n);
+    } else {
+        return vectors3_of(data, n);
+    }
 }
 
 /// The points of an (n, 2) array.
@@ -51,6 +71,14 @@ inline Array array_of(std::span<const Vec2> points) {
     return a;
 }
 
+/// An (n, 3) array holding points.
+inline Array array_of(std::span<const Vec3> points) {
+    static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed doubles");
+    Array a({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
+    if (!points.empty()) std::memcpy(a.mutable_data(), points.data(), points.size() * sizeof(Vec3));
+    return a;
+}
+
 /// An (n,) array holding values.
 inline Array array_of(std::span<const double> values) {
     Array a(static_cast<py::ssize_t>(values.size()));
@@ -64,6 +92,46 @@ inline py::list arrays_of(const Interface& curves) {
     py::list out;
     for (std::size_t c = 0; c < curves.curve_count(); ++c) out.append(array_of(curves.curve(c)));
     return out;
+}
+
+/// Triangle indices as numpy gives them.
+using IndexArray = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+
+/// A surface as (vertices (n, 3) float64, triangles (m, 3) int64).
+inline py::tuple surface_arrays(const Surface& surface) {
+    const Array vertices = array_of(std::span<const Vec3>(surface.vertices));
+    IndexArray triangles({static_cast<py::ssize_t>(surface.size()), py::ssize_t{3}});
+    auto t = triangles.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < surface.size(); ++i)
+        for (int k = 0; k < 3; ++k)
+            t(static_cast<py::ssize_t>(i), k) = static_cast<std::int64_t>(surface.triangles[i][k]);
+    return py::make_tuple(vertices, triangles);
+}
+
+/// The surface of (n, 3) vertices and (m, 3) triangle indices, unchecked but for the shapes and
+/// the indices' range: InvalidInput otherwise.
+inline Surface surface_of(const Array& vertices, const IndexArray& triangles) {
+    if (vertices.ndim() != 2 || vertices.shape(1) != 3)
+        throw InvalidInput("vertices must be an (n, 3) array of numbers");
+    if (triangles.ndim() != 2 || triangles.shape(1) != 3)
+        throw InvalidInput("triangles must be an (m, 3) array of vertex indices");
+    Surface s;
+    const auto n = static_cast<std::size_t>(vertices.shape(0));
+    s.vertices = vectors3_of(vertices.data(), n);
+    const auto t = triangles.unchecked<2>();
+    s.triangles.resize(static_cast<std::size_t>(triangles.shape(0)));
+    for (py::ssize_t i = 0; i < triangles.shape(0); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const std::int64_t v = t(i, k);
+            if (v < 0 || static_cast<std::size_t>(v) >= n) {
+                throw InvalidInput(fmt::format(
+                    "triangle {} names vertex {}, but there are {} vertices (numbered from 0)", i,
+                    v, n));
+            }
+            s.triangles[static_cast<std::size_t>(i)][k] = static_cast<std::uint32_t>(v);
+        }
+    }
+    return s;
 }
 
 /// The shape of an array as Python prints it: "(3,)", "(4, 3)".

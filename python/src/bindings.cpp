@@ -32,6 +32,7 @@
 #include "slc/io/interface_json.hpp"
 #include "slc/tree/quadtree.hpp"
 #include "slc/velocity/factory.hpp"
+#include "surfaces.hpp"
 
 namespace slc::python {
 namespace {
@@ -175,18 +176,7 @@ py::tuple contour_surface_function(const py::object& f, const std::vector<double
         py::gil_scoped_release release;
         result.emplace(contour_surface(g, domain, options));
     }
-    const Surface& surface = result->surface;
-    py::array_t<double> vertices(
-        {static_cast<py::ssize_t>(surface.vertices.size()), py::ssize_t{3}});
-    if (!surface.vertices.empty()) {
-        std::memcpy(vertices.mutable_data(), surface.vertices.data(),
-                    surface.vertices.size() * sizeof(Vec3));
-    }
-    py::array_t<std::int64_t> triangles({static_cast<py::ssize_t>(surface.size()), py::ssize_t{3}});
-    auto t = triangles.mutable_unchecked<2>();
-    for (std::size_t i = 0; i < surface.size(); ++i)
-        for (int k = 0; k < 3; ++k)
-            t(static_cast<py::ssize_t>(i), k) = static_cast<std::int64_t>(surface.triangles[i][k]);
+    const py::tuple arrays = surface_arrays(result->surface);
     const SurfaceContourStats& st = result->stats;
     py::dict stats;
     stats["cells"] = st.cells;
@@ -199,7 +189,7 @@ py::tuple contour_surface_function(const py::object& f, const std::vector<double
     stats["eps"] = options.resolved_eps();
     stats["domain"] = py::make_tuple(domain.lo.x, domain.lo.y, domain.lo.z, domain.hi.x,
                                      domain.hi.y, domain.hi.z);
-    return py::make_tuple(vertices, triangles, stats);
+    return py::make_tuple(arrays[0], arrays[1], stats);
 }
 
 py::list velocity_names() {
@@ -236,6 +226,7 @@ PYBIND11_MODULE(_slc, m) {
     m.def("contour_surface", &contour_surface_function, py::arg("f"), py::arg("box"),
           py::arg("depth"), py::arg("eps"), py::arg("refine"));
     add_run_functions(m);
+    add_surface_functions(m);
     m.def("velocity_names", &velocity_names);
     m.attr("until_converged") = slc::ContourOptions::until_converged;
 }

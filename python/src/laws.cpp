@@ -5,41 +5,52 @@
 #include <algorithm>
 #include <map>
 
+#include "slc/evolve/surface_problems.hpp"
 #include "slc/velocity/expression.hpp"
 #include "slc/velocity/grid_field.hpp"
 
 namespace slc::python {
 namespace {
 
-/// f(t, points, normals, curvature) -> (m, 2) vertex velocities or (m,) normal speeds v (u = v·N),
-/// called once per stage with all vertices.
-class PythonCurveLaw final : public VelocityLaw {
+/// The columns of a dimension's points: 2 for curves, 3 for surfaces.
+template <int dim>
+constexpr py::ssize_t columns = dim;
+
+/// f(t, points, normals, curvature) -> (m, dim) vertex velocities or (m,) normal speeds v
+/// (u = v·N), called once per stage with all vertices.
+template <int dim>
+class PythonCurveLaw final : public BasicVelocityLaw<dim> {
 public:
+    using Law = BasicVelocityLaw<dim>;
+    using typename Law::Geometry;
+    using typename Law::Point;
+    using typename Law::Shape;
     PythonCurveLaw(py::object f, std::string name, std::optional<GeometryModule> module)
         : f_(std::move(f)), name_(std::move(name)), module_(module) {}
     std::string name() const override { return name_; }
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = true, .module = module_};
     }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override {
+    std::vector<Point> velocities(double t, const Shape& shape,
+                                  const Geometry& geometry) const override {
         py::gil_scoped_acquire hold;
-        const std::size_t m = curves.size();
-        const Array v = numbers_of(
-            f_(t, array_of(curves.points()), array_of(std::span<const Vec2>(geometry.normals)),
-               array_of(std::span<const double>(geometry.curvature))),
-            "velocity '" + name_ + "'");
-        std::vector<Vec2> u(m);
+        const std::span<const Point> points = vertex_points(shape);
+        const std::size_t m = points.size();
+        const Array v =
+            numbers_of(f_(t, array_of(points), array_of(std::span<const Point>(geometry.normals)),
+                          array_of(std::span<const double>(geometry.curvature))),
+                       "velocity '" + name_ + "'");
+        std::vector<Point> u(m);
         const auto n = static_cast<py::ssize_t>(m);
         if (v.ndim() == 1 && v.shape(0) == n) {
             for (std::size_t i = 0; i < m; ++i) u[i] = v.data()[i] * geometry.normals[i];
-        } else if (v.ndim() == 2 && v.shape(0) == n && v.shape(1) == 2) {
-            u = vectors_of(v.data(), m);
+        } else if (v.ndim() == 2 && v.shape(0) == n && v.shape(1) == columns<dim>) {
+            u = points_from<Point>(v.data(), m);
         } else {
             throw InvalidInput(fmt::format(
-                "velocity '{}' must return (m,) normal speeds or (m, 2) velocities for m = {} "
+                "velocity '{}' must return (m,) normal speeds or (m, {}) velocities for m = {} "
                 "vertices, got shape {}",
-                name_, m, shape_text(v)));
+                name_, dim, m, shape_text(v)));
         }
         return u;
     }
@@ -50,14 +61,16 @@ private:
     std::optional<GeometryModule> module_;
 };
 
-/// f(t, points, normals) -> (m,) normal speeds, known off the curve: the step evaluates it where
-/// it needs it, with the normal of the distance field (Extension::direct), so corners and offsets
-/// move exactly. Called once per batch of points.
-class PythonNormalLaw final : public NormalLaw {
+/// f(t, points, normals) -> (m,) normal speeds, known off the interface: the step evaluates it
+/// where it needs it, with the normal of the distance field (Extension::direct), so corners and
+/// offsets move exactly. Called once per batch of points.
+template <int dim>
+class PythonNormalLaw final : public BasicNormalLaw<dim> {
 public:
+    using Point = typename BasicNormalLaw<dim>::Point;
     PythonNormalLaw(py::object f, std::string name) : f_(std::move(f)), name_(std::move(name)) {}
     std::string name() const override { return name_; }
-    void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
+    void normal_speeds(double t, std::span<const Point> points, std::span<const Point> normals,
                        std::span<double> out) const override {
         py::gil_scoped_acquire hold;
         const Array v =
@@ -76,23 +89,25 @@ private:
     std::string name_;
 };
 
-/// A flow field f(t, points) -> (m, 2) known everywhere: sampled off the curve along the
+/// A flow field f(t, points) -> (m, dim) known everywhere: sampled off the interface along the
 /// characteristics, one call per batch and Runge–Kutta stage.
-class PythonFieldLaw final : public FlowFieldLaw {
+template <int dim>
+class PythonFieldLaw final : public BasicFlowFieldLaw<dim> {
 public:
+    using Point = typename BasicFlowFieldLaw<dim>::Point;
     PythonFieldLaw(py::object f, std::string name) : f_(std::move(f)), name_(std::move(name)) {}
     std::string name() const override { return name_; }
-    void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override {
+    void sample(double t, std::span<const Point> points, std::span<Point> out) const override {
         py::gil_scoped_acquire hold;
         const Array v = numbers_of(f_(t, array_of(points)), "flow field '" + name_ + "'");
         if (v.ndim() != 2 || v.shape(0) != static_cast<py::ssize_t>(points.size()) ||
-            v.shape(1) != 2) {
+            v.shape(1) != columns<dim>) {
             throw InvalidInput(
-                fmt::format("flow field '{}' must return (m, 2) velocities for m = {} points, got "
-                            "shape {}",
-                            name_, points.size(), shape_text(v)));
+                fmt::format("flow field '{}' must return (m, {}) velocities for m = {} points, "
+                            "got shape {}",
+                            name_, dim, points.size(), shape_text(v)));
         }
-        const std::vector<Vec2> u = vectors_of(v.data(), out.size());
+        const std::vector<Point> u = points_from<Point>(v.data(), out.size());
         std::copy(u.begin(), u.end(), out.begin());
     }
 
@@ -128,9 +143,29 @@ std::unique_ptr<VelocityLaw> make_law(const LawSpec& spec) {
     if (!spec.params.empty())
         throw InvalidInput("params are for the built-in laws, not for a Python velocity");
     if (spec.kind == "flow-field")
-        return std::make_unique<PythonFieldLaw>(spec.velocity, spec.name);
-    if (spec.kind == "normal") return std::make_unique<PythonNormalLaw>(spec.velocity, spec.name);
-    return std::make_unique<PythonCurveLaw>(spec.velocity, spec.name, module);
+        return std::make_unique<PythonFieldLaw<2>>(spec.velocity, spec.name);
+    if (spec.kind == "normal")
+        return std::make_unique<PythonNormalLaw<2>>(spec.velocity, spec.name);
+    return std::make_unique<PythonCurveLaw<2>>(spec.velocity, spec.name, module);
+}
+
+std::unique_ptr<SurfaceVelocityLaw> make_surface_law(const LawSpec& spec) {
+    if (spec.geometry)
+        throw InvalidInput("geometry is for curves: surfaces have one geometry module");
+    if (spec.kind == "builtin")
+        return make_surface_velocity(spec.velocity.cast<std::string>(), spec.params);
+    if (spec.kind == "speed" || spec.kind == "field" || spec.kind == "field-file") {
+        throw InvalidInput(
+            "expressions and field files move curves; for a surface give a law's name or a "
+            "Python callable (FlowField, NormalSpeed)");
+    }
+    if (!spec.params.empty())
+        throw InvalidInput("params are for the built-in laws, not for a Python velocity");
+    if (spec.kind == "flow-field")
+        return std::make_unique<PythonFieldLaw<3>>(spec.velocity, spec.name);
+    if (spec.kind == "normal")
+        return std::make_unique<PythonNormalLaw<3>>(spec.velocity, spec.name);
+    return std::make_unique<PythonCurveLaw<3>>(spec.velocity, spec.name, std::nullopt);
 }
 
 }  // namespace slc::python

@@ -28,6 +28,11 @@ struct LawSpec {
 /// params given to a Python law.
 std::unique_ptr<VelocityLaw> make_law(const LawSpec& spec);
 
+/// The law of surfaces spec describes: a built-in law of surfaces by name, or a Python callable
+/// with (m, 3) arrays; InvalidInput for an expression, a field file, a geometry module, an
+/// unknown law or parameter, or params given to a Python law.
+std::unique_ptr<SurfaceVelocityLaw> make_surface_law(const LawSpec& spec);
+
 /// The geometry module named "intrinsic", "embedded" or "arclength"; InvalidInput otherwise.
 GeometryModule geometry_module(const std::string& name);
 

@@ -5,6 +5,7 @@
 #include <sys/resource.h>
 
 #include "slc/core/parallel.hpp"
+#include "slc/evolve/surface_study.hpp"
 
 namespace slc {
 
@@ -99,6 +100,52 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
                              {"K", c.depth + r.domain_doublings}};
     }
     return s;
+}
+
+nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initial,
+                                   const SurfaceRunOptions& options, const SurfaceRunResult& r) {
+    const SurfaceContourOptions& c = options.step.contour;
+    const Surface& s = r.surface;
+    const double volume0 = volume(initial), area0 = area(initial);
+    const std::optional<double> e = surface_error(p, r.t, s);
+    nlohmann::json summary = {
+        {"problem", p.name},
+        {"velocity", p.law->name()},
+        {"dimension", 3},
+        {"domain",
+         {p.domain.lo.x, p.domain.lo.y, p.domain.lo.z, p.domain.hi.x, p.domain.hi.y,
+          p.domain.hi.z}},
+        {"t_end", options.t_end},
+        {"params",
+         {{"N", options.steps},
+          {"k", (options.t_end - options.t_start) / options.steps},
+          {"K", c.depth},
+          {"P", c.refine_passes < 0 ? nlohmann::json("until converged")
+                                    : nlohmann::json(c.refine_passes)},
+          {"eps", c.resolved_eps()},
+          {"eta", c.eta},
+          {"threads", thread_count()}}},
+        {"status", to_string(r.status)},
+        {"t", r.t},
+        {"steps", options.steps},
+        {"steps_done", r.steps_done},
+        {"triangles", s.size()},
+        {"vertices", s.vertices.size()},
+        {"components", s.empty() ? 0 : component_count(s)},
+        {"genus", s.empty() ? 0 : genus(s)},
+        {"volume", volume(s)},
+        {"area", area(s)},
+        {"volume_initial", volume0},
+        {"area_initial", area0},
+        {"volume_change", volume0 != 0.0 ? (volume(s) - volume0) / volume0 : 0.0},
+        {"e_inf", e ? nlohmann::json(*e) : nlohmann::json(nullptr)},
+        {"g_evals", r.g_evals},
+        {"split_steps", r.split_steps},
+        {"most_substeps", r.most_substeps},
+        {"cpu_s", r.cpu_s},
+        {"wall_s", r.wall_s}};
+    if (!r.message.empty()) summary["message"] = r.message;
+    return summary;
 }
 
 }  // namespace slc

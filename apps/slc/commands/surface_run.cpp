@@ -18,36 +18,13 @@
 #include "slc/evolve/surface_problems.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/plot.hpp"
+#include "slc/io/summary.hpp"
 #include "slc/io/surface_files.hpp"
 #include "slc/io/surface_picture.hpp"
 #include "slc/io/vtk.hpp"
 
 namespace slc::cli {
 namespace {
-
-/// The largest |exact(t, x)| over the vertices and triangle centroids of s, or NaN when the
-/// exact surface is not known at t.
-double e_inf(const SurfaceProblem& p, double t, const Surface& s) {
-    if (!p.exact || s.empty()) return std::nan("");
-    double e = 0.0;
-    auto offer = [&](Vec3 x) {
-        const double d = p.exact(t, x);
-        e = std::isnan(d) ? d : std::max(e, std::abs(d));  // NaN: not known at t
-    };
-    for (const Vec3& v : s.vertices) {
-        offer(v);
-        if (std::isnan(e)) return e;
-    }
-    for (std::size_t i = 0; i < s.size() && !std::isnan(e); ++i) {
-        const Triangle3 tri = s.triangle(i);
-        offer((tri.a + tri.b + tri.c) / 3.0);
-    }
-    return e;
-}
-
-nlohmann::json number_or_null(double x) {
-    return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
-}
 
 /// One line of history.csv, and what the history plot shows.
 struct HistoryRow {
@@ -129,7 +106,6 @@ void run_surface(const SurfaceRunRequest& r) {
         throw InvalidInput(
             fmt::format("eps must be at least eta = {:g}, got {:g}", c.eta, c.resolved_eps()));
     }
-    const double k = (options.t_end - options.t_start) / options.steps;
     SurfaceView view;
     view.azimuth = p.azimuth;
     view.elevation = p.elevation;
@@ -151,23 +127,6 @@ void run_surface(const SurfaceRunRequest& r) {
 
     OutputFolder folder(r.out, false);
     const std::filesystem::path dir = folder.path();
-    nlohmann::json summary = {{"problem", p.name},
-                              {"velocity", p.law->name()},
-                              {"dimension", 3},
-                              {"domain",
-                               {p.domain.lo.x, p.domain.lo.y, p.domain.lo.z, p.domain.hi.x,
-                                p.domain.hi.y, p.domain.hi.z}},
-                              {"t_end", options.t_end},
-                              {"params",
-                               {{"N", options.steps},
-                                {"k", k},
-                                {"K", c.depth},
-                                {"P", c.refine_passes < 0 ? nlohmann::json("until converged")
-                                                          : nlohmann::json(c.refine_passes)},
-                                {"eps", c.resolved_eps()},
-                                {"eta", c.eta},
-                                {"threads", thread_count()}}}};
-    const double volume0 = volume(p.initial), area0 = area(p.initial);
     std::vector<HistoryRow> history{row_of(0, 0.0, p.initial)};
     std::string history_text =
         "step,t,volume,area,triangles,components\n" + history_line(history.back());
@@ -211,27 +170,8 @@ void run_surface(const SurfaceRunRequest& r) {
     const SurfaceRunResult result = run(p.initial, *p.law, p.domain, options, observer);
 
     const Surface& s = result.surface;
-    const double e = e_inf(p, result.t, s);
-    summary.update({{"status", to_string(result.status)},
-                    {"t", result.t},
-                    {"steps", options.steps},
-                    {"steps_done", result.steps_done},
-                    {"triangles", s.size()},
-                    {"vertices", s.vertices.size()},
-                    {"components", s.empty() ? 0 : component_count(s)},
-                    {"genus", s.empty() ? 0 : genus(s)},
-                    {"volume", volume(s)},
-                    {"area", area(s)},
-                    {"volume_initial", volume0},
-                    {"area_initial", area0},
-                    {"volume_change", volume0 != 0.0 ? (volume(s) - volume0) / volume0 : 0.0},
-                    {"e_inf", number_or_null(e)},
-                    {"g_evals", result.g_evals},
-                    {"split_steps", result.split_steps},
-                    {"most_substeps", result.most_substeps},
-                    {"cpu_s", result.cpu_s},
-                    {"wall_s", result.wall_s}});
-    if (!result.message.empty()) summary["message"] = result.message;
+    const nlohmann::json summary = surface_run_summary(p, p.initial, options, result);
+    const double e = summary["e_inf"].is_null() ? std::nan("") : summary["e_inf"].get<double>();
     write_file_atomic(dir / "history.csv", history_text);
     draw_history(history, fmt::format("{}: volume and area", p.name), dir / "history.png");
     write_file_atomic(dir / "final.obj", obj_text(s));

@@ -1,0 +1,296 @@
+"""Closed triangle surfaces as numpy arrays, and what moves them: runs, the named problems of
+surfaces and their convergence studies, on top of the module _slc (the library's run loop of
+surfaces, with the GIL released). ``slc.run`` and ``slc.study`` dispatch here for a Surface or a
+SurfaceProblem."""
+
+from __future__ import annotations
+
+import math
+import numbers
+import warnings
+from dataclasses import dataclass, field
+from typing import Any, Callable, NamedTuple
+
+import numpy as np
+
+from . import _slc
+
+
+def _vertices(a) -> np.ndarray:
+    arr = np.asarray(a)
+    if arr.dtype.kind not in "iuf":
+        raise TypeError(f"vertices must hold real numbers, got dtype {arr.dtype}")
+    if arr.ndim != 2 or arr.shape[1] != 3:
+        raise ValueError(f"vertices must be an (n, 3) array, got shape {arr.shape}")
+    return np.ascontiguousarray(arr, dtype=np.float64)
+
+
+def _triangles(a) -> np.ndarray:
+    arr = np.asarray(a)
+    if arr.dtype.kind not in "iu":
+        raise TypeError(f"triangles must hold integer vertex indices, got dtype {arr.dtype}")
+    if arr.ndim != 2 or arr.shape[1] != 3:
+        raise ValueError(f"triangles must be an (m, 3) array, got shape {arr.shape}")
+    return np.ascontiguousarray(arr, dtype=np.int64)
+
+
+def _frozen(a, dtype) -> np.ndarray:
+    a = np.asarray(a, dtype=dtype)
+    a.flags.writeable = False
+    return a
+
+
+class Surface:
+    """A closed triangle surface in space: ``vertices`` (n, 3) and ``triangles`` (m, 3) vertex
+    indices, each triangle counterclockwise seen from outside.
+
+    ``Surface(vertices, triangles)`` validates as the tool does its files (closed, manifold, no
+    crossings, finite coordinates): a fault raises ValueError with one line naming the triangle,
+    edge or vertex; unused vertices are dropped, and a component facing inward is reversed, with
+    a warning. Vertices no triangle uses are kept and ignored. ``Surface(slc.contour_surface(...))`` takes the contour's result.
+    """
+
+    __slots__ = ("_vertices", "_triangles", "time")
+
+    def __init__(self, vertices, triangles=None, time: float | None = None):
+        if isinstance(vertices, Surface):
+            self._vertices, self._triangles = vertices._vertices, vertices._triangles
+            self.time = vertices.time if time is None else float(time)
+            return
+        if triangles is None and isinstance(vertices, tuple) and len(vertices) >= 2:
+            vertices, triangles = vertices[0], vertices[1]  # contour_surface's result
+        if triangles is None:
+            raise TypeError("Surface needs vertices and triangles")
+        v, t, notes = _slc.prepare_surface(_vertices(vertices), _triangles(triangles))
+        for note in notes:
+            warnings.warn(note, stacklevel=2)
+        self._vertices = _frozen(v, np.float64)
+        self._triangles = _frozen(t, np.int64)
+        self.time = 0.0 if time is None else float(time)
+
+    @classmethod
+    def _trusted(cls, vertices, triangles, time: float = 0.0) -> "Surface":
+        """A surface the library produced, valid already (or empty: a run whose surface
+        vanished)."""
+        out = cls.__new__(cls)
+        out._vertices = _frozen(vertices, np.float64)
+        out._triangles = _frozen(triangles, np.int64)
+        out.time = float(time)
+        return out
+
+    def __reduce__(self):
+        return (Surface._trusted, (np.array(self._vertices), np.array(self._triangles),
+                                   self.time))
+
+    vertices = property(lambda self: self._vertices, doc="read-only (n, 3) float64 array")
+    triangles = property(lambda self: self._triangles,
+                         doc="read-only (m, 3) int64 array of vertex indices")
+
+    def _measures(self) -> dict[str, Any]:
+        return _slc.surface_measures(self._vertices, self._triangles)
+
+    @property
+    def volume(self) -> float:
+        """Enclosed volume (inner components subtract)."""
+        return self._measures()["volume"]
+
+    @property
+    def area(self) -> float:
+        """Total area."""
+        return self._measures()["area"]
+
+    @property
+    def components(self) -> int:
+        """Connected components."""
+        return self._measures()["components"]
+
+    @property
+    def genus(self) -> int:
+        """Total genus: the handles of all components (0 for spheres, 1 for a torus)."""
+        return self._measures()["genus"]
+
+    def __len__(self) -> int:
+        """Number of triangles."""
+        return len(self._triangles)
+
+    def __repr__(self) -> str:
+        return (f"<slc.Surface: {len(self._triangles)} triangles, {len(self._vertices)} "
+                f"vertices, t = {self.time:g}>")
+
+    @classmethod
+    def load(cls, path, time: float = 0.0) -> "Surface":
+        """Reads a surface file (.obj, .stl ASCII or binary, .ply), validated as ``slc run
+        --initial`` does."""
+        v, t, notes = _slc.load_surface(str(path))
+        for note in notes:
+            warnings.warn(f"{path}: {note}", stacklevel=2)
+        return cls._trusted(v, t, time)
+
+    def save(self, path) -> None:
+        """Writes the surface as .obj (17 significant digits) or .vtp (for ParaView, with
+        ``.time``), by the extension."""
+        _slc.save_surface(str(path), self._vertices, self._triangles, self.time)
+
+
+def _surface(x) -> Surface:
+    return x if isinstance(x, Surface) else Surface(x)
+
+
+class SurfaceProblem:
+    """A named problem of surfaces (``slc.problem("sphere-rotation")``): initial surface, law,
+    final time, settings and the exact solution where it is known; ``slc.run(problem)`` runs it
+    as ``slc run --problem NAME`` does."""
+
+    __slots__ = ("_p", "_params")
+
+    def __init__(self, name: str, params: dict[str, float] | None = None):
+        self._params = {k: float(v) for k, v in (params or {}).items()}
+        self._p = _slc.make_surface_problem(name, self._params)
+
+    def _fresh(self, t_end: float | None):
+        p = _slc.make_surface_problem(self._p.name, self._params)
+        if t_end is not None:
+            p.t_end = float(t_end)
+        return p
+
+    name = property(lambda self: self._p.name, doc="as in ``slc run --problem NAME``")
+    description = property(lambda self: self._p.description, doc="what it is")
+    t_end = property(lambda self: self._p.t_end, doc="the final time")
+    velocity = property(lambda self: self._p.velocity, doc="the law's name")
+    settings = property(lambda self: dict(self._p.settings),
+                        doc="its steps N, depth K, refine P and eps")
+    domain = property(lambda self: self._p.domain, doc="(x0, y0, z0, x1, y1, z1), a cube")
+    has_exact = property(lambda self: self._p.has_exact, doc="whether the exact surface is known")
+
+    @property
+    def surface(self) -> Surface:
+        """The initial surface."""
+        v, t = self._p.initial
+        return Surface._trusted(v, t, 0.0)
+
+    def exact(self, points, t: float) -> np.ndarray | None:
+        """A signed function of the (m, 3) points whose zero set is the exact surface at time t
+        (the exact signed distance where it is simple), or None where it is not known."""
+        return self._p.exact(_vertices(points), float(t))
+
+    def error(self, surface) -> float | None:
+        """The largest |exact| over the surface's vertices and triangle centroids at its time;
+        None where the exact surface is not known."""
+        s = _surface(surface)
+        return self._p.error(s._vertices, s._triangles, s.time)
+
+    def __repr__(self) -> str:
+        return f"<slc.SurfaceProblem {self.name}: {self.description}>"
+
+
+class SurfaceStep(NamedTuple):
+    """What an observer of run() on a surface sees after each step."""
+
+    step: int  #: 1..steps
+    steps: int  #: N
+    t: float  #: the time reached
+    surface: Surface  #: the surface at t
+    cpu_s: float  #: CPU seconds of this step
+
+
+@dataclass
+class SurfaceRunResult:
+    """How a run of a surface ended: ``status`` is "ok", "vanished", "interrupted", "error" or
+    "unstable" (a step broke what the law keeps — volume, components, genus — even split into
+    16 sub-steps, or the volume drifted by more than 1%); ``message`` says why."""
+
+    surface: Surface
+    status: str
+    t: float
+    history: dict[str, np.ndarray]
+    frames: list[tuple[float, Surface]] = field(default_factory=list)
+    summary: dict[str, Any] = field(default_factory=dict)
+    message: str = ""
+
+    @property
+    def e_inf(self) -> float | None:
+        """The largest |exact| over the final vertices and centroids, where it is known."""
+        return self.summary.get("e_inf")
+
+
+def _options(steps=None, depth=None, refine=None, eps=None, eta=None):
+    from ._interface import _refine
+    from ._run import _integer
+
+    o = _slc.SurfaceOverrides()
+    o.steps = _integer("steps", steps)
+    o.depth = _integer("depth", depth)
+    o.refine = None if refine is None else _refine(refine)
+    o.eps = None if eps is None else float(eps)
+    o.eta = None if eta is None else float(eta)
+    return o
+
+
+def run_surface(p, frames: int, observer: Callable[[SurfaceStep], Any] | None, threads: int,
+                **options) -> SurfaceRunResult:
+    """Runs the _slc.SurfaceProblem p with the options set (steps, depth, refine, eps, eta)."""
+    if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
+        raise TypeError(f"frames must be an integer, got {frames!r}")
+    on_step = None
+    if observer is not None:
+        def on_step(step, n, t, v, tri, cpu_s):
+            return observer(SurfaceStep(step, n, t, Surface._trusted(v, tri, t), cpu_s))
+    out = _slc.run_surface(p, _options(**options), int(frames), int(threads), on_step)
+    return SurfaceRunResult(
+        surface=Surface._trusted(out["vertices"], out["triangles"], out["t"]),
+        status=out["status"],
+        t=out["t"],
+        history=out["history"],
+        frames=[(t, Surface._trusted(v, tri, t)) for t, v, tri in out["frames"]],
+        summary=out["summary"],
+        message=out["message"],
+    )
+
+
+def _array(values) -> np.ndarray:
+    return np.array([math.nan if v is None else v for v in values], dtype=float)
+
+
+@dataclass
+class SurfaceStudy:
+    """The convergence table of a problem of surfaces: row r runs N·2^r steps at depth K + r
+    with eps/4^r, columns P = 0, 1, ... passes of refinement.
+
+    ``cells``: one dict per run (row, P, N, K, eps, status, e_inf, cpu_s_per_step, wall_s,
+    triangles), row-major. ``errors`` and ``cpu_s_per_step``: rows x columns arrays (NaN where a
+    run has no error). ``row_orders`` (rows x columns-1) and ``column_orders`` (rows-1 x
+    columns): log2 of the error ratios of neighbours."""
+
+    cells: list[dict[str, Any]]
+    errors: np.ndarray
+    cpu_s_per_step: np.ndarray
+    row_orders: np.ndarray
+    column_orders: np.ndarray
+
+    def table(self) -> str:
+        """The errors as a Markdown table, a row per N/K/eps and a column per P."""
+        rows, columns = self.errors.shape
+        lines = ["| run | " + " | ".join(f"P = {c}" for c in range(columns)) + " |",
+                 "|---|" + "---|" * columns]
+        for r in range(rows):
+            first = self.cells[r * columns]
+            name = f"{first['N']}/{first['K']}/{first['eps']:.2g}"
+            lines.append(f"| {name} | " + " | ".join(
+                "—" if math.isnan(e) else f"{e:.2e}" for e in self.errors[r]) + " |")
+        return "\n".join(lines)
+
+
+def study_surface(problem: SurfaceProblem, rows: int, columns: int,
+                  observer: Callable[[dict], Any] | None, threads: int) -> SurfaceStudy:
+    s = _slc.study_surface(problem._p, rows, columns, int(threads), observer)
+    shape = (s["rows"], s["columns"])
+    cells = s["cells"]
+    return SurfaceStudy(
+        cells=cells,
+        errors=_array(c["e_inf"] for c in cells).reshape(shape),
+        cpu_s_per_step=_array(c["cpu_s_per_step"] for c in cells).reshape(shape),
+        row_orders=np.array([_array(r) for r in s["row_orders"]]).reshape(
+            shape[0], shape[1] - 1),
+        column_orders=np.array([_array(r) for r in s["column_orders"]]).reshape(
+            shape[0] - 1, shape[1]),
+    )

@@ -1,0 +1,421 @@
+// Moving surfaces from Python: a user's surface (the defaults of `slc run --initial S.obj`) or a
+// named problem of surfaces, under a built-in law of surfaces or one written in Python, and the
+// convergence studies of surfaces. Surfaces arrive as (n, 3) float64 vertices and (m, 3) int64
+// triangles.
+#include "surfaces.hpp"
+
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+
+#include "arrays.hpp"
+#include "laws.hpp"
+#include "slc/core/parallel.hpp"
+#include "slc/core/tolerances.hpp"
+#include "slc/evolve/surface_problems.hpp"
+#include "slc/evolve/surface_study.hpp"
+#include "slc/geometry/validate_surface.hpp"
+#include "slc/io/interface_json.hpp"
+#include "slc/io/summary.hpp"
+#include "slc/io/surface_files.hpp"
+#include "slc/io/vtk.hpp"
+#include "slc/tree/tetrahedralization.hpp"
+
+namespace slc::python {
+namespace {
+
+py::object python_of(const nlohmann::json& j) {
+    return py::module_::import("json").attr("loads")(j.dump());
+}
+
+/// A problem of surfaces as Python holds it: a named one (its own settings) or a user's surface
+/// (the defaults of default_surface_run_options from t_start).
+struct SurfaceSubject {
+    SurfaceProblem problem;
+    bool named = false;
+    double t_start = 0.0;
+};
+
+/// The options a caller set (None for unset): steps, depth, refine, eps, eta.
+struct SurfaceOverrides {
+    std::optional<int> steps, depth, refine;
+    std::optional<double> eps, eta;
+};
+
+/// The problem's own options with the caller's over them, as `slc run` on a surface takes
+/// -N, -K, -P, --eps and --eta.
+SurfaceRunOptions resolve(const SurfaceSubject& s, const SurfaceOverrides& q) {
+    const SurfaceProblem& p = s.problem;
+    SurfaceRunOptions o;
+    if (s.named) {
+        o.t_end = p.t_end;
+        o.steps = p.steps;
+        o.step.contour = {.depth = p.depth,
+                          .refine_passes = SurfaceContourOptions::until_converged,
+                          .eps = p.eps};
+    } else {
+        o = default_surface_run_options(p.initial, s.t_start, p.t_end);
+    }
+    if (q.steps) {
+        if (*q.steps < 1 || *q.steps > 100'000'000)
+            throw InvalidInput(fmt::format("steps must be from 1 to 1e8, got {}", *q.steps));
+        o.steps = *q.steps;
+    }
+    SurfaceContourOptions& c = o.step.contour;
+    if (q.depth) {
+        if (*q.depth < 1 || *q.depth > max_tetrahedralized_depth) {
+            throw InvalidInput(fmt::format("depth must be from 1 to {}, got {}",
+                                           max_tetrahedralized_depth, *q.depth));
+        }
+        c.depth = *q.depth;
+    }
+    if (q.refine) {
+        if (*q.refine != SurfaceContourOptions::until_converged &&
+            (*q.refine < 0 || *q.refine > 64))
+            throw InvalidInput(
+                fmt::format("refine must be from 0 to 64 or 'converged', got {}", *q.refine));
+        c.refine_passes = *q.refine;
+    }
+    for (const auto& [value, name] : {std::pair{q.eps, "eps"}, std::pair{q.eta, "eta"}}) {
+        if (value && (!(*value > 0.0) || !std::isfinite(*value)))
+            throw InvalidInput(fmt::format("{} must be positive and finite, got {}", name, *value));
+    }
+    if (q.eps) c.eps = *q.eps;
+    if (q.eta) c.eta = *q.eta;
+    if (c.resolved_eps() < c.eta) {
+        throw InvalidInput(
+            fmt::format("eps ({}) must not be below eta ({})", c.resolved_eps(), c.eta));
+    }
+    return o;
+}
+
+/// The history of a run of a surface: t, volume, area, triangles, components, cpu_s per row.
+struct SurfaceHistory {
+    std::vector<double> t, volume, area, triangles, components, cpu_s;
+    void add(double time, const Surface& s, double cpu) {
+        t.push_back(time);
+        volume.push_back(slc::volume(s));
+        area.push_back(slc::area(s));
+        triangles.push_back(static_cast<double>(s.size()));
+        components.push_back(s.empty() ? 0.0 : static_cast<double>(component_count(s)));
+        cpu_s.push_back(cpu);
+    }
+    py::dict arrays() const {
+        py::dict h;
+        h["t"] = array_of(std::span<const double>(t));
+        h["volume"] = array_of(std::span<const double>(volume));
+        h["area"] = array_of(std::span<const double>(area));
+        h["triangles"] = array_of(std::span<const double>(triangles)).attr("astype")("int64");
+        h["components"] = array_of(std::span<const double>(components)).attr("astype")("int64");
+        h["cpu_s"] = array_of(std::span<const double>(cpu_s));
+        return h;
+    }
+};
+
+/// Sets the worker threads for the life of the object (0: all cores), and restores them.
+class ThreadScope {
+public:
+    explicit ThreadScope(int threads) : before_(thread_count()) {
+        if (threads < 0)
+            throw InvalidInput(fmt::format("threads must be 0 or more, got {}", threads));
+        set_thread_count(threads);
+    }
+    ~ThreadScope() { set_thread_count(before_); }
+    ThreadScope(const ThreadScope&) = delete;
+    ThreadScope& operator=(const ThreadScope&) = delete;
+
+private:
+    int before_;
+};
+
+/// True when Ctrl-C is pending (and takes it); call with the GIL held.
+bool interrupted() {
+    if (PyErr_CheckSignals() == 0) return false;
+    py::error_already_set interrupt;
+    return true;
+}
+
+/// (vertices, triangles, notes) of a valid surface made of the arrays, oriented outward;
+/// ValueError naming the triangle, edge or vertex at fault.
+py::tuple prepare_surface_arrays(const Array& vertices, const IndexArray& triangles) {
+    Surface raw = surface_of(vertices, triangles);
+    std::optional<PreparedSurface> p;
+    {
+        py::gil_scoped_release release;
+        p.emplace(prepare_surface(std::move(raw)));
+    }
+    const py::tuple arrays = surface_arrays(p->surface);
+    return py::make_tuple(arrays[0], arrays[1], p->notes);
+}
+
+/// A surface file (.obj, .stl, .ply) read and prepared: (vertices, triangles, notes).
+py::tuple load_surface_file(const std::string& path) {
+    std::optional<PreparedSurface> p;
+    {
+        py::gil_scoped_release release;
+        Surface raw = read_surface(path);
+        try {
+            p.emplace(prepare_surface(std::move(raw)));
+        } catch (const InvalidInput& e) {
+            throw InvalidInput(fmt::format("{}: {}", path, e.what()));
+        }
+    }
+    const py::tuple arrays = surface_arrays(p->surface);
+    return py::make_tuple(arrays[0], arrays[1], p->notes);
+}
+
+/// Writes a surface as .obj or .vtp (by the extension), atomically.
+void save_surface_file(const std::string& path, const Array& vertices, const IndexArray& triangles,
+                       double time) {
+    const Surface s = surface_of(vertices, triangles);
+    const std::filesystem::path file(path);
+    if (file.extension() == ".obj") {
+        write_file_atomic(file, obj_text(s));
+    } else if (file.extension() == ".vtp") {
+        write_file_atomic(file, vtp_text(s, time));
+    } else {
+        throw InvalidInput(fmt::format("a surface is saved as .obj or .vtp, got '{}'", path));
+    }
+}
+
+/// volume, area, components and genus of a valid surface.
+py::dict surface_measures(const Array& vertices, const IndexArray& triangles) {
+    const Surface s = surface_of(vertices, triangles);
+    py::dict d;
+    d["volume"] = volume(s);
+    d["area"] = area(s);
+    d["components"] = s.empty() ? 0 : component_count(s);
+    d["genus"] = s.empty() ? 0 : genus(s);
+    return d;
+}
+
+/// The cube a user's surface runs in: about its bounding box, 1.5 times its largest half-side
+/// (as `slc run --initial S.obj` without --domain).
+Box3 default_cube(const Surface& s) {
+    const Box3 b = bounding_box(s);
+    const double half = 0.75 * std::max({b.extent(0), b.extent(1), b.extent(2)});
+    if (!(2.0 * half >= tolerance::min_domain_width))
+        throw InvalidInput(
+            fmt::format("the surface spans only {:.3g}: scale it", 2.0 * half / 1.5));
+    return Box3::cube(b.center(), half);
+}
+
+std::shared_ptr<SurfaceSubject> named_surface_problem(const std::string& name,
+                                                      const VelocityParams& params) {
+    auto s = std::make_shared<SurfaceSubject>();
+    {
+        py::gil_scoped_release release;
+        s->problem = make_surface_problem(name, params);
+    }
+    s->named = true;
+    return s;
+}
+
+std::shared_ptr<SurfaceSubject> user_surface_problem(const Array& vertices,
+                                                     const IndexArray& triangles, double t_start,
+                                                     double t_end, const LawSpec& spec) {
+    auto s = std::make_shared<SurfaceSubject>();
+    Surface surface = surface_of(vertices, triangles);
+    if (surface.empty()) throw InvalidInput("the surface has no triangles");
+    if (!std::isfinite(t_start) || !std::isfinite(t_end) || !(t_end > t_start)) {
+        throw InvalidInput(
+            fmt::format("t_end ({}) must come after the surface's time ({})", t_end, t_start));
+    }
+    s->problem.law = make_surface_law(spec);
+    s->problem.name = spec.name;
+    s->problem.domain = default_cube(surface);
+    s->problem.initial = std::move(surface);
+    s->problem.t_end = t_end;
+    s->t_start = t_start;
+    return s;
+}
+
+py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrides& q, int frames,
+                             int threads, const py::object& on_step) {
+    if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
+    const SurfaceProblem& p = subject.problem;
+    const SurfaceRunOptions options = resolve(subject, q);
+    for (const Vec3& v : p.initial.vertices) {
+        if (!p.domain.contains(v)) throw InvalidInput("the surface leaves the domain it runs in");
+    }
+    SurfaceHistory history;
+    history.add(options.t_start, p.initial, 0.0);
+    py::list frame_list;
+    if (frames > 0) {
+        const py::tuple a = surface_arrays(p.initial);
+        frame_list.append(py::make_tuple(options.t_start, a[0], a[1]));
+    }
+    double cpu_before = 0.0;
+    const SurfaceObserver observer = [&](const SurfaceStepReport& s) {
+        const double cpu = s.run->cpu_s - cpu_before;
+        cpu_before = s.run->cpu_s;
+        history.add(s.t, *s.surface, cpu);
+        py::gil_scoped_acquire hold;
+        if (frames > 0 && (std::int64_t{s.step} * frames) % s.steps < frames) {
+            const py::tuple a = surface_arrays(*s.surface);
+            frame_list.append(py::make_tuple(s.t, a[0], a[1]));
+        }
+        if (interrupted()) return false;
+        if (on_step.is_none()) return true;
+        const py::tuple a = surface_arrays(*s.surface);
+        const py::object go_on = on_step(s.step, s.steps, s.t, a[0], a[1], cpu);
+        return go_on.is_none() || go_on.cast<bool>();
+    };
+    SurfaceRunResult r;
+    {
+        const ThreadScope scope(threads);
+        py::gil_scoped_release release;
+        r = run(p.initial, *p.law, p.domain, options, observer);
+    }
+    const py::tuple a = surface_arrays(r.surface);
+    py::dict out;
+    out["vertices"] = a[0];
+    out["triangles"] = a[1];
+    out["t"] = r.t;
+    out["status"] = to_string(r.status);
+    out["message"] = r.message;
+    out["history"] = history.arrays();
+    out["frames"] = frame_list;
+    out["summary"] = python_of(surface_run_summary(p, p.initial, options, r));
+    return out;
+}
+
+py::dict surface_cell_dict(const SurfaceStudyCell& c) {
+    py::dict d;
+    d["row"] = c.row;
+    d["P"] = c.refine;
+    d["N"] = c.options.steps;
+    d["K"] = c.options.step.contour.depth;
+    d["eps"] = c.options.step.contour.resolved_eps();
+    d["status"] = to_string(c.status);
+    d["e_inf"] = c.e_inf ? py::cast(*c.e_inf) : py::object(py::none());
+    d["cpu_s_per_step"] = c.cpu_s_per_step;
+    d["wall_s"] = c.wall_s;
+    d["triangles"] = c.triangles;
+    return d;
+}
+
+py::dict study_surface_problem(const SurfaceSubject& subject, int rows, int columns, int threads,
+                               const py::object& on_cell) {
+    const SurfaceStudyObserver observer = [&](const SurfaceStudyCell& c) {
+        py::gil_scoped_acquire hold;
+        if (interrupted()) throw py::error_already_set();
+        if (!on_cell.is_none()) on_cell(surface_cell_dict(c));
+    };
+    SurfaceStudyResult s;
+    {
+        const ThreadScope scope(threads);
+        py::gil_scoped_release release;
+        s = surface_study(subject.problem, rows, columns, observer);
+    }
+    py::list cells;
+    for (const SurfaceStudyCell& c : s.cells) cells.append(surface_cell_dict(c));
+    auto table = [](auto order, int n_rows, int n_columns) {
+        py::list out;
+        for (int r = 0; r < n_rows; ++r) {
+            py::list row;
+            for (int c = 0; c < n_columns; ++c) {
+                const std::optional<double> o = order(r, c);
+                row.append(o ? py::cast(*o) : py::object(py::none()));
+            }
+            out.append(row);
+        }
+        return out;
+    };
+    py::dict out;
+    out["rows"] = s.rows;
+    out["columns"] = s.columns;
+    out["cells"] = cells;
+    out["row_orders"] =
+        table([&s](int r, int c) { return s.row_order(r, c); }, s.rows, s.columns - 1);
+    out["column_orders"] =
+        table([&s](int r, int c) { return s.column_order(r, c); }, s.rows - 1, s.columns);
+    return out;
+}
+
+}  // namespace
+
+void add_surface_functions(py::module_& m) {
+    py::class_<SurfaceOverrides>(m, "SurfaceOverrides")
+        .def(py::init<>())
+        .def_readwrite("steps", &SurfaceOverrides::steps)
+        .def_readwrite("depth", &SurfaceOverrides::depth)
+        .def_readwrite("refine", &SurfaceOverrides::refine)
+        .def_readwrite("eps", &SurfaceOverrides::eps)
+        .def_readwrite("eta", &SurfaceOverrides::eta);
+    py::class_<SurfaceSubject, std::shared_ptr<SurfaceSubject>>(m, "SurfaceProblem")
+        .def_property_readonly("name", [](const SurfaceSubject& s) { return s.problem.name; })
+        .def_property_readonly("description",
+                               [](const SurfaceSubject& s) { return s.problem.description; })
+        .def_property(
+            "t_end", [](const SurfaceSubject& s) { return s.problem.t_end; },
+            [](SurfaceSubject& s, double t) { s.problem.t_end = t; })
+        .def_property_readonly("velocity",
+                               [](const SurfaceSubject& s) { return s.problem.law->name(); })
+        .def_property_readonly("settings",
+                               [](const SurfaceSubject& s) {
+                                   py::dict d;
+                                   d["steps"] = s.problem.steps;
+                                   d["depth"] = s.problem.depth;
+                                   d["refine"] = "converged";
+                                   d["eps"] = s.problem.eps;
+                                   return d;
+                               })
+        .def_property_readonly("domain",
+                               [](const SurfaceSubject& s) {
+                                   const Box3& b = s.problem.domain;
+                                   return py::make_tuple(b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y,
+                                                         b.hi.z);
+                               })
+        .def_property_readonly(
+            "initial", [](const SurfaceSubject& s) { return surface_arrays(s.problem.initial); })
+        .def_property_readonly("has_exact",
+                               [](const SurfaceSubject& s) { return bool(s.problem.exact); })
+        .def_property_readonly("has_study",
+                               [](const SurfaceSubject& s) { return s.problem.study.has_value(); })
+        .def(
+            "exact",
+            [](const SurfaceSubject& s, const Array& xs, double t) -> py::object {
+                if (!s.problem.exact) return py::none();
+                if (xs.ndim() != 2 || xs.shape(1) != 3)
+                    throw InvalidInput("points must be an (n, 3) array of numbers");
+                const auto n = static_cast<std::size_t>(xs.shape(0));
+                const std::vector<Vec3> points = vectors3_of(xs.data(), n);
+                std::vector<double> d(n);
+                for (std::size_t i = 0; i < n; ++i) d[i] = s.problem.exact(t, points[i]);
+                if (n > 0 && std::isnan(d[0])) return py::none();
+                return array_of(std::span<const double>(d));
+            },
+            py::arg("points"), py::arg("t"))
+        .def(
+            "error",
+            [](const SurfaceSubject& s, const Array& vertices, const IndexArray& triangles,
+               double t) -> py::object {
+                const auto e = surface_error(s.problem, t, surface_of(vertices, triangles));
+                return e ? py::cast(*e) : py::object(py::none());
+            },
+            py::arg("vertices"), py::arg("triangles"), py::arg("t"));
+    m.def("make_surface_problem", &named_surface_problem, py::arg("name"), py::arg("params"));
+    m.def("surface_problems", [] {
+        py::list out;
+        for (const std::string& name : surface_problem_names())
+            out.append(py::make_tuple(name, surface_problem_summary(name)));
+        return out;
+    });
+    m.def("user_surface_problem", &user_surface_problem, py::arg("vertices"), py::arg("triangles"),
+          py::arg("t_start"), py::arg("t_end"), py::arg("law"));
+    m.def("run_surface", &run_surface_problem, py::arg("problem"), py::arg("options"),
+          py::arg("frames"), py::arg("threads"), py::arg("on_step"));
+    m.def("study_surface", &study_surface_problem, py::arg("problem"), py::arg("rows"),
+          py::arg("columns"), py::arg("threads"), py::arg("on_cell"));
+    m.def("prepare_surface", &prepare_surface_arrays, py::arg("vertices"), py::arg("triangles"));
+    m.def("load_surface", &load_surface_file, py::arg("path"));
+    m.def("save_surface", &save_surface_file, py::arg("path"), py::arg("vertices"),
+          py::arg("triangles"), py::arg("time"));
+    m.def("surface_measures", &surface_measures, py::arg("vertices"), py::arg("triangles"));
+}
+
+}  // namespace slc::python

@@ -1,0 +1,125 @@
+"""Tests of moving surfaces from Python: the Surface, runs under built-in laws and laws written in
+Python (against the built-in law they must equal, or an exact solution), named problems,
+studies, observers and errors."""
+
+import math
+
+import numpy as np
+import pytest
+
+import slc
+
+
+def sphere(r=0.5, depth=4, eps=1e-3):
+    return slc.Surface(slc.contour_surface(lambda p: np.linalg.norm(p, axis=1) - r, 1.0, depth,
+                                           eps=eps))
+
+
+def mean_radius(s):
+    return np.linalg.norm(s.vertices, axis=1).mean()
+
+
+# ---- the Surface -------------------------------------------------------------------------------
+
+
+def test_a_surface_is_validated_measured_and_saved(tmp_path):
+    s = sphere()
+    assert s.components == 1 and s.genus == 0 and len(s) == len(s.triangles)
+    assert s.volume == pytest.approx(4 / 3 * math.pi * 0.125, rel=3e-3)
+    assert s.area == pytest.approx(math.pi, rel=3e-3)
+    assert not s.vertices.flags.writeable
+    for name in ("s.obj", "s.vtp"):
+        s.save(tmp_path / name)
+    back = slc.Surface.load(tmp_path / "s.obj")
+    assert np.array_equal(back.vertices, s.vertices)
+    assert np.array_equal(back.triangles, s.triangles)
+    # Turned inside out: reversed, with a warning.
+    with pytest.warns(UserWarning, match="reversed"):
+        inward = slc.Surface(s.vertices, s.triangles[:, ::-1])
+    assert inward.volume == pytest.approx(s.volume)
+    with pytest.raises(ValueError, match="edge"):
+        slc.Surface(s.vertices, s.triangles[1:])  # a hole
+    with pytest.raises(ValueError, match="names vertex"):
+        slc.Surface(s.vertices, s.triangles + len(s.vertices))
+    with pytest.raises(TypeError, match="integer vertex indices"):
+        slc.Surface(s.vertices, s.triangles.astype(float))
+    with pytest.raises(ValueError, match=r"\(n, 3\)"):
+        slc.Surface(s.vertices[:, :2], s.triangles)
+
+
+# ---- runs --------------------------------------------------------------------------------------
+
+
+def test_python_laws_equal_the_built_in_ones_bit_for_bit():
+    s = sphere(depth=3, eps=3e-3)
+    options = dict(steps=2, depth=4, eps=3e-3)
+    built_in = slc.run(s, "rotation", 0.5, **options)
+    field = slc.run(s, slc.FlowField(lambda t, p: np.c_[-p[:, 1], p[:, 0], 0 * p[:, 2]]), 0.5,
+                    **options)
+    assert built_in.status == field.status == "ok"
+    assert np.array_equal(built_in.surface.vertices, field.surface.vertices)
+    assert np.array_equal(built_in.surface.triangles, field.surface.triangles)
+    grow = slc.run(s, "unit-normal", 0.05, **options)
+    speed = slc.run(s, slc.NormalSpeed(lambda t, p, n: np.ones(len(p))), 0.05, **options)
+    assert np.array_equal(grow.surface.vertices, speed.surface.vertices)
+    # Unit speed: the sphere of radius 0.55, to the contour's tolerance (measured 1.4e-4).
+    assert np.abs(np.linalg.norm(grow.surface.vertices, axis=1) - 0.55).max() < 3e-3
+
+
+def test_a_python_curvature_law_shrinks_a_sphere_as_R2_falls_at_4():
+    # Mean curvature flow, u = C N with C = -2/R: R^2 = R0^2 - 4t.
+    s = sphere(depth=3, eps=3e-3)
+    r = slc.run(s, lambda t, p, n, c: c, 0.01, steps=2, depth=4, eps=1e-3)
+    assert r.status == "ok" and r.t == pytest.approx(0.01)
+    # Measured: 3.0e-4 below, within eps = 1e-3.
+    assert mean_radius(r.surface) == pytest.approx(math.sqrt(0.25 - 0.04), abs=1e-3)
+    assert r.summary["velocity"] == "<lambda>" and r.summary["dimension"] == 3
+    assert list(r.history) == ["t", "volume", "area", "triangles", "components", "cpu_s"]
+    assert len(r.history["t"]) == 3 and r.history["volume"][-1] < r.history["volume"][0]
+
+
+def test_a_named_problem_of_surfaces_runs_and_reports_its_error():
+    p = slc.problem("sphere-rotation")
+    assert isinstance(p, slc.SurfaceProblem) and p.has_exact and p.t_end == pytest.approx(2 * math.pi)
+    assert "sphere-rotation" in slc.problems() and "enright" in slc.velocities(3)
+    r = slc.run(p, t_end=math.pi / 2, steps=4, depth=4, eps=1e-3, frames=2)
+    assert r.status == "ok" and len(r.frames) == 3
+    assert r.e_inf is not None and r.e_inf < 3e-3  # measured 1.0e-3 at eps = 1e-3
+    assert r.e_inf == pytest.approx(p.error(r.surface))
+
+
+def test_an_observer_stops_a_run_of_a_surface():
+    seen = []
+
+    def observer(step):
+        seen.append((step.step, step.t, len(step.surface)))
+        return step.step < 2
+
+    r = slc.run(sphere(depth=3, eps=3e-3), "rotation", 1.0, steps=4, depth=4, eps=3e-3,
+                observer=observer)
+    assert r.status == "interrupted" and r.t == pytest.approx(0.5) and len(seen) == 2
+
+
+def test_a_study_of_surfaces_gives_its_table():
+    st = slc.study(slc.problem("sphere-rotation"), rows=1, columns=1)
+    assert st.errors.shape == (1, 1) and st.cells[0]["N"] == 16 and st.cells[0]["K"] == 5
+    assert 0 < st.errors[0, 0] < 5e-3
+    assert "| 16/5/0.0004 |" in st.table()
+
+
+def test_bad_input_to_a_run_of_a_surface_is_refused():
+    s = sphere(depth=3, eps=3e-3)
+    with pytest.raises(ValueError, match="arcs is for curves"):
+        slc.run(s, "rotation", 1.0, arcs=True)
+    with pytest.raises(ValueError, match="unknown velocity 'spin'"):
+        slc.run(s, "spin", 1.0)
+    with pytest.raises(ValueError, match="expressions and field files move curves"):
+        slc.run(s, slc.SpeedExpression("1"), 1.0)
+    with pytest.raises(ValueError, match=r"must return \(m, 3\) velocities"):
+        slc.run(s, slc.FlowField(lambda t, p: p[:, :2]), 1.0, steps=1, depth=3)
+    with pytest.raises(ValueError, match="must come after"):
+        slc.run(slc.Surface(s, time=2.0), "rotation", 1.0)
+    with pytest.raises(ValueError, match="sets every run"):
+        slc.study(slc.problem("sphere-rotation"), steps=4)
+    with pytest.raises(ValueError, match="no convergence study"):
+        slc.study(slc.problem("enright"))
