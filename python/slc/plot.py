@@ -1,4 +1,5 @@
-"""Pictures with matplotlib: curves, a run's frames, a run's history (area and length against t)."""
+"""Pictures with matplotlib: curves, a run's frames, a run's history (area and length against t);
+surfaces shaded in 3D axes, and their history (volume and area against t)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ import numpy as np
 
 from ._interface import Interface
 from ._run import Problem, RunResult
+from ._surface import Surface, SurfaceProblem, SurfaceRunResult
 
 
 def _draw_curves(ax, interface: Interface, **style) -> None:
@@ -35,14 +37,49 @@ def _draw_frames(ax, frames, cmap) -> None:
 
 def _draw_history(axes, history: dict[str, np.ndarray]) -> None:
     t = history["t"]
-    axes[0].plot(t, history["area"], marker=".", color="C0")
-    axes[0].set_ylabel("area")
+    # Curves: area and length; surfaces: volume and area.
+    first, second = ("volume", "area") if "volume" in history else ("area", "length")
+    axes[0].plot(t, history[first], marker=".", color="C0")
+    axes[0].set_ylabel(first)
     if len(axes) > 1:
-        axes[1].plot(t, history["length"], marker=".", color="C1")
-        axes[1].set_ylabel("length")
+        axes[1].plot(t, history[second], marker=".", color="C1")
+        axes[1].set_ylabel(second)
     axes[-1].set_xlabel("t")
     for a in axes:
         a.grid(True, alpha=0.3)
+
+
+def _draw_surface(ax, surface: Surface, color) -> None:
+    """The triangles shaded by the angle of their normals to a light above the viewer's left
+    shoulder (the axes' view: azim, elev), on equal axes."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    v, t = surface.vertices, surface.triangles
+    corners = v[t]
+    n = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+    azim, elev = np.radians(ax.azim), np.radians(ax.elev)
+    toward = np.array([np.cos(elev) * np.cos(azim), np.cos(elev) * np.sin(azim), np.sin(elev)])
+    left = np.array([-np.sin(azim), np.cos(azim), 0.0])  # the viewer's left
+    up = np.cross(toward, left)
+    light = toward + 0.5 * left + 0.6 * up
+    shade = 0.25 + 0.75 * np.clip(n @ (light / np.linalg.norm(light)), 0.0, 1.0)
+    import matplotlib.colors as mcolors
+
+    rgb = np.array(mcolors.to_rgb(color))
+    colors = shade[:, None] * rgb
+    # Edges in the faces' own colours: no seams between neighbours.
+    ax.add_collection3d(Poly3DCollection(corners, facecolors=colors, edgecolors=colors,
+                                         linewidths=0.3))
+    lo, hi = v.min(axis=0), v.max(axis=0)
+    centre, half = 0.5 * (lo + hi), 0.5 * (hi - lo).max()
+    ax.set_xlim(centre[0] - half, centre[0] + half)
+    ax.set_ylim(centre[1] - half, centre[1] + half)
+    ax.set_zlim(centre[2] - half, centre[2] + half)
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    ax.set_zlabel("z")
 
 
 def plot(obj, ax=None, *, cmap: str = "viridis", **style) -> Any:
@@ -53,11 +90,23 @@ def plot(obj, ax=None, *, cmap: str = "viridis", **style) -> Any:
     - a RunResult: its frames coloured by time (cmap), or its final curves when it kept none;
     - a list of (t, Interface) frames: the same;
     - a history dict (``RunResult.history``): area and length against t on two axes (ax may be
-      a pair of axes; a single ax gets the area alone).
+      a pair of axes; a single ax gets the area alone); a surface's history: volume and area;
+    - a Surface, a SurfaceProblem's initial surface or a SurfaceRunResult's final one: shaded
+      triangles on 3D axes (ax must be 3D: ``projection="3d"``); ``color`` sets the colour.
     ax: where to draw; a new figure when None.
     """
     import matplotlib.pyplot as plt
 
+    if isinstance(obj, SurfaceProblem):
+        obj = obj.surface
+    if isinstance(obj, SurfaceRunResult):
+        obj = obj.surface
+    if isinstance(obj, Surface):
+        if ax is None:
+            ax = plt.figure(figsize=(5, 5)).add_subplot(projection="3d")
+        if len(obj) > 0:
+            _draw_surface(ax, obj, style.get("color", "C0"))
+        return ax
     if isinstance(obj, dict) and "t" in obj and "area" in obj:
         if ax is None:
             _, axes = plt.subplots(2, 1, sharex=True, figsize=(6, 5))
@@ -81,6 +130,7 @@ def plot(obj, ax=None, *, cmap: str = "viridis", **style) -> Any:
         _draw_frames(ax, list(obj), cmap)
     else:
         raise TypeError("plot draws an Interface, a Problem, a RunResult, a list of (t, Interface) "
-                        f"frames or a history dict, got {type(obj).__name__}")
+                        "frames, a history dict, a Surface, a SurfaceProblem or a "
+                        f"SurfaceRunResult, got {type(obj).__name__}")
     ax.set_aspect("equal", adjustable="datalim")
     return ax

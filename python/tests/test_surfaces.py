@@ -4,10 +4,14 @@ studies, observers and errors."""
 
 import math
 
-import numpy as np
-import pytest
+import matplotlib
 
-import slc
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import slc  # noqa: E402
 
 
 def sphere(r=0.5, depth=4, eps=1e-3):
@@ -86,6 +90,20 @@ def test_a_named_problem_of_surfaces_runs_and_reports_its_error():
     assert r.status == "ok" and len(r.frames) == 3
     assert r.e_inf is not None and r.e_inf < 3e-3  # measured 1.0e-3 at eps = 1e-3
     assert r.e_inf == pytest.approx(p.error(r.surface))
+
+
+def test_a_surface_and_its_history_are_drawn(tmp_path):
+    import matplotlib.pyplot as plt
+
+    s = sphere(depth=3, eps=3e-3)
+    r = slc.run(s, "unit-normal", 0.05, steps=2, depth=3, eps=3e-3)
+    ax = slc.plot(r)
+    assert ax.name == "3d" and len(ax.collections) == 1
+    assert len(ax.collections[0].get_facecolor()) == len(r.surface)
+    axes = slc.plot(r.history)
+    assert axes[0].get_ylabel() == "volume" and axes[1].get_ylabel() == "area"
+    ax.figure.savefig(tmp_path / "s.png")
+    plt.close("all")
 
 
 def test_an_observer_stops_a_run_of_a_surface():
