@@ -92,20 +92,43 @@ SurfaceRunResult run(const Surface& initial, const SurfaceVelocityLaw& law, cons
                      const SurfaceRunOptions& options, const SurfaceObserver& observer) {
     check(options);
     if (initial.empty()) throw InvalidInput("the initial surface has no triangles");
-    SurfaceRunResult r;
-    r.surface = initial;
-    r.t = options.t_start;
+    SurfaceRunResult start;
+    start.surface = initial;
+    start.t = options.t_start;
+    start.volume_initial = volume(initial);
+    return resume(start, law, domain, options, observer);
+}
+
+SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& law,
+                        const Box3& domain, const SurfaceRunOptions& options,
+                        const SurfaceObserver& observer) {
+    check(options);
+    if (from.surface.empty()) throw InvalidInput("the surface to resume has no triangles");
+    if (from.steps_done < 0 || from.steps_done >= options.steps) {
+        throw InvalidInput(fmt::format("cannot resume after step {} of a run of {} steps",
+                                       from.steps_done, options.steps));
+    }
+    if (from.t != time_after(options, from.steps_done)) {
+        throw InvalidInput(fmt::format("cannot resume: t = {} is not the time after step {} ({})",
+                                       from.t, from.steps_done,
+                                       time_after(options, from.steps_done)));
+    }
+    SurfaceRunResult r = from;
+    r.status = RunStatus::ok;
+    r.message.clear();
     const Invariants invariants = law.invariants();
     const double eps = options.step.contour.resolved_eps();
-    const double volume0 = volume(initial);
+    const double volume0 = from.volume_initial;
+    const double wall_before = from.wall_s, cpu_before = from.cpu_s;
     const auto wall_start = std::chrono::steady_clock::now();
     const double cpu_start = process_cpu_s();
     auto clocks = [&] {
         r.wall_s =
+            wall_before +
             std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-        r.cpu_s = process_cpu_s() - cpu_start;
+        r.cpu_s = cpu_before + process_cpu_s() - cpu_start;
     };
-    for (int n = 1; n <= options.steps; ++n) {
+    for (int n = from.steps_done + 1; n <= options.steps; ++n) {
         const double t0 = time_after(options, n - 1), t1 = time_after(options, n);
         SurfaceStepStats stats;
         try {

@@ -234,6 +234,19 @@ void VtkSeries::add(std::span<const std::pair<double, Interface>> frames) {
     if (!frames.empty()) write_collection();
 }
 
+void VtkSeries::keep(std::span<const double> times) {
+    for (const double time : times) {
+        const std::string name =
+            fmt::format("{}/frame_{:04d}.vtp", pvd_.stem().string(), frames_.size());
+        if (!std::filesystem::exists(pvd_.parent_path() / name)) {
+            throw InvalidInput(fmt::format("{}: missing, a frame of the run",
+                                           (pvd_.parent_path() / name).string()));
+        }
+        frames_.push_back({time, name});
+    }
+    write_collection();
+}
+
 void VtkSeries::write_collection() {
     const std::string text = pvd_text(frames_);
     write_file_atomic(pvd_, text);

@@ -46,6 +46,28 @@ rm square.json user_part/final.json user_part/summary.json
 expect_ok "user curve resumed" -- run --resume user_part --quiet
 same_run "user curve resumed from step 4" user_full user_part
 
+# A surface: final.obj, history.csv, the frames (.vtp, .pvd) and the summary as the run never
+# stopped; a user's surface file is copied into the folder as a curve file is.
+surface_args=(run --problem sphere-rotation --t-end 1.5 -N 6 -K 4 --eps 2e-3 --frames 3 --quiet)
+expect_ok "surface" -- "${surface_args[@]}" --out surface_full
+expect_ok "surface checkpointed" -- "${surface_args[@]}" --checkpoint-every 2 --out surface_part
+check "surface checkpoint after step 4" grep -q '"steps_done":4' surface_part/checkpoint.json
+rm surface_part/final.obj surface_part/summary.json surface_part/frames.pvd
+expect_ok "surface resumed" -- run --resume surface_part --quiet
+for f in final.obj history.csv frames.pvd frames/frame_0003.vtp; do
+    check "surface resumed from step 4: $f identical" cmp -s "surface_full/$f" "surface_part/$f"
+done
+check "surface resumed: summary identical but clocks" \
+    diff <(grep -vE '"(wall_s|cpu_s)"' surface_full/summary.json) <(grep -vE '"(wall_s|cpu_s)"' surface_part/summary.json)
+cp surface_full/initial.obj ball.obj
+ball_args=(run --initial ball.obj --velocity rotation --param omega=2 --t-end 0.5 -N 4 -K 4 --eps 2e-3 --domain 1 --quiet)
+expect_ok "user surface" -- "${ball_args[@]}" --out ball_full
+expect_ok "user surface checkpointed" -- "${ball_args[@]}" --checkpoint-every 3 --out ball_part
+rm ball.obj ball_part/final.obj ball_part/summary.json
+expect_ok "user surface resumed" -- run --resume ball_part --quiet
+check "user surface resumed from step 3: final.obj identical" cmp -s ball_full/final.obj ball_part/final.obj
+expect_error "resume refuses a finished surface run" "after the checkpoint's step 3" -- run --resume ball_part --quiet
+
 # Stopped by SIGTERM while running: status interrupted, a checkpoint at the step it stopped after,
 # and the resumed run ends as the uninterrupted one. (Should the run finish before the signal,
 # the last regular checkpoint is resumed: the comparison holds either way.)

@@ -10,6 +10,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/geometry/validate.hpp"
+#include "slc/geometry/validate_surface.hpp"
 #include "slc/io/interface_json.hpp"
 
 namespace slc::cli {
@@ -34,6 +35,59 @@ Json curves_json(const Interface& curves) {
     return out;
 }
 
+/// A surface as flat arrays: "vertices" x0, y0, z0, x1, ... and "triangles" a0, b0, c0, ...
+void put_surface(Json& json, const Surface& s) {
+    Json xyz = Json::array(), abc = Json::array();
+    for (const Vec3& v : s.vertices) {
+        xyz.push_back(v.x);
+        xyz.push_back(v.y);
+        xyz.push_back(v.z);
+    }
+    for (const TriangleIndices& t : s.triangles)
+        for (const std::uint32_t i : t) abc.push_back(i);
+    json["vertices"] = std::move(xyz);
+    json["triangles"] = std::move(abc);
+}
+
+Surface surface_from(const Json& json) {
+    const auto xyz = json.at("vertices").get<std::vector<double>>();
+    const auto abc = json.at("triangles").get<std::vector<std::uint32_t>>();
+    if (xyz.size() % 3 != 0 || abc.size() % 3 != 0)
+        throw InvalidInput("vertices or triangles are not in threes");
+    Surface s;
+    for (std::size_t i = 0; i < xyz.size(); i += 3)
+        s.vertices.push_back({xyz[i], xyz[i + 1], xyz[i + 2]});
+    for (std::size_t i = 0; i < abc.size(); i += 3)
+        s.triangles.push_back({abc[i], abc[i + 1], abc[i + 2]});
+    return s;
+}
+
+/// Refuses results in dir that belong to another run or are past the checkpoint's step.
+void check_results_beside(const std::string& run_id, int steps_done,
+                          const std::filesystem::path& dir) {
+    const std::filesystem::path summary_path = dir / "summary.json";
+    if (!std::filesystem::exists(summary_path)) return;
+    Json summary;
+    try {
+        summary = Json::parse(read_text_file(summary_path));
+    } catch (const Json::exception&) {
+        return;  // a summary that is not JSON is not results to protect
+    }
+    if (summary.value("run_id", std::string()) != run_id) {
+        throw InvalidInput(fmt::format(
+            "{}: the results in the folder belong to another run (run_id {}, the checkpoint's "
+            "{}); resume refused",
+            summary_path.string(), summary.value("run_id", std::string("none")), run_id));
+    }
+    const int done = summary.value("steps_done", 0);
+    if (done > steps_done) {
+        throw InvalidInput(
+            fmt::format("{}: the results are of step {}, after the checkpoint's step {}; remove "
+                        "summary.json to run from the checkpoint again",
+                        summary_path.string(), done, steps_done));
+    }
+}
+
 Interface curves_from(const Json& json) {
     std::vector<std::vector<Vec2>> curves;
     for (const Json& flat : json) {
@@ -56,11 +110,28 @@ std::filesystem::path checkpoint_path(const std::filesystem::path& dir) {
 void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     Json options = Json::array();
     for (const auto& [name, values] : c.options) options.push_back({name, values});
-    const RunResult& s = c.state;
     Json json;
     json["format"] = format_name;
     json["options"] = options;
     json["run_id"] = c.run_id;
+    if (c.surface) {
+        const SurfaceRunResult& s = *c.surface;
+        json["dimension"] = 3;
+        json["steps_done"] = s.steps_done;
+        json["t"] = s.t;
+        json["g_evals"] = s.g_evals;
+        json["wall_s"] = s.wall_s;
+        json["cpu_s"] = s.cpu_s;
+        json["split_steps"] = s.split_steps;
+        json["most_substeps"] = s.most_substeps;
+        json["volume_initial"] = s.volume_initial;
+        json["frames_kept"] = c.frames_kept;
+        json["frame_times"] = c.frame_times;
+        put_surface(json, s.surface);
+        write_file_atomic(checkpoint_path(dir), json.dump() + "\n");
+        return;
+    }
+    const RunResult& s = c.state;
     json["steps_done"] = s.steps_done;
     json["t"] = s.t;
     json["g_evals"] = s.g_evals;
@@ -92,6 +163,22 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
                                    option.at(1).get<std::vector<std::string>>());
         }
         c.run_id = json.at("run_id").get<std::string>();
+        if (json.value("dimension", 2) == 3) {
+            SurfaceRunResult& s = c.surface.emplace();
+            s.steps_done = json.at("steps_done").get<int>();
+            s.t = json.at("t").get<double>();
+            s.g_evals = json.at("g_evals").get<std::size_t>();
+            s.wall_s = json.at("wall_s").get<double>();
+            s.cpu_s = json.at("cpu_s").get<double>();
+            s.split_steps = json.at("split_steps").get<int>();
+            s.most_substeps = json.at("most_substeps").get<int>();
+            s.volume_initial = json.at("volume_initial").get<double>();
+            s.status = RunStatus::interrupted;
+            c.frames_kept = json.at("frames_kept").get<int>();
+            c.frame_times = json.at("frame_times").get<std::vector<double>>();
+            s.surface = surface_from(json);
+            return c;
+        }
         RunResult& s = c.state;
         s.steps_done = json.at("steps_done").get<int>();
         s.t = json.at("t").get<double>();
@@ -149,27 +236,36 @@ void check_checkpoint(const Checkpoint& c, const Box& domain, const RunOptions& 
         throw InvalidInput(fmt::format("{}: {}", path, e.what()));
     }
     // The results beside it: of this run, and not past the checkpoint.
-    const std::filesystem::path summary_path = dir / "summary.json";
-    if (!std::filesystem::exists(summary_path)) return;
-    Json summary;
+    check_results_beside(c.run_id, s.steps_done, dir);
+}
+
+void check_surface_checkpoint(const Checkpoint& c, const Box3& domain,
+                              const SurfaceRunOptions& options, const std::filesystem::path& dir) {
+    const std::string path = checkpoint_path(dir).string();
+    auto fail = [&](const std::string& why) {
+        return InvalidInput(fmt::format("{}: not a checkpoint of this run ({})", path, why));
+    };
+    if (!c.surface) throw fail("it holds curves, not a surface");
+    const SurfaceRunResult& s = *c.surface;
+    if (s.steps_done < 0 || s.steps_done >= options.steps) {
+        throw fail(fmt::format("steps_done {} is not below the run's {} steps", s.steps_done,
+                               options.steps));
+    }
+    if (!std::isfinite(s.t)) throw fail("t is not finite");
+    if (c.frames_kept < 0 || static_cast<std::size_t>(c.frames_kept) != c.frame_times.size())
+        throw fail(fmt::format("frames_kept is {}", c.frames_kept));
+    if (!(s.volume_initial > 0.0) || !std::isfinite(s.volume_initial))
+        throw fail("volume_initial is not positive");
+    // The surface as a surface file's: a checkpoint edited by hand must not reach the tree.
     try {
-        summary = Json::parse(read_text_file(summary_path));
-    } catch (const Json::exception&) {
-        return;  // a summary that is not JSON is not results to protect
+        const PreparedSurface prepared = prepare_surface(s.surface);
+        if (!prepared.notes.empty()) throw InvalidInput(prepared.notes.front());
+        for (const Vec3& v : s.surface.vertices)
+            if (!domain.contains(v)) throw InvalidInput("a vertex lies outside the domain");
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(fmt::format("{}: {}", path, e.what()));
     }
-    if (summary.value("run_id", std::string()) != c.run_id) {
-        throw InvalidInput(fmt::format(
-            "{}: the results in the folder belong to another run (run_id {}, the checkpoint's "
-            "{}); resume refused",
-            summary_path.string(), summary.value("run_id", std::string("none")), c.run_id));
-    }
-    const int done = summary.value("steps_done", 0);
-    if (done > s.steps_done) {
-        throw InvalidInput(
-            fmt::format("{}: the results are of step {}, after the checkpoint's step {}; remove "
-                        "summary.json to run from the checkpoint again",
-                        summary_path.string(), done, s.steps_done));
-    }
+    check_results_beside(c.run_id, s.steps_done, dir);
 }
 
 std::string run_identity(const std::vector<GivenOption>& options, const std::set<std::string>& skip,

@@ -1,16 +1,20 @@
 // Checkpoints of `slc run`: DIR/checkpoint.json holds the options the run was given and its state
-// after some steps (Γ, t, the step count, counters and clocks), so that `slc run --resume DIR`
-// continues it to the same final interface, bit for bit.
+// after some steps (Γ, t, the step count, counters and clocks; for a surface its vertices and
+// triangles), so that `slc run --resume DIR` continues it to the same final interface, bit for
+// bit.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "slc/core/box3.hpp"
 #include "slc/evolve/run.hpp"
+#include "slc/evolve/surface_run.hpp"
 
 namespace slc::cli {
 
@@ -20,8 +24,12 @@ using GivenOption = std::pair<std::string, std::vector<std::string>>;
 struct Checkpoint {
     std::vector<GivenOption> options;  ///< the run's options, to parse again on resume
     std::string run_id;                ///< the run's identity (run_id), also in its summary.json
-    RunResult state;                   ///< after state.steps_done steps
+    RunResult state;                   ///< after state.steps_done steps (curves)
     int frames_kept = 0;               ///< frames written so far (DIR/frames/frame_0000.json ...)
+    /// For a run of a surface: its state after surface->steps_done steps (then `state` is
+    /// unused), and the times of the frames kept (DIR/frames/frame_NNNN.vtp and .png).
+    std::optional<SurfaceRunResult> surface;
+    std::vector<double> frame_times;
 };
 
 /// DIR/checkpoint.json.
@@ -41,6 +49,12 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir);
 /// step, stops the resume. Throws InvalidInput, one line naming the file.
 void check_checkpoint(const Checkpoint& checkpoint, const Box& domain, const RunOptions& options,
                       const std::filesystem::path& dir);
+
+/// check_checkpoint for a run of a surface: the surface valid (as a surface file is checked) and
+/// inside the domain, its counters against the options, and the results in dir not of another
+/// run or a later step. Throws InvalidInput, one line naming the file.
+void check_surface_checkpoint(const Checkpoint& checkpoint, const Box3& domain,
+                              const SurfaceRunOptions& options, const std::filesystem::path& dir);
 
 /// The identity of a run: 16 hexadecimal digits hashing its options but those that do not change
 /// its results (`skip`) and the content of the files the options name (`files`: option names).

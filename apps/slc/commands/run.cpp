@@ -265,7 +265,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
         if (o.checkpoint_every > 0 && s.step < s.steps && !s.curves->empty() &&
             (s.step % o.checkpoint_every == 0 || stop_requested)) {
             history.save_csv();  // first: a checkpoint's history is never shorter than its run
-            write_checkpoint(dir, {given, id, *s.run, overlay.count()});
+            write_checkpoint(dir, {given, id, *s.run, overlay.count(), std::nullopt, {}});
             folder.publish();
         }
         if (progress && s.wall_s > 2.0) {
@@ -392,6 +392,9 @@ std::vector<GivenOption> options_to_keep(const CLI::App& cmd, const RunCommand& 
     return given;
 }
 
+void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
+                     const std::string& id, const Checkpoint* from, OutputFolder& folder);
+
 /// --resume DIR: the checkpoint's options parsed again, with DIR as the output folder.
 void resume_command(const CLI::App& cmd, const RunCommand& o) {
     const StopSignals signals;
@@ -421,17 +424,20 @@ void resume_command(const CLI::App& cmd, const RunCommand& o) {
     add_run_options(&again, &resumed);
     std::reverse(args.begin(), args.end());  // CLI11 takes a vector of arguments last first
     again.parse(args);
+    if (c.surface) return surface_command(resumed, c.options, c.run_id, &c, out);
     run_command(resumed, c.options, c.run_id, &c, out);
 }
 
-/// slc run on a surface: the options that apply to surfaces, the others refused by name.
-void surface_command(const RunCommand& o) {
+/// slc run on a surface: the options that apply to surfaces, the others refused by name; from
+/// the checkpoint `from` when given. The caller installs the StopSignals.
+void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
+                     const std::string& id, const Checkpoint* from, OutputFolder& folder) {
     const std::vector<std::pair<bool, const char*>> curve_only = {
         {o.source.speed.has_value(), "--speed"},
         {o.source.field.has_value(), "--field"},
         {o.source.field_file.has_value(), "--field-file"},
-        {o.checkpoint_every != 0, "--checkpoint-every"},
         {o.estimate, "--estimate"},
+        {o.vtk, "--vtk"},
         {o.method.mesh.has_value(), "--mesh"},
         {o.method.smooth.has_value(), "-S/--smooth"},
         {o.method.extension.has_value(), "--extension"},
@@ -439,10 +445,9 @@ void surface_command(const RunCommand& o) {
         {o.method.arcs.has_value(), "--arcs"},
         {o.method.area_correction.has_value(), "--area-correction"},
         {o.method.arc_width.has_value(), "--arc-width"}};
-    for (const auto& [given, name] : curve_only)
-        if (given) throw InvalidInput(fmt::format("{} is for curves, not surfaces", name));
+    for (const auto& [given_option, name] : curve_only)
+        if (given_option) throw InvalidInput(fmt::format("{} is for curves, not surfaces", name));
     apply_threads(o.method.threads);
-    const StopSignals signals;
     run_surface({.problem = o.source.problem,
                  .initial = o.source.initial,
                  .velocity = o.source.velocity,
@@ -458,8 +463,12 @@ void surface_command(const RunCommand& o) {
                  .frames = o.frames,
                  .view = o.view,
                  .quiet = o.quiet,
-                 .out = o.out,
-                 .stop_signal = &stop_signal});
+                 .checkpoint_every = o.checkpoint_every,
+                 .given = given,
+                 .run_id = id,
+                 .from = from,
+                 .stop_signal = &stop_signal},
+                folder);
 }
 
 }  // namespace
@@ -475,13 +484,16 @@ void add_run_command(CLI::App& app) {
         if (o->source.problem.empty() && o->source.initial.empty())
             throw InvalidInput("give --problem NAME or --initial FILE");
         if (o->out.empty()) throw InvalidInput("--out DIR is required");
-        if (is_surface_run(o->source.problem, o->source.initial)) return surface_command(*o);
-        if (o->view) throw InvalidInput("--view is for surfaces, not curves");
+        const bool surface = is_surface_run(o->source.problem, o->source.initial);
+        if (!surface && o->view) throw InvalidInput("--view is for surfaces, not curves");
         const StopSignals signals;
         const std::vector<GivenOption> all = given_options(*cmd, {});
         const std::string id =
             run_identity(all, options_outside_identity, {"--initial", "--field-file"});
         OutputFolder folder(o->out, false);
+        if (surface)
+            return surface_command(*o, options_to_keep(*cmd, *o, folder.path()), id, nullptr,
+                                   folder);
         run_command(*o, options_to_keep(*cmd, *o, folder.path()), id, nullptr, folder);
     });
 }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -42,6 +43,35 @@ HistoryRow row_of(int step, double t, const Surface& s) {
     return {step, t, volume(s), area(s), s.size(), s.empty() ? 0 : component_count(s)};
 }
 
+/// The first steps_done + 1 lines of a history.csv an earlier run wrote (after its header),
+/// read back for a resumed run; InvalidInput naming the file when it is shorter, malformed or
+/// not at time t after steps_done steps.
+std::vector<HistoryRow> read_history(const std::filesystem::path& csv, int steps_done, double t) {
+    const std::string text = read_text_file(csv);
+    std::vector<HistoryRow> rows;
+    std::size_t at = text.find('\n');  // past the header
+    while (at != std::string::npos && rows.size() < static_cast<std::size_t>(steps_done) + 1) {
+        const std::size_t end = text.find('\n', at + 1);
+        if (end == std::string::npos) break;
+        const std::string line = text.substr(at + 1, end - at - 1);
+        HistoryRow h;
+        if (std::sscanf(line.c_str(), "%d,%lf,%lf,%lf,%zu,%zu", &h.step, &h.t, &h.volume, &h.area,
+                        &h.triangles, &h.components) != 6 ||
+            h.step != static_cast<int>(rows.size())) {
+            throw InvalidInput(fmt::format("{}: line {} is not the history of step {}",
+                                           csv.string(), rows.size() + 2, rows.size()));
+        }
+        rows.push_back(h);
+        at = end;
+    }
+    if (rows.size() != static_cast<std::size_t>(steps_done) + 1 || rows.back().t != t) {
+        throw InvalidInput(
+            fmt::format("{}: does not hold the run's {} steps up to t = {} of its checkpoint",
+                        csv.string(), steps_done, t));
+    }
+    return rows;
+}
+
 void draw_history(const std::vector<HistoryRow>& rows, const std::string& title,
                   const std::filesystem::path& path) {
     LinePlot plot{.title = title, .x_name = "t", .panels = {}};
@@ -64,7 +94,7 @@ bool is_surface_run(const std::string& problem, const std::string& initial) {
            (!initial.empty() && is_surface_file(initial));
 }
 
-void run_surface(const SurfaceRunRequest& r) {
+void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     const VelocityParams params = parse_params(r.params);
     SurfaceProblem p;
     SurfaceRunOptions options;
@@ -125,20 +155,29 @@ void run_surface(const SurfaceRunRequest& r) {
         return v;
     };
 
-    OutputFolder folder(r.out, false);
+    const Checkpoint* from = r.from;
+    if (from) check_surface_checkpoint(*from, p.domain, options, folder.target());
     const std::filesystem::path dir = folder.path();
-    std::vector<HistoryRow> history{row_of(0, 0.0, p.initial)};
-    std::string history_text =
-        "step,t,volume,area,triangles,components\n" + history_line(history.back());
-    write_file_atomic(dir / "initial.obj", obj_text(p.initial));
+    std::vector<HistoryRow> history;
+    if (from) {
+        history = read_history(folder.target() / "history.csv", from->surface->steps_done,
+                               from->surface->t);
+    } else {
+        history.push_back(row_of(0, options.t_start, p.initial));
+        write_file_atomic(dir / "initial.obj", obj_text(p.initial));
+    }
+    std::string history_text = "step,t,volume,area,triangles,components\n";
+    for (const HistoryRow& h : history) history_text += history_line(h);
 
     // Frames 0..F at evenly spaced steps, as .vtp (with a .pvd collection) and shaded PNGs.
     const int frames = std::min(r.frames, options.steps);
     std::optional<VtkSeries> series;
     auto frame_png = [&](int i) { return dir / "frames" / fmt::format("frame_{:04d}.png", i); };
     int frames_written = 0;
+    std::vector<double> frame_times;
     auto write_frame = [&](double t, const Surface& s) {
         series->add(t, s);
+        frame_times.push_back(t);
         if (!s.empty()) {
             save_surface_picture(s, frame_png(frames_written),
                                  titled(fmt::format("{}: t = {:.4g}", p.name, t)));
@@ -147,7 +186,13 @@ void run_surface(const SurfaceRunRequest& r) {
     };
     if (frames > 0) {
         series.emplace(dir / "frames.pvd");
-        write_frame(options.t_start, p.initial);
+        if (from) {  // the frames written before the checkpoint, kept in the folder
+            series->keep(from->frame_times);
+            frame_times = from->frame_times;
+            frames_written = from->frames_kept;
+        } else {
+            write_frame(options.t_start, p.initial);
+        }
     }
     const SurfaceObserver observer = [&](const SurfaceStepReport& report) {
         history.push_back(row_of(report.step, report.t, *report.surface));
@@ -160,6 +205,15 @@ void run_surface(const SurfaceRunRequest& r) {
             if (j >= frames_written && first_step_of_j == report.step)
                 write_frame(report.t, *report.surface);
         }
+        const bool stopping = r.stop_signal != nullptr && *r.stop_signal != 0;
+        // Every n steps, and when stopped early, so that --resume loses nothing.
+        if (r.checkpoint_every > 0 && report.step < report.steps && !report.surface->empty() &&
+            (report.step % r.checkpoint_every == 0 || stopping)) {
+            write_file_atomic(dir / "history.csv", history_text);  // never shorter than the run
+            write_checkpoint(
+                dir, {r.given, r.run_id, {}, frames_written, *report.run, frame_times});
+            folder.publish();
+        }
         if (!r.quiet) {
             fmt::print("step {}/{}  t = {:.6g}  {} triangles  volume {:.6g}\n", report.step,
                        report.steps, report.t, report.surface->size(), volume(*report.surface));
@@ -167,10 +221,13 @@ void run_surface(const SurfaceRunRequest& r) {
         }
         return r.stop_signal == nullptr || *r.stop_signal == 0;
     };
-    const SurfaceRunResult result = run(p.initial, *p.law, p.domain, options, observer);
+    const SurfaceRunResult result =
+        from ? resume(*from->surface, *p.law, p.domain, options, observer)
+             : run(p.initial, *p.law, p.domain, options, observer);
 
     const Surface& s = result.surface;
-    const nlohmann::json summary = surface_run_summary(p, p.initial, options, result);
+    nlohmann::json summary = surface_run_summary(p, p.initial, options, result);
+    summary["run_id"] = r.run_id;
     const double e = summary["e_inf"].is_null() ? std::nan("") : summary["e_inf"].get<double>();
     write_file_atomic(dir / "history.csv", history_text);
     draw_history(history, fmt::format("{}: volume and area", p.name), dir / "history.png");
@@ -196,11 +253,12 @@ void run_surface(const SurfaceRunRequest& r) {
         if (result.status != RunStatus::interrupted) {  // the signal came during the writes
             throw Interrupted(signal, fmt::format("{}: {} came after the last step; the results "
                                                   "in {} are written whole",
-                                                  p.name, name, r.out));
+                                                  p.name, name, folder.target().string()));
         }
         throw Interrupted(signal, fmt::format("{}: interrupted by {} after step {} at t = {:.6g}; "
                                               "{} holds the run up to there",
-                                              p.name, name, result.steps_done, result.t, r.out));
+                                              p.name, name, result.steps_done, result.t,
+                                              folder.target().string()));
     }
     if (!r.quiet) {
         fmt::print(
@@ -209,7 +267,7 @@ void run_surface(const SurfaceRunRequest& r) {
             result.steps_done, result.t, to_string(result.status), s.size(),
             summary["volume_change"].get<double>(),
             std::isfinite(e) ? fmt::format(", e_inf {:.3g}", e) : std::string(), result.cpu_s,
-            (std::filesystem::path(r.out) / "summary.json").string());
+            (folder.target() / "summary.json").string());
     }
 }
 

@@ -7,7 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "commands/checkpoint.hpp"
 #include "commands/common.hpp"
+#include "commands/output_folder.hpp"
 
 namespace slc::cli {
 
@@ -28,7 +30,11 @@ struct SurfaceRunRequest {
     int frames = 0;
     std::optional<std::string> view;  ///< "AZ,EL" in degrees
     bool quiet = false;
-    std::string out;
+    /// Write DIR/checkpoint.json every n steps (and when a signal stops the run); 0: never.
+    int checkpoint_every = 0;
+    std::vector<GivenOption> given;    ///< the options to keep in checkpoints
+    std::string run_id;                ///< the run's identity (run_identity)
+    const Checkpoint* from = nullptr;  ///< the checkpoint of --resume, or none
     /// The signal that asked the run to stop (SIGINT, SIGTERM; 0 while none did), read after
     /// every step: the run then ends with status interrupted, writes its results whole and
     /// throws Interrupted.
@@ -38,10 +44,10 @@ struct SurfaceRunRequest {
 /// True when `slc run` was given a surface problem or a surface file.
 bool is_surface_run(const std::string& problem, const std::string& initial);
 
-/// Runs, writes final.obj, final.vtp, final.png, history.csv/.png, frames (frames.pvd,
-/// frames/*.vtp and *.png) and summary.json (last) into out. Throws NumericalFailure after
-/// writing everything when the run ends with status error or unstable, Interrupted when a signal
-/// stopped it.
-void run_surface(const SurfaceRunRequest& request);
+/// Runs (from request.from when given), writes final.obj, final.vtp, final.png,
+/// history.csv/.png, frames (frames.pvd, frames/*.vtp and *.png), checkpoints and summary.json
+/// (last) into folder and commits it. Throws NumericalFailure after writing everything when the
+/// run ends with status error or unstable, Interrupted when a signal stopped it.
+void run_surface(const SurfaceRunRequest& request, OutputFolder& folder);
 
 }  // namespace slc::cli

@@ -59,6 +59,8 @@ struct SurfaceRunResult {
     /// Steps the guards split into sub-steps, and the most sub-steps one step took.
     int split_steps = 0;
     int most_substeps = 1;
+    /// The volume the run started with, which the guard of volume drift compares with.
+    double volume_initial = 0.0;
 };
 
 /// Why a step of length k from `before` to `after` breaks what the law keeps, in one line, or
@@ -77,5 +79,15 @@ std::optional<std::string> surface_invariant_violation(const Invariants& law, co
 /// initial surface. Deterministic: the same for any thread count.
 SurfaceRunResult run(const Surface& initial, const SurfaceVelocityLaw& law, const Box3& domain,
                      const SurfaceRunOptions& options, const SurfaceObserver& observer = {});
+
+/// Continues the run `from` (its surface, t, steps done, counters, clocks and initial volume:
+/// a result of run() or resume() stopped after from.steps_done steps, or read back from a
+/// checkpoint) to t_end with the same options: the surface at the end is the one the run
+/// without a stop gives, bit for bit (a step depends only on the surface and t). Throws
+/// InvalidInput when from.steps_done is not below N, from.t is not the time after that many
+/// steps, or the surface is empty.
+SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& law,
+                        const Box3& domain, const SurfaceRunOptions& options,
+                        const SurfaceObserver& observer = {});
 
 }  // namespace slc

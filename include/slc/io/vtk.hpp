@@ -63,6 +63,11 @@ public:
     void add(double time, const Interface& curves);
     /// Writes a surface at time as the next frame and lists it in the collection; as above.
     void add(double time, const Surface& surface);
+    /// Lists the frames an earlier run wrote (DIR/NAME/frame_0000.vtp, ... at the given times,
+    /// kept in the folder) as this series' first ones and writes the collection whole, so that
+    /// a resumed run goes on after them. Throws InvalidInput naming a frame file that is
+    /// missing, or as add() does.
+    void keep(std::span<const double> times);
     /// Writes each (time, curves) as the next frame, then the collection once: O(total N + F).
     /// Throws as add() does.
     void add(std::span<const std::pair<double, Interface>> frames);

@@ -45,6 +45,36 @@ TEST(SurfaceRun, RunsToTheEndAndReportsEveryStep) {
     EXPECT_NEAR(volume(r.surface) / (4.0 / 3.0 * std::numbers::pi * 0.027), 1.0, 5e-3);
 }
 
+TEST(SurfaceRun, ResumeContinuesBitForBit) {
+    const Surface start = sphere({0.2, 0.0, 0.0}, 0.3, 3);
+    const SurfaceRunOptions o = coarse(1.0, 4);
+    const SurfaceRunResult whole = run(start, SurfaceRotation(), domain, o);
+    const SurfaceRunResult half = run(start, SurfaceRotation(), domain, o,
+                                      [](const SurfaceStepReport& s) { return s.step < 2; });
+    ASSERT_EQ(half.status, RunStatus::interrupted);
+    ASSERT_EQ(half.steps_done, 2);
+    EXPECT_EQ(half.volume_initial, volume(start));
+    int seen = 0;
+    const SurfaceRunResult rest =
+        resume(half, SurfaceRotation(), domain, o, [&](const SurfaceStepReport& s) {
+            EXPECT_EQ(s.step, 3 + seen++);
+            return true;
+        });
+    EXPECT_EQ(seen, 2);
+    EXPECT_EQ(rest.status, RunStatus::ok);
+    EXPECT_EQ(rest.steps_done, 4);
+    EXPECT_EQ(rest.t, whole.t);
+    EXPECT_EQ(rest.surface.vertices, whole.surface.vertices);
+    EXPECT_EQ(rest.surface.triangles, whole.surface.triangles);
+    EXPECT_EQ(rest.g_evals, whole.g_evals);
+    EXPECT_GE(rest.cpu_s, half.cpu_s);
+    // Not after the last step, nor at a time that is not the step's.
+    EXPECT_THROW(resume(whole, SurfaceRotation(), domain, o), InvalidInput);
+    SurfaceRunResult shifted = half;
+    shifted.t += 1e-9;
+    EXPECT_THROW(resume(shifted, SurfaceRotation(), domain, o), InvalidInput);
+}
+
 TEST(SurfaceRun, SphereVanishesUnderMeanCurvature) {
     // R0 = 0.3 vanishes at t = 0.09/4 = 0.0225.
     const SurfaceRunResult r =
