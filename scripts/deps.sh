@@ -6,8 +6,9 @@ slc_packages=(cmake ninja-build g++ pkg-config libcli11-dev nlohmann-json3-dev l
 slc_python_packages=(python3-dev python3-venv python3-setuptools python3-wheel python3-pybind11
                      pybind11-dev python3-numpy python3-pytest python3-matplotlib python3-pandas
                      python3-distributed)
-# The benchmarks' peers, measured beside slc in the same run (scripts/bench): CGAL's AABB_tree.
-slc_bench_packages=(libcgal-dev)
+# The benchmarks' peers, measured beside slc in the same run (scripts/bench): CGAL's AABB_tree,
+# OpenVDB's level-set advection.
+slc_bench_packages=(libcgal-dev libopenvdb-dev)
 
 slc_install_deps() {
   local missing=()
