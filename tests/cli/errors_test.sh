@@ -195,6 +195,15 @@ reject "VTK without a vector array" "scalar.vtk: no point-data array with 2 or 3
 printf -- '-3,-3,1,0\n3,-3,1,0\n-3,3,1,0\n3,3,1,0\n' >small.csv
 reject "curves outside the lattice" "the initial curves leave the region where velocity 'field-file small.csv' is known, \[-3, 3\] x \[-3, 3\]" -- \
     run --initial far.json --t-end 1 --out x --field-file small.csv
+section "surfaces (slc run, slc study)"
+reject "an option of curves" "--vtk is for curves, not surfaces" -- run --problem sphere-rotation --vtk --out x
+reject "a setting of a surface study" "-K/--depth does not apply to the study of a surface" -- \
+    study --problem sphere-rotation -K 4 --out x
+reject "a surface problem without a study" "problem 'enright' has no convergence study" -- \
+    study --problem enright --out x
+reject "--columns for curves" "--columns is for the study of a surface" -- \
+    study --problem circle-curvature --columns 2 --out x
+
 section "output folders, input sizes and memory"
 echo 'not a folder' >afile
 reject "--out at a file" "--out afile: a file exists and is not a folder" -- run --problem vortex -N 1 -K 3 --out afile
