@@ -92,6 +92,10 @@ SurfaceRunOptions resolve(const SurfaceSubject& s, const SurfaceOverrides& q) {
     return o;
 }
 
+/// True when the caller set any of K, P, ε, η: a named problem's surface is then contoured
+/// again with them (as `slc run --problem NAME -K k` does).
+bool sets_contour(const SurfaceOverrides& q) { return q.depth || q.refine || q.eps || q.eta; }
+
 /// The history of a run of a surface: t, volume, area, triangles, components, cpu_s per row.
 struct SurfaceHistory {
     std::vector<double> t, volume, area, triangles, components, cpu_s;
@@ -236,16 +240,25 @@ std::shared_ptr<SurfaceSubject> user_surface_problem(const Array& vertices,
 py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrides& q, int frames,
                              int threads, const py::object& on_step) {
     if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
-    const SurfaceProblem& p = subject.problem;
     const SurfaceRunOptions options = resolve(subject, q);
-    for (const Vec3& v : p.initial.vertices) {
+    SurfaceProblem contoured;  // a named problem's surface at the caller's K, P, ε, η
+    if (subject.named && sets_contour(q)) {
+        contoured.name = subject.problem.name;
+        contoured.domain = subject.problem.domain;
+        contoured.initial_function = subject.problem.initial_function;
+        py::gil_scoped_release release;
+        contour_initial(contoured, options.step.contour);
+    }
+    const SurfaceProblem& p = subject.problem;
+    const Surface& initial = contoured.initial.empty() ? p.initial : contoured.initial;
+    for (const Vec3& v : initial.vertices) {
         if (!p.domain.contains(v)) throw InvalidInput("the surface leaves the domain it runs in");
     }
     SurfaceHistory history;
-    history.add(options.t_start, p.initial, 0.0);
+    history.add(options.t_start, initial, 0.0);
     py::list frame_list;
     if (frames > 0) {
-        const py::tuple a = surface_arrays(p.initial);
+        const py::tuple a = surface_arrays(initial);
         frame_list.append(py::make_tuple(options.t_start, a[0], a[1]));
     }
     double cpu_before = 0.0;
@@ -268,7 +281,7 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrid
     {
         const ThreadScope scope(threads);
         py::gil_scoped_release release;
-        r = run(p.initial, *p.law, p.domain, options, observer);
+        r = run(initial, *p.law, p.domain, options, observer);
     }
     const py::tuple a = surface_arrays(r.surface);
     py::dict out;
@@ -279,7 +292,7 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrid
     out["message"] = r.message;
     out["history"] = history.arrays();
     out["frames"] = frame_list;
-    out["summary"] = python_of(surface_run_summary(p, p.initial, options, r));
+    out["summary"] = python_of(surface_run_summary(p, initial, options, r));
     return out;
 }
 

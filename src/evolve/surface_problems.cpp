@@ -226,6 +226,7 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
             f = [exact](Vec3 x) { return exact(0.0, x); };
         }
         p.initial = contoured(f, p.domain, p.depth, p.eps);
+        p.initial_function = std::move(f);
     }
     return p;
 }
@@ -275,6 +276,12 @@ std::unique_ptr<SurfaceVelocityLaw> make_surface_velocity(const std::string& nam
         fmt::format("unknown velocity '{}' for a surface; known: rotation, translation, enright, "
                     "unit-normal, anisotropic, curvature, volume-preserving-curvature",
                     name));
+}
+
+void contour_initial(SurfaceProblem& p, const SurfaceContourOptions& options) {
+    if (!p.initial_function) return;
+    const auto g = pointwise<Vec3>(p.initial_function);
+    p.initial = contour_surface(g, p.domain, options).surface;
 }
 
 SurfaceRunOptions default_surface_run_options(const Surface& surface, double t_start,

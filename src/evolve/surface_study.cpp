@@ -56,8 +56,6 @@ SurfaceStudyResult surface_study(const SurfaceProblem& problem, int rows, int co
     }
     if (!problem.exact)
         throw InvalidInput(fmt::format("problem '{}' has no exact solution", problem.name));
-    const auto exact = problem.exact;
-    const auto initial_function = pointwise<Vec3>([&exact](Vec3 x) { return exact(0.0, x); });
     SurfaceStudyResult result{rows, columns, {}};
     for (int row = 0; row < rows; ++row) {
         for (int p = 0; p < columns; ++p) {
@@ -65,9 +63,12 @@ SurfaceStudyResult surface_study(const SurfaceProblem& problem, int rows, int co
             cell.row = row;
             cell.refine = p;
             cell.options = surface_study_cell_options(problem, row, p);
-            const Surface initial =
-                contour_surface(initial_function, problem.domain, cell.options.step.contour)
-                    .surface;
+            SurfaceProblem contoured;
+            contoured.domain = problem.domain;
+            contoured.initial_function = problem.initial_function;
+            contour_initial(contoured, cell.options.step.contour);
+            const Surface& initial =
+                contoured.initial.empty() ? problem.initial : contoured.initial;
             const SurfaceRunResult r = run(initial, *problem.law, problem.domain, cell.options);
             cell.status = r.status;
             cell.e_inf =

@@ -72,4 +72,9 @@ expect_error "missing parameter" "velocity 'translation' needs --param uz=VALUE"
 expect_status "carried out of the domain" 3 -- run --initial ball.obj --velocity translation --param ux=2 --param uy=0 --param uz=0 --t-end 1 -N 2 -K 3 --out away
 check "names the boundary" grep -q "domain boundary" err.txt
 check "summary records the error" test "$(json away/summary.json 's["status"]')" = error
+# -K and --eps given: the problem's surface is contoured at them too (its own K 5, eps 1e-4 make
+# about 28,000 triangles; K 4, eps 2e-3 about 2,000).
+expect_ok "a named problem at the run's K and eps" -- run --problem sphere-rotation -N 1 --t-end 0.1 \
+    -K 4 --eps 2e-3 --quiet --out coarse
+check "its initial surface at K 4, eps 2e-3" test "$(grep -c '^f ' coarse/initial.obj)" -lt 5000
 finish

@@ -136,6 +136,9 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         throw InvalidInput(
             fmt::format("eps must be at least eta = {:g}, got {:g}", c.eta, c.resolved_eps()));
     }
+    // A named problem's surface at the run's own K, P, ε and η when they are given: a run at
+    // K = 7 starts from the contour at K = 7, not from the problem's coarser one.
+    if (!r.problem.empty() && (r.depth || r.refine || r.eps || r.eta)) contour_initial(p, c);
     SurfaceView view;
     view.azimuth = p.azimuth;
     view.elevation = p.elevation;
@@ -210,8 +213,8 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         if (r.checkpoint_every > 0 && report.step < report.steps && !report.surface->empty() &&
             (report.step % r.checkpoint_every == 0 || stopping)) {
             write_file_atomic(dir / "history.csv", history_text);  // never shorter than the run
-            write_checkpoint(
-                dir, {r.given, r.run_id, {}, frames_written, *report.run, frame_times});
+            write_checkpoint(dir,
+                             {r.given, r.run_id, {}, frames_written, *report.run, frame_times});
             folder.publish();
         }
         if (!r.quiet) {

@@ -43,6 +43,9 @@ struct SurfaceProblem {
     /// above the xy plane (SurfaceView).
     double azimuth = 35.0;
     double elevation = 25.0;
+    /// The implicit function whose contour is the initial surface (negative inside), empty for
+    /// a surface given by its triangles (box-normal).
+    std::function<double(Vec3)> initial_function;
     /// Its convergence study's first row; unset for a problem without one.
     std::optional<SurfaceStudyPlan> study;
 };
@@ -58,6 +61,11 @@ bool is_surface_problem(const std::string& name);
 /// The problem `name`; params: `speed` of box-normal (1: growing edges round off; −1: shrinking
 /// edges stay sharp). Throws InvalidInput for an unknown name or parameter.
 SurfaceProblem make_surface_problem(const std::string& name, const VelocityParams& params = {});
+
+/// Contours the problem's initial surface again with the given options (the run's K, P and ε),
+/// when it comes from an implicit function; a surface given by its triangles is kept. Throws as
+/// contour_surface() does.
+void contour_initial(SurfaceProblem& problem, const SurfaceContourOptions& options);
 
 /// The built-in law of surfaces `name` with the given parameters (missing ones take defaults):
 ///   rotation        omega [1], ax [0], ay [0], az [1], cx, cy, cz [0]   u = ω a × (x − c)
