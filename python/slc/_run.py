@@ -3,7 +3,6 @@ studies, on top of the module _slc (the library's run loop, with the GIL release
 
 from __future__ import annotations
 
-import math
 import numbers
 from dataclasses import dataclass, field
 from typing import Any, Callable, NamedTuple
@@ -12,6 +11,7 @@ import numpy as np
 
 from . import _slc
 from ._interface import Interface, _interface, _points, _refine
+from ._tables import errors_markdown, nan_array as _array
 from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, run_surface,
                        study_surface)
 
@@ -328,10 +328,6 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     )
 
 
-def _array(values) -> np.ndarray:
-    return np.array([math.nan if v is None else v for v in values], dtype=float)
-
-
 @dataclass
 class Study:
     """The paper's convergence table (§4.2, Tables 5–7) of a problem with an exact solution: row
@@ -352,15 +348,9 @@ class Study:
 
     def table(self) -> str:
         """The errors as a Markdown table, a row per N/S/K/eps and a column per P."""
-        rows, columns = self.errors.shape
-        lines = ["| run | " + " | ".join(f"P = {c}" for c in range(columns)) + " |",
-                 "|---|" + "---|" * columns]
-        for r in range(rows):
-            first = self.cells[r * columns]
-            name = f"{first['N']}/{first['S']}/{first['K']}/{first['eps']:.0e}"
-            lines.append(f"| {name} | " + " | ".join(
-                "—" if math.isnan(e) else f"{e:.2e}" for e in self.errors[r]) + " |")
-        return "\n".join(lines)
+        columns = self.errors.shape[1]
+        names = [f"{c['N']}/{c['S']}/{c['K']}/{c['eps']:.0e}" for c in self.cells[::columns]]
+        return errors_markdown(names, self.errors)
 
 
 @dataclass

@@ -5,7 +5,6 @@ SurfaceProblem."""
 
 from __future__ import annotations
 
-import math
 import numbers
 import warnings
 from dataclasses import dataclass, field
@@ -14,6 +13,7 @@ from typing import Any, Callable, NamedTuple
 import numpy as np
 
 from . import _slc
+from ._tables import errors_markdown, nan_array as _array
 
 
 def _vertices(a) -> np.ndarray:
@@ -247,10 +247,6 @@ def run_surface(p, frames: int, observer: Callable[[SurfaceStep], Any] | None, t
     )
 
 
-def _array(values) -> np.ndarray:
-    return np.array([math.nan if v is None else v for v in values], dtype=float)
-
-
 @dataclass
 class SurfaceStudy:
     """The convergence table of a problem of surfaces: row r runs N·2^r steps at depth K + r
@@ -269,15 +265,9 @@ class SurfaceStudy:
 
     def table(self) -> str:
         """The errors as a Markdown table, a row per N/K/eps and a column per P."""
-        rows, columns = self.errors.shape
-        lines = ["| run | " + " | ".join(f"P = {c}" for c in range(columns)) + " |",
-                 "|---|" + "---|" * columns]
-        for r in range(rows):
-            first = self.cells[r * columns]
-            name = f"{first['N']}/{first['K']}/{first['eps']:.2g}"
-            lines.append(f"| {name} | " + " | ".join(
-                "—" if math.isnan(e) else f"{e:.2e}" for e in self.errors[r]) + " |")
-        return "\n".join(lines)
+        columns = self.errors.shape[1]
+        names = [f"{c['N']}/{c['K']}/{c['eps']:.2g}" for c in self.cells[::columns]]
+        return errors_markdown(names, self.errors)
 
 
 def study_surface(problem: SurfaceProblem, rows: int, columns: int,

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "arrays.hpp"
+#include "calls.hpp"
 #include "laws.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/evolve/defaults.hpp"
@@ -21,11 +22,6 @@
 
 namespace slc::python {
 namespace {
-
-/// A JSON value as the Python object json.loads makes of it.
-py::object python_of(const nlohmann::json& j) {
-    return py::module_::import("json").attr("loads")(j.dump());
-}
 
 /// The run options the caller set (None for unset): steps, depth, refine, eps, eta, smoothing,
 /// extension, arcs, area_correction.
@@ -106,30 +102,6 @@ struct History {
         return h;
     }
 };
-
-/// Sets the worker threads for the life of the object (0: all cores), and restores them.
-class ThreadScope {
-public:
-    explicit ThreadScope(int threads) : before_(thread_count()) {
-        if (threads < 0)
-            throw InvalidInput(fmt::format("threads must be 0 or more, got {}", threads));
-        set_thread_count(threads);
-    }
-    ~ThreadScope() { set_thread_count(before_); }
-    ThreadScope(const ThreadScope&) = delete;
-    ThreadScope& operator=(const ThreadScope&) = delete;
-
-private:
-    int before_;
-};
-
-/// Stops a long call at Ctrl-C: Python's handler has only set a flag while the GIL was released.
-/// Call with the GIL held; true when an interrupt was pending (and is now taken).
-bool interrupted() {
-    if (PyErr_CheckSignals() == 0) return false;
-    py::error_already_set interrupt;  // KeyboardInterrupt, taken and dropped: stop here
-    return true;
-}
 
 /// The problem's law: spec when given (a user's curves), else the problem's built-in one.
 std::unique_ptr<VelocityLaw> law_of(const Problem& p, const std::optional<LawSpec>& spec) {

@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "arrays.hpp"
+#include "calls.hpp"
 #include "laws.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/core/tolerances.hpp"
@@ -26,10 +27,6 @@
 
 namespace slc::python {
 namespace {
-
-py::object python_of(const nlohmann::json& j) {
-    return py::module_::import("json").attr("loads")(j.dump());
-}
 
 /// A problem of surfaces as Python holds it: a named one (its own settings) or a user's surface
 /// (the defaults of default_surface_run_options from t_start).
@@ -118,29 +115,6 @@ struct SurfaceHistory {
         return h;
     }
 };
-
-/// Sets the worker threads for the life of the object (0: all cores), and restores them.
-class ThreadScope {
-public:
-    explicit ThreadScope(int threads) : before_(thread_count()) {
-        if (threads < 0)
-            throw InvalidInput(fmt::format("threads must be 0 or more, got {}", threads));
-        set_thread_count(threads);
-    }
-    ~ThreadScope() { set_thread_count(before_); }
-    ThreadScope(const ThreadScope&) = delete;
-    ThreadScope& operator=(const ThreadScope&) = delete;
-
-private:
-    int before_;
-};
-
-/// True when Ctrl-C is pending (and takes it); call with the GIL held.
-bool interrupted() {
-    if (PyErr_CheckSignals() == 0) return false;
-    py::error_already_set interrupt;
-    return true;
-}
 
 /// (vertices, triangles, notes) of a valid surface made of the arrays, oriented outward;
 /// ValueError naming the triangle, edge or vertex at fault.
