@@ -4,29 +4,36 @@ settings (K, N, eps) and OpenVDB's level-set advection (bench/enright_openvdb.cp
 TVD-RK3, its own EnrightField) at the given resolutions, each on the same threads; writes the
 volume at t = 1.5 (slc: the history) and t = 3, the volume change, the distance of the returned
 surface from the sphere, the status and the wall time into a Markdown table
-(docs/tables/enright.md).
+(docs/tables/enright.md), and slc's surfaces at t = 1.5 and 3 into --figures.
 
 A slc setting's run folder already holding a finished run of the same options (its summary.json)
 is read instead of run again with --reuse: a run at K = 7 takes an hour."""
 import argparse
 import json
+import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 
-def slc_row(slc, work, setting, threads, reuse):
+def slc_row(slc, work, setting, threads, reuse, figures):
     depth, steps, eps = setting.split(":")
     out = Path(work) / f"slc-K{depth}-N{steps}-eps{eps}"
     summary = out / "summary.json"
     if not (reuse and summary.exists()):
         run = subprocess.run([slc, "run", "--problem", "enright", "-K", depth, "-N", steps,
-                              "--eps", eps, "--threads", str(threads), "--out", str(out),
-                              "--quiet"], capture_output=True, text=True)
+                              "--eps", eps, "--threads", str(threads), "--frames", "2",
+                              "--out", str(out), "--quiet"], capture_output=True, text=True)
         if run.returncode not in (0, 3):
             sys.exit(f"slc run --problem enright failed: {run.stderr.strip()}")
     s = json.loads(summary.read_text())
     p = s["params"]
+    if figures and s["status"] == "ok":  # the sheet at t = 1.5 and the sphere back at t = 3
+        Path(figures).mkdir(parents=True, exist_ok=True)
+        for frame, name in ((1, "t1.5"), (2, "t3")):
+            picture = out / "frames" / f"frame_{frame:04d}.png"
+            if picture.exists():
+                shutil.copy(picture, Path(figures) / f"enright_K{depth}_{name}.png")
     if (p["K"], p["N"], p["eps"]) != (int(depth), int(steps), float(eps)):
         sys.exit(f"{summary}: not the run K {depth} N {steps} eps {eps}")
     half = None
@@ -79,6 +86,7 @@ def main():
                         help="slc settings K:N:eps")
     parser.add_argument("--resolutions", nargs="*", type=int, default=[64, 128, 256])
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--figures", help="folder for the pictures of slc's runs that end ok")
     parser.add_argument("--reuse", action="store_true",
                         help="read finished slc runs in --work instead of running them again")
     args = parser.parse_args()
@@ -88,7 +96,8 @@ def main():
             rows.append(openvdb_row(args.openvdb, r, args.threads))
             print(rows[-1], flush=True)
     for setting in args.settings:
-        rows.append(slc_row(args.slc, args.work, setting, args.threads, args.reuse))
+        rows.append(slc_row(args.slc, args.work, setting, args.threads, args.reuse,
+                            args.figures))
         print(rows[-1], flush=True)
     lines = [
         "<!-- written by bench/enright.py (scripts/bench); do not edit -->",
