@@ -215,16 +215,14 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrid
                              int threads, const py::object& on_step) {
     if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
     const SurfaceRunOptions options = resolve(subject, q);
-    SurfaceProblem contoured;  // a named problem's surface at the caller's K, P, ε, η
-    if (subject.named && sets_contour(q)) {
-        contoured.name = subject.problem.name;
-        contoured.domain = subject.problem.domain;
-        contoured.initial_function = subject.problem.initial_function;
-        py::gil_scoped_release release;
-        contour_initial(contoured, options.step.contour);
-    }
     const SurfaceProblem& p = subject.problem;
-    const Surface& initial = contoured.initial.empty() ? p.initial : contoured.initial;
+    Surface initial;  // a named problem's surface at the caller's K, P, ε, η
+    if (subject.named && sets_contour(q)) {
+        py::gil_scoped_release release;
+        initial = initial_surface(p, options.step.contour);
+    } else {
+        initial = p.initial;
+    }
     for (const Vec3& v : initial.vertices) {
         if (!p.domain.contains(v)) throw InvalidInput("the surface leaves the domain it runs in");
     }

@@ -278,10 +278,10 @@ std::unique_ptr<SurfaceVelocityLaw> make_surface_velocity(const std::string& nam
                     name));
 }
 
-void contour_initial(SurfaceProblem& p, const SurfaceContourOptions& options) {
-    if (!p.initial_function) return;
+Surface initial_surface(const SurfaceProblem& p, const SurfaceContourOptions& options) {
+    if (!p.initial_function) return p.initial;
     const auto g = pointwise<Vec3>(p.initial_function);
-    p.initial = contour_surface(g, p.domain, options).surface;
+    return contour_surface(g, p.domain, options).surface;
 }
 
 SurfaceRunOptions default_surface_run_options(const Surface& surface, double t_start,

@@ -90,7 +90,6 @@ std::optional<std::string> surface_invariant_violation(const Invariants& law, co
 
 SurfaceRunResult run(const Surface& initial, const SurfaceVelocityLaw& law, const Box3& domain,
                      const SurfaceRunOptions& options, const SurfaceObserver& observer) {
-    check(options);
     if (initial.empty()) throw InvalidInput("the initial surface has no triangles");
     SurfaceRunResult start;
     start.surface = initial;

@@ -63,12 +63,7 @@ SurfaceStudyResult surface_study(const SurfaceProblem& problem, int rows, int co
             cell.row = row;
             cell.refine = p;
             cell.options = surface_study_cell_options(problem, row, p);
-            SurfaceProblem contoured;
-            contoured.domain = problem.domain;
-            contoured.initial_function = problem.initial_function;
-            contour_initial(contoured, cell.options.step.contour);
-            const Surface& initial =
-                contoured.initial.empty() ? problem.initial : contoured.initial;
+            const Surface initial = initial_surface(problem, cell.options.step.contour);
             const SurfaceRunResult r = run(initial, *problem.law, problem.domain, cell.options);
             cell.status = r.status;
             cell.e_inf =

@@ -138,7 +138,8 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     }
     // A named problem's surface at the run's own K, P, ε and η when they are given: a run at
     // K = 7 starts from the contour at K = 7, not from the problem's coarser one.
-    if (!r.problem.empty() && (r.depth || r.refine || r.eps || r.eta)) contour_initial(p, c);
+    if (!r.problem.empty() && (r.depth || r.refine || r.eps || r.eta))
+        p.initial = initial_surface(p, c);
     SurfaceView view;
     view.azimuth = p.azimuth;
     view.elevation = p.elevation;

@@ -62,10 +62,10 @@ bool is_surface_problem(const std::string& name);
 /// edges stay sharp). Throws InvalidInput for an unknown name or parameter.
 SurfaceProblem make_surface_problem(const std::string& name, const VelocityParams& params = {});
 
-/// Contours the problem's initial surface again with the given options (the run's K, P and ε),
-/// when it comes from an implicit function; a surface given by its triangles is kept. Throws as
+/// The problem's initial surface contoured with the given options (a run's K, P and ε) when it
+/// comes from an implicit function; a surface given by its triangles as it is. Throws as
 /// contour_surface() does.
-void contour_initial(SurfaceProblem& problem, const SurfaceContourOptions& options);
+Surface initial_surface(const SurfaceProblem& problem, const SurfaceContourOptions& options);
 
 /// The built-in law of surfaces `name` with the given parameters (missing ones take defaults):
 ///   rotation        omega [1], ax [0], ay [0], az [1], cx, cy, cz [0]   u = ω a × (x − c)

@@ -43,7 +43,7 @@ using SurfaceStudyObserver = std::function<void(const SurfaceStudyCell&)>;
 
 /// Runs rows × columns cells (rows 1..5, columns 1..5: P = 0..columns − 1) of the problem's
 /// plan. Each run starts from the problem's initial surface contoured with the cell's K, P and
-/// ε (contour_initial), so that the table measures the whole method at that resolution. Throws
+/// ε (initial_surface), so that the table measures the whole method at that resolution. Throws
 /// InvalidInput for a problem without a plan or an exact solution, or rows or columns out of range.
 SurfaceStudyResult surface_study(const SurfaceProblem& problem, int rows, int columns,
                                  const SurfaceStudyObserver& observer = {});
