@@ -58,14 +58,16 @@ class SpeedExpression(_Expression):
     """A normal speed typed as text, as ``slc run --speed``: v(x, y, t, C, nx, ny) with
     muparser's operators and functions and the named constants given
     (``SpeedExpression("a - C", a=0.5)``); v > 0 moves outward, C = -1/R on a circle. Without C
-    it is evaluated off the curve as a NormalSpeed is; with C it takes curvature defaults."""
+    it is evaluated off the curve as a NormalSpeed is; with C it takes curvature defaults.
+    Moving a surface it reads z and nz too, and C is the mean curvature (-2/R on a sphere)."""
 
     kind = "speed"
 
 
 class FieldExpression(_Expression):
     """A flow field typed as text, as ``slc run --field``: "U, V" in x, y, t and the named
-    constants (``FieldExpression("-y, x")``), sampled along the characteristics."""
+    constants (``FieldExpression("-y, x")``), sampled along the characteristics; moving a
+    surface, "U, V, W" in x, y, z, t (``FieldExpression("-y, x, 0")``)."""
 
     kind = "field"
 

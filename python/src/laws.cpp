@@ -154,9 +154,13 @@ std::unique_ptr<SurfaceVelocityLaw> make_surface_law(const LawSpec& spec) {
         throw InvalidInput("geometry is for curves: surfaces have one geometry module");
     if (spec.kind == "builtin")
         return make_surface_velocity(spec.velocity.cast<std::string>(), spec.params);
-    if (spec.kind == "speed" || spec.kind == "field" || spec.kind == "field-file") {
+    if (spec.kind == "speed")
+        return surface_speed_expression_law(spec.velocity.cast<std::string>(), spec.params);
+    if (spec.kind == "field")
+        return surface_field_expression_law(spec.velocity.cast<std::string>(), spec.params);
+    if (spec.kind == "field-file") {
         throw InvalidInput(
-            "expressions and field files move curves; for a surface give a law's name or a "
+            "field files move curves; for a surface give a law's name, an expression or a "
             "Python callable (FlowField, NormalSpeed)");
     }
     if (!spec.params.empty())

@@ -1,6 +1,6 @@
 """Tests of moving surfaces from Python: the Surface, runs under built-in laws and laws written in
-Python (against the built-in law they must equal, or an exact solution), named problems,
-studies, observers and errors."""
+Python or as expressions (against the built-in law they must equal, or an exact solution), named
+problems, studies, observers and errors."""
 
 import math
 
@@ -66,6 +66,11 @@ def test_python_laws_equal_the_built_in_ones_bit_for_bit():
     grow = slc.run(s, "unit-normal", 0.05, **options)
     speed = slc.run(s, slc.NormalSpeed(lambda t, p, n: np.ones(len(p))), 0.05, **options)
     assert np.array_equal(grow.surface.vertices, speed.surface.vertices)
+    # Expressions too.
+    typed = slc.run(s, slc.FieldExpression("-y, x, 0"), 0.5, **options)
+    assert np.array_equal(built_in.surface.vertices, typed.surface.vertices)
+    typed = slc.run(s, slc.SpeedExpression("v", v=1), 0.05, **options)
+    assert np.array_equal(grow.surface.vertices, typed.surface.vertices)
     # Unit speed: the sphere of radius 0.55, to the contour's tolerance (measured 1.4e-4).
     assert np.abs(np.linalg.norm(grow.surface.vertices, axis=1) - 0.55).max() < 3e-3
 
@@ -131,8 +136,10 @@ def test_bad_input_to_a_run_of_a_surface_is_refused():
         slc.run(s, "rotation", 1.0, arcs=True)
     with pytest.raises(ValueError, match="unknown velocity 'spin'"):
         slc.run(s, "spin", 1.0)
-    with pytest.raises(ValueError, match="expressions and field files move curves"):
-        slc.run(s, slc.SpeedExpression("1"), 1.0)
+    with pytest.raises(ValueError, match="field files move curves"):
+        slc.run(s, slc.FieldFile("f.csv"), 1.0)
+    with pytest.raises(ValueError, match="a flow field needs three"):
+        slc.run(s, slc.FieldExpression("-y, x"), 1.0)
     with pytest.raises(ValueError, match=r"must return \(m, 3\) velocities"):
         slc.run(s, slc.FlowField(lambda t, p: p[:, :2]), 1.0, steps=1, depth=3)
     with pytest.raises(ValueError, match="must come after"):

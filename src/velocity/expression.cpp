@@ -1,5 +1,6 @@
 // Velocity laws typed as text: a normal speed v(x, y, t, C, nx, ny) and a flow field
-// (u, v)(x, y, t), parsed and evaluated by muparser, one parser per worker thread.
+// (u, v)(x, y, t) for curves, v(x, y, z, t, C, nx, ny, nz) and (u, v, w)(x, y, z, t) for
+// surfaces, parsed and evaluated by muparser, one parser per worker thread.
 #include "slc/velocity/expression.hpp"
 
 #include <fmt/format.h>
@@ -20,7 +21,7 @@ namespace slc {
 namespace {
 
 /// An expression, what it is for messages ("speed expression"), its variables, the caller's
-/// named constants, and how many values it must give.
+/// named constants, and how many values it must give (1: a speed, 2 or 3: a field).
 struct ExpressionSpec {
     std::string text;
     std::string what;
@@ -28,6 +29,19 @@ struct ExpressionSpec {
     VelocityParams constants;
     int values = 1;
 };
+
+/// The most variables of any expression: a speed on surfaces.
+constexpr std::size_t max_variables = surface_speed_variables.size();
+static_assert(max_variables >= speed_variables.size());
+
+/// Why a field gives the wrong number of values: "a flow field needs two, u and v, ...".
+std::string field_count_message(int wanted, int count) {
+    return fmt::format(
+        "gives {} value{}; a flow field needs {} separated by commas ({})", count,
+        count == 1 ? "" : "s",
+        wanted == 2 ? "two, u and v," : "three, u, v and w,",
+        wanted == 2 ? "\"-y, x\"" : "\"-y, x, 0\"");
+}
 
 /// The expression as shown in a message: on one line.
 std::string shown(const std::string& text) {
@@ -88,7 +102,7 @@ public:
     Evaluator& operator=(const Evaluator&) = delete;
 
     /// The variables, in the order of ExpressionSpec::variables.
-    std::array<double, speed_variables.size()>& variables() { return variables_; }
+    std::array<double, max_variables>& variables() { return variables_; }
     /// The expression's values at the current variables; count: how many.
     const double* values(int& count) { return parser_.Eval(count); }
     /// The value of a one-valued expression at the current variables.
@@ -99,7 +113,7 @@ public:
     bool is_function(const std::string& name) const { return parser_.GetFunDef().count(name) != 0; }
 
 private:
-    std::array<double, speed_variables.size()> variables_{};
+    std::array<double, max_variables> variables_{};
     mu::Parser parser_;
 };
 
@@ -125,9 +139,7 @@ public:
                                ? fmt::format("gives {} values separated by commas; a normal "
                                              "speed is one",
                                              count)
-                               : fmt::format("gives {} value{}; a flow field needs two, u and v, "
-                                             "separated by a comma (\"-y, x\")",
-                                             count, count == 1 ? "" : "s"));
+                               : field_count_message(spec_.values, count));
             }
             for (const auto& [name, address] : e->used()) used_.push_back(name);
         } catch (const mu::Parser::exception_type& error) {
@@ -299,6 +311,92 @@ private:
     std::shared_ptr<const EvaluatorPool> pool_;
 };
 
+/// Variable indices in surface_speed_variables (surface_field_variables are its first four).
+enum SurfaceVariable : std::size_t { sv_x, sv_y, sv_z, sv_t, sv_c, sv_nx, sv_ny, sv_nz };
+
+/// Sets the point and time of a surface expression's variables.
+void set_point(Evaluator& e, Vec3 p, double t) {
+    auto& v = e.variables();
+    v[sv_x] = p.x;
+    v[sv_y] = p.y;
+    v[sv_z] = p.z;
+    v[sv_t] = t;
+}
+
+/// v(x, y, z, t, nx, ny, nz): a normal law of surfaces, evaluated at any point with any normal.
+class SurfaceSpeedExpression final : public SurfaceNormalLaw {
+public:
+    explicit SurfaceSpeedExpression(std::shared_ptr<const EvaluatorPool> pool)
+        : pool_(std::move(pool)) {}
+    std::string name() const override { return "speed = " + shown(pool_->spec().text); }
+    void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
+                       std::span<double> out) const override {
+        pool_->for_each(points.size(), [&](Evaluator& e, std::size_t i) {
+            set_point(e, points[i], t);
+            auto& v = e.variables();
+            v[sv_nx] = normals[i].x;
+            v[sv_ny] = normals[i].y;
+            v[sv_nz] = normals[i].z;
+            out[i] = e.value();
+        });
+    }
+
+private:
+    std::shared_ptr<const EvaluatorPool> pool_;
+};
+
+/// v(x, y, z, t, C, nx, ny, nz) with the mean curvature: known at the vertices only.
+class SurfaceCurvatureSpeedExpression final : public SurfaceVelocityLaw {
+public:
+    explicit SurfaceCurvatureSpeedExpression(std::shared_ptr<const EvaluatorPool> pool)
+        : pool_(std::move(pool)) {}
+    std::string name() const override { return "speed = " + shown(pool_->spec().text); }
+    GeometryNeeds needs() const override { return {.normals = true, .curvature = true}; }
+    std::vector<Vec3> velocities(double t, const Surface& surface,
+                                 const SurfaceGeometry& g) const override {
+        const std::size_t n = surface.vertices.size();
+        if (g.normals.size() != n || g.curvature.size() != n) {
+            throw InvalidInput(
+                fmt::format("velocity '{}' needs the normals and curvature at the vertices "
+                            "(vertex_velocities computes them)",
+                            name()));
+        }
+        std::vector<Vec3> u(n);
+        pool_->for_each(n, [&](Evaluator& e, std::size_t i) {
+            set_point(e, surface.vertices[i], t);
+            auto& v = e.variables();
+            v[sv_c] = g.curvature[i];
+            v[sv_nx] = g.normals[i].x;
+            v[sv_ny] = g.normals[i].y;
+            v[sv_nz] = g.normals[i].z;
+            u[i] = e.value() * g.normals[i];
+        });
+        return u;
+    }
+
+private:
+    std::shared_ptr<const EvaluatorPool> pool_;
+};
+
+/// (u, v, w)(x, y, z, t): a flow field in space.
+class SurfaceFieldExpression final : public SurfaceFlowFieldLaw {
+public:
+    explicit SurfaceFieldExpression(std::shared_ptr<const EvaluatorPool> pool)
+        : pool_(std::move(pool)) {}
+    std::string name() const override { return "field = (" + shown(pool_->spec().text) + ")"; }
+    void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override {
+        pool_->for_each(points.size(), [&](Evaluator& e, std::size_t i) {
+            set_point(e, points[i], t);
+            int count = 0;
+            const double* uvw = e.values(count);
+            out[i] = {uvw[0], uvw[1], uvw[2]};
+        });
+    }
+
+private:
+    std::shared_ptr<const EvaluatorPool> pool_;
+};
+
 }  // namespace
 
 std::unique_ptr<VelocityLaw> speed_expression_law(const std::string& expression,
@@ -314,6 +412,20 @@ std::unique_ptr<VelocityLaw> field_expression_law(const std::string& expression,
                                                   const VelocityParams& constants) {
     return std::make_unique<FieldExpression>(std::make_shared<const EvaluatorPool>(
         ExpressionSpec{expression, "field expression", field_variables, constants, 2}));
+}
+
+std::unique_ptr<SurfaceVelocityLaw> surface_speed_expression_law(const std::string& expression,
+                                                                 const VelocityParams& constants) {
+    auto pool = std::make_shared<const EvaluatorPool>(
+        ExpressionSpec{expression, "speed expression", surface_speed_variables, constants, 1});
+    if (pool->uses("C")) return std::make_unique<SurfaceCurvatureSpeedExpression>(std::move(pool));
+    return std::make_unique<SurfaceSpeedExpression>(std::move(pool));
+}
+
+std::unique_ptr<SurfaceVelocityLaw> surface_field_expression_law(const std::string& expression,
+                                                                 const VelocityParams& constants) {
+    return std::make_unique<SurfaceFieldExpression>(std::make_shared<const EvaluatorPool>(
+        ExpressionSpec{expression, "field expression", surface_field_variables, constants, 3}));
 }
 
 }  // namespace slc

@@ -1,6 +1,6 @@
 # slc run on surfaces (DESIGN §8): a user's surface under built-in laws of surfaces against exact
-# motions (offsets, rotation, mean curvature), a named problem, frames, the same output for any
-# thread count, and errors.
+# motions (offsets, rotation, mean curvature), laws as expressions, a named problem, frames, the
+# same output for any thread count, and errors.
 source "$(dirname "$0")/lib.sh" "$1"
 
 json() {  # json FILE EXPRESSION: prints a Python expression of the parsed file `s`
@@ -59,13 +59,27 @@ expect_ok "a view from below" -- run --initial ball.obj --velocity unit-normal -
 expect_ok "the default view" -- run --initial ball.obj --velocity unit-normal --t-end 0.01 -N 1 -K 3 --out above --quiet
 check "the pictures differ" test "$(cmp -s below/final.png above/final.png && echo same)" != same
 check "the surfaces do not" cmp -s below/final.obj above/final.obj
+
+# Laws as expressions: the same surfaces as the built-in laws they spell.
+expect_ok "--speed 1" -- run --initial ball.obj --speed 1 --t-end 0.01 -N 1 -K 3 --out speed1 --quiet
+check "--speed 1 moves as unit-normal" cmp -s speed1/final.obj above/final.obj
+check "the law is named in the summary" test "$(json speed1/summary.json 's["velocity"]')" = "speed = 1"
+expect_ok "--speed C" -- run --initial ball.obj --speed C --t-end 0.005 -N 1 -K 3 --out speedC --quiet
+expect_ok "--velocity curvature" -- run --initial ball.obj --velocity curvature --t-end 0.005 -N 1 -K 3 --out curv1 --quiet
+check "--speed C moves as curvature" cmp -s speedC/final.obj curv1/final.obj
+expect_ok "--field -y,x,0" -- run --initial ball.obj --field "-y, x, 0" --t-end 0.1 -N 1 -K 3 --out field --quiet
+expect_ok "--velocity rotation" -- run --initial ball.obj --velocity rotation --t-end 0.1 -N 1 -K 3 --out rot1 --quiet
+check "--field -y,x,0 moves as rotation" cmp -s field/final.obj rot1/final.obj
+expect_error "a field of two values" "field expression '-y, x': gives 2 values; a flow field needs three, u, v and w" -- run --initial ball.obj --field "-y, x" --t-end 1 --out x
+expect_error "two laws" "give one velocity law of --velocity, --speed and --field, got --velocity and --speed" -- run --initial ball.obj --velocity curvature --speed 1 --t-end 1 --out x
 expect_error "a view of one number" "--view must be two finite numbers AZ,EL in degrees, got '30'" -- run --initial ball.obj --velocity curvature --t-end 1 --view 30 --out x
 expect_error "a view for curves" "--view is for surfaces, not curves" -- run --problem vortex --view 30,20 --out x
 
 # Errors.
 expect_error "unknown law" "unknown velocity 'spin' for a surface; known: rotation" -- run --initial ball.obj --velocity spin --t-end 1 --out x
-expect_error "a law of curves' options" "--speed is for curves, not surfaces" -- run --initial ball.obj --speed 1 --t-end 1 --out x
-expect_error "no law" "--initial with a surface needs --velocity NAME" -- run --initial ball.obj --t-end 1 --out x
+touch f.csv
+expect_error "a law of curves' options" "--field-file is for curves, not surfaces" -- run --initial ball.obj --field-file f.csv --t-end 1 --out x
+expect_error "no law" "--initial with a surface needs --velocity NAME, --speed or --field" -- run --initial ball.obj --t-end 1 --out x
 expect_error "no end" "--initial needs --t-end" -- run --initial ball.obj --velocity curvature --out x
 expect_error "unknown parameter" "problem 'sphere-rotation' has no parameter 'x'; it takes none" -- run --problem sphere-rotation --param x=1 --out x
 expect_error "missing parameter" "velocity 'translation' needs --param uz=VALUE" -- run --initial ball.obj --velocity translation --param ux=1 --param uy=0 --t-end 1 --out x

@@ -22,11 +22,13 @@ void add_problem_source_options(CLI::App& cmd, ProblemSource& o) {
                    "Normal speed v as an expression of x, y, t, C (curvature, -1/R on a circle), "
                    "nx, ny (outward unit normal) and --param constants: u = v N, v > 0 moves "
                    "outward (\"1\" grows circles, \"C\" is curvature flow, \"a - C\" with "
-                   "--param a=0.5). Instead of --velocity")
+                   "--param a=0.5). For surfaces also z and nz, C the mean curvature (-2/R on a "
+                   "sphere). Instead of --velocity")
         ->excludes(problem);
     cmd.add_option("--field", o.field,
                    "Flow field u,v as two expressions of x, y, t and --param constants, separated "
-                   "by a comma (\"-y, x\" rotates about the origin). Instead of --velocity")
+                   "by a comma (\"-y, x\" rotates about the origin); for surfaces u,v,w of x, "
+                   "y, z, t (\"-y, x, 0\"). Instead of --velocity")
         ->excludes(problem);
     cmd.add_option("--field-file", o.field_file,
                    "Steady flow field on a uniform lattice, bilinearly interpolated: CSV lines "

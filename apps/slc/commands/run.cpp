@@ -433,8 +433,6 @@ void resume_command(const CLI::App& cmd, const RunCommand& o) {
 void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                      const std::string& id, const Checkpoint* from, OutputFolder& folder) {
     const std::vector<std::pair<bool, const char*>> curve_only = {
-        {o.source.speed.has_value(), "--speed"},
-        {o.source.field.has_value(), "--field"},
         {o.source.field_file.has_value(), "--field-file"},
         {o.estimate, "--estimate"},
         {o.vtk, "--vtk"},
@@ -451,6 +449,8 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
     run_surface({.problem = o.source.problem,
                  .initial = o.source.initial,
                  .velocity = o.source.velocity,
+                 .speed = o.source.speed,
+                 .field = o.source.field,
                  .params = o.source.params,
                  .t_end = o.source.t_end,
                  .domain = o.source.domain,

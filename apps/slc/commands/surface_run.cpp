@@ -23,6 +23,7 @@
 #include "slc/io/surface_files.hpp"
 #include "slc/io/surface_picture.hpp"
 #include "slc/io/vtk.hpp"
+#include "slc/velocity/expression.hpp"
 
 namespace slc::cli {
 namespace {
@@ -114,14 +115,25 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
                                 .refine_passes = SurfaceContourOptions::until_converged,
                                 .eps = p.eps};
     } else {
-        if (r.velocity.empty())
-            throw InvalidInput("--initial with a surface needs --velocity NAME");
+        std::vector<std::string> laws;
+        if (!r.velocity.empty()) laws.push_back("--velocity");
+        if (r.speed) laws.push_back("--speed");
+        if (r.field) laws.push_back("--field");
+        if (laws.empty())
+            throw InvalidInput("--initial with a surface needs --velocity NAME, --speed or --field");
+        if (laws.size() > 1) {
+            throw InvalidInput(fmt::format(
+                "give one velocity law of --velocity, --speed and --field, got {} and {}",
+                laws[0], laws[1]));
+        }
         if (!r.t_end) throw InvalidInput("--initial needs --t-end");
         LoadedSurface in = load_surface(r.initial, r.domain);
         p.name = std::filesystem::path(r.initial).stem().string();
         p.initial = std::move(in.surface);
         p.domain = in.domain;
-        p.law = make_surface_velocity(r.velocity, params);
+        p.law = r.speed   ? surface_speed_expression_law(*r.speed, params)
+                : r.field ? surface_field_expression_law(*r.field, params)
+                          : make_surface_velocity(r.velocity, params);
         p.t_end = *r.t_end;
         options = default_surface_run_options(p.initial, 0.0, p.t_end);
     }

@@ -1,5 +1,5 @@
 // slc run on a surface (DESIGN §8): a named surface problem, or the user's surface file under a
-// built-in law of surfaces.
+// built-in law of surfaces or an expression.
 #pragma once
 
 #include <atomic>
@@ -17,7 +17,9 @@ namespace slc::cli {
 struct SurfaceRunRequest {
     std::string problem;              ///< a surface problem, or empty
     std::string initial;              ///< a surface file, or empty
-    std::string velocity;             ///< the law of --initial
+    std::string velocity;             ///< the law of --initial by name, or empty
+    std::optional<std::string> speed;  ///< or a normal speed expression (--speed)
+    std::optional<std::string> field;  ///< or a flow field expression "U, V, W" (--field)
     std::vector<std::string> params;  ///< key=value
     std::optional<double> t_end;
     DomainOptions domain;

@@ -1,6 +1,7 @@
-// Tests of velocity laws typed as expressions: the values against the built-in laws they spell,
-// the kind of law (normal, curvature, field) each expression makes, constants, errors with one
-// line naming the expression, and values that do not depend on the thread count.
+// Tests of velocity laws typed as expressions, of curves and of surfaces: the values against the
+// built-in laws they spell, the kind of law (normal, curvature, field) each expression makes,
+// constants, errors with one line naming the expression, and values that do not depend on the
+// thread count.
 #include "slc/velocity/expression.hpp"
 
 #include <gtest/gtest.h>
@@ -12,8 +13,11 @@
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/geometry/shapes.hpp"
+#include "slc/geometry/surface_shapes.hpp"
+#include "slc/geometry_modules/surface_geometry.hpp"
 #include "slc/geometry_modules/intrinsic.hpp"
 #include "slc/velocity/laws.hpp"
+#include "slc/velocity/surface_laws.hpp"
 
 namespace slc {
 namespace {
@@ -200,6 +204,89 @@ TEST(Expression, ConcurrentCallsOfOneLawAgree) {
     for (int k = 0; k < 4; ++k)
         got[static_cast<std::size_t>(k)] = field_velocities(*law, 2.0, points);
     for (const auto& g : got) EXPECT_EQ(g, expected);
+}
+
+TEST(SurfaceExpression, OneIsTheUnitNormalLawAndReadsZ) {
+    const auto law = surface_speed_expression_law("1");
+    const SurfaceNormalSpeed builtin(1.0);
+    EXPECT_TRUE(law->is_normal_law());
+    EXPECT_FALSE(law->needs().curvature);
+    EXPECT_EQ(law->name(), "speed = 1");
+    const Surface ball = sphere({0.1, 0.2, 0.3}, 0.7, 2);
+    EXPECT_EQ(vertex_velocities(*law, 0.0, ball), vertex_velocities(builtin, 0.0, ball));
+
+    const auto all = surface_speed_expression_law("x + 10*y + 100*z + 1000*t + 1e4*nx + 1e5*ny "
+                                                  "+ 1e6*nz");
+    const std::vector<Vec3> points = {{1, 2, 3}}, normals = {{0.6, 0.0, -0.8}};
+    std::vector<double> v(1);
+    all->normal_speeds(0.5, points, normals, v);
+    EXPECT_NEAR(v[0], 1 + 20 + 300 + 500 + 6000 - 800000, 1e-9);
+}
+
+TEST(SurfaceExpression, WithCurvatureIsMeanCurvatureFlow) {
+    const auto law = surface_speed_expression_law("C");
+    EXPECT_FALSE(law->is_normal_law());
+    EXPECT_TRUE(law->needs().curvature);
+    const SurfaceMeanCurvatureFlow builtin;
+    const Surface ball = sphere({}, 0.5, 3);
+    EXPECT_EQ(vertex_velocities(*law, 0.0, ball), vertex_velocities(builtin, 0.0, ball));
+    // A constant with the curvature: a − C.
+    const auto shifted = surface_speed_expression_law("a - C", {{"a", 0.5}});
+    const auto u = vertex_velocities(*shifted, 0.0, ball);
+    const auto c = vertex_velocities(builtin, 0.0, ball);
+    const SurfaceGeometry g = surface_geometry(ball, {});
+    for (std::size_t i = 0; i < u.size(); ++i)
+        EXPECT_NEAR(norm(u[i] - (0.5 * g.normals[i] - c[i])), 0.0, rounding_tolerance);
+}
+
+TEST(SurfaceExpression, FieldMinusYXZeroIsTheRotation) {
+    const auto law = surface_field_expression_law("-y, x, 0");
+    EXPECT_TRUE(law->is_field());
+    EXPECT_EQ(law->name(), "field = (-y, x, 0)");
+    const SurfaceRotation builtin;
+    const Surface ball = sphere({0.2, -0.1, 0.3}, 0.4, 2);
+    EXPECT_EQ(vertex_velocities(*law, 0.3, ball), vertex_velocities(builtin, 0.3, ball));
+    const auto w = field_velocities(*surface_field_expression_law("z*k, t, x", {{"k", 2.0}}), 0.5,
+                                    std::vector<Vec3>{{1, 2, 3}});
+    EXPECT_EQ(w[0], (Vec3{6.0, 0.5, 1.0}));
+}
+
+TEST(SurfaceExpression, BadExpressionsThrowOneLineNamingThem) {
+    struct Case {
+        std::string expression;
+        bool field;
+        std::string expected;  // part of the message
+    };
+    const std::vector<Case> cases = {
+        {"w + 1", false,
+         "unknown name 'w' at position 0 (the variables are x, y, z, t, C, nx, ny, nz)"},
+        {"", false, "speed expression is empty"},
+        {"1, 2", false, "gives 2 values separated by commas; a normal speed is one"},
+        {"-y, x", true, "gives 2 values; a flow field needs three, u, v and w"},
+        {"C, x, y", true, "unknown name 'C' at position 0 (the variables are x, y, z, t)"},
+    };
+    for (const Case& c : cases) {
+        const std::string m = invalid_input_message([&] {
+            if (c.field)
+                surface_field_expression_law(c.expression);
+            else
+                surface_speed_expression_law(c.expression);
+        });
+        EXPECT_NE(m.find(c.expected), std::string::npos) << c.expression << ": " << m;
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
+    EXPECT_NE(invalid_input_message([] { surface_speed_expression_law("1", {{"z", 1.0}}); })
+                  .find("the constant 'z' is a variable"),
+              std::string::npos);
+}
+
+TEST(SurfaceExpression, NonFiniteValuesAreNumericalFailures) {
+    const Surface ball = sphere({}, 1.0, 1);
+    EXPECT_THROW(vertex_velocities(*surface_speed_expression_law("1 / (z - z)"), 0.0, ball),
+                 NumericalFailure);
+    EXPECT_THROW(field_velocities(*surface_field_expression_law("sqrt(z), 0, 0"), 0.0,
+                                  std::vector<Vec3>{{0, 0, -1}}),
+                 NumericalFailure);
 }
 
 }  // namespace
