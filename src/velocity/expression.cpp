@@ -36,11 +36,9 @@ static_assert(max_variables >= speed_variables.size());
 
 /// Why a field gives the wrong number of values: "a flow field needs two, u and v, ...".
 std::string field_count_message(int wanted, int count) {
-    return fmt::format(
-        "gives {} value{}; a flow field needs {} separated by commas ({})", count,
-        count == 1 ? "" : "s",
-        wanted == 2 ? "two, u and v," : "three, u, v and w,",
-        wanted == 2 ? "\"-y, x\"" : "\"-y, x, 0\"");
+    return fmt::format("gives {} value{}; a flow field needs {} separated by commas ({})", count,
+                       count == 1 ? "" : "s", wanted == 2 ? "two, u and v," : "three, u, v and w,",
+                       wanted == 2 ? "\"-y, x\"" : "\"-y, x, 0\"");
 }
 
 /// The expression as shown in a message: on one line.

@@ -120,11 +120,12 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         if (r.speed) laws.push_back("--speed");
         if (r.field) laws.push_back("--field");
         if (laws.empty())
-            throw InvalidInput("--initial with a surface needs --velocity NAME, --speed or --field");
+            throw InvalidInput(
+                "--initial with a surface needs --velocity NAME, --speed or --field");
         if (laws.size() > 1) {
             throw InvalidInput(fmt::format(
-                "give one velocity law of --velocity, --speed and --field, got {} and {}",
-                laws[0], laws[1]));
+                "give one velocity law of --velocity, --speed and --field, got {} and {}", laws[0],
+                laws[1]));
         }
         if (!r.t_end) throw InvalidInput("--initial needs --t-end");
         LoadedSurface in = load_surface(r.initial, r.domain);

@@ -15,12 +15,12 @@ namespace slc::cli {
 
 /// What `slc run` was given, for a surface.
 struct SurfaceRunRequest {
-    std::string problem;              ///< a surface problem, or empty
-    std::string initial;              ///< a surface file, or empty
-    std::string velocity;             ///< the law of --initial by name, or empty
+    std::string problem;               ///< a surface problem, or empty
+    std::string initial;               ///< a surface file, or empty
+    std::string velocity;              ///< the law of --initial by name, or empty
     std::optional<std::string> speed;  ///< or a normal speed expression (--speed)
     std::optional<std::string> field;  ///< or a flow field expression "U, V, W" (--field)
-    std::vector<std::string> params;  ///< key=value
+    std::vector<std::string> params;   ///< key=value
     std::optional<double> t_end;
     DomainOptions domain;
     std::optional<int> steps;

@@ -35,8 +35,8 @@ inline constexpr std::array<std::string_view, 3> field_variables = {"x", "y", "t
 /// The variables of a normal speed expression on surfaces: the point (x, y, z), the time t, the
 /// mean curvature C = −∇·N (−2/R on a sphere of radius R, so "C" is mean curvature flow), and
 /// the outward unit normal (nx, ny, nz).
-inline constexpr std::array<std::string_view, 8> surface_speed_variables = {
-    "x", "y", "z", "t", "C", "nx", "ny", "nz"};
+inline constexpr std::array<std::string_view, 8> surface_speed_variables = {"x", "y",  "z",  "t",
+                                                                            "C", "nx", "ny", "nz"};
 /// The variables of a flow field expression in space: the point (x, y, z) and the time t.
 inline constexpr std::array<std::string_view, 4> surface_field_variables = {"x", "y", "z", "t"};
 

@@ -14,8 +14,8 @@
 #include "slc/core/parallel.hpp"
 #include "slc/geometry/shapes.hpp"
 #include "slc/geometry/surface_shapes.hpp"
-#include "slc/geometry_modules/surface_geometry.hpp"
 #include "slc/geometry_modules/intrinsic.hpp"
+#include "slc/geometry_modules/surface_geometry.hpp"
 #include "slc/velocity/laws.hpp"
 #include "slc/velocity/surface_laws.hpp"
 
@@ -215,8 +215,9 @@ TEST(SurfaceExpression, OneIsTheUnitNormalLawAndReadsZ) {
     const Surface ball = sphere({0.1, 0.2, 0.3}, 0.7, 2);
     EXPECT_EQ(vertex_velocities(*law, 0.0, ball), vertex_velocities(builtin, 0.0, ball));
 
-    const auto all = surface_speed_expression_law("x + 10*y + 100*z + 1000*t + 1e4*nx + 1e5*ny "
-                                                  "+ 1e6*nz");
+    const auto all = surface_speed_expression_law(
+        "x + 10*y + 100*z + 1000*t + 1e4*nx + 1e5*ny "
+        "+ 1e6*nz");
     const std::vector<Vec3> points = {{1, 2, 3}}, normals = {{0.6, 0.0, -0.8}};
     std::vector<double> v(1);
     all->normal_speeds(0.5, points, normals, v);
@@ -275,8 +276,9 @@ TEST(SurfaceExpression, BadExpressionsThrowOneLineNamingThem) {
         EXPECT_NE(m.find(c.expected), std::string::npos) << c.expression << ": " << m;
         EXPECT_EQ(m.find('\n'), std::string::npos) << m;
     }
-    EXPECT_NE(invalid_input_message([] { surface_speed_expression_law("1", {{"z", 1.0}}); })
-                  .find("the constant 'z' is a variable"),
+    EXPECT_NE(invalid_input_message([] {
+                  surface_speed_expression_law("1", {{"z", 1.0}});
+              }).find("the constant 'z' is a variable"),
               std::string::npos);
 }
 
