@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,10 @@ void validate(const SurfaceContourOptions& o, const Box3& domain) {
         throw InvalidInput(
             fmt::format("refinement passes P must be >= 0, got {}", o.refine_passes));
     }
+    if (o.distance_slack && !(*o.distance_slack >= 0.0 && std::isfinite(*o.distance_slack))) {
+        throw InvalidInput(
+            fmt::format("distance slack must be >= 0 and finite, got {}", *o.distance_slack));
+    }
     if (o.eps && (!positive(*o.eps) || *o.eps < o.eta)) {
         throw InvalidInput(fmt::format("eps must be at least eta = {}, got {}", o.eta, *o.eps));
     }
@@ -59,52 +64,123 @@ void validate(const SurfaceContourOptions& o, const Box3& domain) {
 
 using Evaluator = contouring::SpaceEvaluator;
 
+/// G, or a stand-in for it, at a sample point of the tree.
+struct Sample {
+    double value;  ///< G, or a stand-in: a lower bound of |G| with G's sign
+    double upper;  ///< |G| ≤ upper: |value| when exact
+    bool exact;    ///< value is G
+};
+/// A point waiting for G.
+constexpr Sample pending{std::numeric_limits<double>::quiet_NaN(),
+                         std::numeric_limits<double>::infinity(), false};
+
 /// G at the grid points of the tree's cells (corners and centres, on the grid of half the finest
-/// edge), each evaluated once, and the least |G| at each cell's nine points.
+/// edge), each point evaluated at most once and only where a split test, the sign of a
+/// tetrahedron or root finding needs it, and the least |G| at each cell's nine points.
+///
+/// With SurfaceContourOptions::distance_slack δ, |G(x) − G(y)| ≤ |x − y| + δ, so a new point x
+/// near a known sample y has |G(y)| − |x − y| − δ ≤ |G(x)| ≤ |G(y)| + |x − y| + δ and, when the
+/// lower bound exceeds η, G(y)'s sign: the lower bound with that sign stands in for G. A cell's
+/// split test needs no value where some sample's upper bound is below its threshold γ·edge (it
+/// splits), nor where a stand-in's lower bound reaches it; the stand-ins it does need are
+/// evaluated first (settle_tests). So every split is the one exact values give, and the tree is
+/// the same; far from the surface, cells are settled by their parents' samples without G.
 class TreeSampler {
 public:
-    TreeSampler(const Octree& tree, const Evaluator& g)
+    TreeSampler(const Octree& tree, const Evaluator& g, std::optional<double> slack, double eta)
         : tree_(tree),
           g_(g),
           shift_(tree.max_depth() + 1),
-          step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)) {}
+          step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)),
+          slack_(slack),
+          eta_(eta) {}
 
-    /// Evaluates the new points of the given cells in one batch and records their least |G|.
+    /// Samples the given cells (the root, or children of sampled cells): new points whose sign
+    /// their parent's samples do not give are evaluated, in one batch.
     void sample(std::span<const std::uint32_t> cells) {
+        ids_.resize(tree_.size(), no_samples);
         min_abs_.resize(tree_.size(), 0.0);
-        std::vector<Vec3> points;
-        std::vector<std::uint32_t> ids;
+        // New points in cell order, each with the cell that met it first.
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> fresh;  // (id, cell)
         for (std::uint32_t c : cells) {
+            int j = 0;
             for_points(c, [&](std::uint64_t key, Vec3 p) {
-                const auto [id, fresh] =
-                    index_.try_emplace(key, static_cast<std::uint32_t>(values_.size()));
-                if (fresh) {
-                    values_.push_back(0.0);
-                    points.push_back(p);
-                    ids.push_back(*id);
+                const auto [id, is_new] =
+                    index_.try_emplace(key, static_cast<std::uint32_t>(samples_.size()));
+                if (is_new) {
+                    samples_.push_back(pending);
+                    points_.push_back(p);
+                    fresh.emplace_back(*id, c);
                 }
+                ids_[c][j++] = *id;
             });
         }
-        std::vector<double> values(points.size());
-        g_(points, values);
-        for (std::size_t i = 0; i < ids.size(); ++i) values_[ids[i]] = values[i];
+        // Stand-ins from the samples of the parent of that cell, on all threads.
+        if (slack_) {
+            parallel_for(fresh.size(), [&](std::size_t i) {
+                const auto [id, c] = fresh[i];
+                if (c == 0) return;  // the root has no parent
+                if (const auto s = from_donors(points_[id], ids_[tree_.cell(c).parent]))
+                    samples_[id] = *s;
+            });
+        }
+        std::vector<std::uint32_t> open;
+        for (const auto& [id, c] : fresh)
+            if (std::isnan(samples_[id].value)) open.push_back(id);
+        evaluate(open);
+        for (std::uint32_t c : cells) update_min(c);
+    }
+
+    /// Before cells are tested against γ: evaluates the stand-ins a test would rest on, in one
+    /// batch, so that each test decides what exact values would.
+    void settle_tests(std::span<const std::uint32_t> cells, double gamma) {
+        if (!slack_) return;
+        std::vector<std::uint32_t> touched, open;
         for (std::uint32_t c : cells) {
-            double least = std::numeric_limits<double>::infinity();
-            for_points(c, [&](std::uint64_t key, Vec3) {
-                least = std::min(least, std::abs(values_[index_.at(key)]));
-            });
-            min_abs_[c] = least;
+            const int level = tree_.cell(c).level;
+            const double threshold = gamma * tree_.edge(level);
+            if (level == tree_.max_depth() || !(threshold > min_abs_[c])) continue;
+            touched.push_back(c);
+            const auto& ids = ids_[c];
+            if (std::any_of(ids.begin(), ids.end(),
+                            [&](std::uint32_t id) { return samples_[id].upper < threshold; }))
+                continue;  // the cell splits whatever G is at its stand-ins
+            for (std::uint32_t id : ids) {
+                Sample& s = samples_[id];
+                if (!s.exact && !std::isnan(s.value) && std::abs(s.value) < threshold) {
+                    s = pending;
+                    open.push_back(id);
+                }
+            }
         }
+        evaluate(open);
+        for (std::uint32_t c : touched) update_min(c);
     }
 
     double min_abs(std::uint32_t c) const { return min_abs_[c]; }
-    /// G at a grid point already sampled, or nullptr.
-    const double* value(std::uint64_t key) const {
+    /// Tree points with a stand-in rather than G.
+    std::size_t settled() const {
+        return static_cast<std::size_t>(std::count_if(samples_.begin(), samples_.end(),
+                                                      [](const Sample& s) { return !s.exact; }));
+    }
+    /// The sample at a grid point, or nullptr.
+    const Sample* at(std::uint64_t key) const {
         const std::uint32_t* id = index_.find(key);
-        return id ? &values_[*id] : nullptr;
+        return id ? &samples_[*id] : nullptr;
+    }
+    /// A stand-in for G at x from the samples of leaf c, when they give its sign.
+    std::optional<Sample> stand_in(Vec3 x, std::uint32_t c) const {
+        if (!slack_) return std::nullopt;
+        return from_donors(x, ids_[c]);
     }
 
 private:
+    static constexpr double infinity = std::numeric_limits<double>::infinity();
+    static constexpr std::uint32_t no_sample = 0xffffffffu;
+    static constexpr std::array<std::uint32_t, 9> no_samples{no_sample, no_sample, no_sample,
+                                                             no_sample, no_sample, no_sample,
+                                                             no_sample, no_sample, no_sample};
+
     /// f(key, point) for the eight corners and the centre of cell c.
     template <class F>
     void for_points(std::uint32_t c, F f) const {
@@ -122,12 +198,51 @@ private:
         at(x + u / 2, y + u / 2, z + u / 2);
     }
 
+    /// The bounds the samples ids give on G at x: a stand-in when they give its sign (a lower
+    /// bound above η, so that the point is never a perturbation candidate).
+    std::optional<Sample> from_donors(Vec3 x, const std::array<std::uint32_t, 9>& ids) const {
+        double lower = 0.0, sign = 0.0, upper = infinity;
+        for (std::uint32_t id : ids) {
+            const Sample& d = samples_[id];
+            const double reach = norm(x - points_[id]) + *slack_;
+            const double b = std::abs(d.value) - reach;
+            if (b > lower) {
+                lower = b;
+                sign = d.value;
+            }
+            upper = std::min(upper, d.upper + reach);
+        }
+        if (!(lower > eta_)) return std::nullopt;
+        return Sample{std::copysign(lower, sign), upper, false};
+    }
+
+    void update_min(std::uint32_t c) {
+        double least = infinity;
+        for (std::uint32_t id : ids_[c]) least = std::min(least, std::abs(samples_[id].value));
+        min_abs_[c] = least;
+    }
+
+    void evaluate(std::span<const std::uint32_t> ids) {
+        std::vector<Vec3> points;
+        points.reserve(ids.size());
+        for (std::uint32_t id : ids) points.push_back(points_[id]);
+        std::vector<double> values(points.size());
+        g_(points, values);
+        for (std::size_t i = 0; i < ids.size(); ++i)
+            samples_[ids[i]] = Sample{values[i], std::abs(values[i]), true};
+    }
+
     const Octree& tree_;
     const Evaluator& g_;
     int shift_;
     double step_;
+    std::optional<double> slack_;
+    double eta_;
     KeyMap<std::uint32_t> index_;
-    std::vector<double> values_;
+    std::vector<Sample> samples_;
+    std::vector<Vec3> points_;
+    /// Per cell, the ids of its eight corners and its centre (for_points' order).
+    std::vector<std::array<std::uint32_t, 9>> ids_;
     std::vector<double> min_abs_;
 };
 
@@ -136,6 +251,7 @@ void split_while_coarse(Octree& tree, TreeSampler& sampler, std::vector<std::uin
                         double gamma) {
     while (!frontier.empty()) {
         sampler.sample(frontier);
+        sampler.settle_tests(frontier, gamma);
         std::vector<std::uint32_t> next;
         for (std::uint32_t c : frontier) {
             const int level = tree.cell(c).level;
@@ -161,6 +277,7 @@ double build_tree(Octree& tree, TreeSampler& sampler, double gamma) {
         std::vector<std::uint32_t> leaves;
         for (std::uint32_t c : tree.leaves())
             if (tree.cell(c).level < tree.max_depth()) leaves.push_back(c);
+        sampler.settle_tests(leaves, gamma);
         // Leaves are sampled already: test them, then sample and test their children.
         std::vector<std::uint32_t> next;
         for (std::uint32_t c : leaves) {
@@ -206,31 +323,60 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
     SurfaceContourStats& stats = out.stats;
     const Evaluator tree_g(g, stats.g_evals_tree);
     Octree tree(domain, options.depth);
-    TreeSampler sampler(tree, tree_g);
+    // The slack allows for rounding in G too: a few thousand ulps of the domain's coordinates.
+    const double rounding =
+        1e-12 * std::max({std::abs(domain.lo.x), std::abs(domain.lo.y), std::abs(domain.lo.z),
+                          std::abs(domain.hi.x), std::abs(domain.hi.y), std::abs(domain.hi.z),
+                          domain.width()});
+    const std::optional<double> slack =
+        options.distance_slack ? std::optional(*options.distance_slack + rounding) : std::nullopt;
+    TreeSampler sampler(tree, tree_g, slack, options.eta);
     stats.gamma = build_tree(tree, sampler, options.gamma);
     stats.cells = tree.size();
     stats.leaves = tree.leaves().size();
+    stats.settled = sampler.settled();
 
-    // G at the mesh's vertices: the tree's samples, and one batch for the face centres.
+    // G at the mesh's vertices: the tree's samples, stand-ins from a leaf's samples for the face
+    // centres whose sign they give, and one batch for the other face centres.
     Tetrahedralization mesh = tetrahedralize(tree);
     stats.tetrahedra = mesh.tetrahedra.size();
     const std::size_t n = mesh.vertices.size();
     std::vector<double> values(n);
-    {
+    std::vector<std::uint8_t> exact(n, 0);
+    // G at the given vertices, in one batch.
+    auto evaluate_at = [&](std::vector<std::uint32_t>& ids) {
         std::vector<Vec3> points;
-        std::vector<std::uint32_t> ids;
-        for (std::uint32_t v = 0; v < n; ++v) {
-            const auto& q = mesh.grid[v];
-            if (const double* known = sampler.value(Tetrahedralization::key(q[0], q[1], q[2]))) {
-                values[v] = *known;
-            } else {
-                points.push_back(mesh.vertices[v]);
-                ids.push_back(v);
-            }
-        }
+        for (const std::uint32_t v : ids) points.push_back(mesh.vertices[v]);
         std::vector<double> got(points.size());
         tree_g(points, got);
-        for (std::size_t i = 0; i < ids.size(); ++i) values[ids[i]] = got[i];
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+            values[ids[i]] = got[i];
+            exact[ids[i]] = 1;
+        }
+        ids.clear();
+    };
+    {
+        std::vector<std::uint8_t> known(n, 0);
+        std::vector<std::uint32_t> ids;
+        for (std::uint32_t c : tree.leaves()) {
+            for (std::uint32_t t = mesh.cell_offsets[c]; t < mesh.cell_offsets[c + 1]; ++t) {
+                for (const std::uint32_t v : mesh.tetrahedra[t]) {
+                    if (known[v]) continue;
+                    known[v] = 1;
+                    const auto& q = mesh.grid[v];
+                    const Sample* s = sampler.at(Tetrahedralization::key(q[0], q[1], q[2]));
+                    const std::optional<Sample> guess =
+                        s ? std::optional(*s) : sampler.stand_in(mesh.vertices[v], c);
+                    if (guess) {
+                        values[v] = guess->value;
+                        exact[v] = guess->exact ? 1 : 0;
+                    } else {
+                        ids.push_back(v);
+                    }
+                }
+            }
+        }
+        evaluate_at(ids);
     }
 
     // The zero set may not reach the domain's boundary: a boundary vertex within η of zero, or
@@ -303,6 +449,24 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
             todo = std::move(left);
             slot = std::move(left_slot);
         }
+    }
+
+    // Stand-ins at the corners of tetrahedra where G changes sign give way to G, for the roots'
+    // brackets; their signs are G's, so the tetrahedra stay the same.
+    {
+        std::vector<std::uint32_t> ids;
+        for (const auto& t : mesh.tetrahedra) {
+            int positive = 0;
+            for (const std::uint32_t v : t) positive += values[v] > 0.0 ? 1 : 0;
+            if (positive == 0 || positive == 4) continue;
+            for (const std::uint32_t v : t) {
+                if (!exact[v]) {
+                    exact[v] = 1;  // about to be
+                    ids.push_back(v);
+                }
+            }
+        }
+        evaluate_at(ids);
     }
 
     // Marching tetrahedra: a surface vertex on every edge where G changes sign, found once

@@ -53,13 +53,15 @@ VelocityParams resolve(const std::string& what, const Defaults& defaults,
 }
 
 /// The surface of an implicit function, contoured and refined to eps at depth K: the problems'
-/// initial surfaces at the resolution of their runs.
+/// initial surfaces at the resolution of their runs. Every problem's function is 1-Lipschitz
+/// (distances, and their minima and maxima), so points far from its zero set need no value.
 Surface contoured(const std::function<double(Vec3)>& f, const Box3& domain, int depth, double eps) {
     const auto g = pointwise<Vec3>(f);
     return contour_surface(g, domain,
                            {.depth = depth,
                             .refine_passes = SurfaceContourOptions::until_converged,
-                            .eps = eps})
+                            .eps = eps,
+                            .distance_slack = 0.0})
         .surface;
 }
 
@@ -281,7 +283,9 @@ std::unique_ptr<SurfaceVelocityLaw> make_surface_velocity(const std::string& nam
 Surface initial_surface(const SurfaceProblem& p, const SurfaceContourOptions& options) {
     if (!p.initial_function) return p.initial;
     const auto g = pointwise<Vec3>(p.initial_function);
-    return contour_surface(g, p.domain, options).surface;
+    SurfaceContourOptions o = options;
+    if (!o.distance_slack) o.distance_slack = 0.0;  // 1-Lipschitz, as contoured() says
+    return contour_surface(g, p.domain, o).surface;
 }
 
 SurfaceRunOptions default_surface_run_options(const Surface& surface, double t_start,

@@ -54,6 +54,7 @@ public:
             geometry =
                 vertex_geometry(law.needs(), surface, {.smoothing = options.resolved_smoothing(k)});
             u_ = vertex_velocities(law, t, surface, geometry);
+            for (const Vec3& u : u_) max_speed_ = std::max(max_speed_, norm(u));
         }
         normals_ = geometry.normals.empty()
                        ? surface_geometry(surface, {.curvature = false}).normals
@@ -94,10 +95,18 @@ public:
                     bulge_[f][e] = flat ? 0.0
                                         : 0.5 * dot(normals_[b] - normals_[a],
                                                     surface.vertices[b] - surface.vertices[a]);
+                    max_bulge_ = std::max(max_bulge_, std::abs(bulge_[f][e]) / 3.0);
                 }
             }
         }
     }
+
+    /// The largest speed of the vertex velocities (nearest-point extension; 0 without them): the
+    /// extension interpolates them, so |W(x)| never exceeds it.
+    double max_speed() const { return max_speed_; }
+    /// A bound on the patches' height over their triangles, |F − the triangles' distance| (0
+    /// without patches): Σ w_a w_b β_ab ≤ max|β| Σ w_a w_b ≤ max|β|/3.
+    double max_bulge() const { return max_bulge_; }
 
     /// F(x): the signed distance to this level's surface read as curved patches
     /// (SurfaceStepOptions::patches), or to its triangles.
@@ -170,6 +179,8 @@ private:
     std::vector<Vec3> normals_;  ///< vertex normals, for a normal law
     std::vector<char> corner_;   ///< vertices at a corner or sharp edge
     std::vector<std::array<double, 3>> bulge_;  ///< β of each triangle's edges, for patches
+    double max_speed_ = 0.0;
+    double max_bulge_ = 0.0;
 };
 
 /// A normal law's step with the distance field's normal N: F(x − k V N) = F(x) − k V along the
@@ -254,19 +265,26 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
         return result;
     }
 
-    // Predictor (Eq. 4): G̃(x) = F(x − k W(x); S(t)).
+    // Predictor (Eq. 4): G̃(x) = F(x − k W(x); S(t)). F is within b of an exact distance (the
+    // patches' bulge) and |W| ≤ max|W|, so |G̃(x) − G̃(y)| ≤ |x − y| + 2 (k max|W| + b): points
+    // far from the surface are settled by their neighbours without a query.
+    SurfaceStepOptions contour_options = options;
+    contour_options.contour.distance_slack = 2.0 * (k * now.max_speed() + now.max_bulge());
     const auto predictor = [&](std::span<const Vec3> xs, std::span<double> values) {
         parallel_for(
             xs.size(),
             [&](std::size_t i) { values[i] = now.distance(xs[i] - k * now.velocity(xs[i])); },
             expensive_grain);
     };
-    SurfaceContour predicted = contour_surface(predictor, domain, options.contour);
+    SurfaceContour predicted = contour_surface(predictor, domain, contour_options.contour);
     result.stats.predictor = predicted.stats;
     if (predicted.surface.empty()) return result;  // everything vanished within the step
 
-    // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x.
+    // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x, whose foot
+    // moves at most k/2 (max|W(t)| + max|W(t + k)|) from x.
     const SurfaceLevel next(predicted.surface, t + k, k, law, domain, options, extension);
+    contour_options.contour.distance_slack =
+        2.0 * (0.5 * k * (now.max_speed() + next.max_speed()) + now.max_bulge());
     const auto corrector = [&](std::span<const Vec3> xs, std::span<double> values) {
         parallel_for(
             xs.size(),
@@ -277,7 +295,7 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
             },
             expensive_grain);
     };
-    SurfaceContour corrected = contour_surface(corrector, domain, options.contour);
+    SurfaceContour corrected = contour_surface(corrector, domain, contour_options.contour);
     result.stats.corrector = corrected.stats;
     result.surface = std::move(corrected.surface);
     return result;

@@ -104,8 +104,13 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         source.exact = source.g;
     }
     const auto g = pointwise<Vec3>([&](Vec3 x) { return source.g(x); }, expensive_grain);
+    // A surface's signed distance is 1-Lipschitz: points far from it need no query.
     const SurfaceContourOptions options{
-        .depth = r.depth, .refine_passes = r.refine, .eps = r.eps, .eta = r.eta};
+        .depth = r.depth,
+        .refine_passes = r.refine,
+        .eps = r.eps,
+        .eta = r.eta,
+        .distance_slack = source.surface ? std::optional(0.0) : std::nullopt};
     summary["params"]["eps"] = options.resolved_eps();
     // cpu_s and wall_s time the contour alone, evaluations of G included.
     const std::clock_t cpu_start = std::clock();
@@ -138,6 +143,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
                     {"volume", volume(s)},
                     {"g_evals", st.g_evals},
                     {"g_evals_tree", st.g_evals_tree},
+                    {"settled", st.settled},
                     {"g_evals_roots", st.g_evals_roots},
                     {"g_evals_refine", st.g_evals_refine},
                     {"passes", st.passes},

@@ -46,6 +46,13 @@ struct SurfaceContourOptions {
     double gamma = 1.0;
     /// How brackets are shrunk.
     RootMethod root_method = RootMethod::brent;
+    /// δ ≥ 0, when the caller can guarantee |G(x) − G(y)| ≤ |x − y| + δ for all x and y: 0 for a
+    /// signed distance, 2k·max|W| for the semi-Lagrangian formula. Tree points where a nearby
+    /// sample's value already bounds |G| above the split threshold are then not evaluated (the
+    /// bound, with its certain sign, stands in), so cells far from the zero set cost no
+    /// evaluation. The surface is the one exact values give, bit for bit. Unset (the default):
+    /// every tree point is evaluated.
+    std::optional<double> distance_slack = std::nullopt;
 
     /// ε as given, or its default 10^−K.
     double resolved_eps() const;
@@ -53,15 +60,17 @@ struct SurfaceContourOptions {
 
 /// What a surface contour cost and what it produced.
 struct SurfaceContourStats {
-    std::size_t cells = 0;              ///< cells of the topology octree, all levels
-    std::size_t leaves = 0;             ///< leaves of the octree
-    std::size_t tetrahedra = 0;         ///< tetrahedra of its mesh
-    std::size_t triangles = 0;          ///< triangles of the result
-    std::size_t vertices = 0;           ///< vertices of the result
-    std::size_t g_evals = 0;            ///< all evaluations of G, each point counted once
-    std::size_t g_evals_tree = 0;       ///< of which: the tree, the mesh vertices and perturbation
-    std::size_t g_evals_roots = 0;      ///< of which: root finding on the tetrahedra's edges
-    std::size_t g_evals_refine = 0;     ///< of which: adaptive refinement
+    std::size_t cells = 0;           ///< cells of the topology octree, all levels
+    std::size_t leaves = 0;          ///< leaves of the octree
+    std::size_t tetrahedra = 0;      ///< tetrahedra of its mesh
+    std::size_t triangles = 0;       ///< triangles of the result
+    std::size_t vertices = 0;        ///< vertices of the result
+    std::size_t g_evals = 0;         ///< all evaluations of G, each point counted once
+    std::size_t g_evals_tree = 0;    ///< of which: the tree, the mesh vertices and perturbation
+    std::size_t g_evals_roots = 0;   ///< of which: root finding on the tetrahedra's edges
+    std::size_t g_evals_refine = 0;  ///< of which: adaptive refinement
+    /// Tree points whose sign distance_slack settled without evaluating G.
+    std::size_t settled = 0;
     double g_evals_per_vertex = 0.0;    ///< g_evals / vertices; 0 for an empty result
     double gamma = 0.0;                 ///< the gradient bound at which the tree balanced
     std::size_t perturbed = 0;          ///< mesh vertices moved off |G| ≤ η

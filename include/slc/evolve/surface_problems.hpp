@@ -44,7 +44,8 @@ struct SurfaceProblem {
     double azimuth = 35.0;
     double elevation = 25.0;
     /// The implicit function whose contour is the initial surface (negative inside), empty for
-    /// a surface given by its triangles (box-normal).
+    /// a surface given by its triangles (box-normal); 1-Lipschitz, so initial_surface()
+    /// contours it with a distance slack of 0.
     std::function<double(Vec3)> initial_function;
     /// Its convergence study's first row; unset for a problem without one.
     std::optional<SurfaceStudyPlan> study;

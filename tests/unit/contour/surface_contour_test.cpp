@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <map>
 #include <numbers>
 
@@ -267,6 +269,53 @@ TEST(SurfaceContour, SameSurfaceForAnyThreadCount) {
     set_thread_count(0);
     EXPECT_EQ(one.surface.vertices, two.surface.vertices);
     EXPECT_EQ(one.surface.triangles, two.surface.triangles);
+}
+
+TEST(SurfaceContour, DistanceSlackSkipsFarPointsAndChangesNothing) {
+    // Functions with |G(x) − G(y)| ≤ |x − y| + δ: exact distances (δ = 0) — a sphere, a torus,
+    // two spheres, a box surface's distance from the tree — and a distance plus a ripple of
+    // amplitude a (δ = 2a). With the slack the surface is the same to the last bit, from fewer
+    // evaluations of G.
+    const Surface box = box_surface({-0.5, -0.4, -0.3}, {0.45, 0.35, 0.5}, 4);
+    const SurfaceDistanceTree tree(box, Box3::centered_cube(1.0), {.depth = 4});
+    struct Case {
+        const char* name;
+        std::function<double(Vec3)> g;
+        double slack;
+        int depth;
+    };
+    const std::vector<Case> cases = {
+        {"sphere",
+         [](Vec3 x) {
+             return distance(x, {0.1, -0.05, 0.02}) - 0.6;
+         },
+         0.0, 4},
+        {"torus", [](Vec3 x) { return std::hypot(std::hypot(x.x, x.y) - 0.5, x.z) - 0.22; }, 0.0,
+         4},
+        {"two spheres",
+         [](Vec3 x) {
+             return std::min(distance(x, {-0.4, 0, 0}) - 0.3, distance(x, {0.35, 0.1, 0}) - 0.25);
+         },
+         0.0, 5},
+        {"box", [&](Vec3 x) { return tree.closest_point(x).distance; }, 0.0, 4},
+        {"rippled sphere",
+         [](Vec3 x) { return distance(x, {}) - 0.5 + 0.01 * std::sin(20.0 * x.x); }, 0.02, 4},
+    };
+    for (const Case& c : cases) {
+        SurfaceContourOptions options{.depth = c.depth, .refine_passes = 1, .eps = 1e-3};
+        const auto g = pointwise<Vec3>(c.g);
+        const SurfaceContour all = contour_surface(g, Box3::centered_cube(1.0), options);
+        options.distance_slack = c.slack;
+        const SurfaceContour some = contour_surface(g, Box3::centered_cube(1.0), options);
+        EXPECT_EQ(all.surface.vertices, some.surface.vertices) << c.name;
+        EXPECT_EQ(all.surface.triangles, some.surface.triangles) << c.name;
+        EXPECT_EQ(all.stats.cells, some.stats.cells) << c.name;
+        EXPECT_EQ(all.stats.settled, 0u);
+        EXPECT_GT(some.stats.settled, 0u) << c.name;
+        EXPECT_LT(some.stats.g_evals_tree, all.stats.g_evals_tree) << c.name;
+        std::printf("%s: tree evaluations %zu -> %zu, %zu settled\n", c.name,
+                    all.stats.g_evals_tree, some.stats.g_evals_tree, some.stats.settled);
+    }
 }
 
 }  // namespace
