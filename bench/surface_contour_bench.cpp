@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "bench_support.hpp"
@@ -60,19 +61,29 @@ void run(benchmark::State& state, const SurfaceContourOptions& o) {
     state.counters["genus"] = static_cast<double>(genus(result.surface));
 }
 
+/// Every tree point evaluated (range(1) = 0), or the points a distance (δ = 0) settles left out.
+std::optional<double> slack_of(const benchmark::State& state) {
+    return state.range(1) != 0 ? std::optional(0.0) : std::nullopt;
+}
+
 void BM_LinearSurface(benchmark::State& state) {
-    run(state, {.depth = static_cast<int>(state.range(0))});
+    run(state, {.depth = static_cast<int>(state.range(0)), .distance_slack = slack_of(state)});
 }
 
 void BM_AdaptiveSurface(benchmark::State& state) {
     const int k = static_cast<int>(state.range(0));
     run(state, {.depth = k,
                 .refine_passes = SurfaceContourOptions::until_converged,
-                .eps = std::pow(10.0, -(k - 1))});
+                .eps = std::pow(10.0, -(k - 1)),
+                .distance_slack = slack_of(state)});
 }
 
-BENCHMARK(BM_LinearSurface)->DenseRange(3, 8)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_AdaptiveSurface)->DenseRange(3, 6)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LinearSurface)
+    ->ArgsProduct({benchmark::CreateDenseRange(3, 8, 1), {0, 1}})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AdaptiveSurface)
+    ->ArgsProduct({benchmark::CreateDenseRange(3, 6, 1), {0, 1}})
+    ->Unit(benchmark::kMillisecond);
 
 const std::string setup =
     "The exact signed distance of a torus about the z axis (radii 0.55 and 0.2, centre (0.013, "
@@ -81,6 +92,12 @@ const std::string setup =
     "the triangles. CPU time, the least of the repetitions. The genus of every result is "
     "checked: ";
 
+const std::string settled_note =
+    "The last two columns contour the same distance with `distance_slack` δ = 0 (the bound "
+    "|G(x) − G(y)| ≤ |x − y| of a distance): tree points whose neighbours already settle their "
+    "sign and split test are not evaluated, and the surface is the same to the last bit (unit "
+    "test `SurfaceContour.DistanceSlackSkipsFarPointsAndChangesNothing`).\n\n";
+
 double counter(const Recorder& rec, const std::string& name, const char* what) {
     return rec.results.at(name).counters.at(what).value;
 }
@@ -88,7 +105,8 @@ double counter(const Recorder& rec, const std::string& name, const char* what) {
 std::string genus_note(const Recorder& rec, const char* prefix, int first, int last) {
     bool all_one = true;
     for (int k = first; k <= last; ++k)
-        all_one &= counter(rec, fmt::format("{}/{}", prefix, k), "genus") == 1.0;
+        for (int settled = 0; settled < 2; ++settled)
+            all_one &= counter(rec, fmt::format("{}/{}/{}", prefix, k, settled), "genus") == 1.0;
     return all_one ? "1 (the torus's) in every row.\n\n" : "NOT 1 in some row: see the table.\n\n";
 }
 
@@ -100,19 +118,24 @@ void write_table2(const Recorder& rec, const std::string& path) {
         setup + genus_note(rec, "BM_LinearSurface", 3, 8) +
         "The linear contour is the zero set of the piecewise-linear interpolant on the octree's "
         "tetrahedra. Its error should fall at second order in the finest cell edge h = 2^(1−K): "
-        "the order column is log₂ of the ratio of successive errors.\n\n"
-        "| K | cells | tetrahedra | triangles | error | order | G evals / vertex | cpu ms |\n"
-        "|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        "the order column is log₂ of the ratio of successive errors. " +
+        settled_note +
+        "| K | cells | tetrahedra | triangles | error | order | G evals / vertex | cpu ms | "
+        "G evals / vertex, δ = 0 | cpu ms, δ = 0 |\n"
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     double previous = 0.0;
     for (int k = 3; k <= 8; ++k) {
-        const std::string name = fmt::format("BM_LinearSurface/{}", k);
+        const std::string name = fmt::format("BM_LinearSurface/{}/0", k);
+        const std::string settled = fmt::format("BM_LinearSurface/{}/1", k);
         const double error = counter(rec, name, "error");
         md += fmt::format(
-            "| {} | {:.0f} | {:.0f} | {:.0f} | {:.3g} | {} | {:.2f} | {:.3g} |\n", k,
-            counter(rec, name, "cells"), counter(rec, name, "tetrahedra"),
+            "| {} | {:.0f} | {:.0f} | {:.0f} | {:.3g} | {} | {:.2f} | {:.3g} | {:.2f} | {:.3g} "
+            "|\n",
+            k, counter(rec, name, "cells"), counter(rec, name, "tetrahedra"),
             counter(rec, name, "triangles"), error,
             previous > 0.0 ? fmt::format("{:.2f}", std::log2(previous / error)) : std::string(""),
-            counter(rec, name, "evals_per_vertex"), 1e3 * seconds(rec.results.at(name)));
+            counter(rec, name, "evals_per_vertex"), 1e3 * seconds(rec.results.at(name)),
+            counter(rec, settled, "evals_per_vertex"), 1e3 * seconds(rec.results.at(settled)));
         previous = error;
     }
     std::ofstream(path) << md;
@@ -126,21 +149,24 @@ void write_table3(const Recorder& rec, const std::string& path) {
         setup + genus_note(rec, "BM_AdaptiveSurface", 3, 6) +
         "Refinement runs until no edge midpoint or centroid has |G| > ε (`until_converged`). A "
         "surface within ε needs triangles of edge about √(ε/κ), so their number should grow as "
-        "1/ε: the last column, triangles × ε, then stays about constant.\n\n"
+        "1/ε: the column triangles × ε then stays about constant. " +
+        settled_note +
         "| K / ε | triangles | error | converged | passes | G evals / vertex | cpu ms | "
-        "triangles × ε |\n"
-        "|---|---:|---:|---|---:|---:|---:|---:|\n";
+        "triangles × ε | G evals / vertex, δ = 0 | cpu ms, δ = 0 |\n"
+        "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|\n";
     for (int k = 3; k <= 6; ++k) {
-        const std::string name = fmt::format("BM_AdaptiveSurface/{}", k);
+        const std::string name = fmt::format("BM_AdaptiveSurface/{}/0", k);
+        const std::string settled = fmt::format("BM_AdaptiveSurface/{}/1", k);
         const double eps = std::pow(10.0, -(k - 1));
         const double triangles = counter(rec, name, "triangles");
         md += fmt::format(
-            "| {} / 1e−{} | {:.0f} | {:.3g} | {} | {:.0f} | {:.2f} | {:.3g} | {:.3g} "
-            "|\n",
+            "| {} / 1e−{} | {:.0f} | {:.3g} | {} | {:.0f} | {:.2f} | {:.3g} | {:.3g} | {:.2f} | "
+            "{:.3g} |\n",
             k, k - 1, triangles, counter(rec, name, "error"),
             counter(rec, name, "converged") == 1.0 ? "yes" : "no", counter(rec, name, "passes"),
             counter(rec, name, "evals_per_vertex"), 1e3 * seconds(rec.results.at(name)),
-            triangles * eps);
+            triangles * eps, counter(rec, settled, "evals_per_vertex"),
+            1e3 * seconds(rec.results.at(settled)));
     }
     std::ofstream(path) << md;
 }
@@ -154,9 +180,9 @@ int main(int argc, char** argv) {
     Recorder recorder;
     benchmark::RunSpecifiedBenchmarks(&recorder);
     const auto& r = recorder.results;
-    if (r.count("BM_LinearSurface/3") != 0 && r.count("BM_LinearSurface/8") != 0)
+    if (r.count("BM_LinearSurface/3/0") != 0 && r.count("BM_LinearSurface/8/1") != 0)
         write_table2(recorder, tables + "/table2_3d.md");
-    if (r.count("BM_AdaptiveSurface/3") != 0 && r.count("BM_AdaptiveSurface/6") != 0)
+    if (r.count("BM_AdaptiveSurface/3/0") != 0 && r.count("BM_AdaptiveSurface/6/1") != 0)
         write_table3(recorder, tables + "/table3_3d.md");
     benchmark::Shutdown();
     return 0;

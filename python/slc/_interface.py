@@ -160,15 +160,17 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
 
 
 def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None = None,
-                    refine=None):
+                    refine=None, slack: float | None = None):
     """The zero set of f, a vectorised function f((m, 3) array) -> (m,) array, in box, by the
     contouring of space (paper §2 with d = 3): a closed, oriented triangle surface facing f > 0.
 
     box: (x0, y0, z0, x1, y1, z1), a box taken as the cube around it, or b for [-b, b]³.
     depth: K, the deepest level of the octree. eps: ε, the tolerance of refinement at edge
     midpoints and centroids (default 10^-K). refine: P passes, or "converged"; by default
-    converged when eps is given, none otherwise. Returns (vertices (n, 3) float array,
-    triangles (m, 3) int array of vertex indices, stats dict).
+    converged when eps is given, none otherwise. slack: δ >= 0 when
+    |f(x) - f(y)| <= |x - y| + δ everywhere (0 for a signed distance): points far from the
+    surface are then not evaluated, and the surface is the same. Returns (vertices (n, 3) float
+    array, triangles (m, 3) int array of vertex indices, stats dict).
     """
     if isinstance(box, numbers.Real):
         box = (-box, -box, -box, box, box, box)
@@ -178,4 +180,4 @@ def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float 
     if isinstance(depth, bool) or not isinstance(depth, numbers.Integral):
         raise TypeError(f"depth must be an integer, got {depth!r}")
     return _slc.contour_surface(f, box, int(depth), None if eps is None else float(eps),
-                                _refine(refine))
+                                _refine(refine), None if slack is None else float(slack))

@@ -165,9 +165,11 @@ void call_batch3(const py::object& f, std::span<const Vec3> points, std::span<do
 }
 
 py::tuple contour_surface_function(const py::object& f, const std::vector<double>& box, int depth,
-                                   std::optional<double> eps, int refine) {
+                                   std::optional<double> eps, int refine,
+                                   std::optional<double> slack) {
     const Box3 domain = cube_around_corners(box, "box");
-    const SurfaceContourOptions options{.depth = depth, .refine_passes = refine, .eps = eps};
+    const SurfaceContourOptions options{
+        .depth = depth, .refine_passes = refine, .eps = eps, .distance_slack = slack};
     auto g = [&f](std::span<const Vec3> points, std::span<double> values) {
         call_batch3(f, points, values);
     };
@@ -184,6 +186,7 @@ py::tuple contour_surface_function(const py::object& f, const std::vector<double
     stats["triangles"] = st.triangles;
     stats["g_evals"] = st.g_evals;
     stats["g_evals_per_vertex"] = st.g_evals_per_vertex;
+    stats["settled"] = st.settled;
     stats["passes"] = st.passes;
     stats["converged"] = st.converged;
     stats["eps"] = options.resolved_eps();
@@ -224,7 +227,7 @@ PYBIND11_MODULE(_slc, m) {
     m.def("contour", &contour_function, py::arg("f"), py::arg("box"), py::arg("depth"),
           py::arg("eps"), py::arg("refine"));
     m.def("contour_surface", &contour_surface_function, py::arg("f"), py::arg("box"),
-          py::arg("depth"), py::arg("eps"), py::arg("refine"));
+          py::arg("depth"), py::arg("eps"), py::arg("refine"), py::arg("slack"));
     add_run_functions(m);
     add_surface_functions(m);
     m.def("velocity_names", &velocity_names);

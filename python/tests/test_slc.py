@@ -161,6 +161,12 @@ def test_contour_surface_of_a_torus_is_closed_and_within_eps():
     assert len(vertices) - len(edges) // 2 + len(triangles) == 0
     volume = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6
     assert abs(volume / (2 * np.pi**2 * 0.55 * 0.2**2) - 1) < 0.01
+    # g is a signed distance: with slack 0 far points are settled, and the surface is the same.
+    v2, t2, s2 = slc.contour_surface(g, 1.0, 4, eps=eps, slack=0)
+    assert np.array_equal(v2, vertices) and np.array_equal(t2, triangles)
+    assert s2["settled"] > 0 and s2["g_evals"] < stats["g_evals"]
+    with pytest.raises(ValueError, match="distance slack must be >= 0"):
+        slc.contour_surface(g, 1.0, 3, slack=-1)
     with pytest.raises(ValueError, match="box must be six numbers"):
         slc.contour_surface(g, (0, 0, 1, 1), 4)
     with pytest.raises(ValueError, match=r"f must return an \(m,\) array"):

@@ -191,10 +191,15 @@ SurfaceStepResult advance_normal(const Surface& surface, double t, double k,
                                  const SurfaceStepOptions& options) {
     SurfaceStepResult result;
     const SurfaceLevel now(surface, t, k, law, domain, options, Extension::direct);
+    // With |V| ≤ S, both G = F − kV and the corrector's F − k/2 (V + V') move at most kS from
+    // F, which is within b of a distance: |G(x) − G(y)| ≤ |x − y| + 2 (kS + b).
+    SurfaceContourOptions contour_options = options.contour;
+    if (const std::optional<double> s = law.speed_bound())
+        contour_options.distance_slack = 2.0 * (k * *s + now.max_bulge());
     const auto predictor = [&](std::span<const Vec3> xs, std::span<double> g) {
         detail::normal_predictor(now, k, xs, g);
     };
-    SurfaceContour predicted = contour_surface(predictor, domain, options.contour);
+    SurfaceContour predicted = contour_surface(predictor, domain, contour_options);
     result.stats.predictor = predicted.stats;
     if (predicted.surface.empty()) return result;
 
@@ -202,7 +207,7 @@ SurfaceStepResult advance_normal(const Surface& surface, double t, double k,
     const auto corrector = [&](std::span<const Vec3> xs, std::span<double> g) {
         detail::normal_corrector(now, next, k, xs, g);
     };
-    SurfaceContour corrected = contour_surface(corrector, domain, options.contour);
+    SurfaceContour corrected = contour_surface(corrector, domain, contour_options);
     result.stats.corrector = corrected.stats;
     result.surface = std::move(corrected.surface);
     return result;

@@ -60,6 +60,7 @@ struct Source {
     std::optional<Surface> surface;  ///< the input surface, for --initial
     std::function<double(Vec3)> g;
     std::function<double(Vec3)> exact;
+    bool lipschitz = false;  ///< g is a signed distance
 };
 
 }  // namespace
@@ -75,11 +76,13 @@ void run_surface_contour(const SurfaceContourRequest& r) {
                             : Box3::centered_cube(1.0);
         source.g = f.g;
         source.exact = f.distance;
+        source.lipschitz = f.g_is_distance;
     } else {
         LoadedSurface in = load_surface(r.initial, r.domain);
         source.name = r.initial;
         source.domain = in.domain;
         source.surface = std::move(in.surface);
+        source.lipschitz = true;
     }
     const double width = source.domain.width();
     // The octree hugs the surface: about area / h² cells at the finest level. A function's area
@@ -104,13 +107,13 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         source.exact = source.g;
     }
     const auto g = pointwise<Vec3>([&](Vec3 x) { return source.g(x); }, expensive_grain);
-    // A surface's signed distance is 1-Lipschitz: points far from it need no query.
+    // A signed distance is 1-Lipschitz: points far from its surface need no value.
     const SurfaceContourOptions options{
         .depth = r.depth,
         .refine_passes = r.refine,
         .eps = r.eps,
         .eta = r.eta,
-        .distance_slack = source.surface ? std::optional(0.0) : std::nullopt};
+        .distance_slack = source.lipschitz ? std::optional(0.0) : std::nullopt};
     summary["params"]["eps"] = options.resolved_eps();
     // cpu_s and wall_s time the contour alone, evaluations of G included.
     const std::clock_t cpu_start = std::clock();

@@ -20,6 +20,9 @@ struct ImplicitSurface {
     /// The exact signed distance to the zero set, where known (empty otherwise): the error of a
     /// contour is measured with it.
     std::function<double(Vec3)> distance;
+    /// G is that distance itself (1-Lipschitz): its contour may settle far points
+    /// (SurfaceContourOptions::distance_slack 0).
+    bool g_is_distance = false;
 };
 
 /// The names implicit_surface() knows, in order.

@@ -4,6 +4,7 @@
 /// normal speed, mean curvature flow and its volume-preserving form (paper Eq. 13 in space).
 #pragma once
 
+#include <cmath>
 #include <optional>
 
 #include "slc/velocity/velocity.hpp"
@@ -70,6 +71,7 @@ public:
     }
     void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
                        std::span<double> out) const override;
+    std::optional<double> speed_bound() const override { return std::abs(speed_); }
 
 private:
     double speed_;
@@ -89,6 +91,10 @@ public:
     }
     void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
                        std::span<double> out) const override;
+    /// |V| ≤ |R| + 2/5 |ε|: the cubic part lies in [−4/15, 2/5].
+    std::optional<double> speed_bound() const override {
+        return std::abs(r_) + 0.4 * std::abs(eps_);
+    }
 
 private:
     double r_, eps_;

@@ -123,6 +123,11 @@ public:
     /// normals of unit length. Throws InvalidInput unless is_normal_law().
     virtual void normal_speeds(double t, std::span<const Point> points,
                                std::span<const Point> normals, std::span<double> out) const;
+    /// A bound on |V| over every time, point and unit normal, for a normal law that knows one
+    /// (a constant speed: |s|), or nothing. The step of surfaces then settles points far from
+    /// the surface without evaluating V or the distance there (SurfaceContourOptions::
+    /// distance_slack); the surfaces are the same.
+    virtual std::optional<double> speed_bound() const { return std::nullopt; }
 
     /// The closed box outside which the law is not known (a velocity given on a grid), or
     /// nothing for a law known everywhere. run() refuses initial curves that leave it and ends
