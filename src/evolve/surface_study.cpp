@@ -5,9 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "slc/contour/surface_contour.hpp"
 #include "slc/core/error.hpp"
+#include "slc/distance/surface_distance_tree.hpp"
 
 namespace slc {
 
@@ -45,6 +48,48 @@ SurfaceRunOptions surface_study_cell_options(const SurfaceProblem& problem, int 
     o.step.contour.refine_passes = refine;
     o.step.contour.eps = plan.eps * std::pow(4.0, -row);
     return o;
+}
+
+SurfaceRunOptions surface_resolution_options(const SurfaceRunOptions& base, int level) {
+    SurfaceRunOptions o = base;
+    o.steps = level >= 0 ? base.steps << level : base.steps >> -level;
+    o.step.contour.depth = base.step.contour.depth + level;
+    if (o.steps < 1 || o.step.contour.depth < 1) {
+        throw InvalidInput(
+            fmt::format("resolution {} of N = {}, K = {} needs at least one step and depth 1",
+                        level, base.steps, base.step.contour.depth));
+    }
+    o.step.contour.eps =
+        std::max(base.step.contour.resolved_eps() * std::pow(4.0, -level), base.step.contour.eta);
+    return o;
+}
+
+namespace {
+
+/// The largest exact distance from a vertex or centroid of a to b (not empty).
+double one_way_distance(const Surface& a, const Surface& b) {
+    const Box3 box = unite(bounding_box(a), bounding_box(b));
+    const double half =
+        0.5 * std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z, 1e-300});
+    const Box3 domain = Box3::cube(box.center(), 1.1 * half);
+    const SurfaceDistanceTree tree(b, domain,
+                                   {.depth = SurfaceDistanceTree::default_depth(b, domain)});
+    std::vector<Vec3> points = a.vertices;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const Triangle3 t = a.triangle(i);
+        points.push_back((t.a + t.b + t.c) / 3.0);
+    }
+    double d = 0.0;
+    for (const double f : tree.signed_distances(points)) d = std::max(d, std::abs(f));
+    return d;
+}
+
+}  // namespace
+
+double surface_distance(const Surface& a, const Surface& b) {
+    if (a.empty() && b.empty()) return 0.0;
+    if (a.empty() || b.empty()) return std::numeric_limits<double>::infinity();
+    return std::max(one_way_distance(a, b), one_way_distance(b, a));
 }
 
 SurfaceStudyResult surface_study(const SurfaceProblem& problem, int rows, int columns,

@@ -60,6 +60,31 @@ expect_ok "the default view" -- run --initial ball.obj --velocity unit-normal --
 check "the pictures differ" test "$(cmp -s below/final.png above/final.png && echo same)" != same
 check "the surfaces do not" cmp -s below/final.obj above/final.obj
 
+# --estimate: the run again at half resolution (N 2, K 3, 4 eps) and the distance between the
+# two. The exact error (vertices and centroids against the sphere of radius 0.65) measured 6.1e-4,
+# the estimate 2.1e-3: about three times it, as second order makes it.
+expect_ok "--estimate" -- run --initial ball.obj --velocity unit-normal --t-end 0.05 -N 4 -K 4 --estimate --out est --quiet
+sphere_error() {  # sphere_error OBJ: the largest |distance to the sphere of radius 0.65| over vertices and centroids
+    python3 - "$1" <<'PY'
+import math, sys
+v, worst = [], 0.0
+def off(p): return abs(math.dist(p, (0.03, -0.02, 0.01)) - 0.65)
+for line in open(sys.argv[1]):
+    w = line.split()
+    if w and w[0] == "v":
+        v.append(tuple(map(float, w[1:4])))
+        worst = max(worst, off(v[-1]))
+    elif w and w[0] == "f":
+        a, b, c = (v[int(x.split("/")[0]) - 1] for x in w[1:4])
+        worst = max(worst, off(tuple((a[i] + b[i] + c[i]) / 3 for i in range(3))))
+print(worst)
+PY
+}
+e=$(sphere_error est/final.obj)
+check "estimate: the coarse run named" test "$(json est/summary.json 's["error_estimate"]["coarse"]')" = "N 2, K 3, eps 0.0024"
+check "estimate: between the error and ten times it" test "$(json est/summary.json "$e <= s['error_estimate']['estimate'] <= 10 * $e")" = True
+expect_error "--estimate with one step" "--estimate compares with the run at half resolution, which needs N >= 2" -- run --initial ball.obj --velocity unit-normal --t-end 0.05 -N 1 --estimate --out x
+
 # Laws as expressions: the same surfaces as the built-in laws they spell.
 expect_ok "--speed 1" -- run --initial ball.obj --speed 1 --t-end 0.01 -N 1 -K 3 --out speed1 --quiet
 check "--speed 1 moves as unit-normal" cmp -s speed1/final.obj above/final.obj

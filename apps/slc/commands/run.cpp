@@ -349,9 +349,10 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
     cmd->add_flag("--estimate", o->estimate,
                   "After the run, run it again at half resolution (N/2 steps, K - 1, 4 eps; about "
                   "a quarter of the cost or less) and write the distance between the two final "
-                  "interfaces to summary.json as \"error_estimate\": an estimate of this run's "
-                  "error, for curves without an exact solution (conservative: it assumes first "
-                  "order). For several resolutions and observed orders, see slc study --initial");
+                  "interfaces (curves or surfaces) to summary.json as \"error_estimate\": an "
+                  "estimate of this run's error, for runs without an exact solution "
+                  "(conservative: it assumes first order). For several resolutions and observed "
+                  "orders, see slc study --initial");
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
                     "Output folder (required, except with --resume): summary.json, final.json, "
@@ -434,7 +435,6 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                      const std::string& id, const Checkpoint* from, OutputFolder& folder) {
     const std::vector<std::pair<bool, const char*>> curve_only = {
         {o.source.field_file.has_value(), "--field-file"},
-        {o.estimate, "--estimate"},
         {o.vtk, "--vtk"},
         {o.method.mesh.has_value(), "--mesh"},
         {o.method.smooth.has_value(), "-S/--smooth"},
@@ -461,6 +461,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  .eta = o.method.eta,
                  .tree_depth = o.method.tree_depth,
                  .frames = o.frames,
+                 .estimate = o.estimate,
                  .view = o.view,
                  .quiet = o.quiet,
                  .checkpoint_every = o.checkpoint_every,

@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "commands/commands.hpp"
@@ -17,6 +18,7 @@
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/evolve/surface_problems.hpp"
+#include "slc/evolve/surface_study.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/plot.hpp"
 #include "slc/io/summary.hpp"
@@ -86,6 +88,45 @@ void draw_history(const std::vector<HistoryRow>& rows, const std::string& title,
     plot.panels.push_back({"volume", {v}});
     plot.panels.push_back({"area", {a}});
     save_plot(plot, path);
+}
+
+/// --estimate: the run again from the same surface at half resolution (N/2, K − 1, 4ε) and the
+/// distance between the two final surfaces. If the error falls at least as fast as first order,
+/// e ≤ d/(2 − 1) = d: the estimate is d itself (a third of it at second order). A stop signal
+/// stops the extra run too.
+nlohmann::json estimate_json(const SurfaceProblem& p, const SurfaceRunOptions& coarse,
+                             const SurfaceRunResult& fine, const std::atomic<int>* stop) {
+    const SurfaceContourOptions& c = coarse.step.contour;
+    const std::string name =
+        fmt::format("N {}, K {}, eps {:.3g}", coarse.steps, c.depth, c.resolved_eps());
+    nlohmann::json e = {{"distance", nullptr}, {"coarse", name}, {"estimate", nullptr}};
+    if (fine.status != RunStatus::ok) {
+        e["note"] = fmt::format("no estimate: the run ended with status {}, not at t_end",
+                                to_string(fine.status));
+        return e;
+    }
+    const SurfaceRunResult other =
+        run(p.initial, *p.law, p.domain, coarse,
+            [stop](const SurfaceStepReport&) { return stop == nullptr || *stop == 0; });
+    e["coarse_status"] = to_string(other.status);
+    e["coarse_cpu_s"] = other.cpu_s;
+    const double d = other.status == RunStatus::ok && other.t == fine.t
+                         ? surface_distance(fine.surface, other.surface)
+                         : std::numeric_limits<double>::infinity();
+    if (!std::isfinite(d)) {
+        e["note"] = fmt::format(
+            "no estimate: the run at half resolution ended {} at t = {:.6g}{}, which cannot be "
+            "compared with this run's surface",
+            to_string(other.status), other.t, other.surface.empty() ? " with no surface" : "");
+        return e;
+    }
+    e["distance"] = d;
+    e["estimate"] = d;
+    e["note"] =
+        "distance between the final surfaces of this run and of the same run at half resolution "
+        "(N/2 steps, K - 1, 4 eps): an estimate of this run's error that holds if it converges "
+        "at first order or faster (at second order the error is about a third of it), not a bound";
+    return e;
 }
 
 }  // namespace
@@ -171,6 +212,17 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         v.title = std::move(title);
         return v;
     };
+
+    // --estimate's run at half resolution, resolved first so that one it cannot have (N or K
+    // of 1) is an input error before anything runs.
+    if (r.estimate && (options.steps < 2 || options.step.contour.depth < 2)) {
+        throw InvalidInput(fmt::format(
+            "--estimate compares with the run at half resolution, which needs N >= 2 and K >= 2, "
+            "got N = {} and K = {}",
+            options.steps, options.step.contour.depth));
+    }
+    const std::optional<SurfaceRunOptions> coarse =
+        r.estimate ? std::optional(surface_resolution_options(options, -1)) : std::nullopt;
 
     const Checkpoint* from = r.from;
     if (from) check_surface_checkpoint(*from, p.domain, options, folder.target());
@@ -261,6 +313,10 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
             titled(fmt::format("{}: everything vanished by t = {:.4g}", p.name, result.t)));
     }
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+    if (coarse) {
+        summary["error_estimate"] = estimate_json(p, *coarse, result, r.stop_signal);
+        write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+    }
     folder.commit();
     if (result.status == RunStatus::error || result.status == RunStatus::unstable)
         throw NumericalFailure(result.message);
@@ -285,6 +341,15 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
             summary["volume_change"].get<double>(),
             std::isfinite(e) ? fmt::format(", e_inf {:.3g}", e) : std::string(), result.cpu_s,
             (folder.target() / "summary.json").string());
+        if (coarse) {
+            const nlohmann::json& estimate = summary["error_estimate"];
+            if (estimate["estimate"].is_null())
+                fmt::print("{}\n", estimate["note"].get<std::string>());
+            else
+                fmt::print(
+                    "error estimate: {:.3g} (the distance to the run {} at half resolution)\n",
+                    estimate["estimate"].get<double>(), estimate["coarse"].get<std::string>());
+        }
     }
 }
 

@@ -30,6 +30,9 @@ struct SurfaceRunRequest {
     std::optional<double> eta;
     std::optional<int> tree_depth;
     int frames = 0;
+    /// --estimate: the run again at half resolution, and the distance between the two final
+    /// surfaces in summary.json's "error_estimate".
+    bool estimate = false;
     std::optional<std::string> view;  ///< "AZ,EL" in degrees
     bool quiet = false;
     /// Write DIR/checkpoint.json every n steps (and when a signal stops the run); 0: never.

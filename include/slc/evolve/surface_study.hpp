@@ -38,6 +38,17 @@ std::optional<double> surface_error(const SurfaceProblem& problem, double t, con
 /// without a plan, a row outside 0..4 or P outside 0..4.
 SurfaceRunOptions surface_study_cell_options(const SurfaceProblem& problem, int row, int refine);
 
+/// The options of resolution `level` relative to base, refined as the study's rows are: N·2^level
+/// steps (rounded down for a negative level), depth K + level, ε/4^level (ε resolved from base,
+/// never below η); the rest as in base. Level −1 is the run at half resolution that `slc run
+/// --estimate` compares with. Throws InvalidInput when the steps or the depth would fall below 1.
+SurfaceRunOptions surface_resolution_options(const SurfaceRunOptions& base, int level);
+
+/// The symmetric distance between two surfaces: the largest exact distance from a vertex or a
+/// triangle centroid of either one to the other (a SurfaceDistanceTree of each). 0 when both are
+/// empty, +inf when only one is. Cost O((n_a + n_b) log(n_a + n_b)) for n_a and n_b triangles.
+double surface_distance(const Surface& a, const Surface& b);
+
 /// Called after each run with the finished cell.
 using SurfaceStudyObserver = std::function<void(const SurfaceStudyCell&)>;
 

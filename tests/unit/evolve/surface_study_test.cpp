@@ -1,0 +1,52 @@
+// Tests of the pieces of surface studies and estimates: the options of a resolution, and the
+// distance between two surfaces against its exact value for spheres.
+#include "slc/evolve/surface_study.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "slc/core/error.hpp"
+#include "slc/geometry/surface_shapes.hpp"
+
+namespace slc {
+namespace {
+
+TEST(SurfaceResolution, HalvesAndDoublesNKAndEps) {
+    SurfaceRunOptions base;
+    base.steps = 10;
+    base.step.contour = {.depth = 5, .refine_passes = 2, .eps = 1e-3, .eta = 1e-10};
+    const SurfaceRunOptions coarse = surface_resolution_options(base, -1);
+    EXPECT_EQ(coarse.steps, 5);
+    EXPECT_EQ(coarse.step.contour.depth, 4);
+    EXPECT_DOUBLE_EQ(*coarse.step.contour.eps, 4e-3);
+    EXPECT_EQ(coarse.step.contour.refine_passes, 2);
+    const SurfaceRunOptions fine = surface_resolution_options(base, 2);
+    EXPECT_EQ(fine.steps, 40);
+    EXPECT_EQ(fine.step.contour.depth, 7);
+    EXPECT_DOUBLE_EQ(*fine.step.contour.eps, 1e-3 / 16);
+    // ε from the default 10^−K, and never below η.
+    base.step.contour.eps.reset();
+    EXPECT_DOUBLE_EQ(*surface_resolution_options(base, -1).step.contour.eps, 4e-5);
+    base.step.contour.eta = 1e-4;
+    EXPECT_DOUBLE_EQ(*surface_resolution_options(base, 2).step.contour.eps, 1e-4);
+    base.steps = 1;
+    EXPECT_THROW(surface_resolution_options(base, -1), InvalidInput);
+}
+
+TEST(SurfaceDistance, OfConcentricSpheresIsTheirRadii) {
+    // Icospheres' vertices lie on the sphere, their centroids inside by the sag: the distance of
+    // two concentric ones is the difference of radii, up to the sag of the coarser.
+    const Surface a = sphere({0.1, 0.0, -0.2}, 0.5, 4), b = sphere({0.1, 0.0, -0.2}, 0.45, 4);
+    const double d = surface_distance(a, b);
+    EXPECT_GE(d, 0.05 - 1e-12);
+    EXPECT_LE(d, 0.05 + 1e-3);  // the centroids' sag on a 4-times-split icosphere: 3e-4
+    EXPECT_DOUBLE_EQ(surface_distance(a, b), surface_distance(b, a));
+    EXPECT_LE(surface_distance(a, a), 1e-15);  // a centroid's rounding
+    EXPECT_EQ(surface_distance(Surface{}, Surface{}), 0.0);
+    EXPECT_EQ(surface_distance(a, Surface{}), std::numeric_limits<double>::infinity());
+}
+
+}  // namespace
+}  // namespace slc
