@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "slc/core/box.hpp"
 #include "slc/core/box3.hpp"
+#include "slc/evolve/run.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/surface.hpp"
 
@@ -61,6 +63,24 @@ std::optional<std::vector<double>> comma_numbers(const std::string& text);
 
 /// Applies --threads (0 = all cores).
 void apply_threads(int threads);
+
+/// How --estimate's run at half resolution ended, and the distance between its final curves or
+/// surface and the run's (+inf when they cannot be compared).
+struct CoarseRun {
+    RunStatus status = RunStatus::ok;
+    double t = 0.0;
+    double cpu_s = 0.0;
+    bool empty = false;  ///< it ended with no curves or surface
+    double distance = 0.0;
+};
+
+/// summary.json's "error_estimate" of `slc run --estimate`: the distance between the run's final
+/// curves or surface (what: "curves", "surface") and those of the same run at half resolution
+/// (named coarse: N/2, K − 1, 4ε), which run_coarse runs unless the run ended with a status
+/// other than ok. If the error falls at least as fast as first order, e ≤ d/(2 − 1) = d: the
+/// estimate is d itself (a third of it at second order); a note says so, or why there is none.
+nlohmann::json estimate_json(const std::string& coarse, RunStatus status,
+                             const std::function<CoarseRun()>& run_coarse, const std::string& what);
 
 /// CLI11 checks with one-line messages naming the value: a positive finite number; a finite
 /// number >= 0; an integer in [lo, hi]; a number in [0, 1).

@@ -156,39 +156,6 @@ private:
     std::optional<std::pair<double, Interface>> latest_;
 };
 
-/// --estimate: the run again at half resolution (coarse: N/2, K − 1, 4ε) and the distance between
-/// the two final interfaces, summary.json's "error_estimate". If the error falls at least as
-/// fast as first order, e ≤ d/(2^1 − 1) = d: the estimate is d itself (a third of it at second
-/// order). Ctrl-C stops the extra run too.
-nlohmann::json estimate_json(const Interface& initial, const VelocityLaw& law, const Box& domain,
-                             const RunOptions& coarse, const RunResult& fine) {
-    nlohmann::json e = {{"distance", nullptr}, {"coarse", run_name(coarse)}, {"estimate", nullptr}};
-    if (fine.status != RunStatus::ok) {
-        e["note"] = fmt::format("no estimate: the run ended with status {}, not at t_end",
-                                to_string(fine.status));
-        return e;
-    }
-    const RunResult c =
-        run(initial, law, domain, coarse, [](const StepReport&) { return !stop_requested; });
-    e["coarse_status"] = to_string(c.status);
-    e["coarse_cpu_s"] = c.cpu_s;
-    const double d = final_distance(fine, c);
-    if (!std::isfinite(d)) {
-        e["note"] = fmt::format(
-            "no estimate: the run at half resolution ended {} at t = {:.6g}{}, which cannot be "
-            "compared with this run's curves",
-            to_string(c.status), c.t, c.curves.empty() ? " with no curves" : "");
-        return e;
-    }
-    e["distance"] = d;
-    e["estimate"] = d;
-    e["note"] =
-        "distance between the final curves of this run and of the same run at half resolution "
-        "(N/2 steps, K - 1, 4 eps): an estimate of this run's error that holds if it converges "
-        "at first order or faster (at second order the error is about a third of it), not a bound";
-    return e;
-}
-
 /// Refuses K or L (= K + P unless given) beyond the machine's memory for the initial curves.
 void check_run_memory(const RunOptions& options, const Interface& initial, const Box& domain) {
     const double l = length(initial);
@@ -297,7 +264,15 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
     summary["run_id"] = id;
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     if (coarse) {  // the summary is written once without it, in case the extra run is stopped
-        summary["error_estimate"] = estimate_json(initial, *law, p.domain, *coarse, r);
+        summary["error_estimate"] = estimate_json(
+            run_name(*coarse), r.status,
+            [&] {
+                // Ctrl-C stops the extra run too.
+                const RunResult c = run(initial, *law, p.domain, *coarse,
+                                        [](const StepReport&) { return !stop_requested; });
+                return CoarseRun{c.status, c.t, c.cpu_s, c.curves.empty(), final_distance(r, c)};
+            },
+            "curves");
         write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     }
     folder.commit();
@@ -345,7 +320,8 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
                     "the z axis from +x, and above the xy plane; default the problem's, or 35,25)");
     cmd->add_flag("--vtk", o->vtk,
                   "Also write the initial interface, the frames and the final one as VTK PolyData "
-                  "(DIR/frames/*.vtp) and DIR/frames.pvd, a time series ParaView opens");
+                  "(DIR/frames/*.vtp) and DIR/frames.pvd, a time series ParaView opens. For "
+                  "curves: a surface's frames are written so already");
     cmd->add_flag("--estimate", o->estimate,
                   "After the run, run it again at half resolution (N/2 steps, K - 1, 4 eps; about "
                   "a quarter of the cost or less) and write the distance between the two final "

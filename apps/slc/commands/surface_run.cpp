@@ -90,45 +90,6 @@ void draw_history(const std::vector<HistoryRow>& rows, const std::string& title,
     save_plot(plot, path);
 }
 
-/// --estimate: the run again from the same surface at half resolution (N/2, K − 1, 4ε) and the
-/// distance between the two final surfaces. If the error falls at least as fast as first order,
-/// e ≤ d/(2 − 1) = d: the estimate is d itself (a third of it at second order). A stop signal
-/// stops the extra run too.
-nlohmann::json estimate_json(const SurfaceProblem& p, const SurfaceRunOptions& coarse,
-                             const SurfaceRunResult& fine, const std::atomic<int>* stop) {
-    const SurfaceContourOptions& c = coarse.step.contour;
-    const std::string name =
-        fmt::format("N {}, K {}, eps {:.3g}", coarse.steps, c.depth, c.resolved_eps());
-    nlohmann::json e = {{"distance", nullptr}, {"coarse", name}, {"estimate", nullptr}};
-    if (fine.status != RunStatus::ok) {
-        e["note"] = fmt::format("no estimate: the run ended with status {}, not at t_end",
-                                to_string(fine.status));
-        return e;
-    }
-    const SurfaceRunResult other =
-        run(p.initial, *p.law, p.domain, coarse,
-            [stop](const SurfaceStepReport&) { return stop == nullptr || *stop == 0; });
-    e["coarse_status"] = to_string(other.status);
-    e["coarse_cpu_s"] = other.cpu_s;
-    const double d = other.status == RunStatus::ok && other.t == fine.t
-                         ? surface_distance(fine.surface, other.surface)
-                         : std::numeric_limits<double>::infinity();
-    if (!std::isfinite(d)) {
-        e["note"] = fmt::format(
-            "no estimate: the run at half resolution ended {} at t = {:.6g}{}, which cannot be "
-            "compared with this run's surface",
-            to_string(other.status), other.t, other.surface.empty() ? " with no surface" : "");
-        return e;
-    }
-    e["distance"] = d;
-    e["estimate"] = d;
-    e["note"] =
-        "distance between the final surfaces of this run and of the same run at half resolution "
-        "(N/2 steps, K - 1, 4 eps): an estimate of this run's error that holds if it converges "
-        "at first order or faster (at second order the error is about a third of it), not a bound";
-    return e;
-}
-
 }  // namespace
 
 bool is_surface_run(const std::string& problem, const std::string& initial) {
@@ -314,7 +275,24 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     }
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     if (coarse) {
-        summary["error_estimate"] = estimate_json(p, *coarse, result, r.stop_signal);
+        const std::string name =
+            fmt::format("N {}, K {}, eps {:.3g}", coarse->steps, coarse->step.contour.depth,
+                        coarse->step.contour.resolved_eps());
+        summary["error_estimate"] = estimate_json(
+            name, result.status,
+            [&] {
+                // The run again from the same surface; a stop signal stops it too.
+                const SurfaceRunResult other =
+                    run(p.initial, *p.law, p.domain, *coarse, [&r](const SurfaceStepReport&) {
+                        return r.stop_signal == nullptr || *r.stop_signal == 0;
+                    });
+                const bool comparable = other.status == result.status && other.t == result.t &&
+                                        !other.surface.empty() && !result.surface.empty();
+                return CoarseRun{other.status, other.t, other.cpu_s, other.surface.empty(),
+                                 comparable ? surface_distance(result.surface, other.surface)
+                                            : std::numeric_limits<double>::infinity()};
+            },
+            "surface");
         write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     }
     folder.commit();
