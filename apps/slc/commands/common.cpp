@@ -234,6 +234,15 @@ CLI::Validator fraction_below_one() {
         "in [0, 1)");
 }
 
+void require_half_resolution(int steps, int depth) {
+    if (steps < 2 || depth < 2) {
+        throw InvalidInput(fmt::format(
+            "--estimate compares with the run at half resolution, which needs N >= 2 and K >= 2, "
+            "got N = {} and K = {}",
+            steps, depth));
+    }
+}
+
 nlohmann::json estimate_json(const std::string& coarse, RunStatus status,
                              const std::function<CoarseRun()>& run_coarse,
                              const std::string& what) {

@@ -79,6 +79,9 @@ struct CoarseRun {
 /// (named coarse: N/2, K − 1, 4ε), which run_coarse runs unless the run ended with a status
 /// other than ok. If the error falls at least as fast as first order, e ≤ d/(2 − 1) = d: the
 /// estimate is d itself (a third of it at second order); a note says so, or why there is none.
+/// Throws InvalidInput unless a run of N steps at depth K has a run at half resolution (N, K ≥ 2).
+void require_half_resolution(int steps, int depth);
+
 nlohmann::json estimate_json(const std::string& coarse, RunStatus status,
                              const std::function<CoarseRun()>& run_coarse, const std::string& what);
 

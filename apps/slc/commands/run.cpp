@@ -175,12 +175,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
     const RunOptions options = resolve_run_options(o.method, p);
     // --estimate's run at half resolution, resolved first so that one it cannot have (N or K
     // of 1) is an input error before anything runs.
-    if (o.estimate && (options.steps < 2 || options.step.contour.depth < 2)) {
-        throw InvalidInput(fmt::format(
-            "--estimate compares with the run at half resolution, which needs N >= 2 and K >= 2, "
-            "got N = {} and K = {}",
-            options.steps, options.step.contour.depth));
-    }
+    if (o.estimate) require_half_resolution(options.steps, options.step.contour.depth);
     const std::optional<RunOptions> coarse =
         o.estimate ? std::optional(resolution_options(options, -1)) : std::nullopt;
     const std::optional<GeometryModule> module = geometry_module(o.method);

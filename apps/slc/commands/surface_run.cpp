@@ -176,12 +176,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
 
     // --estimate's run at half resolution, resolved first so that one it cannot have (N or K
     // of 1) is an input error before anything runs.
-    if (r.estimate && (options.steps < 2 || options.step.contour.depth < 2)) {
-        throw InvalidInput(fmt::format(
-            "--estimate compares with the run at half resolution, which needs N >= 2 and K >= 2, "
-            "got N = {} and K = {}",
-            options.steps, options.step.contour.depth));
-    }
+    if (r.estimate) require_half_resolution(options.steps, options.step.contour.depth);
     const std::optional<SurfaceRunOptions> coarse =
         r.estimate ? std::optional(surface_resolution_options(options, -1)) : std::nullopt;
 
