@@ -324,10 +324,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
     const Evaluator tree_g(g, stats.g_evals_tree);
     Octree tree(domain, options.depth);
     // The slack allows for rounding in G too: a few thousand ulps of the domain's coordinates.
-    const double rounding =
-        1e-12 * std::max({std::abs(domain.lo.x), std::abs(domain.lo.y), std::abs(domain.lo.z),
-                          std::abs(domain.hi.x), std::abs(domain.hi.y), std::abs(domain.hi.z),
-                          domain.width()});
+    const double rounding = 1e-12 * std::max(domain.largest_magnitude(), domain.width());
     const std::optional<double> slack =
         options.distance_slack ? std::optional(*options.distance_slack + rounding) : std::nullopt;
     TreeSampler sampler(tree, tree_g, slack, options.eta);

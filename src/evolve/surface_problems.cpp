@@ -52,19 +52,6 @@ VelocityParams resolve(const std::string& what, const Defaults& defaults,
     return out;
 }
 
-/// The surface of an implicit function, contoured and refined to eps at depth K: the problems'
-/// initial surfaces at the resolution of their runs. Every problem's function is 1-Lipschitz
-/// (distances, and their minima and maxima), so points far from its zero set need no value.
-Surface contoured(const std::function<double(Vec3)>& f, const Box3& domain, int depth, double eps) {
-    const auto g = pointwise<Vec3>(f);
-    return contour_surface(g, domain,
-                           {.depth = depth,
-                            .refine_passes = SurfaceContourOptions::until_converged,
-                            .eps = eps,
-                            .distance_slack = 0.0})
-        .surface;
-}
-
 /// The exact signed distance to the box [lo, hi].
 double box_distance(Vec3 x, Vec3 lo, Vec3 hi) {
     const Vec3 c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
@@ -227,8 +214,10 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
             const auto exact = p.exact;
             f = [exact](Vec3 x) { return exact(0.0, x); };
         }
-        p.initial = contoured(f, p.domain, p.depth, p.eps);
         p.initial_function = std::move(f);
+        p.initial = initial_surface(p, {.depth = p.depth,
+                                        .refine_passes = SurfaceContourOptions::until_converged,
+                                        .eps = p.eps});
     }
     return p;
 }
@@ -283,8 +272,10 @@ std::unique_ptr<SurfaceVelocityLaw> make_surface_velocity(const std::string& nam
 Surface initial_surface(const SurfaceProblem& p, const SurfaceContourOptions& options) {
     if (!p.initial_function) return p.initial;
     const auto g = pointwise<Vec3>(p.initial_function);
+    // Every problem's function is 1-Lipschitz (distances, and their minima and maxima), so
+    // points far from its zero set need no value.
     SurfaceContourOptions o = options;
-    if (!o.distance_slack) o.distance_slack = 0.0;  // 1-Lipschitz, as contoured() says
+    if (!o.distance_slack) o.distance_slack = 0.0;
     return contour_surface(g, p.domain, o).surface;
 }
 

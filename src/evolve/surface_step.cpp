@@ -273,22 +273,22 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
     // Predictor (Eq. 4): G̃(x) = F(x − k W(x); S(t)). F is within b of an exact distance (the
     // patches' bulge) and |W| ≤ max|W|, so |G̃(x) − G̃(y)| ≤ |x − y| + 2 (k max|W| + b): points
     // far from the surface are settled by their neighbours without a query.
-    SurfaceStepOptions contour_options = options;
-    contour_options.contour.distance_slack = 2.0 * (k * now.max_speed() + now.max_bulge());
+    SurfaceContourOptions contour_options = options.contour;
+    contour_options.distance_slack = 2.0 * (k * now.max_speed() + now.max_bulge());
     const auto predictor = [&](std::span<const Vec3> xs, std::span<double> values) {
         parallel_for(
             xs.size(),
             [&](std::size_t i) { values[i] = now.distance(xs[i] - k * now.velocity(xs[i])); },
             expensive_grain);
     };
-    SurfaceContour predicted = contour_surface(predictor, domain, contour_options.contour);
+    SurfaceContour predicted = contour_surface(predictor, domain, contour_options);
     result.stats.predictor = predicted.stats;
     if (predicted.surface.empty()) return result;  // everything vanished within the step
 
     // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x, whose foot
     // moves at most k/2 (max|W(t)| + max|W(t + k)|) from x.
     const SurfaceLevel next(predicted.surface, t + k, k, law, domain, options, extension);
-    contour_options.contour.distance_slack =
+    contour_options.distance_slack =
         2.0 * (0.5 * k * (now.max_speed() + next.max_speed()) + now.max_bulge());
     const auto corrector = [&](std::span<const Vec3> xs, std::span<double> values) {
         parallel_for(
@@ -300,7 +300,7 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
             },
             expensive_grain);
     };
-    SurfaceContour corrected = contour_surface(corrector, domain, contour_options.contour);
+    SurfaceContour corrected = contour_surface(corrector, domain, contour_options);
     result.stats.corrector = corrected.stats;
     result.surface = std::move(corrected.surface);
     return result;

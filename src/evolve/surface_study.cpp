@@ -40,14 +40,14 @@ SurfaceRunOptions surface_study_cell_options(const SurfaceProblem& problem, int 
             fmt::format("a study cell has row and P in 0..4, got row {} and P {}", row, refine));
     }
     const SurfaceStudyPlan& plan = *problem.study;
-    SurfaceRunOptions o;
-    o.t_start = 0.0;
-    o.t_end = problem.t_end;
-    o.steps = plan.steps << row;
-    o.step.contour.depth = plan.depth + row;
-    o.step.contour.refine_passes = refine;
-    o.step.contour.eps = plan.eps * std::pow(4.0, -row);
-    return o;
+    SurfaceRunOptions first;
+    first.t_start = 0.0;
+    first.t_end = problem.t_end;
+    first.steps = plan.steps;
+    first.step.contour.depth = plan.depth;
+    first.step.contour.refine_passes = refine;
+    first.step.contour.eps = plan.eps;
+    return surface_resolution_options(first, row);
 }
 
 SurfaceRunOptions surface_resolution_options(const SurfaceRunOptions& base, int level) {
