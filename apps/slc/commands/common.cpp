@@ -2,6 +2,7 @@
 #include "commands/common.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -232,6 +233,32 @@ CLI::Validator fraction_below_one() {
             return fmt::format("must be a number in [0, 1), got '{}'", text);
         },
         "in [0, 1)");
+}
+
+std::string one_velocity_law(const std::vector<std::pair<std::string, bool>>& options,
+                             const std::string& missing) {
+    std::vector<std::string> given, all;
+    for (const auto& [name, is_given] : options) {
+        all.push_back(name);
+        if (is_given) given.push_back(name);
+    }
+    if (given.empty()) throw InvalidInput(missing);
+    if (given.size() > 1) {
+        const std::string last = all.back();
+        all.pop_back();
+        throw InvalidInput(fmt::format("give one velocity law of {} and {}, got {} and {}",
+                                       fmt::join(all, ", "), last, given[0], given[1]));
+    }
+    return given[0];
+}
+
+void print_estimate(const nlohmann::json& estimate) {
+    if (estimate["estimate"].is_null()) {
+        fmt::print("{}\n", estimate["note"].get<std::string>());
+    } else {
+        fmt::print("error estimate: {:.3g} (the distance to the run {} at half resolution)\n",
+                   estimate["estimate"].get<double>(), estimate["coarse"].get<std::string>());
+    }
 }
 
 void require_half_resolution(int steps, int depth) {

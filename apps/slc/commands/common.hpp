@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "slc/core/box.hpp"
@@ -79,6 +80,14 @@ struct CoarseRun {
 /// (named coarse: N/2, K − 1, 4ε), which run_coarse runs unless the run ended with a status
 /// other than ok. If the error falls at least as fast as first order, e ≤ d/(2 − 1) = d: the
 /// estimate is d itself (a third of it at second order); a note says so, or why there is none.
+/// The one velocity law given among options (name, given), in their order: InvalidInput with
+/// `missing` when none is, or naming the first two when several are.
+std::string one_velocity_law(const std::vector<std::pair<std::string, bool>>& options,
+                             const std::string& missing);
+
+/// Prints summary.json's "error_estimate" in one line: the estimate, or why there is none.
+void print_estimate(const nlohmann::json& estimate);
+
 /// Throws InvalidInput unless a run of N steps at depth K has a run at half resolution (N, K ≥ 2).
 void require_half_resolution(int steps, int depth);
 

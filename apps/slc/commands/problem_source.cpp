@@ -1,9 +1,6 @@
 // The problem of slc run and slc study: a named one, or the user's curve with its defaults.
 #include "commands/problem_source.hpp"
 
-#include <fmt/format.h>
-
-#include <algorithm>
 #include <filesystem>
 
 #include "commands/run_options.hpp"
@@ -53,23 +50,17 @@ Problem resolve_problem(const ProblemSource& o) {
         if (o.domain.half_width || o.domain.box) p.domain = resolve_domain(o.domain, p.initial);
         return p;
     }
-    std::vector<std::string> laws;
-    if (!o.velocity.empty()) laws.push_back("--velocity");
-    if (o.speed) laws.push_back("--speed");
-    if (o.field) laws.push_back("--field");
-    if (o.field_file) laws.push_back("--field-file");
-    if (laws.empty())
-        throw InvalidInput("--initial needs --velocity NAME, or --speed, --field or --field-file");
-    if (laws.size() > 1) {
-        throw InvalidInput(fmt::format(
-            "give one velocity law of --velocity, --speed, --field and --field-file, got {} and {}",
-            laws[0], laws[1]));
-    }
+    const std::string chosen =
+        one_velocity_law({{"--velocity", !o.velocity.empty()},
+                          {"--speed", o.speed.has_value()},
+                          {"--field", o.field.has_value()},
+                          {"--field-file", o.field_file.has_value()}},
+                         "--initial needs --velocity NAME, or --speed, --field or --field-file");
     if (!o.t_end) throw InvalidInput("--initial needs --t-end");
     LoadedInterface in = load_interface(o.initial, o.domain);
     // The law first: its defaults are the run's, and a lattice must hold the curves.
     Problem law_source;
-    law_source.velocity = o.velocity.empty() ? laws[0].substr(2) : o.velocity;  // "speed", ...
+    law_source.velocity = o.velocity.empty() ? chosen.substr(2) : o.velocity;  // "speed", ...
     law_source.velocity_expression = o.speed ? *o.speed : o.field.value_or("");
     law_source.velocity_file = o.field_file.value_or("");
     law_source.velocity_params = params;

@@ -275,15 +275,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
         fmt::print("{}: {} at t = {:.6g} after {} steps, e_inf = {}, {:.3g} s cpu; wrote {}\n",
                    p.name, to_string(r.status), r.t, r.steps_done, summary["e_inf"].dump(), r.cpu_s,
                    folder.target().string());
-        if (coarse) {
-            const nlohmann::json& e = summary["error_estimate"];
-            if (e["estimate"].is_null())
-                fmt::print("{}\n", e["note"].get<std::string>());
-            else
-                fmt::print(
-                    "error estimate: {:.3g} (the distance to the run {} at half resolution)\n",
-                    e["estimate"].get<double>(), e["coarse"].get<std::string>());
-        }
+        if (coarse) print_estimate(summary["error_estimate"]);
     }
     if (r.status == RunStatus::error || r.status == RunStatus::unstable)
         throw NumericalFailure(r.message);

@@ -117,18 +117,10 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
                                 .refine_passes = SurfaceContourOptions::until_converged,
                                 .eps = p.eps};
     } else {
-        std::vector<std::string> laws;
-        if (!r.velocity.empty()) laws.push_back("--velocity");
-        if (r.speed) laws.push_back("--speed");
-        if (r.field) laws.push_back("--field");
-        if (laws.empty())
-            throw InvalidInput(
-                "--initial with a surface needs --velocity NAME, --speed or --field");
-        if (laws.size() > 1) {
-            throw InvalidInput(fmt::format(
-                "give one velocity law of --velocity, --speed and --field, got {} and {}", laws[0],
-                laws[1]));
-        }
+        one_velocity_law({{"--velocity", !r.velocity.empty()},
+                          {"--speed", r.speed.has_value()},
+                          {"--field", r.field.has_value()}},
+                         "--initial with a surface needs --velocity NAME, --speed or --field");
         if (!r.t_end) throw InvalidInput("--initial needs --t-end");
         LoadedSurface in = load_surface(r.initial, r.domain);
         p.name = std::filesystem::path(r.initial).stem().string();
@@ -314,15 +306,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
             summary["volume_change"].get<double>(),
             std::isfinite(e) ? fmt::format(", e_inf {:.3g}", e) : std::string(), result.cpu_s,
             (folder.target() / "summary.json").string());
-        if (coarse) {
-            const nlohmann::json& estimate = summary["error_estimate"];
-            if (estimate["estimate"].is_null())
-                fmt::print("{}\n", estimate["note"].get<std::string>());
-            else
-                fmt::print(
-                    "error estimate: {:.3g} (the distance to the run {} at half resolution)\n",
-                    estimate["estimate"].get<double>(), estimate["coarse"].get<std::string>());
-        }
+        if (coarse) print_estimate(summary["error_estimate"]);
     }
 }
 
