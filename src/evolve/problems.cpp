@@ -126,7 +126,7 @@ std::vector<Vec2> slotted_disk(Vec2 c, double r, double w, double top, int n) {
     const int rise = std::max(2, static_cast<int>(n * (top - c.y + drop) / (2 * pi * r)));
     for (int k = 1; k <= rise; ++k)
         pts.push_back({c.x - half, c.y - drop + (top - c.y + drop) * k / rise});
-    for (int k = rise - 1; k >= 1; --k)
+    for (int k = rise; k >= 1; --k)
         pts.push_back({c.x + half, c.y - drop + (top - c.y + drop) * k / rise});
     return pts;
 }
