@@ -42,6 +42,10 @@ constexpr double collision_margin = 0.9;
 /// of G, not a root: its split would be refused anyway (a stalled root is no vertex), so it is
 /// given up at once instead of being bisected to rounding size (some fifty evaluations).
 constexpr double jump_slope_factor = 1024.0;
+/// A segment whose neighbours are both within ε of the zero set but which is not, with the
+/// neighbours' lines turning by at least this much between them, cuts a corner of the zero set:
+/// its bracket aims at where those lines meet.
+constexpr double corner_turn = 20.0 * std::numbers::pi / 180.0;
 /// Barycentric slack when deciding that a root lies in its home triangle: rounding only.
 constexpr double triangle_slack = 1e-12;
 
@@ -64,6 +68,7 @@ struct Candidate {
     double g_probe = 0.0;
     bool has_root = false;
     Vec2 root;
+    bool at_corner = false;  ///< the bracket aims at a corner of the zero set (corner_of)
 };
 
 /// True when the angle at apex between the rays to p and q is at most min_angle.
@@ -190,12 +195,25 @@ private:
             const std::uint32_t u = c.u, v = chain_.next[u];
             const Vec2 tangent = (chain_.points[v] - chain_.points[u]) / chain_.length(u);
             const Vec2 right{tangent.y, -tangent.x};
-            c.dir = c.g_mid > 0.0 ? -right : right;
+            const Vec2 normal = c.g_mid > 0.0 ? -right : right;
             const double longest = max_bracket_distance * chain_.length(u);
-            c.reach = std::min(collision_margin * grid_->first_hit(c.mid, c.dir, longest, u),
-                               ray_exit(domain_, c.mid, c.dir));
             c.near = c.mid;
             c.g_near = c.g_mid;
+            if (const std::optional<Vec2> corner = corner_of(u, normal)) {
+                const double d = distance(c.mid, *corner);
+                c.dir = (*corner - c.mid) / d;
+                c.reach = std::min(collision_margin * grid_->first_hit(c.mid, c.dir, longest, u),
+                                   ray_exit(domain_, c.mid, c.dir));
+                if (d <= c.reach) {
+                    c.at_corner = true;
+                    c.probe = *corner;
+                    probes[k] = c.probe;
+                    return;
+                }
+            }
+            c.dir = normal;
+            c.reach = std::min(collision_margin * grid_->first_hit(c.mid, c.dir, longest, u),
+                               ray_exit(domain_, c.mid, c.dir));
             c.probe = domain_.clamp(c.mid +
                                     std::min(bracket_distance * chain_.length(u), c.reach) * c.dir);
             probes[k] = c.probe;
@@ -244,6 +262,31 @@ private:
         for (std::size_t i = 0; i < ids.size(); ++i) candidates[ids[i]].g_probe = values[i];
     }
 
+    /// Where the lines of u's neighbouring segments meet, when segment u cuts a corner of the zero
+    /// set there: both neighbours are within ε of it and u is not, their lines turn by at least
+    /// corner_turn, and they meet on the side of u where G has the other sign (normal), ahead of
+    /// both neighbours and within max_bracket_distance segment lengths of u's midpoint. On
+    /// straight sides, such as a polygon's offsets or its rigid motions, that is the corner itself.
+    std::optional<Vec2> corner_of(std::uint32_t u, Vec2 normal) const {
+        const std::uint32_t v = chain_.next[u], p = chain_.prev[u], n = chain_.next[v];
+        if (n == p || std::abs(chain_.mid_value[p]) > eps_ || std::abs(chain_.mid_value[v]) > eps_)
+            return std::nullopt;
+        const Vec2 pu = chain_.points[u], pv = chain_.points[v];
+        const Vec2 d1 = (pu - chain_.points[p]) / chain_.length(p);
+        const Vec2 d2 = (chain_.points[n] - pv) / chain_.length(v);
+        const double sine = cross(d1, d2);
+        if (std::atan2(std::abs(sine), dot(d1, d2)) < corner_turn) return std::nullopt;
+        // pu + s d1 = pv + t d2: the corner lies ahead of u (s > 0) and behind v (t < 0).
+        const double s = cross(pv - pu, d2) / sine, t = cross(pv - pu, d1) / sine;
+        if (!(s > 0.0) || !(t < 0.0)) return std::nullopt;
+        const Vec2 corner = pu + s * d1;
+        const Vec2 mid = 0.5 * (pu + pv);
+        if (!(dot(corner - mid, normal) > 0.0) ||
+            distance(corner, mid) > max_bracket_distance * chain_.length(u))
+            return std::nullopt;
+        return corner;
+    }
+
     /// Root finding on every bracket with a sign change, in batched rounds.
     void solve(std::vector<Candidate>& candidates) {
         std::vector<Bracket> brackets;
@@ -277,7 +320,7 @@ private:
         std::vector<std::uint8_t> allowed(candidates.size());
         parallel_for(candidates.size(), [&](std::size_t i) {
             const Candidate& c = candidates[i];
-            allowed[i] = c.has_root && (options_.triangle_safeguard
+            allowed[i] = c.has_root && (options_.triangle_safeguard && !c.at_corner
                                             ? in_allowed_triangle(chain_.home[c.u], c.root)
                                             : domain_.contains(c.root));
         });
@@ -290,6 +333,10 @@ private:
                 continue;
             }
             const std::uint32_t w = chain_.insert_after(c.u, c.root);
+            if (c.at_corner) {
+                corners_.resize(chain_.points.size());
+                corners_[w] = 1;
+            }
             grid_->insert(c.u);
             grid_->insert(w);
             ++added;
@@ -343,7 +390,8 @@ private:
     }
 
     /// Prune step: removes an end of every segment shorter than ρ times both neighbours (the end
-    /// whose other segment is shorter, so that the merged segment is the shorter choice), when
+    /// whose other segment is shorter, so that the merged segment is the shorter choice, unless
+    /// that end is a corner placed by refinement: then the other end, if it is none), when
     /// the merged segment passes the angle and crossing safeguards. Returns the number removed.
     std::size_t prune() {
         if (options_.rho == 0.0) return 0;
@@ -353,8 +401,10 @@ private:
             const std::uint32_t v = chain_.next[u];
             const double before = chain_.length(chain_.prev[u]), after = chain_.length(v);
             if (!(chain_.length(u) < options_.rho * std::min(before, after))) continue;
-            const std::uint32_t x = before <= after ? u : v;
-            if (!merge_is_safe(x)) continue;
+            // A corner that refinement placed is kept: the segment loses its other end.
+            std::uint32_t x = before <= after ? u : v;
+            if (is_corner(x)) x = x == u ? v : u;
+            if (is_corner(x) || !merge_is_safe(x)) continue;
             const std::uint32_t a = chain_.prev[x];
             chain_.remove(x);
             grid_->insert(a);
@@ -363,6 +413,8 @@ private:
         report_.pruned += removed;
         return removed;
     }
+
+    bool is_corner(std::uint32_t x) const { return x < corners_.size() && corners_[x] != 0; }
 
     bool merge_is_safe(std::uint32_t x) const {
         const std::uint32_t a = chain_.prev[x], b = chain_.next[x];
@@ -391,6 +443,7 @@ private:
     const ContourOptions& options_;
     double eps_;
     std::optional<SegmentGrid> grid_;
+    std::vector<std::uint8_t> corners_;  ///< vertices placed at a corner (corner_of), by number
     RefineReport report_;
 };
 

@@ -257,6 +257,60 @@ TEST(Contour, ALoopThinnerThanEtaIsASliverNotAComponent) {
     EXPECT_EQ(k.stats.slivers, 1u);
 }
 
+/// max over the sides of a convex polygon (counterclockwise) of the signed distance to the
+/// side's line: zero exactly on the polygon, |∇G| = 1, with its corners sharp.
+auto convex_polygon(std::vector<Vec2> corners) {
+    return [corners = std::move(corners)](Vec2 p) {
+        double g = -std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < corners.size(); ++i) {
+            const Vec2 a = corners[i], b = corners[(i + 1) % corners.size()];
+            g = std::max(g, cross(b - a, p - a) / -norm(b - a));
+        }
+        return g;
+    };
+}
+
+// The tree's triangles cut the corners of a polygon; where both neighbours of a segment lie on
+// the zero set's sides and it does not, refinement aims at the meeting of their lines and finds
+// the corner itself, convex or reflex, in one pass (the paper's triangle safeguard on).
+TEST(Contour, CornersOfPolygonsAreFoundInOnePass) {
+    const double turn = 0.3;
+    std::vector<Vec2> triangle;
+    for (int i = 0; i < 3; ++i)
+        triangle.push_back(
+            {0.7 * std::cos(turn + 2 * pi * i / 3), 0.7 * std::sin(turn + 2 * pi * i / 3)});
+    const auto tri = convex_polygon(triangle);
+    // An L: the union of two rectangles, turned, with one reflex corner.
+    const auto rotate = [&](Vec2 p) {
+        return Vec2{std::cos(turn) * p.x - std::sin(turn) * p.y,
+                    std::sin(turn) * p.x + std::cos(turn) * p.y};
+    };
+    std::vector<Vec2> a{{-0.5, -0.5}, {0.5, -0.5}, {0.5, -0.1}, {-0.5, -0.1}};
+    std::vector<Vec2> b{{-0.5, -0.5}, {-0.1, -0.5}, {-0.1, 0.5}, {-0.5, 0.5}};
+    for (Vec2& p : a) p = rotate(p);
+    for (Vec2& p : b) p = rotate(p);
+    const auto ga = convex_polygon(a), gb = convex_polygon(b);
+    const auto ell = [&](Vec2 p) { return std::min(ga(p), gb(p)); };
+    std::vector<Vec2> ell_corners{a[0], a[1], a[2], rotate({-0.1, -0.1}), b[2], b[3]};
+
+    const auto check = [](auto f, const std::vector<Vec2>& corners) {
+        const auto g = pointwise(f);
+        const ContourResult linear = contour(g, unit_domain, options(5, 0, 1e-10));
+        const ContourResult r = contour(g, unit_domain, options(5, 1, 1e-10));
+        ASSERT_EQ(r.curves.curve_count(), 1u);
+        EXPECT_GT(residuals(linear.curves, g).midpoints, 1e-3);  // the corners cut
+        EXPECT_LE(residuals(r.curves, g).midpoints, 1e-12);
+        for (Vec2 c : corners) {
+            double nearest = std::numeric_limits<double>::infinity();
+            for (Vec2 p : r.curves.points()) nearest = std::min(nearest, distance(p, c));
+            EXPECT_LE(nearest, 1e-12) << "corner (" << c.x << ", " << c.y << ")";
+        }
+        expect_simple(r.curves);
+    };
+    check(tri, triangle);
+    check(ell, ell_corners);
+}
+
 // Below two ulps of the domain's coordinates no root can be found: a given ε there is refused
 // (every split would be rejected, silently), η and the default ε are raised to it.
 TEST(Contour, ToleranceBelowRoundingIsRefusedOrRaised) {
