@@ -395,11 +395,14 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
 
     if (extension == Extension::direct) {
         // A flow field is known everywhere, so the foot of each characteristic needs no predicted
-        // curve: G(x) = F(departure point of x; Γ(t)), one contour, fourth order in time.
-        // G is evaluated a batch at a time, so that the law is sampled once per Runge–Kutta
-        // stage of each batch.
+        // curve: G(x) = F(departure point of x; Γ(t)), one contour, the feet traced to a tenth
+        // of ε. G is evaluated a batch at a time, so that the law is sampled once per
+        // Runge–Kutta stage of each batch.
+        const int substeps = detail::departure_substeps(
+            law, t, k, std::span<const Vec2>(curves.points()),
+            detail::departure_tolerance * options.contour.resolved_eps());
         auto g = [&](std::span<const Vec2> xs, std::span<double> values) {
-            const std::vector<Vec2> feet = detail::departure_points(law, t, k, xs);
+            const std::vector<Vec2> feet = detail::runge_kutta_feet(law, t, k, xs, substeps);
             parallel_for(
                 xs.size(), [&](std::size_t i) { values[i] = now.distance(feet[i]); },
                 expensive_grain);

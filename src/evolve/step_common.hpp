@@ -14,27 +14,61 @@
 
 namespace slc::detail {
 
-/// Where the characteristics through xs at t + k of a flow field were at t: dy/dt = u(y, t)
-/// integrated backward by the classical fourth-order Runge–Kutta rule, each stage one batch (a
-/// law written in Python, say, sees whole arrays). NumericalFailure naming the law and the point
-/// when a velocity is not finite.
+/// The classical fourth-order Runge–Kutta rule for dy/dt = u(y, t), integrated backward from xs
+/// at t + k to t in `substeps` equal steps, each stage one batch (a law written in Python, say,
+/// sees whole arrays).
 template <int dim>
-std::vector<typename Space<dim>::Point> departure_points(
+std::vector<typename Space<dim>::Point> runge_kutta_feet(
     const BasicVelocityLaw<dim>& law, double t, double k,
-    std::span<const typename Space<dim>::Point> xs) {
+    std::span<const typename Space<dim>::Point> xs, int substeps) {
     const std::size_t m = xs.size();
-    const double half = 0.5 * k;
-    std::vector<typename Space<dim>::Point> y(m);
-    const auto k1 = field_velocities(law, t + k, xs);
-    for (std::size_t i = 0; i < m; ++i) y[i] = xs[i] - half * k1[i];
-    const auto k2 = field_velocities(law, t + half, y);
-    for (std::size_t i = 0; i < m; ++i) y[i] = xs[i] - half * k2[i];
-    const auto k3 = field_velocities(law, t + half, y);
-    for (std::size_t i = 0; i < m; ++i) y[i] = xs[i] - k * k3[i];
-    const auto k4 = field_velocities(law, t, y);
-    for (std::size_t i = 0; i < m; ++i)
-        y[i] = xs[i] - (k / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-    return y;
+    const double h = k / substeps, half = 0.5 * h;
+    std::vector<typename Space<dim>::Point> x(xs.begin(), xs.end()), y(m);
+    for (int s = substeps; s > 0; --s) {
+        const double top = t + s * h;  // this substep goes from top back to top − h
+        const auto k1 = field_velocities(law, top, x);
+        for (std::size_t i = 0; i < m; ++i) y[i] = x[i] - half * k1[i];
+        const auto k2 = field_velocities(law, top - half, y);
+        for (std::size_t i = 0; i < m; ++i) y[i] = x[i] - half * k2[i];
+        const auto k3 = field_velocities(law, top - half, y);
+        for (std::size_t i = 0; i < m; ++i) y[i] = x[i] - h * k3[i];
+        const auto k4 = field_velocities(law, top - h, y);
+        for (std::size_t i = 0; i < m; ++i)
+            x[i] -= (h / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+    }
+    return x;
+}
+
+/// The feet of a flow field's characteristics are traced to this fraction of the contour's ε
+/// (departure_substeps): the contour then carries the flow's error, not the time step's.
+constexpr double departure_tolerance = 0.1;
+
+/// Most substeps a step's feet take: a field whose feet do not settle by then (a discontinuous
+/// one) keeps them.
+constexpr int max_departure_substeps = 64;
+
+/// How many equal substeps of the Runge–Kutta rule trace the feet of a step from t + k back to t
+/// to within about `tolerance`: 1, 2, 4, … doubled until one doubling moves no foot of the sample
+/// points (the interface's vertices, which the new one lies near) by more than 15·tolerance —
+/// the error of the finer feet, by Richardson's estimate for a fourth-order rule, is a
+/// fifteenth of that — and at most max_departure_substeps. One count for the whole step, so
+/// that G stays continuous (a count chosen point by point would make G jump where it changes).
+template <int dim>
+int departure_substeps(const BasicVelocityLaw<dim>& law, double t, double k,
+                       std::span<const typename Space<dim>::Point> sample, double tolerance) {
+    if (sample.empty()) return 1;
+    auto feet = runge_kutta_feet(law, t, k, sample, 1);
+    int substeps = 1;
+    while (substeps < max_departure_substeps) {
+        auto finer = runge_kutta_feet(law, t, k, sample, 2 * substeps);
+        double moved = 0.0;
+        for (std::size_t i = 0; i < sample.size(); ++i)
+            moved = std::max(moved, norm(finer[i] - feet[i]));
+        substeps *= 2;
+        if (moved <= 15.0 * tolerance) break;
+        feet = std::move(finer);
+    }
+    return substeps;
 }
 
 /// "(x, y)" or "(x, y, z)", for messages.

@@ -257,9 +257,13 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
     SurfaceStepResult result;
     const SurfaceLevel now(surface, t, k, law, domain, options, extension);
     if (extension == Extension::direct) {
-        // A flow field: G(x) = F(foot of the characteristic through x), one contour.
+        // A flow field: G(x) = F(foot of the characteristic through x), one contour, the feet
+        // traced to a tenth of ε.
+        const int substeps = detail::departure_substeps(
+            law, t, k, std::span<const Vec3>(surface.vertices),
+            detail::departure_tolerance * options.contour.resolved_eps());
         const auto g = [&](std::span<const Vec3> xs, std::span<double> values) {
-            const std::vector<Vec3> feet = detail::departure_points(law, t, k, xs);
+            const std::vector<Vec3> feet = detail::runge_kutta_feet(law, t, k, xs, substeps);
             parallel_for(
                 xs.size(), [&](std::size_t i) { values[i] = now.distance(feet[i]); },
                 expensive_grain);

@@ -249,9 +249,11 @@ TEST(Run, HalvingTheTimeStepCutsTheTimeErrorFourfold) {
     EXPECT_GT(order, 1.6);
 }
 
-TEST(Run, DirectFlowFieldIsFourthOrderInTime) {
+TEST(Run, DirectFlowFieldTracesTheFeetBelowTheContourTolerance) {
     // The same rotation with the law sampled directly: the foot of each characteristic by the
-    // fourth-order Runge–Kutta rule, so halving k cuts the time error about sixteenfold.
+    // fourth-order Runge–Kutta rule in as many substeps as bring it within a tenth of ε, so the
+    // step size leaves no mark: one Runge–Kutta step would give 8.3e-4 at N = 4 and 4.2e-5 at
+    // N = 8; measured 8.3e-6 and 1.2e-5, the error of the initial 1024-gon's chords.
     const Problem p = with_initial(
         "propeller-rotation", {shapes::circle({0.6, 0}, 0.5, 1024)}, [](Vec2 x, double t) {
             return distance(x, {0.6 * std::cos(t), 0.6 * std::sin(t)}) - 0.5;
@@ -262,9 +264,9 @@ TEST(Run, DirectFlowFieldIsFourthOrderInTime) {
     o.steps = 8;
     const auto [fine, e2] = solve(p, o);
     ASSERT_TRUE(e1 && e2);
-    const double order = std::log2(*e1 / *e2);
-    std::printf("time error %.3g -> %.3g, observed order %.2f\n", *e1, *e2, order);
-    EXPECT_GT(order, 3.5);
+    std::printf("errors at N = 4 and 8: %.3g, %.3g\n", *e1, *e2);
+    EXPECT_LT(*e1, 2e-5);
+    EXPECT_LT(*e2, 2e-5);
     // One contour per step instead of two.
     const auto law = make_velocity(p.velocity, p.velocity_params, p.module);
     const StepResult one = advance(Interface(p.initial), 0.0, 0.25, *law, p.domain, o.step);
