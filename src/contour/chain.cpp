@@ -34,6 +34,7 @@ Chain::Chain(std::vector<Vec2> vertices, std::span<const std::uint32_t> successo
       home(triangle.begin(), triangle.end()),
       mid_value(points.size(), std::numeric_limits<double>::quiet_NaN()),
       frozen(points.size(), 0),
+      unbound(points.size(), 0),
       alive(points.size(), 1),
       curve(points.size(), std::numeric_limits<std::uint32_t>::max()),
       lengths(points.size()) {
@@ -59,6 +60,7 @@ std::uint32_t Chain::insert_after(std::uint32_t u, Vec2 w) {
     home.push_back(home[u]);
     mid_value.push_back(std::numeric_limits<double>::quiet_NaN());
     frozen.push_back(0);
+    unbound.push_back(unbound[u]);
     alive.push_back(1);
     curve.push_back(curve[u]);
     lengths.push_back(distance(w, points[v]));
@@ -74,6 +76,7 @@ std::uint32_t Chain::insert_after(std::uint32_t u, Vec2 w) {
 void Chain::remove(std::uint32_t x) {
     const std::uint32_t a = prev[x], b = next[x];
     if (length(x) > length(a)) home[a] = home[x];
+    unbound[a] = unbound[a] | unbound[x];
     next[a] = b;
     prev[b] = a;
     lengths[a] = distance(points[a], points[b]);

@@ -131,6 +131,10 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
     }
 
     contouring::Chain chain(std::move(points), linear.next, linear.triangle);
+    // Refinement starts from the interpolant's curves joined where G joins them; the linear
+    // contour (P = 0) stays the interpolant's zero set.
+    if (options.refine_passes != 0)
+        stats.joined = contouring::join_necks(chain, counted, topo, options);
     const contouring::RefineReport refined =
         contouring::refine(chain, counted, topo, domain, options);
     stats.g_evals_refine = evaluations - stats.g_evals_tree - stats.g_evals_roots;

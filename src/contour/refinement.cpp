@@ -320,9 +320,10 @@ private:
         std::vector<std::uint8_t> allowed(candidates.size());
         parallel_for(candidates.size(), [&](std::size_t i) {
             const Candidate& c = candidates[i];
-            allowed[i] = c.has_root && (options_.triangle_safeguard && !c.at_corner
-                                            ? in_allowed_triangle(chain_.home[c.u], c.root)
-                                            : domain_.contains(c.root));
+            allowed[i] =
+                c.has_root && (options_.triangle_safeguard && !c.at_corner && !chain_.unbound[c.u]
+                                   ? in_allowed_triangle(chain_.home[c.u], c.root)
+                                   : domain_.contains(c.root));
         });
         std::size_t added = 0;
         for (std::size_t i = 0; i < candidates.size(); ++i) {

@@ -73,6 +73,9 @@ struct Chain {
     std::vector<std::uint32_t> home;   ///< triangle segment i descends from (the safeguard's start)
     std::vector<double> mid_value;     ///< G at the midpoint of segment i; NaN until evaluated
     std::vector<std::uint8_t> frozen;  ///< a split of segment i was refused: do not retry it
+    /// Segment i descends from a bridge that join_necks laid across the interpolant's false gap:
+    /// its splits are not held to its home triangle.
+    std::vector<std::uint8_t> unbound;
     std::vector<std::uint8_t> alive;
     std::vector<std::uint32_t> curve;     ///< the curve of vertex i
     std::vector<std::size_t> curve_size;  ///< alive vertices per curve
@@ -157,6 +160,14 @@ struct RefineReport {
     std::size_t pruned = 0;
     std::optional<double> max_midpoint_value;
 };
+
+/// Joins curves that the interpolant parted where G does not: two curves of one orientation
+/// within a finest cell edge of each other, with G at the midpoint of their nearest vertices of
+/// the sign they enclose (a thin tip cut off from its body, say), become one, by two bridges
+/// in place of their facing segments, when the bridges cross no segment. One batch of G.
+/// Returns the number of joins.
+std::size_t join_necks(Chain& chain, BatchFunctionRef g, const Topology& topo,
+                       const ContourOptions& options);
 
 /// P passes of split, bracket, root-find, safeguard and prune (§2.2) on the chain.
 RefineReport refine(Chain& chain, BatchFunctionRef g, const Topology& topo, const Box& domain,

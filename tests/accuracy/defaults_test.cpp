@@ -18,23 +18,10 @@ std::string name(const Case& c) {
     return c.shape + " under " + c.velocity + " to t = " + std::to_string(c.t_end);
 }
 
-/// NOTE: the cases whose target the defaults do not reach yet (docs/defaults.md says by how
-/// much): a full turn of the star loses a point's tip at K = 5, where the tree's linear
-/// interpolant cuts the tip's neck, narrower than a cell, and leaves the tip as an island that
-/// then vanishes (0.036 of ℓ; 0.017 at K = 6). The run's guards see the rigid motion's curve
-/// split and end it unstable (exit 3 from the tool), which is asserted here.
-bool known_shortfall(const Case& c) { return c.shape == "star" && c.velocity == "rotation"; }
-
 TEST(Defaults, EveryUserCaseKeepsItsExactLaw) {
     set_thread_count(1);  // the results do not depend on it; CI runs tests side by side
     for (const Case& c : cases()) {
         const Outcome o = evaluate(c, 1.0);
-        if (known_shortfall(c)) {
-            std::printf("%-55s error %.3g: known shortfall (target %.0e)\n", name(c).c_str(),
-                        o.error, c.target);
-            EXPECT_EQ(o.status, RunStatus::unstable) << name(c);
-            continue;
-        }
         std::printf("%-55s status %s, %zu components, error %.3g (target %.0e), roundness %.5f\n",
                     name(c).c_str(), to_string(o.status), o.components, o.error, c.target,
                     o.roundness);

@@ -76,7 +76,8 @@ nlohmann::json stats_json(const ContourStats& s) {
             {"passes", s.passes},
             {"splits", s.splits},
             {"rejected", s.rejected},
-            {"pruned", s.pruned}};
+            {"pruned", s.pruned},
+            {"joined", s.joined}};
 }
 
 /// The tree's triangulation (unperturbed) and leaves, the input faintly, the contour and its

@@ -98,6 +98,9 @@ struct ContourStats {
     std::size_t splits = 0;         ///< vertices added by refinement
     std::size_t rejected = 0;       ///< split candidates refused (no bracket, or a safeguard)
     std::size_t pruned = 0;         ///< vertices removed by pruning
+    /// Pairs of the interpolant's curves that refinement started from as one, G between them
+    /// having the sign they enclose (a tip parted from its body at a neck narrower than a cell).
+    std::size_t joined = 0;
     /// Closed polygons dropped as slivers: mean width 2|A|/L below η, the sign of G flickering
     /// along a line where G jumps across zero, not a component.
     std::size_t slivers = 0;

@@ -311,6 +311,29 @@ TEST(Contour, CornersOfPolygonsAreFoundInOnePass) {
     check(ell, ell_corners);
 }
 
+// A tip narrower than a cell at its neck: the interpolant parts it from its body (two curves),
+// G between them says they are one, and refinement starts from them joined: one curve, exact to
+// rounding, with the tip's corner (the paper's shrinking triangle at t = 0.2, Fig. 13).
+TEST(Contour, ATipPartedByTheInterpolantIsJoinedToItsBody) {
+    const double tilt = 10.0 * pi / 180.0;
+    std::vector<Vec2> corners;
+    for (int i = 0; i < 3; ++i) {
+        const double a = tilt + pi / 2 + 2 * pi * i / 3;
+        corners.push_back({0.6 * std::cos(a), 0.6 * std::sin(a)});
+    }
+    const auto g = pointwise(convex_polygon(corners));
+    const Box domain = Box::centered_square(2.5);
+    const ContourResult linear = contour(g, domain, options(5, 0));
+    EXPECT_EQ(linear.curves.curve_count(), 2u);
+    EXPECT_EQ(linear.stats.joined, 0u);  // the linear contour is the interpolant's
+    const ContourResult r = contour(g, domain, options(5, 2, 1e-10));
+    ASSERT_EQ(r.curves.curve_count(), 1u);
+    EXPECT_EQ(r.stats.joined, 1u);
+    EXPECT_LE(residuals(r.curves, g).midpoints, 1e-12);
+    EXPECT_NEAR(signed_area(r.curves.curve(0)), 0.75 * std::sqrt(3.0) * 0.36, 1e-12);
+    expect_simple(r.curves);
+}
+
 // Below two ulps of the domain's coordinates no root can be found: a given ε there is refused
 // (every split would be rejected, silently), η and the default ε are raised to it.
 TEST(Contour, ToleranceBelowRoundingIsRefusedOrRaised) {

@@ -1,0 +1,163 @@
+// Joining curves that the piecewise-linear interpolant parted where G does not: a thin tip of a
+// region, narrower than a cell at its neck, whose tree vertices the triangulation does not link
+// to its body's, comes out of marching as an island beside the body. G itself, sampled between
+// them, says whether they are one region.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <optional>
+
+#include "slc/geometry/predicates.hpp"
+#include "stages.hpp"
+
+namespace slc::contouring {
+namespace {
+
+/// The nearest pair of vertices of two curves, by number: a on the lower-numbered curve.
+struct Pair {
+    double distance = std::numeric_limits<double>::infinity();
+    std::uint32_t a = 0, b = 0;
+};
+
+/// Union–find over curve numbers, so that curves joined once are not joined again (a second
+/// bridge between the same two would cut the joined curve in two).
+struct Sets {
+    std::vector<std::uint32_t> parent;
+    explicit Sets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+    std::uint32_t find(std::uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    }
+};
+
+}  // namespace
+
+std::size_t join_necks(Chain& chain, BatchFunctionRef g, const Topology& topo,
+                       const ContourOptions& options) {
+    const std::size_t curves = chain.curve_size.size();
+    if (curves < 2) return 0;
+    // Each curve's orientation: counterclockwise curves enclose G < 0, clockwise ones G > 0.
+    std::vector<double> twice_area(curves, 0.0);
+    for (std::uint32_t i = 0; i < chain.points.size(); ++i) {
+        if (!chain.alive[i]) continue;
+        twice_area[chain.curve[i]] += cross(chain.points[i], chain.points[chain.next[i]]);
+    }
+    // The nearest vertices of each pair of curves of one orientation within a finest cell edge,
+    // found on a grid of that cell.
+    const double reach = topo.tree.edge(topo.tree.depth());
+    const Vec2 origin = chain.points.front();
+    auto cell_of = [&](Vec2 p) {
+        return std::pair<std::int64_t, std::int64_t>{
+            static_cast<std::int64_t>(std::floor((p.x - origin.x) / reach)),
+            static_cast<std::int64_t>(std::floor((p.y - origin.y) / reach))};
+    };
+    std::map<std::pair<std::int64_t, std::int64_t>, std::vector<std::uint32_t>> grid;
+    for (std::uint32_t i = 0; i < chain.points.size(); ++i)
+        if (chain.alive[i]) grid[cell_of(chain.points[i])].push_back(i);
+    std::map<std::pair<std::uint32_t, std::uint32_t>, Pair> nearest;
+    for (std::uint32_t a = 0; a < chain.points.size(); ++a) {
+        if (!chain.alive[a]) continue;
+        const auto [cx, cy] = cell_of(chain.points[a]);
+        for (std::int64_t dy = -1; dy <= 1; ++dy) {
+            for (std::int64_t dx = -1; dx <= 1; ++dx) {
+                const auto it = grid.find({cx + dx, cy + dy});
+                if (it == grid.end()) continue;
+                for (std::uint32_t b : it->second) {
+                    const std::uint32_t ca = chain.curve[a], cb = chain.curve[b];
+                    if (ca >= cb || (twice_area[ca] > 0.0) != (twice_area[cb] > 0.0)) continue;
+                    const double d = distance(chain.points[a], chain.points[b]);
+                    Pair& best = nearest[{ca, cb}];
+                    if (d < reach && d < best.distance) best = {d, a, b};
+                }
+            }
+        }
+    }
+    SegmentGrid segments(chain, reach);
+    // Facing segments of two curves of one orientation run opposite ways, so the nearest
+    // vertices a and b are bridged in place of the segments leaving a and entering b (bridges
+    // a → b and prev b → next a), or entering a and leaving b; the shorter of the two whose
+    // bridges cross no segment and each other not. The segments u → next u and v → next v are
+    // replaced by u → next v and v → next u.
+    struct Way {
+        std::uint32_t u, v;
+    };
+    auto bridgeable = [&](const Way& w) {
+        const std::uint32_t nu = chain.next[w.u], nv = chain.next[w.v];
+        const Segment one{chain.points[w.u], chain.points[nv]};
+        const Segment two{chain.points[w.v], chain.points[nu]};
+        const std::array<std::uint32_t, 4> skip_one{chain.prev[w.u], w.u, w.v, nv};
+        const std::array<std::uint32_t, 4> skip_two{chain.prev[w.v], w.v, w.u, nu};
+        return !segments_intersect(one, two) && !segments.crosses(one, skip_one) &&
+               !segments.crosses(two, skip_two);
+    };
+    auto bridge_length = [&](const Way& w) {
+        return distance(chain.points[w.u], chain.points[chain.next[w.v]]) +
+               distance(chain.points[w.v], chain.points[chain.next[w.u]]);
+    };
+    struct Candidate {
+        std::uint32_t first, second;  // the curves
+        Way way;
+        std::uint32_t nu, nv;  // the far ends of the replaced segments, when chosen
+    };
+    std::vector<Candidate> candidates;
+    std::vector<Vec2> probes;
+    for (const auto& [key, pair] : nearest) {
+        if (!std::isfinite(pair.distance)) continue;
+        std::optional<Way> chosen;
+        for (const Way& w : {Way{pair.a, chain.prev[pair.b]}, Way{chain.prev[pair.a], pair.b}}) {
+            if (bridgeable(w) && (!chosen || bridge_length(w) < bridge_length(*chosen))) chosen = w;
+        }
+        if (!chosen) continue;
+        const std::uint32_t nu = chain.next[chosen->u], nv = chain.next[chosen->v];
+        candidates.push_back({key.first, key.second, *chosen, nu, nv});
+        // G between the two replaced segments, at the centre of the four ends: of the sign the
+        // curves enclose where the gap is the interpolant's alone.
+        probes.push_back(0.25 * (chain.points[chosen->u] + chain.points[nu] +
+                                 chain.points[chosen->v] + chain.points[nv]));
+    }
+    if (probes.empty()) return 0;
+    std::vector<double> values(probes.size());
+    g(probes, values);
+
+    Sets sets(curves);
+    std::size_t joined = 0;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+        const Candidate& c = candidates[k];
+        const bool counterclockwise = twice_area[c.first] > 0.0;
+        if (!(std::abs(values[k]) > options.eta) || (values[k] < 0.0) != counterclockwise) continue;
+        const std::uint32_t ra = sets.find(c.first), rb = sets.find(c.second);
+        if (ra == rb) continue;
+        // An earlier join may have used one of these segments or laid a bridge across.
+        if (chain.next[c.way.u] != c.nu || chain.next[c.way.v] != c.nv || !bridgeable(c.way))
+            continue;
+        const std::uint32_t u = c.way.u, v = c.way.v, nu = c.nu, nv = c.nv;
+        chain.next[u] = nv;
+        chain.prev[nv] = u;
+        chain.next[v] = nu;
+        chain.prev[nu] = v;
+        for (std::uint32_t x : {u, v}) {
+            chain.lengths[x] = distance(chain.points[x], chain.points[chain.next[x]]);
+            chain.mid_value[x] = std::numeric_limits<double>::quiet_NaN();
+            chain.unbound[x] = 1;
+        }
+        segments.insert(u);
+        segments.insert(v);
+        // The joined curve takes the lower number.
+        const std::uint32_t keep = std::min(chain.curve[u], chain.curve[v]);
+        const std::uint32_t gone = std::max(chain.curve[u], chain.curve[v]);
+        std::uint32_t x = u;
+        do {
+            chain.curve[x] = keep;
+            x = chain.next[x];
+        } while (x != u);
+        chain.curve_size[keep] += chain.curve_size[gone];
+        chain.curve_size[gone] = 0;
+        sets.parent[std::max(ra, rb)] = std::min(ra, rb);
+        ++joined;
+    }
+    return joined;
+}
+
+}  // namespace slc::contouring
