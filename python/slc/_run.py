@@ -18,7 +18,7 @@ from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, 
 
 class FlowField:
     """A velocity field f(t, points (m, 2)) -> (m, 2) known everywhere, so that the step samples
-    it along each characteristic (fourth-order Runge–Kutta, one contour per step) instead of
+    it along each characteristic (fourth-order Runge–Kutta to ε/10, one contour per step) instead of
     extending vertex velocities. f is called once per batch and stage."""
 
     def __init__(self, f: Callable[[float, np.ndarray], Any], name: str | None = None):

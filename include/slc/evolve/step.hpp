@@ -3,7 +3,8 @@
 /// G̃(x) = F(x − k W(x, t); Γ(t)) contoured to Γ̃, then the trapezoidal corrector
 /// G(x) = F(x − k W̄(x); Γ(t)), W̄(x) = ½ W(x − k W(x, t), t) + ½ W̃(x, t + k), contoured to Γ(t + k).
 /// A flow field sampled directly (Extension::direct) needs no predictor: G(x) = F(x*; Γ(t)) with x*
-/// the foot of the characteristic through x traced back by the fourth-order Runge–Kutta rule.
+/// the foot of the characteristic through x traced back by the fourth-order Runge–Kutta rule, in
+/// as many substeps as bring the feet of Γ(t)'s vertices within ε/10.
 /// Every G value is an exact signed distance, so max |G| never grows: explicit, unconditionally
 /// stable in the maximum norm, second order in time.
 #pragma once
@@ -26,8 +27,8 @@ enum class Extension {
     nearest_point,  ///< W(x) = u at the nearest point of Γ (the paper's choice)
     whitney,        ///< the continuous piecewise-linear Whitney extension on the distance tree
     /// The law itself evaluated off the curve, for flow fields and normal laws only. A flow field
-    /// is sampled along each characteristic, its foot found by the classical Runge–Kutta rule:
-    /// one contour per step, fourth order in time. A normal law V(t, x, N) is evaluated at x with
+    /// is sampled along each characteristic, its foot found by the classical Runge–Kutta rule in
+    /// as many substeps as bring it within ε/10: one contour per step. A normal law V(t, x, N) is evaluated at x with
     /// the normal of the distance field there, N = sign F(x) (x − y)/|x − y|, y the nearest point
     /// of Γ: the exact offset of the polygon under a constant speed, so a growing corner rounds
     /// off and a shrinking one stays sharp, as in the exact (viscosity) solution.
