@@ -1,6 +1,7 @@
 // Adaptive refinement of the contour (paper §2.2, Figs. 7 and 8): P passes of split (segments
 // whose midpoint has |G| > ε), bracket (along the segment's normal, at most one segment length
-// away, shortened to avoid the other segments), root finding to |G| ≤ η, safeguards (no
+// away, shortened to avoid the other segments; towards the meeting of the neighbours' lines where
+// a segment cuts a corner), root finding to |G| ≤ η, safeguards (no
 // angle ≤ 2.56° with a neighbour; a vertex may leave its segment's triangle only for an adjacent
 // empty one; no crossing of any other segment) and pruning of segments shorter than ρ times both
 // neighbours. Each pass hands G one batch of midpoints, one or two of bracket ends, then one per

@@ -79,8 +79,8 @@ std::optional<std::string> invariant_violation(const Invariants& law, const Inte
                            100.0 * (a0 - a1) / std::abs(a0));
     }
     if (law.rigid) {
-        // A step of length k of a run of length T gets rigid_run_fraction·k/T of the area and
-        // of the length, at most a step's own fraction.
+        // A step of length k of a run of length T gets rigid_run_fraction·k/T of the length, at
+        // most a step's own fraction; the area may drift by rigid_run_fraction over the run.
         const double share = budget.run_length > 0.0
                                  ? budget.rigid_run_fraction * k / budget.run_length
                                  : std::numeric_limits<double>::infinity();
@@ -89,12 +89,20 @@ std::optional<std::string> invariant_violation(const Invariants& law, const Inte
                                                   100.0 * share, 100.0 * budget.rigid_run_fraction)
                                     : fmt::format("{:g}%", 100.0 * fraction);
         };
-        const double area_share = std::min(share, budget.area_fraction);
         if (std::abs(a1 - a0) >
-            std::max(area_share * std::max(std::abs(a0), std::abs(a1)), eps_tolerance)) {
+            std::max(budget.area_fraction * std::max(std::abs(a0), std::abs(a1)), eps_tolerance)) {
             return fmt::format(
-                "the area changed by {:.3g}% in one step of a rigid motion, more than {}",
-                100.0 * (a1 - a0) / std::abs(a0), allowed(budget.area_fraction));
+                "the area changed by {:.3g}% in one step of a rigid motion, more than {:g}%",
+                100.0 * (a1 - a0) / std::abs(a0), 100.0 * budget.area_fraction);
+        }
+        const double a_start = budget.start_area;
+        if (a_start != 0.0 &&
+            std::abs(a1 - a_start) >
+                std::max(budget.rigid_run_fraction * std::abs(a_start), eps_tolerance)) {
+            return fmt::format(
+                "the area has drifted by {:.3g}% since the start of the run under a rigid "
+                "motion, more than the run's {:g}%",
+                100.0 * (a1 - a_start) / std::abs(a_start), 100.0 * budget.rigid_run_fraction);
         }
         // The length is kept too, and a contour whose vertices lie on the moved curve cannot
         // be longer than it (its chords cut the corners, so it may be shorter): noise that

@@ -111,7 +111,8 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
     const double eps = options.step.contour.resolved_eps();
     const double h = std::ldexp(domain.width(), -options.step.contour.depth);
     const GuardBudget budget{.run_length = options.t_end - options.t_start,
-                             .resolved_area = std::numbers::pi * h * h};
+                             .resolved_area = std::numbers::pi * h * h,
+                             .start_area = invariants.rigid ? counters.start_area : 0.0};
     const int halvings = options.guards ? std::max(options.max_substep_halvings, 0) : 0;
     std::string violation;
     // Γ(t)'s area and length as the step reads them, once: each sub-step's are the one before's
@@ -224,7 +225,7 @@ RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domai
     RunResult start;  // resume() checks the options
     start.curves = initial;
     start.t = options.t_start;
-    if (options.guards && law.invariants().area_rate_per_curve)
+    if (options.guards && (law.invariants().area_rate_per_curve || law.invariants().rigid))
         start.start_area = step_area(initial, law, options.step);
     return resume(start, law, domain, options, observer);
 }

@@ -48,7 +48,10 @@ StudyResult study(const Problem& problem, int rows, const RunOptions& base,
             const RunOptions& o = cell.options;
             const RunResult r = run(initial, *law, problem.domain, o);
             cell.status = r.status;
-            cell.e_inf = max_error(problem, r.curves, r.t);
+            // A run stopped short of its end (unstable, error) has no error to compare: the
+            // exact solution is known at t_end, and its curves stopped at an earlier time.
+            if (r.status == RunStatus::ok || r.status == RunStatus::vanished)
+                cell.e_inf = max_error(problem, r.curves, r.t);
             cell.cpu_s_per_step = r.steps_done > 0 ? r.cpu_s / r.steps_done : 0.0;
             cell.g_evals_per_vertex = r.vertices_produced > 0
                                           ? static_cast<double>(r.g_evals) / r.vertices_produced

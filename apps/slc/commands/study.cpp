@@ -124,7 +124,8 @@ std::string markdown(const Problem& p, const StudyResult& s, const Paper& paper)
                 it == paper.end() ? "" : fmt::format(" / {:.3g}", it->second.first);
             const std::string t_paper =
                 it == paper.end() ? "" : fmt::format(" / {:.3g}", it->second.second);
-            e_line += fmt::format(" {}{} |", number(cell.e_inf), e_paper);
+            e_line += fmt::format(
+                " {}{} |", cell.e_inf ? number(cell.e_inf) : to_string(cell.status), e_paper);
             t_line += fmt::format(" {:.2e}{} |", cell.cpu_s_per_step, t_paper);
         }
         md += e_line + "\n" + t_line + "\n";

@@ -8,8 +8,10 @@
 ///    interpolant, one segment per triangle with a sign change, chained into closed polygons with
 ///    G > 0 on their right.
 /// 2. Root finding (§2.1 "Bisection"): every vertex moved along its triangle edge to |G| ≤ η.
-/// 3. Adaptive refinement (§2.2), P passes: split segments with |G(midpoint)| > ε, bracket the new
-///    vertex along the segment's normal, find the root, apply the safeguards, prune short segments.
+/// 3. Adaptive refinement (§2.2), P passes, from the curves joined where the interpolant parted
+///    what G does not: split segments with |G(midpoint)| > ε, bracket the new vertex along the
+///    segment's normal (or, where it cuts a corner, towards the meeting of its neighbours' lines),
+///    find the root, apply the safeguards, prune short segments.
 ///
 /// docs/algorithms/contour.md derives each step and the choices made where the paper is terse.
 #pragma once

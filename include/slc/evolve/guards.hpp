@@ -24,9 +24,12 @@ struct GuardBudget {
     /// A law that shortens the curves may lengthen them by at most this fraction in a step
     /// (the chords of a contour grow towards the arcs they cut as it is refined).
     double length_fraction = 1e-2;
-    /// A rigid motion's area may move by at most this fraction over the whole run: a step of
-    /// length k of a run of length T gets rigid_run_fraction·k/T of the area when that is below
-    /// area_fraction (then steps each within their budget cannot add up to more).
+    /// A rigid motion's area may drift from start_area by at most this fraction of it over the
+    /// run (steps each within area_fraction cannot add up to more); its length may grow by
+    /// rigid_run_fraction·k/T in a step of length k of a run of length T, when that is below
+    /// length_fraction. The area is judged over the run, not step by step: a contour's chords
+    /// take a little area at every step whatever its length (more at P = 0, where the linear
+    /// contour's O(h²) stands in for ε), and smaller steps would only take it more often.
     double rigid_run_fraction = 5e-2;
     /// A law with an area rate: the steps' area changes, summed, may miss the law's by at most
     /// this fraction of the area at the start (RunResult::area_lag): steps each within their
@@ -44,6 +47,8 @@ struct GuardBudget {
     /// is below |ΔA| plus this, and below this their rate is not checked: π h² for the finest
     /// cell h of the contouring tree, which need not resolve a curve smaller than a cell.
     double resolved_area = 0.0;
+    /// The area at the start of the run, for a rigid motion's drift; 0: not checked.
+    double start_area = 0.0;
 };
 
 /// The area change the law's rate gives a step of length k from `before` to `after`, when the

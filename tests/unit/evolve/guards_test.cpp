@@ -48,16 +48,23 @@ TEST(Guards, RigidMotionKeepsTheNumberOfCurves) {
     EXPECT_NE(v->find("from 2 to 1"), std::string::npos) << *v;
 }
 
-// A rigid motion's steps share 5% of the area over the run: a step of a tenth of the run may
-// move it by 0.5%, not 0.8% (which the 1% of a step would allow).
-TEST(Guards, RigidMotionStepsShareTheRunsBudget) {
+// A rigid motion's area may drift by 5% over the run, and by 1% in a step: a step that keeps
+// within its 1% is still refused once the run has drifted by more than 5% since its start.
+TEST(Guards, RigidMotionAreaDriftsAtMostFivePercentOverTheRun) {
     const Invariants rigid{.keeps_area = true, .rigid = true, .cannot_split = true};
-    const GuardBudget run{.run_length = 1.0};
-    EXPECT_FALSE(check(rigid, disk(1.0), disk(1.002), 0.1, run));   // +0.4%
-    const auto v = check(rigid, disk(1.0), disk(1.004), 0.1, run);  // +0.8%
+    const double start = area(disk(1.0));
+    const GuardBudget run{.run_length = 1.0, .start_area = start};
+    // +0.8% in the step, +4.5% since the start (r² = 1.045): kept.
+    EXPECT_FALSE(check(rigid, disk(std::sqrt(1.037)), disk(std::sqrt(1.045)), 0.1, run));
+    // +0.8% in the step, +5.3% since the start: refused.
+    const auto v = check(rigid, disk(std::sqrt(1.045)), disk(std::sqrt(1.053)), 0.1, run);
     ASSERT_TRUE(v);
-    EXPECT_NE(v->find("more than its share"), std::string::npos) << *v;
-    EXPECT_FALSE(check(rigid, disk(1.0), disk(1.004), 0.1));  // no run length: 1% a step
+    EXPECT_NE(v->find("drifted by 5.3% since the start"), std::string::npos) << *v;
+    // +1.5% in one step: refused however little the run has drifted.
+    const auto w = check(rigid, disk(1.0), disk(std::sqrt(1.015)), 0.1, run);
+    ASSERT_TRUE(w);
+    EXPECT_NE(w->find("in one step of a rigid motion, more than 1%"), std::string::npos) << *w;
+    EXPECT_FALSE(check(rigid, disk(std::sqrt(1.045)), disk(std::sqrt(1.053)), 0.1));  // no start
 }
 
 /// The unit circle with a ripple r = 1 + a cos(m θ): area π(1 + a²/2), length about
