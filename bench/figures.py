@@ -267,7 +267,7 @@ length after each step). The distance between the two runs is taken at the paper
         self.write(
             "Not as the paper says. Without the correction the area drifts by a few percent; at "
             "the 512-step run's S = 2 the spiral grows grid-scale wiggles once round (the "
-            "problem's own S = 3 keeps it smooth, drift 1.6%), and the drift then hangs on the "
+            "problem's own S = 3 keeps it smooth, drift 1.4%), and the drift then hangs on the "
             "smallest change to the contours (2.2% to 5.4% between versions of this code that "
             "differ only in where refinement puts a vertex). The runs overlay only to a few "
             "cells while the spiral unwinds (t = 0.08–0.64). The correction keeps the area to "

@@ -1,7 +1,6 @@
 // Adaptive refinement of the contour (paper §2.2, Figs. 7 and 8): P passes of split (segments
 // whose midpoint has |G| > ε), bracket (along the segment's normal, at most one segment length
-// away, shortened to avoid the other segments; towards the meeting of the neighbours' lines where
-// a segment cuts a corner), root finding to |G| ≤ η, safeguards (no
+// away, shortened to avoid the other segments), root finding to |G| ≤ η, safeguards (no
 // angle ≤ 2.56° with a neighbour; a vertex may leave its segment's triangle only for an adjacent
 // empty one; no crossing of any other segment) and pruning of segments shorter than ρ times both
 // neighbours. Each pass hands G one batch of midpoints, one or two of bracket ends, then one per
@@ -47,10 +46,6 @@ constexpr double jump_slope_factor = 1024.0;
 /// neighbours' lines turning by at least this much between them, cuts a corner of the zero set:
 /// its bracket aims at where those lines meet.
 constexpr double corner_turn = 20.0 * std::numbers::pi / 180.0;
-/// The meeting of those lines is kept as the corner only where |G| is at most this fraction of ε
-/// there: where the sides are straight G vanishes there to rounding, while on a bend (a curved
-/// corner, or noise) the lines meet about ℓ²κ off the zero set, and the paper's bracket is used.
-constexpr double corner_tolerance = 1e-3;
 /// Barycentric slack when deciding that a root lies in its home triangle: rounding only.
 constexpr double triangle_slack = 1e-12;
 
@@ -191,21 +186,23 @@ private:
     /// other sign (G > 0 lies on the right), one segment length away, shortened so that the
     /// bracket stays off every other segment (the neighbours, or another part of the contour
     /// across a narrow gap, whose zero the bracket would otherwise jump over together with ours)
-    /// and inside the domain; or, where the segment cuts a corner (corner_of), at the corner, kept
-    /// when |G| ≤ corner_tolerance·ε there. One batch, one for the corners that were none, and one
-    /// for brackets that fell short of the zero. The reaches are found on all worker threads: the
-    /// grid is only read here.
+    /// and inside the domain. One batch, and a second for brackets that fell short of the zero.
+    /// The reaches are found on all worker threads: the grid is only read here.
     void bracket(std::vector<Candidate>& candidates) {
         std::vector<Vec2> probes(candidates.size());
         parallel_for(candidates.size(), [&](std::size_t k) {
             Candidate& c = candidates[k];
+            const std::uint32_t u = c.u, v = chain_.next[u];
+            const Vec2 tangent = (chain_.points[v] - chain_.points[u]) / chain_.length(u);
+            const Vec2 right{tangent.y, -tangent.x};
+            const Vec2 normal = c.g_mid > 0.0 ? -right : right;
+            const double longest = max_bracket_distance * chain_.length(u);
             c.near = c.mid;
             c.g_near = c.g_mid;
-            if (const std::optional<Vec2> corner = corner_of(c.u, normal_of(c))) {
+            if (const std::optional<Vec2> corner = corner_of(u, normal)) {
                 const double d = distance(c.mid, *corner);
                 c.dir = (*corner - c.mid) / d;
-                const double longest = max_bracket_distance * chain_.length(c.u);
-                c.reach = std::min(collision_margin * grid_->first_hit(c.mid, c.dir, longest, c.u),
+                c.reach = std::min(collision_margin * grid_->first_hit(c.mid, c.dir, longest, u),
                                    ray_exit(domain_, c.mid, c.dir));
                 if (d <= c.reach) {
                     c.at_corner = true;
@@ -214,49 +211,17 @@ private:
                     return;
                 }
             }
-            aim_along_normal(c);
+            c.dir = normal;
+            c.reach = std::min(collision_margin * grid_->first_hit(c.mid, c.dir, longest, u),
+                               ray_exit(domain_, c.mid, c.dir));
+            c.probe = domain_.clamp(c.mid +
+                                    std::min(bracket_distance * chain_.length(u), c.reach) * c.dir);
             probes[k] = c.probe;
         });
         std::vector<double> values(probes.size());
         g_(probes, values);
         for (std::size_t k = 0; k < candidates.size(); ++k) candidates[k].g_probe = values[k];
-        // Where the sides' lines meet off the zero set (a curved corner, or a smooth bend whose
-        // neighbours happen to pass), there was no corner: the normal bracket, one more batch.
-        std::vector<std::size_t> ids;
-        probes.clear();
-        for (std::size_t k = 0; k < candidates.size(); ++k) {
-            Candidate& c = candidates[k];
-            if (!c.at_corner || std::abs(c.g_probe) <= corner_tolerance * eps_) continue;
-            c.at_corner = false;
-            aim_along_normal(c);
-            ids.push_back(k);
-            probes.push_back(c.probe);
-        }
-        if (!probes.empty()) {
-            values.resize(probes.size());
-            g_(probes, values);
-            for (std::size_t i = 0; i < ids.size(); ++i) candidates[ids[i]].g_probe = values[i];
-        }
         extend_brackets(candidates);
-    }
-
-    /// The unit normal of c's segment on the side where G has the other sign than at its
-    /// midpoint (G > 0 lies on the right).
-    Vec2 normal_of(const Candidate& c) const {
-        const Vec2 tangent =
-            (chain_.points[chain_.next[c.u]] - chain_.points[c.u]) / chain_.length(c.u);
-        const Vec2 right{tangent.y, -tangent.x};
-        return c.g_mid > 0.0 ? -right : right;
-    }
-
-    /// The paper's bracket: along the normal, one segment length, within the reach.
-    void aim_along_normal(Candidate& c) const {
-        c.dir = normal_of(c);
-        const double longest = max_bracket_distance * chain_.length(c.u);
-        c.reach = std::min(collision_margin * grid_->first_hit(c.mid, c.dir, longest, c.u),
-                           ray_exit(domain_, c.mid, c.dir));
-        c.probe =
-            domain_.clamp(c.mid + std::min(bracket_distance * chain_.length(c.u), c.reach) * c.dir);
     }
 
     /// A second probe for every bracket whose far end kept mid's sign. If G fell towards the far
@@ -301,8 +266,7 @@ private:
     /// set there: both neighbours are within ε of it and u is not, their lines turn by at least
     /// corner_turn, and they meet on the side of u where G has the other sign (normal), ahead of
     /// both neighbours and within max_bracket_distance segment lengths of u's midpoint. On
-    /// straight sides, such as a polygon's offsets or its rigid motions, that is the corner itself;
-    /// bracket() keeps it only where |G| ≤ corner_tolerance·ε there.
+    /// straight sides, such as a polygon's offsets or its rigid motions, that is the corner itself.
     std::optional<Vec2> corner_of(std::uint32_t u, Vec2 normal) const {
         const std::uint32_t v = chain_.next[u], p = chain_.prev[u], n = chain_.next[v];
         if (n == p || std::abs(chain_.mid_value[p]) > eps_ || std::abs(chain_.mid_value[v]) > eps_)
