@@ -83,8 +83,9 @@ struct RunResult {
     int split_steps = 0;
     int most_substeps = 1;
     /// For a law with an area rate (curvature flow) or a rigid motion: the area at the start of
-    /// the run (GuardBudget::start_area), and, with a rate, the sum over its steps of the area change minus the law's (area_change_expected), which the
-    /// guards keep within GuardBudget::run_lag_fraction of the start's area.
+    /// the run (GuardBudget::start_area), and, with a rate, the sum over its steps of the area
+    /// change minus the law's (area_change_expected), which the guards keep within
+    /// GuardBudget::run_lag_fraction of the start's area.
     double start_area = 0.0;
     double area_lag = 0.0;
     /// For a rigid motion: the segments of the run's first contour (0 before it), which the

@@ -28,10 +28,10 @@ enum class Extension {
     whitney,        ///< the continuous piecewise-linear Whitney extension on the distance tree
     /// The law itself evaluated off the curve, for flow fields and normal laws only. A flow field
     /// is sampled along each characteristic, its foot found by the classical Runge–Kutta rule in
-    /// as many substeps as bring it within ε/10: one contour per step. A normal law V(t, x, N) is evaluated at x with
-    /// the normal of the distance field there, N = sign F(x) (x − y)/|x − y|, y the nearest point
-    /// of Γ: the exact offset of the polygon under a constant speed, so a growing corner rounds
-    /// off and a shrinking one stays sharp, as in the exact (viscosity) solution.
+    /// as many substeps as bring it within ε/10: one contour per step. A normal law V(t, x, N) is
+    /// evaluated at x with the normal of the distance field there, N = sign F(x) (x − y)/|x − y|, y
+    /// the nearest point of Γ: the exact offset of the polygon under a constant speed, so a growing
+    /// corner rounds off and a shrinking one stays sharp, as in the exact (viscosity) solution.
     direct,
 };
 
