@@ -342,40 +342,6 @@ StepResult advance_normal(const Interface& curves, double t, double k, const Vel
     return result;
 }
 
-}  // namespace
-
-namespace {
-
-/// Γ moved along its vertex normals (the bisectors of its segments' normals) by
-/// δ = fraction·(target − A)/L, which makes its area target to O(δ² |C| L) for fraction 1; Γ
-/// itself when the moved curves would cross (found in O(N log N)). Returns the curves and the
-/// area added.
-std::pair<Interface, double> corrected_area(const Interface& curves, double target,
-                                            double fraction) {
-    const double a = area(curves);
-    const double delta = fraction * (target - a) / length(curves);
-    std::vector<std::vector<Vec2>> moved = curves.curves();
-    for (std::size_t c = 0, first = 0; c < moved.size(); first += moved[c].size(), ++c) {
-        for (std::size_t j = 0; j < moved[c].size(); ++j) {
-            const std::size_t i = first + j;
-            const Vec2 u = curves.point(i) - curves.point(curves.prev(i));
-            const Vec2 v = curves.point(curves.next(i)) - curves.point(i);
-            const Vec2 n = -perp(u / norm(u) + v / norm(v));  // the outside is on the right
-            const double len = norm(n);
-            // At most a quarter of the shorter neighbouring segment: a sharp turn (len near 0)
-            // or a short segment would otherwise fold the curve; what it holds back, the next
-            // shift gives.
-            const double reach = 0.25 * std::min(norm(u), norm(v));
-            const double step = std::clamp(delta / len, -reach, reach);
-            if (len > 0.0) moved[c][j] = curves.point(i) + step * n;
-        }
-    }
-    Interface out(moved);
-    if (find_crossing(out)) return {curves, 0.0};
-    const double added = area(out) - a;
-    return {std::move(out), added};
-}
-
 StepResult advance_contours(const Interface& curves, double t, double k, const VelocityLaw& law,
                             const Box& domain, const StepOptions& options) {
     if (!(k > 0.0) || !std::isfinite(k)) {
@@ -463,30 +429,71 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
     return result;
 }
 
+/// Γ moved along its vertex normals (the bisectors of its segments' normals) by
+/// δ = (target − A)/L, which makes its area target to O(δ² |C| L), the vertices marked in
+/// `held` staying where they are. A vertex is held once the moved curves cross at one of its
+/// segments (found in O(N log N)): a zigzag of segments far shorter than the shift, left where
+/// the zero set passes a cell corner, folds under any shift. Returns the curves and the area
+/// added, or Γ itself and 0 when no vertex is left to move.
+std::pair<Interface, double> shifted_along_normals(const Interface& curves, double target,
+                                                   std::vector<bool>& held) {
+    const double a = area(curves);
+    const double delta = (target - a) / length(curves);
+    std::vector<Vec2> shift(curves.size());
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+        const Vec2 u = curves.point(i) - curves.point(curves.prev(i));
+        const Vec2 v = curves.point(curves.next(i)) - curves.point(i);
+        const Vec2 n = -perp(u / norm(u) + v / norm(v));  // the outside is on the right
+        const double len = norm(n);
+        // At most a quarter of the shorter neighbouring segment: a sharp turn (len near 0) or a
+        // short segment would otherwise fold the curve; what it holds back, the next shift gives.
+        const double reach = 0.25 * std::min(norm(u), norm(v));
+        if (len > 0.0 && std::isfinite(len)) shift[i] = std::clamp(delta / len, -reach, reach) * n;
+    }
+    for (int attempt = 0; attempt < 16; ++attempt) {
+        std::vector<std::vector<Vec2>> moved = curves.curves();
+        for (std::size_t c = 0, first = 0; c < moved.size(); first += moved[c].size(), ++c) {
+            for (std::size_t j = 0; j < moved[c].size(); ++j)
+                if (!held[first + j]) moved[c][j] += shift[first + j];
+        }
+        Interface out(moved);
+        const auto crossing = find_crossing(out);
+        if (!crossing) return {out, area(out) - a};
+        bool newly_held = false;
+        for (const std::size_t s : {crossing->first, crossing->second}) {
+            for (const std::size_t i : {s, curves.next(s)}) {
+                newly_held = newly_held || !held[i];
+                held[i] = true;
+            }
+        }
+        if (!newly_held) break;
+    }
+    return {curves, 0.0};
+}
+
 }  // namespace
+
+AreaRestored restore_area(const Interface& curves, double target) {
+    // Each shift leaves O(δ²) of the area to give back, and more where vertices were held back:
+    // a few more shifts leave rounding.
+    AreaRestored out{curves, 0.0};
+    std::vector<bool> held(curves.size(), false);
+    for (int shift = 0; shift < 8 && !out.curves.empty(); ++shift) {
+        auto [moved, added] = shifted_along_normals(out.curves, target, held);
+        if (added == 0.0) break;
+        out.curves = std::move(moved);
+        out.added += added;
+    }
+    return out;
+}
 
 StepResult advance(const Interface& curves, double t, double k, const VelocityLaw& law,
                    const Box& domain, const StepOptions& options) {
     StepResult result = advance_contours(curves, t, k, law, domain, options);
     if (options.area_correction.value_or(law.preserves_area()) && !result.curves.empty()) {
-        // Each shift leaves O(δ²) of the area to give back, and more where vertices were held
-        // back: a few more shifts leave rounding.
-        // A shift that would make the curves cross is tried again at half its size, down to a
-        // sixteenth.
-        const double target = area(curves);
-        double fraction = 1.0;
-        for (int shift = 0; shift < 8;) {
-            auto [moved, added] = corrected_area(result.curves, target, fraction);
-            if (added == 0.0) {
-                if (fraction < 0.1) break;
-                fraction *= 0.5;
-                continue;
-            }
-            result.curves = std::move(moved);
-            result.stats.area_correction += added;
-            fraction = 1.0;
-            ++shift;
-        }
+        AreaRestored restored = restore_area(result.curves, area(curves));
+        result.curves = std::move(restored.curves);
+        result.stats.area_correction = restored.added;
     }
     return result;
 }

@@ -213,27 +213,46 @@ SurfaceStepResult advance_normal(const Surface& surface, double t, double k,
     return result;
 }
 
-/// The surface moved along its vertex normals (angle-weighted) by δ = fraction·(target − V)/A,
-/// each vertex by at most a quarter of its shortest edge, which makes its volume target to
-/// O(δ²); the surface itself when the moved one would meet itself (exact predicates). Returns the
-/// surface and the volume added.
-std::pair<Surface, double> corrected_volume(const Surface& s, double target, double fraction) {
+/// The surface moved along its vertex normals (angle-weighted) by δ = (target − V)/A, each
+/// vertex by at most a quarter of its shortest edge, which makes its volume target to O(δ²), the
+/// vertices marked in `held` staying where they are. A vertex is held once the moved surface
+/// meets itself at one of its triangles (exact predicates), as a fold of edges far shorter than
+/// the shift would. Returns the surface and the volume added, or the surface itself and 0 when
+/// no vertex is left to move.
+std::pair<Surface, double> corrected_volume(const Surface& s, double target,
+                                            std::vector<bool>& held) {
     const double v = volume(s);
-    const double delta = fraction * (target - v) / area(s);
+    const double delta = (target - v) / area(s);
     const std::vector<Vec3> n = angle_weighted_normals(s);
     const VertexRings rings = vertex_rings(s);
-    Surface moved = s;
+    std::vector<Vec3> shift(s.vertices.size());
     for (std::size_t i = 0; i < s.vertices.size(); ++i) {
         double shortest = std::numeric_limits<double>::infinity();
         for (const std::uint32_t j : rings.of(i))
             shortest = std::min(shortest, distance(s.vertices[i], s.vertices[j]));
         if (rings.of(i).empty()) continue;
         const double reach = 0.25 * shortest;
-        moved.vertices[i] = s.vertices[i] + std::clamp(delta, -reach, reach) * n[i];
+        shift[i] = std::clamp(delta, -reach, reach) * n[i];
     }
-    if (find_self_intersection(moved)) return {s, 0.0};
-    const double added = volume(moved) - v;
-    return {std::move(moved), added};
+    for (int attempt = 0; attempt < 16; ++attempt) {
+        Surface moved = s;
+        for (std::size_t i = 0; i < s.vertices.size(); ++i)
+            if (!held[i]) moved.vertices[i] += shift[i];
+        const auto contact = find_self_intersection(moved);
+        if (!contact) {
+            const double added = volume(moved) - v;
+            return {std::move(moved), added};
+        }
+        bool newly_held = false;
+        for (const std::uint32_t t : {contact->first, contact->second}) {
+            for (const std::uint32_t i : s.triangles[t]) {
+                newly_held = newly_held || !held[i];
+                held[i] = true;
+            }
+        }
+        if (!newly_held) break;
+    }
+    return {s, 0.0};
 }
 
 SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
@@ -317,21 +336,14 @@ SurfaceStepResult advance(const Surface& surface, double t, double k, const Surf
     SurfaceStepResult result = advance_contours(surface, t, k, law, domain, options);
     if (options.volume_correction.value_or(law.preserves_area()) && !result.surface.empty()) {
         // Each shift leaves O(δ²) of the volume to give back, more where vertices were held
-        // back; a shift that would make the surface meet itself is tried at half its size,
-        // down to a sixteenth.
+        // back: a few more shifts leave rounding.
         const double target = volume(surface);
-        double fraction = 1.0;
-        for (int shift = 0; shift < 8;) {
-            auto [moved, added] = corrected_volume(result.surface, target, fraction);
-            if (added == 0.0) {
-                if (fraction < 0.1) break;
-                fraction *= 0.5;
-                continue;
-            }
+        std::vector<bool> held(result.surface.vertices.size(), false);
+        for (int shift = 0; shift < 8; ++shift) {
+            auto [moved, added] = corrected_volume(result.surface, target, held);
+            if (added == 0.0) break;
             result.surface = std::move(moved);
             result.stats.volume_correction += added;
-            fraction = 1.0;
-            ++shift;
         }
     }
     return result;

@@ -54,11 +54,8 @@ struct StepOptions {
     /// land on them: a loss that adds up over the steps. The arcs remove it to O(c³); corners stay
     /// sharp (docs/algorithms/evolve.md). Unset: resolved_arcs().
     std::optional<bool> arcs = std::nullopt;
-    /// For a law that keeps area (VelocityLaw::preserves_area): after the step, move every vertex
-    /// of Γ(t + k) along its normal by δ = (A(t) − A(t + k))/L, each vertex by at most a quarter
-    /// of its shorter segment, which gives back the area the contours lost to O(δ²), eight
-    /// times at most (to rounding); a shift that would make the curves cross is not made.
-    /// Unset: on for such laws.
+    /// For a law that keeps area (VelocityLaw::preserves_area): after the step, give Γ(t + k)
+    /// back the area of Γ(t) by restore_area. Unset: on for such laws.
     std::optional<bool> area_correction = std::nullopt;
     /// Turning angle at a vertex (radians) above which arcs treats it as a corner.
     static constexpr double arc_corner = 0.5;
@@ -97,6 +94,20 @@ struct StepResult {
     Interface curves;  ///< Γ(t + k); empty when everything vanished
     StepStats stats;   ///< both contours' statistics
 };
+
+/// Curves moved to a given area, and the area that added.
+struct AreaRestored {
+    Interface curves;    ///< the moved curves
+    double added = 0.0;  ///< their area less the area of the curves given
+};
+
+/// The curves moved along their vertex normals (the bisectors of the segments' normals) until
+/// they enclose `target`: shifts of δ = (target − A)/L, each vertex by at most a quarter of its
+/// shorter segment, each leaving O(δ²) of the difference, eight at most (to rounding). A vertex
+/// stays where it is once a shift makes the curves cross at one of its segments (found by
+/// find_crossing, O(N log N)), as a zigzag of segments far shorter than the shift would. The
+/// curves as given when no vertex can move. StepOptions::area_correction after every step.
+AreaRestored restore_area(const Interface& curves, double target);
 
 /// The area enclosed by curves as a step reads them: the polygon's, plus the bulges of its arcs
 /// when the step reads it as arcs (StepOptions::resolved_arcs).

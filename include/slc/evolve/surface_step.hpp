@@ -37,8 +37,9 @@ struct SurfaceStepOptions {
     bool patches = true;
     /// For a law that keeps the volume (VelocityLaw::preserves_area): after the step, move every
     /// vertex of S(t + k) along its normal by δ = (V(t) − V(t + k))/A, each by at most a quarter
-    /// of its shortest edge, eight times at most (to rounding); a shift that would make the
-    /// surface meet itself is halved, down to a sixteenth, or not made. Unset: on for such laws.
+    /// of its shortest edge, eight times at most (to rounding); a vertex stays where it is
+    /// once a shift makes the surface meet itself at one of its triangles. Unset: on for such
+    /// laws.
     std::optional<bool> volume_correction = std::nullopt;
 
     /// The extension as given, or the law itself (direct) for flow fields and normal laws and
