@@ -272,12 +272,13 @@ Problem spiral_nonlocal(const Params& params) {
                      "tilted square spiral unwinding under area-preserving curvature flow (§4.7, "
                      "Eq. 13, Fig. 18)",
                      rotated(Curves{square_spiral(10, 0.5, 0.1)}, {}, tilt * pi / 180),
-                     Box::centered_square(3.0), 2.56, "volume-preserving-curvature");
+                     Box::centered_square(5.0), 2.56, "volume-preserving-curvature");
     p.parameters = {{"tilt", tilt, "rotation of the spiral, degrees"}};
     p.module = GeometryModule::embedded;
-    // S = 3 where the paper has 2 for its 512-step run (it uses 3 at 1024 steps): with 2, our
-    // spiral, smaller in its domain, grows grid-scale wiggles once it has become round.
-    set_run(p, 512, 3, 7, 3, 1e-3);
+    // The paper gives no domain, and the domain sets the embedded mesh h = 2b/M: the explicit
+    // step is stable for k/h² up to about 6 at S = 2 and 10 at S = 3 (docs/figures.md). In
+    // [−5, 5]² both of the paper's runs are (k/h² = 3.3 and 6.6); in [−3, 3]² neither is.
+    set_run(p, 512, 2, 7, 3, 1e-3);
     return p;
 }
 
@@ -285,9 +286,10 @@ Problem bubbles_nonlocal(const Params&) {
     Problem p = base("bubbles-nonlocal",
                      "circular bubbles merging and vanishing under area-preserving curvature flow "
                      "(§4.7, Fig. 19)",
-                     bubbles(12, 2.7, 0.25, 0.75, 19), Box::centered_square(3.0), 10.24,
+                     bubbles(12, 2.7, 0.25, 0.75, 19), Box::centered_square(5.0), 10.24,
                      "volume-preserving-curvature");
     p.module = GeometryModule::embedded;
+    // [−5, 5]² as for the spiral: k/h² = 3.3 (9.1 in [−3, 3]², where the merged bubble wiggles).
     set_run(p, 2048, 3, 7, 4, 1e-4);
     return p;
 }
