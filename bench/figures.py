@@ -287,9 +287,11 @@ step). The distance between the two runs is taken at the paper's drawn times.
                            f"{fmt(excess)} | {fmt(area_drift(self.out(out))[1])} |\n")
         self.write(
             "\nIn [−3, 3]² neither of the paper's runs is stable; in [−5, 5]² both are, which is "
-            "why the problem takes it. What is left are bumps a cell wide where the circle's "
-            "tangent lies along a mesh axis, which grow slowly (a circle alone under Eq. 13 in "
-            "[−5, 5]² at 2048/3/7/4 ends 0.3% longer than itself at t = 10.24). Without the "
+            "why the problem takes it. What is left is noise at the scale of the vertices, finer "
+            "than the embedded mesh, whose smoothed curvature does not see it and so does not "
+            "damp it; it adds up slowly (a circle alone under Eq. 13 in [−5, 5]² at 2048/3/7/4 "
+            "ends 0.3% longer than itself at t = 10.24, its vertices 2e−3 off the fitted circle; "
+            "with the arclength module, 1e−5 longer). Without the "
             "correction the area drifts by about a percent, nearly all of it by t = 0.16, while "
             "the spiral's corners and arms of width 0.2 (five mesh cells of the 512-step run) "
             "are far from resolved by steps of k = 0.005 (the arms' own time scale is "
@@ -322,8 +324,8 @@ wiggles), to t = 10.24 (the paper gives neither its bubbles nor its domain or ti
         a, length = rows[-1]["area"], rows[-1]["length"]
         self.write(
             "Without the correction the bubbles lose area while they merge, and the merged "
-            "bubble grows the slow bumps of the spiral's circle where its tangent lies along a "
-            f"mesh axis: it ends {fmt(length / (2.0 * math.sqrt(math.pi * a)) - 1.0)} longer than "
+            "bubble gathers the vertex-scale noise of the spiral's circle: "
+            f"it ends {fmt(length / (2.0 * math.sqrt(math.pi * a)) - 1.0)} longer than "
             "the circle of its area. With the correction every step keeps the area to "
             "rounding.\n\n")
 
