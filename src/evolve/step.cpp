@@ -177,6 +177,20 @@ public:
     /// normal law's bound is max_normal_speed().
     double max_speed() const { return max_speed_; }
 
+    /// Adds the normal speed s to every vertex velocity, along the bisectors of the segments'
+    /// normals: a move of the mean of a nonlocal law, whose speeds are V − mean.
+    void add_normal_speed(double s) {
+        const Interface& curves = tree_.curves();
+        for (std::size_t v = 0; v < curves.size(); ++v) {
+            const Vec2 sum = segment_normal(curves.prev(v)) + segment_normal(v);
+            const double length = norm(sum);
+            if (length > 0.0) u_[v] += (s / length) * sum;
+        }
+        if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
+        max_speed_ = 0.0;
+        for (Vec2 u : u_) max_speed_ = std::max(max_speed_, norm(u));
+    }
+
 private:
     /// W(x), given the closest point p of this level's polygon to x.
     Vec2 velocity(Vec2 x, const ClosestPoint& p) const {
@@ -357,7 +371,7 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
     if (extension == Extension::direct && law.is_normal_law())
         return advance_normal(curves, t, k, law, domain, options);
     StepResult result;
-    const Level now(curves, t, k, law, domain, options);
+    Level now(curves, t, k, law, domain, options);
 
     if (extension == Extension::direct) {
         // A flow field is known everywhere, so the foot of each characteristic needs no predicted
@@ -405,15 +419,7 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
     // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x. Its foot moves
     // at most d = k/2 (max|W(t)| + max|W(t + k)|) from x; the same bounds, F(x) ± d, need one
     // query where G needs four.
-    const Level next(predicted.curves, t + k, k, law, domain, options);
-    const double corrector_reach = 0.5 * k * (now.max_speed() + next.max_speed()) + now.max_bulge();
-    contour_options.distance_slack = 2.0 * corrector_reach;
-    const auto corrector_bounds = pointwise(
-        [&now, corrector_reach](Vec2 x) {
-            const double f = now.chord_distance(x);
-            return Interval{f - corrector_reach, f + corrector_reach};
-        },
-        expensive_grain);
+    Level next(predicted.curves, t + k, k, law, domain, options);
     auto corrector = pointwise(
         [&](Vec2 x) {
             const Vec2 w = finite(now.velocity(x), law, t, x);
@@ -423,7 +429,34 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
             return now.distance(x - (0.5 * k) * (w_foot + w_next));
         },
         expensive_grain);
-    ContourResult corrected = contour(corrector, domain, contour_options, corrector_bounds);
+    const auto contour_corrector = [&] {
+        const double reach = 0.5 * k * (now.max_speed() + next.max_speed()) + now.max_bulge();
+        contour_options.distance_slack = 2.0 * reach;
+        const auto corrector_bounds = pointwise(
+            [&now, reach](Vec2 x) {
+                const double f = now.chord_distance(x);
+                return Interval{f - reach, f + reach};
+            },
+            expensive_grain);
+        return contour(corrector, domain, contour_options, corrector_bounds);
+    };
+    ContourResult corrected = contour_corrector();
+    if (law.preserves_area() && !corrected.curves.empty()) {
+        // A nonlocal law's mean is the Lagrange multiplier of its area. Taken over Γ(t), it
+        // makes the speeds integrate to zero there, not over the curve the step produces, which
+        // is off by O(k²) a step where the curvature is resolved and by far more where it is
+        // not (a spiral's arms and corners): the mean is moved by the area the corrector's
+        // curve gained over k times its length, both levels alike, and the corrector contoured
+        // again. The area then moves with the nonlinear rest alone.
+        const double gained =
+            step_area(corrected.curves, law, options) - step_area(curves, law, options);
+        const double s = -gained / (k * step_length(corrected.curves, law, options));
+        now.add_normal_speed(s);
+        next.add_normal_speed(s);
+        const std::size_t first_evals = corrected.stats.g_evals;
+        corrected = contour_corrector();
+        corrected.stats.g_evals += first_evals;  // both contours' cost
+    }
     result.stats.corrector = corrected.stats;
     result.curves = std::move(corrected.curves);
     return result;
