@@ -104,6 +104,15 @@ public:
     /// The largest speed of the vertex velocities (nearest-point extension; 0 without them): the
     /// extension interpolates them, so |W(x)| never exceeds it.
     double max_speed() const { return max_speed_; }
+    /// Adds the normal speed s to every vertex velocity, along the fitted normals: a move of the
+    /// mean of a nonlocal law, whose speeds are V − mean.
+    void add_normal_speed(double s) {
+        max_speed_ = 0.0;
+        for (std::size_t v = 0; v < u_.size(); ++v) {
+            u_[v] += s * normals_[v];
+            max_speed_ = std::max(max_speed_, norm(u_[v]));
+        }
+    }
     /// A bound on the patches' height over their triangles, |F − the triangles' distance| (0
     /// without patches): Σ w_a w_b β_ab ≤ max|β| Σ w_a w_b ≤ max|β|/3.
     double max_bulge() const { return max_bulge_; }
@@ -274,7 +283,7 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
         return advance_normal(surface, t, k, law, domain, options);
 
     SurfaceStepResult result;
-    const SurfaceLevel now(surface, t, k, law, domain, options, extension);
+    SurfaceLevel now(surface, t, k, law, domain, options, extension);
     if (extension == Extension::direct) {
         // A flow field: G(x) = F(foot of the characteristic through x), one contour, the feet
         // traced to a tenth of ε.
@@ -310,9 +319,7 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
 
     // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x, whose foot
     // moves at most k/2 (max|W(t)| + max|W(t + k)|) from x.
-    const SurfaceLevel next(predicted.surface, t + k, k, law, domain, options, extension);
-    contour_options.distance_slack =
-        2.0 * (0.5 * k * (now.max_speed() + next.max_speed()) + now.max_bulge());
+    SurfaceLevel next(predicted.surface, t + k, k, law, domain, options, extension);
     const auto corrector = [&](std::span<const Vec3> xs, std::span<double> values) {
         parallel_for(
             xs.size(),
@@ -323,7 +330,24 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
             },
             expensive_grain);
     };
-    SurfaceContour corrected = contour_surface(corrector, domain, contour_options);
+    const auto contour_corrector = [&] {
+        contour_options.distance_slack =
+            2.0 * (0.5 * k * (now.max_speed() + next.max_speed()) + now.max_bulge());
+        return contour_surface(corrector, domain, contour_options);
+    };
+    SurfaceContour corrected = contour_corrector();
+    if (law.preserves_area() && !corrected.surface.empty()) {
+        // The nonlocal law's mean, fixed on the surface the step produces as for curves
+        // (docs/algorithms/evolve.md): moved by the volume the corrector's surface gained over
+        // k times its area, at both levels, and the corrector contoured again.
+        const double gained = volume(corrected.surface) - volume(surface);
+        const double s = -gained / (k * area(corrected.surface));
+        now.add_normal_speed(s);
+        next.add_normal_speed(s);
+        const std::size_t first_evals = corrected.stats.g_evals;
+        corrected = contour_corrector();
+        corrected.stats.g_evals += first_evals;  // both contours' cost
+    }
     result.stats.corrector = corrected.stats;
     result.surface = std::move(corrected.surface);
     return result;

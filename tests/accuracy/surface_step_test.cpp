@@ -152,7 +152,8 @@ TEST(SurfaceStepAccuracy, MeanCurvatureShrinksTheSphere) {
 
 TEST(SurfaceStepAccuracy, VolumePreservingFlowKeepsTheVolume) {
     // Two overlapping spheres (a peanut): the volume correction restores each step's volume to
-    // rounding; without it the contours lose some.
+    // rounding. Without it the law's mean, fixed on the surface each step produces, keeps the
+    // volume to 5.1e−5 over two steps (1.5e−3 with the mean over the surface it starts from).
     const auto peanut = pointwise<Vec3>([](Vec3 x) {
         return std::min(distance(x, {-0.2, 0.0, 0.0}), distance(x, {0.2, 0.0, 0.0})) - 0.3;
     });
@@ -168,7 +169,8 @@ TEST(SurfaceStepAccuracy, VolumePreservingFlowKeepsTheVolume) {
     std::printf("volume change: %.2e with the correction, %.2e without\n", kept_change,
                 lost_change);
     EXPECT_LT(kept_change, 1e-10);
-    EXPECT_GT(lost_change, 1e-5);
+    EXPECT_LT(lost_change, 2e-4);
+    EXPECT_GT(lost_change, 1e-10);
     EXPECT_LT(area(kept), area(start));  // the flow shrinks the area
 }
 
