@@ -280,7 +280,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
         params: dict[str, float] | None = None, geometry: str | None = None,
         extension: str | None = None, arcs: bool | None = None,
         area_correction: bool | None = None, frames: int = 0,
-        observer: Callable[[Step], Any] | None = None, threads: int = 0) -> RunResult:
+        observer: Callable[[Step], Any] | None = None, threads: int = 0,
+        estimate: bool = False) -> RunResult:
     """Moves curves from interface.time to t_end, as ``slc run --initial`` does, or runs a named
     problem (``run(slc.problem("zalesak"))``, t_end optional) as ``slc run --problem`` does. A
     Surface (or a SurfaceProblem) moves the same way and gives a SurfaceRunResult; its velocity
@@ -296,7 +297,10 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     "arclength"; extension "nearest", "whitney" or "direct"; arcs; area_correction. frames: keep
     this many frames besides the initial one. observer(step) after each step; returning False
     stops the run (status "interrupted"), as Ctrl-C does between steps. threads: worker threads
-    (0: all cores); results do not depend on it.
+    (0: all cores); results do not depend on it. estimate: as ``slc run --estimate``, run again at
+    half resolution (N/2 steps, K − 1, 4 eps) and put the distance between the two final
+    interfaces in ``summary["error_estimate"]`` (an estimate of this run's error when it
+    converges at first order or faster; a note says why there is none).
     """
     if isinstance(interface, (Surface, SurfaceProblem)):
         curve_only = {"smoothing": smoothing, "geometry": geometry, "extension": extension,
@@ -305,7 +309,7 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
             if value is not None:
                 raise ValueError(f"{name} is for curves, not surfaces")
         p = _surface_subject(interface, velocity, t_end, params)
-        return run_surface(p, frames, observer, threads, steps=steps, depth=depth,
+        return run_surface(p, frames, observer, threads, estimate, steps=steps, depth=depth,
                            refine=refine, eps=eps, eta=eta)
     p, law = _subject(interface, velocity, t_end, params, geometry)
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
@@ -318,7 +322,7 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
 
     options = _overrides(steps, depth, refine, eps, eta, smoothing, extension, arcs,
                          area_correction)
-    out = _slc.run(p, law, options, int(frames), int(threads), on_step)
+    out = _slc.run(p, law, options, int(frames), int(threads), on_step, bool(estimate))
     return RunResult(
         interface=Interface._trusted(out["curves"], out["t"]),
         status=out["status"],

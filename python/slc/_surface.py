@@ -227,15 +227,17 @@ def _options(steps=None, depth=None, refine=None, eps=None, eta=None):
 
 
 def run_surface(p, frames: int, observer: Callable[[SurfaceStep], Any] | None, threads: int,
-                **options) -> SurfaceRunResult:
-    """Runs the _slc.SurfaceProblem p with the options set (steps, depth, refine, eps, eta)."""
+                estimate: bool = False, **options) -> SurfaceRunResult:
+    """Runs the _slc.SurfaceProblem p with the options set (steps, depth, refine, eps, eta);
+    estimate: run it again at half resolution and add summary["error_estimate"]."""
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
         raise TypeError(f"frames must be an integer, got {frames!r}")
     on_step = None
     if observer is not None:
         def on_step(step, n, t, v, tri, cpu_s):
             return observer(SurfaceStep(step, n, t, Surface._trusted(v, tri, t), cpu_s))
-    out = _slc.run_surface(p, _options(**options), int(frames), int(threads), on_step)
+    out = _slc.run_surface(p, _options(**options), int(frames), int(threads), on_step,
+                           bool(estimate))
     return SurfaceRunResult(
         surface=Surface._trusted(out["vertices"], out["triangles"], out["t"]),
         status=out["status"],

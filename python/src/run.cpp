@@ -113,11 +113,16 @@ std::unique_ptr<VelocityLaw> law_of(const Problem& p, const std::optional<LawSpe
 Interface initial_of(const Problem& p) { return prepare_interface(p.initial, p.domain).curves; }
 
 py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const Overrides& q,
-                     int frames, int threads, const py::object& on_step) {
+                     int frames, int threads, const py::object& on_step, bool estimate) {
     if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
     const std::unique_ptr<VelocityLaw> law = law_of(p, spec);
     const Interface initial = initial_of(p);
     const RunOptions options = resolve(p, q);
+    // The run at half resolution, resolved first: one it cannot have is bad input before
+    // anything runs.
+    if (estimate) require_half_resolution(options.steps, options.step.contour.depth, "estimate");
+    const std::optional<RunOptions> coarse =
+        estimate ? std::optional(resolution_options(options, -1)) : std::nullopt;
 
     History history;
     history.add(options.t_start, initial, 0.0);
@@ -147,7 +152,22 @@ py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const
     out["message"] = r.message;
     out["history"] = history.arrays();
     out["frames"] = frame_list;
-    out["summary"] = python_of(run_summary(p, options, r, *law));
+    nlohmann::json summary = run_summary(p, options, r, *law);
+    if (coarse) {
+        summary["error_estimate"] = estimate_json(
+            run_name(*coarse), r.status,
+            [&] {
+                const ThreadScope scope(threads);
+                py::gil_scoped_release release;
+                const RunResult c = run(initial, *law, p.domain, *coarse, [](const StepReport&) {
+                    py::gil_scoped_acquire hold;
+                    return !interrupted();
+                });
+                return CoarseRun{c.status, c.t, c.cpu_s, c.curves.empty(), final_distance(r, c)};
+            },
+            "curves");
+    }
+    out["summary"] = python_of(summary);
     return out;
 }
 
@@ -371,7 +391,7 @@ void add_run_functions(py::module_& m) {
     m.def("curve_problem", &curve_problem_of, py::arg("curves"), py::arg("t_start"),
           py::arg("t_end"), py::arg("law"));
     m.def("run", &run_problem, py::arg("problem"), py::arg("law"), py::arg("options"),
-          py::arg("frames"), py::arg("threads"), py::arg("on_step"));
+          py::arg("frames"), py::arg("threads"), py::arg("on_step"), py::arg("estimate"));
     m.def("study", &study_problem, py::arg("problem"), py::arg("rows"), py::arg("options"),
           py::arg("threads"), py::arg("on_cell"));
     m.def("self_convergence", &self_convergence_problem, py::arg("problem"), py::arg("law"),

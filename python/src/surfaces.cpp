@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "arrays.hpp"
@@ -212,9 +213,12 @@ std::shared_ptr<SurfaceSubject> user_surface_problem(const Array& vertices,
 }
 
 py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrides& q, int frames,
-                             int threads, const py::object& on_step) {
+                             int threads, const py::object& on_step, bool estimate) {
     if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
     const SurfaceRunOptions options = resolve(subject, q);
+    if (estimate) require_half_resolution(options.steps, options.step.contour.depth, "estimate");
+    const std::optional<SurfaceRunOptions> coarse =
+        estimate ? std::optional(surface_resolution_options(options, -1)) : std::nullopt;
     const SurfaceProblem& p = subject.problem;
     Surface initial;  // a named problem's surface at the caller's K, P, ε, η
     if (subject.named && sets_contour(q)) {
@@ -264,7 +268,30 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrid
     out["message"] = r.message;
     out["history"] = history.arrays();
     out["frames"] = frame_list;
-    out["summary"] = python_of(surface_run_summary(p, initial, options, r));
+    nlohmann::json summary = surface_run_summary(p, initial, options, r);
+    if (coarse) {
+        const std::string name =
+            fmt::format("N {}, K {}, eps {:.3g}", coarse->steps, coarse->step.contour.depth,
+                        coarse->step.contour.resolved_eps());
+        summary["error_estimate"] = estimate_json(
+            name, r.status,
+            [&] {
+                const ThreadScope scope(threads);
+                py::gil_scoped_release release;
+                const SurfaceRunResult c =
+                    run(initial, *p.law, p.domain, *coarse, [](const SurfaceStepReport&) {
+                        py::gil_scoped_acquire hold;
+                        return !interrupted();
+                    });
+                const bool comparable =
+                    c.status == r.status && c.t == r.t && !c.surface.empty() && !r.surface.empty();
+                return CoarseRun{c.status, c.t, c.cpu_s, c.surface.empty(),
+                                 comparable ? surface_distance(r.surface, c.surface)
+                                            : std::numeric_limits<double>::infinity()};
+            },
+            "surface");
+    }
+    out["summary"] = python_of(summary);
     return out;
 }
 
@@ -393,7 +420,7 @@ void add_surface_functions(py::module_& m) {
     m.def("user_surface_problem", &user_surface_problem, py::arg("vertices"), py::arg("triangles"),
           py::arg("t_start"), py::arg("t_end"), py::arg("law"));
     m.def("run_surface", &run_surface_problem, py::arg("problem"), py::arg("options"),
-          py::arg("frames"), py::arg("threads"), py::arg("on_step"));
+          py::arg("frames"), py::arg("threads"), py::arg("on_step"), py::arg("estimate"));
     m.def("study_surface", &study_surface_problem, py::arg("problem"), py::arg("rows"),
           py::arg("columns"), py::arg("threads"), py::arg("on_cell"));
     m.def("prepare_surface", &prepare_surface_arrays, py::arg("vertices"), py::arg("triangles"));

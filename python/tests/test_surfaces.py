@@ -87,6 +87,15 @@ def test_a_python_curvature_law_shrinks_a_sphere_as_R2_falls_at_4():
     assert len(r.history["t"]) == 3 and r.history["volume"][-1] < r.history["volume"][0]
 
 
+def test_an_estimate_of_a_surface_runs_again_at_half_resolution():
+    # A sphere growing at unit speed, as tests/cli/surface_run_test.sh runs it with --estimate.
+    r = slc.run(sphere(), "unit-normal", 0.05, steps=4, depth=4, estimate=True)
+    e = r.summary["error_estimate"]
+    assert e["coarse"] == "N 2, K 3, eps 0.002" and e["coarse_status"] == "ok"
+    error = np.abs(np.linalg.norm(r.surface.vertices, axis=1) - 0.55).max()
+    assert error <= e["estimate"] < 1e-2  # measured 2.2e-5 and 1.7e-3
+
+
 def test_a_named_problem_of_surfaces_runs_and_reports_its_error():
     p = slc.problem("sphere-rotation")
     assert isinstance(p, slc.SurfaceProblem) and p.has_exact and p.t_end == pytest.approx(2 * math.pi)

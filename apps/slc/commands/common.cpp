@@ -261,42 +261,4 @@ void print_estimate(const nlohmann::json& estimate) {
     }
 }
 
-void require_half_resolution(int steps, int depth) {
-    if (steps < 2 || depth < 2) {
-        throw InvalidInput(fmt::format(
-            "--estimate compares with the run at half resolution, which needs N >= 2 and K >= 2, "
-            "got N = {} and K = {}",
-            steps, depth));
-    }
-}
-
-nlohmann::json estimate_json(const std::string& coarse, RunStatus status,
-                             const std::function<CoarseRun()>& run_coarse,
-                             const std::string& what) {
-    nlohmann::json e = {{"distance", nullptr}, {"coarse", coarse}, {"estimate", nullptr}};
-    if (status != RunStatus::ok) {
-        e["note"] = fmt::format("no estimate: the run ended with status {}, not at t_end",
-                                to_string(status));
-        return e;
-    }
-    const CoarseRun c = run_coarse();
-    e["coarse_status"] = to_string(c.status);
-    e["coarse_cpu_s"] = c.cpu_s;
-    if (!std::isfinite(c.distance)) {
-        e["note"] = fmt::format(
-            "no estimate: the run at half resolution ended {} at t = {:.6g}{}, which cannot be "
-            "compared with this run's {}",
-            to_string(c.status), c.t, c.empty ? fmt::format(" with no {}", what) : "", what);
-        return e;
-    }
-    e["distance"] = c.distance;
-    e["estimate"] = c.distance;
-    e["note"] = fmt::format(
-        "distance between the final {} of this run and of the same run at half resolution (N/2 "
-        "steps, K - 1, 4 eps): an estimate of this run's error that holds if it converges at "
-        "first order or faster (at second order the error is about a third of it), not a bound",
-        what == "surface" ? "surfaces" : what);
-    return e;
-}
-
 }  // namespace slc::cli

@@ -65,21 +65,6 @@ std::optional<std::vector<double>> comma_numbers(const std::string& text);
 /// Applies --threads (0 = all cores).
 void apply_threads(int threads);
 
-/// How --estimate's run at half resolution ended, and the distance between its final curves or
-/// surface and the run's (+inf when they cannot be compared).
-struct CoarseRun {
-    RunStatus status = RunStatus::ok;
-    double t = 0.0;
-    double cpu_s = 0.0;
-    bool empty = false;  ///< it ended with no curves or surface
-    double distance = 0.0;
-};
-
-/// summary.json's "error_estimate" of `slc run --estimate`: the distance between the run's final
-/// curves or surface (what: "curves", "surface") and those of the same run at half resolution
-/// (named coarse: N/2, K − 1, 4ε), which run_coarse runs unless the run ended with a status
-/// other than ok. If the error falls at least as fast as first order, e ≤ d/(2 − 1) = d: the
-/// estimate is d itself (a third of it at second order); a note says so, or why there is none.
 /// The one velocity law given among options (name, given), in their order: InvalidInput with
 /// `missing` when none is, or naming the first two when several are.
 std::string one_velocity_law(const std::vector<std::pair<std::string, bool>>& options,
@@ -87,12 +72,6 @@ std::string one_velocity_law(const std::vector<std::pair<std::string, bool>>& op
 
 /// Prints summary.json's "error_estimate" in one line: the estimate, or why there is none.
 void print_estimate(const nlohmann::json& estimate);
-
-/// Throws InvalidInput unless a run of N steps at depth K has a run at half resolution (N, K ≥ 2).
-void require_half_resolution(int steps, int depth);
-
-nlohmann::json estimate_json(const std::string& coarse, RunStatus status,
-                             const std::function<CoarseRun()>& run_coarse, const std::string& what);
 
 /// CLI11 checks with one-line messages naming the value: a positive finite number; a finite
 /// number >= 0; an integer in [lo, hi]; a number in [0, 1).

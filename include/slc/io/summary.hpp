@@ -3,6 +3,7 @@
 /// same keys from `slc run` and from Python's `slc.run(...).summary`.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -45,5 +46,28 @@ nlohmann::json run_summary(const Problem& problem, const RunOptions& options,
 nlohmann::json surface_run_summary(const SurfaceProblem& problem, const Surface& initial,
                                    const SurfaceRunOptions& options,
                                    const SurfaceRunResult& result);
+
+/// How the run at half resolution of an error estimate ended, and the distance between its final
+/// curves or surface and the run's (+inf when they cannot be compared).
+struct CoarseRun {
+    RunStatus status = RunStatus::ok;
+    double t = 0.0;
+    double cpu_s = 0.0;
+    bool empty = false;  ///< it ended with no curves or surface
+    double distance = 0.0;
+};
+
+/// Throws InvalidInput unless a run of N steps at depth K has a run at half resolution (N, K ≥ 2);
+/// the message names the option that asked for it (`--estimate`, `estimate`).
+void require_half_resolution(int steps, int depth, const std::string& option = "--estimate");
+
+/// summary.json's "error_estimate" (`slc run --estimate`, Python's `run(..., estimate=True)`): the
+/// distance between the run's final curves or surface (what: "curves", "surface") and those of
+/// the same run at half resolution (named coarse: N/2, K − 1, 4ε, resolution_options(o, −1)),
+/// which run_coarse runs unless the run ended with a status other than ok. If the error falls at
+/// least as fast as first order, e ≤ d/(2 − 1) = d: the estimate is d itself (a third of it at
+/// second order); a note says so, or why there is none.
+nlohmann::json estimate_json(const std::string& coarse, RunStatus status,
+                             const std::function<CoarseRun()>& run_coarse, const std::string& what);
 
 }  // namespace slc
