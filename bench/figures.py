@@ -290,7 +290,7 @@ step). The distance between the two runs is taken at the paper's drawn times.
             "why the problem takes it. What is left is noise at the scale of the vertices, finer "
             "than the embedded mesh, whose smoothed curvature does not see it and so does not "
             "damp it; it adds up slowly (a circle alone under Eq. 13 in [−5, 5]² at 2048/3/7/4 "
-            "ends 0.3% longer than itself at t = 10.24, its vertices 2e−3 off the fitted circle; "
+            "ends 0.3% longer than itself at t = 10.24, its vertices jittering by up to 3.6e−3; "
             "with the arclength module, 1e−5 longer).\n\n"
             "Without the correction the area stays within the first table's figures: the law's "
             "mean, the Lagrange multiplier of the area, is fixed each step on the curve the step "
