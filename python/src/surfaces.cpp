@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <memory>
 
 #include "arrays.hpp"
@@ -270,11 +269,8 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrid
     out["frames"] = frame_list;
     nlohmann::json summary = surface_run_summary(p, initial, options, r);
     if (coarse) {
-        const std::string name =
-            fmt::format("N {}, K {}, eps {:.3g}", coarse->steps, coarse->step.contour.depth,
-                        coarse->step.contour.resolved_eps());
         summary["error_estimate"] = estimate_json(
-            name, r.status,
+            run_name(*coarse), r.status,
             [&] {
                 const ThreadScope scope(threads);
                 py::gil_scoped_release release;
@@ -283,11 +279,7 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrid
                         py::gil_scoped_acquire hold;
                         return !interrupted();
                     });
-                const bool comparable =
-                    c.status == r.status && c.t == r.t && !c.surface.empty() && !r.surface.empty();
-                return CoarseRun{c.status, c.t, c.cpu_s, c.surface.empty(),
-                                 comparable ? surface_distance(r.surface, c.surface)
-                                            : std::numeric_limits<double>::infinity()};
+                return CoarseRun{c.status, c.t, c.cpu_s, c.surface.empty(), final_distance(r, c)};
             },
             "surface");
     }

@@ -448,9 +448,10 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
         // not (a spiral's arms and corners): the mean is moved by the area the corrector's
         // curve gained over k times its length, both levels alike, and the corrector contoured
         // again. The area then moves with the nonlinear rest alone.
-        const double gained =
-            step_area(corrected.curves, law, options) - step_area(curves, law, options);
-        const double s = -gained / (k * step_length(corrected.curves, law, options));
+        const auto [produced_area, produced_length] =
+            step_area_and_length(corrected.curves, law, options);
+        const double gained = produced_area - step_area(curves, law, options);
+        const double s = -gained / (k * produced_length);
         now.add_normal_speed(s);
         next.add_normal_speed(s);
         const std::size_t first_evals = corrected.stats.g_evals;

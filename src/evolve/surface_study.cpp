@@ -92,6 +92,12 @@ double surface_distance(const Surface& a, const Surface& b) {
     return std::max(one_way_distance(a, b), one_way_distance(b, a));
 }
 
+double final_distance(const SurfaceRunResult& a, const SurfaceRunResult& b) {
+    if (a.status != b.status || a.t != b.t || a.surface.empty() || b.surface.empty())
+        return std::numeric_limits<double>::infinity();
+    return surface_distance(a.surface, b.surface);
+}
+
 SurfaceStudyResult surface_study(const SurfaceProblem& problem, int rows, int columns,
                                  const SurfaceStudyObserver& observer) {
     if (rows < 1 || rows > 5 || columns < 1 || columns > 5) {

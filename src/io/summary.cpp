@@ -34,6 +34,11 @@ std::string run_name(const RunOptions& o) {
                        o.step.contour.resolved_eps());
 }
 
+std::string run_name(const SurfaceRunOptions& o) {
+    return fmt::format("N {}, K {}, eps {:.3g}", o.steps, o.step.contour.depth,
+                       o.step.contour.resolved_eps());
+}
+
 std::string refine_name(int passes) {
     return passes == ContourOptions::until_converged ? "converged" : std::to_string(passes);
 }

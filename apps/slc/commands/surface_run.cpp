@@ -9,7 +9,6 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "commands/commands.hpp"
@@ -262,22 +261,16 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     }
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     if (coarse) {
-        const std::string name =
-            fmt::format("N {}, K {}, eps {:.3g}", coarse->steps, coarse->step.contour.depth,
-                        coarse->step.contour.resolved_eps());
         summary["error_estimate"] = estimate_json(
-            name, result.status,
+            run_name(*coarse), result.status,
             [&] {
                 // The run again from the same surface; a stop signal stops it too.
                 const SurfaceRunResult other =
                     run(p.initial, *p.law, p.domain, *coarse, [&r](const SurfaceStepReport&) {
                         return r.stop_signal == nullptr || *r.stop_signal == 0;
                     });
-                const bool comparable = other.status == result.status && other.t == result.t &&
-                                        !other.surface.empty() && !result.surface.empty();
                 return CoarseRun{other.status, other.t, other.cpu_s, other.surface.empty(),
-                                 comparable ? surface_distance(result.surface, other.surface)
-                                            : std::numeric_limits<double>::infinity()};
+                                 final_distance(result, other)};
             },
             "surface");
         write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");

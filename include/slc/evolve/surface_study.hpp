@@ -49,6 +49,11 @@ SurfaceRunOptions surface_resolution_options(const SurfaceRunOptions& base, int 
 /// empty, +inf when only one is. Cost O((n_a + n_b) log(n_a + n_b)) for n_a and n_b triangles.
 double surface_distance(const Surface& a, const Surface& b);
 
+/// surface_distance between the final surfaces of two runs of the same problem, or +inf when
+/// they cannot be compared: they ended with different statuses or at different times, or either
+/// ended empty (as final_distance for curves).
+double final_distance(const SurfaceRunResult& a, const SurfaceRunResult& b);
+
 /// Called after each run with the finished cell.
 using SurfaceStudyObserver = std::function<void(const SurfaceStudyCell&)>;
 

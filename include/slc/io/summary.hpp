@@ -22,6 +22,9 @@ std::string refine_name(int passes);
 /// The run's name N/S/K/P/ε as the paper writes it ("80/0/6/2/1e-06").
 std::string run_name(const RunOptions& options);
 
+/// A surface run's name as summary.json writes it: "N 4, K 5, eps 0.001".
+std::string run_name(const SurfaceRunOptions& options);
+
 /// The most memory the process has held so far (resident set, MiB): the check that long runs
 /// stay bounded (scripts/memcheck) reads it from summary.json.
 double peak_rss_mib();
