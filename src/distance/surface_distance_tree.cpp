@@ -15,9 +15,6 @@
 namespace slc {
 namespace {
 
-/// A grid position holding no cell of the level.
-constexpr std::uint32_t no_slot = 0xffffffffu;
-
 /// Relative growth of a triple before testing triangles against it: a triangle that misses the
 /// triple only by rounding still makes the list, which can only lengthen it.
 constexpr double triple_slack = 1e-12;
@@ -26,14 +23,11 @@ constexpr double triple_slack = 1e-12;
 /// triangle hierarchy.
 constexpr std::size_t longest_scanned_list = 48;
 
-/// Levels above the binned one (coarse cells, few, with long lists) keep no working lists: they
-/// are tested for splitting in the triangle hierarchy, and the cells of the binned level get
-/// theirs by binning every triangle into a grid of the level's triples. Deeper levels filter
-/// their lists from their parents'. This spares the list work of the coarse levels, each about
-/// as costly as a fine one. The binned level is one above the deepest, at most 7 (a grid of
-/// 2^21 cells): the fastest of 0..4 above it on icospheres (bench/surface_distance_bench.cpp).
-constexpr int binned_level = 7;
-constexpr int levels_below_binned = 1;
+/// Levels above the deepest (coarse cells, few, with long lists) are tested for splitting and
+/// listed in the triangle hierarchy. The deepest level bins every triangle into the triples it
+/// meets, and writes a list only when it is short enough to keep. Binning the two or three
+/// deepest levels, with the split test on the binned pairs, builds 1.1 to 1.4 times slower on
+/// icospheres of 1280 to 327680 triangles (bench/surface_distance_bench.cpp).
 
 /// Half the diagonal of a unit cube, √3/2.
 constexpr double half_diagonal = 0.8660254037844386;
@@ -48,24 +42,87 @@ double distance_lower_bound(const Triangle3& t, const Box3& b, double h) {
     return std::max(boxes, centre);
 }
 
-/// The children of a cell whose triples a box meets, from where it meets them along each axis.
-/// Child k is high along axis a when bit a of k is set: the children low along x are 0, 2, 4, 6
-/// (mask 0x55), high 1, 3, 5, 7 (0xaa); along y 0x33 and 0xcc; along z 0x0f and 0xf0. A side
-/// code holds two bits an axis (bit 0: the box meets the low children's triples along it, bit 1:
-/// the high ones'), axis a at bits 2a and 2a + 1; the mask of that code is the children met.
-constexpr std::array<std::uint8_t, 64> children_met = [] {
-    constexpr std::uint8_t sides[3][4] = {
-        {0x00, 0x55, 0xaa, 0xff}, {0x00, 0x33, 0xcc, 0xff}, {0x00, 0x0f, 0xf0, 0xff}};
-    std::array<std::uint8_t, 64> out{};
-    for (unsigned code = 0; code < 64; ++code) {
-        unsigned m = 0xff;
-        for (unsigned a = 0; a < 3; ++a) m &= sides[a][(code >> (2 * a)) & 3u];
-        out[code] = static_cast<std::uint8_t>(m);
+/// True when distance_lower_bound(t, b, h) < h, for triangle t with bounding box box and unit
+/// normal n. Two cheaper bounds settle most far pairs first: the boxes' distance, and the
+/// distance from the centre to t's plane, which is at most its distance to t (so this needs a
+/// margin beyond rounding before it rules a pair out).
+bool nearer_than_edge(const Triangle3& t, const Box3& box, Vec3 n, const Box3& b, double h) {
+    if (!(std::sqrt(distance2(box, b)) < h)) return false;
+    const double plane = std::abs(dot(b.center() - t.a, n)) - half_diagonal * h;
+    if (plane > h * (1.0 + 1e-9)) return false;
+    return distance_lower_bound(t, b, h) < h;
+}
+
+/// One level's cells in bricks of 4×4×4 grid positions, each brick found by hashing its
+/// position: a dense grid of the level would hold 2^(3l) slots, nearly all empty where the
+/// cells hug a surface. Position (x, y, z) is bit (x & 3) + 4 (y & 3) + 16 (z & 3) of its brick.
+/// A parent's eight children share a brick, so there are at most a level's cells / 8 bricks.
+class Bricks {
+public:
+    struct Brick {
+        std::uint64_t present = 0;              ///< the positions holding a cell of the level
+        std::uint64_t stored = 0;               ///< the cells whose lists are kept
+        std::array<std::uint32_t, 64> count{};  ///< list lengths, then write positions
+    };
+
+    Bricks(const Octree& tree, std::size_t begin, std::size_t end) {
+        std::size_t capacity = 16;
+        while (capacity < (end - begin) / 4 + 1) capacity *= 2;
+        keys_.assign(capacity, empty_key);
+        slots_.resize(capacity);
+        mask_ = capacity - 1;
+        bricks_.reserve((end - begin) / 8 + 1);
+        for (std::size_t c = begin; c < end; ++c) {
+            const Octree::Cell& cell = tree.cell(c);
+            at(cell, true)->present |= std::uint64_t{1} << bit(cell.ix, cell.iy, cell.iz);
+        }
     }
-    return out;
-}();
-static_assert(children_met[0b111111] == 0xff && children_met[0b010101] == 0x01 &&
-              children_met[0b101010] == 0x80);
+
+    /// The brick at brick position (x, y, z), nullptr if the level has no cell there; with
+    /// add, made when missing.
+    Brick* find(std::uint32_t x, std::uint32_t y, std::uint32_t z, bool add = false) {
+        const std::uint64_t key = x | std::uint64_t{y} << 21 | std::uint64_t{z} << 42;
+        for (std::size_t s = (key * 0x9e3779b97f4a7c15ull) >> 40 & mask_;; s = (s + 1) & mask_) {
+            if (keys_[s] == key) return &bricks_[slots_[s]];
+            if (keys_[s] != empty_key) continue;
+            if (!add) return nullptr;
+            keys_[s] = key;
+            slots_[s] = static_cast<std::uint32_t>(bricks_.size());
+            return &bricks_.emplace_back();
+        }
+    }
+
+    /// The brick of a cell of the level.
+    Brick* at(const Octree::Cell& cell, bool add = false) {
+        return find(cell.ix >> 2, cell.iy >> 2, cell.iz >> 2, add);
+    }
+
+    static unsigned bit(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+        return (x & 3u) + 4u * (y & 3u) + 16u * (z & 3u);
+    }
+
+private:
+    static constexpr std::uint64_t empty_key = ~std::uint64_t{0};
+    std::vector<std::uint64_t> keys_;
+    std::vector<std::uint32_t> slots_;
+    std::vector<Brick> bricks_;  ///< room for every brick reserved: addresses stay
+    std::size_t mask_ = 0;
+};
+
+/// The positions [from, to) along one axis of a brick, as bits of its 4-bit run: along x, the
+/// mask of a row of the brick.
+unsigned run_bits(std::uint32_t from, std::uint32_t to) { return (1u << to) - (1u << from); }
+
+/// The brick mask of the positions [x0, x1) × [y0, y1) × [z0, z1) inside it (each in 0..4):
+/// a row's bits repeated at each y, then the plane repeated at each z (no carries: the copies
+/// do not overlap).
+std::uint64_t block_mask(const std::uint32_t from[3], const std::uint32_t to[3]) {
+    const std::uint64_t row = run_bits(from[0], to[0]);
+    std::uint64_t ys = 0, zs = 0;
+    for (std::uint32_t y = from[1]; y < to[1]; ++y) ys |= std::uint64_t{1} << (4 * y);
+    for (std::uint32_t z = from[2]; z < to[2]; ++z) zs |= std::uint64_t{1} << (16 * z);
+    return row * ys * zs;
+}
 
 }  // namespace
 
@@ -85,86 +142,29 @@ SurfaceDistanceTree::SurfaceDistanceTree(const Surface& surface, Box3 domain, Op
     }
 }
 
-/// The lists of the cells [begin, begin + offsets.size() - 1) of one level while the tree is
-/// built, for the cells that keep none for the queries (their lists are longer): the lists of
-/// the level's children are filtered from them. Two of these take turns, so that their arrays
-/// are allocated once.
-struct SurfaceDistanceTree::Level {
-    std::size_t begin = 0;
-    std::vector<std::size_t> offsets;  ///< cell begin + i: work[offsets[i], offsets[i + 1])
-    std::vector<std::uint32_t> work;   ///< the lists, one after another
-};
-
-std::span<const std::uint32_t> SurfaceDistanceTree::list_of(const Level& level,
-                                                            std::size_t c) const {
-    if (listed_[c]) return cell_triangles(c);
-    const std::size_t i = c - level.begin;
-    return {level.work.data() + level.offsets[i], level.work.data() + level.offsets[i + 1]};
-}
-
 void SurfaceDistanceTree::build_lists() {
-    std::vector<Box3> bounds(corners_.size());
-    for (std::size_t t = 0; t < corners_.size(); ++t) bounds[t] = bounding_box(corners_[t]);
-    const int binned = std::clamp(tree_.max_depth() - levels_below_binned, 0, binned_level);
-    Level level, next;
     offsets_ = {0};
     // Level by level (cells are appended breadth-first, so [begin, end) is one level): split a
-    // cell while its edge exceeds its distance to the surface (§1.3). Only triangles on its list
-    // can be that near, since the triple holds every point within one edge. The tests and the
-    // children's lists are computed on all worker threads, then packed in cell order, so the
-    // tree is the same for any thread count.
+    // cell while its edge exceeds its distance to the surface (§1.3). Only triangles whose boxes
+    // meet its triple can be that near, since the triple holds every point within one edge. The
+    // tests do not depend on the thread count, so neither does the tree.
     for (std::size_t begin = 0, end = tree_.size(); begin < end; begin = end, end = tree_.size()) {
-        const int l = tree_.cell(begin).level;
-        if (l < binned) list_from_hierarchy(begin, end);
-        if (l == binned) bin_lists(begin, end, bounds, level);
-        if (l == tree_.max_depth()) break;
+        if (tree_.cell(begin).level == tree_.max_depth()) {
+            bin_lists(begin, end);
+            break;
+        }
+        list_from_hierarchy(begin, end);
         std::vector<std::uint8_t> near(end - begin, 0);
         parallel_for(
-            end - begin,
-            [&](std::size_t i) {
-                near[i] =
-                    l < binned ? is_near_coarse(begin + i) : is_near(level, begin + i, bounds);
-            },
-            expensive_grain);
-        std::vector<std::uint32_t> parents;
+            near.size(), [&](std::size_t i) { near[i] = is_near(begin + i); }, expensive_grain);
+        bool split = false;
         for (std::size_t c = begin; c < end; ++c) {
             if (!near[c - begin]) continue;
             tree_.split(c);
-            parents.push_back(static_cast<std::uint32_t>(c));
+            split = true;
         }
-        if (parents.empty()) break;
-        if (l >= binned) {
-            list_children(level, parents, bounds, next);
-            std::swap(level, next);
-        }
+        if (!split) break;
     }
-}
-
-void SurfaceDistanceTree::place_lists(std::size_t begin, std::span<const std::uint32_t> counts,
-                                      Level& level) {
-    SLC_ASSERT(offsets_.size() == begin + 1 && begin + counts.size() == tree_.size(),
-               "lists follow cell order");
-    level.begin = begin;
-    level.offsets.assign(counts.size() + 1, 0);
-    listed_.resize(tree_.size(), 0);
-    // The deepest level's cells are never split, so a list too long to store is not needed.
-    const bool deepest = tree_.cell(begin).level == tree_.max_depth();
-    for (std::size_t i = 0; i < counts.size(); ++i) {
-        const std::uint32_t m = counts[i];
-        const bool stored = m <= longest_scanned_list;
-        SLC_ASSERT(!stored || offsets_.back() + std::uint64_t{m} <= 0xffffffffu,
-                   "lists fit 32-bit offsets");
-        offsets_.push_back(offsets_.back() + (stored ? m : 0));
-        listed_[begin + i] = stored ? 1 : 0;
-        level.offsets[i + 1] = level.offsets[i] + (stored || deepest ? 0 : m);
-    }
-    triangles_.resize(offsets_.back());
-    level.work.resize(level.offsets.back());
-}
-
-std::uint32_t* SurfaceDistanceTree::list_start(Level& level, std::size_t c) {
-    return listed_[c] ? triangles_.data() + offsets_[c]
-                      : level.work.data() + level.offsets[c - level.begin];
 }
 
 void SurfaceDistanceTree::list_from_hierarchy(std::size_t begin, std::size_t end) {
@@ -198,7 +198,7 @@ void SurfaceDistanceTree::list_from_hierarchy(std::size_t begin, std::size_t end
     }
 }
 
-bool SurfaceDistanceTree::is_near_coarse(std::size_t c) const {
+bool SurfaceDistanceTree::is_near(std::size_t c) const {
     const Box3 b = tree_.box(c);
     const double h = tree_.edge(tree_.cell(c).level);
     // The same triangles as its list, those whose boxes meet the triple (for the root, the
@@ -208,14 +208,16 @@ bool SurfaceDistanceTree::is_near_coarse(std::size_t c) const {
     const Box3 triple = tree_.triple(c).inflated(triple_slack * h);
     return hierarchy_.any_of(
         [&](const Box3& box) { return box.overlaps(triple) && std::sqrt(distance2(box, b)) < h; },
-        [&](std::uint32_t t) { return distance_lower_bound(corners_[t], b, h) < h; });
+        [&](std::uint32_t t) {
+            return nearer_than_edge(corners_[t], hierarchy_.box(t), normals_.face[t], b, h);
+        });
 }
 
-void SurfaceDistanceTree::bin_lists(std::size_t begin, std::size_t end,
-                                    std::span<const Box3> bounds, Level& level) {
+void SurfaceDistanceTree::bin_lists(std::size_t begin, std::size_t end) {
+    const std::span<const Box3> bounds = hierarchy_.boxes();
     const int l = tree_.cell(begin).level;
     const std::uint32_t g = std::uint32_t{1} << l;
-    const double h = tree_.edge(l), slack = triple_slack * h;
+    const double h = tree_.edge(l), slack = triple_slack * h, inverse_h = 1.0 / h;
     // Along each axis, the triples' extents at this level, computed as Octree::triple and
     // Box3::inflated compute them, so that the tests below are exactly the lists' tests. Both
     // ends increase with the index: the triples a box meets along an axis are a range.
@@ -230,124 +232,78 @@ void SurfaceDistanceTree::bin_lists(std::size_t begin, std::size_t end,
             hi[a][i] = cell_hi + h + slack;
         }
     }
-    // The level's cells by grid position (the root's when the level is 0, the same way).
-    std::vector<std::uint32_t> slot(std::size_t{g} * g * g, no_slot);
-    for (std::size_t c = begin; c < end; ++c) {
-        const Octree::Cell& cell = tree_.cell(c);
-        slot[cell.ix + std::size_t{g} * (cell.iy + std::size_t{g} * cell.iz)] =
-            static_cast<std::uint32_t>(c - begin);
-    }
-    // Every triangle to the existing cells whose triples its box meets: counted, then written,
-    // in increasing triangle order (one thread: the order of the lists is the triangles').
-    auto for_each_cell = [&](std::uint32_t t, auto&& f) {
+    auto index_near = [&](double x) {
+        return static_cast<std::uint32_t>(std::clamp(std::floor(x), 0.0, static_cast<double>(g)));
+    };
+    Bricks bricks(tree_, begin, end);
+    // f(brick, mask) for each brick holding cells whose triples the box of
+    // triangle t meets, the mask naming those cells (the root lists every triangle).
+    auto for_each_brick = [&](std::uint32_t t, auto&& f) {
+        if (begin == 0) {
+            f(*bricks.at(tree_.cell(0)), std::uint64_t{1});
+            return;
+        }
         std::uint32_t from[3], to[3];
         for (int a = 0; a < 3; ++a) {
-            // First triple reaching up to the box's low end; last starting below its high end.
-            from[a] = static_cast<std::uint32_t>(
-                std::lower_bound(hi[a].begin(), hi[a].end(), bounds[t].lo[a]) - hi[a].begin());
-            to[a] = static_cast<std::uint32_t>(
-                std::upper_bound(lo[a].begin(), lo[a].end(), bounds[t].hi[a]) - lo[a].begin());
+            // The first triple reaching up to the box's low end and the first starting past its
+            // high end, guessed from the edge and settled by the exact extents.
+            const double low = bounds[t].lo[a], high = bounds[t].hi[a];
+            std::uint32_t i = index_near((low - root.lo[a]) * inverse_h - 2.0);
+            while (i > 0 && hi[a][i - 1] >= low) --i;
+            while (i < g && hi[a][i] < low) ++i;
+            std::uint32_t j = index_near((high - root.lo[a]) * inverse_h + 2.0);
+            while (j > 0 && lo[a][j - 1] > high) --j;
+            while (j < g && lo[a][j] <= high) ++j;
+            if (i >= j) return;
+            from[a] = i;
+            to[a] = j;
         }
-        for (std::uint32_t z = from[2]; z < to[2]; ++z)
-            for (std::uint32_t y = from[1]; y < to[1]; ++y)
-                for (std::uint32_t x = from[0]; x < to[0]; ++x) {
-                    const std::uint32_t i = slot[x + std::size_t{g} * (y + std::size_t{g} * z)];
-                    if (i != no_slot) f(i);
+        for (std::uint32_t bz = from[2] / 4; bz <= (to[2] - 1) / 4; ++bz)
+            for (std::uint32_t by = from[1] / 4; by <= (to[1] - 1) / 4; ++by)
+                for (std::uint32_t bx = from[0] / 4; bx <= (to[0] - 1) / 4; ++bx) {
+                    Bricks::Brick* brick = bricks.find(bx, by, bz);
+                    if (brick == nullptr) continue;
+                    const std::uint32_t corner[3] = {4 * bx, 4 * by, 4 * bz};
+                    std::uint32_t inside_from[3], inside_to[3];
+                    for (int a = 0; a < 3; ++a) {
+                        inside_from[a] = std::max(from[a], corner[a]) - corner[a];
+                        inside_to[a] = std::min(to[a], corner[a] + 4) - corner[a];
+                    }
+                    const std::uint64_t m = block_mask(inside_from, inside_to) & brick->present;
+                    if (m != 0) f(*brick, m);
                 }
     };
+    // First pass: the lengths of the lists.
     const auto n = static_cast<std::uint32_t>(corners_.size());
-    std::vector<std::uint32_t> counts(end - begin, 0);
-    if (begin == 0) {
-        counts[0] = n;  // the root lists every triangle
-    } else {
-        for (std::uint32_t t = 0; t < n; ++t)
-            for_each_cell(t, [&](std::uint32_t i) { ++counts[i]; });
+    for (std::uint32_t t = 0; t < n; ++t) {
+        for_each_brick(t, [&](Bricks::Brick& brick, std::uint64_t m) {
+            for (std::uint64_t k = m; k != 0; k &= k - 1) ++brick.count[std::countr_zero(k)];
+        });
     }
-    place_lists(begin, counts, level);
-    std::vector<std::uint32_t*> to(end - begin);
-    for (std::size_t i = 0; i < to.size(); ++i) to[i] = list_start(level, begin + i);
-    if (begin == 0) {
-        std::iota(to[0], to[0] + n, 0u);
-    } else {
-        for (std::uint32_t t = 0; t < n; ++t)
-            for_each_cell(t, [&](std::uint32_t i) { *to[i]++ = t; });
+    // The lists short enough to keep are placed in cell order; the others are never written.
+    SLC_ASSERT(offsets_.size() == begin + 1 && end == tree_.size(), "lists follow cell order");
+    listed_.resize(tree_.size(), 0);
+    for (std::size_t c = begin; c < end; ++c) {
+        const Octree::Cell& cell = tree_.cell(c);
+        Bricks::Brick& brick = *bricks.at(cell);
+        const unsigned b = Bricks::bit(cell.ix, cell.iy, cell.iz);
+        const std::uint32_t m = brick.count[b];
+        const bool stored = m <= longest_scanned_list;
+        SLC_ASSERT(!stored || offsets_.back() + std::uint64_t{m} <= 0xffffffffu,
+                   "lists fit 32-bit offsets");
+        if (stored) brick.stored |= std::uint64_t{1} << b;
+        brick.count[b] = offsets_.back();  // where its list starts
+        offsets_.push_back(offsets_.back() + (stored ? m : 0));
+        listed_[c] = stored ? 1 : 0;
     }
-}
-
-bool SurfaceDistanceTree::is_near(const Level& level, std::size_t c,
-                                  std::span<const Box3> bounds) const {
-    const Box3 b = tree_.box(c);
-    const double h = tree_.edge(tree_.cell(c).level);
-    // The box distance alone rules out most triangles of a far cell.
-    const auto list = list_of(level, c);
-    return std::any_of(list.begin(), list.end(), [&](std::uint32_t t) {
-        return std::sqrt(distance2(bounds[t], b)) < h &&
-               distance_lower_bound(corners_[t], b, h) < h;
-    });
-}
-
-void SurfaceDistanceTree::list_children(const Level& level, std::span<const std::uint32_t> parents,
-                                        std::span<const Box3> bounds, Level& next) {
-    // First pass, one parent per iteration: for each triangle of its list, the mask of the
-    // children whose triples its box meets (children_met), and the length of each child's list.
-    std::vector<std::size_t> entry(parents.size() + 1, 0);
-    for (std::size_t j = 0; j < parents.size(); ++j)
-        entry[j + 1] = entry[j] + list_of(level, parents[j]).size();
-    std::vector<std::uint8_t> masks(entry.back());
-    std::vector<std::uint32_t> counts(8 * parents.size(), 0);
-    parallel_for(
-        parents.size(),
-        [&](std::size_t j) {
-            const std::uint32_t first = tree_.cell(parents[j]).first_child;
-            const double slack = triple_slack * tree_.edge(tree_.cell(first).level);
-            const Box3 low = tree_.triple(first).inflated(slack);
-            const Box3 high = tree_.triple(first + 7).inflated(slack);
-            // The lengths from a histogram of the side codes: one increment per triangle.
-            std::uint32_t histogram[64] = {};
-            std::uint8_t* mask = masks.data() + entry[j];
-            for (std::uint32_t s : list_of(level, parents[j])) {
-                const Box3& b = bounds[s];
-                unsigned code = 0;
-                for (int a = 0; a < 3; ++a) {
-                    // & rather than &&: no branch to mispredict.
-                    const unsigned side =
-                        (unsigned{b.lo[a] <= low.hi[a]} & unsigned{b.hi[a] >= low.lo[a]}) |
-                        (unsigned{b.lo[a] <= high.hi[a]} & unsigned{b.hi[a] >= high.lo[a]}) << 1;
-                    code |= side << (2 * a);
-                }
-                *mask++ = children_met[code];
-                ++histogram[code];
-            }
-            std::uint32_t count[8] = {};
-            for (unsigned code = 0; code < 64; ++code)
-                if (histogram[code] != 0)
-                    for (unsigned m = children_met[code]; m != 0; m &= m - 1)
-                        count[std::countr_zero(m)] += histogram[code];
-            std::copy(count, count + 8, counts.begin() + static_cast<std::ptrdiff_t>(8 * j));
-        },
-        expensive_grain);
-    // The children follow their parents in order: the next level is exactly the children, and
-    // their stored lists are appended in cell order.
-    const std::size_t begin = tree_.cell(parents[0]).first_child;
-    const bool deepest = tree_.cell(begin).level == tree_.max_depth();
-    place_lists(begin, counts, next);
-    // Second pass: each triangle to the lists its mask names, in the parent's (increasing)
-    // order.
-    parallel_for(
-        parents.size(),
-        [&](std::size_t j) {
-            std::uint32_t* to[8];
-            unsigned wanted = 0;  // the children whose lists are kept
-            for (std::size_t k = 0; k < 8; ++k) {
-                to[k] = list_start(next, begin + 8 * j + k);
-                if (!deepest || listed_[begin + 8 * j + k]) wanted |= 1u << k;
-            }
-            const std::uint8_t* mask = masks.data() + entry[j];
-            for (std::uint32_t s : list_of(level, parents[j]))
-                for (unsigned m = *mask++ & wanted; m != 0; m &= m - 1)
-                    *to[std::countr_zero(m)]++ = s;
-        },
-        expensive_grain);
+    // Second pass: each triangle to the kept lists, so each in increasing triangle order.
+    triangles_.resize(offsets_.back());
+    for (std::uint32_t t = 0; t < n; ++t) {
+        for_each_brick(t, [&](Bricks::Brick& brick, std::uint64_t m) {
+            for (std::uint64_t k = m & brick.stored; k != 0; k &= k - 1)
+                triangles_[brick.count[std::countr_zero(k)]++] = t;
+        });
+    }
 }
 
 NearestFacet SurfaceDistanceTree::nearest_facet(Vec3 x) const {
@@ -406,11 +362,12 @@ int SurfaceDistanceTree::default_depth(const Surface& surface, const Box3& domai
         total += distance(tri.a, tri.b) + distance(tri.b, tri.c) + distance(tri.c, tri.a);
     }
     const double mean = total / (3.0 * static_cast<double>(surface.size()));
-    // Cells one to two mean edges wide. A level deeper (cells up to one edge wide) builds in
-    // about 1.5 times the time and answers queries near the surface no faster: its lists are
-    // mostly too long to keep (bench/surface_distance_bench.cpp).
+    // Cells two to four mean edges wide. A level deeper (cells one to two edges wide) builds in
+    // about 1.5 to 2 times the time and answers queries near the surface no faster, random or
+    // in lattice order: its lists are mostly too long to keep, and a query that would scan one
+    // does as well in the hierarchy (bench/surface_distance_bench.cpp).
     const int level =
-        static_cast<int>(std::ceil(std::log2(domain.width() / std::max(2.0 * mean, 1e-300))));
+        static_cast<int>(std::ceil(std::log2(domain.width() / std::max(4.0 * mean, 1e-300))));
     const int deepest = Octree::max_resolvable_depth(domain);
     return std::clamp(level, std::min(2, deepest), std::min(10, deepest));
 }

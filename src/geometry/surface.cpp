@@ -135,13 +135,16 @@ PseudoNormals pseudo_normals(const Surface& s) {
     n.vertex.assign(s.vertices.size(), Vec3{});
     for (std::size_t t = 0; t < s.size(); ++t) {
         const Triangle3 tri = s.triangle(t);
-        n.face[t] = unit_normal(tri);
-        for (int k = 0; k < 3; ++k) {
-            // The angle at corner k, by atan2 of |u × v| and u · v (accurate at every size).
-            const Vec3 u = tri[(k + 1) % 3] - tri[k], v = tri[(k + 2) % 3] - tri[k];
-            const double angle = std::atan2(norm(cross(u, v)), dot(u, v));
-            n.vertex[s.triangles[t][k]] += angle * n.face[t];
-        }
+        // The angle at each corner by atan2 of |u × v| and u · v (accurate at every size), u and
+        // v its two edges: |u × v| is twice the area at every corner.
+        const Vec3 ab = tri.b - tri.a, bc = tri.c - tri.b, ca = tri.a - tri.c;
+        const Vec3 normal = cross(ab, -ca);
+        const double twice_area = norm(normal);
+        n.face[t] = normal / twice_area;
+        const double angles[3] = {std::atan2(twice_area, -dot(ab, ca)),
+                                  std::atan2(twice_area, -dot(bc, ab)),
+                                  std::atan2(twice_area, -dot(ca, bc))};
+        for (int k = 0; k < 3; ++k) n.vertex[s.triangles[t][k]] += angles[k] * n.face[t];
     }
     const auto neighbours = triangle_neighbours(s);
     for (std::size_t t = 0; t < s.size(); ++t)

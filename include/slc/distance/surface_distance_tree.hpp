@@ -43,7 +43,7 @@ public:
     /// Cost O(N log N) time and memory for N triangles of similar size.
     SurfaceDistanceTree(const Surface& surface, Box3 domain, Options options);
 
-    /// A depth for surface in domain when none is given: the level whose cells are one to two
+    /// A depth for surface in domain when none is given: the level whose cells are two to four
     /// mean edges wide, between 2 and 10 (and within what doubles resolve there).
     /// Only the cost of a query depends on it. Precondition: surface is not empty.
     static int default_depth(const Surface& surface, const Box3& domain);
@@ -78,29 +78,17 @@ public:
     }
 
 private:
-    /// The lists of one level's cells while the tree is built (defined with the build).
-    struct Level;
+    /// Splits the cells level by level and lists them.
     void build_lists();
-    /// The list of cell c of level while the tree is built.
-    std::span<const std::uint32_t> list_of(const Level& level, std::size_t c) const;
-    /// True when cell c of level is nearer the surface than its edge, by distance_lower_bound.
-    bool is_near(const Level& level, std::size_t c, std::span<const Box3> bounds) const;
     /// Stores the lists of the cells [begin, end) (the last ones) that are short enough, from
-    /// the hierarchy: the levels above the binned one, and the cells balancing makes.
+    /// the hierarchy: the levels above the deepest, and the cells balancing makes.
     void list_from_hierarchy(std::size_t begin, std::size_t end);
-    /// is_near for a cell without a list, from the hierarchy.
-    bool is_near_coarse(std::size_t c) const;
-    /// Lists the cells [begin, end) of a level by binning every triangle into its triples.
-    void bin_lists(std::size_t begin, std::size_t end, std::span<const Box3> bounds, Level& level);
-    /// Makes room for the lists of the cells [begin, begin + counts.size()) (the last ones) of
-    /// the given lengths: stored when short, else in level.
-    void place_lists(std::size_t begin, std::span<const std::uint32_t> counts, Level& level);
-    /// Where the list of cell c (placed by place_lists) is to be written.
-    std::uint32_t* list_start(Level& level, std::size_t c);
-    /// Lists the children of parents (just split, in increasing order, their children the last
-    /// cells): stored for queries when short, else kept in next for the level after.
-    void list_children(const Level& level, std::span<const std::uint32_t> parents,
-                       std::span<const Box3> bounds, Level& next);
+    /// True when cell c is nearer the surface than its edge, by a lower bound of the distance:
+    /// the split test, in the hierarchy.
+    bool is_near(std::size_t c) const;
+    /// Stores the short lists of the deepest level's cells [begin, end) (the last ones) by
+    /// binning every triangle into the triples its box meets.
+    void bin_lists(std::size_t begin, std::size_t end);
     /// The least (distance², triangle) pair over the surface at x.
     NearestFacet nearest_facet(Vec3 x) const;
 

@@ -31,6 +31,11 @@ public:
     /// O(N log N).
     explicit TriangleHierarchy(std::span<const Triangle3> triangles);
 
+    /// The bounding box of each triangle, by index.
+    std::span<const Box3> boxes() const { return boxes_; }
+    /// The bounding box of triangle t.
+    const Box3& box(std::uint32_t t) const { return boxes_[t]; }
+
     /// Calls f(t) for every triangle t whose bounding box meets the closed box b, in no fixed
     /// order. O(log N + answers) for well-shaped surfaces.
     template <class F>
