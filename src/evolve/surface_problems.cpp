@@ -28,7 +28,7 @@ VelocityParams resolve(const std::string& what, const Defaults& defaults,
     VelocityParams out;
     for (const auto& [key, value] : params) {
         const bool known = std::any_of(defaults.begin(), defaults.end(),
-                                       [&](const auto& d) { return d.first == key; });
+                                       [&key = key](const auto& d) { return d.first == key; });
         if (!known) {
             std::string names;
             for (const auto& d : defaults) names += (names.empty() ? "" : ", ") + d.first;
