@@ -137,9 +137,11 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                 const double k = (t1 - t0) / pieces;
                 Surface s = r.surface;
                 std::optional<std::string> broken;
+                double corrected = 0.0;
                 for (int j = 0; j < pieces && !s.empty(); ++j) {
                     SurfaceStepResult step = advance(s, t0 + j * k, k, law, domain, options.step);
                     r.g_evals += step.stats.g_evals();
+                    corrected += step.stats.volume_correction;
                     stats = step.stats;
                     if (options.guards) {
                         broken = surface_invariant_violation(invariants, s, step.surface, k, eps);
@@ -153,6 +155,7 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                         r.most_substeps = std::max(r.most_substeps, pieces);
                     }
                     r.surface = std::move(s);
+                    r.volume_corrected += corrected;
                     break;
                 }
                 if (halvings == options.max_substep_halvings) {

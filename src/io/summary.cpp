@@ -151,6 +151,8 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
         {"cpu_s", r.cpu_s},
         {"wall_s", r.wall_s}};
     if (!r.message.empty()) summary["message"] = r.message;
+    if (options.step.volume_correction.value_or(p.law->preserves_area()))
+        summary["volume_corrected"] = r.volume_corrected;
     return summary;
 }
 

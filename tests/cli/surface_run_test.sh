@@ -32,6 +32,14 @@ check "frame pictures" test -s turn/frames/frame_0000.png -a -s turn/frames/fram
 expect_ok "mean curvature" -- run --initial ball.obj --velocity curvature --t-end 0.05 -N 10 -K 4 --out shrink --quiet
 check "radius 0.4: volume within 2%" test "$(json shrink/summary.json 'abs(s["volume"] / (4 / 3 * 3.141592653589793 * 0.4**3) - 1) < 2e-2')" = True
 
+# Volume-preserving mean curvature keeps a sphere: the volume correction gives back what the
+# steps lose, as summary.json reports, and --no-area-correction turns it off.
+expect_ok "volume-preserving curvature" -- run --initial ball.obj --velocity volume-preserving-curvature --t-end 0.004 -N 2 -K 3 --out kept --quiet
+check "volume kept to 1e-6 with the correction" test "$(json kept/summary.json 'abs(s["volume_change"]) < 1e-6')" = True
+check "the volume given back is reported" test "$(json kept/summary.json '"volume_corrected" in s')" = True
+expect_ok "without the volume correction" -- run --initial ball.obj --velocity volume-preserving-curvature --t-end 0.004 -N 2 -K 3 --no-area-correction --out unkept --quiet
+check "no correction reported when off" test "$(json unkept/summary.json '"volume_corrected" in s')" = False
+
 expect_ok "one thread" -- run --initial ball.obj --velocity enright --param period=1 --t-end 0.1 -N 2 -K 4 --threads 1 --out one --quiet
 expect_ok "two threads" -- run --initial ball.obj --velocity enright --param period=1 --t-end 0.1 -N 2 -K 4 --threads 2 --out two --quiet
 check "the same surface for any thread count" cmp -s one/final.obj two/final.obj

@@ -125,6 +125,7 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
         json["split_steps"] = s.split_steps;
         json["most_substeps"] = s.most_substeps;
         json["volume_initial"] = s.volume_initial;
+        json["volume_corrected"] = s.volume_corrected;
         json["frames_kept"] = c.frames_kept;
         json["frame_times"] = c.frame_times;
         put_surface(json, s.surface);
@@ -173,6 +174,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
             s.split_steps = json.at("split_steps").get<int>();
             s.most_substeps = json.at("most_substeps").get<int>();
             s.volume_initial = json.at("volume_initial").get<double>();
+            s.volume_corrected = json.value("volume_corrected", 0.0);
             s.status = RunStatus::interrupted;
             c.frames_kept = json.at("frames_kept").get<int>();
             c.frame_times = json.at("frame_times").get<std::vector<double>>();

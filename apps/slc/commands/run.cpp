@@ -404,7 +404,6 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
         {o.method.extension.has_value(), "--extension"},
         {!o.method.geometry.empty(), "--geometry"},
         {o.method.arcs.has_value(), "--arcs"},
-        {o.method.area_correction.has_value(), "--area-correction"},
         {o.method.arc_width.has_value(), "--arc-width"}};
     for (const auto& [given_option, name] : curve_only)
         if (given_option) throw InvalidInput(fmt::format("{} is for curves, not surfaces", name));
@@ -423,6 +422,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  .eps = o.method.eps,
                  .eta = o.method.eta,
                  .tree_depth = o.method.tree_depth,
+                 .volume_correction = o.method.area_correction,
                  .frames = o.frames,
                  .estimate = o.estimate,
                  .view = o.view,

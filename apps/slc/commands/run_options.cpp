@@ -94,8 +94,8 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         [&o](std::int64_t count) { o.area_correction = count > 0; },
         "After each step under a law that keeps the area (volume-preserving curvature), shift "
         "the curves along their normals by the area lost over the length, as summary.json's "
-        "area_corrected reports. Default: on for such laws, off for named problems (the "
-        "paper's method)");
+        "area_corrected reports; for a surface, the volume over the area (volume_corrected). "
+        "Default: on for such laws, off for named problems of curves (the paper's method)");
     cmd.add_option("--arc-width", o.arc_width,
                    "sigma: arc length over which the arclength geometry module averages the "
                    "curvature (default sqrt(k); curvature flow is stable from 0.76 sqrt(k))")

@@ -137,6 +137,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     if (r.eps) options.step.contour.eps = *r.eps;
     if (r.eta) options.step.contour.eta = *r.eta;
     if (r.tree_depth) options.step.tree_depth = *r.tree_depth;
+    if (r.volume_correction) options.step.volume_correction = r.volume_correction;
     const SurfaceContourOptions& c = options.step.contour;
     if (c.resolved_eps() < c.eta) {
         throw InvalidInput(

@@ -29,6 +29,9 @@ struct SurfaceRunRequest {
     std::optional<double> eps;
     std::optional<double> eta;
     std::optional<int> tree_depth;
+    /// --area-correction / --no-area-correction: the volume correction of a law that keeps the
+    /// volume (SurfaceStepOptions::volume_correction); unset, on for such laws.
+    std::optional<bool> volume_correction;
     int frames = 0;
     /// --estimate: the run again at half resolution, and the distance between the two final
     /// surfaces in summary.json's "error_estimate".

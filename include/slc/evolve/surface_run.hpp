@@ -61,6 +61,9 @@ struct SurfaceRunResult {
     int most_substeps = 1;
     /// The volume the run started with, which the guard of volume drift compares with.
     double volume_initial = 0.0;
+    /// The volume given back by the steps' volume correction (SurfaceStepOptions::
+    /// volume_correction), summed over the steps kept.
+    double volume_corrected = 0.0;
 };
 
 /// Why a step of length k from `before` to `after` breaks what the law keeps, in one line, or
