@@ -285,8 +285,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     """Moves curves from interface.time to t_end, as ``slc run --initial`` does, or runs a named
     problem (``run(slc.problem("zalesak"))``, t_end optional) as ``slc run --problem`` does. A
     Surface (or a SurfaceProblem) moves the same way and gives a SurfaceRunResult; its velocity
-    takes (m, 3) arrays, and the options of curves alone (smoothing, geometry, extension, arcs,
-    area_correction) are refused.
+    takes (m, 3) arrays, the options of curves alone (smoothing, geometry, extension, arcs) are
+    refused, and area_correction turns the volume correction on or off.
 
     velocity: a built-in law's name (``velocities()``; its parameters in params), a FlowField, a
     NormalSpeed, or a callable f(t, points (N, 2), normals (N, 2), curvature (N,)) returning
@@ -304,13 +304,13 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     """
     if isinstance(interface, (Surface, SurfaceProblem)):
         curve_only = {"smoothing": smoothing, "geometry": geometry, "extension": extension,
-                      "arcs": arcs, "area_correction": area_correction}
+                      "arcs": arcs}
         for name, value in curve_only.items():
             if value is not None:
                 raise ValueError(f"{name} is for curves, not surfaces")
         p = _surface_subject(interface, velocity, t_end, params)
         return run_surface(p, frames, observer, threads, estimate, steps=steps, depth=depth,
-                           refine=refine, eps=eps, eta=eta)
+                           refine=refine, eps=eps, eta=eta, area_correction=area_correction)
     p, law = _subject(interface, velocity, t_end, params, geometry)
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
         raise TypeError(f"frames must be an integer, got {frames!r}")

@@ -36,10 +36,12 @@ struct SurfaceSubject {
     double t_start = 0.0;
 };
 
-/// The options a caller set (None for unset): steps, depth, refine, eps, eta.
+/// The options a caller set (None for unset): steps, depth, refine, eps, eta, and the volume
+/// correction (area_correction).
 struct SurfaceOverrides {
     std::optional<int> steps, depth, refine;
     std::optional<double> eps, eta;
+    std::optional<bool> volume_correction;
 };
 
 /// The problem's own options with the caller's over them, as `slc run` on a surface takes
@@ -82,6 +84,7 @@ SurfaceRunOptions resolve(const SurfaceSubject& s, const SurfaceOverrides& q) {
     }
     if (q.eps) c.eps = *q.eps;
     if (q.eta) c.eta = *q.eta;
+    if (q.volume_correction) o.step.volume_correction = q.volume_correction;
     if (c.resolved_eps() < c.eta) {
         throw InvalidInput(
             fmt::format("eps ({}) must not be below eta ({})", c.resolved_eps(), c.eta));
@@ -349,7 +352,8 @@ void add_surface_functions(py::module_& m) {
         .def_readwrite("depth", &SurfaceOverrides::depth)
         .def_readwrite("refine", &SurfaceOverrides::refine)
         .def_readwrite("eps", &SurfaceOverrides::eps)
-        .def_readwrite("eta", &SurfaceOverrides::eta);
+        .def_readwrite("eta", &SurfaceOverrides::eta)
+        .def_readwrite("volume_correction", &SurfaceOverrides::volume_correction);
     py::class_<SurfaceSubject, std::shared_ptr<SurfaceSubject>>(m, "SurfaceProblem")
         .def_property_readonly("name", [](const SurfaceSubject& s) { return s.problem.name; })
         .def_property_readonly("description",

@@ -120,6 +120,16 @@ def test_a_surface_and_its_history_are_drawn(tmp_path):
     plt.close("all")
 
 
+def test_the_volume_correction_is_reported_and_can_be_turned_off():
+    s = sphere(depth=3, eps=3e-3)
+    kept = slc.run(s, "volume-preserving-curvature", 0.004, steps=2, depth=3)
+    assert kept.status == "ok" and "volume_corrected" in kept.summary
+    assert abs(kept.summary["volume_change"]) < 1e-12
+    off = slc.run(s, "volume-preserving-curvature", 0.004, steps=2, depth=3,
+                  area_correction=False)
+    assert off.status == "ok" and "volume_corrected" not in off.summary
+
+
 def test_an_observer_stops_a_run_of_a_surface():
     seen = []
 
