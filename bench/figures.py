@@ -117,7 +117,12 @@ class Figures:
         return f"![{name}](figures/{target})"
 
     def distance(self, a_name, b_name, box, j=None, turn_b=0.0):
-        """Distance between the final curves (or frame j) of two runs, b turned by turn_b°."""
+        """Distance between the final curves (or frame j) of two runs, b turned by turn_b°; None
+        when a run ended before frame j."""
+        if j is not None and not all(os.path.exists(frame_path(self.out(n), j))
+                                     for n in (a_name, b_name)):
+            return None
+
         def curves(name):
             path = (os.path.join(self.out(name), "final.json") if j is None
                     else frame_path(self.out(name), j))
@@ -250,8 +255,10 @@ step). The distance between the two runs is taken at the paper's drawn times.
                 "spiral1024": ["-N", "1024", "-S", "3", "-K", "8", "-P", "3", "--eps", "1e-4"]}
         self.write("\n| run | status | area drift, largest | at t = 2.56 | with the correction: largest"
                    " | at t = 2.56 | curves | seconds |\n|---|---|---|---|---|---|---|---|\n")
+        s_of = {}
         for name, args in runs.items():
-            s = self.run(name, ["--problem", "spiral-nonlocal", *args, "--frames", "256"])
+            s = s_of[name] = self.run(name, ["--problem", "spiral-nonlocal", *args, "--frames",
+                                             "256"])
             c = self.run(name + "c", ["--problem", "spiral-nonlocal", *args, "--area-correction"])
             worst, last = area_drift(self.out(name))
             cworst, clast = area_drift(self.out(name + "c"))
@@ -268,30 +275,37 @@ step). The distance between the two runs is taken at the paper's drawn times.
             "**Stability and the domain.** The step is explicit, so curvature flow is stable only "
             "while k/h² stays below a bound that S raises (the embedded mesh has h = 2b/M, "
             "M = 2^(K+1), in the domain [−b, b]²). Wiggles show as length in excess of the circle "
-            "the spiral ends as, L/(2√(πA)) − 1 at t = 2.56:\n\n"
-            "| run | b | k/h² | excess length at t = 2.56 | area drift at t = 2.56 |\n"
-            "|---|---|---|---|---|\n")
+            "the spiral ends as, L/(2√(πA)) − 1 where the run ends (t = 2.56 unless the guard "
+            "ended it, below):\n\n"
+            "| run | b | k/h² | status | ends at t | excess length there | area drift there |\n"
+            "|---|---|---|---|---|---|---|\n")
         for name, args in runs.items():
             n, k_depth = int(args[1]), int(args[5])
             for b in (3, 4, 5):
                 out = f"{name}_b{b}"
                 if b == 5:
                     out = name
+                    summary = s_of[name]
                 else:
-                    self.run(out, ["--problem", "spiral-nonlocal", *args, "--domain", str(b)])
+                    summary = self.run(out, ["--problem", "spiral-nonlocal", *args, "--domain",
+                                             str(b)])
                 h = 2.0 * b / 2 ** (k_depth + 1)
                 rows = history(self.out(out))
                 a, length = rows[-1]["area"], rows[-1]["length"]
                 excess = length / (2.0 * math.sqrt(math.pi * a)) - 1.0
                 self.write(f"| {'/'.join(args[1::2])} | {b} | {2.56 / n / h ** 2:.3g} | "
-                           f"{fmt(excess)} | {fmt(area_drift(self.out(out))[1])} |\n")
+                           f"{summary['status']} | {fmt(rows[-1]['t'], 4)} | {fmt(excess)} | "
+                           f"{fmt(area_drift(self.out(out))[1])} |\n")
         self.write(
             "\nIn [−3, 3]² neither of the paper's runs is stable; in [−5, 5]² both are, which is "
             "why the problem takes it. What is left is noise at the scale of the vertices, finer "
             "than the embedded mesh, whose smoothed curvature does not see it and so does not "
             "damp it; it adds up slowly (a circle alone under Eq. 13 in [−5, 5]² at 2048/3/7/4 "
             "ends 0.3% longer than itself at t = 10.24, its vertices jittering by up to 3.6e−3; "
-            "with the arclength module, 1e−5 longer).\n\n"
+            "with the arclength module, 1e−5 longer). Eq. 13 only shortens curves, so a run "
+            "whose length grows 0.5% above the least it reached ends `unstable` "
+            "(docs/errors.md): the 512-step run does so near its end, and the distance to the "
+            "1024-step run is not taken after it.\n\n"
             "Without the correction the area stays within the first table's figures: the law's "
             "mean, the Lagrange multiplier of the area, is fixed each step on the curve the step "
             "produces (docs/algorithms/evolve.md). Taken over the curve the step starts from, as "
@@ -327,10 +341,14 @@ wiggles), to t = 10.24 (the paper gives neither its bubbles nor its domain or ti
         self.write(
             "Without the correction the area stays within the table's figures through the "
             "merges (with the mean over the curve each step starts from, 1.2% was lost). The "
-            "merged bubble gathers the vertex-scale noise of the spiral's circle: "
-            f"it ends {fmt(length / (2.0 * math.sqrt(math.pi * a)) - 1.0)} longer than "
-            "the circle of its area. With the correction every step keeps the area to "
-            "rounding.\n\n")
+            "merged bubble gathers the vertex-scale noise of the spiral's circle, and its "
+            "length grows, which Eq. 13 forbids: "
+            + (f"the guard ends the run at t = {fmt(s['t'], 4)} ({s.get('message', '')}), "
+               if s["status"] == "unstable" else "")
+            + f"{fmt(length / (2.0 * math.sqrt(math.pi * a)) - 1.0)} longer than the circle of "
+            f"its area at t = {fmt(rows[-1]['t'], 4)}. With the arclength module and arcs "
+            "(docs/problems.md) it runs to the end. With the correction every step keeps the "
+            "area to rounding.\n\n")
 
 
 HEADER = """# The paper's figures at its own parameters

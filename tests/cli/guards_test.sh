@@ -68,6 +68,14 @@ expect_ok "rotation, direct, converged" -- run --initial c.json --velocity rotat
 # A rigid motion keeps its area (one step of a turn loses 5%); a law that keeps area cannot vanish them.
 expect_status "zalesak in 1 step" 3 -- run --problem zalesak -N 1 --out z1 --quiet
 check "zalesak in 1 step: the rigid motion named" grep -q "area changed by .* in one step of a rigid motion" err.txt
+# Eq. 13 keeps a circle. With the embedded module at S = 3 and the default 40 steps (k/h² = 23)
+# the steps roughen it a little each, under a step's 1%: the run-wide budget on the length of a
+# law that shortens curves ends the run, naming the cure; the arclength module keeps the circle.
+expect_status "a circle under Eq. 13, embedded, S = 3" 3 -- run --initial c.json \
+    --velocity volume-preserving-curvature --t-end 2 --geometry embedded -S 3 --out bumpy --quiet
+check "Eq. 13, embedded: the length's growth named" grep -q "the length has grown by .* since t = .* use --geometry arclength" err.txt
+expect_ok "a circle under Eq. 13, arclength" -- run --initial c.json \
+    --velocity volume-preserving-curvature --t-end 2 --out round --quiet
 expect_status "spiral in 10 steps" 3 -- run --problem spiral-nonlocal -N 10 --out s10 --quiet
 check "spiral in 10 steps: not vanished" grep -q '"status": "unstable"' s10/summary.json
 # One step of k = 2 with the paper's embedded curvature at K = 11: no contradictory defaults of

@@ -146,6 +146,8 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     json["start_area"] = s.start_area;
     json["area_lag"] = s.area_lag;
     json["rigid_segments"] = s.rigid_segments;
+    json["least_length"] = s.least_length;
+    json["least_length_t"] = s.least_length_t;
     if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
     json["frames_kept"] = c.frames_kept;
     json["curves"] = curves_json(s.curves);
@@ -195,6 +197,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
         s.start_area = json.value("start_area", 0.0);
         s.area_lag = json.value("area_lag", 0.0);
         s.rigid_segments = json.value("rigid_segments", std::size_t{0});
+        s.least_length = json.value("least_length", 0.0);
+        s.least_length_t = json.value("least_length_t", 0.0);
         if (s.domain_doublings > 0) s.domain_grown_at = json.at("domain_grown_at").get<double>();
         s.status = RunStatus::interrupted;
         c.frames_kept = json.at("frames_kept").get<int>();

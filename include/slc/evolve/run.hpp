@@ -91,6 +91,11 @@ struct RunResult {
     /// For a rigid motion: the segments of the run's first contour (0 before it), which the
     /// guards keep the later contours within GuardBudget::rigid_segments_growth of.
     std::size_t rigid_segments = 0;
+    /// For a law that shortens the curves (curvature flow, Eq. 13): the least length of the
+    /// run's contours so far (0 before the first) and the time it was reached, which the guards
+    /// keep the later lengths within GuardBudget::run_length_growth of.
+    double least_length = 0.0;
+    double least_length_t = 0.0;
 };
 
 /// domain doubled about its centre `times` times (0: domain itself).
