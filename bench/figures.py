@@ -343,7 +343,8 @@ wiggles), to t = 10.24 (the paper gives neither its bubbles nor its domain or ti
             "merges (with the mean over the curve each step starts from, 1.2% was lost). The "
             "merged bubble gathers the vertex-scale noise of the spiral's circle, and its "
             "length grows, which Eq. 13 forbids: "
-            + (f"the guard ends the run at t = {fmt(s['t'], 4)} ({s.get('message', '')}), "
+            + (f"the guard ends the run at t = {fmt(s['t'], 4)}, its length 0.5% above the "
+               "least it reached (docs/errors.md), "
                if s["status"] == "unstable" else "")
             + f"{fmt(length / (2.0 * math.sqrt(math.pi * a)) - 1.0)} longer than the circle of "
             f"its area at t = {fmt(rows[-1]['t'], 4)}. With the arclength module and arcs "

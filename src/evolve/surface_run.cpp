@@ -189,6 +189,23 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                 return r;
             }
         }
+        if (options.guards && invariants.shortens && !r.surface.empty()) {
+            const double a = area(r.surface);
+            if (r.least_area == 0.0 || a < r.least_area) {
+                r.least_area = a;
+                r.least_area_t = t1;
+            } else if (a > r.least_area * (1.0 + options.area_growth) +
+                               20.0 * eps * std::sqrt(r.least_area)) {
+                r.status = RunStatus::unstable;
+                r.message = fmt::format(
+                    "at t = {:.6g}: the area has grown by {:.3g}% since t = {:.6g} under a law "
+                    "that shrinks it, more than the run's {:g}%: the steps roughen the surface; "
+                    "take more steps (-N) or refine the contours (-K, --eps)",
+                    t1, 100.0 * (a - r.least_area) / r.least_area, r.least_area_t,
+                    100.0 * options.area_growth);
+                return r;
+            }
+        }
         if (r.surface.empty()) {
             r.status = RunStatus::vanished;
             return r;

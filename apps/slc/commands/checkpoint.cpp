@@ -126,6 +126,8 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
         json["most_substeps"] = s.most_substeps;
         json["volume_initial"] = s.volume_initial;
         json["volume_corrected"] = s.volume_corrected;
+        json["least_area"] = s.least_area;
+        json["least_area_t"] = s.least_area_t;
         json["frames_kept"] = c.frames_kept;
         json["frame_times"] = c.frame_times;
         put_surface(json, s.surface);
@@ -177,6 +179,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
             s.most_substeps = json.at("most_substeps").get<int>();
             s.volume_initial = json.at("volume_initial").get<double>();
             s.volume_corrected = json.value("volume_corrected", 0.0);
+            s.least_area = json.value("least_area", 0.0);
+            s.least_area_t = json.value("least_area_t", 0.0);
             s.status = RunStatus::interrupted;
             c.frames_kept = json.at("frames_kept").get<int>();
             c.frame_times = json.at("frame_times").get<std::vector<double>>();

@@ -108,7 +108,11 @@ void draw(const std::filesystem::path& dir, const Problem& p, const Interface& i
     const std::string shown = frames.size() == static_cast<std::size_t>(frames_written)
                                   ? fmt::format("{} frames", frames_written)
                                   : fmt::format("{} of {} frames", frames.size(), frames_written);
-    Figure overlay(view, fmt::format("{}: {}", p.name, shown));
+    // A run that did not end ok says so, with where it stopped.
+    const std::string ending = r.status == RunStatus::ok
+                                   ? ""
+                                   : fmt::format(", {} at t = {:.4g}", to_string(r.status), r.t);
+    Figure overlay(view, fmt::format("{}: {}{}", p.name, shown, ending));
     for (std::size_t i = 0; i < frames.size(); ++i) {
         const double along = static_cast<double>(i) / static_cast<double>(last);
         overlay.add_curves(frames[i].second,

@@ -29,6 +29,10 @@ struct SurfaceRunOptions {
     /// otherwise add up: a sheet thinner than the contours resolve loses volume step after
     /// step).
     double volume_drift = 0.01;
+    /// With guards, under a law that shrinks the area (the mean curvature flows): the run ends
+    /// unstable once the area is more than this fraction above the least the run has reached
+    /// (steps each within their 1% may add up to a roughened surface, as they do for curves).
+    double area_growth = 5e-3;
 };
 
 struct SurfaceRunResult;
@@ -64,6 +68,10 @@ struct SurfaceRunResult {
     /// The volume given back by the steps' volume correction (SurfaceStepOptions::
     /// volume_correction), summed over the steps kept.
     double volume_corrected = 0.0;
+    /// Under a law that shrinks the area: the least area of the run's surfaces so far (0 before
+    /// the first step) and the time it was reached (SurfaceRunOptions::area_growth).
+    double least_area = 0.0;
+    double least_area_t = 0.0;
 };
 
 /// Why a step of length k from `before` to `after` breaks what the law keeps, in one line, or

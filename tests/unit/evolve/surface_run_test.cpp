@@ -127,6 +127,31 @@ TEST(SurfaceRun, BrokenInvariantIsUnstable) {
     EXPECT_EQ(run(sphere({}, 0.3, 2), FalseClaim(), domain, o).status, RunStatus::ok);
 }
 
+/// A law that grows the surface slowly, at speed 0.3, while claiming to shrink its area.
+class SlowGrowth final : public SurfaceNormalLaw {
+public:
+    std::string name() const override { return "slow-growth"; }
+    Invariants invariants() const override { return {.shortens = true}; }
+    void normal_speeds(double, std::span<const Vec3> x, std::span<const Vec3>,
+                       std::span<double> out) const override {
+        std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(x.size()), 0.3);
+    }
+};
+
+TEST(SurfaceRun, AreaGrowingOverTheRunUnderAShrinkingLawIsUnstable) {
+    // Steps of k = 0.01 grow the sphere of radius 0.3 by 2% of its area each, within a step's
+    // budget (1% and 20 ε √A, 2.9% here); over the run the area may exceed its least by 0.5%
+    // and 20 ε √A, which the third step passes.
+    SurfaceRunOptions o = coarse(0.06, 6);
+    const SurfaceRunResult r = run(sphere({}, 0.3, 3), SlowGrowth(), domain, o);
+    EXPECT_EQ(r.status, RunStatus::unstable);
+    EXPECT_NE(r.message.find("the area has grown by"), std::string::npos) << r.message;
+    EXPECT_EQ(r.split_steps, 0);  // no step broke the step's budget
+    EXPECT_LE(r.t, 0.04 + 1e-12);
+    o.area_growth = 1.0;
+    EXPECT_EQ(run(sphere({}, 0.3, 3), SlowGrowth(), domain, o).status, RunStatus::ok);
+}
+
 /// A flow field u = f(x) claiming the given invariants.
 template <class F>
 class ClaimingField final : public SurfaceFlowFieldLaw {
