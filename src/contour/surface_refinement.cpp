@@ -13,6 +13,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/geometry/validate_surface.hpp"
 #include "surface_stages.hpp"
 
@@ -182,13 +183,12 @@ std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
     auto ring = [&](std::uint32_t v) {
         return std::span<const std::uint32_t>(around.data() + start[v], start[v + 1] - start[v]);
     };
-    std::vector<std::uint8_t> touched(s.size(), 0);
-    std::size_t collapses = 0;
-    std::vector<std::uint32_t> neighbours_a, neighbours_b;
-    for (std::uint32_t e = 0; e < edges.size(); ++e) {
+    // Which edges are needles, on all threads: the test reads only the vertices and the edge
+    // table of the round's start, which the collapses below leave as they are.
+    std::vector<std::uint8_t> needle(edges.size(), 0);
+    parallel_for(edges.size(), [&](std::size_t e) {
         const auto [t0, t1] = edges.triangles[e];
-        const std::uint32_t a = edges.ends[e][0], b = edges.ends[e][1];
-        const double length = distance(s.vertices[a], s.vertices[b]);
+        const double length = distance(s.vertices[edges.ends[e][0]], s.vertices[edges.ends[e][1]]);
         double shortest_other = std::numeric_limits<double>::infinity();
         for (const std::uint32_t t : {t0, t1})
             for (const std::uint32_t f : edges.of_triangle[t])
@@ -196,7 +196,15 @@ std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
                     shortest_other = std::min(
                         shortest_other,
                         distance(s.vertices[edges.ends[f][0]], s.vertices[edges.ends[f][1]]));
-        if (!(length < needle_ratio * shortest_other)) continue;
+        needle[e] = length < needle_ratio * shortest_other ? 1 : 0;
+    });
+    std::vector<std::uint8_t> touched(s.size(), 0);
+    std::size_t collapses = 0;
+    std::vector<std::uint32_t> neighbours_a, neighbours_b;
+    for (std::uint32_t e = 0; e < edges.size(); ++e) {
+        if (!needle[e]) continue;
+        const auto [t0, t1] = edges.triangles[e];
+        const std::uint32_t a = edges.ends[e][0], b = edges.ends[e][1];
         bool free = true;
         for (const std::uint32_t t : ring(a)) free &= !touched[t];
         for (const std::uint32_t t : ring(b)) free &= !touched[t];
@@ -249,32 +257,50 @@ std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
     const Edges edges(s);
     KeyMap<std::uint8_t> exists(2 * edges.size());
     for (const auto& [a, b] : edges.ends) exists.assign(edge_key(a, b), 1);
-    std::vector<std::uint8_t> touched(s.size(), 0);
-    std::size_t flips = 0;
-    for (std::uint32_t e = 0; e < edges.size(); ++e) {
+    // The edge (a, b) of triangles t0 = (a, b, c) and t1 = (b, a, d), with i and j the places of
+    // a in t0 and of d in t1.
+    struct Quad {
+        std::uint32_t a, b, c, d;
+        int i, j;
+    };
+    auto quad = [&](std::uint32_t e) {
         const auto [t0, t1] = edges.triangles[e];
-        if (touched[t0] || touched[t1]) continue;
-        // Orient: t0 holds a → b, t1 holds b → a.
         const TriangleIndices& p = s.triangles[t0];
         const TriangleIndices& q = s.triangles[t1];
         int i = 0;
         while (!(p[i] == edges.ends[e][0] || p[i] == edges.ends[e][1]) ||
                !(p[(i + 1) % 3] == edges.ends[e][0] || p[(i + 1) % 3] == edges.ends[e][1]))
             ++i;
-        const std::uint32_t a = p[i], b = p[(i + 1) % 3], c = p[(i + 2) % 3];
+        const std::uint32_t a = p[i], b = p[(i + 1) % 3];
         int j = 0;
         while (q[j] == a || q[j] == b) ++j;
-        const std::uint32_t d = q[j];
-        if (c == d || exists.contains(edge_key(c, d))) continue;
-        const double opposite = corner_angle(s, p, (i + 2) % 3) + corner_angle(s, q, j);
-        if (!(opposite > std::numbers::pi * (1.0 + 1e-6))) continue;
-        const TriangleIndices u{c, a, d}, v{d, b, c};
+        return Quad{a, b, p[(i + 2) % 3], q[j], i, j};
+    };
+    // Which edges break the Delaunay rule, on all threads, from the round's start: a flip
+    // changes only its two triangles, which take part in no other flip this round, so the
+    // triangles of every edge still tested below are the round's start's.
+    std::vector<std::uint8_t> breaks(edges.size(), 0);
+    parallel_for(edges.size(), [&](std::size_t e) {
+        const Quad f = quad(static_cast<std::uint32_t>(e));
+        const auto [t0, t1] = edges.triangles[e];
+        const double opposite =
+            corner_angle(s, s.triangles[t0], (f.i + 2) % 3) + corner_angle(s, s.triangles[t1], f.j);
+        breaks[e] = f.c != f.d && opposite > std::numbers::pi * (1.0 + 1e-6) ? 1 : 0;
+    });
+    std::vector<std::uint8_t> touched(s.size(), 0);
+    std::size_t flips = 0;
+    for (std::uint32_t e = 0; e < edges.size(); ++e) {
+        const auto [t0, t1] = edges.triangles[e];
+        if (!breaks[e] || touched[t0] || touched[t1]) continue;
+        const Quad f = quad(e);
+        if (exists.contains(edge_key(f.c, f.d))) continue;
+        const TriangleIndices u{f.c, f.a, f.d}, v{f.d, f.b, f.c};
         const Vec3 n = normal_around(s, edges, t0) + normal_around(s, edges, t1);
         if (!along(s, n, u, improve_normal_cosine) || !along(s, n, v, improve_normal_cosine))
             continue;
         s.triangles[t0] = u;
         s.triangles[t1] = v;
-        exists.assign(edge_key(c, d), 1);
+        exists.assign(edge_key(f.c, f.d), 1);
         touched[t0] = touched[t1] = 1;
         changed[t0] = changed[t1] = 1;
         ++flips;
