@@ -51,9 +51,17 @@ struct Edges {
             const std::uint32_t a = s.triangles[h / 3][h % 3], b = s.triangles[h / 3][(h + 1) % 3];
             return std::pair{std::min(a, b), std::max(a, b)};
         };
-        std::vector<std::uint32_t> start(s.vertices.size() + 1, 0);
+        const std::size_t vertices = s.vertices.size();
+        std::vector<std::uint32_t> start(vertices + 1, 0);
         for (std::size_t h = 0; h < 3 * n; ++h) ++start[lo_hi(h).first + 1];
-        for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+        // The edges of a closed surface pair its half-edges, so vertex v numbers
+        // (start[v + 1] − start[v]) / 2 edges, from edge_start[v].
+        std::vector<std::uint32_t> edge_start(vertices + 1, 0);
+        for (std::size_t v = 0; v < vertices; ++v) {
+            SLC_ASSERT(start[v + 1] % 2 == 0, "every edge of a closed surface has two triangles");
+            edge_start[v + 1] = edge_start[v] + start[v + 1] / 2;
+            start[v + 1] += start[v];
+        }
         std::vector<std::pair<std::uint32_t, std::uint32_t>> halves(3 * n);  // (hi, half-edge)
         {
             std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
@@ -63,22 +71,24 @@ struct Edges {
             }
         }
         of_triangle.resize(n);
-        ends.reserve(3 * n / 2);
-        triangles.reserve(3 * n / 2);
-        for (std::size_t v = 0; v + 1 < start.size(); ++v) {
+        ends.resize(edge_start[vertices]);
+        triangles.resize(edge_start[vertices]);
+        // Each vertex's edges in order of their other end, on all threads: the same numbering
+        // as one thread gives.
+        parallel_for(vertices, [&](std::size_t v) {
             const auto first = halves.begin() + start[v], last = halves.begin() + start[v + 1];
             std::sort(first, last);
-            for (auto it = first; it != last; it += 2) {
-                SLC_ASSERT(it + 1 != last && it->first == (it + 1)->first,
+            std::uint32_t e = edge_start[v];
+            for (auto it = first; it != last; it += 2, ++e) {
+                SLC_ASSERT(it->first == (it + 1)->first,
                            "every edge of a closed surface has two triangles");
-                const auto e = static_cast<std::uint32_t>(ends.size());
                 const std::uint32_t h = it->second, k = (it + 1)->second;
-                ends.push_back({static_cast<std::uint32_t>(v), it->first});
-                triangles.push_back({h / 3, k / 3});
+                ends[e] = {static_cast<std::uint32_t>(v), it->first};
+                triangles[e] = {h / 3, k / 3};
                 of_triangle[h / 3][h % 3] = e;
                 of_triangle[k / 3][k % 3] = e;
             }
-        }
+        });
     }
     std::size_t size() const { return ends.size(); }
 };
