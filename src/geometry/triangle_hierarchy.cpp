@@ -5,6 +5,8 @@
 #include <bit>
 #include <utility>
 
+#include "slc/core/parallel.hpp"
+
 namespace slc {
 namespace {
 
@@ -34,9 +36,9 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
     const auto n = static_cast<std::uint32_t>(triangles.size());
     if (n == 0) return;
     boxes_.resize(n);
+    parallel_for(n, [&](std::size_t t) { boxes_[t] = bounding_box(triangles[t]); });
     Box3 centres = Box3::empty();
     for (std::uint32_t t = 0; t < n; ++t) {
-        boxes_[t] = bounding_box(triangles[t]);
         const Vec3 c = boxes_[t].center();
         centres = unite(centres, {c, c});
     }
@@ -44,7 +46,8 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
     // of all centres; ties by index): every node is a range of this order, so a split is a cut
     // of its range, where sorting each node's triangles along an axis would cost a selection.
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
-    for (std::uint32_t t = 0; t < n; ++t) {
+    parallel_for(n, [&](std::size_t i) {
+        const auto t = static_cast<std::uint32_t>(i);
         const Vec3 c = boxes_[t].center();
         std::uint64_t code = 0;
         for (int a = 0; a < 3; ++a) {
@@ -53,7 +56,7 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
             code |= spread_by_three(static_cast<std::uint64_t>(std::clamp(q, 0.0, 2097151.0))) << a;
         }
         keyed[t] = {code, t};
-    }
+    });
     std::sort(keyed.begin(), keyed.end());
     order_.resize(n);
     for (std::uint32_t k = 0; k < n; ++k) order_[k] = keyed[k].second;
