@@ -7,7 +7,6 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <optional>
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
@@ -23,34 +22,21 @@ constexpr double triple_slack = 1e-12;
 /// triangle hierarchy.
 constexpr std::size_t longest_scanned_list = 48;
 
-/// Levels above the deepest (coarse cells, few, with long lists) are tested for splitting and
-/// listed in the triangle hierarchy. The deepest level bins every triangle into the triples it
-/// meets, and writes a list only when it is short enough to keep. Binning the two or three
-/// deepest levels, with the split test on the binned pairs, builds 1.1 to 1.4 times slower on
-/// icospheres of 1280 to 327680 triangles (bench/surface_distance_bench.cpp).
-
 /// Half the diagonal of a unit cube, √3/2.
 constexpr double half_diagonal = 0.8660254037844386;
 
-/// A lower bound of the distance from the cube b (edge h) to triangle t: the larger of the
-/// distance between their bounding boxes and the distance from the cube's centre less its
-/// half-diagonal. NOTE: §1.3 splits on the exact cell–surface distance; a lower bound splits a
-/// few more cells (never fewer), which changes the cost of a query, never its answer.
-double distance_lower_bound(const Triangle3& t, const Box3& b, double h) {
-    const double boxes = std::sqrt(distance2(bounding_box(t), b));
-    const double centre = std::sqrt(closest_point(t, b.center()).distance2) - half_diagonal * h;
-    return std::max(boxes, centre);
-}
-
-/// True when distance_lower_bound(t, b, h) < h, for triangle t with bounding box box and unit
-/// normal n. Two cheaper bounds settle most far pairs first: the boxes' distance, and the
-/// distance from the centre to t's plane, which is at most its distance to t (so this needs a
-/// margin beyond rounding before it rules a pair out).
+/// True when a lower bound of the distance from the cube b (edge h) to triangle t (bounding box
+/// box, unit normal n) is below h: the larger of the distance between their boxes and the
+/// distance from the cube's centre less its half-diagonal. The distance from the centre to t's
+/// plane, at most its distance to t, rules out most far pairs before the closest point is
+/// found (with a margin beyond rounding). NOTE: §1.3 splits on the exact cell–surface
+/// distance; a lower bound splits a few more cells (never fewer), which changes the cost of a
+/// query, never its answer.
 bool nearer_than_edge(const Triangle3& t, const Box3& box, Vec3 n, const Box3& b, double h) {
     if (!(std::sqrt(distance2(box, b)) < h)) return false;
     const double plane = std::abs(dot(b.center() - t.a, n)) - half_diagonal * h;
     if (plane > h * (1.0 + 1e-9)) return false;
-    return distance_lower_bound(t, b, h) < h;
+    return std::sqrt(closest_point(t, b.center()).distance2) - half_diagonal * h < h;
 }
 
 /// One level's cells in bricks of 4×4×4 grid positions, each brick found by hashing its
@@ -147,7 +133,11 @@ void SurfaceDistanceTree::build_lists() {
     // Level by level (cells are appended breadth-first, so [begin, end) is one level): split a
     // cell while its edge exceeds its distance to the surface (§1.3). Only triangles whose boxes
     // meet its triple can be that near, since the triple holds every point within one edge. The
-    // tests do not depend on the thread count, so neither does the tree.
+    // levels above the deepest (few cells, with long lists) are split and listed in the triangle
+    // hierarchy; the deepest bins every triangle into the triples it meets and writes only the
+    // lists short enough to keep (binning the two or three deepest levels as well built 1.1 to
+    // 1.4 times slower on icospheres of 1280 to 327680 triangles). The tests do not depend on
+    // the thread count, so neither does the tree.
     for (std::size_t begin = 0, end = tree_.size(); begin < end; begin = end, end = tree_.size()) {
         if (tree_.cell(begin).level == tree_.max_depth()) {
             bin_lists(begin, end);
@@ -203,7 +193,7 @@ bool SurfaceDistanceTree::is_near(std::size_t c) const {
     const double h = tree_.edge(tree_.cell(c).level);
     // The same triangles as its list, those whose boxes meet the triple (for the root, the
     // others are farther than h), less those whose boxes are h or more from the cell, which
-    // distance_lower_bound would rule out: a node's box is no farther than the boxes inside it,
+    // nearer_than_edge rules out: a node's box is no farther than the boxes inside it,
     // so a node that far holds none nearer.
     const Box3 triple = tree_.triple(c).inflated(triple_slack * h);
     return hierarchy_.any_of(

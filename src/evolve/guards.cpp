@@ -20,6 +20,16 @@ int signed_curve_count(const Interface& curves) {
 
 }  // namespace
 
+std::optional<double> growth_above_least(RunLeast& least, double x, double t, double fraction,
+                                         double slack) {
+    if (least.value == 0.0 || x < least.value) {
+        least = {x, t};
+        return std::nullopt;
+    }
+    if (x > least.value * (1.0 + fraction) + slack) return (x - least.value) / least.value;
+    return std::nullopt;
+}
+
 std::optional<double> area_change_expected(const Invariants& law, const Interface& before,
                                            double area_before, const Interface& after, double k,
                                            const GuardBudget& budget) {

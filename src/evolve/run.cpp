@@ -174,20 +174,17 @@ StepResult guarded_step(const RunResult& result, double t_next, const VelocityLa
                 counters.start_area)};
         }
         if (options.guards && invariants.shortens && !out.curves.empty()) {
-            const double l = m0.length;  // the last sub-step's
-            if (counters.least_length == 0.0 || l < counters.least_length) {
-                counters.least_length = l;
-                counters.least_length_t = t_next;
-            } else if (l > counters.least_length * (1.0 + budget.run_length_growth) +
-                               budget.eps_lengths * eps) {
+            // m0: the last sub-step's measures.
+            if (const auto growth =
+                    growth_above_least(counters.least_length, m0.length, t_next,
+                                       budget.run_length_growth, budget.eps_lengths * eps)) {
                 throw Unstable{fmt::format(
                     "by t = {:.6g}: the length has grown by {:.3g}% since t = {:.6g} under a law "
-                    "that "
-                    "shortens the curves, more than the run's {:g}%: the steps roughen the curves; "
-                    "raise the steps N (or the smoothing S of the embedded module), or use "
-                    "--geometry arclength",
-                    t_next, 100.0 * (l - counters.least_length) / counters.least_length,
-                    counters.least_length_t, 100.0 * budget.run_length_growth)};
+                    "that shortens the curves, more than the run's {:g}%: the steps roughen the "
+                    "curves; raise the steps N (or the smoothing S of the embedded module), or "
+                    "use --geometry arclength",
+                    t_next, 100.0 * *growth, counters.least_length.t,
+                    100.0 * budget.run_length_growth)};
             }
         }
         if (options.guards && invariants.rigid && !out.curves.empty()) {

@@ -524,7 +524,7 @@ AreaRestored restore_area(const Interface& curves, double target) {
 StepResult advance(const Interface& curves, double t, double k, const VelocityLaw& law,
                    const Box& domain, const StepOptions& options) {
     StepResult result = advance_contours(curves, t, k, law, domain, options);
-    if (options.area_correction.value_or(law.preserves_area()) && !result.curves.empty()) {
+    if (options.resolved_area_correction(law) && !result.curves.empty()) {
         AreaRestored restored = restore_area(result.curves, area(curves));
         result.curves = std::move(restored.curves);
         result.stats.area_correction = restored.added;

@@ -190,19 +190,15 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
             }
         }
         if (options.guards && invariants.shortens && !r.surface.empty()) {
-            const double a = area(r.surface);
-            if (r.least_area == 0.0 || a < r.least_area) {
-                r.least_area = a;
-                r.least_area_t = t1;
-            } else if (a > r.least_area * (1.0 + options.area_growth) +
-                               20.0 * eps * std::sqrt(r.least_area)) {
+            if (const auto growth =
+                    growth_above_least(r.least_area, area(r.surface), t1, options.area_growth,
+                                       20.0 * eps * std::sqrt(r.least_area.value))) {
                 r.status = RunStatus::unstable;
                 r.message = fmt::format(
                     "at t = {:.6g}: the area has grown by {:.3g}% since t = {:.6g} under a law "
                     "that shrinks it, more than the run's {:g}%: the steps roughen the surface; "
                     "take more steps (-N) or refine the contours (-K, --eps)",
-                    t1, 100.0 * (a - r.least_area) / r.least_area, r.least_area_t,
-                    100.0 * options.area_growth);
+                    t1, 100.0 * *growth, r.least_area.t, 100.0 * options.area_growth);
                 return r;
             }
         }

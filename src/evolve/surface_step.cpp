@@ -358,7 +358,7 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
 SurfaceStepResult advance(const Surface& surface, double t, double k, const SurfaceVelocityLaw& law,
                           const Box3& domain, const SurfaceStepOptions& options) {
     SurfaceStepResult result = advance_contours(surface, t, k, law, domain, options);
-    if (options.volume_correction.value_or(law.preserves_area()) && !result.surface.empty()) {
+    if (options.resolved_volume_correction(law) && !result.surface.empty()) {
         // Each shift leaves O(δ²) of the volume to give back, more where vertices were held
         // back: a few more shifts leave rounding.
         const double target = volume(surface);

@@ -65,7 +65,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"velocity_params", p.velocity_params},
         {"extension", to_string(o.step.resolved_extension(law))},
         {"arcs", o.step.resolved_arcs(law)},
-        {"area_correction", o.step.area_correction.value_or(law.preserves_area())},
+        {"area_correction", o.step.resolved_area_correction(law)},
         {"arc_width", o.step.resolved_arc_width((o.t_end - o.t_start) / o.steps)}};
     if (p.velocity == "speed" || p.velocity == "field")
         params["velocity_expression"] = p.velocity_expression;
@@ -96,8 +96,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
     if (r.status == RunStatus::error || r.status == RunStatus::unstable) s["message"] = r.message;
     if (r.split_steps > 0)
         s["substeps"] = {{"split_steps", r.split_steps}, {"most", r.most_substeps}};
-    if (o.step.area_correction.value_or(law.preserves_area()))
-        s["area_corrected"] = r.area_corrected;
+    if (o.step.resolved_area_correction(law)) s["area_corrected"] = r.area_corrected;
     if (r.domain_doublings > 0) {
         const Box d = doubled_domain(p.domain, r.domain_doublings);
         s["domain_grown"] = {{"at_t", r.domain_grown_at},
@@ -151,7 +150,7 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
         {"cpu_s", r.cpu_s},
         {"wall_s", r.wall_s}};
     if (!r.message.empty()) summary["message"] = r.message;
-    if (options.step.volume_correction.value_or(p.law->preserves_area()))
+    if (options.step.resolved_volume_correction(*p.law))
         summary["volume_corrected"] = r.volume_corrected;
     return summary;
 }

@@ -126,8 +126,8 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
         json["most_substeps"] = s.most_substeps;
         json["volume_initial"] = s.volume_initial;
         json["volume_corrected"] = s.volume_corrected;
-        json["least_area"] = s.least_area;
-        json["least_area_t"] = s.least_area_t;
+        json["least_area"] = s.least_area.value;
+        json["least_area_t"] = s.least_area.t;
         json["frames_kept"] = c.frames_kept;
         json["frame_times"] = c.frame_times;
         put_surface(json, s.surface);
@@ -148,8 +148,8 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     json["start_area"] = s.start_area;
     json["area_lag"] = s.area_lag;
     json["rigid_segments"] = s.rigid_segments;
-    json["least_length"] = s.least_length;
-    json["least_length_t"] = s.least_length_t;
+    json["least_length"] = s.least_length.value;
+    json["least_length_t"] = s.least_length.t;
     if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
     json["frames_kept"] = c.frames_kept;
     json["curves"] = curves_json(s.curves);
@@ -179,8 +179,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
             s.most_substeps = json.at("most_substeps").get<int>();
             s.volume_initial = json.at("volume_initial").get<double>();
             s.volume_corrected = json.value("volume_corrected", 0.0);
-            s.least_area = json.value("least_area", 0.0);
-            s.least_area_t = json.value("least_area_t", 0.0);
+            s.least_area = {json.value("least_area", 0.0), json.value("least_area_t", 0.0)};
             s.status = RunStatus::interrupted;
             c.frames_kept = json.at("frames_kept").get<int>();
             c.frame_times = json.at("frame_times").get<std::vector<double>>();
@@ -201,8 +200,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
         s.start_area = json.value("start_area", 0.0);
         s.area_lag = json.value("area_lag", 0.0);
         s.rigid_segments = json.value("rigid_segments", std::size_t{0});
-        s.least_length = json.value("least_length", 0.0);
-        s.least_length_t = json.value("least_length_t", 0.0);
+        s.least_length = {json.value("least_length", 0.0), json.value("least_length_t", 0.0)};
         if (s.domain_doublings > 0) s.domain_grown_at = json.at("domain_grown_at").get<double>();
         s.status = RunStatus::interrupted;
         c.frames_kept = json.at("frames_kept").get<int>();

@@ -58,6 +58,18 @@ struct GuardBudget {
     double start_area = 0.0;
 };
 
+/// The least value a quantity has reached over a run (a shortening law's length, a shrinking
+/// law's area) and the time it was reached; value 0 before the first.
+struct RunLeast {
+    double value = 0.0;
+    double t = 0.0;
+};
+
+/// Records x, reached at time t, in least. Returns x's growth above the least, as a fraction of
+/// it, when x exceeds the least by more than fraction of it plus slack; else nothing.
+std::optional<double> growth_above_least(RunLeast& least, double x, double t, double fraction,
+                                         double slack);
+
 /// The area change the law's rate gives a step of length k from `before` to `after`, when the
 /// guards check it: the law has a rate, no curve appeared or vanished, and the area is resolved.
 std::optional<double> area_change_expected(const Invariants& law, const Interface& before,

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "slc/evolve/guards.hpp"
 #include "slc/evolve/step.hpp"
 
 namespace slc {
@@ -94,8 +95,7 @@ struct RunResult {
     /// For a law that shortens the curves (curvature flow, Eq. 13): the least length of the
     /// run's contours so far (0 before the first) and the time it was reached, which the guards
     /// keep the later lengths within GuardBudget::run_length_growth of.
-    double least_length = 0.0;
-    double least_length_t = 0.0;
+    RunLeast least_length;
 };
 
 /// domain doubled about its centre `times` times (0: domain itself).

@@ -70,6 +70,10 @@ struct StepOptions {
     /// evaluated directly (normal laws and flow fields: an offset of a smooth curve then
     /// converges at second order in time instead of losing a chord's sagitta every step).
     bool resolved_arcs(const VelocityLaw& law) const;
+    /// area_correction as given, or by default on for laws that keep the area.
+    bool resolved_area_correction(const VelocityLaw& law) const {
+        return area_correction.value_or(law.preserves_area());
+    }
 
     /// L as given, or by default K + ⌊min(P, 4)/2⌋ (K + P with the Whitney extension, whose
     /// accuracy depends on L); refinement until converged counts as P = 4. Only the Whitney

@@ -70,8 +70,7 @@ struct SurfaceRunResult {
     double volume_corrected = 0.0;
     /// Under a law that shrinks the area: the least area of the run's surfaces so far (0 before
     /// the first step) and the time it was reached (SurfaceRunOptions::area_growth).
-    double least_area = 0.0;
-    double least_area_t = 0.0;
+    RunLeast least_area;
 };
 
 /// Why a step of length k from `before` to `after` breaks what the law keeps, in one line, or

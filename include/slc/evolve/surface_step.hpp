@@ -47,6 +47,10 @@ struct SurfaceStepOptions {
     Extension resolved_extension(const SurfaceVelocityLaw& law) const;
     /// σ as given, or √k.
     double resolved_smoothing(double k) const { return smoothing.value_or(std::sqrt(k)); }
+    /// volume_correction as given, or by default on for laws that keep the volume.
+    bool resolved_volume_correction(const SurfaceVelocityLaw& law) const {
+        return volume_correction.value_or(law.preserves_area());
+    }
 };
 
 /// What a surface step cost.

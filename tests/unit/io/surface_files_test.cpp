@@ -5,19 +5,21 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cstdint>
 #include <string>
-#include <type_traits>
 
 #include "slc/core/error.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/geometry/validate_surface.hpp"
 #include "slc/io/points_csv.hpp"
 #include "slc/io/vtk.hpp"
+#include "surface_bytes.hpp"
 
 namespace slc {
 namespace {
+
+using test::binary_stl;
+using test::bytes_of;
 
 /// The message a parser throws, or "" if it accepts the text.
 template <class Parse>
@@ -73,26 +75,6 @@ TEST(Obj, RoundTripsExactly) {
     EXPECT_EQ(back.triangles, s.triangles);
 }
 
-/// A binary STL of a surface's triangles (coordinates must be exact in float).
-std::string binary_stl(const Surface& s, const std::string& header) {
-    std::string out = header;
-    out.resize(80, ' ');
-    auto put32 = [&](std::uint32_t u) {
-        for (int i = 0; i < 4; ++i) out += static_cast<char>((u >> (8 * i)) & 0xff);
-    };
-    put32(static_cast<std::uint32_t>(s.size()));
-    for (std::size_t t = 0; t < s.size(); ++t) {
-        for (int i = 0; i < 3; ++i) put32(0);  // the normal, ignored
-        for (int k = 0; k < 3; ++k) {
-            const Vec3 p = s.triangle(t)[k];
-            for (double c : {p.x, p.y, p.z})
-                put32(std::bit_cast<std::uint32_t>(static_cast<float>(c)));
-        }
-        out += std::string(2, '\0');
-    }
-    return out;
-}
-
 TEST(Stl, BinaryMergesCoincidentCornersExactly) {
     const Surface box = box_surface({-1, -0.5, 0}, {1, 0.5, 0.25}, 2);  // exact in float
     for (const std::string header : {"made by a test", "solid but binary"}) {
@@ -143,20 +125,6 @@ TEST(Stl, AsciiMergesCornersAndNamesBadLines) {
     EXPECT_EQ(refusal(parse_stl, "solid x\nfacade\n"), "f, line 2: unexpected \"facade\"");
     EXPECT_EQ(refusal(parse_stl, "solid x\nendsolid\n"), "f: no triangles");
     EXPECT_EQ(refusal(parse_stl, "hello\n"), "f, line 1: an ASCII STL file begins with \"solid\"");
-}
-
-/// Bytes of x in the given byte order.
-template <class T>
-std::string bytes_of(T x, bool little) {
-    auto u = std::bit_cast<
-        std::conditional_t<sizeof(T) == 8, std::uint64_t,
-                           std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint8_t>>>(x);
-    std::string out(sizeof(T), '\0');
-    for (std::size_t i = 0; i < sizeof(T); ++i) {
-        const auto byte = static_cast<char>((u >> (8 * i)) & 0xff);
-        out[little ? i : sizeof(T) - 1 - i] = byte;
-    }
-    return out;
 }
 
 TEST(Ply, ReadsAsciiAndBinaryOfBothByteOrders) {

@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cstdint>
 #include <cstdlib>
 #include <random>
@@ -14,22 +13,13 @@
 #include <vector>
 
 #include "slc/geometry/surface_shapes.hpp"
+#include "surface_bytes.hpp"
 #include "surface_reader_fuzz.hpp"
 
 namespace slc {
 namespace {
 
-/// The bytes of x, little-endian or big-endian.
-template <class T>
-std::string bytes_of(T x, bool little) {
-    using U = std::conditional_t<sizeof(T) == 8, std::uint64_t,
-                                 std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint8_t>>;
-    const auto u = std::bit_cast<U>(x);
-    std::string out(sizeof(T), '\0');
-    for (std::size_t i = 0; i < sizeof(T); ++i)
-        out[little ? i : sizeof(T) - 1 - i] = static_cast<char>((u >> (8 * i)) & 0xff);
-    return out;
-}
+using test::bytes_of;
 
 /// Valid files of a tetrahedron (and an icosphere's OBJ) in every form the readers take.
 std::vector<std::string> seeds() {
@@ -47,14 +37,13 @@ std::vector<std::string> seeds() {
         stl += "endloop\nendfacet\n";
     }
     out.push_back(stl + "endsolid t\n");
-    std::string binary(80, ' ');
-    binary += bytes_of(std::uint32_t{4}, true);
-    for (const auto& t : f) {
-        for (int i = 0; i < 3; ++i) binary += bytes_of(0.0f, true);
-        for (int k : t)
-            for (double c : v[k]) binary += bytes_of(static_cast<float>(c), true);
-        binary += std::string(2, '\0');
-    }
+    Surface tetra;
+    for (const auto& p : v) tetra.vertices.push_back({p[0], p[1], p[2]});
+    for (const auto& t : f)
+        tetra.triangles.push_back({static_cast<std::uint32_t>(t[0]),
+                                   static_cast<std::uint32_t>(t[1]),
+                                   static_cast<std::uint32_t>(t[2])});
+    const std::string binary = test::binary_stl(tetra, "");
     out.push_back(binary);
     const std::string tail =
         " 1.0\ncomment by hand\nelement vertex 4\nproperty double x\nproperty float y\n"
