@@ -590,6 +590,19 @@ std::string peers_section(const std::filesystem::path& figures) {
     return md + "\n";
 }
 
+/// The section on moving surfaces that bench/surface_performance_bench.cpp wrote into the file
+/// at `path`, markers included, so that writing the rest of the file keeps it; empty if none.
+std::string surfaces_section(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    const std::string text = buffer.str();
+    const std::string begin = "<!-- surfaces: written by", end = "<!-- surfaces: end -->\n";
+    const auto b = text.find(begin), e = text.find(end);
+    if (b == std::string::npos || e == std::string::npos || e < b) return "";
+    return text.substr(b, e + end.size() - b) + "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -700,6 +713,7 @@ int main(int argc, char** argv) {
         "measured on this kind of machine; ours are measured here on one core, the least wall "
         "time of three runs of the same setting.\n\n";
     md += peers_section(std::filesystem::path(out).parent_path() / "figures");
+    md += surfaces_section(out);
     md += R"(## Where the time goes
 
 A profile of one step of Table 5's 320/0/6/4/1e−6 cell (4424 segments, one thread; `valgrind
