@@ -130,6 +130,16 @@ def test_the_volume_correction_is_reported_and_can_be_turned_off():
     assert off.status == "ok" and "volume_corrected" not in off.summary
 
 
+def test_contours_left_beyond_eps_at_sharp_edges_are_reported():
+    corners = [(x, y, z) for z in (-0.35, 0.35) for y in (-0.3, 0.3) for x in (-0.4, 0.4)]
+    faces = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4), (2, 6, 7),
+             (2, 7, 3), (0, 4, 6), (0, 6, 2), (1, 3, 7), (1, 7, 5)]
+    box = slc.Surface(np.array(corners), np.array(faces))
+    r = slc.run(box, "rotation", 0.5, steps=2, depth=4, eps=1e-3)
+    assert r.status == "ok"
+    assert r.summary["unconverged_steps"] == 2 and r.summary["largest_residual"] > 2e-3
+
+
 def test_an_observer_stops_a_run_of_a_surface():
     seen = []
 

@@ -548,6 +548,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
         stats.collapses = r.collapses;
         stats.flips = r.flips;
         stats.converged = r.converged != 0;
+        stats.residual = r.residual;
     }
     stats.triangles = out.surface.triangles.size();
     stats.vertices = out.surface.vertices.size();

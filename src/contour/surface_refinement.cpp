@@ -445,6 +445,10 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
             g(points, values);
             for (std::size_t i = 0; i < points.size(); ++i) centroid_value[which[i]] = values[i];
         }
+        result.residual = 0.0;
+        for (const double v : mid) result.residual = std::max(result.residual, std::abs(v));
+        for (const double v : centroid_value)
+            if (!std::isnan(v)) result.residual = std::max(result.residual, std::abs(v));
         // The edges to split: midpoints beyond ε, and the longest edge of each triangle whose
         // centroid is.
         std::vector<std::uint8_t> wanted(m, 0);

@@ -32,6 +32,8 @@ struct SurfaceRefinement {
     std::size_t flips = 0;      ///< edges flipped
     /// 1 when refinement stopped because a pass found no midpoint or centroid beyond ε.
     std::size_t converged = 0;
+    /// The largest |G| at the edge midpoints and the centroids the last pass evaluated.
+    double residual = 0.0;
 };
 
 /// Adaptive refinement of a closed surface on the zero set of G (§2.2 in space): up to `passes`

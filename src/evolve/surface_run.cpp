@@ -117,6 +117,8 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
     r.message.clear();
     const Invariants invariants = law.invariants();
     const double eps = options.step.contour.resolved_eps();
+    const bool until_converged =
+        options.step.contour.refine_passes == SurfaceContourOptions::until_converged;
     const double volume0 = from.volume_initial;
     const double wall_before = from.wall_s, cpu_before = from.cpu_s;
     const auto wall_start = std::chrono::steady_clock::now();
@@ -138,10 +140,17 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                 Surface s = r.surface;
                 std::optional<std::string> broken;
                 double corrected = 0.0;
+                bool unconverged = false;
+                double residual = 0.0;
                 for (int j = 0; j < pieces && !s.empty(); ++j) {
                     SurfaceStepResult step = advance(s, t0 + j * k, k, law, domain, options.step);
                     r.g_evals += step.stats.g_evals();
                     corrected += step.stats.volume_correction;
+                    if (until_converged && !step.surface.empty() &&
+                        !step.stats.corrector.converged) {
+                        unconverged = true;
+                        residual = std::max(residual, step.stats.corrector.residual);
+                    }
                     stats = step.stats;
                     if (options.guards) {
                         broken = surface_invariant_violation(invariants, s, step.surface, k, eps);
@@ -156,6 +165,10 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                     }
                     r.surface = std::move(s);
                     r.volume_corrected += corrected;
+                    if (unconverged) {
+                        ++r.unconverged_steps;
+                        r.largest_residual = std::max(r.largest_residual, residual);
+                    }
                     break;
                 }
                 if (halvings == options.max_substep_halvings) {

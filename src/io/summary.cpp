@@ -150,6 +150,10 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
         {"cpu_s", r.cpu_s},
         {"wall_s", r.wall_s}};
     if (!r.message.empty()) summary["message"] = r.message;
+    if (c.refine_passes == SurfaceContourOptions::until_converged) {
+        summary["unconverged_steps"] = r.unconverged_steps;
+        if (r.unconverged_steps > 0) summary["largest_residual"] = r.largest_residual;
+    }
     if (options.step.resolved_volume_correction(*p.law))
         summary["volume_corrected"] = r.volume_corrected;
     return summary;

@@ -28,6 +28,14 @@ check "one component, genus 0" test "$(json turn/summary.json 's["components"], 
 check "frames: the start and two more" test "$(grep -c '<DataSet' turn/frames.pvd)" = 3
 check "frame pictures" test -s turn/frames/frame_0000.png -a -s turn/frames/frame_0002.png
 
+# A box turned off the axes keeps sharp edges the refinement cannot split to eps: the run says
+# how far its contours stayed, and a smooth surface's says none did.
+printf 'v -0.4 -0.3 -0.35\nv 0.4 -0.3 -0.35\nv -0.4 0.3 -0.35\nv 0.4 0.3 -0.35\nv -0.4 -0.3 0.35\nv 0.4 -0.3 0.35\nv -0.4 0.3 0.35\nv 0.4 0.3 0.35\nf 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n' >box.obj
+expect_ok "a box turned" -- run --initial box.obj --velocity rotation --t-end 0.5 -N 2 -K 4 --eps 1e-3 --out boxturn --quiet
+check "its steps left beyond eps are counted" test "$(json boxturn/summary.json 's["unconverged_steps"], s["largest_residual"] > 2e-3')" = "2 True"
+check "and a note says so" grep -q "in 2 of 2 steps refinement left" err.txt
+check "a smooth surface's contours stay within 1.5 eps" test "$(json turn/summary.json 's.get("largest_residual", 0) < 1.5 * s["params"]["eps"]')" = True
+
 # Mean curvature flow: R^2 = 0.36 - 4t, so t = 0.05 leaves R = 0.4.
 expect_ok "mean curvature" -- run --initial ball.obj --velocity curvature --t-end 0.05 -N 10 -K 4 --out shrink --quiet
 check "radius 0.4: volume within 2%" test "$(json shrink/summary.json 'abs(s["volume"] / (4 / 3 * 3.141592653589793 * 0.4**3) - 1) < 2e-2')" = True

@@ -126,6 +126,8 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
         json["most_substeps"] = s.most_substeps;
         json["volume_initial"] = s.volume_initial;
         json["volume_corrected"] = s.volume_corrected;
+        json["unconverged_steps"] = s.unconverged_steps;
+        json["largest_residual"] = s.largest_residual;
         json["least_area"] = s.least_area.value;
         json["least_area_t"] = s.least_area.t;
         json["frames_kept"] = c.frames_kept;
@@ -179,6 +181,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
             s.most_substeps = json.at("most_substeps").get<int>();
             s.volume_initial = json.at("volume_initial").get<double>();
             s.volume_corrected = json.value("volume_corrected", 0.0);
+            s.unconverged_steps = json.value("unconverged_steps", 0);
+            s.largest_residual = json.value("largest_residual", 0.0);
             s.least_area = {json.value("least_area", 0.0), json.value("least_area_t", 0.0)};
             s.status = RunStatus::interrupted;
             c.frames_kept = json.at("frames_kept").get<int>();

@@ -81,6 +81,9 @@ struct SurfaceContourStats {
     std::size_t collapses = 0;          ///< needle edges collapsed by refinement
     std::size_t flips = 0;              ///< edges flipped by refinement
     bool converged = false;  ///< refinement stopped with no midpoint or centroid beyond ε
+    /// The largest |G| refinement saw at the edge midpoints and centroids of its last pass: at
+    /// most ε when converged; 0 without refinement.
+    double residual = 0.0;
 };
 
 /// A contoured surface and its statistics.

@@ -71,6 +71,11 @@ struct SurfaceRunResult {
     /// Under a law that shrinks the area: the least area of the run's surfaces so far (0 before
     /// the first step) and the time it was reached (SurfaceRunOptions::area_growth).
     RunLeast least_area;
+    /// With refinement until converged: the steps kept whose new surface's contour stopped with
+    /// a midpoint or centroid beyond ε (splits the safeguards refused, as along sharp edges),
+    /// and the largest |G| such a contour left (SurfaceContourStats::residual).
+    int unconverged_steps = 0;
+    double largest_residual = 0.0;
 };
 
 /// Why a step of length k from `before` to `after` breaks what the law keeps, in one line, or

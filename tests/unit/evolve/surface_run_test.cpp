@@ -43,6 +43,34 @@ TEST(SurfaceRun, RunsToTheEndAndReportsEveryStep) {
     EXPECT_EQ(r.t, 1.0);
     EXPECT_GT(r.g_evals, 0u);
     EXPECT_NEAR(volume(r.surface) / (4.0 / 3.0 * std::numbers::pi * 0.027), 1.0, 5e-3);
+    EXPECT_EQ(r.unconverged_steps, 0);  // a smooth surface refines to ε
+}
+
+TEST(SurfaceRun, ContoursLeftBeyondEpsAreCounted) {
+    // A box turned off the octree's axes: refinement cannot split the triangles that cut its
+    // edges (each split turns its children too far), so its contours stop beyond ε there.
+    const SurfaceRunOptions o = coarse(0.5, 2);
+    const SurfaceRunResult r =
+        run(box_surface({-0.4, -0.3, -0.35}, {0.4, 0.3, 0.35}, 2), SurfaceRotation(), domain, o);
+    ASSERT_EQ(r.status, RunStatus::ok);
+    EXPECT_EQ(r.unconverged_steps, 2);
+    EXPECT_GT(r.largest_residual, 2.0 * *o.step.contour.eps);
+    // And the surface is that far from the exact one: the box turned by ωt = 0.5 about z.
+    const Vec3 half{0.4, 0.3, 0.35};
+    auto exact = [&](Vec3 x) {  // signed distance to the turned box, x turned back first
+        const double c = std::cos(0.5), s = std::sin(0.5);
+        const Vec3 q{c * x.x + s * x.y, -s * x.x + c * x.y, x.z};
+        const Vec3 d{std::abs(q.x) - half.x, std::abs(q.y) - half.y, std::abs(q.z) - half.z};
+        const Vec3 out{std::max(d.x, 0.0), std::max(d.y, 0.0), std::max(d.z, 0.0)};
+        return norm(out) + std::min(std::max({d.x, d.y, d.z}), 0.0);
+    };
+    double worst = 0.0;
+    for (const TriangleIndices& t : r.surface.triangles) {
+        const Vec3 c =
+            (r.surface.vertices[t[0]] + r.surface.vertices[t[1]] + r.surface.vertices[t[2]]) / 3.0;
+        worst = std::max(worst, std::abs(exact(c)));
+    }
+    EXPECT_GT(worst, 2.0 * *o.step.contour.eps);
 }
 
 TEST(SurfaceRun, ResumeContinuesBitForBit) {
