@@ -227,9 +227,9 @@ speed is −1 − (5/8) cos 3θ, shrinks away (its radius falls at 0.375 to 1.62
             self.write(f"| {m} | {fmt(distances[0])} | {fmt(distances[1])} | {fmt(unturned)} | "
                        f"{lo}–{hi} |\n".replace("1–1", "1"))
             shutil.copy(os.path.join(self.out(names[0][0]), "frames.png"),
-                        os.path.join(self.figures, f"problem_wulff-m{m}.png"))
+                        os.path.join(self.figures, f"figure15_wulff-m{m}.png"))
         self.write("\n| m = 3 | m = 4 | m = 5 | m = 6 |\n|---|---|---|---|\n| " + " | ".join(
-            f"![m = {m}](figures/problem_wulff-m{m}.png)" for m in (3, 4, 5, 6)) + " |\n\n")
+            f"![m = {m}](figures/figure15_wulff-m{m}.png)" for m in (3, 4, 5, 6)) + " |\n\n")
         self.write(
             "The tilted runs agree with the untilted one to a fraction of a cell, where "
             "the unturned ones differ by the turn itself. m = 3 stays jagged on its non-convex "
