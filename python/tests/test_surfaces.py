@@ -135,7 +135,8 @@ def test_contours_left_beyond_eps_at_sharp_edges_are_reported():
     faces = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4), (2, 6, 7),
              (2, 7, 3), (0, 4, 6), (0, 6, 2), (1, 3, 7), (1, 7, 5)]
     box = slc.Surface(np.array(corners), np.array(faces))
-    r = slc.run(box, "rotation", 0.5, steps=2, depth=4, eps=1e-3)
+    with pytest.warns(UserWarning, match="in 2 of 2 steps refinement left"):
+        r = slc.run(box, "rotation", 0.5, steps=2, depth=4, eps=1e-3)
     assert r.status == "ok"
     assert r.summary["unconverged_steps"] == 2 and r.summary["largest_residual"] > 2e-3
 
