@@ -240,14 +240,8 @@ def run_surface(p, frames: int, observer: Callable[[SurfaceStep], Any] | None, t
             return observer(SurfaceStep(step, n, t, Surface._trusted(v, tri, t), cpu_s))
     out = _slc.run_surface(p, _options(**options), int(frames), int(threads), on_step,
                            bool(estimate))
-    summary = out["summary"]
-    if summary.get("unconverged_steps", 0) > 0:
-        warnings.warn(
-            f"in {summary['unconverged_steps']} of {summary['steps_done']} steps refinement left "
-            f"|G| up to {summary['largest_residual']:.3g} at an edge midpoint or centroid, above "
-            f"eps = {summary['params']['eps']:.3g} (splits its safeguards refused, as along sharp "
-            "edges): the surface is that far from each step's, not eps; a larger depth resolves "
-            "such features finer", stacklevel=3)
+    if "note" in out["summary"]:  # contours left beyond eps (summary's unconverged_steps)
+        warnings.warn(out["summary"]["note"], stacklevel=3)
     return SurfaceRunResult(
         surface=Surface._trusted(out["vertices"], out["triangles"], out["t"]),
         status=out["status"],

@@ -152,7 +152,15 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
     if (!r.message.empty()) summary["message"] = r.message;
     if (c.refine_passes == SurfaceContourOptions::until_converged) {
         summary["unconverged_steps"] = r.unconverged_steps;
-        if (r.unconverged_steps > 0) summary["largest_residual"] = r.largest_residual;
+        if (r.unconverged_steps > 0) {
+            summary["largest_residual"] = r.largest_residual;
+            summary["note"] = fmt::format(
+                "in {} of {} steps refinement left |G| up to {:.3g} at an edge midpoint or "
+                "centroid, above eps = {:.3g} (splits its safeguards refused, as along sharp "
+                "edges): the surface is that far from each step's, not eps (unconverged_steps, "
+                "largest_residual); a larger depth K resolves such features finer",
+                r.unconverged_steps, r.steps_done, r.largest_residual, c.resolved_eps());
+        }
     }
     if (options.step.resolved_volume_correction(*p.law))
         summary["volume_corrected"] = r.volume_corrected;

@@ -242,18 +242,10 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         from ? resume(*from->surface, *p.law, p.domain, options, observer)
              : run(p.initial, *p.law, p.domain, options, observer);
 
-    if (result.unconverged_steps > 0) {
-        fmt::print(stderr,
-                   "slc: note: in {} of {} steps refinement left |G| up to {:.3g} at an edge "
-                   "midpoint or centroid, above eps = {:.3g} (splits its safeguards refused, as "
-                   "along sharp edges): the surface is that far from each step's, not eps "
-                   "(summary.json: unconverged_steps, largest_residual); a larger -K resolves "
-                   "such features finer\n",
-                   result.unconverged_steps, result.steps_done, result.largest_residual,
-                   options.step.contour.resolved_eps());
-    }
     const Surface& s = result.surface;
     nlohmann::json summary = surface_run_summary(p, p.initial, options, result);
+    if (summary.contains("note"))
+        fmt::print(stderr, "slc: note: {}\n", summary["note"].get<std::string>());
     summary["run_id"] = r.run_id;
     const double e = summary["e_inf"].is_null() ? std::nan("") : summary["e_inf"].get<double>();
     write_file_atomic(dir / "history.csv", history_text);
