@@ -16,18 +16,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "bench_support.hpp"
-#include "slc/core/memory.hpp"
-#include "slc/core/parallel.hpp"
 #include "slc/evolve/surface_problems.hpp"
 #include "slc/evolve/surface_step.hpp"
-#include "slc/io/interface_json.hpp"
 #include "slc/slc.hpp"
 
 namespace {
