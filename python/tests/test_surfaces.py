@@ -141,6 +141,14 @@ def test_contours_left_beyond_eps_at_sharp_edges_are_reported():
     assert r.summary["unconverged_steps"] == 2 and r.summary["largest_residual"] > 2e-3
 
 
+def test_the_domain_of_a_users_surface_grows_as_it_moves_away():
+    s = sphere(r=0.3, depth=4, eps=1e-3)
+    r = slc.run(s, slc.FieldExpression("1, 0, 0"), 1.0, steps=4)
+    assert r.status == "ok" and r.summary["domain_grown"]["doublings"] >= 1
+    centre = 0.5 * (r.surface.vertices.min(axis=0) + r.surface.vertices.max(axis=0))
+    assert np.allclose(centre, [1.0, 0.0, 0.0], atol=2e-3)
+
+
 def test_an_observer_stops_a_run_of_a_surface():
     seen = []
 

@@ -292,6 +292,7 @@ SurfaceRunOptions default_surface_run_options(const Surface& surface, double t_s
     o.t_start = t_start;
     o.t_end = t_end;
     o.steps = 20;
+    o.max_domain_doublings = 6;
     o.step.contour = {.depth = 5,
                       .refine_passes = SurfaceContourOptions::until_converged,
                       .eps = 1e-3 * scale,

@@ -8,6 +8,7 @@
 #include <ctime>
 
 #include "slc/core/error.hpp"
+#include "slc/tree/tetrahedralization.hpp"
 
 namespace slc {
 namespace {
@@ -28,6 +29,44 @@ void check(const SurfaceRunOptions& o) {
         throw InvalidInput(
             fmt::format("max_substep_halvings must be in 0..10, got {}", o.max_substep_halvings));
     }
+    if (o.max_domain_doublings < 0) {
+        throw InvalidInput(fmt::format("max_domain_doublings must not be negative, got {}",
+                                       o.max_domain_doublings));
+    }
+}
+
+/// One step in the domain that holds the surface: doubled the fewest times that keep its
+/// bounding box an eighth of the doubled width from the edge, then once more each time the
+/// contour reaches the edge (SurfaceRunOptions::max_domain_doublings), K a level deeper per
+/// doubling. Records the doublings in `r`.
+SurfaceStepResult advance_in_growing_domain(const Surface& s, double t, double k,
+                                            const SurfaceVelocityLaw& law, const Box3& domain,
+                                            const SurfaceRunOptions& options, SurfaceRunResult& r) {
+    const int most = std::min(options.max_domain_doublings,
+                              max_tetrahedralized_depth - options.step.contour.depth);
+    int j = 0;
+    if (most > 0) {
+        const Box3 b = bounding_box(s);
+        for (; j < most; ++j) {
+            const Box3 d = doubled_domain(domain, j);
+            const double margin = 0.125 * d.width();
+            if (d.inflated(-margin).contains(b.lo) && d.inflated(-margin).contains(b.hi)) break;
+        }
+    }
+    for (;; ++j) {
+        SurfaceStepOptions o = options.step;
+        o.contour.depth += j;
+        try {
+            SurfaceStepResult step = advance(s, t, k, law, doubled_domain(domain, j), o);
+            if (j > r.domain_doublings) {
+                if (r.domain_doublings == 0) r.domain_grown_at = t;
+                r.domain_doublings = j;
+            }
+            return step;
+        } catch (const LeftDomain&) {
+            if (j >= most) throw;
+        }
+    }
 }
 
 /// The time after n of the N steps, from the step count so that the last step ends at t_end.
@@ -36,6 +75,11 @@ double time_after(const SurfaceRunOptions& o, int n) {
 }
 
 }  // namespace
+
+Box3 doubled_domain(const Box3& domain, int times) {
+    if (times == 0) return domain;
+    return Box3::cube(domain.center(), std::ldexp(0.5 * domain.width(), times));
+}
 
 std::optional<std::string> surface_invariant_violation(const Invariants& law, const Surface& before,
                                                        const Surface& after, double, double eps) {
@@ -143,7 +187,8 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                 bool unconverged = false;
                 double residual = 0.0;
                 for (int j = 0; j < pieces && !s.empty(); ++j) {
-                    SurfaceStepResult step = advance(s, t0 + j * k, k, law, domain, options.step);
+                    SurfaceStepResult step =
+                        advance_in_growing_domain(s, t0 + j * k, k, law, domain, options, r);
                     r.g_evals += step.stats.g_evals();
                     corrected += step.stats.volume_correction;
                     if (until_converged && !step.surface.empty() &&

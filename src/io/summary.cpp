@@ -164,6 +164,13 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
     }
     if (options.step.resolved_volume_correction(*p.law))
         summary["volume_corrected"] = r.volume_corrected;
+    if (r.domain_doublings > 0) {
+        const Box3 d = doubled_domain(p.domain, r.domain_doublings);
+        summary["domain_grown"] = {{"at_t", r.domain_grown_at},
+                                   {"doublings", r.domain_doublings},
+                                   {"domain", {d.lo.x, d.lo.y, d.lo.z, d.hi.x, d.hi.y, d.hi.z}},
+                                   {"K", c.depth + r.domain_doublings}};
+    }
     return summary;
 }
 

@@ -66,6 +66,14 @@ expect_ok "user surface checkpointed" -- "${ball_args[@]}" --checkpoint-every 3 
 rm ball.obj ball_part/final.obj ball_part/summary.json
 expect_ok "user surface resumed" -- run --resume ball_part --quiet
 check "user surface resumed from step 3: final.obj identical" cmp -s ball_full/final.obj ball_part/final.obj
+# A run whose domain grew resumes in the grown domain.
+cp surface_full/initial.obj ball.obj
+away_args=(run --initial ball.obj --velocity translation --param ux=1 --param uy=0 --param uz=0 --t-end 1.5 -N 6 -K 4 --eps 2e-3 --quiet)
+expect_ok "surface leaving its domain" -- "${away_args[@]}" --out away_full
+expect_ok "surface leaving its domain, checkpointed" -- "${away_args[@]}" --checkpoint-every 4 --out away_part
+rm away_part/final.obj away_part/summary.json
+expect_ok "surface in a grown domain resumed" -- run --resume away_part --quiet
+check "resumed in the grown domain: final.obj identical" cmp -s away_full/final.obj away_part/final.obj
 expect_error "resume refuses a finished surface run" "after the checkpoint's step 3" -- run --resume ball_part --quiet
 
 # Stopped by SIGTERM while running: status interrupted, a checkpoint at the step it stopped after,

@@ -28,6 +28,16 @@ check "one component, genus 0" test "$(json turn/summary.json 's["components"], 
 check "frames: the start and two more" test "$(grep -c '<DataSet' turn/frames.pvd)" = 3
 check "frame pictures" test -s turn/frames/frame_0000.png -a -s turn/frames/frame_0002.png
 
+# A translation out of the default domain (1.5 times the bounding box): the domain doubles about
+# its centre with K a level deeper, as for curves, and the sphere arrives whole.
+expect_ok "translation out of the domain" -- run --initial ball.obj --velocity translation --param ux=1 --param uy=0 --param uz=0 --t-end 1.5 -N 6 -K 4 --out away --quiet
+check "the domain grew" test "$(json away/summary.json 's["status"], s["domain_grown"]["doublings"] >= 1')" = "ok True"
+check "and a note says so" grep -q "the domain grew to" err.txt
+check "the sphere moved by 1.5, its radius kept" test "$(python3 -c '
+xs = [list(map(float, l.split()[1:4])) for l in open("away/final.obj") if l.startswith("v ")]
+r = [((x - 1.53) ** 2 + (y + 0.02) ** 2 + (z - 0.01) ** 2) ** 0.5 for x, y, z in xs]
+print(max(abs(v - 0.6) for v in r) < 3e-3)')" = True
+
 # A box turned off the axes keeps sharp edges the refinement cannot split to eps: the run says
 # how far its contours stayed, and a smooth surface's says none did.
 printf 'v -0.4 -0.3 -0.35\nv 0.4 -0.3 -0.35\nv -0.4 0.3 -0.35\nv 0.4 0.3 -0.35\nv -0.4 -0.3 0.35\nv 0.4 -0.3 0.35\nv -0.4 0.3 0.35\nv 0.4 0.3 0.35\nf 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n' >box.obj
@@ -124,9 +134,10 @@ expect_error "no law" "--initial with a surface needs --velocity NAME, --speed o
 expect_error "no end" "--initial needs --t-end" -- run --initial ball.obj --velocity curvature --out x
 expect_error "unknown parameter" "problem 'sphere-rotation' has no parameter 'x'; it takes none" -- run --problem sphere-rotation --param x=1 --out x
 expect_error "missing parameter" "velocity 'translation' needs --param uz=VALUE" -- run --initial ball.obj --velocity translation --param ux=1 --param uy=0 --t-end 1 --out x
-expect_status "carried out of the domain" 3 -- run --initial ball.obj --velocity translation --param ux=2 --param uy=0 --param uz=0 --t-end 1 -N 2 -K 3 --out away
+# A named problem keeps its fixed domain: leaving it is an error.
+expect_status "carried out of the domain" 3 -- run --problem merging-spheres --t-end 3 -N 2 -K 3 --out away3
 check "names the boundary" grep -q "domain boundary" err.txt
-check "summary records the error" test "$(json away/summary.json 's["status"]')" = error
+check "summary records the error" test "$(json away3/summary.json 's["status"]')" = error
 # -K and --eps given: the problem's surface is contoured at them too (its own K 5, eps 1e-4 make
 # about 28,000 triangles; K 4, eps 2e-3 about 2,000).
 expect_ok "a named problem at the run's K and eps" -- run --problem sphere-rotation -N 1 --t-end 0.1 \

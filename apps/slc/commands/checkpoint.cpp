@@ -128,6 +128,8 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
         json["volume_corrected"] = s.volume_corrected;
         json["unconverged_steps"] = s.unconverged_steps;
         json["largest_residual"] = s.largest_residual;
+        json["domain_doublings"] = s.domain_doublings;
+        if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
         json["least_area"] = s.least_area.value;
         json["least_area_t"] = s.least_area.t;
         json["frames_kept"] = c.frames_kept;
@@ -183,6 +185,9 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
             s.volume_corrected = json.value("volume_corrected", 0.0);
             s.unconverged_steps = json.value("unconverged_steps", 0);
             s.largest_residual = json.value("largest_residual", 0.0);
+            s.domain_doublings = json.value("domain_doublings", 0);
+            if (s.domain_doublings > 0)
+                s.domain_grown_at = json.at("domain_grown_at").get<double>();
             s.least_area = {json.value("least_area", 0.0), json.value("least_area_t", 0.0)};
             s.status = RunStatus::interrupted;
             c.frames_kept = json.at("frames_kept").get<int>();
@@ -268,12 +273,17 @@ void check_surface_checkpoint(const Checkpoint& c, const Box3& domain,
         throw fail(fmt::format("frames_kept is {}", c.frames_kept));
     if (!(s.volume_initial > 0.0) || !std::isfinite(s.volume_initial))
         throw fail("volume_initial is not positive");
+    if (s.domain_doublings < 0 || s.domain_doublings > options.max_domain_doublings) {
+        throw fail(fmt::format("domain_doublings {} is not from 0 to {}", s.domain_doublings,
+                               options.max_domain_doublings));
+    }
     // The surface as a surface file's: a checkpoint edited by hand must not reach the tree.
     try {
         const PreparedSurface prepared = prepare_surface(s.surface);
         if (!prepared.notes.empty()) throw InvalidInput(prepared.notes.front());
+        const Box3 grown = doubled_domain(domain, s.domain_doublings);
         for (const Vec3& v : s.surface.vertices)
-            if (!domain.contains(v)) throw InvalidInput("a vertex lies outside the domain");
+            if (!grown.contains(v)) throw InvalidInput("a vertex lies outside the domain");
     } catch (const InvalidInput& e) {
         throw InvalidInput(fmt::format("{}: {}", path, e.what()));
     }

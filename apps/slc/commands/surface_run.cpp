@@ -246,6 +246,15 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     nlohmann::json summary = surface_run_summary(p, p.initial, options, result);
     if (summary.contains("note"))
         fmt::print(stderr, "slc: note: {}\n", summary["note"].get<std::string>());
+    if (result.domain_doublings > 0) {
+        const Box3 d = doubled_domain(p.domain, result.domain_doublings);
+        fmt::print(stderr,
+                   "slc: note: the surface neared the domain's edge at t = {:.6g}; the domain grew "
+                   "to [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] and K to {} "
+                   "(summary.json: domain_grown)\n",
+                   result.domain_grown_at, d.lo.x, d.hi.x, d.lo.y, d.hi.y, d.lo.z, d.hi.z,
+                   options.step.contour.depth + result.domain_doublings);
+    }
     summary["run_id"] = r.run_id;
     const double e = summary["e_inf"].is_null() ? std::nan("") : summary["e_inf"].get<double>();
     write_file_atomic(dir / "history.csv", history_text);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -33,6 +34,11 @@ struct SurfaceRunOptions {
     /// unstable once the area is more than this fraction above the least the run has reached
     /// (steps each within their 1% may add up to a roughened surface, as they do for curves).
     double area_growth = 5e-3;
+    /// A step whose contour reaches the domain's edge is done again in the domain doubled about
+    /// its centre, with K a level deeper (the same finest cell), up to this many times; each
+    /// step starts in the domain doubled the fewest times that keep the surface's bounding box
+    /// an eighth of the width from its edge. 0: the domain is fixed (a named problem's).
+    int max_domain_doublings = 0;
 };
 
 struct SurfaceRunResult;
@@ -76,7 +82,14 @@ struct SurfaceRunResult {
     /// and the largest |G| such a contour left (SurfaceContourStats::residual).
     int unconverged_steps = 0;
     double largest_residual = 0.0;
+    /// The most times a step's domain was doubled (SurfaceRunOptions::max_domain_doublings), and
+    /// the time of the first step that needed it (NaN when none did).
+    int domain_doublings = 0;
+    double domain_grown_at = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// The cube domain doubled about its centre `times` times.
+Box3 doubled_domain(const Box3& domain, int times);
 
 /// Why a step of length k from `before` to `after` breaks what the law keeps, in one line, or
 /// nothing when it keeps it within the budget: a kept volume may move in a step by at most the

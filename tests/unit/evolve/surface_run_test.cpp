@@ -132,6 +132,23 @@ TEST(SurfaceRun, FailureInsideAStepEndsWithError) {
     EXPECT_FALSE(r.surface.empty());  // the last surface reached is kept
 }
 
+TEST(SurfaceRun, TheDomainGrowsWhereTheSurfaceNearsItsEdge) {
+    // The same run with doublings allowed: the domain doubles as the sphere nears its edge, and
+    // the sphere ends where the translation takes it, its radius kept.
+    SurfaceRunOptions o = coarse(1.0, 2);
+    o.max_domain_doublings = 3;
+    const SurfaceRunResult r =
+        run(sphere({}, 0.3, 3), SurfaceTranslation({2.0, 0.0, 0.0}), domain, o);
+    ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+    EXPECT_GE(r.domain_doublings, 1);
+    EXPECT_LE(r.domain_doublings, 3);
+    EXPECT_EQ(r.domain_grown_at, 0.0);
+    for (const Vec3& v : r.surface.vertices) EXPECT_NEAR(norm(v - Vec3{2.0, 0.0, 0.0}), 0.3, 2e-3);
+    EXPECT_TRUE(doubled_domain(domain, r.domain_doublings).contains(bounding_box(r.surface)));
+    EXPECT_EQ(doubled_domain(domain, 2).width(), 8.0);
+    EXPECT_EQ(doubled_domain(domain, 2).center(), domain.center());
+}
+
 /// A law that grows the surface while claiming to keep its volume.
 class FalseClaim final : public SurfaceNormalLaw {
 public:
