@@ -226,6 +226,9 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrid
     if (subject.named && sets_contour(q)) {
         py::gil_scoped_release release;
         initial = initial_surface(p, options.step.contour);
+    } else if (!subject.named) {  // a user's surface as the steps read it
+        py::gil_scoped_release release;
+        initial = surface_as_read(p.initial, p.domain, options);
     } else {
         initial = p.initial;
     }

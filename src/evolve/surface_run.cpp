@@ -9,6 +9,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/tree/tetrahedralization.hpp"
+#include "slc/velocity/surface_laws.hpp"
 
 namespace slc {
 namespace {
@@ -75,6 +76,12 @@ double time_after(const SurfaceRunOptions& o, int n) {
 }
 
 }  // namespace
+
+Surface surface_as_read(const Surface& s, const Box3& domain, const SurfaceRunOptions& options) {
+    // A flow field at rest: G(x) = F(x), so the step's contour is the surface's own.
+    const SurfaceTranslation rest({0.0, 0.0, 0.0});
+    return advance(s, options.t_start, 1.0, rest, domain, options.step).surface;
+}
 
 Box3 doubled_domain(const Box3& domain, int times) {
     if (times == 0) return domain;

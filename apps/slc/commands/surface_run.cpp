@@ -147,6 +147,8 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     // K = 7 starts from the contour at K = 7, not from the problem's coarser one.
     if (!r.problem.empty() && (r.depth || r.refine || r.eps || r.eta))
         p.initial = initial_surface(p, c);
+    // A user's surface as the steps read it (surface_as_read), contoured at the run's K and ε.
+    if (r.problem.empty()) p.initial = surface_as_read(p.initial, p.domain, options);
     SurfaceView view;
     view.azimuth = p.azimuth;
     view.elevation = p.elevation;

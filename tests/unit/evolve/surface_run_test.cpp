@@ -149,6 +149,24 @@ TEST(SurfaceRun, TheDomainGrowsWhereTheSurfaceNearsItsEdge) {
     EXPECT_EQ(doubled_domain(domain, 2).center(), domain.center());
 }
 
+TEST(SurfaceRun, ACoarseSurfaceIsReadAsTheStepsReadIt) {
+    // An icosphere of 320 triangles: its volume is 3.4% below the sphere's, which its vertex
+    // normals describe and the steps read. Moved as it is, its first step jumps to that volume
+    // and the guards end the run; read first, it is carried with its volume kept.
+    const Surface coarse_sphere = sphere({}, 0.3, 2);
+    const double exact = 4.0 / 3.0 * std::numbers::pi * 0.027;
+    EXPECT_LT(volume(coarse_sphere), 0.97 * exact);
+    const SurfaceRunOptions o = coarse(0.5, 2);
+    const SurfaceTranslation along_x({0.2, 0.0, 0.0});
+    EXPECT_EQ(run(coarse_sphere, along_x, domain, o).status, RunStatus::unstable);
+    const Surface read = surface_as_read(coarse_sphere, domain, o);
+    // Within what its contour may sag, ε A.
+    EXPECT_NEAR(volume(read), exact, *o.step.contour.eps * area(read));
+    const SurfaceRunResult r = run(read, along_x, domain, o);
+    ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+    EXPECT_NEAR(volume(r.surface) / volume(read), 1.0, 1e-3);
+}
+
 /// A law that grows the surface while claiming to keep its volume.
 class FalseClaim final : public SurfaceNormalLaw {
 public:
