@@ -382,7 +382,8 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
     for (std::uint32_t v = 0; v < n; ++v) {
         if (on_boundary(mesh.grid[v], extent) && std::abs(values[v]) <= options.eta) {
             throw LeftDomain(
-                fmt::format("the contour reaches the domain boundary near {}; enlarge the domain",
+                fmt::format("the contour reaches the domain boundary near {}; enlarge the domain "
+                            "(--domain, --box)",
                             place(mesh.vertices[v])));
         }
     }
@@ -395,9 +396,10 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
                 for (int a = 0; a < 3; ++a)
                     same_face |= p[a] == q[a] && (p[a] == 0 || p[a] == extent);
                 if (same_face && (values[t[i]] > 0.0) != (values[t[j]] > 0.0)) {
-                    throw LeftDomain(fmt::format(
-                        "the contour crosses the domain boundary near {}; enlarge the domain",
-                        place(0.5 * (mesh.vertices[t[i]] + mesh.vertices[t[j]]))));
+                    throw LeftDomain(
+                        fmt::format("the contour crosses the domain boundary near {}; enlarge the "
+                                    "domain (--domain, --box)",
+                                    place(0.5 * (mesh.vertices[t[i]] + mesh.vertices[t[j]]))));
                 }
             }
         }

@@ -515,7 +515,7 @@ void check_boundary(const Topology& topo, std::span<const std::uint8_t> on_bound
         if (on_boundary[v] && std::abs(topo.values[v]) <= eta) {
             throw NumericalFailure(
                 fmt::format("the contour reaches the domain boundary at {} (|G| <= eta there); "
-                            "enlarge the domain",
+                            "enlarge the domain (--domain, --box)",
                             place(mesh.vertices[v])));
         }
     }
@@ -526,9 +526,10 @@ void check_boundary(const Topology& topo, std::span<const std::uint8_t> on_bound
             if (on_boundary[a] && on_boundary[b] && (ga > 0.0) != (gb > 0.0)) {
                 const Vec2 p =
                     mesh.vertices[a] + ga / (ga - gb) * (mesh.vertices[b] - mesh.vertices[a]);
-                throw LeftDomain(fmt::format(
-                    "the contour crosses the domain boundary near {}; enlarge the domain",
-                    place(p)));
+                throw LeftDomain(
+                    fmt::format("the contour crosses the domain boundary near {}; enlarge the "
+                                "domain (--domain, --box)",
+                                place(p)));
             }
         }
     }
