@@ -5,6 +5,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cstring>
 #include <map>
 #include <string>
@@ -33,6 +34,18 @@ public:
     }
     std::map<std::string, Run> results;
 };
+
+/// Seconds of the steady clock, for wall times.
+inline double wall_now() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
+/// The markers of the section on moving surfaces that surface_performance_bench writes into
+/// docs/performance.md and performance_bench keeps when it writes the rest.
+inline constexpr const char* surfaces_begin =
+    "<!-- surfaces: written by bench/surface_performance_bench.cpp -->";
+inline constexpr const char* surfaces_end = "<!-- surfaces: end -->";
 
 /// Removes `--flag value` from argv and returns value, or fallback.
 inline std::string take_flag(int& argc, char** argv, const char* flag, std::string fallback) {

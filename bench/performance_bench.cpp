@@ -17,7 +17,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
@@ -48,10 +47,7 @@ double cpu_now() {
     return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-double wall_now() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-}
+using slc::bench::wall_now;
 
 /// Least CPU and wall seconds of repeated calls of f: three calls, then more until `seconds` of
 /// wall time have passed (at most max_calls), so that neither an interruption of the machine nor
@@ -593,12 +589,10 @@ std::string peers_section(const std::filesystem::path& figures) {
 /// The section on moving surfaces that bench/surface_performance_bench.cpp wrote into the file
 /// at `path`, markers included, so that writing the rest of the file keeps it; empty if none.
 std::string surfaces_section(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    const std::string text = buffer.str();
-    const std::string begin = "<!-- surfaces: written by", end = "<!-- surfaces: end -->\n";
-    const auto b = text.find(begin), e = text.find(end);
+    if (!std::filesystem::exists(path)) return "";
+    const std::string text = read_text_file(path);
+    const std::string end = std::string(bench::surfaces_end) + "\n";
+    const auto b = text.find(bench::surfaces_begin), e = text.find(end);
     if (b == std::string::npos || e == std::string::npos || e < b) return "";
     return text.substr(b, e + end.size() - b) + "\n";
 }

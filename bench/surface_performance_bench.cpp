@@ -12,11 +12,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -30,14 +28,9 @@ namespace {
 
 using namespace slc;
 
-constexpr const char* section_begin =
-    "<!-- surfaces: written by bench/surface_performance_bench.cpp -->";
-constexpr const char* section_end = "<!-- surfaces: end -->";
-
-double wall_now() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-}
+using bench::surfaces_begin;
+using bench::surfaces_end;
+using bench::wall_now;
 
 bool same_surface(const Surface& a, const Surface& b) {
     if (a.vertices.size() != b.vertices.size() || a.triangles != b.triangles) return false;
@@ -138,11 +131,11 @@ std::string enright_table(const std::filesystem::path& path) {
 /// Replaces the section between the markers in the file's text, or puts it before "## Where
 /// the time goes" (or at the end) when the file has none.
 std::string with_section(const std::string& text, const std::string& section) {
-    const std::string block = std::string(section_begin) + "\n" + section + section_end + "\n";
-    const auto b = text.find(section_begin);
-    const auto e = text.find(section_end);
+    const std::string block = std::string(surfaces_begin) + "\n" + section + surfaces_end + "\n";
+    const auto b = text.find(surfaces_begin);
+    const auto e = text.find(surfaces_end);
     if (b != std::string::npos && e != std::string::npos && e > b)
-        return text.substr(0, b) + block + text.substr(e + std::string(section_end).size() + 1);
+        return text.substr(0, b) + block + text.substr(e + std::string(surfaces_end).size() + 1);
     const auto where = text.find("## Where the time goes");
     if (where == std::string::npos) return text + "\n" + block;
     return text.substr(0, where) + block + "\n" + text.substr(where);
@@ -277,13 +270,7 @@ int main(int argc, char** argv) {
             table + "\n";
     }
 
-    std::string text;
-    {
-        std::ifstream in(out);
-        std::stringstream buffer;
-        buffer << in.rdbuf();
-        text = buffer.str();
-    }
+    const std::string text = std::filesystem::exists(out) ? read_text_file(out) : std::string();
     write_file_atomic(out, with_section(text, md));
     fmt::print(stderr, "wrote {}\n", out);
 }

@@ -50,8 +50,7 @@ SurfaceStepResult advance_in_growing_domain(const Surface& s, double t, double k
         const Box3 b = bounding_box(s);
         for (; j < most; ++j) {
             const Box3 d = doubled_domain(domain, j);
-            const double margin = 0.125 * d.width();
-            if (d.inflated(-margin).contains(b.lo) && d.inflated(-margin).contains(b.hi)) break;
+            if (d.inflated(-0.125 * d.width()).contains(b)) break;
         }
     }
     for (;; ++j) {
