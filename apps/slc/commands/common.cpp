@@ -21,12 +21,13 @@
 
 namespace slc::cli {
 
-void add_domain_options(CLI::App& cmd, DomainOptions& options) {
+void add_domain_options(CLI::App& cmd, DomainOptions& options, std::string_view more) {
     auto* domain =
         cmd.add_option("--domain", options.half_width,
                        "Half-width b of the square domain [-b, b]^2, or cube [-b, b]^3 for a "
                        "surface (default: the square or cube around the bounding box, 1.5 "
-                       "times its largest half-side)");
+                       "times its largest half-side)" +
+                           std::string(more));
     auto* box = cmd.add_option(
         "--box", options.box,
         "The domain as x0,y0,x1,y1 (x0,y0,z0,x1,y1,z1 for a surface); a rectangle (box) is taken "

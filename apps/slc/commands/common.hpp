@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -24,8 +25,9 @@ struct DomainOptions {
     std::optional<std::string> box;
 };
 
-/// Adds --domain and --box (mutually exclusive) to a subcommand.
-void add_domain_options(CLI::App& cmd, DomainOptions& options);
+/// Adds --domain and --box (mutually exclusive) to a subcommand; `more` ends the help of
+/// --domain.
+void add_domain_options(CLI::App& cmd, DomainOptions& options, std::string_view more = {});
 
 /// The square domain: from --domain or --box, else the square centred on the curves' bounding
 /// box with half-width 1.5 times its larger half-side (room for the curves to move). Throws

@@ -39,7 +39,10 @@ void add_problem_source_options(CLI::App& cmd, ProblemSource& o) {
     cmd.add_option("--t-end", o.t_end,
                    "Final time a (a problem's own by default); with --initial the run starts at "
                    "the file's \"time\" (0 if absent)");
-    add_domain_options(cmd, o.domain);
+    add_domain_options(cmd, o.domain,
+                       "; a run of a user's curves or surface doubles it about its centre, K a "
+                       "level deeper, as they near its edge (up to six times; a named problem "
+                       "keeps its own)");
 }
 
 Problem resolve_problem(const ProblemSource& o) {
