@@ -44,6 +44,8 @@ struct Edges {
     std::vector<std::array<std::uint32_t, 2>> ends;
     std::vector<std::array<std::uint32_t, 2>> triangles;
     std::vector<std::array<std::uint32_t, 3>> of_triangle;
+    /// Vertex v's edges to higher vertices are first_of[v] to first_of[v + 1], by their other end.
+    std::vector<std::uint32_t> first_of;
 
     explicit Edges(const Surface& s) {
         const std::size_t n = s.size();
@@ -73,6 +75,7 @@ struct Edges {
         of_triangle.resize(n);
         ends.resize(edge_start[vertices]);
         triangles.resize(edge_start[vertices]);
+        first_of = edge_start;
         // Each vertex's edges in order of their other end, on all threads: the same numbering
         // as one thread gives.
         parallel_for(vertices, [&](std::size_t v) {
@@ -91,6 +94,14 @@ struct Edges {
         });
     }
     std::size_t size() const { return ends.size(); }
+    /// Whether a and b are the ends of an edge: a binary search among the lower one's edges.
+    bool contains(std::uint32_t a, std::uint32_t b) const {
+        if (a > b) std::swap(a, b);
+        const auto begin = ends.begin() + first_of[a], end = ends.begin() + first_of[a + 1];
+        const auto at = std::lower_bound(begin, end, b,
+                                         [](const auto& ab, std::uint32_t x) { return ab[1] < x; });
+        return at != end && (*at)[1] == b;
+    }
 };
 
 /// The triangles that replace t = (v0, v1, v2) when the edges flagged in `split` (bit k: edge
@@ -265,8 +276,7 @@ std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
 /// Each triangle takes part in one flip a round. Returns the flips.
 std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
     const Edges edges(s);
-    KeyMap<std::uint8_t> exists(2 * edges.size());
-    for (const auto& [a, b] : edges.ends) exists.assign(edge_key(a, b), 1);
+    KeyMap<std::uint8_t> added;  // the edges this round's flips made
     // The edge (a, b) of triangles t0 = (a, b, c) and t1 = (b, a, d), with i and j the places of
     // a in t0 and of d in t1.
     struct Quad {
@@ -303,14 +313,14 @@ std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
         const auto [t0, t1] = edges.triangles[e];
         if (!breaks[e] || touched[t0] || touched[t1]) continue;
         const Quad f = quad(e);
-        if (exists.contains(edge_key(f.c, f.d))) continue;
+        if (edges.contains(f.c, f.d) || added.contains(edge_key(f.c, f.d))) continue;
         const TriangleIndices u{f.c, f.a, f.d}, v{f.d, f.b, f.c};
         const Vec3 n = normal_around(s, edges, t0) + normal_around(s, edges, t1);
         if (!along(s, n, u, improve_normal_cosine) || !along(s, n, v, improve_normal_cosine))
             continue;
         s.triangles[t0] = u;
         s.triangles[t1] = v;
-        exists.assign(edge_key(f.c, f.d), 1);
+        added.assign(edge_key(f.c, f.d), 1);
         touched[t0] = touched[t1] = 1;
         changed[t0] = changed[t1] = 1;
         ++flips;
@@ -405,16 +415,17 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         // the triangles that no midpoint beyond ε splits anyway, another.
         std::vector<double> mid(m);
         {
+            // Known values on all threads (finding in the map only reads it).
+            parallel_for(m, [&](std::size_t e) {
+                const double* v = midpoint_value.find(edge_key(edges.ends[e][0], edges.ends[e][1]));
+                mid[e] = v ? *v : nan;
+            });
             std::vector<Vec3> points;
             std::vector<std::uint32_t> which;
             for (std::uint32_t e = 0; e < m; ++e) {
-                if (const double* v =
-                        midpoint_value.find(edge_key(edges.ends[e][0], edges.ends[e][1]))) {
-                    mid[e] = *v;
-                } else {
-                    points.push_back(midpoint(e));
-                    which.push_back(e);
-                }
+                if (!std::isnan(mid[e])) continue;
+                points.push_back(midpoint(e));
+                which.push_back(e);
             }
             std::vector<double> values(points.size());
             g(points, values);
@@ -433,10 +444,15 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
                 }
                 return false;
             };
+            std::vector<std::uint8_t> skip(s.size());
+            parallel_for(s.size(), [&](std::size_t t) {
+                skip[t] =
+                    !std::isnan(centroid_value[t]) || splits_anyway(static_cast<std::uint32_t>(t));
+            });
             std::vector<Vec3> points;
             std::vector<std::uint32_t> which;
             for (std::uint32_t t = 0; t < s.size(); ++t) {
-                if (!std::isnan(centroid_value[t]) || splits_anyway(t)) continue;
+                if (skip[t]) continue;
                 const Triangle3 tri = s.triangle(t);
                 points.push_back((tri.a + tri.b + tri.c) / 3.0);
                 which.push_back(t);

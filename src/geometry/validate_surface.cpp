@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -204,39 +205,48 @@ std::optional<TriangleContact> find_self_intersection(const Surface& s) {
 std::vector<TriangleContact> find_self_intersections(const Surface& s,
                                                      std::span<const std::uint8_t> changed) {
     SLC_ASSERT(changed.size() == s.size(), "one flag a triangle");
-    std::vector<Triangle3> corners(s.size());
-    for (std::size_t t = 0; t < s.size(); ++t) corners[t] = s.triangle(t);
+    const auto n = static_cast<std::uint32_t>(s.size());
+    // The flagged triangles get a hierarchy of their own, and every triangle u looks in it for
+    // the flagged triangles v its box meets: the cost of the flagged triangles' pairs, and no
+    // hierarchy of the whole surface when few changed. A pair of two flagged triangles is tested
+    // from the smaller. A contact lowers partner[] of its smaller triangle to the larger; the
+    // least is kept whatever the order the threads find them in.
+    std::vector<std::uint32_t> flagged;
+    for (std::uint32_t t = 0; t < n; ++t)
+        if (changed[t]) flagged.push_back(t);
+    if (flagged.empty()) return {};
+    std::vector<Triangle3> corners(flagged.size());
+    parallel_for(flagged.size(), [&](std::size_t k) { corners[k] = s.triangle(flagged[k]); });
     const TriangleHierarchy hierarchy(corners);
-    // From each flagged triangle i, the pairs it makes with the triangles its box meets: with a
-    // later one, the least it meets (partner); with an earlier unflagged one, the least it meets
-    // (reverse, moved to that one's slot after). Pairs of two flagged triangles are tested from
-    // the smaller. Each slot is written by the one thread that owns i, so the answer does not
-    // depend on the thread count.
     constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-    std::vector<std::uint32_t> partner(s.size(), none);
-    std::vector<std::uint32_t> reverse(s.size(), none);
+    std::vector<std::atomic<std::uint32_t>> partner(n);
+    for (auto& p : partner) p.store(none, std::memory_order_relaxed);
     parallel_for(
-        s.size(),
+        n,
         [&](std::size_t i) {
-            if (!changed[i]) return;
-            const auto me = static_cast<std::uint32_t>(i);
-            hierarchy.for_each_overlapping(bounding_box(corners[i]), [&](std::uint32_t j) {
-                if (j == me || (j < me && changed[j])) return;
-                if (j > me && j >= partner[i]) return;
-                if (j < me && j >= reverse[i]) return;
+            const auto u = static_cast<std::uint32_t>(i);
+            const Triangle3 mine = s.triangle(u);
+            hierarchy.for_each_overlapping(bounding_box(mine), [&](std::uint32_t k) {
+                const std::uint32_t v = flagged[k];
+                if (v == u || (changed[u] && v < u)) return;
+                const std::uint32_t lo = std::min(u, v), hi = std::max(u, v);
+                std::atomic<std::uint32_t>& slot = partner[lo];
+                std::uint32_t least = slot.load(std::memory_order_relaxed);
+                if (hi >= least) return;
                 Triangle3 a, b;
-                const int shared =
-                    j > me ? arrange_shared(s, me, j, a, b) : arrange_shared(s, j, me, a, b);
+                const int shared = arrange_shared(s, lo, hi, a, b);
                 if (!triangles_overlap(a, b, shared)) return;
-                (j > me ? partner[i] : reverse[i]) = j;
+                while (hi < least &&
+                       !slot.compare_exchange_weak(least, hi, std::memory_order_relaxed)) {
+                }
             });
         },
         expensive_grain);
-    for (std::uint32_t i = 0; i < s.size(); ++i)
-        if (reverse[i] != none) partner[reverse[i]] = std::min(partner[reverse[i]], i);
     std::vector<TriangleContact> out;
-    for (std::uint32_t i = 0; i < s.size(); ++i)
-        if (partner[i] != none) out.push_back({i, partner[i]});
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const std::uint32_t p = partner[i].load(std::memory_order_relaxed);
+        if (p != none) out.push_back({i, p});
+    }
     return out;
 }
 

@@ -37,9 +37,11 @@ void parallel_for(std::size_t n, Body&& body, std::size_t min_iterations = paral
         return;
     }
     const long long count = static_cast<long long>(n);
+    // Chunks of 64 handed out as threads come free: iterations near a surface cost many times
+    // those far from it, and halves fixed in advance leave one thread waiting on the other.
     std::atomic<long long> first_failure{count};
     std::exception_ptr failure;
-#pragma omp parallel for schedule(static) num_threads(thread_count())
+#pragma omp parallel for schedule(dynamic, 64) num_threads(thread_count())
     for (long long i = 0; i < count; ++i) {
         if (i > first_failure.load(std::memory_order_relaxed)) continue;
         try {
