@@ -4,6 +4,7 @@
 /// number of threads.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <exception>
@@ -37,11 +38,15 @@ void parallel_for(std::size_t n, Body&& body, std::size_t min_iterations = paral
         return;
     }
     const long long count = static_cast<long long>(n);
-    // Chunks of 64 handed out as threads come free: iterations near a surface cost many times
-    // those far from it, and halves fixed in advance leave one thread waiting on the other.
+    // Chunks handed out as threads come free: iterations near a surface cost many times those
+    // far from it, and halves fixed in advance leave one thread waiting on the other. Sixteen
+    // chunks a thread at least, so that the last chunk is a small wait, and at most 64
+    // iterations a chunk.
+    const int threads = thread_count();
+    const int chunk = static_cast<int>(std::clamp<long long>(count / (16LL * threads), 1, 64));
     std::atomic<long long> first_failure{count};
     std::exception_ptr failure;
-#pragma omp parallel for schedule(dynamic, 64) num_threads(thread_count())
+#pragma omp parallel for schedule(dynamic, chunk) num_threads(threads)
     for (long long i = 0; i < count; ++i) {
         if (i > first_failure.load(std::memory_order_relaxed)) continue;
         try {
