@@ -54,24 +54,43 @@ struct Edges {
             return std::pair{std::min(a, b), std::max(a, b)};
         };
         const std::size_t vertices = s.vertices.size();
-        std::vector<std::uint32_t> start(vertices + 1, 0);
-        for (std::size_t h = 0; h < 3 * n; ++h) ++start[lo_hi(h).first + 1];
+        // The counting sort in parts, one a thread: each part counts its half-edges by lower
+        // vertex, and fills its own slots of each bucket after the parts before it.
+        const std::size_t parts = static_cast<std::size_t>(std::max(1, thread_count()));
+        auto part_range = [&](std::size_t p) {
+            return std::pair{3 * n * p / parts, 3 * n * (p + 1) / parts};
+        };
+        std::vector<std::vector<std::uint32_t>> fill(parts,
+                                                     std::vector<std::uint32_t>(vertices, 0));
+        parallel_for(
+            parts,
+            [&](std::size_t p) {
+                const auto [begin, end] = part_range(p);
+                for (std::size_t h = begin; h < end; ++h) ++fill[p][lo_hi(h).first];
+            },
+            1);
         // The edges of a closed surface pair its half-edges, so vertex v numbers
         // (start[v + 1] − start[v]) / 2 edges, from edge_start[v].
-        std::vector<std::uint32_t> edge_start(vertices + 1, 0);
+        std::vector<std::uint32_t> start(vertices + 1, 0), edge_start(vertices + 1, 0);
         for (std::size_t v = 0; v < vertices; ++v) {
-            SLC_ASSERT(start[v + 1] % 2 == 0, "every edge of a closed surface has two triangles");
-            edge_start[v + 1] = edge_start[v] + start[v + 1] / 2;
-            start[v + 1] += start[v];
+            std::uint32_t at = start[v];
+            for (std::size_t p = 0; p < parts; ++p) std::swap(at, fill[p][v]), at += fill[p][v];
+            start[v + 1] = at;
+            SLC_ASSERT((at - start[v]) % 2 == 0,
+                       "every edge of a closed surface has two triangles");
+            edge_start[v + 1] = edge_start[v] + (at - start[v]) / 2;
         }
         std::vector<std::pair<std::uint32_t, std::uint32_t>> halves(3 * n);  // (hi, half-edge)
-        {
-            std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-            for (std::size_t h = 0; h < 3 * n; ++h) {
-                const auto [lo, hi] = lo_hi(h);
-                halves[fill[lo]++] = {hi, static_cast<std::uint32_t>(h)};
-            }
-        }
+        parallel_for(
+            parts,
+            [&](std::size_t p) {
+                const auto [begin, end] = part_range(p);
+                for (std::size_t h = begin; h < end; ++h) {
+                    const auto [lo, hi] = lo_hi(h);
+                    halves[fill[p][lo]++] = {hi, static_cast<std::uint32_t>(h)};
+                }
+            },
+            1);
         of_triangle.resize(n);
         ends.resize(edge_start[vertices]);
         triangles.resize(edge_start[vertices]);
@@ -583,35 +602,60 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         std::vector<double> next_centroid;
         std::vector<std::uint32_t> parent;
         std::vector<std::uint8_t> next_dirty;
+        auto sound = [&](std::uint32_t t, unsigned mask, const std::array<std::uint32_t, 3>& w,
+                         std::vector<TriangleIndices>& kids) {
+            kids.clear();
+            children(s, s.triangles[t], mask, w, kids);
+            return children_sound(s, normal_around(s, edges, t), kids);
+        };
+        // Each sweep's tests for the masks at its start, on all threads; the sweep itself tests
+        // again only the triangles whose mask a refusal before them changed, so the outcome is
+        // a sweep's on one thread.
+        std::vector<unsigned> tested_mask(s.size());
+        std::vector<std::uint8_t> tested_sound(s.size());
+        std::vector<std::uint32_t> first_child(s.size() + 1);
         for (;;) {
+            parallel_for(s.size(), [&](std::size_t i) {
+                const auto t = static_cast<std::uint32_t>(i);
+                const auto [mask, w] = mask_of(t);
+                tested_mask[t] = mask;
+                thread_local std::vector<TriangleIndices> kids;
+                tested_sound[t] = mask == 0 || sound(t, mask, w, kids);
+            });
             bool changed = false;
             std::vector<TriangleIndices> kids;
             for (std::uint32_t t = 0; t < s.size(); ++t) {
                 const auto [mask, w] = mask_of(t);
                 if (mask == 0) continue;
-                kids.clear();
-                children(s, s.triangles[t], mask, w, kids);
-                if (!children_sound(s, normal_around(s, edges, t), kids)) {
-                    refuse_splits_of(t);
-                    changed = true;
-                }
+                if (mask == tested_mask[t] ? tested_sound[t] : sound(t, mask, w, kids)) continue;
+                refuse_splits_of(t);
+                changed = true;
             }
             if (changed) continue;
+            // The children, on all threads, each triangle's at its place: 1 + its splits.
+            first_child[0] = 0;
+            for (std::uint32_t t = 0; t < s.size(); ++t)
+                first_child[t + 1] = first_child[t] + 1 +
+                                     static_cast<std::uint32_t>(std::popcount(mask_of(t).first));
             next.vertices = s.vertices;
-            next.triangles.clear();
-            next_centroid.clear();
-            parent.clear();
-            next_dirty.clear();
-            for (std::uint32_t t = 0; t < s.size(); ++t) {
+            next.triangles.resize(first_child.back());
+            next_centroid.resize(first_child.back());
+            parent.resize(first_child.back());
+            next_dirty.resize(first_child.back());
+            parallel_for(s.size(), [&](std::size_t i) {
+                const auto t = static_cast<std::uint32_t>(i);
                 const auto [mask, w] = mask_of(t);
-                const std::size_t first = next.triangles.size();
-                children(s, s.triangles[t], mask, w, next.triangles);
-                for (std::size_t k = first; k < next.triangles.size(); ++k) {
-                    next_centroid.push_back(mask == 0 ? centroid_value[t] : nan);
-                    parent.push_back(t);
-                    next_dirty.push_back(mask != 0 || dirty[t] ? 1 : 0);
+                thread_local std::vector<TriangleIndices> made;
+                made.clear();
+                children(s, s.triangles[t], mask, w, made);
+                for (std::size_t k = 0; k < made.size(); ++k) {
+                    const std::size_t c = first_child[t] + k;
+                    next.triangles[c] = made[k];
+                    next_centroid[c] = mask == 0 ? centroid_value[t] : nan;
+                    parent[c] = t;
+                    next_dirty[c] = mask != 0 || dirty[t] ? 1 : 0;
                 }
-            }
+            });
             // Pairs of triangles neither of which changed since the last check cannot meet.
             const std::vector<TriangleContact> contacts = find_self_intersections(next, next_dirty);
             if (contacts.empty()) break;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/velocity/velocity.hpp"
 
 namespace slc::detail {
@@ -27,14 +28,15 @@ std::vector<typename Space<dim>::Point> runge_kutta_feet(
     for (int s = substeps; s > 0; --s) {
         const double top = t + s * h;  // this substep goes from top back to top − h
         const auto k1 = field_velocities(law, top, x);
-        for (std::size_t i = 0; i < m; ++i) y[i] = x[i] - half * k1[i];
+        parallel_for(m, [&](std::size_t i) { y[i] = x[i] - half * k1[i]; });
         const auto k2 = field_velocities(law, top - half, y);
-        for (std::size_t i = 0; i < m; ++i) y[i] = x[i] - half * k2[i];
+        parallel_for(m, [&](std::size_t i) { y[i] = x[i] - half * k2[i]; });
         const auto k3 = field_velocities(law, top - half, y);
-        for (std::size_t i = 0; i < m; ++i) y[i] = x[i] - h * k3[i];
+        parallel_for(m, [&](std::size_t i) { y[i] = x[i] - h * k3[i]; });
         const auto k4 = field_velocities(law, top - h, y);
-        for (std::size_t i = 0; i < m; ++i)
+        parallel_for(m, [&](std::size_t i) {
             x[i] -= (h / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        });
     }
     return x;
 }

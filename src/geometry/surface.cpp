@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 
 namespace slc {
 
@@ -54,8 +55,9 @@ std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s) 
         const auto [lo, hi] = ends(h);
         halves[fill[lo]++] = {hi, static_cast<std::uint32_t>(h)};
     }
+    // Each bucket on its own, on all threads: it writes only the slots of its half-edges.
     std::vector<std::array<std::uint32_t, 3>> out(n);
-    for (std::size_t v = 0; v + 1 < start.size(); ++v) {
+    parallel_for(s.vertices.size(), [&](std::size_t v) {
         const auto first = halves.begin() + start[v], last = halves.begin() + start[v + 1];
         std::sort(first, last);
         for (auto it = first; it != last; it += 2) {
@@ -65,7 +67,7 @@ std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s) 
             out[h / 3][h % 3] = g / 3;
             out[g / 3][g % 3] = h / 3;
         }
-    }
+    });
     return out;
 }
 
@@ -133,7 +135,11 @@ PseudoNormals pseudo_normals(const Surface& s) {
     n.face.resize(s.size());
     n.edge.resize(s.size());
     n.vertex.assign(s.vertices.size(), Vec3{});
-    for (std::size_t t = 0; t < s.size(); ++t) {
+    // Each triangle's normal and angles on all threads; then each vertex sums its triangles'
+    // angle-weighted normals in triangle order, on all threads, as one loop over the triangles
+    // would.
+    std::vector<std::array<double, 3>> angle(s.size());
+    parallel_for(s.size(), [&](std::size_t t) {
         const Triangle3 tri = s.triangle(t);
         // The angle at each corner by atan2 of |u × v| and u · v (accurate at every size), u and
         // v its two edges: |u × v| is twice the area at every corner.
@@ -141,14 +147,29 @@ PseudoNormals pseudo_normals(const Surface& s) {
         const Vec3 normal = cross(ab, -ca);
         const double twice_area = norm(normal);
         n.face[t] = normal / twice_area;
-        const double angles[3] = {std::atan2(twice_area, -dot(ab, ca)),
-                                  std::atan2(twice_area, -dot(bc, ab)),
-                                  std::atan2(twice_area, -dot(ca, bc))};
-        for (int k = 0; k < 3; ++k) n.vertex[s.triangles[t][k]] += angles[k] * n.face[t];
+        angle[t] = {std::atan2(twice_area, -dot(ab, ca)), std::atan2(twice_area, -dot(bc, ab)),
+                    std::atan2(twice_area, -dot(ca, bc))};
+    });
+    // The corners at each vertex (CSR, in triangle order).
+    std::vector<std::uint32_t> start(s.vertices.size() + 1, 0), corners(3 * s.size());
+    for (const TriangleIndices& tri : s.triangles)
+        for (const std::uint32_t v : tri) ++start[v + 1];
+    for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+    {
+        std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+        for (std::size_t c = 0; c < 3 * s.size(); ++c)
+            corners[fill[s.triangles[c / 3][c % 3]]++] = static_cast<std::uint32_t>(c);
     }
+    parallel_for(s.vertices.size(), [&](std::size_t v) {
+        Vec3 sum{};
+        for (std::uint32_t i = start[v]; i < start[v + 1]; ++i)
+            sum += angle[corners[i] / 3][corners[i] % 3] * n.face[corners[i] / 3];
+        n.vertex[v] = sum;
+    });
     const auto neighbours = triangle_neighbours(s);
-    for (std::size_t t = 0; t < s.size(); ++t)
+    parallel_for(s.size(), [&](std::size_t t) {
         for (int k = 0; k < 3; ++k) n.edge[t][k] = n.face[t] + n.face[neighbours[t][k]];
+    });
     return n;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/geometry_modules/intrinsic.hpp"
 
 namespace slc {
@@ -21,13 +22,14 @@ template <int dim>
 void check_finite(const BasicVelocityLaw<dim>& law, double t,
                   std::span<const typename Space<dim>::Point> at,
                   std::span<const typename Space<dim>::Point> u, const char* what) {
-    for (std::size_t i = 0; i < u.size(); ++i) {
+    // On all threads: parallel_for throws what the least failing i threw.
+    parallel_for(u.size(), [&](std::size_t i) {
         if (!is_finite(u[i])) {
             throw NumericalFailure(
                 fmt::format("velocity '{}' is not finite at t = {}, {} {} {}: {}", law.name(), t,
                             what, i, point_text(at[i]), point_text(u[i])));
         }
-    }
+    });
 }
 
 /// The vertex velocities of law on interface with geometry, checked.
