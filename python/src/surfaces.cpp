@@ -54,7 +54,8 @@ SurfaceRunOptions resolve(const SurfaceSubject& s, const SurfaceOverrides& q) {
         o.steps = p.steps;
         o.step.contour = {.depth = p.depth,
                           .refine_passes = SurfaceContourOptions::until_converged,
-                          .eps = p.eps};
+                          .eps = p.eps,
+                          .thin_depth = p.thin_depth};
     } else {
         o = default_surface_run_options(p.initial, s.t_start, p.t_end);
     }

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,9 @@ constexpr int max_gamma_doublings = 24;
 /// altitude of the mesh's tetrahedra (an eighth of the finest edge), so the mesh stays valid.
 constexpr double first_perturbation = 1e-3;
 constexpr int max_perturbations = 6;
+/// A cell's G bends (TreeSampler::bends) when a body diagonal's centre is nearer zero than its
+/// ends' mean by this fraction of the half-diagonal.
+constexpr double thin_dip = 0.25;
 
 std::string place(Vec3 p) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x, p.y, p.z); }
 
@@ -42,6 +46,10 @@ void validate(const SurfaceContourOptions& o, const Box3& domain) {
     if (!positive(o.eta)) throw InvalidInput(fmt::format("eta must be positive, got {}", o.eta));
     if (!positive(o.gamma))
         throw InvalidInput(fmt::format("gamma must be positive, got {}", o.gamma));
+    if (o.thin_depth < 0) {
+        throw InvalidInput(
+            fmt::format("thin cells' extra depth must be >= 0, got {}", o.thin_depth));
+    }
     if (o.refine_passes < 0 && o.refine_passes != SurfaceContourOptions::until_converged) {
         throw InvalidInput(
             fmt::format("refinement passes P must be >= 0, got {}", o.refine_passes));
@@ -63,6 +71,9 @@ void validate(const SurfaceContourOptions& o, const Box3& domain) {
 }
 
 using Evaluator = contouring::SpaceEvaluator;
+
+/// What a cell's samples say of G bending within it (TreeSampler::bends).
+enum class Bend { no, yes, unsure };
 
 /// G, or a stand-in for it, at a sample point of the tree.
 struct Sample {
@@ -87,13 +98,16 @@ constexpr Sample pending{std::numeric_limits<double>::quiet_NaN(),
 /// the same; far from the surface, cells are settled by their parents' samples without G.
 class TreeSampler {
 public:
-    TreeSampler(const Octree& tree, const Evaluator& g, std::optional<double> slack, double eta)
+    /// γ splits cells down to level `limit` (K); the tree may go deeper (thin cells).
+    TreeSampler(const Octree& tree, const Evaluator& g, std::optional<double> slack, double eta,
+                int limit)
         : tree_(tree),
           g_(g),
           shift_(tree.max_depth() + 1),
           step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)),
           slack_(slack),
-          eta_(eta) {}
+          eta_(eta),
+          limit_(limit) {}
 
     /// Samples the given cells (the root, or children of sampled cells): new points whose sign
     /// their parent's samples do not give are evaluated, in one batch.
@@ -139,7 +153,7 @@ public:
         for (std::uint32_t c : cells) {
             const int level = tree_.cell(c).level;
             const double threshold = gamma * tree_.edge(level);
-            if (level == tree_.max_depth() || !(threshold > min_abs_[c])) continue;
+            if (level >= limit_ || !(threshold > min_abs_[c])) continue;
             touched.push_back(c);
             const auto& ids = ids_[c];
             if (std::any_of(ids.begin(), ids.end(),
@@ -158,6 +172,52 @@ public:
     }
 
     double min_abs(std::uint32_t c) const { return min_abs_[c]; }
+
+    /// Whether G bends within cell c: along a body diagonal, the ends and the centre of one sign
+    /// and the centre nearer zero than the ends' mean by more than thin_dip of the
+    /// half-diagonal. A distance is linear along a segment on one side of a plane and bends by
+    /// about h²/(2R) near a sheet of radius R: a dip this large means the sheet turns within the
+    /// cell or its other side is there too. Only cells the zero set may meet are tested (the
+    /// centre's |G| at most the half-diagonal). From the samples' bounds:
+    /// unsure when stand-ins leave it open; the stand-ins that would settle it are then
+    /// appended to `wanted`.
+    Bend bends(std::uint32_t c, std::vector<std::uint32_t>& wanted) const {
+        const auto& ids = ids_[c];
+        const Sample& m = samples_[ids[8]];
+        const double half_diagonal = 0.5 * std::sqrt(3.0) * tree_.edge(tree_.cell(c).level);
+        if (std::abs(m.value) > half_diagonal) return Bend::no;
+        if (m.upper > half_diagonal) {
+            wanted.push_back(ids[8]);
+            return Bend::unsure;
+        }
+        const double threshold = thin_dip * half_diagonal;
+        bool unsure = false;
+        for (int k = 0; k < 4; ++k) {
+            const Sample& a = samples_[ids[k]];
+            const Sample& b = samples_[ids[7 - k]];
+            if ((a.value > 0.0) != (m.value > 0.0) || (b.value > 0.0) != (m.value > 0.0)) continue;
+            if ((a.value > 0.0) != (m.value > 0.0) || (b.value > 0.0) != (m.value > 0.0)) continue;
+            // |G| ≥ |value| and ≤ upper at each point, with the value's sign.
+            const double least = 0.5 * (std::abs(a.value) + std::abs(b.value)) - m.upper;
+            const double most = 0.5 * (a.upper + b.upper) - std::abs(m.value);
+            if (least > threshold) return Bend::yes;
+            if (!(most > threshold)) continue;
+            unsure = true;
+            for (const std::uint32_t id : {ids[k], ids[7 - k], ids[8]})
+                if (!samples_[id].exact) wanted.push_back(id);
+        }
+        return unsure ? Bend::unsure : Bend::no;
+    }
+
+    /// Makes G exact at the given points (from bends), in one batch, and updates the least |G|
+    /// of the given cells.
+    void make_exact(std::vector<std::uint32_t> ids, std::span<const std::uint32_t> cells) {
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        for (std::uint32_t id : ids) samples_[id] = pending;
+        evaluate(ids);
+        for (std::uint32_t c : cells) update_min(c);
+    }
     /// Tree points with a stand-in rather than G.
     std::size_t settled() const {
         return static_cast<std::size_t>(std::count_if(samples_.begin(), samples_.end(),
@@ -238,6 +298,7 @@ private:
     double step_;
     std::optional<double> slack_;
     double eta_;
+    int limit_;
     KeyMap<std::uint32_t> index_;
     std::vector<Sample> samples_;
     std::vector<Vec3> points_;
@@ -246,16 +307,17 @@ private:
     std::vector<double> min_abs_;
 };
 
-/// Splits, level by level from the frontier, every cell whose edge exceeds min|G|/γ.
+/// Splits, level by level from the frontier down to level `limit`, every cell whose edge exceeds
+/// min|G|/γ.
 void split_while_coarse(Octree& tree, TreeSampler& sampler, std::vector<std::uint32_t> frontier,
-                        double gamma) {
+                        double gamma, int limit) {
     while (!frontier.empty()) {
         sampler.sample(frontier);
         sampler.settle_tests(frontier, gamma);
         std::vector<std::uint32_t> next;
         for (std::uint32_t c : frontier) {
             const int level = tree.cell(c).level;
-            if (level < tree.max_depth() && gamma * tree.edge(level) > sampler.min_abs(c)) {
+            if (level < limit && gamma * tree.edge(level) > sampler.min_abs(c)) {
                 const std::uint32_t first = tree.split(c);
                 for (std::uint32_t k = 0; k < 8; ++k) next.push_back(first + k);
             }
@@ -264,10 +326,10 @@ void split_while_coarse(Octree& tree, TreeSampler& sampler, std::vector<std::uin
     }
 }
 
-/// Builds the tree, doubling γ until it is balanced; the split criterion is monotone in γ, so
-/// each doubling offers the leaves to it again. Returns γ.
-double build_tree(Octree& tree, TreeSampler& sampler, double gamma) {
-    split_while_coarse(tree, sampler, {0}, gamma);
+/// Builds the tree down to level `limit`, doubling γ until it is balanced; the split criterion is
+/// monotone in γ, so each doubling offers the leaves to it again. Returns γ.
+double build_tree(Octree& tree, TreeSampler& sampler, double gamma, int limit) {
+    split_while_coarse(tree, sampler, {0}, gamma, limit);
     for (int doubling = 0; !tree.is_balanced(); ++doubling) {
         if (doubling == max_gamma_doublings) {
             tree.balance();
@@ -276,7 +338,7 @@ double build_tree(Octree& tree, TreeSampler& sampler, double gamma) {
         gamma *= 2.0;
         std::vector<std::uint32_t> leaves;
         for (std::uint32_t c : tree.leaves())
-            if (tree.cell(c).level < tree.max_depth()) leaves.push_back(c);
+            if (tree.cell(c).level < limit) leaves.push_back(c);
         sampler.settle_tests(leaves, gamma);
         // Leaves are sampled already: test them, then sample and test their children.
         std::vector<std::uint32_t> next;
@@ -286,19 +348,64 @@ double build_tree(Octree& tree, TreeSampler& sampler, double gamma) {
                 for (std::uint32_t k = 0; k < 8; ++k) next.push_back(first + k);
             }
         }
-        split_while_coarse(tree, sampler, std::move(next), gamma);
+        split_while_coarse(tree, sampler, std::move(next), gamma, limit);
     }
     return gamma;
 }
 
-/// A deterministic direction for attempt k at vertex v: golden-ratio sequences on the sphere.
-Vec3 perturbation_direction(std::size_t v, int k) {
+/// Splits the leaves at level `limit` near the zero set (min|G| below γ times their edge) where G
+/// bends within them (TreeSampler::bends), and their children where it still does, down to the
+/// tree's deepest level; then balances the tree again, sampling the cells balancing makes.
+/// Returns the cells split.
+std::size_t split_thin(Octree& tree, TreeSampler& sampler, double gamma, int limit) {
+    std::vector<std::uint32_t> frontier;
+    for (std::uint32_t c : tree.leaves())
+        if (tree.cell(c).level == limit && gamma * tree.edge(limit) > sampler.min_abs(c))
+            frontier.push_back(c);
+    std::size_t split = 0;
+    while (!frontier.empty() && tree.cell(frontier.front()).level < tree.max_depth()) {
+        // Stand-ins that leave a cell unsure are evaluated, a batch a round, until none does.
+        std::vector<std::uint32_t> unsure = frontier;
+        while (!unsure.empty()) {
+            std::vector<std::uint32_t> wanted, still;
+            for (std::uint32_t c : unsure)
+                if (sampler.bends(c, wanted) == Bend::unsure) still.push_back(c);
+            sampler.make_exact(std::move(wanted), still);
+            unsure = std::move(still);
+        }
+        std::vector<std::uint32_t> next, none;
+        for (std::uint32_t c : frontier) {
+            if (sampler.bends(c, none) != Bend::yes) continue;
+            const std::uint32_t first = tree.split(c);
+            for (std::uint32_t k = 0; k < 8; ++k) next.push_back(first + k);
+            ++split;
+        }
+        sampler.sample(next);
+        frontier.clear();
+        for (std::uint32_t c : next)
+            if (gamma * tree.edge(tree.cell(c).level) > sampler.min_abs(c)) frontier.push_back(c);
+    }
+    if (split > 0 && !tree.is_balanced()) {
+        const auto before = static_cast<std::uint32_t>(tree.size());
+        tree.balance();
+        std::vector<std::uint32_t> made(tree.size() - before);
+        std::iota(made.begin(), made.end(), before);
+        sampler.sample(made);
+    }
+    return split;
+}
+
+/// The direction of attempt k, the same for every vertex: golden-ratio sequences on the sphere.
+/// One direction for all makes the perturbed values those of G shifted as a whole, so vertices
+/// on a face or a sharp edge of the zero set all move to the same side of it; directions drawn
+/// vertex by vertex could leave one on the other side from all its neighbours, a speck of zero
+/// set around it.
+Vec3 perturbation_direction(int k) {
     const double phi = 0.6180339887498949, silver = 0.4142135623730950;
     const double plastic = 0.7548776662466927, bronze = 0.3027756377319946;
     auto frac = [](double x) { return x - std::floor(x); };
-    const double z = 2.0 * frac(static_cast<double>(v + 1) * phi + k * silver) - 1.0;
-    const double angle =
-        2.0 * std::numbers::pi * frac(static_cast<double>(v + 1) * plastic + k * bronze);
+    const double z = 2.0 * frac(phi + k * silver) - 1.0;
+    const double angle = 2.0 * std::numbers::pi * frac(plastic + k * bronze);
     const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
     return {r * std::cos(angle), r * std::sin(angle), z};
 }
@@ -322,13 +429,15 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
     SurfaceContour out;
     SurfaceContourStats& stats = out.stats;
     const Evaluator tree_g(g, stats.g_evals_tree);
-    Octree tree(domain, options.depth);
+    const int thin_depth = std::min(options.thin_depth, max_tetrahedralized_depth - options.depth);
+    Octree tree(domain, options.depth + thin_depth);
     // The slack allows for rounding in G too: a few thousand ulps of the domain's coordinates.
     const double rounding = 1e-12 * std::max(domain.largest_magnitude(), domain.width());
     const std::optional<double> slack =
         options.distance_slack ? std::optional(*options.distance_slack + rounding) : std::nullopt;
-    TreeSampler sampler(tree, tree_g, slack, options.eta);
-    stats.gamma = build_tree(tree, sampler, options.gamma);
+    TreeSampler sampler(tree, tree_g, slack, options.eta, options.depth);
+    stats.gamma = build_tree(tree, sampler, options.gamma, options.depth);
+    stats.thin_cells = split_thin(tree, sampler, stats.gamma, options.depth);
     stats.cells = tree.size();
     stats.leaves = tree.leaves().size();
     stats.settled = sampler.settled();
@@ -431,7 +540,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
             std::vector<Vec3> points;
             for (std::size_t i = 0; i < todo.size(); ++i) {
                 const double step = first_perturbation * std::ldexp(h, k);
-                points.push_back(original[slot[i]] + step * perturbation_direction(todo[i], k));
+                points.push_back(original[slot[i]] + step * perturbation_direction(k));
             }
             std::vector<double> got(points.size());
             tree_g(points, got);

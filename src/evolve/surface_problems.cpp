@@ -134,6 +134,7 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
         p.t_end = 3.0;
         p.steps = 60;
         p.depth = 6;
+        p.thin_depth = 2;  // the sheet at t = 1.5 is thinner than a cell of K = 7
         p.law = std::make_unique<EnrightField>(3.0);
         p.exact = [c](double t, Vec3 x) {
             return std::abs(std::remainder(t, 3.0)) < 1e-12 ? distance(x, c) - 0.15 : nan;

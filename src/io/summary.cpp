@@ -129,6 +129,7 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
                                     : nlohmann::json(c.refine_passes)},
           {"eps", c.resolved_eps()},
           {"eta", c.eta},
+          {"thin_depth", c.thin_depth},
           {"threads", thread_count()}}},
         {"status", to_string(r.status)},
         {"t", r.t},

@@ -33,6 +33,7 @@ struct ContourCommandOptions {
     std::optional<double> eps;
     int refine = 0;
     double eta = 1e-10;
+    int thin_depth = 0;
     double rho = 0.1;
     DomainOptions domain;
     std::optional<int> tree_depth;
@@ -232,6 +233,10 @@ void add_contour_command(CLI::App& app) {
     cmd->add_option("--eta", o->eta,
                     "Root-finding tolerance eta: |G| <= eta at every vertex (default 1e-10)")
         ->check(positive_number());
+    cmd->add_option("--thin-depth", o->thin_depth,
+                    "For a surface: levels beyond K for cells where the zero set's two sides, or a "
+                    "sharp turn, lie within one cell (default 0)")
+        ->check(integer_in(0, 8));
     cmd->add_option("--rho", o->rho, "Pruning ratio rho in [0, 1) (default 0.1)")
         ->check(fraction_below_one());
     add_domain_options(*cmd, o->domain);
@@ -249,7 +254,7 @@ void add_contour_command(CLI::App& app) {
         if (!o->function.empty() || is_surface_file(o->initial)) {
             apply_threads(o->threads);
             run_surface_contour({o->initial, o->function, o->depth, o->refine, o->eps, o->eta,
-                                 o->domain, o->tree_depth, o->out});
+                                 o->thin_depth, o->domain, o->tree_depth, o->out});
             return;
         }
         run_contour(*o);

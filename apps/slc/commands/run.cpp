@@ -425,6 +425,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  .refine = o.method.refine,
                  .eps = o.method.eps,
                  .eta = o.method.eta,
+                 .thin_depth = o.method.thin_depth,
                  .tree_depth = o.method.tree_depth,
                  .volume_correction = o.method.area_correction,
                  .frames = o.frames,
@@ -454,6 +455,8 @@ void add_run_command(CLI::App& app) {
         if (o->out.empty()) throw InvalidInput("--out DIR is required");
         const bool surface = is_surface_run(o->source.problem, o->source.initial);
         if (!surface && o->view) throw InvalidInput("--view is for surfaces, not curves");
+        if (!surface && o->method.thin_depth)
+            throw InvalidInput("--thin-depth is for surfaces, not curves");
         const StopSignals signals;
         const std::vector<GivenOption> all = given_options(*cmd, {});
         const std::string id =

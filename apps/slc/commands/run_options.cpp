@@ -56,6 +56,10 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                    "eta: root-finding tolerance (default 1e-10, times the curves' half-width for "
                    "--initial; lowered to eps/10 when eps is below it)")
         ->check(positive_number());
+    cmd.add_option("--thin-depth", o.thin_depth,
+                   "For a surface: levels beyond K for cells where the zero set's two sides, or a "
+                   "sharp turn, lie within one cell (a problem's own; 0 for --initial)")
+        ->check(integer_in(0, 8));
     cmd.add_option("--rho", o.rho, "rho: pruning ratio in [0, 1) (default 0.1)")
         ->check(fraction_below_one());
     cmd.add_option("--mesh", o.mesh, "M: embedded mesh points per side (default 2^(K+1))")

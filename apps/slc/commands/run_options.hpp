@@ -23,6 +23,7 @@ struct MethodOptions {
     std::optional<int> refine;
     std::optional<double> eps;
     std::optional<double> eta;
+    std::optional<int> thin_depth;
     double rho = 0.1;
     std::optional<int> mesh;
     int eno_order = 3;

@@ -90,13 +90,17 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     const double surface_area = source.surface ? area(*source.surface) : 6.0 * width * width;
     check_octree_memory(fmt::format("--depth {}", r.depth), r.depth, surface_area, width,
                         surface_contour_bytes_per_cell);
-    nlohmann::json summary = {
-        {"command", "contour"},
-        {r.function.empty() ? "input" : "function", source.name},
-        {"domain",
-         {source.domain.lo.x, source.domain.lo.y, source.domain.lo.z, source.domain.hi.x,
-          source.domain.hi.y, source.domain.hi.z}},
-        {"params", {{"K", r.depth}, {"P", r.refine}, {"eta", r.eta}, {"threads", thread_count()}}}};
+    nlohmann::json summary = {{"command", "contour"},
+                              {r.function.empty() ? "input" : "function", source.name},
+                              {"domain",
+                               {source.domain.lo.x, source.domain.lo.y, source.domain.lo.z,
+                                source.domain.hi.x, source.domain.hi.y, source.domain.hi.z}},
+                              {"params",
+                               {{"K", r.depth},
+                                {"P", r.refine},
+                                {"eta", r.eta},
+                                {"thin_depth", r.thin_depth},
+                                {"threads", thread_count()}}}};
     OutputFolder folder(r.out, false);
     if (source.surface) {
         const int depth = r.tree_depth.value_or(
@@ -113,6 +117,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         .refine_passes = r.refine,
         .eps = r.eps,
         .eta = r.eta,
+        .thin_depth = r.thin_depth,
         .distance_slack = source.lipschitz ? std::optional(0.0) : std::nullopt};
     summary["params"]["eps"] = options.resolved_eps();
     // cpu_s and wall_s time the contour alone, evaluations of G included.
@@ -157,6 +162,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
                     {"converged", st.converged},
                     {"g_evals_per_vertex", st.g_evals_per_vertex},
                     {"perturbed", st.perturbed},
+                    {"thin_cells", st.thin_cells},
                     {"unconverged_roots", st.unconverged_roots}});
     std::optional<double> error;
     if (source.exact && !s.triangles.empty()) {

@@ -17,6 +17,7 @@ struct SurfaceContourRequest {
     int refine = 0;
     std::optional<double> eps;
     double eta = 1e-10;
+    int thin_depth = 0;
     DomainOptions domain;
     std::optional<int> tree_depth;
     std::string out;

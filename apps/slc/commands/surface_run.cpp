@@ -114,7 +114,8 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         options.steps = p.steps;
         options.step.contour = {.depth = p.depth,
                                 .refine_passes = SurfaceContourOptions::until_converged,
-                                .eps = p.eps};
+                                .eps = p.eps,
+                                .thin_depth = p.thin_depth};
     } else {
         one_velocity_law({{"--velocity", !r.velocity.empty()},
                           {"--speed", r.speed.has_value()},
@@ -136,6 +137,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     if (r.refine) options.step.contour.refine_passes = *r.refine;
     if (r.eps) options.step.contour.eps = *r.eps;
     if (r.eta) options.step.contour.eta = *r.eta;
+    if (r.thin_depth) options.step.contour.thin_depth = *r.thin_depth;
     if (r.tree_depth) options.step.tree_depth = *r.tree_depth;
     if (r.volume_correction) options.step.volume_correction = r.volume_correction;
     const SurfaceContourOptions& c = options.step.contour;
@@ -145,7 +147,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     }
     // A named problem's surface at the run's own K, P, ε and η when they are given: a run at
     // K = 7 starts from the contour at K = 7, not from the problem's coarser one.
-    if (!r.problem.empty() && (r.depth || r.refine || r.eps || r.eta))
+    if (!r.problem.empty() && (r.depth || r.refine || r.eps || r.eta || r.thin_depth))
         p.initial = initial_surface(p, c);
     // A user's surface as the steps read it (surface_as_read), contoured at the run's K and ε.
     if (r.problem.empty()) p.initial = surface_as_read(p.initial, p.domain, options);

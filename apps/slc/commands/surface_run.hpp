@@ -28,6 +28,7 @@ struct SurfaceRunRequest {
     std::optional<int> refine;
     std::optional<double> eps;
     std::optional<double> eta;
+    std::optional<int> thin_depth;
     std::optional<int> tree_depth;
     /// --area-correction / --no-area-correction: the volume correction of a law that keeps the
     /// volume (SurfaceStepOptions::volume_correction); unset, on for such laws.

@@ -44,6 +44,15 @@ struct SurfaceContourOptions {
     double eta = 1e-10;
     /// γ > 0: starting estimate of the gradient bound |∇G| ≤ γ, doubled until the tree balances.
     double gamma = 1.0;
+    /// Levels beyond K, 0..(max_tetrahedralized_depth − K), for cells at depth K near the zero
+    /// set where G bends within the cell — its centre nearer zero than the mean of the ends of a
+    /// body diagonal by more than a quarter of the half-diagonal, all three of one sign, which a
+    /// distance does not do on one side of a sheet curved less than about two cells: a thin part,
+    /// two sheets in near contact, a sharp edge or a tight curve. Such cells split again, up to
+    /// K + thin_depth, so that the linear contour has both sides of what it would otherwise miss
+    /// or cut across. 0 (the default) keeps every leaf at depth K or above; Enright's test,
+    /// whose sheet thins below a cell, takes 2 (docs/surfaces.md).
+    int thin_depth = 0;
     /// How brackets are shrunk.
     RootMethod root_method = RootMethod::brent;
     /// δ ≥ 0, when the caller can guarantee |G(x) − G(y)| ≤ |x − y| + δ for all x and y: 0 for a
@@ -62,6 +71,7 @@ struct SurfaceContourOptions {
 struct SurfaceContourStats {
     std::size_t cells = 0;           ///< cells of the topology octree, all levels
     std::size_t leaves = 0;          ///< leaves of the octree
+    std::size_t thin_cells = 0;      ///< cells split beyond K where G bends (thin_depth)
     std::size_t tetrahedra = 0;      ///< tetrahedra of its mesh
     std::size_t triangles = 0;       ///< triangles of the result
     std::size_t vertices = 0;        ///< vertices of the result

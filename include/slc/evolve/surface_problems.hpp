@@ -36,6 +36,7 @@ struct SurfaceProblem {
     int steps = 20;                           ///< N
     int depth = 5;                            ///< K
     double eps = 1e-4;                        ///< ε of refinement (until converged)
+    int thin_depth = 0;                       ///< SurfaceContourOptions::thin_depth of its steps
     /// The exact signed distance (or a function with the same zero set) at time t, NaN where the
     /// exact surface is not known at t; empty when it is never known.
     std::function<double(double t, Vec3 x)> exact;

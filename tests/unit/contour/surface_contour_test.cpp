@@ -131,6 +131,52 @@ TEST(SurfaceContour, ContoursTheExactDistanceOfABoxSurface) {
     EXPECT_NEAR(volume(got.surface), exact, 0.03 * exact);
     for (const Vec3 v : got.surface.vertices)
         EXPECT_LE(std::abs(tree.closest_point(v).distance), 1e-10);
+    // Two levels more along the sharp edges, whose grid points on the faces are perturbed all
+    // the same way: still one closed surface of the box's topology.
+    const SurfaceContour finer =
+        contour_surface(g, Box3::centered_cube(1.0), {.depth = 5, .thin_depth = 2});
+    EXPECT_GT(finer.stats.thin_cells, 0u);
+    EXPECT_TRUE(closed_and_oriented(finer.surface));
+    EXPECT_EQ(euler_characteristic(finer.surface), 2);
+    EXPECT_NEAR(volume(finer.surface), exact, 0.03 * exact);
+}
+
+TEST(SurfaceContour, ThinPartsSplitBeyondTheDepth) {
+    // A tilted disk of radius 0.6 thickened to t = 0.02, a third of a cell at K = 5 (edge 1/16):
+    // an exact signed distance. At depth K the tetrahedra miss most of it; with cells split two
+    // levels further where G bends it is one piece enclosing nearly its volume. A sphere, which
+    // bends far less, is left as it was.
+    const double radius = 0.6, t = 0.02;
+    const Vec3 centre{0.013, -0.021, 0.007};
+    const Vec3 axis = Vec3{0.3, -0.2, 0.93} / norm(Vec3{0.3, -0.2, 0.93});
+    const auto g = pointwise<Vec3>([&](Vec3 x) {
+        const Vec3 d = x - centre;
+        const double z = dot(d, axis);
+        return std::hypot(std::max(norm(d - z * axis) - radius, 0.0), z) - 0.5 * t;
+    });
+    const double exact =
+        pi * radius * radius * t + pi * pi * radius * t * t / 4 + pi * t * t * t / 6;
+    SurfaceContourOptions options{.depth = 5, .distance_slack = 0.0};
+    const SurfaceContour coarse = contour_surface(g, Box3::centered_cube(1.0), options);
+    EXPECT_EQ(coarse.stats.thin_cells, 0u);
+    EXPECT_LT(volume(coarse.surface), 0.6 * exact);
+    EXPECT_GT(component_count(coarse.surface), 1u);
+    options.thin_depth = 2;
+    const SurfaceContour fine = contour_surface(g, Box3::centered_cube(1.0), options);
+    EXPECT_GT(fine.stats.thin_cells, 0u);
+    EXPECT_TRUE(closed_and_oriented(fine.surface));
+    EXPECT_EQ(component_count(fine.surface), 1u);
+    EXPECT_NEAR(volume(fine.surface), exact, 0.05 * exact);
+    std::printf("disk: volume %.4g at K, %.4g with two levels more, exact %.4g\n",
+                volume(coarse.surface), volume(fine.surface), exact);
+
+    const auto sphere = sphere_g({0.011, 0.007, -0.013}, 0.55);
+    const SurfaceContour plain = contour_surface(sphere, Box3::centered_cube(1.0), {.depth = 5});
+    const SurfaceContour thin =
+        contour_surface(sphere, Box3::centered_cube(1.0), {.depth = 5, .thin_depth = 2});
+    EXPECT_EQ(thin.stats.thin_cells, 0u);
+    EXPECT_EQ(plain.surface.vertices, thin.surface.vertices);
+    EXPECT_EQ(plain.surface.triangles, thin.surface.triangles);
 }
 
 TEST(SurfaceContour, RefinementMeetsEpsAndKeepsTheSurfaceValid) {
@@ -302,7 +348,9 @@ TEST(SurfaceContour, DistanceSlackSkipsFarPointsAndChangesNothing) {
          [](Vec3 x) { return distance(x, {}) - 0.5 + 0.01 * std::sin(20.0 * x.x); }, 0.02, 4},
     };
     for (const Case& c : cases) {
-        SurfaceContourOptions options{.depth = c.depth, .refine_passes = 1, .eps = 1e-3};
+        // Cells split beyond K where G bends (the box's sharp edges) too.
+        SurfaceContourOptions options{
+            .depth = c.depth, .refine_passes = 1, .eps = 1e-3, .thin_depth = 2};
         const auto g = pointwise<Vec3>(c.g);
         const SurfaceContour all = contour_surface(g, Box3::centered_cube(1.0), options);
         options.distance_slack = c.slack;
