@@ -43,7 +43,8 @@ def slc_row(slc, work, setting, threads, reuse, figures):
             half = float(f[2])
     v0 = s["volume_initial"]
     return {
-        "method": f"slc K = {depth}, N = {steps}, ε = {eps}",
+        "method": f"slc K = {depth}, N = {steps}, ε = {eps}"
+                  + (f", thin depth {p['thin_depth']}" if p.get("thin_depth") else ""),
         "status": s["status"] + (f" at t = {s['t']:.3g}" if s["status"] != "ok" else ""),
         "half": None if half is None else half / v0 - 1,
         "change": s["volume_change"] if s["status"] == "ok" else None,

@@ -213,7 +213,8 @@ class SurfaceRunResult:
         return self.summary.get("e_inf")
 
 
-def _options(steps=None, depth=None, refine=None, eps=None, eta=None, area_correction=None):
+def _options(steps=None, depth=None, refine=None, eps=None, eta=None, thin_depth=None,
+             area_correction=None):
     from ._interface import _refine
     from ._run import _integer
 
@@ -223,6 +224,7 @@ def _options(steps=None, depth=None, refine=None, eps=None, eta=None, area_corre
     o.refine = None if refine is None else _refine(refine)
     o.eps = None if eps is None else float(eps)
     o.eta = None if eta is None else float(eta)
+    o.thin_depth = _integer("thin_depth", thin_depth)
     o.volume_correction = None if area_correction is None else bool(area_correction)
     return o
 
@@ -230,7 +232,7 @@ def _options(steps=None, depth=None, refine=None, eps=None, eta=None, area_corre
 def run_surface(p, frames: int, observer: Callable[[SurfaceStep], Any] | None, threads: int,
                 estimate: bool = False, **options) -> SurfaceRunResult:
     """Runs the _slc.SurfaceProblem p with the options set (steps, depth, refine, eps, eta,
-    area_correction: the volume correction);
+    thin_depth, area_correction: the volume correction);
     estimate: run it again at half resolution and add summary["error_estimate"]."""
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
         raise TypeError(f"frames must be an integer, got {frames!r}")

@@ -36,10 +36,10 @@ struct SurfaceSubject {
     double t_start = 0.0;
 };
 
-/// The options a caller set (None for unset): steps, depth, refine, eps, eta, and the volume
-/// correction (area_correction).
+/// The options a caller set (None for unset): steps, depth, refine, eps, eta, thin_depth, and
+/// the volume correction (area_correction).
 struct SurfaceOverrides {
-    std::optional<int> steps, depth, refine;
+    std::optional<int> steps, depth, refine, thin_depth;
     std::optional<double> eps, eta;
     std::optional<bool> volume_correction;
 };
@@ -85,6 +85,12 @@ SurfaceRunOptions resolve(const SurfaceSubject& s, const SurfaceOverrides& q) {
     }
     if (q.eps) c.eps = *q.eps;
     if (q.eta) c.eta = *q.eta;
+    if (q.thin_depth) {
+        if (*q.thin_depth < 0 || *q.thin_depth > 8)
+            throw InvalidInput(
+                fmt::format("thin_depth must be from 0 to 8, got {}", *q.thin_depth));
+        c.thin_depth = *q.thin_depth;
+    }
     if (q.volume_correction) o.step.volume_correction = q.volume_correction;
     if (c.resolved_eps() < c.eta) {
         throw InvalidInput(
@@ -93,9 +99,11 @@ SurfaceRunOptions resolve(const SurfaceSubject& s, const SurfaceOverrides& q) {
     return o;
 }
 
-/// True when the caller set any of K, P, ε, η: a named problem's surface is then contoured
-/// again with them (as `slc run --problem NAME -K k` does).
-bool sets_contour(const SurfaceOverrides& q) { return q.depth || q.refine || q.eps || q.eta; }
+/// True when the caller set any of K, P, ε, η or the thin depth: a named problem's surface is
+/// then contoured again with them (as `slc run --problem NAME -K k` does).
+bool sets_contour(const SurfaceOverrides& q) {
+    return q.depth || q.refine || q.eps || q.eta || q.thin_depth;
+}
 
 /// The history of a run of a surface: t, volume, area, triangles, components, cpu_s per row.
 struct SurfaceHistory {
@@ -357,6 +365,7 @@ void add_surface_functions(py::module_& m) {
         .def_readwrite("refine", &SurfaceOverrides::refine)
         .def_readwrite("eps", &SurfaceOverrides::eps)
         .def_readwrite("eta", &SurfaceOverrides::eta)
+        .def_readwrite("thin_depth", &SurfaceOverrides::thin_depth)
         .def_readwrite("volume_correction", &SurfaceOverrides::volume_correction);
     py::class_<SurfaceSubject, std::shared_ptr<SurfaceSubject>>(m, "SurfaceProblem")
         .def_property_readonly("name", [](const SurfaceSubject& s) { return s.problem.name; })
@@ -374,6 +383,7 @@ void add_surface_functions(py::module_& m) {
                                    d["depth"] = s.problem.depth;
                                    d["refine"] = "converged";
                                    d["eps"] = s.problem.eps;
+                                   d["thin_depth"] = s.problem.thin_depth;
                                    return d;
                                })
         .def_property_readonly("domain",

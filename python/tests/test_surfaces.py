@@ -100,6 +100,7 @@ def test_a_named_problem_of_surfaces_runs_and_reports_its_error():
     p = slc.problem("sphere-rotation")
     assert isinstance(p, slc.SurfaceProblem) and p.has_exact and p.t_end == pytest.approx(2 * math.pi)
     assert "sphere-rotation" in slc.problems() and "enright" in slc.velocities(3)
+    assert p.settings["thin_depth"] == 0 and slc.problem("enright").settings["thin_depth"] == 2
     r = slc.run(p, t_end=math.pi / 2, steps=4, depth=4, eps=1e-3, frames=2)
     assert r.status == "ok" and len(r.frames) == 3
     assert r.e_inf is not None and r.e_inf < 3e-3  # measured 1.0e-3 at eps = 1e-3
@@ -139,6 +140,23 @@ def test_contours_left_beyond_eps_at_sharp_edges_are_reported():
         r = slc.run(box, "rotation", 0.5, steps=2, depth=4, eps=1e-3)
     assert r.status == "ok"
     assert r.summary["unconverged_steps"] == 2 and r.summary["largest_residual"] > 2e-3
+
+
+def test_thin_depth_splits_cells_beyond_the_depth_for_surfaces_only():
+    corners = [(x, y, z) for z in (-0.35, 0.35) for y in (-0.3, 0.3) for x in (-0.4, 0.4)]
+    faces = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4), (2, 6, 7),
+             (2, 7, 3), (0, 4, 6), (0, 6, 2), (1, 3, 7), (1, 7, 5)]
+    box = slc.Surface(np.array(corners), np.array(faces))
+    with pytest.warns(UserWarning):
+        plain = slc.run(box, "rotation", 0.5, steps=1, depth=4, eps=1e-3)
+        thin = slc.run(box, "rotation", 0.5, steps=1, depth=4, eps=1e-3, thin_depth=2)
+    assert plain.summary["params"]["thin_depth"] == 0
+    assert thin.summary["params"]["thin_depth"] == 2
+    assert len(thin.surface) > len(plain.surface)  # finer along the sharp edges
+    with pytest.raises(ValueError, match="thin_depth is for surfaces, not curves"):
+        slc.run(slc.problem("vortex"), thin_depth=2)
+    with pytest.raises(ValueError, match="thin_depth must be from 0 to 8, got 9"):
+        slc.run(box, "rotation", 0.5, steps=1, depth=4, eps=1e-3, thin_depth=9)
 
 
 def test_the_domain_of_a_users_surface_grows_as_it_moves_away():
