@@ -178,9 +178,8 @@ public:
     /// half-diagonal. A distance is linear along a segment on one side of a plane and bends by
     /// about h²/(2R) near a sheet of radius R: a dip this large means the sheet turns within the
     /// cell or its other side is there too. Only cells the zero set may meet are tested (the
-    /// centre's |G| at most the half-diagonal). From the samples' bounds:
-    /// unsure when stand-ins leave it open; the stand-ins that would settle it are then
-    /// appended to `wanted`.
+    /// centre's |G| at most the half-diagonal). From the samples' bounds: unsure when stand-ins
+    /// leave it open, and then the stand-ins that would settle it are appended to `wanted`.
     Bend bends(std::uint32_t c, std::vector<std::uint32_t>& wanted) const {
         const auto& ids = ids_[c];
         const Sample& m = samples_[ids[8]];
@@ -195,7 +194,6 @@ public:
         for (int k = 0; k < 4; ++k) {
             const Sample& a = samples_[ids[k]];
             const Sample& b = samples_[ids[7 - k]];
-            if ((a.value > 0.0) != (m.value > 0.0) || (b.value > 0.0) != (m.value > 0.0)) continue;
             if ((a.value > 0.0) != (m.value > 0.0) || (b.value > 0.0) != (m.value > 0.0)) continue;
             // |G| ≥ |value| and ≤ upper at each point, with the value's sign.
             const double least = 0.5 * (std::abs(a.value) + std::abs(b.value)) - m.upper;
