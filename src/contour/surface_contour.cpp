@@ -362,18 +362,22 @@ std::size_t split_thin(Octree& tree, TreeSampler& sampler, double gamma, int lim
             frontier.push_back(c);
     std::size_t split = 0;
     while (!frontier.empty() && tree.cell(frontier.front()).level < tree.max_depth()) {
-        // Stand-ins that leave a cell unsure are evaluated, a batch a round, until none does.
-        std::vector<std::uint32_t> unsure = frontier;
+        // Stand-ins that leave a cell unsure are evaluated, a batch a round, until none does;
+        // the cells that bend split in the frontier's order.
+        std::vector<std::uint32_t> bent, unsure = frontier;
         while (!unsure.empty()) {
             std::vector<std::uint32_t> wanted, still;
-            for (std::uint32_t c : unsure)
-                if (sampler.bends(c, wanted) == Bend::unsure) still.push_back(c);
+            for (std::uint32_t c : unsure) {
+                const Bend b = sampler.bends(c, wanted);
+                if (b == Bend::yes) bent.push_back(c);
+                if (b == Bend::unsure) still.push_back(c);
+            }
             sampler.make_exact(std::move(wanted), still);
             unsure = std::move(still);
         }
-        std::vector<std::uint32_t> next, none;
-        for (std::uint32_t c : frontier) {
-            if (sampler.bends(c, none) != Bend::yes) continue;
+        std::sort(bent.begin(), bent.end());
+        std::vector<std::uint32_t> next;
+        for (std::uint32_t c : bent) {
             const std::uint32_t first = tree.split(c);
             for (std::uint32_t k = 0; k < 8; ++k) next.push_back(first + k);
             ++split;

@@ -70,15 +70,16 @@ struct Edges {
             },
             1);
         // The edges of a closed surface pair its half-edges, so vertex v numbers
-        // (start[v + 1] − start[v]) / 2 edges, from edge_start[v].
-        std::vector<std::uint32_t> start(vertices + 1, 0), edge_start(vertices + 1, 0);
+        // (start[v + 1] − start[v]) / 2 edges, from first_of[v].
+        std::vector<std::uint32_t> start(vertices + 1, 0);
+        first_of.assign(vertices + 1, 0);
         for (std::size_t v = 0; v < vertices; ++v) {
             std::uint32_t at = start[v];
             for (std::size_t p = 0; p < parts; ++p) std::swap(at, fill[p][v]), at += fill[p][v];
             start[v + 1] = at;
             SLC_ASSERT((at - start[v]) % 2 == 0,
                        "every edge of a closed surface has two triangles");
-            edge_start[v + 1] = edge_start[v] + (at - start[v]) / 2;
+            first_of[v + 1] = first_of[v] + (at - start[v]) / 2;
         }
         std::vector<std::pair<std::uint32_t, std::uint32_t>> halves(3 * n);  // (hi, half-edge)
         parallel_for(
@@ -92,15 +93,14 @@ struct Edges {
             },
             1);
         of_triangle.resize(n);
-        ends.resize(edge_start[vertices]);
-        triangles.resize(edge_start[vertices]);
-        first_of = edge_start;
+        ends.resize(first_of[vertices]);
+        triangles.resize(first_of[vertices]);
         // Each vertex's edges in order of their other end, on all threads: the same numbering
         // as one thread gives.
         parallel_for(vertices, [&](std::size_t v) {
             const auto first = halves.begin() + start[v], last = halves.begin() + start[v + 1];
             std::sort(first, last);
-            std::uint32_t e = edge_start[v];
+            std::uint32_t e = first_of[v];
             for (auto it = first; it != last; it += 2, ++e) {
                 SLC_ASSERT(it->first == (it + 1)->first,
                            "every edge of a closed surface has two triangles");
@@ -210,18 +210,12 @@ double corner_angle(const Surface& s, const TriangleIndices& t, int k) {
 std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
     constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
     const Edges edges(s);
-    // Triangles around each vertex (CSR).
-    std::vector<std::uint32_t> start(s.vertices.size() + 1, 0), around(3 * s.size());
-    for (const TriangleIndices& t : s.triangles)
-        for (const std::uint32_t v : t) ++start[v + 1];
-    for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
-    {
-        std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-        for (std::uint32_t t = 0; t < s.size(); ++t)
-            for (const std::uint32_t v : s.triangles[t]) around[fill[v]++] = t;
-    }
+    // Triangles around each vertex, in order: its corners' triangles.
+    VertexCorners around = vertex_corners(s);
+    for (std::uint32_t& c : around.corners) c /= 3;
     auto ring = [&](std::uint32_t v) {
-        return std::span<const std::uint32_t>(around.data() + start[v], start[v + 1] - start[v]);
+        return std::span<const std::uint32_t>(around.corners.data() + around.start[v],
+                                              around.start[v + 1] - around.start[v]);
     };
     // Which edges are needles, on all threads: the test reads only the vertices and the edge
     // table of the round's start, which the collapses below leave as they are.

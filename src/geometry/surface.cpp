@@ -71,6 +71,19 @@ std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s) 
     return out;
 }
 
+VertexCorners vertex_corners(const Surface& s) {
+    VertexCorners out;
+    out.start.assign(s.vertices.size() + 1, 0);
+    out.corners.resize(3 * s.size());
+    for (const TriangleIndices& tri : s.triangles)
+        for (const std::uint32_t v : tri) ++out.start[v + 1];
+    for (std::size_t v = 0; v + 1 < out.start.size(); ++v) out.start[v + 1] += out.start[v];
+    std::vector<std::uint32_t> fill(out.start.begin(), out.start.end() - 1);
+    for (std::size_t c = 0; c < 3 * s.size(); ++c)
+        out.corners[fill[s.triangles[c / 3][c % 3]]++] = static_cast<std::uint32_t>(c);
+    return out;
+}
+
 std::vector<std::uint32_t> component_labels(const Surface& s) {
     const auto neighbours = triangle_neighbours(s);
     constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
@@ -150,20 +163,13 @@ PseudoNormals pseudo_normals(const Surface& s) {
         angle[t] = {std::atan2(twice_area, -dot(ab, ca)), std::atan2(twice_area, -dot(bc, ab)),
                     std::atan2(twice_area, -dot(ca, bc))};
     });
-    // The corners at each vertex (CSR, in triangle order).
-    std::vector<std::uint32_t> start(s.vertices.size() + 1, 0), corners(3 * s.size());
-    for (const TriangleIndices& tri : s.triangles)
-        for (const std::uint32_t v : tri) ++start[v + 1];
-    for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
-    {
-        std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-        for (std::size_t c = 0; c < 3 * s.size(); ++c)
-            corners[fill[s.triangles[c / 3][c % 3]]++] = static_cast<std::uint32_t>(c);
-    }
+    const VertexCorners at = vertex_corners(s);
     parallel_for(s.vertices.size(), [&](std::size_t v) {
         Vec3 sum{};
-        for (std::uint32_t i = start[v]; i < start[v + 1]; ++i)
-            sum += angle[corners[i] / 3][corners[i] % 3] * n.face[corners[i] / 3];
+        for (std::uint32_t i = at.start[v]; i < at.start[v + 1]; ++i) {
+            const std::uint32_t c = at.corners[i];
+            sum += angle[c / 3][c % 3] * n.face[c / 3];
+        }
         n.vertex[v] = sum;
     });
     const auto neighbours = triangle_neighbours(s);

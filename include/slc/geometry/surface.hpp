@@ -51,6 +51,14 @@ Box3 bounding_box(const Surface& s);
 /// O(N + V) for V vertices.
 std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s);
 
+/// The corners at each vertex, in triangle order: vertex v's corners 3t + k (corner k of
+/// triangle t) are corners[start[v]] to corners[start[v + 1] − 1]. O(N + V).
+struct VertexCorners {
+    std::vector<std::uint32_t> start;    ///< V + 1 offsets
+    std::vector<std::uint32_t> corners;  ///< 3N corner numbers
+};
+VertexCorners vertex_corners(const Surface& s);
+
 /// The component of each triangle, numbered 0, 1, ... in order of first triangle.
 /// Precondition: as triangle_neighbours. O(N + V).
 std::vector<std::uint32_t> component_labels(const Surface& s);
