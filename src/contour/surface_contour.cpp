@@ -17,6 +17,8 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
+#include "slc/geometry/surface.hpp"
+#include "slc/geometry/triangle3.hpp"
 #include "slc/tree/octree.hpp"
 #include "slc/tree/tetrahedralization.hpp"
 #include "surface_stages.hpp"
@@ -419,6 +421,42 @@ bool on_boundary(const std::array<std::uint32_t, 3>& p, std::uint32_t extent) {
     return false;
 }
 
+/// Drops the closed components of s smaller than `size` across (the largest extent of their
+/// box), and the vertices only they used. Returns the components dropped.
+std::size_t drop_specks(Surface& s, double size) {
+    if (s.triangles.empty()) return 0;
+    const std::vector<std::uint32_t> label = component_labels(s);
+    const std::size_t count = *std::max_element(label.begin(), label.end()) + 1;
+    std::vector<Box3> boxes(count, Box3::empty());
+    for (std::size_t t = 0; t < s.size(); ++t)
+        boxes[label[t]] = unite(boxes[label[t]], bounding_box(s.triangle(t)));
+    std::vector<std::uint8_t> speck(count, 0);
+    std::size_t dropped = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+        const Vec3 extent = boxes[c].hi - boxes[c].lo;
+        speck[c] = std::max({extent.x, extent.y, extent.z}) < size ? 1 : 0;
+        dropped += speck[c];
+    }
+    if (dropped == 0) return 0;
+    std::vector<TriangleIndices> kept;
+    for (std::size_t t = 0; t < s.size(); ++t)
+        if (!speck[label[t]]) kept.push_back(s.triangles[t]);
+    s.triangles = std::move(kept);
+    std::vector<std::uint32_t> renumber(s.vertices.size(), 0);
+    for (const TriangleIndices& t : s.triangles)
+        for (const std::uint32_t v : t) renumber[v] = 1;
+    std::uint32_t used = 0;
+    for (std::size_t v = 0; v < s.vertices.size(); ++v) {
+        if (!renumber[v]) continue;
+        s.vertices[used] = s.vertices[v];
+        renumber[v] = used++;
+    }
+    s.vertices.resize(used);
+    for (TriangleIndices& t : s.triangles)
+        for (std::uint32_t& v : t) v = renumber[v];
+    return dropped;
+}
+
 /// The even permutations of a positively oriented tetrahedron that start with each vertex:
 /// the other three in an order that keeps the orientation.
 constexpr int others[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
@@ -649,6 +687,11 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
         }
     }
     out.surface.triangles = std::move(triangles);
+    // Beside a convex corner, where thin cells are finer than their neighbours, a mesh vertex
+    // just inside the corner can have no neighbour inside: the linear zero set closes a speck
+    // around it, apart from the rest of the corner. A component less than a finest cell across
+    // is below what the mesh resolves: dropped (only where cells went beyond K).
+    if (stats.thin_cells > 0) stats.specks = drop_specks(out.surface, tree.edge(tree.depth()));
     if (options.refine_passes != 0 && !out.surface.triangles.empty()) {
         const Evaluator refine_g(g, stats.g_evals_refine);
         const contouring::SurfaceRefinement r = contouring::refine_surface(

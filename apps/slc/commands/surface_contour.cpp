@@ -163,6 +163,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
                     {"g_evals_per_vertex", st.g_evals_per_vertex},
                     {"perturbed", st.perturbed},
                     {"thin_cells", st.thin_cells},
+                    {"specks", st.specks},
                     {"unconverged_roots", st.unconverged_roots}});
     std::optional<double> error;
     if (source.exact && !s.triangles.empty()) {

@@ -69,9 +69,12 @@ struct SurfaceContourOptions {
 
 /// What a surface contour cost and what it produced.
 struct SurfaceContourStats {
-    std::size_t cells = 0;           ///< cells of the topology octree, all levels
-    std::size_t leaves = 0;          ///< leaves of the octree
-    std::size_t thin_cells = 0;      ///< cells split beyond K where G bends (thin_depth)
+    std::size_t cells = 0;       ///< cells of the topology octree, all levels
+    std::size_t leaves = 0;      ///< leaves of the octree
+    std::size_t thin_cells = 0;  ///< cells split beyond K where G bends (thin_depth)
+    /// Closed components of the linear contour less than a finest cell across, dropped when
+    /// cells went beyond K (a speck beside a convex corner).
+    std::size_t specks = 0;
     std::size_t tetrahedra = 0;      ///< tetrahedra of its mesh
     std::size_t triangles = 0;       ///< triangles of the result
     std::size_t vertices = 0;        ///< vertices of the result
