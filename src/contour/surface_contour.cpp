@@ -442,18 +442,7 @@ std::size_t drop_specks(Surface& s, double size) {
     for (std::size_t t = 0; t < s.size(); ++t)
         if (!speck[label[t]]) kept.push_back(s.triangles[t]);
     s.triangles = std::move(kept);
-    std::vector<std::uint32_t> renumber(s.vertices.size(), 0);
-    for (const TriangleIndices& t : s.triangles)
-        for (const std::uint32_t v : t) renumber[v] = 1;
-    std::uint32_t used = 0;
-    for (std::size_t v = 0; v < s.vertices.size(); ++v) {
-        if (!renumber[v]) continue;
-        s.vertices[used] = s.vertices[v];
-        renumber[v] = used++;
-    }
-    s.vertices.resize(used);
-    for (TriangleIndices& t : s.triangles)
-        for (std::uint32_t& v : t) v = renumber[v];
+    drop_unused_vertices(s);
     return dropped;
 }
 

@@ -692,19 +692,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         result.splits += splits;
         ++result.passes;
     }
-    // The vertices collapses left unused are dropped, the others keeping their order.
-    std::vector<std::uint32_t> renumber(s.vertices.size(), 0);
-    for (const TriangleIndices& t : s.triangles)
-        for (const std::uint32_t v : t) renumber[v] = 1;
-    std::uint32_t used = 0;
-    for (std::size_t v = 0; v < s.vertices.size(); ++v) {
-        if (!renumber[v]) continue;
-        s.vertices[used] = s.vertices[v];
-        renumber[v] = used++;
-    }
-    s.vertices.resize(used);
-    for (TriangleIndices& t : s.triangles)
-        for (std::uint32_t& v : t) v = renumber[v];
+    drop_unused_vertices(s);  // those collapses left
     return result;
 }
 

@@ -71,6 +71,21 @@ std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s) 
     return out;
 }
 
+void drop_unused_vertices(Surface& s) {
+    std::vector<std::uint32_t> renumber(s.vertices.size(), 0);
+    for (const TriangleIndices& t : s.triangles)
+        for (const std::uint32_t v : t) renumber[v] = 1;
+    std::uint32_t used = 0;
+    for (std::size_t v = 0; v < s.vertices.size(); ++v) {
+        if (!renumber[v]) continue;
+        s.vertices[used] = s.vertices[v];
+        renumber[v] = used++;
+    }
+    s.vertices.resize(used);
+    for (TriangleIndices& t : s.triangles)
+        for (std::uint32_t& v : t) v = renumber[v];
+}
+
 VertexCorners vertex_corners(const Surface& s) {
     VertexCorners out;
     out.start.assign(s.vertices.size() + 1, 0);

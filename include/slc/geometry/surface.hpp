@@ -59,6 +59,9 @@ struct VertexCorners {
 };
 VertexCorners vertex_corners(const Surface& s);
 
+/// Removes the vertices no triangle uses; the others keep their order.
+void drop_unused_vertices(Surface& s);
+
 /// The component of each triangle, numbered 0, 1, ... in order of first triangle.
 /// Precondition: as triangle_neighbours. O(N + V).
 std::vector<std::uint32_t> component_labels(const Surface& s);
