@@ -46,9 +46,8 @@ bool nearer_than_edge(const Triangle3& t, const Box3& box, Vec3 n, const Box3& b
 class Bricks {
 public:
     struct Brick {
-        std::uint64_t present = 0;              ///< the positions holding a cell of the level
-        std::uint64_t stored = 0;               ///< the cells whose lists are kept
-        std::array<std::uint32_t, 64> count{};  ///< list lengths, then write positions
+        std::uint64_t present = 0;  ///< the positions holding a cell of the level
+        std::uint64_t stored = 0;   ///< the cells whose lists are kept
     };
 
     Bricks(const Octree& tree, std::size_t begin, std::size_t end) {
@@ -82,6 +81,12 @@ public:
     Brick* at(const Octree::Cell& cell, bool add = false) {
         return find(cell.ix >> 2, cell.iy >> 2, cell.iz >> 2, add);
     }
+
+    /// The number of the brick b, from 0 to size() − 1.
+    std::size_t index(const Brick& b) const {
+        return static_cast<std::size_t>(&b - bricks_.data());
+    }
+    std::size_t size() const { return bricks_.size(); }
 
     static unsigned bit(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
         return (x & 3u) + 4u * (y & 3u) + 16u * (z & 3u);
@@ -263,37 +268,60 @@ void SurfaceDistanceTree::bin_lists(std::size_t begin, std::size_t end) {
                     if (m != 0) f(*brick, m);
                 }
     };
-    // First pass: the lengths of the lists.
+    // The counting sort in parts of the triangles, one a thread: each part counts its
+    // triangles into each cell's list, and writes them after the parts before it, so every list
+    // holds its triangles in increasing order whatever the number of parts.
     const auto n = static_cast<std::uint32_t>(corners_.size());
-    for (std::uint32_t t = 0; t < n; ++t) {
-        for_each_brick(t, [&](Bricks::Brick& brick, std::uint64_t m) {
-            for (std::uint64_t k = m; k != 0; k &= k - 1) ++brick.count[std::countr_zero(k)];
+    const std::size_t parts = static_cast<std::size_t>(std::max(1, thread_count()));
+    // count[p][brick][position]: part p's triangles in the list of that cell, then where part p
+    // writes the next of them.
+    std::vector<std::vector<std::array<std::uint32_t, 64>>> count(
+        parts, std::vector<std::array<std::uint32_t, 64>>(bricks.size()));
+    // visit(part's counts of the brick, brick, mask, t) for each brick of each triangle t, the
+    // parts on all threads.
+    auto each_part = [&](auto&& visit) {
+        parallel_for(
+            parts,
+            [&](std::size_t p) {
+                const auto first = static_cast<std::uint32_t>(n * p / parts),
+                           last = static_cast<std::uint32_t>(n * (p + 1) / parts);
+                for (std::uint32_t t = first; t < last; ++t) {
+                    for_each_brick(t, [&](Bricks::Brick& brick, std::uint64_t m) {
+                        visit(count[p][bricks.index(brick)], brick, m, t);
+                    });
+                }
+            },
+            1);
+    };
+    each_part(
+        [](std::array<std::uint32_t, 64>& c, const Bricks::Brick&, std::uint64_t m, std::uint32_t) {
+            for (std::uint64_t k = m; k != 0; k &= k - 1) ++c[std::countr_zero(k)];
         });
-    }
     // The lists short enough to keep are placed in cell order; the others are never written.
     SLC_ASSERT(offsets_.size() == begin + 1 && end == tree_.size(), "lists follow cell order");
     listed_.resize(tree_.size(), 0);
     for (std::size_t c = begin; c < end; ++c) {
         const Octree::Cell& cell = tree_.cell(c);
         Bricks::Brick& brick = *bricks.at(cell);
+        const std::size_t i = bricks.index(brick);
         const unsigned b = Bricks::bit(cell.ix, cell.iy, cell.iz);
-        const std::uint32_t m = brick.count[b];
+        std::uint64_t m = 0;
+        for (std::size_t p = 0; p < parts; ++p) m += count[p][i][b];
         const bool stored = m <= longest_scanned_list;
-        SLC_ASSERT(!stored || offsets_.back() + std::uint64_t{m} <= 0xffffffffu,
-                   "lists fit 32-bit offsets");
+        SLC_ASSERT(!stored || offsets_.back() + m <= 0xffffffffu, "lists fit 32-bit offsets");
         if (stored) brick.stored |= std::uint64_t{1} << b;
-        brick.count[b] = offsets_.back();  // where its list starts
-        offsets_.push_back(offsets_.back() + (stored ? m : 0));
+        std::uint32_t at = offsets_.back();  // where its list starts
+        for (std::size_t p = 0; p < parts; ++p) std::swap(at, count[p][i][b]), at += count[p][i][b];
+        offsets_.push_back(offsets_.back() + (stored ? static_cast<std::uint32_t>(m) : 0));
         listed_[c] = stored ? 1 : 0;
     }
-    // Second pass: each triangle to the kept lists, so each in increasing triangle order.
+    // Second pass: each part's triangles to the kept lists.
     triangles_.resize(offsets_.back());
-    for (std::uint32_t t = 0; t < n; ++t) {
-        for_each_brick(t, [&](Bricks::Brick& brick, std::uint64_t m) {
-            for (std::uint64_t k = m & brick.stored; k != 0; k &= k - 1)
-                triangles_[brick.count[std::countr_zero(k)]++] = t;
-        });
-    }
+    each_part([&](std::array<std::uint32_t, 64>& c, const Bricks::Brick& brick, std::uint64_t m,
+                  std::uint32_t t) {
+        for (std::uint64_t k = m & brick.stored; k != 0; k &= k - 1)
+            triangles_[c[std::countr_zero(k)]++] = t;
+    });
 }
 
 NearestFacet SurfaceDistanceTree::nearest_facet(Vec3 x) const {

@@ -24,19 +24,29 @@ std::vector<typename Space<dim>::Point> runge_kutta_feet(
     std::span<const typename Space<dim>::Point> xs, int substeps) {
     const std::size_t m = xs.size();
     const double h = k / substeps, half = 0.5 * h;
-    std::vector<typename Space<dim>::Point> x(xs.begin(), xs.end()), y(m);
+    using Point = typename Space<dim>::Point;
+    // v the latest stage's velocities, sum the stages' velocities k1 + 2 k2 + 2 k3 + k4 added in
+    // that order.
+    std::vector<Point> x(xs.begin(), xs.end()), y(m), v(m), sum(m);
     for (int s = substeps; s > 0; --s) {
         const double top = t + s * h;  // this substep goes from top back to top − h
-        const auto k1 = field_velocities(law, top, x);
-        parallel_for(m, [&](std::size_t i) { y[i] = x[i] - half * k1[i]; });
-        const auto k2 = field_velocities(law, top - half, y);
-        parallel_for(m, [&](std::size_t i) { y[i] = x[i] - half * k2[i]; });
-        const auto k3 = field_velocities(law, top - half, y);
-        parallel_for(m, [&](std::size_t i) { y[i] = x[i] - h * k3[i]; });
-        const auto k4 = field_velocities(law, top - h, y);
+        field_velocities(law, top, std::span<const Point>(x), std::span<Point>(v));
         parallel_for(m, [&](std::size_t i) {
-            x[i] -= (h / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+            sum[i] = v[i];
+            y[i] = x[i] - half * v[i];
         });
+        field_velocities(law, top - half, std::span<const Point>(y), std::span<Point>(v));
+        parallel_for(m, [&](std::size_t i) {
+            sum[i] = sum[i] + 2.0 * v[i];
+            y[i] = x[i] - half * v[i];
+        });
+        field_velocities(law, top - half, std::span<const Point>(y), std::span<Point>(v));
+        parallel_for(m, [&](std::size_t i) {
+            sum[i] = sum[i] + 2.0 * v[i];
+            y[i] = x[i] - h * v[i];
+        });
+        field_velocities(law, top - h, std::span<const Point>(y), std::span<Point>(v));
+        parallel_for(m, [&](std::size_t i) { x[i] -= (h / 6.0) * (sum[i] + v[i]); });
     }
     return x;
 }

@@ -66,25 +66,33 @@ public:
         std::vector<Vec3> weighted = tree_.normals().vertex;
         for (Vec3& n : weighted)
             if (const double length = norm(n); length > 0.0) n = n / length;
-        corner_.assign(surface.vertices.size(), 0);
         const std::vector<Vec3>& face = tree_.normals().face;
         const double limit = std::cos(corner_angle);
-        for (std::size_t f = 0; f < surface.triangles.size(); ++f)
-            for (const std::uint32_t v : surface.triangles[f])
-                if (dot(face[f], weighted[v]) < limit) corner_[v] = 1;
+        const std::size_t n = surface.triangles.size();
+        std::vector<std::uint8_t> turned(n);  // bit c: corner c turns from the face
+        parallel_for(n, [&](std::size_t f) {
+            unsigned bits = 0;
+            for (int c = 0; c < 3; ++c)
+                if (dot(face[f], weighted[surface.triangles[f][c]]) < limit) bits |= 1u << c;
+            turned[f] = static_cast<std::uint8_t>(bits);
+        });
+        corner_.assign(surface.vertices.size(), 0);
+        for (std::size_t f = 0; f < n; ++f)
+            for (int c = 0; c < 3; ++c)
+                if (turned[f] >> c & 1u) corner_[surface.triangles[f][c]] = 1;
         const VertexRings rings = vertex_rings(surface);
-        for (std::size_t v = 0; v < surface.vertices.size(); ++v) {
+        parallel_for(surface.vertices.size(), [&](std::size_t v) {
             bool near = corner_[v] != 0;
             for (const std::uint32_t w : rings.of(v)) {
                 near = near || corner_[w];
                 for (const std::uint32_t u : rings.of(w)) near = near || corner_[u];
             }
             if (near) normals_[v] = weighted[v];
-        }
+        });
         if (options.patches) {
             const double patch_limit = std::cos(patch_angle);
-            bulge_.resize(surface.triangles.size());
-            for (std::size_t f = 0; f < surface.triangles.size(); ++f) {
+            bulge_.resize(n);
+            parallel_for(n, [&](std::size_t f) {
                 const TriangleIndices& tri = surface.triangles[f];
                 for (int e = 0; e < 3; ++e) {
                     const std::uint32_t a = tri[e], b = tri[(e + 1) % 3];
@@ -95,9 +103,10 @@ public:
                     bulge_[f][e] = flat ? 0.0
                                         : 0.5 * dot(normals_[b] - normals_[a],
                                                     surface.vertices[b] - surface.vertices[a]);
-                    max_bulge_ = std::max(max_bulge_, std::abs(bulge_[f][e]) / 3.0);
                 }
-            }
+            });
+            for (const std::array<double, 3>& beta : bulge_)
+                for (const double b : beta) max_bulge_ = std::max(max_bulge_, std::abs(b) / 3.0);
         }
     }
 

@@ -57,7 +57,7 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
         }
         keyed[t] = {code, t};
     });
-    std::sort(keyed.begin(), keyed.end());
+    parallel_sort(keyed.begin(), keyed.end());  // the keys are unique: (code, index)
     order_.resize(n);
     for (std::uint32_t k = 0; k < n; ++k) order_[k] = keyed[k].second;
     nodes_.reserve(2 * (n / leaf_size + 1));

@@ -120,31 +120,30 @@ std::vector<double> gaussian_mean(const Surface& s, const VertexRings& rings,
 
 VertexRings vertex_rings(const Surface& s) {
     const std::size_t nv = s.vertices.size();
+    // Each vertex's neighbours from its corners, sorted, each kept once (an edge of a closed
+    // surface is met from both its triangles): every vertex on its own, on all threads.
+    const VertexCorners around = vertex_corners(s);
+    std::vector<std::uint32_t> all(2 * around.corners.size());
     VertexRings r;
     r.start.assign(nv + 1, 0);
-    for (const TriangleIndices& t : s.triangles)
-        for (const std::uint32_t v : t) r.start[v + 1] += 2;
-    for (std::size_t i = 0; i < nv; ++i) r.start[i + 1] += r.start[i];
-    std::vector<std::uint32_t> all(r.start[nv]);
-    std::vector<std::size_t> fill(r.start.begin(), r.start.end() - 1);
-    for (const TriangleIndices& t : s.triangles) {
-        for (int k = 0; k < 3; ++k) {
-            all[fill[t[k]]++] = t[(k + 1) % 3];
-            all[fill[t[k]]++] = t[(k + 2) % 3];
+    parallel_for(nv, [&](std::size_t v) {
+        const auto first = all.begin() + 2 * static_cast<std::ptrdiff_t>(around.start[v]);
+        auto out = first;
+        for (std::uint32_t i = around.start[v]; i < around.start[v + 1]; ++i) {
+            const std::uint32_t c = around.corners[i];
+            const TriangleIndices& t = s.triangles[c / 3];
+            *out++ = t[(c + 1) % 3];
+            *out++ = t[(c + 2) % 3];
         }
-    }
-    // Each edge of a closed surface is met from both its triangles: sort each row, keep one.
-    std::vector<std::size_t> kept(nv + 1, 0);
-    r.ring.reserve(all.size() / 2);
-    for (std::size_t i = 0; i < nv; ++i) {
-        const auto first = all.begin() + static_cast<std::ptrdiff_t>(r.start[i]);
-        const auto last = all.begin() + static_cast<std::ptrdiff_t>(r.start[i + 1]);
-        std::sort(first, last);
-        const auto end = std::unique(first, last);
-        r.ring.insert(r.ring.end(), first, end);
-        kept[i + 1] = r.ring.size();
-    }
-    r.start = std::move(kept);
+        std::sort(first, out);
+        r.start[v + 1] = static_cast<std::size_t>(std::unique(first, out) - first);
+    });
+    for (std::size_t v = 0; v < nv; ++v) r.start[v + 1] += r.start[v];
+    r.ring.resize(r.start[nv]);
+    parallel_for(nv, [&](std::size_t v) {
+        const auto first = all.begin() + 2 * static_cast<std::ptrdiff_t>(around.start[v]);
+        std::copy_n(first, r.start[v + 1] - r.start[v], r.ring.begin() + r.start[v]);
+    });
     return r;
 }
 

@@ -48,14 +48,23 @@ std::vector<typename Space<dim>::Point> checked_velocities(
     return u;
 }
 
+/// A flow field at points into out, checked.
+template <int dim>
+void checked_field(const BasicVelocityLaw<dim>& law, double t,
+                   std::span<const typename Space<dim>::Point> points,
+                   std::span<typename Space<dim>::Point> out) {
+    SLC_ASSERT(out.size() == points.size(), "one velocity a point");
+    law.sample(t, points, out);
+    check_finite<dim>(law, t, points, out, "point");
+}
+
 /// A flow field at points, checked.
 template <int dim>
 std::vector<typename Space<dim>::Point> checked_field(
     const BasicVelocityLaw<dim>& law, double t,
     std::span<const typename Space<dim>::Point> points) {
     std::vector<typename Space<dim>::Point> u(points.size());
-    law.sample(t, points, u);
-    check_finite<dim>(law, t, points, u, "point");
+    checked_field<dim>(law, t, points, u);
     return u;
 }
 
@@ -161,6 +170,16 @@ std::vector<Vec2> field_velocities(const VelocityLaw& law, double t, std::span<c
 std::vector<Vec3> field_velocities(const SurfaceVelocityLaw& law, double t,
                                    std::span<const Vec3> points) {
     return checked_field<3>(law, t, points);
+}
+
+void field_velocities(const VelocityLaw& law, double t, std::span<const Vec2> points,
+                      std::span<Vec2> out) {
+    checked_field<2>(law, t, points, out);
+}
+
+void field_velocities(const SurfaceVelocityLaw& law, double t, std::span<const Vec3> points,
+                      std::span<Vec3> out) {
+    checked_field<3>(law, t, points, out);
 }
 
 }  // namespace slc

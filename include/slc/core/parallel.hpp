@@ -8,6 +8,8 @@
 #include <atomic>
 #include <cstddef>
 #include <exception>
+#include <functional>
+#include <iterator>
 
 namespace slc {
 
@@ -60,6 +62,35 @@ void parallel_for(std::size_t n, Body&& body, std::size_t min_iterations = paral
         }
     }
     if (failure) std::rethrow_exception(failure);
+}
+
+/// Sorts [first, last) by `less` on all worker threads: each thread sorts a part with std::sort,
+/// then the parts are merged in rounds of pairs. Precondition: no two elements are equivalent
+/// under `less` (keys made unique, say by an index), so the order is the one std::sort gives,
+/// whatever the number of threads.
+template <class It, class Less = std::less<>>
+void parallel_sort(It first, It last, Less less = {}) {
+    const auto n = static_cast<std::size_t>(std::distance(first, last));
+    const auto parts = static_cast<std::size_t>(std::max(1, thread_count()));
+    if (parts == 1 || n < 4096) {
+        std::sort(first, last, less);
+        return;
+    }
+    auto at = [&](std::size_t part) {
+        return first + static_cast<std::ptrdiff_t>(n * part / parts);
+    };
+    parallel_for(
+        parts, [&](std::size_t p) { std::sort(at(p), at(p + 1), less); }, 1);
+    for (std::size_t width = 1; width < parts; width *= 2) {
+        parallel_for((parts + 2 * width - 1) / (2 * width),
+                     [&](std::size_t pair) {
+                         const std::size_t lo = 2 * width * pair, mid = lo + width;
+                         if (mid < parts)
+                             std::inplace_merge(at(lo), at(mid), at(std::min(parts, mid + width)),
+                                                less);
+                     },
+                     1);
+    }
 }
 
 }  // namespace slc

@@ -244,6 +244,12 @@ std::vector<Vec2> field_velocities(const VelocityLaw& law, double t, std::span<c
 /// @copydoc field_velocities
 std::vector<Vec3> field_velocities(const SurfaceVelocityLaw& law, double t,
                                    std::span<const Vec3> points);
+/// The same into `out`, one slot a point, without allocating.
+void field_velocities(const VelocityLaw& law, double t, std::span<const Vec2> points,
+                      std::span<Vec2> out);
+/// @copydoc field_velocities(const VelocityLaw&, double, std::span<const Vec2>, std::span<Vec2>)
+void field_velocities(const SurfaceVelocityLaw& law, double t, std::span<const Vec3> points,
+                      std::span<Vec3> out);
 
 // ---- adapters: a user's law from a small callable ----------------------------------------------
 

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace slc {
@@ -50,6 +53,29 @@ TEST(ParallelFor, AFailureOnlyLateInTheLoopIsStillThrown) {
                                   if (i == 999) throw std::logic_error("last");
                               }),
                  std::logic_error);
+}
+
+TEST(ParallelSort, GivesStdSortsOrderOnAnyThreadCount) {
+    // Keys made unique by an index, as the precondition asks; many repeated codes, so the
+    // merges meet ties of the code that the index breaks. Sizes below and above the cut-off,
+    // and one that does not divide among the threads.
+    const AllCoresAfterwards restore;
+    for (const std::size_t n : {std::size_t{100}, std::size_t{50000}, std::size_t{50001}}) {
+        std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+        std::uint64_t state = 12345;
+        for (std::size_t i = 0; i < n; ++i) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            keys[i] = {state >> 54, static_cast<std::uint32_t>(i)};
+        }
+        auto expected = keys;
+        std::sort(expected.begin(), expected.end());
+        for (int threads : {1, 2, 3, 4}) {
+            set_thread_count(threads);
+            auto sorted = keys;
+            parallel_sort(sorted.begin(), sorted.end());
+            EXPECT_EQ(expected, sorted) << n << " keys, " << threads << " threads";
+        }
+    }
 }
 
 }  // namespace
