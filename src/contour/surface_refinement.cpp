@@ -48,58 +48,24 @@ struct Edges {
     std::vector<std::uint32_t> first_of;
 
     explicit Edges(const Surface& s) {
-        const std::size_t n = s.size();
-        auto lo_hi = [&](std::size_t h) {
-            const std::uint32_t a = s.triangles[h / 3][h % 3], b = s.triangles[h / 3][(h + 1) % 3];
-            return std::pair{std::min(a, b), std::max(a, b)};
-        };
+        const HalfEdgeBuckets buckets = half_edges_by_lower_vertex(s);
         const std::size_t vertices = s.vertices.size();
-        // The counting sort in parts, one a thread: each part counts its half-edges by lower
-        // vertex, and fills its own slots of each bucket after the parts before it.
-        const std::size_t parts = static_cast<std::size_t>(std::max(1, thread_count()));
-        auto part_range = [&](std::size_t p) {
-            return std::pair{3 * n * p / parts, 3 * n * (p + 1) / parts};
-        };
-        std::vector<std::vector<std::uint32_t>> fill(parts,
-                                                     std::vector<std::uint32_t>(vertices, 0));
-        parallel_for(
-            parts,
-            [&](std::size_t p) {
-                const auto [begin, end] = part_range(p);
-                for (std::size_t h = begin; h < end; ++h) ++fill[p][lo_hi(h).first];
-            },
-            1);
         // The edges of a closed surface pair its half-edges, so vertex v numbers
         // (start[v + 1] − start[v]) / 2 edges, from first_of[v].
-        std::vector<std::uint32_t> start(vertices + 1, 0);
         first_of.assign(vertices + 1, 0);
         for (std::size_t v = 0; v < vertices; ++v) {
-            std::uint32_t at = start[v];
-            for (std::size_t p = 0; p < parts; ++p) std::swap(at, fill[p][v]), at += fill[p][v];
-            start[v + 1] = at;
-            SLC_ASSERT((at - start[v]) % 2 == 0,
-                       "every edge of a closed surface has two triangles");
-            first_of[v + 1] = first_of[v] + (at - start[v]) / 2;
+            const std::uint32_t halves = buckets.start[v + 1] - buckets.start[v];
+            SLC_ASSERT(halves % 2 == 0, "every edge of a closed surface has two triangles");
+            first_of[v + 1] = first_of[v] + halves / 2;
         }
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> halves(3 * n);  // (hi, half-edge)
-        parallel_for(
-            parts,
-            [&](std::size_t p) {
-                const auto [begin, end] = part_range(p);
-                for (std::size_t h = begin; h < end; ++h) {
-                    const auto [lo, hi] = lo_hi(h);
-                    halves[fill[p][lo]++] = {hi, static_cast<std::uint32_t>(h)};
-                }
-            },
-            1);
-        of_triangle.resize(n);
+        of_triangle.resize(s.size());
         ends.resize(first_of[vertices]);
         triangles.resize(first_of[vertices]);
         // Each vertex's edges in order of their other end, on all threads: the same numbering
         // as one thread gives.
         parallel_for(vertices, [&](std::size_t v) {
-            const auto first = halves.begin() + start[v], last = halves.begin() + start[v + 1];
-            std::sort(first, last);
+            const auto first = buckets.halves.begin() + buckets.start[v],
+                       last = buckets.halves.begin() + buckets.start[v + 1];
             std::uint32_t e = first_of[v];
             for (auto it = first; it != last; it += 2, ++e) {
                 SLC_ASSERT(it->first == (it + 1)->first,

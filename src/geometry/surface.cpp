@@ -36,30 +36,35 @@ Box3 bounding_box(const Surface& s) {
     return b;
 }
 
-std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s) {
-    // Half-edge 3t + k runs from corner k to corner k + 1 of triangle t. The half-edges are
-    // bucketed by their lower vertex (a counting sort), each bucket holding (higher vertex,
-    // half-edge) pairs; sorted within the bucket (a few entries), the two half-edges of each
-    // edge are side by side. O(N + V) where a global sort would be O(N log N).
-    const std::size_t n = s.size();
-    auto ends = [&](std::size_t h) {
-        const std::uint32_t u = s.triangles[h / 3][h % 3], v = s.triangles[h / 3][(h + 1) % 3];
-        return std::pair{std::min(u, v), std::max(u, v)};
+HalfEdgeBuckets half_edges_by_lower_vertex(const Surface& s) {
+    auto lo_hi = [&](std::size_t h) {
+        const std::uint32_t a = s.triangles[h / 3][h % 3], b = s.triangles[h / 3][(h + 1) % 3];
+        return std::pair{std::min(a, b), std::max(a, b)};
     };
-    std::vector<std::uint32_t> start(s.vertices.size() + 1, 0);
-    for (std::size_t h = 0; h < 3 * n; ++h) ++start[ends(h).first + 1];
-    for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> halves(3 * n);
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t h = 0; h < 3 * n; ++h) {
-        const auto [lo, hi] = ends(h);
-        halves[fill[lo]++] = {hi, static_cast<std::uint32_t>(h)};
-    }
-    // Each bucket on its own, on all threads: it writes only the slots of its half-edges.
-    std::vector<std::array<std::uint32_t, 3>> out(n);
+    Buckets by_lower = counting_sort(3 * s.size(), s.vertices.size(),
+                                     [&](std::size_t h) { return lo_hi(h).first; });
+    HalfEdgeBuckets out;
+    out.start = std::move(by_lower.start);
+    out.halves.resize(by_lower.items.size());
     parallel_for(s.vertices.size(), [&](std::size_t v) {
-        const auto first = halves.begin() + start[v], last = halves.begin() + start[v + 1];
+        const auto first = out.halves.begin() + out.start[v],
+                   last = out.halves.begin() + out.start[v + 1];
+        for (std::uint32_t i = out.start[v]; i < out.start[v + 1]; ++i)
+            out.halves[i] = {lo_hi(by_lower.items[i]).second, by_lower.items[i]};
         std::sort(first, last);
+    });
+    return out;
+}
+
+std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s) {
+    // The two half-edges of each edge lie side by side in their bucket: O(N + V) where a global
+    // sort would be O(N log N). Each bucket on its own, on all threads: it writes only the
+    // slots of its half-edges.
+    const HalfEdgeBuckets buckets = half_edges_by_lower_vertex(s);
+    std::vector<std::array<std::uint32_t, 3>> out(s.size());
+    parallel_for(s.vertices.size(), [&](std::size_t v) {
+        const auto first = buckets.halves.begin() + buckets.start[v],
+                   last = buckets.halves.begin() + buckets.start[v + 1];
         for (auto it = first; it != last; it += 2) {
             SLC_ASSERT(it + 1 != last && it->first == (it + 1)->first,
                        "every edge has two triangles");
@@ -87,16 +92,9 @@ void drop_unused_vertices(Surface& s) {
 }
 
 VertexCorners vertex_corners(const Surface& s) {
-    VertexCorners out;
-    out.start.assign(s.vertices.size() + 1, 0);
-    out.corners.resize(3 * s.size());
-    for (const TriangleIndices& tri : s.triangles)
-        for (const std::uint32_t v : tri) ++out.start[v + 1];
-    for (std::size_t v = 0; v + 1 < out.start.size(); ++v) out.start[v + 1] += out.start[v];
-    std::vector<std::uint32_t> fill(out.start.begin(), out.start.end() - 1);
-    for (std::size_t c = 0; c < 3 * s.size(); ++c)
-        out.corners[fill[s.triangles[c / 3][c % 3]]++] = static_cast<std::uint32_t>(c);
-    return out;
+    Buckets by_vertex = counting_sort(3 * s.size(), s.vertices.size(),
+                                      [&](std::size_t c) { return s.triangles[c / 3][c % 3]; });
+    return {std::move(by_vertex.start), std::move(by_vertex.items)};
 }
 
 std::vector<std::uint32_t> component_labels(const Surface& s) {
@@ -158,10 +156,11 @@ long long genus(const Surface& s) {
     return g;
 }
 
-PseudoNormals pseudo_normals(const Surface& s) {
-    PseudoNormals n;
+namespace {
+
+/// The face and vertex parts of the pseudo-normals.
+void face_and_vertex_normals(const Surface& s, PseudoNormals& n) {
     n.face.resize(s.size());
-    n.edge.resize(s.size());
     n.vertex.assign(s.vertices.size(), Vec3{});
     // Each triangle's normal and angles on all threads; then each vertex sums its triangles'
     // angle-weighted normals in triangle order, on all threads, as one loop over the triangles
@@ -187,11 +186,25 @@ PseudoNormals pseudo_normals(const Surface& s) {
         }
         n.vertex[v] = sum;
     });
+}
+
+}  // namespace
+
+PseudoNormals pseudo_normals(const Surface& s) {
+    PseudoNormals n;
+    face_and_vertex_normals(s, n);
+    n.edge.resize(s.size());
     const auto neighbours = triangle_neighbours(s);
     parallel_for(s.size(), [&](std::size_t t) {
         for (int k = 0; k < 3; ++k) n.edge[t][k] = n.face[t] + n.face[neighbours[t][k]];
     });
     return n;
+}
+
+std::vector<Vec3> vertex_pseudo_normals(const Surface& s) {
+    PseudoNormals n;
+    face_and_vertex_normals(s, n);
+    return std::move(n.vertex);
 }
 
 int side_of(const Surface& s, const PseudoNormals& normals, std::uint32_t t,

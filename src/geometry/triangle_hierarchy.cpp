@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <utility>
+#include <vector>
 
 #include "slc/core/parallel.hpp"
 
@@ -37,11 +38,21 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
     if (n == 0) return;
     boxes_.resize(n);
     parallel_for(n, [&](std::size_t t) { boxes_[t] = bounding_box(triangles[t]); });
+    // The box of the centres, from the boxes of parts of them on all threads (exact: the same
+    // box for any number of parts).
+    const auto parts = static_cast<std::size_t>(std::max(1, thread_count()));
+    std::vector<Box3> part_centres(parts, Box3::empty());
+    parallel_for(
+        parts,
+        [&](std::size_t p) {
+            for (std::size_t t = n * p / parts; t < n * (p + 1) / parts; ++t) {
+                const Vec3 c = boxes_[t].center();
+                part_centres[p] = unite(part_centres[p], {c, c});
+            }
+        },
+        1);
     Box3 centres = Box3::empty();
-    for (std::uint32_t t = 0; t < n; ++t) {
-        const Vec3 c = boxes_[t].center();
-        centres = unite(centres, {c, c});
-    }
+    for (const Box3& b : part_centres) centres = unite(centres, b);
     // The triangles in the Morton order of their boxes' centres (21 bits an axis over the box
     // of all centres; ties by index): every node is a range of this order, so a split is a cut
     // of its range, where sorting each node's triangles along an axis would cost a selection.
@@ -59,7 +70,7 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
     });
     parallel_sort(keyed.begin(), keyed.end());  // the keys are unique: (code, index)
     order_.resize(n);
-    for (std::uint32_t k = 0; k < n; ++k) order_[k] = keyed[k].second;
+    parallel_for(n, [&](std::size_t k) { order_[k] = keyed[k].second; });
     nodes_.reserve(2 * (n / leaf_size + 1));
     nodes_.push_back({Box3::empty(), 0, n});
     // Nodes are split in creation order; a split node's children are appended side by side. A
@@ -85,17 +96,19 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
         nodes_.push_back({Box3::empty(), first, cut});
         nodes_.push_back({Box3::empty(), first + cut, count - cut});
     }
-    // Boxes bottom up: children come after their parent.
+    // The leaves' boxes on all threads, then the others bottom up: children come after their
+    // parent.
+    parallel_for(nodes_.size(), [&](std::size_t i) {
+        Node& node = nodes_[i];
+        if (node.count == 0) return;
+        Box3 box = Box3::empty();
+        for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
+            box = unite(box, boxes_[order_[k]]);
+        node.box = box;
+    });
     for (std::size_t i = nodes_.size(); i-- > 0;) {
         Node& node = nodes_[i];
-        Box3 box = Box3::empty();
-        if (node.count > 0) {
-            for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
-                box = unite(box, boxes_[order_[k]]);
-        } else {
-            box = unite(nodes_[node.first].box, nodes_[node.first + 1].box);
-        }
-        node.box = box;
+        if (node.count == 0) node.box = unite(nodes_[node.first].box, nodes_[node.first + 1].box);
     }
 }
 

@@ -148,7 +148,7 @@ VertexRings vertex_rings(const Surface& s) {
 }
 
 std::vector<Vec3> angle_weighted_normals(const Surface& s) {
-    std::vector<Vec3> n = pseudo_normals(s).vertex;
+    std::vector<Vec3> n = vertex_pseudo_normals(s);
     for (Vec3& v : n) {
         const double len = norm(v);
         if (len > 0.0) v = v / len;

@@ -7,9 +7,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <functional>
 #include <iterator>
+#include <utility>
+#include <vector>
 
 namespace slc {
 
@@ -62,6 +65,45 @@ void parallel_for(std::size_t n, Body&& body, std::size_t min_iterations = paral
         }
     }
     if (failure) std::rethrow_exception(failure);
+}
+
+/// Items 0 to n − 1 sorted into `buckets` buckets by key(i) < buckets: bucket b holds
+/// items[start[b]] to items[start[b + 1] − 1], in increasing order.
+struct Buckets {
+    std::vector<std::uint32_t> start;  ///< buckets + 1 offsets
+    std::vector<std::uint32_t> items;  ///< n items
+};
+
+/// The counting sort of Buckets on all worker threads, in parts of the items, one a thread: each
+/// part counts its items by bucket, then fills its own slots of each bucket after the parts
+/// before it, so the result is the same for any number of threads. key must be safe to call
+/// from several threads at once. O(n + buckets · threads).
+template <class Key>
+Buckets counting_sort(std::size_t n, std::size_t buckets, Key&& key) {
+    const auto parts = static_cast<std::size_t>(std::max(1, thread_count()));
+    std::vector<std::vector<std::uint32_t>> fill(parts, std::vector<std::uint32_t>(buckets, 0));
+    parallel_for(
+        parts,
+        [&](std::size_t p) {
+            for (std::size_t i = n * p / parts; i < n * (p + 1) / parts; ++i) ++fill[p][key(i)];
+        },
+        1);
+    Buckets out;
+    out.start.assign(buckets + 1, 0);
+    for (std::size_t b = 0; b < buckets; ++b) {
+        std::uint32_t at = out.start[b];
+        for (std::size_t p = 0; p < parts; ++p) std::swap(at, fill[p][b]), at += fill[p][b];
+        out.start[b + 1] = at;
+    }
+    out.items.resize(n);
+    parallel_for(
+        parts,
+        [&](std::size_t p) {
+            for (std::size_t i = n * p / parts; i < n * (p + 1) / parts; ++i)
+                out.items[fill[p][key(i)]++] = static_cast<std::uint32_t>(i);
+        },
+        1);
+    return out;
 }
 
 /// Sorts [first, last) by `less` on all worker threads: each thread sorts a part with std::sort,

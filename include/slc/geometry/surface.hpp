@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "slc/core/box3.hpp"
@@ -45,6 +46,17 @@ double area(const Surface& s);
 double volume(const Surface& s);
 /// The smallest box holding every vertex used by a triangle.
 Box3 bounding_box(const Surface& s);
+
+/// The half-edges of s bucketed by their lower vertex: half-edge 3t + k runs from corner k to
+/// corner k + 1 of triangle t; bucket v, halves[start[v]] to halves[start[v + 1] − 1], holds
+/// the pairs (higher vertex, half-edge) of the half-edges whose lower vertex is v, sorted, so
+/// the two half-edges of an edge of a closed surface are side by side. O(N + V), on all
+/// threads, the same for any number of them.
+struct HalfEdgeBuckets {
+    std::vector<std::uint32_t> start;                             ///< V + 1 offsets
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> halves;  ///< 3N pairs
+};
+HalfEdgeBuckets half_edges_by_lower_vertex(const Surface& s);
 
 /// For each triangle and each of its edges k (corner k to corner k + 1), the triangle across
 /// that edge. Precondition: every edge is shared by exactly two triangles (a valid surface).
@@ -82,6 +94,8 @@ struct PseudoNormals {
 };
 /// The pseudo-normals of a valid surface. O(N + V).
 PseudoNormals pseudo_normals(const Surface& s);
+/// PseudoNormals::vertex alone, without the edges' (which need the triangles' neighbours).
+std::vector<Vec3> vertex_pseudo_normals(const Surface& s);
 
 /// The nearest triangle found so far: the least (distance2, triangle) pair, so that the answer
 /// does not depend on the order in which triangles are examined.

@@ -55,6 +55,25 @@ TEST(ParallelFor, AFailureOnlyLateInTheLoopIsStillThrown) {
                  std::logic_error);
 }
 
+TEST(CountingSort, IsAStableSortByKeyOnAnyThreadCount) {
+    const AllCoresAfterwards restore;
+    const std::size_t n = 30001, buckets = 97;
+    auto key = [](std::size_t i) { return (i * 7919 + i / 13) % 97; };
+    std::vector<std::uint32_t> expected(n);
+    for (std::size_t i = 0; i < n; ++i) expected[i] = static_cast<std::uint32_t>(i);
+    std::stable_sort(expected.begin(), expected.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+    for (int threads : {1, 2, 3}) {
+        set_thread_count(threads);
+        const Buckets got = counting_sort(n, buckets, key);
+        EXPECT_EQ(expected, got.items) << threads << " threads";
+        ASSERT_EQ(buckets + 1, got.start.size());
+        for (std::size_t b = 0; b < buckets; ++b)
+            for (std::uint32_t i = got.start[b]; i < got.start[b + 1]; ++i)
+                EXPECT_EQ(b, key(got.items[i]));
+    }
+}
+
 TEST(ParallelSort, GivesStdSortsOrderOnAnyThreadCount) {
     // Keys made unique by an index, as the precondition asks; many repeated codes, so the
     // merges meet ties of the code that the index breaks. Sizes below and above the cut-off,

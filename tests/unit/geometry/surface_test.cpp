@@ -9,6 +9,7 @@
 #include <numbers>
 #include <random>
 
+#include "slc/core/parallel.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/geometry/validate_surface.hpp"
 
@@ -69,6 +70,47 @@ TEST(Surface, UnionCountsComponents) {
     const auto label = component_labels(s);
     EXPECT_EQ(label.front(), 0u);
     EXPECT_EQ(label.back(), 2u);
+}
+
+TEST(Surface, AdjacencyAndNormalsAreTheSameOnAnyThreadCount) {
+    // A torus and two spheres of 10⁴ triangles: the half-edge buckets pair every edge's two
+    // half-edges, the neighbours are mutual, and the vertex pseudo-normals alone equal those of
+    // pseudo_normals, to the last bit, on one thread and on several.
+    const Surface s = join(
+        {torus({0, 0, 0}, 1.0, 0.3, 80, 40), sphere({3, 0, 0}, 1, 4), sphere({0, 3, 0}, 0.5, 4)});
+    set_thread_count(1);
+    const HalfEdgeBuckets one = half_edges_by_lower_vertex(s);
+    const auto neighbours_one = triangle_neighbours(s);
+    const VertexCorners corners_one = vertex_corners(s);
+    const std::vector<Vec3> normals_one = pseudo_normals(s).vertex;
+    ASSERT_EQ(one.halves.size(), 3 * s.size());
+    for (std::size_t v = 0; v + 1 < one.start.size(); ++v) {
+        ASSERT_EQ((one.start[v + 1] - one.start[v]) % 2, 0u);
+        for (std::uint32_t i = one.start[v]; i < one.start[v + 1]; i += 2)
+            EXPECT_EQ(one.halves[i].first, one.halves[i + 1].first);
+    }
+    for (std::size_t t = 0; t < s.size(); ++t)
+        for (const std::uint32_t u : neighbours_one[t]) {
+            const auto& back = neighbours_one[u];
+            EXPECT_NE(std::find(back.begin(), back.end(), t), back.end());
+        }
+    for (int threads : {2, 3}) {
+        set_thread_count(threads);
+        const HalfEdgeBuckets many = half_edges_by_lower_vertex(s);
+        EXPECT_EQ(one.start, many.start);
+        EXPECT_EQ(one.halves, many.halves);
+        EXPECT_EQ(neighbours_one, triangle_neighbours(s));
+        EXPECT_EQ(corners_one.start, vertex_corners(s).start);
+        EXPECT_EQ(corners_one.corners, vertex_corners(s).corners);
+        const std::vector<Vec3> normals = vertex_pseudo_normals(s);
+        ASSERT_EQ(normals.size(), normals_one.size());
+        for (std::size_t v = 0; v < normals.size(); ++v) {
+            EXPECT_EQ(normals[v].x, normals_one[v].x);
+            EXPECT_EQ(normals[v].y, normals_one[v].y);
+            EXPECT_EQ(normals[v].z, normals_one[v].z);
+        }
+    }
+    set_thread_count(0);
 }
 
 TEST(Surface, WindingNumberIsOneInsideAndZeroOutside) {
