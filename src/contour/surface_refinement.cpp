@@ -157,6 +157,9 @@ constexpr double improve_normal_cosine = 0.8660254037844386;
 /// An edge shorter than this fraction of the shortest other edge of its two triangles is a
 /// needle's and is collapsed.
 constexpr double needle_ratio = 0.25;
+/// A triangle whose edges are all shorter than this fraction of the shortest other edge of a
+/// neighbour's is tiny beside it: a cluster of roots near one point of the mesh.
+constexpr double cluster_ratio = 1.0 / 32.0;
 /// Rounds of collapses and flips before each pass.
 constexpr int improve_rounds = 8;
 
@@ -187,16 +190,29 @@ std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
     // table of the round's start, which the collapses below leave as they are.
     std::vector<std::uint8_t> needle(edges.size(), 0);
     parallel_for(edges.size(), [&](std::size_t e) {
-        const auto [t0, t1] = edges.triangles[e];
         const double length = distance(s.vertices[edges.ends[e][0]], s.vertices[edges.ends[e][1]]);
-        double shortest_other = std::numeric_limits<double>::infinity();
-        for (const std::uint32_t t : {t0, t1})
-            for (const std::uint32_t f : edges.of_triangle[t])
-                if (f != e)
-                    shortest_other = std::min(
-                        shortest_other,
-                        distance(s.vertices[edges.ends[f][0]], s.vertices[edges.ends[f][1]]));
-        needle[e] = length < needle_ratio * shortest_other ? 1 : 0;
+        // The shortest other edge and the longest edge of each of the two triangles.
+        std::array<double, 2> shortest_other{}, longest{};
+        for (int i = 0; i < 2; ++i) {
+            shortest_other[i] = std::numeric_limits<double>::infinity();
+            longest[i] = length;
+            for (const std::uint32_t f : edges.of_triangle[edges.triangles[e][i]]) {
+                if (f == e) continue;
+                const double l =
+                    distance(s.vertices[edges.ends[f][0]], s.vertices[edges.ends[f][1]]);
+                shortest_other[i] = std::min(shortest_other[i], l);
+                longest[i] = std::max(longest[i], l);
+            }
+        }
+        // A needle's edge is much shorter than the other edges of both its triangles; or of one,
+        // when the other triangle is tiny beside it (three roots near one point of the mesh,
+        // between needles). An edge across a rounded edge of the surface, short beside the
+        // long edges along it, is kept.
+        needle[e] = length < needle_ratio * std::min(shortest_other[0], shortest_other[1]) ||
+                            longest[1] < cluster_ratio * shortest_other[0] ||
+                            longest[0] < cluster_ratio * shortest_other[1]
+                        ? 1
+                        : 0;
     });
     std::vector<std::uint8_t> touched(s.size(), 0);
     std::size_t collapses = 0;

@@ -209,9 +209,13 @@ void draw(cairo_t* cr, std::span<const Surface> surfaces, const PageMap& map,
     const std::vector<Facet> facets = front_facets(surfaces, map.camera);
     paint(cr, scene(surfaces, map, view), facets, map.camera);
     if (!view.title.empty()) {
+        // A title wider than the picture less its margins is set smaller, to fit.
         const double size = title_size(view);
+        const double room = view.width - 2.0 * margin_fraction * std::min(view.width, view.height);
         cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
         set_font(cr, size);
+        const double width = text_width(cr, view.title);
+        if (width > room && room > 0.0) set_font(cr, size * room / width);
         draw_text(cr, view.title, 0.5 * view.width, size, 0.5, 0.5);
     }
 }

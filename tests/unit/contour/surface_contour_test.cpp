@@ -235,6 +235,22 @@ TEST(SurfaceContour, RefinementMeetsEpsAndKeepsTheSurfaceValid) {
     }
 }
 
+TEST(SurfaceContour, NeedleClustersOfTheLinearContourAreCollapsed) {
+    // `slc contour --function torus -K 5 --eps 1e-4`: where roots of the linear contour fall
+    // near a tetrahedron's vertex, three of them make a tiny triangle between needles. Its
+    // edges must be collapsed too, or the needles' splits turn their children over, are
+    // refused, and refinement stops above ε.
+    const auto exact = [](Vec3 x) { return std::hypot(std::hypot(x.x, x.y) - 0.55, x.z) - 0.2; };
+    const SurfaceContour got = contour_surface(
+        pointwise<Vec3>(exact), Box3::centered_cube(1.0),
+        {.depth = 5, .refine_passes = SurfaceContourOptions::until_converged, .eps = 1e-4});
+    EXPECT_TRUE(got.stats.converged);
+    EXPECT_EQ(got.stats.rejected, 0u);
+    EXPECT_LE(largest_error(got.surface, exact), 1e-4);
+    EXPECT_TRUE(closed_and_oriented(got.surface));
+    EXPECT_EQ(genus(got.surface), 1);
+}
+
 TEST(SurfaceContour, NearContactStaysApartWhenRefined) {
     // Two spheres 0.02 apart, refined to ε: brackets along the normal reach across the gap, and
     // the crossing safeguard keeps the two apart.

@@ -186,6 +186,28 @@ TEST(SurfacePicture, PngHasTheViewsSizeAndATitleAtTheTop) {
     EXPECT_TRUE(has_dark_pixel_on_top(titled.get()));
 }
 
+TEST(SurfacePicture, LongTitleIsSetSmallerToFitBetweenTheMargins) {
+    // A title of 90 characters would be some 1000 pixels wide at the default size: it is set
+    // smaller, and the side margins above the surface stay white.
+    const TempDir dir;
+    SurfaceView view;
+    view.title =
+        "contour K = 5, eps = 5e-04, 15 passes: 32594 triangles, error 1.67e-02 at a "
+        "sharp edge";
+    save_surface_picture(sphere({0.0, 0.0, 0.0}, 1.0, 3), dir.path() / "a.png", view);
+    const ImagePtr image = read_png(dir.path() / "a.png");
+    bool dark = false, dark_in_margin = false;
+    for (int y = 0; y < margin; ++y) {  // within the title's band, 48 pixels tall
+        for (int x = 0; x < side; ++x) {
+            const bool is_dark = pixel(image.get(), x, y).brightness() < 64;
+            dark |= is_dark;
+            dark_in_margin |= is_dark && (x < margin || x >= side - margin);
+        }
+    }
+    EXPECT_TRUE(dark);
+    EXPECT_FALSE(dark_in_margin);
+}
+
 TEST(SurfacePicture, WritesSvg) {
     const TempDir dir;
     SurfaceView view;
