@@ -7,7 +7,8 @@ surface from the sphere, the status and the wall time into a Markdown table
 (docs/tables/enright.md), and slc's surfaces at t = 1.5 and 3 into --figures.
 
 A slc setting's run folder already holding a finished run of the same options (its summary.json)
-is read instead of run again with --reuse: a run at K = 7 takes an hour."""
+is read instead of run again with --reuse: a run at K = 7 takes some seven minutes. The pictures
+are the last setting's of each K."""
 import argparse
 import json
 import shutil
@@ -83,7 +84,8 @@ def main():
     parser.add_argument("--openvdb", help="bench/enright_openvdb's executable (none: no peer)")
     parser.add_argument("--out", required=True, help="the table to write (.md)")
     parser.add_argument("--work", default="out/enright", help="run folders")
-    parser.add_argument("--settings", nargs="*", default=["6:60:1e-4", "7:60:1e-4"],
+    parser.add_argument("--settings", nargs="*",
+                        default=["6:60:1e-4", "6:30:1e-4", "7:60:1e-4", "7:30:5e-5", "7:30:1e-4"],
                         help="slc settings K:N:eps")
     parser.add_argument("--resolutions", nargs="*", type=int, default=[64, 128, 256])
     parser.add_argument("--threads", type=int, default=2)
