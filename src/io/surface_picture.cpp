@@ -87,6 +87,10 @@ double title_size(const SurfaceView& view) {
     return std::max(min_title_size, title_fraction * std::min(view.width, view.height));
 }
 
+double margin_size(const SurfaceView& view) {
+    return margin_fraction * std::min(view.width, view.height);
+}
+
 PageMap page_map(const Box3& box, const SurfaceView& view) {
     PageMap map{camera(view), {}, {}, 1.0};
     Vec2 lo{INFINITY, INFINITY};
@@ -98,7 +102,7 @@ PageMap page_map(const Box3& box, const SurfaceView& view) {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
     }
-    const double margin = margin_fraction * std::min(view.width, view.height);
+    const double margin = margin_size(view);
     const double top = view.title.empty() ? margin : std::max(margin, 2.0 * title_size(view));
     const double room_x = std::max(view.width - 2.0 * margin, 1.0);
     const double room_y = std::max(view.height - top - margin, 1.0);
@@ -211,7 +215,7 @@ void draw(cairo_t* cr, std::span<const Surface> surfaces, const PageMap& map,
     if (!view.title.empty()) {
         // A title wider than the picture less its margins is set smaller, to fit.
         const double size = title_size(view);
-        const double room = view.width - 2.0 * margin_fraction * std::min(view.width, view.height);
+        const double room = view.width - 2.0 * margin_size(view);
         cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
         set_font(cr, size);
         const double width = text_width(cr, view.title);
