@@ -28,7 +28,9 @@ expect_error() {
 expect_ok() {
     local name="$1"
     shift 2
-    if ! "$SLC" "$@" >out.txt 2>err.txt; then fail "$name: status $?: $(cat err.txt)"; return; fi
+    "$SLC" "$@" >out.txt 2>err.txt
+    local status=$?
+    if [ "$status" -ne 0 ]; then fail "$name: status $status: $(cat err.txt)"; return; fi
     pass
 }
 
