@@ -387,6 +387,134 @@ void SpaceEvaluator::operator()(std::span<const Vec3> points, std::span<double> 
     }
 }
 
+namespace {
+
+/// The root of G for one edge's split, found or not.
+struct NormalRoot {
+    std::uint32_t edge = 0;
+    Vec3 point;
+    bool found = false;
+};
+
+/// For each candidate edge, a root of G (|G| ≤ η) on the line through its midpoint along the
+/// normal (the sum of its two triangles' area normals), on the side where G falls towards zero.
+/// First Newton's step from the midpoint as if G were a signed distance (slope 1 along the
+/// normal), then a secant step through it: on a distance-like G one or two evaluations settle an
+/// edge. The rest get brackets reaching ½, 1, then 2 edge lengths, shrunk by find_roots. An edge
+/// whose normal vanishes or whose line meets no sign change within reach has no root. Returned in
+/// a fixed order (the steps' and then the brackets'), whatever the threads.
+std::vector<NormalRoot> roots_along_normals(const Surface& s, const Edges& edges,
+                                            std::span<const std::uint32_t> candidates,
+                                            std::span<const double> mid, const SpaceEvaluator& g,
+                                            const RootOptions& roots) {
+    std::vector<NormalRoot> out;
+    struct Line {
+        std::uint32_t edge;
+        Vec3 origin;                // the midpoint
+        Vec3 direction;             // unit, towards the zero set
+        double length;              // the edge's
+        double g0;                  // G at the midpoint
+        double s1 = 0.0, g1 = 0.0;  // Newton's point and G there
+    };
+    std::vector<Line> lines;
+    for (const std::uint32_t e : candidates) {
+        const auto [t0, t1] = edges.triangles[e];
+        const Vec3 n = area_normal(s, s.triangles[t0]) + area_normal(s, s.triangles[t1]);
+        const double size = norm(n);
+        const Vec3 a = s.vertices[edges.ends[e][0]], b = s.vertices[edges.ends[e][1]];
+        if (!(size > 0.0)) {
+            out.push_back({e, {}, false});
+            continue;
+        }
+        const Vec3 origin = 0.5 * (a + b);
+        if (std::abs(mid[e]) <= roots.eta) {
+            out.push_back({e, origin, true});
+            continue;
+        }
+        // Towards the zero set: against the normal where G > 0 (outside).
+        lines.push_back(
+            {e, origin, (mid[e] > 0.0 ? -1.0 : 1.0) / size * n, distance(a, b), mid[e]});
+    }
+    std::vector<Bracket3> brackets;
+    std::vector<std::uint32_t> bracketed;
+    auto evaluate = [&](std::span<const Vec3> points) {
+        std::vector<double> values(points.size());
+        g(points, values);
+        return values;
+    };
+    // A step to distance `step` along line l with value v: settled (a root, or a bracket) or not.
+    auto settle = [&](const Line& l, double step, double v, double from, double g_from) {
+        const Vec3 p = l.origin + step * l.direction;
+        if (std::abs(v) <= roots.eta) {
+            out.push_back({l.edge, p, true});
+            return true;
+        }
+        if ((v > 0.0) != (g_from > 0.0)) {
+            brackets.push_back({l.origin + from * l.direction, p, g_from, v});
+            bracketed.push_back(l.edge);
+            return true;
+        }
+        return false;
+    };
+    // Newton's step, G's slope taken as 1: s1 = |G(midpoint)|.
+    {
+        std::vector<Vec3> points;
+        for (const Line& l : lines) points.push_back(l.origin + std::abs(l.g0) * l.direction);
+        const std::vector<double> values = evaluate(points);
+        std::vector<Line> still;
+        for (std::size_t k = 0; k < lines.size(); ++k) {
+            Line l = lines[k];
+            l.s1 = std::abs(l.g0);
+            l.g1 = values[k];
+            if (!settle(l, l.s1, l.g1, 0.0, l.g0)) still.push_back(l);
+        }
+        lines = std::move(still);
+    }
+    // The secant step through the midpoint and Newton's point, kept within the brackets' reach.
+    {
+        std::vector<Line> stepped;
+        std::vector<double> steps;
+        std::vector<Vec3> points;
+        std::vector<Line> rest;
+        for (const Line& l : lines) {
+            const double step = l.s1 * l.g0 / (l.g0 - l.g1);
+            if (std::isfinite(step) && step > l.s1 && step <= bracket_reach[2] * l.length) {
+                stepped.push_back(l);
+                steps.push_back(step);
+                points.push_back(l.origin + step * l.direction);
+            } else {
+                rest.push_back(l);
+            }
+        }
+        const std::vector<double> values = evaluate(points);
+        for (std::size_t k = 0; k < stepped.size(); ++k) {
+            const Line& l = stepped[k];
+            if (!settle(l, steps[k], values[k], l.s1, l.g1)) rest.push_back(l);
+        }
+        lines = std::move(rest);
+    }
+    // Brackets along the normal at the midpoint, reaching ½, 1, then 2 edge lengths.
+    for (const double reach : bracket_reach) {
+        if (lines.empty()) break;
+        std::vector<Vec3> points;
+        for (const Line& l : lines) points.push_back(l.origin + reach * l.length * l.direction);
+        const std::vector<double> values = evaluate(points);
+        std::vector<Line> still;
+        for (std::size_t k = 0; k < lines.size(); ++k)
+            if (!settle(lines[k], reach * lines[k].length, values[k], 0.0, lines[k].g0))
+                still.push_back(lines[k]);
+        lines = std::move(still);
+    }
+    for (const Line& l : lines) out.push_back({l.edge, {}, false});
+    const std::vector<Root3> found =
+        find_roots([&](std::span<const Vec3> x, std::span<double> v) { g(x, v); }, brackets, roots);
+    for (std::size_t i = 0; i < found.size(); ++i)
+        out.push_back({bracketed[i], found[i].point, found[i].converged});
+    return out;
+}
+
+}  // namespace
+
 SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps,
                                  const RootOptions& roots, int passes, int max_passes,
                                  std::size_t max_vertices) {
@@ -491,65 +619,24 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
                 eps, max_vertices, s.vertices.size(), candidates.size()));
         }
 
-        // Brackets along the normal at the midpoint, reaching ½, 1, then 2 edge lengths.
+        // The new vertex of each edge: G's root along the normal at its midpoint.
         auto refuse = [&](std::uint32_t e) {
             frozen.assign(edge_key(edges.ends[e][0], edges.ends[e][1]), 1);
             ++result.rejected;
         };
-        std::vector<Bracket3> brackets;
-        std::vector<std::uint32_t> bracketed;
-        {
-            std::vector<Vec3> direction(candidates.size());
-            std::vector<double> length(candidates.size());
-            std::vector<std::size_t> open;
-            for (std::size_t i = 0; i < candidates.size(); ++i) {
-                const std::uint32_t e = candidates[i];
-                const auto [t0, t1] = edges.triangles[e];
-                const Vec3 n = area_normal(s, s.triangles[t0]) + area_normal(s, s.triangles[t1]);
-                const double size = norm(n);
-                length[i] = distance(s.vertices[edges.ends[e][0]], s.vertices[edges.ends[e][1]]);
-                if (!(size > 0.0)) {
-                    refuse(e);
-                    continue;
-                }
-                // Towards the zero set: against the normal where G > 0 (outside).
-                direction[i] = (mid[e] > 0.0 ? -1.0 : 1.0) / size * n;
-                open.push_back(i);
-            }
-            for (const double reach : bracket_reach) {
-                if (open.empty()) break;
-                std::vector<Vec3> points;
-                for (const std::size_t i : open)
-                    points.push_back(midpoint(candidates[i]) + reach * length[i] * direction[i]);
-                std::vector<double> values(points.size());
-                g(points, values);
-                std::vector<std::size_t> still;
-                for (std::size_t k = 0; k < open.size(); ++k) {
-                    const std::uint32_t e = candidates[open[k]];
-                    if ((values[k] > 0.0) != (mid[e] > 0.0)) {
-                        brackets.push_back({midpoint(e), points[k], mid[e], values[k]});
-                        bracketed.push_back(e);
-                    } else {
-                        still.push_back(open[k]);
-                    }
-                }
-                open = std::move(still);
-            }
-            for (const std::size_t i : open) refuse(candidates[i]);
-        }
-        const std::vector<Root3> found = find_roots(
-            [&](std::span<const Vec3> x, std::span<double> v) { g(x, v); }, brackets, roots);
+        const std::vector<NormalRoot> found =
+            roots_along_normals(s, edges, candidates, mid, g, roots);
         // The new vertices, numbered after the old ones in edge order.
         std::vector<std::uint32_t> vertex_of(m, std::numeric_limits<std::uint32_t>::max());
         const auto old_vertices = static_cast<std::uint32_t>(s.vertices.size());
         std::vector<Vec3> added;
-        for (std::size_t i = 0; i < found.size(); ++i) {
-            if (!found[i].converged) {
-                refuse(bracketed[i]);
+        for (const NormalRoot& r : found) {
+            if (!r.found) {
+                refuse(r.edge);
                 continue;
             }
-            vertex_of[bracketed[i]] = old_vertices + static_cast<std::uint32_t>(added.size());
-            added.push_back(found[i].point);
+            vertex_of[r.edge] = old_vertices + static_cast<std::uint32_t>(added.size());
+            added.push_back(r.point);
         }
         s.vertices.insert(s.vertices.end(), added.begin(), added.end());
 

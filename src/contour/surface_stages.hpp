@@ -41,11 +41,12 @@ struct SurfaceRefinement {
 /// triangles' shapes — needle edges collapsed, edges flipped to the Delaunay rule, no triangle
 /// turned more than 30° — then splits every edge whose
 /// midpoint has |G| > ε and the longest edge of every triangle whose centroid has |G| > ε. The
-/// new vertex is the root of G along the surface's normal at the midpoint (a bracket out to the
-/// edge's length each way). Safeguards refuse a split, for good, when no bracket is found, when
-/// a triangle it makes turns more than 60° from its parent or loses its area, or when the
-/// triangles it makes meet the rest of the surface; the surface stays closed, manifold and
-/// oriented. Throws LimitExceeded naming ε when the vertices would pass max_vertices.
+/// new vertex is the root of G along the surface's normal at the midpoint: Newton's step as if G
+/// were a distance, then a secant step, then brackets out to two edge lengths. Safeguards refuse a
+/// split, for good, when no root is found within reach, when a triangle it makes turns more than
+/// 60° from its parent or loses its area, or when the triangles it makes meet the rest of the
+/// surface; the surface stays closed, manifold and oriented. Throws LimitExceeded naming ε when the
+/// vertices would pass max_vertices.
 SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps,
                                  const RootOptions& roots, int passes, int max_passes,
                                  std::size_t max_vertices);
