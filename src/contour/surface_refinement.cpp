@@ -456,26 +456,35 @@ std::vector<NormalRoot> roots_along_normals(const Surface& s, const Edges& edges
         }
         return false;
     };
-    // Newton's step, G's slope taken as 1: s1 = |G(midpoint)|.
+    // Newton's step, G's slope taken as 1: s1 = |G(midpoint)|, within the brackets' reach (a G
+    // far from a distance goes to the brackets at once).
+    std::vector<Line> unstepped;
     {
+        std::vector<Line> stepped;
         std::vector<Vec3> points;
-        for (const Line& l : lines) points.push_back(l.origin + std::abs(l.g0) * l.direction);
-        const std::vector<double> values = evaluate(points);
-        std::vector<Line> still;
-        for (std::size_t k = 0; k < lines.size(); ++k) {
-            Line l = lines[k];
+        for (Line& l : lines) {
             l.s1 = std::abs(l.g0);
-            l.g1 = values[k];
-            if (!settle(l, l.s1, l.g1, 0.0, l.g0)) still.push_back(l);
+            if (l.s1 <= bracket_reach[2] * l.length) {
+                stepped.push_back(l);
+                points.push_back(l.origin + l.s1 * l.direction);
+            } else {
+                unstepped.push_back(l);
+            }
         }
-        lines = std::move(still);
+        const std::vector<double> values = evaluate(points);
+        lines.clear();
+        for (std::size_t k = 0; k < stepped.size(); ++k) {
+            Line& l = stepped[k];
+            l.g1 = values[k];
+            if (!settle(l, l.s1, l.g1, 0.0, l.g0)) lines.push_back(l);
+        }
     }
     // The secant step through the midpoint and Newton's point, kept within the brackets' reach.
     {
         std::vector<Line> stepped;
         std::vector<double> steps;
         std::vector<Vec3> points;
-        std::vector<Line> rest;
+        std::vector<Line> rest = std::move(unstepped);
         for (const Line& l : lines) {
             const double step = l.s1 * l.g0 / (l.g0 - l.g1);
             if (std::isfinite(step) && step > l.s1 && step <= bracket_reach[2] * l.length) {
