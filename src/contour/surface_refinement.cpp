@@ -414,7 +414,7 @@ std::vector<NormalRoot> roots_along_normals(const Surface& s, const Edges& edges
         Vec3 direction;             // unit, towards the zero set
         double length;              // the edge's
         double g0;                  // G at the midpoint
-        double s1 = 0.0, g1 = 0.0;  // Newton's point and G there
+        double s1 = 0.0, g1 = 0.0;  // the last point probed, and G there (first the midpoint)
     };
     std::vector<Line> lines;
     for (const std::uint32_t e : candidates) {
@@ -432,87 +432,60 @@ std::vector<NormalRoot> roots_along_normals(const Surface& s, const Edges& edges
             continue;
         }
         // Towards the zero set: against the normal where G > 0 (outside).
-        lines.push_back(
-            {e, origin, (mid[e] > 0.0 ? -1.0 : 1.0) / size * n, distance(a, b), mid[e]});
+        lines.push_back({e, origin, (mid[e] > 0.0 ? -1.0 : 1.0) / size * n, distance(a, b), mid[e],
+                         0.0, mid[e]});
     }
     std::vector<Bracket3> brackets;
     std::vector<std::uint32_t> bracketed;
-    auto evaluate = [&](std::span<const Vec3> points) {
+    // One probe of every line that `step` gives a distance for (NaN: none), in one batch: a root,
+    // or a bracket with the line's last point (s1, g1), settles it. The lines not probed go on,
+    // then those probed, with that point as their last.
+    auto probe = [&](auto step) {
+        std::vector<Line> probed, rest, unsettled;
+        std::vector<Vec3> points;
+        for (const Line& l : lines) {
+            const double d = step(l);
+            if (std::isnan(d)) {
+                rest.push_back(l);
+            } else {
+                probed.push_back(l);
+                points.push_back(l.origin + d * l.direction);
+            }
+        }
         std::vector<double> values(points.size());
         g(points, values);
-        return values;
-    };
-    // A step to distance `step` along line l with value v: settled (a root, or a bracket) or not.
-    auto settle = [&](const Line& l, double step, double v, double from, double g_from) {
-        const Vec3 p = l.origin + step * l.direction;
-        if (std::abs(v) <= roots.eta) {
-            out.push_back({l.edge, p, true});
-            return true;
-        }
-        if ((v > 0.0) != (g_from > 0.0)) {
-            brackets.push_back({l.origin + from * l.direction, p, g_from, v});
-            bracketed.push_back(l.edge);
-            return true;
-        }
-        return false;
-    };
-    // Newton's step, G's slope taken as 1: s1 = |G(midpoint)|, within the brackets' reach (a G
-    // far from a distance goes to the brackets at once).
-    std::vector<Line> unstepped;
-    {
-        std::vector<Line> stepped;
-        std::vector<Vec3> points;
-        for (Line& l : lines) {
-            l.s1 = std::abs(l.g0);
-            if (l.s1 <= bracket_reach[2] * l.length) {
-                stepped.push_back(l);
-                points.push_back(l.origin + l.s1 * l.direction);
+        for (std::size_t k = 0; k < probed.size(); ++k) {
+            Line l = probed[k];
+            const double d = step(l), v = values[k];
+            if (std::abs(v) <= roots.eta) {
+                out.push_back({l.edge, points[k], true});
+            } else if ((v > 0.0) != (l.g1 > 0.0)) {
+                brackets.push_back({l.origin + l.s1 * l.direction, points[k], l.g1, v});
+                bracketed.push_back(l.edge);
             } else {
-                unstepped.push_back(l);
+                l.s1 = d, l.g1 = v;
+                unsettled.push_back(l);
             }
         }
-        const std::vector<double> values = evaluate(points);
-        lines.clear();
-        for (std::size_t k = 0; k < stepped.size(); ++k) {
-            Line& l = stepped[k];
-            l.g1 = values[k];
-            if (!settle(l, l.s1, l.g1, 0.0, l.g0)) lines.push_back(l);
-        }
-    }
-    // The secant step through the midpoint and Newton's point, kept within the brackets' reach.
-    {
-        std::vector<Line> stepped;
-        std::vector<double> steps;
-        std::vector<Vec3> points;
-        std::vector<Line> rest = std::move(unstepped);
-        for (const Line& l : lines) {
-            const double step = l.s1 * l.g0 / (l.g0 - l.g1);
-            if (std::isfinite(step) && step > l.s1 && step <= bracket_reach[2] * l.length) {
-                stepped.push_back(l);
-                steps.push_back(step);
-                points.push_back(l.origin + step * l.direction);
-            } else {
-                rest.push_back(l);
-            }
-        }
-        const std::vector<double> values = evaluate(points);
-        for (std::size_t k = 0; k < stepped.size(); ++k) {
-            const Line& l = stepped[k];
-            if (!settle(l, steps[k], values[k], l.s1, l.g1)) rest.push_back(l);
-        }
+        rest.insert(rest.end(), unsettled.begin(), unsettled.end());
         lines = std::move(rest);
-    }
-    // Brackets along the normal at the midpoint, reaching ½, 1, then 2 edge lengths.
+    };
+    const auto within_reach = [](const Line& l, double d) {
+        return std::isfinite(d) && d <= bracket_reach[2] * l.length ? d : nan;
+    };
+    // Newton's step, G's slope taken as 1: |G(midpoint)|, within the brackets' reach (a G far
+    // from a distance goes to the brackets at once).
+    probe([&](const Line& l) { return within_reach(l, std::abs(l.g0)); });
+    // The secant step through the midpoint and Newton's point, onward and within reach.
+    probe([&](const Line& l) {
+        if (l.s1 == 0.0) return nan;
+        const double d = l.s1 * l.g0 / (l.g0 - l.g1);
+        return d > l.s1 ? within_reach(l, d) : nan;
+    });
+    // Brackets from the midpoint along the normal, reaching ½, 1, then 2 edge lengths.
     for (const double reach : bracket_reach) {
-        if (lines.empty()) break;
-        std::vector<Vec3> points;
-        for (const Line& l : lines) points.push_back(l.origin + reach * l.length * l.direction);
-        const std::vector<double> values = evaluate(points);
-        std::vector<Line> still;
-        for (std::size_t k = 0; k < lines.size(); ++k)
-            if (!settle(lines[k], reach * lines[k].length, values[k], 0.0, lines[k].g0))
-                still.push_back(lines[k]);
-        lines = std::move(still);
+        for (Line& l : lines) l.s1 = 0.0, l.g1 = l.g0;
+        probe([&](const Line& l) { return reach * l.length; });
     }
     for (const Line& l : lines) out.push_back({l.edge, {}, false});
     const std::vector<Root3> found =
