@@ -265,6 +265,145 @@ std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
     return collapses;
 }
 
+/// The vertices that an edge tiny beside its neighbourhood joins: roots of the linear contour
+/// near one point of the mesh, whose triangles have no shape worth keeping. An edge is tiny when
+/// it is shorter than cluster_ratio times the longest edge at each of its ends.
+/// Each cluster with ≥ 2 vertices is collapsed as a whole onto its vertex nearest its mean (a
+/// root of G, so every vertex stays on the zero set), when what is left around that vertex is
+/// one closed fan (the surface stays a manifold of the same Euler characteristic) and no
+/// triangle kept turns more than 30° from the surface around it. Each triangle takes part in
+/// one collapse a round; collapsed triangles are marked by a first index of `dead`. Returns the
+/// vertices removed.
+std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
+    constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
+    const Edges edges(s);
+    const std::size_t vertices = s.vertices.size();
+    std::vector<double> length(edges.size()), longest(vertices, 0.0);
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+        const auto [a, b] = edges.ends[e];
+        length[e] = distance(s.vertices[a], s.vertices[b]);
+        longest[a] = std::max(longest[a], length[e]);
+        longest[b] = std::max(longest[b], length[e]);
+    }
+    // The clusters: components of the tiny edges (union–find, the root the lowest vertex).
+    std::vector<std::uint32_t> root(vertices);
+    for (std::uint32_t v = 0; v < vertices; ++v) root[v] = v;
+    auto find = [&](std::uint32_t v) {
+        while (root[v] != v) v = root[v] = root[root[v]];
+        return v;
+    };
+    bool any = false;
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+        const auto [a, b] = edges.ends[e];
+        if (!(length[e] < cluster_ratio * std::max(longest[a], longest[b]))) continue;
+        const std::uint32_t ra = find(a), rb = find(b);
+        if (ra != rb) root[std::max(ra, rb)] = std::min(ra, rb);
+        any = true;
+    }
+    if (!any) return 0;
+    std::vector<std::uint32_t> members, start(vertices + 1, 0);
+    for (std::uint32_t v = 0; v < vertices; ++v) ++start[find(v) + 1];
+    for (std::size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
+    members.resize(vertices);
+    {
+        std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
+        for (std::uint32_t v = 0; v < vertices; ++v) members[at[find(v)]++] = v;
+    }
+    VertexCorners around = vertex_corners(s);
+    for (std::uint32_t& c : around.corners) c /= 3;
+    std::vector<std::uint8_t> touched(s.size(), 0), in_cluster(vertices, 0);
+    std::vector<std::uint32_t> ring;
+    std::vector<TriangleIndices> moved;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> fan;  // (x, y) of each kept (r, x, y)
+    std::vector<std::uint32_t> outer;
+    std::size_t removed = 0;
+    for (std::uint32_t c = 0; c < vertices; ++c) {
+        const std::span<const std::uint32_t> cluster(members.data() + start[c],
+                                                     start[c + 1] - start[c]);
+        if (cluster.size() < 2) continue;
+        // The triangles around the cluster, once each.
+        ring.clear();
+        for (const std::uint32_t v : cluster)
+            for (std::uint32_t k = around.start[v]; k < around.start[v + 1]; ++k)
+                ring.push_back(around.corners[k]);
+        std::sort(ring.begin(), ring.end());
+        ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+        if (std::any_of(ring.begin(), ring.end(), [&](std::uint32_t t) { return touched[t]; }))
+            continue;
+        // The vertex kept: the one nearest the cluster's mean.
+        Vec3 mean{};
+        for (const std::uint32_t v : cluster) mean += s.vertices[v];
+        mean = (1.0 / static_cast<double>(cluster.size())) * mean;
+        std::uint32_t r = cluster[0];
+        for (const std::uint32_t v : cluster)
+            if (distance(s.vertices[v], mean) < distance(s.vertices[r], mean)) r = v;
+        for (const std::uint32_t v : cluster) in_cluster[v] = 1;
+        // The triangles kept (one corner in the cluster), moved onto r, as fans (x, y) of r.
+        moved.clear();
+        fan.clear();
+        outer.clear();
+        std::size_t old_edges = 0, dropped = 0;
+        for (const std::uint32_t t : ring) {
+            const TriangleIndices& tri = s.triangles[t];
+            int inside = 0, k = 0;
+            for (int i = 0; i < 3; ++i)
+                if (in_cluster[tri[i]]) ++inside, k = i;
+            // Each edge counted once: at its triangle on the left, going from a to b.
+            for (int i = 0; i < 3; ++i) {
+                const std::uint32_t a = tri[i], b = tri[(i + 1) % 3];
+                if ((in_cluster[a] || in_cluster[b]) && a < b) ++old_edges;
+            }
+            if (inside >= 2) {
+                ++dropped;
+                moved.push_back({dead, 0, 0});
+                continue;
+            }
+            TriangleIndices m = tri;
+            m[k] = r;
+            moved.push_back(m);
+            fan.push_back({tri[(k + 1) % 3], tri[(k + 2) % 3]});
+            outer.push_back(tri[(k + 1) % 3]);
+        }
+        for (const std::uint32_t v : cluster) in_cluster[v] = 0;
+        // One closed fan: every outer vertex once first and once second, in one cycle of ≥ 3.
+        std::sort(fan.begin(), fan.end());
+        std::sort(outer.begin(), outer.end());
+        bool sound =
+            fan.size() >= 3 && std::adjacent_find(outer.begin(), outer.end()) == outer.end();
+        if (sound) {
+            auto next = [&](std::uint32_t x) {
+                const auto it =
+                    std::lower_bound(fan.begin(), fan.end(), std::pair{x, std::uint32_t{0}});
+                return it != fan.end() && it->first == x ? it->second : dead;
+            };
+            std::uint32_t x = fan[0].first;
+            std::size_t steps = 0;
+            do {
+                x = next(x);
+                ++steps;
+            } while (x != dead && x != fan[0].first && steps <= fan.size());
+            sound = x == fan[0].first && steps == fan.size();
+        }
+        // The Euler characteristic kept: V − E + F changes by −(|C| − 1) + (E_old − E_new) −
+        // dropped, with E_old − E_new = old edges at the cluster − the fan's |outer| edges.
+        sound &= old_edges == cluster.size() - 1 + dropped + outer.size();
+        if (sound) {
+            for (std::size_t i = 0; i < ring.size() && sound; ++i)
+                if (moved[i][0] != dead)
+                    sound =
+                        along(s, normal_around(s, edges, ring[i]), moved[i], improve_normal_cosine);
+        }
+        if (!sound) continue;
+        for (std::size_t i = 0; i < ring.size(); ++i) {
+            s.triangles[ring[i]] = moved[i];
+            changed[ring[i]] = 1;
+            touched[ring[i]] = 1;
+        }
+        removed += cluster.size() - 1;
+    }
+    return removed;
+}
+
 /// One round of edge flips: edge (a, b) between triangles (a, b, c) and (b, a, d) becomes
 /// (c, d) when the angles at c and d sum beyond π (the Delaunay rule, on the surface), the edge
 /// (c, d) is new, and neither new triangle turns more than 30° from the surface around the two.
@@ -336,8 +475,7 @@ void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::u
         const std::vector<double> centroids_before = centroid_value;
         const std::vector<std::uint8_t> dirty_before = dirty;
         std::vector<std::uint8_t> changed(s.size(), 0);
-        const std::size_t collapses = collapse ? collapse_needles(s, changed) : 0;
-        if (collapses > 0) {
+        auto drop_dead = [&] {
             std::size_t kept = 0;
             for (std::size_t t = 0; t < s.size(); ++t) {
                 if (s.triangles[t][0] == dead) continue;
@@ -351,6 +489,17 @@ void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::u
             centroid_value.resize(kept);
             dirty.resize(kept);
             changed.resize(kept);
+        };
+        std::size_t collapses = 0;
+        if (collapse) {
+            if (const std::size_t merged = collapse_clusters(s, changed); merged > 0) {
+                collapses += merged;
+                drop_dead();
+            }
+            if (const std::size_t needles = collapse_needles(s, changed); needles > 0) {
+                collapses += needles;
+                drop_dead();
+            }
         }
         const std::size_t flips = flip_edges(s, changed);
         if (collapses + flips > 0 && !find_self_intersections(s, changed).empty()) {

@@ -271,6 +271,29 @@ TEST(SurfaceContour, NeedleClustersOfTheLinearContourAreCollapsed) {
     EXPECT_EQ(genus(got.surface), 1);
 }
 
+TEST(SurfaceContour, ClustersOfRootsNearOneMeshPointAreCollapsedWhole) {
+    // The torus of bench/surface_contour_bench.cpp, off the octree's planes: the linear contour
+    // has fans of four to six tiny triangles around one mesh point, between needles. Collapsed
+    // edge by edge they turn the fan's crumpled triangles over and stay; the needles beside them
+    // then split into more needles whose splits are refused, and refinement stops above ε.
+    const Vec3 centre{0.013, -0.007, 0.005};
+    const auto exact = [centre](Vec3 x) {
+        const Vec3 p = x - centre;
+        return std::hypot(std::hypot(p.x, p.y) - 0.55, p.z) - 0.2;
+    };
+    for (const double eps : {1e-3, 1e-4}) {
+        const SurfaceContour got = contour_surface(
+            pointwise<Vec3>(exact), Box3::centered_cube(1.0),
+            {.depth = 5, .refine_passes = SurfaceContourOptions::until_converged, .eps = eps});
+        EXPECT_TRUE(got.stats.converged) << eps;
+        EXPECT_EQ(got.stats.rejected, 0u) << eps;
+        EXPECT_LE(largest_error(got.surface, exact), eps);
+        EXPECT_TRUE(closed_and_oriented(got.surface));
+        EXPECT_EQ(genus(got.surface), 1);
+        EXPECT_EQ(component_count(got.surface), 1u);
+    }
+}
+
 TEST(SurfaceContour, NearContactStaysApartWhenRefined) {
     // Two spheres 0.02 apart, refined to ε: brackets along the normal reach across the gap, and
     // the crossing safeguard keeps the two apart.
