@@ -247,8 +247,8 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                 r.status = RunStatus::unstable;
                 r.message = fmt::format(
                     "at t = {}: the volume drifted by {:.3g}% since the start under a law that "
-                    "keeps it (more than {:.3g}%); take more steps (-N) or refine the contours "
-                    "(-K, --eps)",
+                    "keeps it (more than {:.3g}%); take more steps (-N), refine the contours "
+                    "(-K, --eps) or allow more drift (--volume-drift)",
                     t1, 100.0 * drift, 100.0 * options.volume_drift);
                 return r;
             }

@@ -130,6 +130,7 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
           {"eps", c.resolved_eps()},
           {"eta", c.eta},
           {"thin_depth", c.thin_depth},
+          {"volume_drift", options.volume_drift},
           {"threads", thread_count()}}},
         {"status", to_string(r.status)},
         {"t", r.t},

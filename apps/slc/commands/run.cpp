@@ -70,6 +70,7 @@ struct RunCommand {
     int checkpoint_every = 0;
     std::string resume;
     bool estimate = false;
+    std::optional<double> volume_drift;
 };
 
 /// Frames 0..n at evenly spaced steps; frame_path(i) names them.
@@ -320,6 +321,11 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
                   "estimate of this run's error, for runs without an exact solution "
                   "(conservative: it assumes first order). For several resolutions and observed "
                   "orders, see slc study --initial");
+    cmd->add_option("--volume-drift", o->volume_drift,
+                    "For a surface under a law that keeps the volume: end the run unstable once "
+                    "the volume has drifted from the start's by more than this fraction (default "
+                    "0.01). A larger one lets a coarse run finish and report how far it drifted")
+        ->check(positive_number());
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
                     "Output folder (required, except with --resume): summary.json, final.json, "
@@ -428,6 +434,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  .thin_depth = o.method.thin_depth,
                  .tree_depth = o.method.tree_depth,
                  .volume_correction = o.method.area_correction,
+                 .volume_drift = o.volume_drift,
                  .frames = o.frames,
                  .estimate = o.estimate,
                  .view = o.view,
@@ -457,6 +464,8 @@ void add_run_command(CLI::App& app) {
         if (!surface && o->view) throw InvalidInput("--view is for surfaces, not curves");
         if (!surface && o->method.thin_depth)
             throw InvalidInput("--thin-depth is for surfaces, not curves");
+        if (!surface && o->volume_drift)
+            throw InvalidInput("--volume-drift is for surfaces, not curves");
         const StopSignals signals;
         const std::vector<GivenOption> all = given_options(*cmd, {});
         const std::string id =

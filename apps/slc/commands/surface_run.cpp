@@ -140,6 +140,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     if (r.thin_depth) options.step.contour.thin_depth = *r.thin_depth;
     if (r.tree_depth) options.step.tree_depth = *r.tree_depth;
     if (r.volume_correction) options.step.volume_correction = r.volume_correction;
+    if (r.volume_drift) options.volume_drift = *r.volume_drift;
     const SurfaceContourOptions& c = options.step.contour;
     if (c.resolved_eps() < c.eta) {
         throw InvalidInput(
@@ -248,9 +249,11 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
 
     const Surface& s = result.surface;
     nlohmann::json summary = surface_run_summary(p, p.initial, options, result);
-    if (summary.contains("note"))
+    // A run that fails says one line, its error; its notes stay in summary.json.
+    const bool finished = result.status == RunStatus::ok || result.status == RunStatus::interrupted;
+    if (finished && summary.contains("note"))
         fmt::print(stderr, "slc: note: {}\n", summary["note"].get<std::string>());
-    if (result.domain_doublings > 0) {
+    if (finished && result.domain_doublings > 0) {
         const Box3 d = doubled_domain(p.domain, result.domain_doublings);
         fmt::print(stderr,
                    "slc: note: the surface neared the domain's edge at t = {:.6g}; the domain grew "

@@ -33,6 +33,8 @@ struct SurfaceRunRequest {
     /// --area-correction / --no-area-correction: the volume correction of a law that keeps the
     /// volume (SurfaceStepOptions::volume_correction); unset, on for such laws.
     std::optional<bool> volume_correction;
+    /// --volume-drift: SurfaceRunOptions::volume_drift; unset, its default.
+    std::optional<double> volume_drift;
     int frames = 0;
     /// --estimate: the run again at half resolution, and the distance between the two final
     /// surfaces in summary.json's "error_estimate".
