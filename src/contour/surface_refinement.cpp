@@ -387,7 +387,16 @@ std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
         // The Euler characteristic kept: V − E + F changes by −(|C| − 1) + (E_old − E_new) −
         // dropped, with E_old − E_new = old edges at the cluster − the fan's |outer| edges.
         sound &= old_edges == cluster.size() - 1 + dropped + outer.size();
+        // Small beside what is kept: no vertex moves by a quarter of the distance from the
+        // vertex kept to its nearest neighbour outside the cluster, and no triangle kept turns
+        // far.
         if (sound) {
+            double reach = 0.0, nearest = std::numeric_limits<double>::infinity();
+            for (const std::uint32_t v : cluster)
+                reach = std::max(reach, distance(s.vertices[v], s.vertices[r]));
+            for (const std::uint32_t x : outer)
+                nearest = std::min(nearest, distance(s.vertices[x], s.vertices[r]));
+            sound = reach < needle_ratio * nearest;
             for (std::size_t i = 0; i < ring.size() && sound; ++i)
                 if (moved[i][0] != dead)
                     sound =

@@ -115,6 +115,14 @@ std::optional<std::string> surface_invariant_violation(const Invariants& law, co
                 "surface (a part thinner than the contours resolve tore)",
                 c0, c1);
         }
+        // A smooth flow moves the surface by a diffeomorphism: no hole opens or closes.
+        const long long g0 = genus(before), g1 = genus(after);
+        if (c1 == c0 && g1 != g0) {
+            return fmt::format(
+                "the genus changed from {} to {} under a law that cannot tear or join the "
+                "surface (a part thinner than the contours resolve tore)",
+                g0, g1);
+        }
     }
     if (law.keeps_area) {
         const double v0 = volume(before), v1 = volume(after);

@@ -243,6 +243,13 @@ TEST(SurfaceRun, GuardsOfTheLawsInvariants) {
     EXPECT_TRUE(surface_invariant_violation({.rigid = true}, one, two, 0.1, 1e-3));
     const Surface ring = torus({}, 0.5, 0.2, 24, 12);
     EXPECT_TRUE(surface_invariant_violation({.rigid = true}, one, ring, 0.1, 1e-3));
+    // Nor does a smooth flow pierce one: a hole opened or closed is caught.
+    for (const auto& [before, after] : {std::pair{&one, &ring}, std::pair{&ring, &one}}) {
+        const auto pierced =
+            surface_invariant_violation({.cannot_split = true}, *before, *after, 0.1, 1e-3);
+        ASSERT_TRUE(pierced);
+        EXPECT_NE(pierced->find("the genus changed from"), std::string::npos) << *pierced;
+    }
     EXPECT_TRUE(surface_invariant_violation({.cannot_vanish = true}, one, Surface{}, 0.1, 1e-3));
     // The area of a shrinking flow may not grow by more than 1%.
     const Surface bigger = sphere({}, 0.31, 2);
