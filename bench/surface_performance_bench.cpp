@@ -115,7 +115,7 @@ std::string grouped(std::size_t n) {
     return s;
 }
 
-/// The table of docs/tables/enright.md (its lines starting with '|') and the paragraph after it.
+/// The table of docs/tables/enright.md (its lines starting with '|') and what follows it.
 std::string enright_table(const std::filesystem::path& path) {
     std::ifstream in(path);
     if (!in) return "";
@@ -127,8 +127,11 @@ std::string enright_table(const std::filesystem::path& path) {
             seen = true;
         } else if (seen && !line.empty()) {
             after += line + "\n";
+        } else if (seen && !after.empty() && !after.ends_with("\n\n")) {
+            after += "\n";  // the blank line between blocks
         }
     }
+    while (after.ends_with("\n\n")) after.pop_back();
     return table.empty() ? "" : table + "\n" + after;
 }
 
