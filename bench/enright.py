@@ -91,7 +91,7 @@ def main():
     parser.add_argument("--work", default="out/enright", help="run folders")
     parser.add_argument("--settings", nargs="*",
                         default=["4:30:1e-3:1", "5:30:5e-4:1", "6:60:1e-4", "6:30:1e-4",
-                                 "7:60:1e-4", "7:30:5e-5", "7:30:1e-4"],
+                                 "7:15:5e-4", "7:60:1e-4", "7:30:5e-5", "7:30:1e-4"],
                         help="slc settings K:N:eps, or K:N:eps:DRIFT with --volume-drift DRIFT")
     parser.add_argument("--resolutions", nargs="*", type=int, default=[64, 128, 256])
     parser.add_argument("--threads", type=int, default=2)
