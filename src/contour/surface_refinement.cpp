@@ -26,6 +26,8 @@ constexpr double min_normal_cosine = 0.5;
 constexpr double bracket_reach[] = {0.5, 1.0, 2.0};
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+/// The first index of a triangle a collapse removed, until improve() drops it.
+constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
 
 std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
     if (a > b) std::swap(a, b);
@@ -177,7 +179,6 @@ double corner_angle(const Surface& s, const TriangleIndices& t, int k) {
 /// triangle takes part in one move a round. Dead triangles are marked by a first index of
 /// `dead`. Returns the collapses.
 std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
-    constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
     const Edges edges(s);
     // Triangles around each vertex, in order: its corners' triangles.
     VertexCorners around = vertex_corners(s);
@@ -267,15 +268,15 @@ std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
 
 /// The vertices that an edge tiny beside its neighbourhood joins: roots of the linear contour
 /// near one point of the mesh, whose triangles have no shape worth keeping. An edge is tiny when
-/// it is shorter than cluster_ratio times the longest edge at each of its ends.
+/// it is shorter than cluster_ratio times the longest edge at either of its ends.
 /// Each cluster with ≥ 2 vertices is collapsed as a whole onto its vertex nearest its mean (a
 /// root of G, so every vertex stays on the zero set), when what is left around that vertex is
-/// one closed fan (the surface stays a manifold of the same Euler characteristic) and no
+/// one closed fan (the surface stays a manifold of the same Euler characteristic), no vertex
+/// moves a quarter of the way from that vertex to its nearest neighbour outside, and no
 /// triangle kept turns more than 30° from the surface around it. Each triangle takes part in
 /// one collapse a round; collapsed triangles are marked by a first index of `dead`. Returns the
 /// vertices removed.
 std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
-    constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
     const Edges edges(s);
     const std::size_t vertices = s.vertices.size();
     std::vector<double> length(edges.size()), longest(vertices, 0.0);
@@ -315,7 +316,6 @@ std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
     std::vector<std::uint32_t> ring;
     std::vector<TriangleIndices> moved;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> fan;  // (x, y) of each kept (r, x, y)
-    std::vector<std::uint32_t> outer;
     std::size_t removed = 0;
     for (std::uint32_t c = 0; c < vertices; ++c) {
         const std::span<const std::uint32_t> cluster(members.data() + start[c],
@@ -341,7 +341,6 @@ std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
         // The triangles kept (one corner in the cluster), moved onto r, as fans (x, y) of r.
         moved.clear();
         fan.clear();
-        outer.clear();
         std::size_t old_edges = 0, dropped = 0;
         for (const std::uint32_t t : ring) {
             const TriangleIndices& tri = s.triangles[t];
@@ -362,14 +361,14 @@ std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
             m[k] = r;
             moved.push_back(m);
             fan.push_back({tri[(k + 1) % 3], tri[(k + 2) % 3]});
-            outer.push_back(tri[(k + 1) % 3]);
         }
         for (const std::uint32_t v : cluster) in_cluster[v] = 0;
         // One closed fan: every outer vertex once first and once second, in one cycle of ≥ 3.
         std::sort(fan.begin(), fan.end());
-        std::sort(outer.begin(), outer.end());
-        bool sound =
-            fan.size() >= 3 && std::adjacent_find(outer.begin(), outer.end()) == outer.end();
+        bool sound = fan.size() >= 3 &&
+                     std::adjacent_find(fan.begin(), fan.end(), [](const auto& p, const auto& q) {
+                         return p.first == q.first;
+                     }) == fan.end();
         if (sound) {
             auto next = [&](std::uint32_t x) {
                 const auto it =
@@ -385,8 +384,8 @@ std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
             sound = x == fan[0].first && steps == fan.size();
         }
         // The Euler characteristic kept: V − E + F changes by −(|C| − 1) + (E_old − E_new) −
-        // dropped, with E_old − E_new = old edges at the cluster − the fan's |outer| edges.
-        sound &= old_edges == cluster.size() - 1 + dropped + outer.size();
+        // dropped, with E_old − E_new = old edges at the cluster − the fan's edges.
+        sound &= old_edges == cluster.size() - 1 + dropped + fan.size();
         // Small beside what is kept: no vertex moves by a quarter of the distance from the
         // vertex kept to its nearest neighbour outside the cluster, and no triangle kept turns
         // far.
@@ -394,7 +393,7 @@ std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
             double reach = 0.0, nearest = std::numeric_limits<double>::infinity();
             for (const std::uint32_t v : cluster)
                 reach = std::max(reach, distance(s.vertices[v], s.vertices[r]));
-            for (const std::uint32_t x : outer)
+            for (const auto& [x, y] : fan)
                 nearest = std::min(nearest, distance(s.vertices[x], s.vertices[r]));
             sound = reach < needle_ratio * nearest;
             for (std::size_t i = 0; i < ring.size() && sound; ++i)
@@ -478,7 +477,6 @@ std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
 /// triangles) is undone, and improvement ends for this pass.
 void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::uint8_t>& dirty,
              bool collapse, SurfaceRefinement& result) {
-    constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
     for (int round = 0; round < improve_rounds; ++round) {
         const std::vector<TriangleIndices> triangles_before = s.triangles;
         const std::vector<double> centroids_before = centroid_value;
