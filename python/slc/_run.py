@@ -279,7 +279,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
         eta: float | None = None, smoothing: int | None = None,
         params: dict[str, float] | None = None, geometry: str | None = None,
         extension: str | None = None, arcs: bool | None = None,
-        area_correction: bool | None = None, thin_depth: int | None = None, frames: int = 0,
+        area_correction: bool | None = None, thin_depth: int | None = None,
+        volume_drift: float | None = None, frames: int = 0,
         observer: Callable[[Step], Any] | None = None, threads: int = 0,
         estimate: bool = False) -> RunResult:
     """Moves curves from interface.time to t_end, as ``slc run --initial`` does, or runs a named
@@ -288,7 +289,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     takes (m, 3) arrays, the options of curves alone (smoothing, geometry, extension, arcs) are
     refused, area_correction turns the volume correction on or off, and thin_depth (surfaces only,
     as ``--thin-depth``) splits cells up to that many levels beyond K where a part thinner than a
-    cell lies.
+    cell lies; volume_drift (surfaces only, as ``--volume-drift``) is the fraction of its volume a
+    surface under a law that keeps it may drift before the run ends "unstable" (0.01 unless set).
 
     velocity: a built-in law's name (``velocities()``; its parameters in params), a FlowField, a
     NormalSpeed, or a callable f(t, points (N, 2), normals (N, 2), curvature (N,)) returning
@@ -313,9 +315,10 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
         p = _surface_subject(interface, velocity, t_end, params)
         return run_surface(p, frames, observer, threads, estimate, steps=steps, depth=depth,
                            refine=refine, eps=eps, eta=eta, thin_depth=thin_depth,
-                           area_correction=area_correction)
-    if thin_depth is not None:
-        raise ValueError("thin_depth is for surfaces, not curves")
+                           area_correction=area_correction, volume_drift=volume_drift)
+    for name, value in {"thin_depth": thin_depth, "volume_drift": volume_drift}.items():
+        if value is not None:
+            raise ValueError(f"{name} is for surfaces, not curves")
     p, law = _subject(interface, velocity, t_end, params, geometry)
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
         raise TypeError(f"frames must be an integer, got {frames!r}")

@@ -197,7 +197,8 @@ class SurfaceStep(NamedTuple):
 class SurfaceRunResult:
     """How a run of a surface ended: ``status`` is "ok", "vanished", "interrupted", "error" or
     "unstable" (a step broke what the law keeps — volume, components, genus — even split into
-    16 sub-steps, or the volume drifted by more than 1%); ``message`` says why."""
+    16 sub-steps, or the volume drifted by more than volume_drift, 1% unless set); ``message``
+    says why."""
 
     surface: Surface
     status: str
@@ -214,7 +215,7 @@ class SurfaceRunResult:
 
 
 def _options(steps=None, depth=None, refine=None, eps=None, eta=None, thin_depth=None,
-             area_correction=None):
+             area_correction=None, volume_drift=None):
     from ._interface import _refine
     from ._run import _integer
 
@@ -226,13 +227,17 @@ def _options(steps=None, depth=None, refine=None, eps=None, eta=None, thin_depth
     o.eta = None if eta is None else float(eta)
     o.thin_depth = _integer("thin_depth", thin_depth)
     o.volume_correction = None if area_correction is None else bool(area_correction)
+    if isinstance(volume_drift, bool):
+        raise TypeError(f"volume_drift must be a number, got {volume_drift!r}")
+    o.volume_drift = None if volume_drift is None else float(volume_drift)
     return o
 
 
 def run_surface(p, frames: int, observer: Callable[[SurfaceStep], Any] | None, threads: int,
                 estimate: bool = False, **options) -> SurfaceRunResult:
     """Runs the _slc.SurfaceProblem p with the options set (steps, depth, refine, eps, eta,
-    thin_depth, area_correction: the volume correction);
+    thin_depth, area_correction: the volume correction, volume_drift: the fraction of the
+    volume a law that keeps it may drift before the run ends "unstable");
     estimate: run it again at half resolution and add summary["error_estimate"]."""
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
         raise TypeError(f"frames must be an integer, got {frames!r}")

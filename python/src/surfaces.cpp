@@ -37,10 +37,10 @@ struct SurfaceSubject {
 };
 
 /// The options a caller set (None for unset): steps, depth, refine, eps, eta, thin_depth, and
-/// the volume correction (area_correction).
+/// the volume correction (area_correction) and the volume drift allowed (volume_drift).
 struct SurfaceOverrides {
     std::optional<int> steps, depth, refine, thin_depth;
-    std::optional<double> eps, eta;
+    std::optional<double> eps, eta, volume_drift;
     std::optional<bool> volume_correction;
 };
 
@@ -79,7 +79,8 @@ SurfaceRunOptions resolve(const SurfaceSubject& s, const SurfaceOverrides& q) {
                 fmt::format("refine must be from 0 to 64 or 'converged', got {}", *q.refine));
         c.refine_passes = *q.refine;
     }
-    for (const auto& [value, name] : {std::pair{q.eps, "eps"}, std::pair{q.eta, "eta"}}) {
+    for (const auto& [value, name] : {std::pair{q.eps, "eps"}, std::pair{q.eta, "eta"},
+                                      std::pair{q.volume_drift, "volume_drift"}}) {
         if (value && (!(*value > 0.0) || !std::isfinite(*value)))
             throw InvalidInput(fmt::format("{} must be positive and finite, got {}", name, *value));
     }
@@ -92,6 +93,7 @@ SurfaceRunOptions resolve(const SurfaceSubject& s, const SurfaceOverrides& q) {
         c.thin_depth = *q.thin_depth;
     }
     if (q.volume_correction) o.step.volume_correction = q.volume_correction;
+    if (q.volume_drift) o.volume_drift = *q.volume_drift;
     if (c.resolved_eps() < c.eta) {
         throw InvalidInput(
             fmt::format("eps ({}) must not be below eta ({})", c.resolved_eps(), c.eta));
@@ -366,7 +368,8 @@ void add_surface_functions(py::module_& m) {
         .def_readwrite("eps", &SurfaceOverrides::eps)
         .def_readwrite("eta", &SurfaceOverrides::eta)
         .def_readwrite("thin_depth", &SurfaceOverrides::thin_depth)
-        .def_readwrite("volume_correction", &SurfaceOverrides::volume_correction);
+        .def_readwrite("volume_correction", &SurfaceOverrides::volume_correction)
+        .def_readwrite("volume_drift", &SurfaceOverrides::volume_drift);
     py::class_<SurfaceSubject, std::shared_ptr<SurfaceSubject>>(m, "SurfaceProblem")
         .def_property_readonly("name", [](const SurfaceSubject& s) { return s.problem.name; })
         .def_property_readonly("description",

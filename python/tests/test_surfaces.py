@@ -159,6 +159,24 @@ def test_thin_depth_splits_cells_beyond_the_depth_for_surfaces_only():
         slc.run(box, "rotation", 0.5, steps=1, depth=4, eps=1e-3, thin_depth=9)
 
 
+def test_volume_drift_sets_how_far_the_volume_may_drift_for_surfaces_only():
+    # Linear contours at K = 3 lose 1% of a turning sphere's volume by t = 3.9 of 6: the run
+    # ends unstable at the default drift of 1% and finishes with 5% allowed.
+    c = np.array([0.03, -0.02, 0.01])
+    s = slc.Surface(slc.contour_surface(lambda p: np.linalg.norm(p - c, axis=1) - 0.6, 1.0, 4,
+                                        eps=1e-3))
+    tight = slc.run(s, "rotation", 6.0, steps=40, depth=3, refine=0)
+    assert tight.status == "unstable" and "volume drifted" in tight.message
+    assert 3.0 < tight.t < 6.0
+    loose = slc.run(s, "rotation", 6.0, steps=40, depth=3, refine=0, volume_drift=0.05)
+    assert loose.status == "ok" and loose.summary["params"]["volume_drift"] == 0.05
+    assert -0.05 < loose.surface.volume / s.volume - 1 < -0.01
+    with pytest.raises(ValueError, match="volume_drift is for surfaces, not curves"):
+        slc.run(slc.problem("vortex"), volume_drift=0.1)
+    with pytest.raises(ValueError, match="volume_drift must be positive and finite, got 0"):
+        slc.run(s, "rotation", 1.0, volume_drift=0)
+
+
 def test_the_domain_of_a_users_surface_grows_as_it_moves_away():
     s = sphere(r=0.3, depth=4, eps=1e-3)
     r = slc.run(s, slc.FieldExpression("1, 0, 0"), 1.0, steps=4)
