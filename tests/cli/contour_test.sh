@@ -15,6 +15,12 @@ awk 'BEGIN { printf "{\"curves\": [{\"points\": ["; for (i = 0; i < 256; i++) {
 expect_ok "adaptive contour" -- contour --initial circle.json -K 4 --eps 1e-4 --refine 20 --domain 2 --out ada
 error=$(grep -o '"error": [0-9.e+-]*' ada/summary.json | awk '{print $2}')
 check "adaptive error within eps ($error)" awk -v e="$error" 'BEGIN { exit !(e <= 1e-4) }'
+# --eps alone asks for that tolerance: refinement until converged; --refine 0 keeps the linear
+# contour, whose error is far above it.
+expect_ok "eps alone" -- contour --initial circle.json -K 4 --eps 1e-4 --domain 2 --out eps_alone
+check "eps alone refines until converged" python3 -c "import json, sys; s = json.load(open('eps_alone/summary.json')); sys.exit(not (s['params']['P'] == 1000 and s['passes'] > 0 and s['error'] <= 1e-4))"
+expect_ok "refine 0 with eps" -- contour --initial circle.json -K 4 --eps 1e-4 --refine 0 --domain 2 --out eps_linear
+check "refine 0 is the linear contour" python3 -c "import json, sys; s = json.load(open('eps_linear/summary.json')); sys.exit(not (s['params']['P'] == 0 and s['passes'] == 0 and s['error'] > 1e-4))"
 expect_error "negative eps" "eps" -- contour --initial square.json -K 4 --eps -1 --domain 2 --out x
 expect_error "depth missing" "depth|-K" -- contour --initial square.json --domain 2 --out x
 expect_error "missing file" "nope.json" -- contour --initial nope.json -K 4 --out x

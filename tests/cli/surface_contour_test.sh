@@ -49,6 +49,9 @@ check "refinement converged" test "$(json refined/summary.json 's["converged"]')
 check "midpoints and centroids within eps" test "$(json refined/summary.json 's["error"] <= 1e-4')" = True
 check "refined torus keeps its handle" test "$(json refined/summary.json 's["genus"]')" = 1
 expect_ok "refined final.obj reads back" -- distance --initial refined/final.obj --points points.csv --domain 1
+# --eps alone refines until converged, as slc.contour_surface(..., eps=e) does.
+expect_ok "eps alone" -- contour --function torus -K 4 --eps 1e-3 --out eps_alone
+check "eps alone: until converged, within eps" test "$(json eps_alone/summary.json 's["params"]["P"] == 1000 and s["converged"] and s["error"] <= 1e-3')" = True
 # Refinement that cannot reach eps (the box's edges at K = 3 and 1e-3: splits that would fold
 # them are refused) writes everything, says "unconverged" and exits with status 3 naming the
 # settings to change; P passes spent before eps is reached end the same way.

@@ -26,6 +26,10 @@
 namespace slc::cli {
 namespace {
 
+/// --refine's value when --eps is given without it: until converged (each pass that changes
+/// nothing, or finds no midpoint beyond eps, ends refinement first).
+constexpr int converged_passes = 1000;
+
 struct ContourCommandOptions {
     std::string initial;
     std::string function;
@@ -224,12 +228,14 @@ void add_contour_command(CLI::App& app) {
                     "edge midpoints and triangle centroids); default 10^-K, at least two ulps "
                     "of the domain's largest coordinate")
         ->check(positive_number());
-    cmd->add_option("--refine", o->refine,
-                    "Passes P of adaptive refinement (default 0: linear contour); refinement stops "
-                    "early when no midpoint exceeds eps or a pass changes nothing, so a large P "
-                    "means 'until converged'; a surface left beyond eps ends with status "
-                    "'unconverged' and exit status 3")
-        ->check(integer_in(0, 1000000));
+    auto* refine =
+        cmd->add_option("--refine", o->refine,
+                        "Passes P of adaptive refinement (default 0, the linear contour, or with "
+                        "--eps given 1000: until converged); refinement stops early when no "
+                        "midpoint exceeds eps or a pass changes nothing, so a large P means 'until "
+                        "converged'; a surface left beyond eps ends with status 'unconverged' and "
+                        "exit status 3")
+            ->check(integer_in(0, 1000000));
     cmd->add_option("--eta", o->eta,
                     "Root-finding tolerance eta: |G| <= eta at every vertex (default 1e-10)")
         ->check(positive_number());
@@ -248,9 +254,11 @@ void add_contour_command(CLI::App& app) {
     cmd->add_option("--out", o->out, "Output folder")->required();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
         ->check(integer_in(0, 1024));
-    cmd->callback([o, initial, function] {
+    cmd->callback([o, initial, function, refine] {
         if (initial->count() == 0 && function->count() == 0)
             throw InvalidInput("give --initial FILE or --function NAME");
+        // A tolerance given asks for it to be met: refinement until converged.
+        if (refine->count() == 0 && o->eps) o->refine = converged_passes;
         if (!o->function.empty() || is_surface_file(o->initial)) {
             apply_threads(o->threads);
             run_surface_contour({o->initial, o->function, o->depth, o->refine, o->eps, o->eta,
