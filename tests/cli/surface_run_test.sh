@@ -21,6 +21,17 @@ printf 'x,y,z\n0.73,-0.02,0.01\n0.03,-0.02,0.01\n' >points.csv
 expect_ok "final.obj reads back" -- distance --initial grow/final.obj --points points.csv --domain 1.5
 check "on the sphere of radius 0.7" test "$(sed -n 2p out.txt | cut -d, -f4 | python3 -c 'print(abs(float(input())) < 2e-3)')" = True
 
+# A torus of one's own at the defaults under unit normal speed: the offset torus of tube radius
+# 0.2 + t, saddles included (measured: vertices within 9.5e-5 of it at t = 0.05, eps 7.5e-4).
+expect_ok "a torus to grow" -- contour --function torus -K 4 --eps 1e-3 --out tor
+cp tor/final.obj tor.obj
+expect_ok "the torus grown at the defaults" -- run --initial tor.obj --velocity unit-normal --t-end 0.05 --out torgrow --quiet
+check "ok, genus 1, one component" test "$(json torgrow/summary.json 's["status"], s["genus"], s["components"]')" = "ok 1 1"
+check "vertices within 3e-4 of the offset torus" test "$(python3 -c '
+import math
+v = [list(map(float, l.split()[1:4])) for l in open("torgrow/final.obj") if l.startswith("v ")]
+print(max(abs(math.hypot(math.hypot(x, y) - 0.55, z) - 0.25) for x, y, z in v) < 3e-4)')" = True
+
 # A rigid turn about the x axis through the sphere's centre's neighbour keeps volume and shape.
 expect_ok "rotation about x" -- run --initial ball.obj --velocity rotation --param ax=1 --param az=0 --param cy=0.1 --t-end 1.5707963 -N 8 -K 4 --out turn --quiet --frames 2
 check "volume kept within 0.2%" test "$(json turn/summary.json 'abs(s["volume_change"]) < 2e-3')" = True
