@@ -18,14 +18,18 @@ from pathlib import Path
 
 
 def slc_row(slc, work, setting, threads, reuse, figures):
-    depth, steps, eps, *drift = setting.split(":")
-    out = Path(work) / (f"slc-K{depth}-N{steps}-eps{eps}" + (f"-drift{drift[0]}" if drift else ""))
+    depth, steps, eps, *rest = setting.split(":")
+    drift = [rest[0]] if rest and rest[0] else []
+    thin = rest[1] if len(rest) > 1 and rest[1] else None
+    out = Path(work) / (f"slc-K{depth}-N{steps}-eps{eps}" + (f"-drift{drift[0]}" if drift else "")
+                        + (f"-thin{thin}" if thin else ""))
     summary = out / "summary.json"
     if not (reuse and summary.exists()):
         run = subprocess.run([slc, "run", "--problem", "enright", "-K", depth, "-N", steps,
                               "--eps", eps, "--threads", str(threads), "--frames", "2",
                               "--out", str(out), "--quiet"]
-                             + (["--volume-drift", drift[0]] if drift else []),
+                             + (["--volume-drift", drift[0]] if drift else [])
+                             + (["--thin-depth", thin] if thin else []),
                              capture_output=True, text=True)
         if run.returncode not in (0, 3):
             sys.exit(f"slc run --problem enright failed: {run.stderr.strip()}")
@@ -38,7 +42,8 @@ def slc_row(slc, work, setting, threads, reuse, figures):
             if picture.exists():
                 shutil.copy(picture, Path(figures) / f"enright_K{depth}_{name}.png")
     if (p["K"], p["N"], p["eps"]) != (int(depth), int(steps), float(eps)) or (
-            drift and p.get("volume_drift") != float(drift[0])):
+            drift and p.get("volume_drift") != float(drift[0])) or (
+            thin and p.get("thin_depth") != int(thin)):
         sys.exit(f"{summary}: not the run K {depth} N {steps} eps {eps}")
     half = None
     for line in (out / "history.csv").read_text().splitlines()[1:]:
@@ -91,8 +96,10 @@ def main():
     parser.add_argument("--work", default="out/enright", help="run folders")
     parser.add_argument("--settings", nargs="*",
                         default=["4:30:1e-3:1", "5:30:5e-4:1", "6:60:1e-4", "6:30:1e-4",
-                                 "7:15:5e-4", "7:60:1e-4", "7:30:5e-5", "7:30:1e-4"],
-                        help="slc settings K:N:eps, or K:N:eps:DRIFT with --volume-drift DRIFT")
+                                 "6:30:1e-4::3", "7:15:5e-4", "7:60:1e-4", "7:30:5e-5",
+                                 "7:30:1e-4"],
+                        help="slc settings K:N:eps, K:N:eps:DRIFT with --volume-drift DRIFT, "
+                             "K:N:eps:DRIFT:THIN (DRIFT may be empty) with --thin-depth THIN")
     parser.add_argument("--resolutions", nargs="*", type=int, default=[64, 128, 256])
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--figures", help="folder for the pictures of slc's runs that end ok")
