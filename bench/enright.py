@@ -19,16 +19,16 @@ from pathlib import Path
 
 def slc_row(slc, work, setting, threads, reuse, figures):
     depth, steps, eps, *rest = setting.split(":")
-    drift = [rest[0]] if rest and rest[0] else []
+    drift = rest[0] if rest and rest[0] else None
     thin = rest[1] if len(rest) > 1 and rest[1] else None
-    out = Path(work) / (f"slc-K{depth}-N{steps}-eps{eps}" + (f"-drift{drift[0]}" if drift else "")
+    out = Path(work) / (f"slc-K{depth}-N{steps}-eps{eps}" + (f"-drift{drift}" if drift else "")
                         + (f"-thin{thin}" if thin else ""))
     summary = out / "summary.json"
     if not (reuse and summary.exists()):
         run = subprocess.run([slc, "run", "--problem", "enright", "-K", depth, "-N", steps,
                               "--eps", eps, "--threads", str(threads), "--frames", "2",
                               "--out", str(out), "--quiet"]
-                             + (["--volume-drift", drift[0]] if drift else [])
+                             + (["--volume-drift", drift] if drift else [])
                              + (["--thin-depth", thin] if thin else []),
                              capture_output=True, text=True)
         if run.returncode not in (0, 3):
@@ -42,7 +42,7 @@ def slc_row(slc, work, setting, threads, reuse, figures):
             if picture.exists():
                 shutil.copy(picture, Path(figures) / f"enright_K{depth}_{name}.png")
     if (p["K"], p["N"], p["eps"]) != (int(depth), int(steps), float(eps)) or (
-            drift and p.get("volume_drift") != float(drift[0])) or (
+            drift and p.get("volume_drift") != float(drift)) or (
             thin and p.get("thin_depth") != int(thin)):
         sys.exit(f"{summary}: not the run K {depth} N {steps} eps {eps}")
     half = None
@@ -54,7 +54,7 @@ def slc_row(slc, work, setting, threads, reuse, figures):
     return {
         "method": f"slc K = {depth}, N = {steps}, ε = {eps}"
                   + (f", thin depth {p['thin_depth']}" if p.get("thin_depth") else "")
-                  + (f", volume drift allowed {100 * float(drift[0]):g}%" if drift else ""),
+                  + (f", volume drift allowed {100 * float(drift):g}%" if drift else ""),
         "status": s["status"] + (f" at t = {s['t']:.3g}" if s["status"] != "ok" else ""),
         "half": None if half is None else half / v0 - 1,
         "change": s["volume_change"] if s["status"] == "ok" else None,

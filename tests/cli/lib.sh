@@ -56,6 +56,10 @@ finish() {
     [ "$failures" -eq 0 ]
 }
 
+json() {  # json FILE EXPRESSION: prints a Python expression of the parsed file `s`
+    python3 -c "import json, sys; s = json.load(open(sys.argv[1])); print($2)" "$1"
+}
+
 square_json() {  # the square [-1, 1]^2, counterclockwise
     echo '{"time": 0, "curves": [{"points": [[-1, -1], [1, -1], [1, 1], [-1, 1]]}]}'
 }

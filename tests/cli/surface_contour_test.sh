@@ -2,10 +2,6 @@
 # closed, oriented surfaces that slc reads back; the same output for any thread count; errors.
 source "$(dirname "$0")/lib.sh" "$1"
 
-json() {  # json FILE EXPRESSION: prints a Python expression of the parsed file `s`
-    python3 -c "import json, sys; s = json.load(open(sys.argv[1])); print($2)" "$1"
-}
-
 expect_ok "torus contours" -- contour --function torus -K 5 --out torus
 check "summary says ok" test "$(json torus/summary.json 's["status"]')" = ok
 check "the torus keeps its handle" test "$(json torus/summary.json 's["genus"], s["components"]')" = "1 1"

@@ -2,10 +2,6 @@
 # eps 1e-3 l, refinement until converged) against exact offsets, convex and with saddles.
 source "$(dirname "$0")/lib.sh" "$1"
 
-json() {  # json FILE EXPRESSION: prints a Python expression of the parsed file `s`
-    python3 -c "import json, sys; s = json.load(open(sys.argv[1])); print($2)" "$1"
-}
-
 # A sphere of radius 0.6 about (0.03, -0.02, 0.01), as slc contours it.
 expect_ok "a sphere to move" -- contour --function sphere -K 4 --refine 100 --eps 1e-3 --out ball
 cp ball/final.obj ball.obj
