@@ -280,7 +280,7 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
         params: dict[str, float] | None = None, geometry: str | None = None,
         extension: str | None = None, arcs: bool | None = None,
         area_correction: bool | None = None, thin_depth: int | None = None,
-        volume_drift: float | None = None, frames: int = 0,
+        volume_drift: float | None = None, guards: bool | None = None, frames: int = 0,
         observer: Callable[[Step], Any] | None = None, threads: int = 0,
         estimate: bool = False) -> RunResult:
     """Moves curves from interface.time to t_end, as ``slc run --initial`` does, or runs a named
@@ -290,7 +290,10 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     refused, area_correction turns the volume correction on or off, and thin_depth (surfaces only,
     as ``--thin-depth``) splits cells up to that many levels beyond K where a part thinner than a
     cell lies; volume_drift (surfaces only, as ``--volume-drift``) is the fraction of its volume a
-    surface under a law that keeps it may drift before the run ends "unstable" (0.01 unless set).
+    surface under a law that keeps it may drift before the run ends "unstable" (0.01 unless set);
+    guards=False (surfaces only, as ``--no-guards``) takes every step whole and goes on to the end
+    even when one breaks what the law keeps, to see what a coarse run gives: the result's status is
+    then "broken" and its message names the first break.
 
     velocity: a built-in law's name (``velocities()``; its parameters in params), a FlowField, a
     NormalSpeed, or a callable f(t, points (N, 2), normals (N, 2), curvature (N,)) returning
@@ -315,8 +318,10 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
         p = _surface_subject(interface, velocity, t_end, params)
         return run_surface(p, frames, observer, threads, estimate, steps=steps, depth=depth,
                            refine=refine, eps=eps, eta=eta, thin_depth=thin_depth,
-                           area_correction=area_correction, volume_drift=volume_drift)
-    for name, value in {"thin_depth": thin_depth, "volume_drift": volume_drift}.items():
+                           area_correction=area_correction, volume_drift=volume_drift,
+                           guards=guards)
+    for name, value in {"thin_depth": thin_depth, "volume_drift": volume_drift,
+                        "guards": guards}.items():
         if value is not None:
             raise ValueError(f"{name} is for surfaces, not curves")
     p, law = _subject(interface, velocity, t_end, params, geometry)

@@ -195,10 +195,11 @@ class SurfaceStep(NamedTuple):
 
 @dataclass
 class SurfaceRunResult:
-    """How a run of a surface ended: ``status`` is "ok", "vanished", "interrupted", "error" or
+    """How a run of a surface ended: ``status`` is "ok", "vanished", "interrupted", "error",
     "unstable" (a step broke what the law keeps — volume, components, genus — even split into
-    16 sub-steps, or the volume drifted by more than volume_drift, 1% unless set); ``message``
-    says why."""
+    16 sub-steps, or the volume drifted by more than volume_drift, 1% unless set) or, with
+    guards=False, "broken" (the run reached its end, but a step broke what the law keeps);
+    ``message`` says why."""
 
     surface: Surface
     status: str
@@ -215,7 +216,7 @@ class SurfaceRunResult:
 
 
 def _options(steps=None, depth=None, refine=None, eps=None, eta=None, thin_depth=None,
-             area_correction=None, volume_drift=None):
+             area_correction=None, volume_drift=None, guards=None):
     from ._interface import _refine
     from ._run import _integer
 
@@ -230,6 +231,9 @@ def _options(steps=None, depth=None, refine=None, eps=None, eta=None, thin_depth
     if isinstance(volume_drift, bool):
         raise TypeError(f"volume_drift must be a number, got {volume_drift!r}")
     o.volume_drift = None if volume_drift is None else float(volume_drift)
+    if guards is not None and not isinstance(guards, bool):
+        raise TypeError(f"guards must be True or False, got {guards!r}")
+    o.guards = guards
     return o
 
 
@@ -237,7 +241,8 @@ def run_surface(p, frames: int, observer: Callable[[SurfaceStep], Any] | None, t
                 estimate: bool = False, **options) -> SurfaceRunResult:
     """Runs the _slc.SurfaceProblem p with the options set (steps, depth, refine, eps, eta,
     thin_depth, area_correction: the volume correction, volume_drift: the fraction of the
-    volume a law that keeps it may drift before the run ends "unstable");
+    volume a law that keeps it may drift before the run ends "unstable", guards: False to go on
+    to the end through steps that break what the law keeps, status "broken");
     estimate: run it again at half resolution and add summary["error_estimate"]."""
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
         raise TypeError(f"frames must be an integer, got {frames!r}")
@@ -249,6 +254,8 @@ def run_surface(p, frames: int, observer: Callable[[SurfaceStep], Any] | None, t
                            bool(estimate))
     if "note" in out["summary"]:  # contours left beyond eps (summary's unconverged_steps)
         warnings.warn(out["summary"]["note"], stacklevel=3)
+    if out["status"] == "broken":
+        warnings.warn(f"guards=False: {out['message']}", stacklevel=3)
     return SurfaceRunResult(
         surface=Surface._trusted(out["vertices"], out["triangles"], out["t"]),
         status=out["status"],

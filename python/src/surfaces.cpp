@@ -37,11 +37,12 @@ struct SurfaceSubject {
 };
 
 /// The options a caller set (None for unset): steps, depth, refine, eps, eta, thin_depth, and
-/// the volume correction (area_correction) and the volume drift allowed (volume_drift).
+/// the volume correction (area_correction), the volume drift allowed (volume_drift) and the
+/// guards (SurfaceRunOptions::guards).
 struct SurfaceOverrides {
     std::optional<int> steps, depth, refine, thin_depth;
     std::optional<double> eps, eta, volume_drift;
-    std::optional<bool> volume_correction;
+    std::optional<bool> volume_correction, guards;
 };
 
 /// The problem's own options with the caller's over them, as `slc run` on a surface takes
@@ -94,6 +95,7 @@ SurfaceRunOptions resolve(const SurfaceSubject& s, const SurfaceOverrides& q) {
     }
     if (q.volume_correction) o.step.volume_correction = q.volume_correction;
     if (q.volume_drift) o.volume_drift = *q.volume_drift;
+    if (q.guards) o.guards = *q.guards;
     if (c.resolved_eps() < c.eta) {
         throw InvalidInput(
             fmt::format("eps ({}) must not be below eta ({})", c.resolved_eps(), c.eta));
@@ -369,7 +371,8 @@ void add_surface_functions(py::module_& m) {
         .def_readwrite("eta", &SurfaceOverrides::eta)
         .def_readwrite("thin_depth", &SurfaceOverrides::thin_depth)
         .def_readwrite("volume_correction", &SurfaceOverrides::volume_correction)
-        .def_readwrite("volume_drift", &SurfaceOverrides::volume_drift);
+        .def_readwrite("volume_drift", &SurfaceOverrides::volume_drift)
+        .def_readwrite("guards", &SurfaceOverrides::guards);
     py::class_<SurfaceSubject, std::shared_ptr<SurfaceSubject>>(m, "SurfaceProblem")
         .def_property_readonly("name", [](const SurfaceSubject& s) { return s.problem.name; })
         .def_property_readonly("description",

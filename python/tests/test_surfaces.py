@@ -159,7 +159,7 @@ def test_thin_depth_splits_cells_beyond_the_depth_for_surfaces_only():
         slc.run(box, "rotation", 0.5, steps=1, depth=4, eps=1e-3, thin_depth=9)
 
 
-def test_volume_drift_sets_how_far_the_volume_may_drift_for_surfaces_only():
+def test_volume_drift_and_guards_set_what_ends_a_run_of_a_surface_only():
     # Linear contours at K = 3 lose 1% of a turning sphere's volume by t = 3.9 of 6: the run
     # ends unstable at the default drift of 1% and finishes with 5% allowed.
     c = np.array([0.03, -0.02, 0.01])
@@ -175,6 +175,19 @@ def test_volume_drift_sets_how_far_the_volume_may_drift_for_surfaces_only():
         slc.run(slc.problem("vortex"), volume_drift=0.1)
     with pytest.raises(ValueError, match="volume_drift must be positive and finite, got 0"):
         slc.run(s, "rotation", 1.0, volume_drift=0)
+    # guards=False goes on to the end, warns and ends "broken" where the drift passed 1%; no
+    # step was split, so the surface is the loose run's.
+    assert loose.summary["split_steps"] == 0
+    with pytest.warns(UserWarning, match="guards=False: at t = 3.9: the volume drifted"):
+        unguarded = slc.run(s, "rotation", 6.0, steps=40, depth=3, refine=0, guards=False)
+    assert unguarded.status == "broken" and unguarded.t == 6.0
+    assert unguarded.message.startswith("at t = 3.9: the volume drifted")
+    assert unguarded.summary["params"]["guards"] is False
+    assert np.array_equal(unguarded.surface.vertices, loose.surface.vertices)
+    with pytest.raises(ValueError, match="guards is for surfaces, not curves"):
+        slc.run(slc.problem("vortex"), guards=False)
+    with pytest.raises(TypeError, match="guards must be True or False"):
+        slc.run(s, "rotation", 1.0, guards=1)
 
 
 def test_the_domain_of_a_users_surface_grows_as_it_moves_away():

@@ -25,6 +25,8 @@ const char* to_string(RunStatus status) {
             return "interrupted";
         case RunStatus::unstable:
             return "unstable";
+        case RunStatus::broken:
+            return "broken";
         default:
             return "error";
     }

@@ -173,6 +173,16 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
     SurfaceRunResult r = from;
     r.status = RunStatus::ok;
     r.message.clear();
+    // What a step broke: with the guards on, the end of the run; off, noted the first time.
+    const auto stop_or_note = [&](std::string why) {
+        if (options.guards) {
+            r.status = RunStatus::unstable;
+            r.message = std::move(why);
+            return true;
+        }
+        if (r.broken.empty()) r.broken = std::move(why);
+        return false;
+    };
     const Invariants invariants = law.invariants();
     const double eps = options.step.contour.resolved_eps();
     const bool until_converged =
@@ -192,6 +202,7 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
         SurfaceStepStats stats;
         try {
             // The step, in 1, 2, 4, ... sub-steps until it keeps what the law keeps.
+            const int most_halvings = options.guards ? options.max_substep_halvings : 0;
             for (int halvings = 0;; ++halvings) {
                 const int pieces = 1 << halvings;
                 const double k = (t1 - t0) / pieces;
@@ -211,10 +222,15 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                         residual = std::max(residual, step.stats.corrector.residual);
                     }
                     stats = step.stats;
-                    if (options.guards) {
-                        broken = surface_invariant_violation(invariants, s, step.surface, k, eps);
-                        if (broken) break;
+                    broken = surface_invariant_violation(invariants, s, step.surface, k, eps);
+                    if (broken && options.guards) break;
+                    if (broken) {
+                        stop_or_note(
+                            fmt::format("at t = {:.6g}: {}; refine the time step (-N) or the "
+                                        "contours (-K, --eps)",
+                                        t0 + j * k, *broken));
                     }
+                    broken.reset();
                     s = std::move(step.surface);
                 }
                 if (!broken) {
@@ -230,52 +246,49 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                     }
                     break;
                 }
-                if (halvings == options.max_substep_halvings) {
-                    r.status = RunStatus::unstable;
-                    r.message = fmt::format(
-                        "at t = {}: {} (also in {} sub-steps); refine the "
-                        "time step (-N) or the contours (-K, --eps)",
-                        t0, *broken, pieces);
+                if (halvings == most_halvings) {
+                    stop_or_note(
+                        fmt::format("at t = {:.6g}: {} (also in {} sub-steps); refine the "
+                                    "time step (-N) or the contours (-K, --eps)",
+                                    t0, *broken, pieces));
                     clocks();
                     return r;
                 }
             }
         } catch (const NumericalFailure& e) {
             r.status = RunStatus::error;
-            r.message = fmt::format("at t = {}: {}", t0, e.what());
+            r.message = fmt::format("at t = {:.6g}: {}", t0, e.what());
             clocks();
             return r;
         }
         r.t = t1;
         r.steps_done = n;
         clocks();
-        if (options.guards && invariants.keeps_area && !r.surface.empty()) {
+        if (invariants.keeps_area && !r.surface.empty()) {
             const double drift = volume(r.surface) / volume0 - 1.0;
-            if (std::abs(drift) > options.volume_drift) {
-                r.status = RunStatus::unstable;
-                r.message = fmt::format(
-                    "at t = {}: the volume drifted by {:.3g}% since the start under a law that "
+            if (std::abs(drift) > options.volume_drift &&
+                stop_or_note(fmt::format(
+                    "at t = {:.6g}: the volume drifted by {:.3g}% since the start under a law that "
                     "keeps it (more than {:.3g}%); take more steps (-N), refine the contours "
                     "(-K, --eps) or allow more drift (--volume-drift)",
-                    t1, 100.0 * drift, 100.0 * options.volume_drift);
+                    t1, 100.0 * drift, 100.0 * options.volume_drift)))
                 return r;
-            }
         }
-        if (options.guards && invariants.shortens && !r.surface.empty()) {
+        if (invariants.shortens && !r.surface.empty()) {
             if (const auto growth =
                     growth_above_least(r.least_area, area(r.surface), t1, options.area_growth,
-                                       20.0 * eps * std::sqrt(r.least_area.value))) {
-                r.status = RunStatus::unstable;
-                r.message = fmt::format(
+                                       20.0 * eps * std::sqrt(r.least_area.value));
+                growth &&
+                stop_or_note(fmt::format(
                     "at t = {:.6g}: the area has grown by {:.3g}% since t = {:.6g} under a law "
                     "that shrinks it, more than the run's {:g}%: the steps roughen the surface; "
                     "take more steps (-N) or refine the contours (-K, --eps)",
-                    t1, 100.0 * *growth, r.least_area.t, 100.0 * options.area_growth);
+                    t1, 100.0 * *growth, r.least_area.t, 100.0 * options.area_growth)))
                 return r;
-            }
         }
         if (r.surface.empty()) {
             r.status = RunStatus::vanished;
+            r.message = r.broken;
             return r;
         }
         if (observer) {
@@ -285,6 +298,10 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                 return r;
             }
         }
+    }
+    if (!r.broken.empty()) {
+        r.status = RunStatus::broken;
+        r.message = r.broken;
     }
     return r;
 }

@@ -131,6 +131,7 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
           {"eta", c.eta},
           {"thin_depth", c.thin_depth},
           {"volume_drift", options.volume_drift},
+          {"guards", options.guards},
           {"threads", thread_count()}}},
         {"status", to_string(r.status)},
         {"t", r.t},

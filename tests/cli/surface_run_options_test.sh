@@ -93,6 +93,15 @@ check "status unstable" test "$(json drift/summary.json 's["status"]')" = unstab
 expect_ok "more drift allowed" -- run --initial ball.obj --velocity rotation --t-end 6 -N 40 -K 3 -P 0 --volume-drift 0.05 --out drift5 --quiet
 check "ok, the drift reported" test "$(json drift5/summary.json 's["status"] == "ok" and -0.05 < s["volume_change"] < -0.01')" = True
 check "the allowance recorded" test "$(json drift5/summary.json 's["params"]["volume_drift"]')" = 0.05
+# Without guards the run goes on to the end and says where it broke its law; its steps were
+# kept whole, as the run above kept them, so the surface is the same.
+check "the run above split no step" test "$(json drift5/summary.json 's["split_steps"]')" = 0
+expect_ok "no guards" -- run --initial ball.obj --velocity rotation --t-end 6 -N 40 -K 3 -P 0 --no-guards --out unguarded --quiet
+check "status broken at t = 6" test "$(json unguarded/summary.json 's["status"] == "broken" and s["t"] == 6 and s["params"]["guards"] is False')" = True
+check "the first break in its message" grep -q '"message": "at t = 3.9: the volume drifted by -1.0' unguarded/summary.json
+check "a warning names it" grep -q "^slc: warning: --no-guards: at t = 3.9: the volume drifted" err.txt
+check "the same surface as the guarded run's" cmp -s unguarded/final.obj drift5/final.obj
+expect_error "no guards for curves" "--no-guards is for surfaces, not curves" -- run --problem vortex --no-guards --out x
 expect_error "drift for curves" "--volume-drift is for surfaces, not curves" -- run --problem vortex --volume-drift 0.1 --out x
 expect_error "drift not positive" "--volume-drift: must be a positive finite number, got '0'" -- run --problem enright --volume-drift 0 --out x
 finish

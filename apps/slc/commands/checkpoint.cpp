@@ -132,6 +132,7 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
         if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
         json["least_area"] = s.least_area.value;
         json["least_area_t"] = s.least_area.t;
+        if (!s.broken.empty()) json["broken"] = s.broken;
         json["frames_kept"] = c.frames_kept;
         json["frame_times"] = c.frame_times;
         put_surface(json, s.surface);
@@ -189,6 +190,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
             if (s.domain_doublings > 0)
                 s.domain_grown_at = json.at("domain_grown_at").get<double>();
             s.least_area = {json.value("least_area", 0.0), json.value("least_area_t", 0.0)};
+            s.broken = json.value("broken", std::string());
             s.status = RunStatus::interrupted;
             c.frames_kept = json.at("frames_kept").get<int>();
             c.frame_times = json.at("frame_times").get<std::vector<double>>();

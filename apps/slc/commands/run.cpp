@@ -71,6 +71,7 @@ struct RunCommand {
     std::string resume;
     bool estimate = false;
     std::optional<double> volume_drift;
+    bool no_guards = false;
 };
 
 /// Frames 0..n at evenly spaced steps; frame_path(i) names them.
@@ -326,6 +327,11 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
                     "the volume has drifted from the start's by more than this fraction (default "
                     "0.01). A larger one lets a coarse run finish and report how far it drifted")
         ->check(positive_number());
+    cmd->add_flag("--no-guards", o->no_guards,
+                  "For a surface: take every step whole and go on to the end even when one "
+                  "breaks what the law keeps (a sheet thinner than the contours tears, the volume "
+                  "drifts), to see what a coarse run gives; the run then ends with status "
+                  "broken, exit status 0, and the first break in summary.json's message");
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
                     "Output folder (required, except with --resume): summary.json, final.json, "
@@ -435,6 +441,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  .tree_depth = o.method.tree_depth,
                  .volume_correction = o.method.area_correction,
                  .volume_drift = o.volume_drift,
+                 .guards = !o.no_guards,
                  .frames = o.frames,
                  .estimate = o.estimate,
                  .view = o.view,
@@ -466,6 +473,7 @@ void add_run_command(CLI::App& app) {
             throw InvalidInput("--thin-depth is for surfaces, not curves");
         if (!surface && o->volume_drift)
             throw InvalidInput("--volume-drift is for surfaces, not curves");
+        if (!surface && o->no_guards) throw InvalidInput("--no-guards is for surfaces, not curves");
         const StopSignals signals;
         const std::vector<GivenOption> all = given_options(*cmd, {});
         const std::string id =

@@ -141,6 +141,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     if (r.tree_depth) options.step.tree_depth = *r.tree_depth;
     if (r.volume_correction) options.step.volume_correction = r.volume_correction;
     if (r.volume_drift) options.volume_drift = *r.volume_drift;
+    options.guards = r.guards;
     const SurfaceContourOptions& c = options.step.contour;
     if (c.resolved_eps() < c.eta) {
         throw InvalidInput(
@@ -250,7 +251,11 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     const Surface& s = result.surface;
     nlohmann::json summary = surface_run_summary(p, p.initial, options, result);
     // A run that fails says one line, its error; its notes stay in summary.json.
-    const bool finished = result.status == RunStatus::ok || result.status == RunStatus::interrupted;
+    const bool finished = result.status == RunStatus::ok ||
+                          result.status == RunStatus::interrupted ||
+                          result.status == RunStatus::broken;
+    if (!result.broken.empty())
+        fmt::print(stderr, "slc: warning: --no-guards: {}\n", result.broken);
     if (finished && summary.contains("note"))
         fmt::print(stderr, "slc: note: {}\n", summary["note"].get<std::string>());
     if (finished && result.domain_doublings > 0) {

@@ -35,6 +35,8 @@ struct SurfaceRunRequest {
     std::optional<bool> volume_correction;
     /// --volume-drift: SurfaceRunOptions::volume_drift; unset, its default.
     std::optional<double> volume_drift;
+    /// --no-guards: SurfaceRunOptions::guards off.
+    bool guards = true;
     int frames = 0;
     /// --estimate: the run again at half resolution, and the distance between the two final
     /// surfaces in summary.json's "error_estimate".

@@ -21,6 +21,9 @@ enum class RunStatus {
     /// a step broke what the law keeps (VelocityLaw::invariants) even split into sub-steps
     /// (RunOptions::guards): see message
     unstable,
+    /// a surface's run with its guards off (SurfaceRunOptions::guards) reached t_end, but a step
+    /// broke what the law keeps: message names the first
+    broken,
 };
 
 /// The summary.json spelling of a status.

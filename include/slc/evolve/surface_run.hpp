@@ -22,7 +22,10 @@ struct SurfaceRunOptions {
     SurfaceStepOptions step;  ///< K, P, ε, L of each step
     /// Check every step against the law's invariants (surface_invariant_violation): a step that
     /// breaks them is retried in 2, 4, ... 2^max_substep_halvings sub-steps, and a run that still
-    /// breaks them ends with status unstable.
+    /// breaks them ends with status unstable. Off: every step is taken whole and kept, and the
+    /// run goes on to t_end; the steps are still checked (with the volume drift and the area
+    /// growth below), and a run that broke what its law keeps ends with status broken, its
+    /// message the first break (a coarse run whose sheet tears, measured anyway).
     bool guards = true;
     int max_substep_halvings = 4;  ///< see guards
     /// With guards, under a law that keeps the volume: the run ends unstable once the volume has
@@ -86,6 +89,9 @@ struct SurfaceRunResult {
     /// the time of the first step that needed it (NaN when none did).
     int domain_doublings = 0;
     double domain_grown_at = std::numeric_limits<double>::quiet_NaN();
+    /// With the guards off: where and how the run first broke what its law keeps, as in the
+    /// message of an unstable run; empty while it has not.
+    std::string broken;
 };
 
 /// A user's surface as the steps of a run read it: the contour, at the run's K, P, ε and η, of

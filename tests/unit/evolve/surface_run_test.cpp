@@ -185,9 +185,19 @@ TEST(SurfaceRun, BrokenInvariantIsUnstable) {
     EXPECT_EQ(r.status, RunStatus::unstable);
     EXPECT_NE(r.message.find("the volume changed by"), std::string::npos) << r.message;
     EXPECT_NE(r.message.find("also in 2 sub-steps"), std::string::npos) << r.message;
-    // The same run without guards ends ok.
+    // Without guards the same run goes on to the end, each step whole, and ends broken, its
+    // message the first step that broke the law; the surface is the unguarded step's.
     o.guards = false;
-    EXPECT_EQ(run(sphere({}, 0.3, 2), FalseClaim(), domain, o).status, RunStatus::ok);
+    const SurfaceRunResult whole = run(sphere({}, 0.3, 2), FalseClaim(), domain, o);
+    EXPECT_EQ(whole.status, RunStatus::broken);
+    EXPECT_STREQ(to_string(whole.status), "broken");
+    EXPECT_EQ(whole.steps_done, 1);
+    EXPECT_EQ(whole.split_steps, 0);
+    EXPECT_EQ(whole.message, whole.broken);
+    EXPECT_EQ(whole.message.rfind("at t = 0: the volume changed by", 0), 0) << whole.message;
+    const SurfaceStepResult step =
+        advance(sphere({}, 0.3, 2), 0.0, 0.1, FalseClaim(), domain, o.step);
+    EXPECT_EQ(whole.surface.vertices, step.surface.vertices);
 }
 
 /// A law that grows the surface slowly, at speed 0.3, while claiming to shrink its area.
@@ -213,6 +223,13 @@ TEST(SurfaceRun, AreaGrowingOverTheRunUnderAShrinkingLawIsUnstable) {
     EXPECT_LE(r.t, 0.04 + 1e-12);
     o.area_growth = 1.0;
     EXPECT_EQ(run(sphere({}, 0.3, 3), SlowGrowth(), domain, o).status, RunStatus::ok);
+    // Without guards: to the end, broken where the area first grew too far.
+    o.area_growth = 5e-3;
+    o.guards = false;
+    const SurfaceRunResult all = run(sphere({}, 0.3, 3), SlowGrowth(), domain, o);
+    EXPECT_EQ(all.status, RunStatus::broken);
+    EXPECT_EQ(all.steps_done, 6);
+    EXPECT_EQ(all.message, r.message);
 }
 
 /// A flow field u = f(x) claiming the given invariants.
@@ -266,6 +283,13 @@ TEST(SurfaceRun, VolumeDriftOverTheRunIsUnstable) {
     EXPECT_EQ(r.status, RunStatus::unstable);
     EXPECT_EQ(r.steps_done, 2) << r.message;
     EXPECT_NE(r.message.find("the volume drifted by -1."), std::string::npos) << r.message;
+    // Without guards: to the end, broken where the drift first passed 1%.
+    SurfaceRunOptions o = coarse(0.2, 4);
+    o.guards = false;
+    const SurfaceRunResult all = run(sphere({}, 0.5, 5), squeeze, domain, o);
+    EXPECT_EQ(all.status, RunStatus::broken);
+    EXPECT_EQ(all.steps_done, 4);
+    EXPECT_EQ(all.message, r.message);
 }
 
 TEST(SurfaceRun, BadOptions) {
