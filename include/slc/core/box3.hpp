@@ -20,9 +20,22 @@ struct Box3 {
 
     /// The cube [−b, b]³.
     static constexpr Box3 centered_cube(double b) { return {{-b, -b, -b}, {b, b, b}}; }
-    /// The cube of half-width b centred on c.
-    static constexpr Box3 cube(Vec3 c, double b) {
-        return {{c.x - b, c.y - b, c.z - b}, {c.x + b, c.y + b, c.z + b}};
+    /// The cube of half-width b centred on c: exactly a cube (is_cube()), which c ± b need not
+    /// be, as x, y and z round differently. Then its corners are snapped to a grid of about
+    /// 2^−24 of its width, outward, so that it still holds [c − b, c + b]³ (as Box::square).
+    static Box3 cube(Vec3 c, double b) {
+        const Box3 naive{{c.x - b, c.y - b, c.z - b}, {c.x + b, c.y + b, c.z + b}};
+        if (naive.is_cube() || !(b > 0.0) || !std::isfinite(b) || !std::isfinite(c.x) ||
+            !std::isfinite(c.y) || !std::isfinite(c.z))
+            return naive;  // a cube already, or bad input that validation names
+        int e = 0;
+        (void)std::frexp(2.0 * b, &e);
+        const double q = std::ldexp(1.0, e - 24);  // 2b < 2^e: under 2^24 grid steps
+        // Multiples of q below 2^53 q add and subtract exactly: lo + w − lo is w.
+        const double w = std::ceil((2.0 * b + q) / q) * q;
+        const Vec3 lo{std::floor((c.x - b) / q) * q, std::floor((c.y - b) / q) * q,
+                      std::floor((c.z - b) / q) * q};
+        return {lo, {lo.x + w, lo.y + w, lo.z + w}};
     }
     /// The empty box (lo > hi): the identity of unite().
     static constexpr Box3 empty() {
