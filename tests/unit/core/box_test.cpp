@@ -1,11 +1,12 @@
 // Box::square and Box3::cube: exactly square (a cube) wherever centred, and holding what was
 // asked for.
 #include "slc/core/box.hpp"
-#include "slc/core/box3.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
+
+#include "slc/core/box3.hpp"
 
 namespace slc {
 namespace {
