@@ -17,6 +17,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/geometry/surface.hpp"
 #include "slc/geometry/triangle3.hpp"
 #include "slc/tree/octree.hpp"
@@ -491,41 +492,43 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
         ids.clear();
     };
     {
-        std::vector<std::uint8_t> known(n, 0);
-        std::vector<std::uint32_t> ids;
-        for (std::uint32_t c : tree.leaves()) {
-            for (std::uint32_t t = mesh.cell_offsets[c]; t < mesh.cell_offsets[c + 1]; ++t) {
-                for (const std::uint32_t v : mesh.tetrahedra[t]) {
-                    if (known[v]) continue;
-                    known[v] = 1;
-                    const auto& q = mesh.grid[v];
-                    const Sample* s = sampler.at(Tetrahedralization::key(q[0], q[1], q[2]));
-                    const std::optional<Sample> guess =
-                        s ? std::optional(*s) : sampler.stand_in(mesh.vertices[v], c);
-                    if (guess) {
-                        values[v] = guess->value;
-                        exact[v] = guess->exact ? 1 : 0;
-                    } else {
-                        ids.push_back(v);
-                    }
-                }
+        // Each vertex's stand-in comes from the leaf whose tetrahedra use it first, on all
+        // threads.
+        std::vector<std::uint8_t> guessed(n, 0);
+        const std::vector<std::uint32_t> leaves = tree.leaves();
+        parallel_for(leaves.size(), [&](std::size_t i) {
+            const std::uint32_t c = leaves[i];
+            for (std::uint32_t v = mesh.vertex_offsets[c]; v < mesh.vertex_offsets[c + 1]; ++v) {
+                const auto& q = mesh.grid[v];
+                const Sample* s = sampler.at(Tetrahedralization::key(q[0], q[1], q[2]));
+                const std::optional<Sample> guess =
+                    s ? std::optional(*s) : sampler.stand_in(mesh.vertices[v], c);
+                if (!guess) continue;
+                values[v] = guess->value;
+                exact[v] = guess->exact ? 1 : 0;
+                guessed[v] = 1;
             }
-        }
+        });
+        std::vector<std::uint32_t> ids;
+        for (std::uint32_t v = 0; v < n; ++v)
+            if (!guessed[v]) ids.push_back(v);
         evaluate_at(ids);
     }
 
     // The zero set may not reach the domain's boundary: a boundary vertex within η of zero, or
     // a sign change along an edge on the boundary, is LeftDomain.
+    // (On all threads: parallel_for throws the first failure in order, as one thread would.)
     const auto extent = static_cast<std::uint32_t>(std::uint64_t{2} << tree.max_depth());
-    for (std::uint32_t v = 0; v < n; ++v) {
+    parallel_for(n, [&](std::size_t v) {
         if (on_boundary(mesh.grid[v], extent) && std::abs(values[v]) <= options.eta) {
             throw LeftDomain(
                 fmt::format("the contour reaches the domain boundary near {}; enlarge the domain "
                             "(--domain, --box)",
                             place(mesh.vertices[v])));
         }
-    }
-    for (const auto& t : mesh.tetrahedra) {
+    });
+    parallel_for(mesh.tetrahedra.size(), [&](std::size_t k) {
+        const auto& t = mesh.tetrahedra[k];
         for (int i = 0; i < 4; ++i) {
             for (int j = i + 1; j < 4; ++j) {
                 const auto& p = mesh.grid[t[i]];
@@ -541,7 +544,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
                 }
             }
         }
-    }
+    });
 
     // Inner vertices with |G| ≤ η move off zero (§2.1), all of one attempt in one batch.
     {
@@ -588,14 +591,25 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
         }
     }
 
+    // The tetrahedra where G changes sign, in order, their corners' signs counted on all threads.
+    const auto crossing = [&] {
+        std::vector<std::uint8_t> changes(mesh.tetrahedra.size());
+        parallel_for(mesh.tetrahedra.size(), [&](std::size_t k) {
+            int positive = 0;
+            for (const std::uint32_t v : mesh.tetrahedra[k]) positive += values[v] > 0.0 ? 1 : 0;
+            changes[k] = positive != 0 && positive != 4 ? 1 : 0;
+        });
+        std::vector<std::uint32_t> list;
+        for (std::size_t k = 0; k < changes.size(); ++k)
+            if (changes[k]) list.push_back(static_cast<std::uint32_t>(k));
+        return list;
+    };
     // Stand-ins at the corners of tetrahedra where G changes sign give way to G, for the roots'
     // brackets; their signs are G's, so the tetrahedra stay the same.
     {
         std::vector<std::uint32_t> ids;
-        for (const auto& t : mesh.tetrahedra) {
-            int positive = 0;
-            for (const std::uint32_t v : t) positive += values[v] > 0.0 ? 1 : 0;
-            if (positive == 0 || positive == 4) continue;
+        for (const std::uint32_t k : crossing()) {
+            const auto& t = mesh.tetrahedra[k];
             for (const std::uint32_t v : t) {
                 if (!exact[v]) {
                     exact[v] = 1;  // about to be
@@ -620,10 +634,10 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
     // Triangles, and quadrilaterals to split once their vertices are known; both face G > 0.
     std::vector<TriangleIndices> triangles;
     std::vector<std::array<std::uint32_t, 4>> quads;
-    for (const auto& t : mesh.tetrahedra) {
+    for (const std::uint32_t tet : crossing()) {
+        const auto& t = mesh.tetrahedra[tet];
         int positive = 0;
         for (std::uint32_t v : t) positive += values[v] > 0.0 ? 1 : 0;
-        if (positive == 0 || positive == 4) continue;
         if (positive == 1 || positive == 3) {
             // The vertex of the lone sign, i, and the others (j, k, l) in the orientation's
             // order: the triangle on edges ij, ik, il faces away from i.

@@ -280,9 +280,11 @@ std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
     const Edges edges(s);
     const std::size_t vertices = s.vertices.size();
     std::vector<double> length(edges.size()), longest(vertices, 0.0);
+    parallel_for(edges.size(), [&](std::size_t e) {
+        length[e] = distance(s.vertices[edges.ends[e][0]], s.vertices[edges.ends[e][1]]);
+    });
     for (std::size_t e = 0; e < edges.size(); ++e) {
         const auto [a, b] = edges.ends[e];
-        length[e] = distance(s.vertices[a], s.vertices[b]);
         longest[a] = std::max(longest[a], length[e]);
         longest[b] = std::max(longest[b], length[e]);
     }
@@ -412,6 +414,27 @@ std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
     return removed;
 }
 
+/// Whether the angle at corner k of t and the angle at corner l of u sum beyond π(1 + 10⁻⁶), as
+/// corner_angle() gives them. The sine of the excess δ = α + β − π, −(sin α cos β + cos α sin β),
+/// settles it without atan2 where it is clearly away from zero: beyond 10⁻⁵, δ is that far from
+/// 0 (and from π·10⁻⁶) while the rounding of either is about 10⁻¹⁵. The angles decide the rest
+/// (δ near 0, or both triangles degenerate).
+bool angles_beyond_pi(const Surface& s, const TriangleIndices& t, int k, const TriangleIndices& u,
+                      int l) {
+    auto sin_cos = [&](const TriangleIndices& tri, int c) {
+        const Vec3 a = s.vertices[tri[c]];
+        const Vec3 p = s.vertices[tri[(c + 1) % 3]] - a, q = s.vertices[tri[(c + 2) % 3]] - a;
+        const double lengths = norm(p) * norm(q);  // 0 for a repeated vertex: NaN below
+        return std::pair{norm(cross(p, q)) / lengths, dot(p, q) / lengths};
+    };
+    const auto [sin_a, cos_a] = sin_cos(t, k);
+    const auto [sin_b, cos_b] = sin_cos(u, l);
+    const double sin_excess = -(sin_a * cos_b + cos_a * sin_b);
+    if (sin_excess > 1e-5) return true;
+    if (sin_excess < -1e-5) return false;
+    return corner_angle(s, t, k) + corner_angle(s, u, l) > std::numbers::pi * (1.0 + 1e-6);
+}
+
 /// One round of edge flips: edge (a, b) between triangles (a, b, c) and (b, a, d) becomes
 /// (c, d) when the angles at c and d sum beyond π (the Delaunay rule, on the surface), the edge
 /// (c, d) is new, and neither new triangle turns more than 30° from the surface around the two.
@@ -445,9 +468,10 @@ std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
     parallel_for(edges.size(), [&](std::size_t e) {
         const Quad f = quad(static_cast<std::uint32_t>(e));
         const auto [t0, t1] = edges.triangles[e];
-        const double opposite =
-            corner_angle(s, s.triangles[t0], (f.i + 2) % 3) + corner_angle(s, s.triangles[t1], f.j);
-        breaks[e] = f.c != f.d && opposite > std::numbers::pi * (1.0 + 1e-6) ? 1 : 0;
+        breaks[e] =
+            f.c != f.d && angles_beyond_pi(s, s.triangles[t0], (f.i + 2) % 3, s.triangles[t1], f.j)
+                ? 1
+                : 0;
     });
     std::vector<std::uint8_t> touched(s.size(), 0);
     std::size_t flips = 0;

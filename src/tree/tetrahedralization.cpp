@@ -119,6 +119,8 @@ Tetrahedralization tetrahedralize(const Octree& tree) {
     }
     mesh.cell_offsets.reserve(tree.size() + 1);
     mesh.cell_offsets.push_back(0);
+    mesh.vertex_offsets.reserve(tree.size() + 1);
+    mesh.vertex_offsets.push_back(0);
     std::vector<GridPoint> ring;
     for (std::size_t c = 0; c < tree.size(); ++c) {
         if (tree.is_leaf(c)) {
@@ -160,6 +162,7 @@ Tetrahedralization tetrahedralize(const Octree& tree) {
             }
         }
         mesh.cell_offsets.push_back(static_cast<std::uint32_t>(mesh.tetrahedra.size()));
+        mesh.vertex_offsets.push_back(static_cast<std::uint32_t>(mesh.vertices.size()));
     }
     return mesh;
 }

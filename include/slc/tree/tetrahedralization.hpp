@@ -30,6 +30,9 @@ struct Tetrahedralization {
     std::vector<std::array<std::uint32_t, 4>> tetrahedra;
     /// Tetrahedra of cell c are [cell_offsets[c], cell_offsets[c + 1]); empty for inner cells.
     std::vector<std::uint32_t> cell_offsets;
+    /// The vertices are numbered in order of first use by the tetrahedra: those that cell c's
+    /// tetrahedra use first are [vertex_offsets[c], vertex_offsets[c + 1]).
+    std::vector<std::uint32_t> vertex_offsets;
 
     /// The key of a grid point: its three coordinates in 21 bits each.
     static std::uint64_t key(std::uint64_t gx, std::uint64_t gy, std::uint64_t gz) {
