@@ -59,6 +59,27 @@ double time_after(const RunOptions& o, int n) {
     return n == o.steps ? o.t_end : o.t_start + n * k;
 }
 
+/// When a flow field carries a vertex of the curves out of the domain within the step (its
+/// forward Euler image, x + k u(t, x), outside): the message of LeftDomain, naming the first such
+/// vertex. An empty contour from such a step is curves that left the domain, not ones that
+/// vanished.
+std::optional<std::string> carried_out(const Interface& curves, double t, double k,
+                                       const VelocityLaw& law, const Box& domain) {
+    if (!law.is_field()) return std::nullopt;
+    std::vector<Vec2> u(curves.size());
+    law.sample(t, curves.points(), u);
+    for (std::size_t i = 0; i < u.size(); ++i) {
+        const Vec2 x = curves.point(i), y = x + k * u[i];
+        if (domain.contains(y)) continue;
+        return fmt::format(
+            "the flow carries the curves out of the domain [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] "
+            "within a step, ({:.6g}, {:.6g}) to near ({:.6g}, {:.6g}): give a domain that holds "
+            "their whole path (--domain, --box), or take more steps (-N)",
+            domain.lo.x, domain.hi.x, domain.lo.y, domain.hi.y, x.x, x.y, y.x, y.y);
+    }
+    return std::nullopt;
+}
+
 /// One step in the domain that holds Γ(t): doubled as domain_doublings_for says, then once more
 /// each time the contour reaches the edge. Counts the doublings in `result`.
 StepResult step_in_growing_domain(const Interface& curves, double t, double k,
@@ -72,6 +93,10 @@ StepResult step_in_growing_domain(const Interface& curves, double t, double k,
         if (j > 0 && o.embedded.mesh > 0) o.embedded.mesh <<= j;
         try {
             StepResult step = advance(curves, t, k, law, doubled_domain(domain, j), o);
+            if (step.curves.empty()) {
+                if (const auto out = carried_out(curves, t, k, law, doubled_domain(domain, j)))
+                    throw LeftDomain(*out);
+            }
             if (j > counters.domain_doublings) {
                 if (counters.domain_doublings == 0) counters.domain_grown_at = t;
                 counters.domain_doublings = j;

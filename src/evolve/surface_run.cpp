@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -36,6 +37,28 @@ void check(const SurfaceRunOptions& o) {
     }
 }
 
+/// When a flow field carries a vertex of s out of the domain within the step (its forward Euler
+/// image, x + k u(t, x), outside): the message of LeftDomain, naming the first such vertex. An
+/// empty contour from such a step is a surface that left the domain, not one that vanished.
+std::optional<std::string> carried_out(const Surface& s, double t, double k,
+                                       const SurfaceVelocityLaw& law, const Box3& domain) {
+    if (!law.is_field()) return std::nullopt;
+    std::vector<Vec3> u(s.vertices.size());
+    law.sample(t, s.vertices, u);
+    for (std::size_t i = 0; i < u.size(); ++i) {
+        const Vec3 x = s.vertices[i], y = x + k * u[i];
+        if (domain.contains(y)) continue;
+        return fmt::format(
+            "the flow carries the surface out of the domain [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] "
+            "x [{:.6g}, {:.6g}] within a step, ({:.6g}, {:.6g}, {:.6g}) to near ({:.6g}, {:.6g}, "
+            "{:.6g}): give a domain that holds its whole path (--domain, --box), or take more "
+            "steps (-N)",
+            domain.lo.x, domain.hi.x, domain.lo.y, domain.hi.y, domain.lo.z, domain.hi.z, x.x, x.y,
+            x.z, y.x, y.y, y.z);
+    }
+    return std::nullopt;
+}
+
 /// One step in the domain that holds the surface: doubled the fewest times that keep its
 /// bounding box an eighth of the doubled width from the edge, then once more each time the
 /// contour reaches the edge (SurfaceRunOptions::max_domain_doublings), K a level deeper per
@@ -58,6 +81,10 @@ SurfaceStepResult advance_in_growing_domain(const Surface& s, double t, double k
         o.contour.depth += j;
         try {
             SurfaceStepResult step = advance(s, t, k, law, doubled_domain(domain, j), o);
+            if (step.surface.empty()) {
+                if (const auto out = carried_out(s, t, k, law, doubled_domain(domain, j)))
+                    throw LeftDomain(*out);
+            }
             if (j > r.domain_doublings) {
                 if (r.domain_doublings == 0) r.domain_grown_at = t;
                 r.domain_doublings = j;
@@ -79,7 +106,17 @@ double time_after(const SurfaceRunOptions& o, int n) {
 Surface surface_as_read(const Surface& s, const Box3& domain, const SurfaceRunOptions& options) {
     // A flow field at rest: G(x) = F(x), so the step's contour is the surface's own.
     const SurfaceTranslation rest({0.0, 0.0, 0.0});
-    return advance(s, options.t_start, 1.0, rest, domain, options.step).surface;
+    Surface read = advance(s, options.t_start, 1.0, rest, domain, options.step).surface;
+    if (read.empty() && !s.empty()) {
+        const Box3 b = bounding_box(s);
+        throw InvalidInput(fmt::format(
+            "the surface, {:.3g} across, is too small for the contours to see: the finest cell "
+            "at K = {} in the domain {:.3g} wide is {:.3g}; raise K (-K) or give a smaller "
+            "domain",
+            std::max({b.extent(0), b.extent(1), b.extent(2)}), options.step.contour.depth,
+            domain.width(), std::ldexp(domain.width(), -options.step.contour.depth)));
+    }
+    return read;
 }
 
 Box3 doubled_domain(const Box3& domain, int times) {

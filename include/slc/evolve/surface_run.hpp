@@ -99,7 +99,8 @@ struct SurfaceRunResult {
 /// motion at rest returns. Runs of users' surfaces start from it, as a named problem's start from
 /// its own contour: the first step from a coarse polyhedron would otherwise jump to the smooth
 /// surface its vertex normals describe (an icosphere of 320 triangles gains 3.4% of its volume),
-/// which the guards would take for a broken law. Throws as advance() does.
+/// which the guards would take for a broken law. Throws as advance() does, and InvalidInput when
+/// the contour misses a surface that is not empty (smaller than the contours resolve).
 Surface surface_as_read(const Surface& s, const Box3& domain, const SurfaceRunOptions& options);
 
 /// The cube domain doubled about its centre `times` times.

@@ -120,5 +120,22 @@ TEST(Run, EndsWithAnErrorWhenTheCurvesLeaveTheLawsExtent) {
     EXPECT_THROW(run(outside, field, Box::centered_square(2.0), o), InvalidInput);
 }
 
+TEST(Run, CurvesCarriedOutOfTheDomainWithinAStepAreAnErrorNotAVanishing) {
+    // u = (40, 0) takes a circle of radius 0.2 from the origin past x = 2 within a step of
+    // 0.125 (none split): the contour in [−2, 2]² is empty, but the curves left the domain;
+    // they did not vanish.
+    const Translation fast({40.0, 0.0});
+    const Interface start({shapes::circle({0.0, 0.0}, 0.2, 64)});
+    RunOptions o = six_steps();
+    o.max_substep_halvings = 0;
+    const RunResult r = run(start, fast, Box::centered_square(2.0), o);
+    EXPECT_EQ(r.status, RunStatus::error);
+    EXPECT_EQ(r.steps_done, 0);
+    EXPECT_NE(r.message.find("the flow carries the curves out of the domain [-2, 2] x [-2, 2]"),
+              std::string::npos)
+        << r.message;
+    EXPECT_NE(r.message.find("(--domain, --box), or take more steps (-N)"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace slc

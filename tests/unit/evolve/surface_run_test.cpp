@@ -132,6 +132,21 @@ TEST(SurfaceRun, FailureInsideAStepEndsWithError) {
     EXPECT_FALSE(r.surface.empty());  // the last surface reached is kept
 }
 
+TEST(SurfaceRun, ASurfaceCarriedOutOfTheDomainWithinAStepIsAnErrorNotAVanishing) {
+    // The sphere moves 5 in the one step: the contour in the domain is empty, but the surface
+    // left it; it did not vanish under a law that keeps its volume.
+    const SurfaceRunResult r =
+        run(sphere({}, 0.3, 2), SurfaceTranslation({5.0, 0.0, 0.0}), domain, coarse(1.0, 1));
+    EXPECT_EQ(r.status, RunStatus::error);
+    EXPECT_NE(r.message.find("the flow carries the surface out of the domain"), std::string::npos)
+        << r.message;
+    EXPECT_EQ(r.steps_done, 0);
+    // A surface the contours cannot see is bad input, not an empty start.
+    SurfaceRunOptions o = coarse(1.0, 1);
+    // (A sphere of radius 10⁻³ between the mesh vertices of K = 4.)
+    EXPECT_THROW(surface_as_read(sphere({0.03, 0.04, 0.05}, 1e-3, 2), domain, o), InvalidInput);
+}
+
 TEST(SurfaceRun, TheDomainGrowsWhereTheSurfaceNearsItsEdge) {
     // The same run with doublings allowed: the domain doubles as the sphere nears its edge, and
     // the sphere ends where the translation takes it, its radius kept.
