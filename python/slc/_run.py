@@ -3,6 +3,7 @@ studies, on top of the module _slc (the library's run loop, with the GIL release
 
 from __future__ import annotations
 
+import inspect
 import numbers
 from dataclasses import dataclass, field
 from typing import Any, Callable, NamedTuple
@@ -194,6 +195,21 @@ def velocities(dimension: int = 2) -> list[str]:
     return list(_slc.velocity_names())
 
 
+def _positional_parameters(f) -> int | None:
+    """How many positional arguments f takes, None when it takes any number or cannot say."""
+    try:
+        signature = inspect.signature(f)
+    except (TypeError, ValueError):
+        return None
+    count = 0
+    for p in signature.parameters.values():
+        if p.kind == p.VAR_POSITIONAL:
+            return None
+        if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) and p.default is p.empty:
+            count += 1
+    return count
+
+
 def _law(velocity, params, geometry):
     """The _slc.LawSpec of a velocity argument."""
     params = {k: float(v) for k, v in (params or {}).items()}
@@ -212,7 +228,10 @@ def _law(velocity, params, geometry):
     if isinstance(velocity, str):
         return _slc.LawSpec(velocity, "builtin", velocity, params, geometry)
     if callable(velocity):
-        return _slc.LawSpec(velocity, "curve", getattr(velocity, "__name__", "python"), params,
+        # f(t, points, normals) takes no curvature, which is then not computed (for a surface,
+        # a Gaussian mean over the vertices within a few sqrt(k)).
+        kind = "vertex-no-curvature" if _positional_parameters(velocity) == 3 else "curve"
+        return _slc.LawSpec(velocity, kind, getattr(velocity, "__name__", "python"), params,
                             geometry)
     raise TypeError("velocity must be a law's name, a FlowField, a NormalSpeed or a callable "
                     f"f(t, points, normals, curvature), got {type(velocity).__name__}")

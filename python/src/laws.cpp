@@ -17,7 +17,8 @@ template <int dim>
 constexpr py::ssize_t columns = dim;
 
 /// f(t, points, normals, curvature) -> (m, dim) vertex velocities or (m,) normal speeds v
-/// (u = v·N), called once per stage with all vertices.
+/// (u = v·N), called once per stage with all vertices; f(t, points, normals) when it takes no
+/// curvature (curvature false), which is then not computed.
 template <int dim>
 class PythonCurveLaw final : public BasicVelocityLaw<dim> {
 public:
@@ -25,21 +26,24 @@ public:
     using typename Law::Geometry;
     using typename Law::Point;
     using typename Law::Shape;
-    PythonCurveLaw(py::object f, std::string name, std::optional<GeometryModule> module)
-        : f_(std::move(f)), name_(std::move(name)), module_(module) {}
+    PythonCurveLaw(py::object f, std::string name, std::optional<GeometryModule> module,
+                   bool curvature)
+        : f_(std::move(f)), name_(std::move(name)), module_(module), curvature_(curvature) {}
     std::string name() const override { return name_; }
     GeometryNeeds needs() const override {
-        return {.normals = true, .curvature = true, .module = module_};
+        return {.normals = true, .curvature = curvature_, .module = module_};
     }
     std::vector<Point> velocities(double t, const Shape& shape,
                                   const Geometry& geometry) const override {
         py::gil_scoped_acquire hold;
         const std::span<const Point> points = vertex_points(shape);
         const std::size_t m = points.size();
-        const Array v =
-            numbers_of(f_(t, array_of(points), array_of(std::span<const Point>(geometry.normals)),
-                          array_of(std::span<const double>(geometry.curvature))),
-                       "velocity '" + name_ + "'");
+        const py::object x = array_of(points);
+        const py::object normals = array_of(std::span<const Point>(geometry.normals));
+        const Array v = numbers_of(
+            curvature_ ? f_(t, x, normals, array_of(std::span<const double>(geometry.curvature)))
+                       : f_(t, x, normals),
+            "velocity '" + name_ + "'");
         std::vector<Point> u(m);
         const auto n = static_cast<py::ssize_t>(m);
         if (v.ndim() == 1 && v.shape(0) == n) {
@@ -59,6 +63,7 @@ private:
     py::object f_;
     std::string name_;
     std::optional<GeometryModule> module_;
+    bool curvature_;
 };
 
 /// f(t, points, normals) -> (m,) normal speeds, known off the interface: the step evaluates it
@@ -146,7 +151,8 @@ std::unique_ptr<VelocityLaw> make_law(const LawSpec& spec) {
         return std::make_unique<PythonFieldLaw<2>>(spec.velocity, spec.name);
     if (spec.kind == "normal")
         return std::make_unique<PythonNormalLaw<2>>(spec.velocity, spec.name);
-    return std::make_unique<PythonCurveLaw<2>>(spec.velocity, spec.name, module);
+    return std::make_unique<PythonCurveLaw<2>>(spec.velocity, spec.name, module,
+                                               spec.kind != "vertex-no-curvature");
 }
 
 std::unique_ptr<SurfaceVelocityLaw> make_surface_law(const LawSpec& spec) {
@@ -169,7 +175,8 @@ std::unique_ptr<SurfaceVelocityLaw> make_surface_law(const LawSpec& spec) {
         return std::make_unique<PythonFieldLaw<3>>(spec.velocity, spec.name);
     if (spec.kind == "normal")
         return std::make_unique<PythonNormalLaw<3>>(spec.velocity, spec.name);
-    return std::make_unique<PythonCurveLaw<3>>(spec.velocity, spec.name, std::nullopt);
+    return std::make_unique<PythonCurveLaw<3>>(spec.velocity, spec.name, std::nullopt,
+                                               spec.kind != "vertex-no-curvature");
 }
 
 }  // namespace slc::python

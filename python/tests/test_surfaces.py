@@ -235,3 +235,23 @@ def test_bad_input_to_a_run_of_a_surface_is_refused():
         slc.study(slc.problem("sphere-rotation"), steps=4)
     with pytest.raises(ValueError, match="no convergence study"):
         slc.study(slc.problem("enright"))
+
+
+def test_a_callable_of_three_arguments_is_called_without_the_curvature():
+    # The same rotation as a callable of (t, points, normals) and of (t, points, normals, C):
+    # the curvature is not passed, and the surfaces agree to the last bit.
+    s = sphere(r=0.3, depth=3, eps=1e-3)
+    seen = []
+
+    def three(t, x, n):
+        seen.append(n.shape)
+        return np.stack([-x[:, 1], x[:, 0], 0 * x[:, 2]], axis=1)
+
+    def four(t, x, n, c):
+        return np.stack([-x[:, 1], x[:, 0], 0 * x[:, 2]], axis=1)
+
+    a = slc.run(s, three, 0.2, steps=2, depth=3)
+    b = slc.run(s, four, 0.2, steps=2, depth=3)
+    assert a.status == b.status == "ok" and seen and all(shape[1] == 3 for shape in seen)
+    assert np.array_equal(a.surface.vertices, b.surface.vertices)
+    assert np.array_equal(a.surface.triangles, b.surface.triangles)
