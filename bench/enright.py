@@ -20,8 +20,8 @@ import sys
 from pathlib import Path
 
 
-# The lattice of the shape error, as bench/enright_openvdb.cpp's: n³ cell centres of width h
-# from LOW in x, y and z, about the sphere of radius 0.15 at (0.35, 0.35, 0.35).
+# The lattice of the shape error, which bench/enright_openvdb.cpp is given too: n³ cells of
+# width h from LOW in x, y and z, about the sphere of radius 0.15 at (0.35, 0.35, 0.35).
 LATTICE_N, LATTICE_LOW, LATTICE_H = 100, 0.05, 0.006
 CENTRE, RADIUS = 0.35, 0.15
 
@@ -111,7 +111,8 @@ def slc_row(slc, work, setting, threads, reuse, figures):
 
 
 def openvdb_row(program, resolution, threads):
-    run = subprocess.run([program, str(resolution), str(threads)], capture_output=True, text=True)
+    run = subprocess.run([program, str(resolution), str(threads), str(LATTICE_N),
+                          repr(LATTICE_LOW), repr(LATTICE_H)], capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"{program} {resolution} failed: {run.stderr.strip()}")
     r = json.loads(run.stdout)

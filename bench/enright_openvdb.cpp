@@ -5,9 +5,10 @@
 // line: R, the volumes at t = 0, 1.5 and 3 (tools::levelSetVolume), the volume change, the
 // largest distance of the returned zero set (the vertices of tools::volumeToMesh) from the
 // sphere, the shape error (the volume between the returned surface and the sphere over the
-// sphere's, on the lattice bench/enright.py samples slc's on), wall seconds and threads.
+// sphere's, on the lattice N LOW H that bench/enright.py samples slc's on; −1 without it), wall
+// seconds and threads.
 //
-//   enright_openvdb R [THREADS]
+//   enright_openvdb R [THREADS [N LOW H]]
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/LevelSetAdvect.h>
@@ -36,38 +37,38 @@ double volume_of(const openvdb::FloatGrid& grid) {
     }
 }
 
-/// The lattice of the shape error: n³ points at the centres of cells of width h from `low` in
-/// x, y and z (bench/enright.py's).
-constexpr int lattice_n = 100;
-constexpr double lattice_low = 0.05, lattice_h = 0.006;
-
-/// The share of a lattice cell inside, from the signed distance d at its centre.
-double inside(double d) { return std::clamp(0.5 - d / lattice_h, 0.0, 1.0); }
+/// The lattice of the shape error, as bench/enright.py gives it: n³ cells of width h from `low`
+/// in x, y and z.
+struct Lattice {
+    int n = 0;
+    double low = 0.0, h = 0.0;
+};
 
 /// The volume between the zero set of grid and the sphere over the sphere's volume, summed over
-/// the lattice, the level set sampled trilinearly; -1 when the zero set leaves the lattice.
+/// the lattice, each cell's share inside clamp(1/2 − d/h, 0, 1) from the signed distance d at its
+/// centre, the level set sampled trilinearly; −1 when the zero set leaves the lattice.
 double shape_error(const openvdb::FloatGrid& grid, const std::vector<openvdb::Vec3s>& points,
-                   openvdb::Vec3d centre, double radius) {
-    const double high = lattice_low + lattice_n * lattice_h;
+                   openvdb::Vec3d centre, double radius, const Lattice& l) {
+    auto inside = [&](double d) { return std::clamp(0.5 - d / l.h, 0.0, 1.0); };
+    const double high = l.low + l.n * l.h;
     for (const openvdb::Vec3s& p : points) {
         for (int k = 0; k < 3; ++k) {
-            if (p[k] < lattice_low + lattice_h || p[k] > high - lattice_h) return -1.0;
+            if (p[k] < l.low + l.h || p[k] > high - l.h) return -1.0;
         }
     }
     double sum = 0.0;
-    for (int i = 0; i < lattice_n; ++i) {
-        for (int j = 0; j < lattice_n; ++j) {
-            for (int k = 0; k < lattice_n; ++k) {
-                const openvdb::Vec3d x(lattice_low + (i + 0.5) * lattice_h,
-                                       lattice_low + (j + 0.5) * lattice_h,
-                                       lattice_low + (k + 0.5) * lattice_h);
+    for (int i = 0; i < l.n; ++i) {
+        for (int j = 0; j < l.n; ++j) {
+            for (int k = 0; k < l.n; ++k) {
+                const openvdb::Vec3d x(l.low + (i + 0.5) * l.h, l.low + (j + 0.5) * l.h,
+                                       l.low + (k + 0.5) * l.h);
                 const double d = openvdb::tools::BoxSampler::sample(
                     grid.tree(), grid.transform().worldToIndex(x));
                 sum += std::abs(inside(d) - inside((x - centre).length() - radius));
             }
         }
     }
-    return sum * lattice_h * lattice_h * lattice_h / (4.0 / 3.0 * M_PI * radius * radius * radius);
+    return sum * l.h * l.h * l.h / (4.0 / 3.0 * M_PI * radius * radius * radius);
 }
 
 }  // namespace
@@ -75,8 +76,12 @@ double shape_error(const openvdb::FloatGrid& grid, const std::vector<openvdb::Ve
 int main(int argc, char** argv) {
     const int resolution = argc > 1 ? std::atoi(argv[1]) : 0;
     const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
+    const Lattice lattice =
+        argc > 5 ? Lattice{std::atoi(argv[3]), std::atof(argv[4]), std::atof(argv[5])} : Lattice{};
     if (resolution < 8 || resolution > 2048 || threads < 1) {
-        std::fprintf(stderr, "usage: enright_openvdb R [THREADS] (8 <= R <= 2048)\n");
+        std::fprintf(stderr,
+                     "usage: enright_openvdb R [THREADS [N LOW H]] (8 <= R <= 2048; the shape "
+                     "error's lattice, none without it)\n");
         return 2;
     }
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
@@ -114,7 +119,9 @@ int main(int argc, char** argv) {
         const openvdb::Vec3d d = openvdb::Vec3d(p) - openvdb::Vec3d(centre);
         distance = std::max(distance, std::abs(d.length() - radius));
     }
-    const double shape = shape_error(*grid, points, openvdb::Vec3d(centre), radius);
+    const double shape = lattice.n > 0 && lattice.h > 0.0
+                             ? shape_error(*grid, points, openvdb::Vec3d(centre), radius, lattice)
+                             : -1.0;
     std::printf(
         "{\"R\": %d, \"volume_initial\": %.10g, \"volume_half\": %.10g, \"volume_final\": %.10g, "
         "\"volume_change\": %.6g, \"distance\": %.6g, \"shape_error\": %.6g, \"wall_s\": %.4g, "

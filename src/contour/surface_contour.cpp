@@ -592,7 +592,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
     }
 
     // The tetrahedra where G changes sign, in order, their corners' signs counted on all threads.
-    const auto crossing = [&] {
+    const std::vector<std::uint32_t> crossing = [&] {
         std::vector<std::uint8_t> changes(mesh.tetrahedra.size());
         parallel_for(mesh.tetrahedra.size(), [&](std::size_t k) {
             int positive = 0;
@@ -603,12 +603,12 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
         for (std::size_t k = 0; k < changes.size(); ++k)
             if (changes[k]) list.push_back(static_cast<std::uint32_t>(k));
         return list;
-    };
-    // Stand-ins at the corners of tetrahedra where G changes sign give way to G, for the roots'
-    // brackets; their signs are G's, so the tetrahedra stay the same.
+    }();
+    // Stand-ins at the corners of those tetrahedra give way to G, for the roots' brackets; their
+    // signs are G's, so the tetrahedra stay the same.
     {
         std::vector<std::uint32_t> ids;
-        for (const std::uint32_t k : crossing()) {
+        for (const std::uint32_t k : crossing) {
             const auto& t = mesh.tetrahedra[k];
             for (const std::uint32_t v : t) {
                 if (!exact[v]) {
@@ -634,10 +634,11 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
     // Triangles, and quadrilaterals to split once their vertices are known; both face G > 0.
     std::vector<TriangleIndices> triangles;
     std::vector<std::array<std::uint32_t, 4>> quads;
-    for (const std::uint32_t tet : crossing()) {
+    for (const std::uint32_t tet : crossing) {
         const auto& t = mesh.tetrahedra[tet];
         int positive = 0;
         for (std::uint32_t v : t) positive += values[v] > 0.0 ? 1 : 0;
+        if (positive == 0 || positive == 4) continue;  // (signs kept: see above)
         if (positive == 1 || positive == 3) {
             // The vertex of the lone sign, i, and the others (j, k, l) in the orientation's
             // order: the triangle on edges ij, ik, il faces away from i.

@@ -239,7 +239,6 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
         SurfaceStepStats stats;
         try {
             // The step, in 1, 2, 4, ... sub-steps until it keeps what the law keeps.
-            const int most_halvings = options.guards ? options.max_substep_halvings : 0;
             for (int halvings = 0;; ++halvings) {
                 const int pieces = 1 << halvings;
                 const double k = (t1 - t0) / pieces;
@@ -259,15 +258,17 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                         residual = std::max(residual, step.stats.corrector.residual);
                     }
                     stats = step.stats;
-                    broken = surface_invariant_violation(invariants, s, step.surface, k, eps);
-                    if (broken && options.guards) break;
-                    if (broken) {
+                    if (auto v = surface_invariant_violation(invariants, s, step.surface, k, eps)) {
+                        if (options.guards) {
+                            broken = std::move(v);
+                            break;
+                        }
+                        // Without guards the step is kept whole: noted, not split.
                         stop_or_note(
                             fmt::format("at t = {:.6g}: {}; refine the time step (-N) or the "
                                         "contours (-K, --eps)",
-                                        t0 + j * k, *broken));
+                                        t0 + j * k, *v));
                     }
-                    broken.reset();
                     s = std::move(step.surface);
                 }
                 if (!broken) {
@@ -283,11 +284,12 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                     }
                     break;
                 }
-                if (halvings == most_halvings) {
-                    stop_or_note(
-                        fmt::format("at t = {:.6g}: {} (also in {} sub-steps); refine the "
-                                    "time step (-N) or the contours (-K, --eps)",
-                                    t0, *broken, pieces));
+                if (halvings == options.max_substep_halvings) {
+                    r.status = RunStatus::unstable;  // (only the guards split a step)
+                    r.message = fmt::format(
+                        "at t = {:.6g}: {} (also in {} sub-steps); refine the time step (-N) or "
+                        "the contours (-K, --eps)",
+                        t0, *broken, pieces);
                     clocks();
                     return r;
                 }

@@ -7,6 +7,7 @@
 #include <limits>
 #include <span>
 
+#include "slc/core/exact_cube.hpp"
 #include "slc/core/vec2.hpp"
 
 namespace slc {
@@ -26,13 +27,8 @@ struct Box {
         if (naive.width() == naive.height() || !(b > 0.0) || !std::isfinite(b) ||
             !std::isfinite(c.x) || !std::isfinite(c.y))
             return naive;  // square already, or bad input that validation names
-        int e = 0;
-        (void)std::frexp(2.0 * b, &e);
-        const double q = std::ldexp(1.0, e - 24);  // 2b < 2^e: under 2^24 grid steps
-        // Multiples of q below 2^53 q add and subtract exactly: lo + w − lo is w.
-        const double w = std::ceil((2.0 * b + q) / q) * q;
-        const Vec2 lo{std::floor((c.x - b) / q) * q, std::floor((c.y - b) / q) * q};
-        return {lo, {lo.x + w, lo.y + w}};
+        const auto [lo, w] = detail::exact_cube<2>({c.x, c.y}, b);
+        return {{lo[0], lo[1]}, {lo[0] + w, lo[1] + w}};
     }
     /// The empty box (lo > hi): the identity of unite().
     static constexpr Box empty() {

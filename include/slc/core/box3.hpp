@@ -9,6 +9,7 @@
 #include <span>
 #include <string_view>
 
+#include "slc/core/exact_cube.hpp"
 #include "slc/core/vec3.hpp"
 
 namespace slc {
@@ -28,14 +29,8 @@ struct Box3 {
         if (naive.is_cube() || !(b > 0.0) || !std::isfinite(b) || !std::isfinite(c.x) ||
             !std::isfinite(c.y) || !std::isfinite(c.z))
             return naive;  // a cube already, or bad input that validation names
-        int e = 0;
-        (void)std::frexp(2.0 * b, &e);
-        const double q = std::ldexp(1.0, e - 24);  // 2b < 2^e: under 2^24 grid steps
-        // Multiples of q below 2^53 q add and subtract exactly: lo + w − lo is w.
-        const double w = std::ceil((2.0 * b + q) / q) * q;
-        const Vec3 lo{std::floor((c.x - b) / q) * q, std::floor((c.y - b) / q) * q,
-                      std::floor((c.z - b) / q) * q};
-        return {lo, {lo.x + w, lo.y + w, lo.z + w}};
+        const auto [lo, w] = detail::exact_cube<3>({c.x, c.y, c.z}, b);
+        return {{lo[0], lo[1], lo[2]}, {lo[0] + w, lo[1] + w, lo[2] + w}};
     }
     /// The empty box (lo > hi): the identity of unite().
     static constexpr Box3 empty() {
