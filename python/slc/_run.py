@@ -14,7 +14,7 @@ from . import _slc
 from ._interface import Interface, _interface, _points, _refine
 from ._tables import errors_markdown, nan_array as _array
 from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, run_surface,
-                       study_surface)
+                       study_surface, _options as _surface_options)
 
 
 class FlowField:
@@ -393,11 +393,14 @@ class Study:
 
 @dataclass
 class SelfConvergence:
-    """Runs of the same curves and law at successive resolutions (N doubled, K + 1, eps/4 each),
-    for curves without an exact solution: ``runs`` (level, run, status, t, area, components,
-    segments, cpu_s, interface), ``distances`` between the final curves of neighbours,
-    ``orders`` observed from them (log2 of successive distance ratios) and ``estimate`` of the
-    finest run's error (a dict: error, order, observed) or None."""
+    """Runs of the same curves or surface and law at successive resolutions (N doubled, K + 1,
+    eps/4 each), for motions without an exact solution: ``runs`` (curves: level, run, status, t,
+    area, components, segments, cpu_s, interface; a surface: level, run, N, K, eps, status,
+    message, t, volume, area, components, genus, unconverged_steps, largest_residual, cpu_s,
+    surface), ``distances`` between the final interfaces of neighbours (vertices and segment
+    midpoints, or triangle centroids), ``orders`` observed from them (log2 of successive
+    distance ratios) and ``estimate`` of the finest run's error (a dict: error, order, observed)
+    or None."""
 
     runs: list[dict[str, Any]]
     distances: np.ndarray
@@ -414,10 +417,12 @@ def study(subject, velocity=None, t_end: float | None = None, *, rows: int | Non
     For a Problem with an exact solution: the paper's table (``Study``) of ``rows`` rows (1..5,
     default 5) by P = 0..4. For a SurfaceProblem with a study (sphere-rotation,
     sphere-curvature, merging-spheres): ``SurfaceStudy`` of ``rows`` (default 3) by ``columns``
-    (default 4) runs, as ``slc study --problem`` on a surface. For curves under a velocity to t_end: a self-convergence study
-    (``SelfConvergence``) at ``rows`` resolutions (3..5, default 3). options are run()'s (steps,
-    depth, refine, eps, eta, smoothing, extension, arcs, area_correction) and set the coarsest
-    run. observer(dict) after each run.
+    (default 4) runs, as ``slc study --problem`` on a surface. For curves or a Surface under a
+    velocity to t_end: a self-convergence study (``SelfConvergence``) at ``rows`` resolutions
+    (3..5, default 3), as ``slc study --initial``. options are run()'s (steps, depth, refine,
+    eps, eta, smoothing, extension, arcs, area_correction; for a surface steps, depth, refine,
+    eps, eta, thin_depth, area_correction, volume_drift, guards) and set the coarsest run.
+    observer(dict) after each run.
     """
     if isinstance(subject, SurfaceProblem):
         if velocity is not None or t_end is not None or params or geometry is not None or (
@@ -427,8 +432,22 @@ def study(subject, velocity=None, t_end: float | None = None, *, rows: int | Non
         return study_surface(subject, 3 if rows is None else _integer("rows", rows),
                              _integer("columns", options.get("columns", 4)), observer, threads)
     if isinstance(subject, Surface):
-        raise ValueError("a study of surfaces takes a SurfaceProblem with an exact solution "
-                         "(sphere-rotation, sphere-curvature, merging-spheres)")
+        if geometry is not None:
+            raise ValueError("geometry is for curves, not surfaces")
+        p = _surface_subject(subject, velocity, t_end, params)
+        on_surface_run = None
+        if observer is not None:
+            def on_surface_run(r):
+                return observer(_surface_run_dict(r))
+        s = _slc.self_convergence_surface(p, 3 if rows is None else _integer("rows", rows),
+                                          _surface_options(**options), int(threads),
+                                          on_surface_run)
+        return SelfConvergence(
+            runs=[_surface_run_dict(r) for r in s["runs"]],
+            distances=np.array(s["distances"], dtype=float),
+            orders=_array(s["orders"]),
+            estimate=s["estimate"],
+        )
     p, law = _subject(subject, velocity, t_end, params, geometry)
     o = _overrides(**options)
     if isinstance(subject, Problem):
@@ -456,6 +475,12 @@ def study(subject, velocity=None, t_end: float | None = None, *, rows: int | Non
         orders=_array(s["orders"]),
         estimate=s["estimate"],
     )
+
+
+def _surface_run_dict(r: dict) -> dict:
+    r = dict(r)
+    r["surface"] = Surface._trusted(r.pop("vertices"), r.pop("triangles"), r["t"])
+    return r
 
 
 def _run_dict(r: dict) -> dict:

@@ -1,5 +1,5 @@
 // What the long calls of the module slc._slc share: the worker threads for one call, Ctrl-C
-// between steps, and JSON handed to Python.
+// between steps, JSON handed to Python, and what a self-convergence study found.
 #pragma once
 
 #include <fmt/format.h>
@@ -9,6 +9,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/evolve/self_convergence.hpp"
 
 namespace slc::python {
 
@@ -39,6 +40,32 @@ inline bool interrupted() {
 /// A JSON value as the Python object json.loads makes of it.
 inline pybind11::object python_of(const nlohmann::json& j) {
     return pybind11::module_::import("json").attr("loads")(j.dump());
+}
+
+/// A self-convergence study as a dict: "runs" (run_dict of each), "distances", "orders" (None
+/// where none was observed) and "estimate" (error, order, observed; or None).
+template <class Run, class RunDict>
+pybind11::dict self_convergence_dict(const BasicSelfConvergenceResult<Run>& s, RunDict run_dict) {
+    pybind11::list runs, orders;
+    for (const Run& r : s.runs) runs.append(run_dict(r));
+    for (const auto& o : s.orders)
+        orders.append(o ? pybind11::cast(*o) : pybind11::object(pybind11::none()));
+    pybind11::list distances;
+    for (const double d : s.distances) distances.append(d);
+    pybind11::dict out;
+    out["runs"] = runs;
+    out["distances"] = distances;
+    out["orders"] = orders;
+    if (s.estimate) {
+        pybind11::dict e;
+        e["error"] = s.estimate->error;
+        e["order"] = s.estimate->order;
+        e["observed"] = s.estimate->observed;
+        out["estimate"] = e;
+    } else {
+        out["estimate"] = pybind11::none();
+    }
+    return out;
 }
 
 }  // namespace slc::python

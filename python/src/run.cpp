@@ -263,23 +263,7 @@ py::dict self_convergence_problem(const Problem& p, const std::optional<LawSpec>
         py::gil_scoped_release release;
         s = self_convergence(initial, *law, p.domain, base, resolutions, observer);
     }
-    py::list runs, orders;
-    for (const ResolutionRun& r : s.runs) runs.append(run_dict(r));
-    for (const auto& o : s.orders) orders.append(o ? py::cast(*o) : py::object(py::none()));
-    py::dict out;
-    out["runs"] = runs;
-    out["distances"] = s.distances;
-    out["orders"] = orders;
-    if (s.estimate) {
-        py::dict e;
-        e["error"] = s.estimate->error;
-        e["order"] = s.estimate->order;
-        e["observed"] = s.estimate->observed;
-        out["estimate"] = e;
-    } else {
-        out["estimate"] = py::none();
-    }
-    return out;
+    return self_convergence_dict(s, run_dict);
 }
 
 Problem curve_problem_of(const std::vector<Array>& arrays, double t_start, double t_end,

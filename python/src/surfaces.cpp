@@ -306,6 +306,53 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrid
     return out;
 }
 
+py::dict self_convergence_surface(const SurfaceSubject& subject, int resolutions,
+                                  const SurfaceOverrides& q, int threads,
+                                  const py::object& on_run) {
+    if (subject.named) {
+        throw InvalidInput(
+            "a self-convergence study takes a Surface under a velocity; a named problem's own "
+            "study is slc.study(slc.problem(name))");
+    }
+    const SurfaceRunOptions base = resolve(subject, q);
+    auto run_dict = [](const SurfaceResolutionRun& r) {
+        const Surface& f = r.result.surface;
+        py::dict d;
+        d["level"] = r.level;
+        d["run"] = run_name(r.options);
+        d["N"] = r.options.steps;
+        d["K"] = r.options.step.contour.depth;
+        d["eps"] = r.options.step.contour.resolved_eps();
+        d["status"] = to_string(r.result.status);
+        d["message"] = r.result.message;
+        d["t"] = r.result.t;
+        d["volume"] = volume(f);
+        d["area"] = area(f);
+        d["components"] = f.empty() ? 0 : component_count(f);
+        d["genus"] = f.empty() ? 0 : genus(f);
+        d["unconverged_steps"] = r.result.unconverged_steps;
+        d["largest_residual"] = r.result.largest_residual;
+        d["cpu_s"] = r.result.cpu_s;
+        const py::tuple a = surface_arrays(f);
+        d["vertices"] = a[0];
+        d["triangles"] = a[1];
+        return d;
+    };
+    const SurfaceSelfConvergenceObserver observer = [&](const SurfaceResolutionRun& r) {
+        py::gil_scoped_acquire hold;
+        if (interrupted()) throw py::error_already_set();
+        if (!on_run.is_none()) on_run(run_dict(r));
+    };
+    SurfaceSelfConvergenceResult s;
+    {
+        const ThreadScope scope(threads);
+        py::gil_scoped_release release;
+        s = surface_self_convergence(subject.problem.initial, *subject.problem.law,
+                                     subject.problem.domain, base, resolutions, observer);
+    }
+    return self_convergence_dict(s, run_dict);
+}
+
 py::dict surface_cell_dict(const SurfaceStudyCell& c) {
     py::dict d;
     d["row"] = c.row;
@@ -437,6 +484,8 @@ void add_surface_functions(py::module_& m) {
           py::arg("t_start"), py::arg("t_end"), py::arg("law"));
     m.def("run_surface", &run_surface_problem, py::arg("problem"), py::arg("options"),
           py::arg("frames"), py::arg("threads"), py::arg("on_step"), py::arg("estimate"));
+    m.def("self_convergence_surface", &self_convergence_surface, py::arg("problem"),
+          py::arg("rows"), py::arg("options"), py::arg("threads"), py::arg("on_run"));
     m.def("study_surface", &study_surface_problem, py::arg("problem"), py::arg("rows"),
           py::arg("columns"), py::arg("threads"), py::arg("on_cell"));
     m.def("prepare_surface", &prepare_surface_arrays, py::arg("vertices"), py::arg("triangles"));

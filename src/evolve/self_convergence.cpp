@@ -79,13 +79,35 @@ double error_estimate(double distance, double order) {
     return distance / (std::exp2(p) - 1.0);
 }
 
-SelfConvergenceResult self_convergence(const Interface& initial, const VelocityLaw& law,
-                                       const Box& domain, const RunOptions& base, int resolutions,
-                                       const SelfConvergenceObserver& observer) {
+void check_resolutions(int resolutions) {
     if (resolutions < 3 || resolutions > 5) {
         throw InvalidInput(
             fmt::format("a self-convergence study has 3 to 5 resolutions, got {}", resolutions));
     }
+}
+
+void observe_orders(std::span<const double> distances, std::vector<std::optional<double>>& orders,
+                    std::optional<ErrorEstimate>& estimate) {
+    orders.clear();
+    for (std::size_t r = 0; r + 1 < distances.size(); ++r) {
+        const double coarse = distances[r], fine = distances[r + 1];
+        const bool defined =
+            std::isfinite(coarse) && std::isfinite(fine) && coarse > 0.0 && fine > 0.0;
+        orders.push_back(defined ? std::optional(std::log2(coarse / fine)) : std::nullopt);
+    }
+    estimate.reset();
+    const double last = distances.back();
+    if (std::isfinite(last)) {
+        const std::optional<double> p = orders.empty() ? std::nullopt : orders.back();
+        const double used = std::clamp(p.value_or(1.0), min_estimate_order, max_estimate_order);
+        estimate = ErrorEstimate{error_estimate(last, used), used, p.has_value()};
+    }
+}
+
+SelfConvergenceResult self_convergence(const Interface& initial, const VelocityLaw& law,
+                                       const Box& domain, const RunOptions& base, int resolutions,
+                                       const SelfConvergenceObserver& observer) {
+    check_resolutions(resolutions);
     // Every level's options first, so that a level out of range fails before any run.
     std::vector<RunOptions> options;
     for (int r = 0; r < resolutions; ++r) options.push_back(resolution_options(base, r));
@@ -101,18 +123,7 @@ SelfConvergenceResult self_convergence(const Interface& initial, const VelocityL
         out.distances.push_back(final_distance(out.runs[static_cast<std::size_t>(r)].result,
                                                out.runs[static_cast<std::size_t>(r) + 1].result));
     }
-    for (std::size_t r = 0; r + 1 < out.distances.size(); ++r) {
-        const double coarse = out.distances[r], fine = out.distances[r + 1];
-        const bool defined =
-            std::isfinite(coarse) && std::isfinite(fine) && coarse > 0.0 && fine > 0.0;
-        out.orders.push_back(defined ? std::optional(std::log2(coarse / fine)) : std::nullopt);
-    }
-    const double last = out.distances.back();
-    if (std::isfinite(last)) {
-        const std::optional<double> p = out.orders.back();
-        const double used = std::clamp(p.value_or(1.0), min_estimate_order, max_estimate_order);
-        out.estimate = ErrorEstimate{error_estimate(last, used), used, p.has_value()};
-    }
+    observe_orders(out.distances, out.orders, out.estimate);
     return out;
 }
 

@@ -130,4 +130,27 @@ SurfaceStudyResult surface_study(const SurfaceProblem& problem, int rows, int co
     return result;
 }
 
+SurfaceSelfConvergenceResult surface_self_convergence(
+    const Surface& initial, const SurfaceVelocityLaw& law, const Box3& domain,
+    const SurfaceRunOptions& base, int resolutions,
+    const SurfaceSelfConvergenceObserver& observer) {
+    check_resolutions(resolutions);
+    // Every level's options first, so that a level out of range fails before any run.
+    std::vector<SurfaceRunOptions> options;
+    for (int r = 0; r < resolutions; ++r) options.push_back(surface_resolution_options(base, r));
+
+    SurfaceSelfConvergenceResult out;
+    for (int r = 0; r < resolutions; ++r) {
+        SurfaceResolutionRun run_r{r, options[static_cast<std::size_t>(r)], {}};
+        const Surface start = surface_as_read(initial, domain, run_r.options);
+        run_r.result = run(start, law, domain, run_r.options);
+        if (observer) observer(run_r);
+        out.runs.push_back(std::move(run_r));
+    }
+    for (std::size_t r = 0; r + 1 < out.runs.size(); ++r)
+        out.distances.push_back(final_distance(out.runs[r].result, out.runs[r + 1].result));
+    observe_orders(out.distances, out.orders, out.estimate);
+    return out;
+}
+
 }  // namespace slc

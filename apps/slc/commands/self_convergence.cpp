@@ -12,6 +12,8 @@
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
+#include "slc/io/summary.hpp"
+#include "slc/io/surface_files.hpp"
 
 namespace slc::cli {
 namespace {
@@ -28,20 +30,24 @@ nlohmann::json json_number(const std::optional<double>& v) {
     return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
 }
 
+bool ended_empty(const RunResult& r) { return r.curves.empty(); }
+bool ended_empty(const SurfaceRunResult& r) { return r.surface.empty(); }
+
 /// What the estimate is, or why there is none, in one sentence.
-std::string estimate_note(const SelfConvergenceResult& s) {
+template <class Run>
+std::string estimate_note(const BasicSelfConvergenceResult<Run>& s, const char* what) {
     const std::string finest = run_name(s.runs.back().options);
     if (!s.estimate) {
-        const RunResult& a = s.runs[s.runs.size() - 2].result;
-        const RunResult& b = s.runs.back().result;
+        const auto& a = s.runs[s.runs.size() - 2].result;
+        const auto& b = s.runs.back().result;
         std::string why;
         if (a.status != b.status) {
             why = fmt::format("they ended differently, {} at t = {:.6g} and {} at t = {:.6g}",
                               to_string(a.status), a.t, to_string(b.status), b.t);
-        } else if (a.curves.empty() || b.curves.empty()) {
-            why = fmt::format(
-                "curves that vanished (at t = {:.6g} and {:.6g}) leave nothing to compare", a.t,
-                b.t);
+        } else if (ended_empty(a) || ended_empty(b)) {
+            why =
+                fmt::format("{} that vanished (at t = {:.6g} and {:.6g}) leave nothing to compare",
+                            what, a.t, b.t);
         } else {
             why = fmt::format("they ended at different times, t = {:.6g} and {:.6g}", a.t, b.t);
         }
@@ -54,6 +60,48 @@ std::string estimate_note(const SelfConvergenceResult& s) {
         finest, e.error, s.distances.back(), e.order,
         e.observed ? "the last observed order, clamped to [0.5, 4]"
                    : "assumed (first order: no order was observed)");
+}
+
+/// The pairs of neighbours: their distance and the order observed from it and the next.
+template <class Run>
+nlohmann::json pairs_json(const BasicSelfConvergenceResult<Run>& s) {
+    nlohmann::json pairs = nlohmann::json::array();
+    for (std::size_t r = 0; r < s.distances.size(); ++r) {
+        pairs.push_back({{"coarse", r},
+                         {"fine", r + 1},
+                         {"distance", json_number(finite(s.distances[r]))},
+                         {"order", r < s.orders.size() ? json_number(s.orders[r]) : nullptr}});
+    }
+    return pairs;
+}
+
+/// The estimate of the finest run's error, or null.
+template <class Run>
+nlohmann::json estimate_json(const BasicSelfConvergenceResult<Run>& s) {
+    if (!s.estimate) return nullptr;
+    return {{"error", s.estimate->error},
+            {"run", run_name(s.runs.back().options)},
+            {"order", s.estimate->order},
+            {"order_observed", s.estimate->observed}};
+}
+
+/// The distance column of row r of a table: to the next run, or why there is none.
+template <class Run>
+std::string distance_cell(const BasicSelfConvergenceResult<Run>& s, std::size_t r) {
+    if (r >= s.distances.size()) return "";
+    return std::isfinite(s.distances[r]) ? fmt::format("{:.3g}", s.distances[r])
+                                         : std::string("∞ (not comparable)");
+}
+
+/// The last three cells of row r of table.csv: distance_to_next, order, error_estimate.
+template <class Run>
+std::string csv_tail(const BasicSelfConvergenceResult<Run>& s, std::size_t r) {
+    const std::string d = r < s.distances.size() ? fmt::format("{:.6g}", s.distances[r]) : "";
+    const std::string order =
+        r < s.orders.size() && s.orders[r] ? fmt::format("{:.4g}", *s.orders[r]) : "";
+    const std::string estimate =
+        r + 1 == s.runs.size() && s.estimate ? fmt::format("{:.6g}", s.estimate->error) : "";
+    return fmt::format("{},{},{}", d, order, estimate);
 }
 
 std::string markdown(const Problem& p, const SelfConvergenceResult& s) {
@@ -78,17 +126,14 @@ std::string markdown(const Problem& p, const SelfConvergenceResult& s) {
         "order |\n|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t r = 0; r < s.runs.size(); ++r) {
         const RunResult& res = s.runs[r].result;
-        const std::string d = r < s.distances.size() ? (std::isfinite(s.distances[r])
-                                                            ? fmt::format("{:.3g}", s.distances[r])
-                                                            : std::string("∞ (not comparable)"))
-                                                     : "";
+        const std::string d = distance_cell(s, r);
         const std::string order = r < s.orders.size() ? number(s.orders[r], "{:.2f}") : "";
         md += fmt::format("| {} | {} | {} | {} | {} | {:.6g} | {:.6g} | {:.3g} | {} | {} |\n", r,
                           run_name(s.runs[r].options), to_string(res.status), res.curves.size(),
                           res.curves.curve_count(), area(res.curves), length(res.curves), res.cpu_s,
                           d, order);
     }
-    md += "\n" + estimate_note(s) + "\n";
+    md += "\n" + estimate_note(s, "curves") + "\n";
     return md;
 }
 
@@ -99,23 +144,18 @@ std::string csv(const SelfConvergenceResult& s) {
     for (std::size_t r = 0; r < s.runs.size(); ++r) {
         const RunOptions& o = s.runs[r].options;
         const RunResult& res = s.runs[r].result;
-        const std::string d = r < s.distances.size() ? fmt::format("{:.6g}", s.distances[r]) : "";
-        const std::string order =
-            r < s.orders.size() && s.orders[r] ? fmt::format("{:.4g}", *s.orders[r]) : "";
-        const std::string estimate =
-            r + 1 == s.runs.size() && s.estimate ? fmt::format("{:.6g}", s.estimate->error) : "";
         out +=
-            fmt::format("{},{},{},{},{},{:.6g},{},{},{},{},{},{},{:.6g},{},{},{}\n", r, o.steps,
+            fmt::format("{},{},{},{},{},{:.6g},{},{},{},{},{},{},{:.6g},{}\n", r, o.steps,
                         o.step.embedded.smoothing, o.step.contour.depth,
                         refine_name(o.step.contour.refine_passes), o.step.contour.resolved_eps(),
                         to_string(res.status), res.t, res.curves.size(), res.curves.curve_count(),
-                        area(res.curves), length(res.curves), res.cpu_s, d, order, estimate);
+                        area(res.curves), length(res.curves), res.cpu_s, csv_tail(s, r));
     }
     return out;
 }
 
 nlohmann::json json(const Problem& p, const SelfConvergenceResult& s) {
-    nlohmann::json runs = nlohmann::json::array(), pairs = nlohmann::json::array();
+    nlohmann::json runs = nlohmann::json::array();
     for (const ResolutionRun& run_r : s.runs) {
         const RunOptions& o = run_r.options;
         const RunResult& res = run_r.result;
@@ -139,30 +179,24 @@ nlohmann::json json(const Problem& p, const SelfConvergenceResult& s) {
         if (res.status == RunStatus::error) j["message"] = res.message;
         runs.push_back(std::move(j));
     }
-    for (std::size_t r = 0; r < s.distances.size(); ++r) {
-        pairs.push_back({{"coarse", r},
-                         {"fine", r + 1},
-                         {"distance", json_number(finite(s.distances[r]))},
-                         {"order", r < s.orders.size() ? json_number(s.orders[r]) : nullptr}});
-    }
-    nlohmann::json estimate = nullptr;
-    if (s.estimate) {
-        estimate = {{"error", s.estimate->error},
-                    {"run", run_name(s.runs.back().options)},
-                    {"order", s.estimate->order},
-                    {"order_observed", s.estimate->observed}};
-    }
-    nlohmann::json j = {
-        {"problem", p.name},    {"velocity", p.velocity}, {"velocity_params", p.velocity_params},
-        {"t_start", p.t_start}, {"t_end", p.t_end},       {"resolutions", runs},
-        {"pairs", pairs},       {"estimate", estimate},   {"note", estimate_note(s)}};
+    nlohmann::json j = {{"problem", p.name},
+                        {"velocity", p.velocity},
+                        {"velocity_params", p.velocity_params},
+                        {"t_start", p.t_start},
+                        {"t_end", p.t_end},
+                        {"resolutions", runs},
+                        {"pairs", pairs_json(s)},
+                        {"estimate", estimate_json(s)},
+                        {"note", estimate_note(s, "curves")}};
     if (!p.velocity_expression.empty()) j["velocity_expression"] = p.velocity_expression;
     if (!p.velocity_file.empty()) j["velocity_file"] = p.velocity_file;
     return j;
 }
 
 /// log10 d(r − 1, r) against r, and the estimated error of the finest run beside it.
-void plot(const std::filesystem::path& dir, const Problem& p, const SelfConvergenceResult& s) {
+template <class Run>
+void plot(const std::filesystem::path& dir, const std::string& name,
+          const BasicSelfConvergenceResult<Run>& s) {
     std::vector<Vec2> line;
     Box b = Box::empty();
     auto add = [&](std::vector<Vec2>& to, double r, double d) {
@@ -178,7 +212,7 @@ void plot(const std::filesystem::path& dir, const Problem& p, const SelfConverge
     const bool empty = b.is_empty();
     if (empty) b = Box::square({0.5 * static_cast<double>(s.runs.size() - 1), 0.0}, 1.0);
     Figure fig(Box::square(b.center(), 0.55 * std::max({b.width(), b.height(), 1.0})),
-               fmt::format("{}: distance between successive resolutions{}", p.name,
+               fmt::format("{}: distance between successive resolutions{}", name,
                            empty ? " (none comparable)" : ""));
     fig.set_axis_names("resolution r (N, K, eps of run 0 refined r times)", "log10 distance");
     if (!line.empty()) {
@@ -191,6 +225,109 @@ void plot(const std::filesystem::path& dir, const Problem& p, const SelfConverge
     }
     fig.save(dir / "convergence.svg");
     fig.save(dir / "convergence.png");
+}
+
+std::string law_text(const SurfaceLawText& law) {
+    std::string text = law.expression.empty() ? law.name : law.name + " " + law.expression;
+    for (const auto& [key, value] : law.params) text += fmt::format(" {}={:g}", key, value);
+    return text;
+}
+
+std::string surface_markdown(const SurfaceProblem& p, const SurfaceLawText& law,
+                             const SurfaceSelfConvergenceResult& s) {
+    const int threads = thread_count();
+    std::string md = fmt::format("# Self-convergence study: {}\n\n", p.name);
+    md += fmt::format(
+        "The surface {} under `{}` from t = 0 to {:.6g}, without an exact solution: each run is "
+        "compared with the next finer one (twice the steps, one more level of K, ε/4), each "
+        "starting from the surface as `slc run --initial` reads it at its own K and ε. d is the "
+        "largest distance from a vertex or triangle centroid of either final surface to the "
+        "other; the order on row r is log2(d(r, r+1) / d(r+1, r+2)) (2: second order). CPU "
+        "seconds of the run, on {} thread{}. *beyond ε*: the steps whose contour refinement left "
+        "beyond ε (splits its safeguards refused, as along sharp edges, or where the cells are "
+        "too coarse for the surface), and the largest |G| left. The final surface of run r is "
+        "final_r.obj.\n\n",
+        p.name, law_text(law), p.t_end, threads, threads == 1 ? "" : "s");
+    md +=
+        "| r | run | status | beyond ε | triangles | components | genus | volume | area | CPU s | "
+        "d(r, r+1) | order |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (std::size_t r = 0; r < s.runs.size(); ++r) {
+        const SurfaceRunResult& res = s.runs[r].result;
+        const Surface& f = res.surface;
+        const std::string order = r < s.orders.size() ? number(s.orders[r], "{:.2f}") : "";
+        const std::string beyond = res.unconverged_steps == 0
+                                       ? std::string("0")
+                                       : fmt::format("{} of {} ({:.3g})", res.unconverged_steps,
+                                                     res.steps_done, res.largest_residual);
+        md += fmt::format(
+            "| {} | {} | {} | {} | {} | {} | {} | {:.6g} | {:.6g} | {:.3g} | {} | {} |\n", r,
+            run_name(s.runs[r].options), to_string(res.status), beyond, f.size(),
+            f.empty() ? 0 : component_count(f), f.empty() ? 0 : genus(f), volume(f), area(f),
+            res.cpu_s, distance_cell(s, r), order);
+    }
+    md += "\n" + estimate_note(s, "surfaces") + "\n";
+    return md;
+}
+
+std::string surface_csv(const SurfaceSelfConvergenceResult& s) {
+    std::string out =
+        "r,N,K,P,eps,status,t,unconverged_steps,largest_residual,triangles,components,genus,volume,"
+        "area,cpu_s,distance_to_next,order,error_estimate\n";
+    for (std::size_t r = 0; r < s.runs.size(); ++r) {
+        const SurfaceRunOptions& o = s.runs[r].options;
+        const SurfaceRunResult& res = s.runs[r].result;
+        const Surface& f = res.surface;
+        out += fmt::format(
+            "{},{},{},{},{:.6g},{},{},{},{:.6g},{},{},{},{:.17g},{:.17g},{:.6g},{}\n", r, o.steps,
+            o.step.contour.depth, refine_name(o.step.contour.refine_passes),
+            o.step.contour.resolved_eps(), to_string(res.status), res.t, res.unconverged_steps,
+            res.largest_residual, f.size(), f.empty() ? 0 : component_count(f),
+            f.empty() ? 0 : genus(f), volume(f), area(f), res.cpu_s, csv_tail(s, r));
+    }
+    return out;
+}
+
+nlohmann::json surface_json(const SurfaceProblem& p, const SurfaceLawText& law,
+                            const SurfaceSelfConvergenceResult& s) {
+    nlohmann::json runs = nlohmann::json::array();
+    for (const SurfaceResolutionRun& run_r : s.runs) {
+        const SurfaceRunOptions& o = run_r.options;
+        const SurfaceRunResult& res = run_r.result;
+        const Surface& f = res.surface;
+        nlohmann::json j = {
+            {"r", run_r.level},
+            {"run", run_name(o)},
+            {"N", o.steps},
+            {"K", o.step.contour.depth},
+            {"P", o.step.contour.refine_passes == SurfaceContourOptions::until_converged
+                      ? nlohmann::json("converged")
+                      : nlohmann::json(o.step.contour.refine_passes)},
+            {"eps", o.step.contour.resolved_eps()},
+            {"eta", o.step.contour.eta},
+            {"status", to_string(res.status)},
+            {"t", res.t},
+            {"unconverged_steps", res.unconverged_steps},
+            {"largest_residual", res.largest_residual},
+            {"triangles", f.size()},
+            {"components", f.empty() ? 0 : component_count(f)},
+            {"genus", f.empty() ? 0 : genus(f)},
+            {"volume", volume(f)},
+            {"area", area(f)},
+            {"cpu_s", res.cpu_s}};
+        if (!res.message.empty()) j["message"] = res.message;
+        runs.push_back(std::move(j));
+    }
+    nlohmann::json j = {{"problem", p.name},
+                        {"velocity", law.name},
+                        {"velocity_params", law.params},
+                        {"t_start", 0.0},
+                        {"t_end", p.t_end},
+                        {"resolutions", runs},
+                        {"pairs", pairs_json(s)},
+                        {"estimate", estimate_json(s)},
+                        {"note", estimate_note(s, "surfaces")}};
+    if (!law.expression.empty()) j["velocity_expression"] = law.expression;
+    return j;
 }
 
 }  // namespace
@@ -214,8 +351,28 @@ void write_self_convergence_study(const Problem& p, const VelocityLaw& law, cons
     write_file_atomic(dir / "table.md", markdown(p, s));
     write_file_atomic(dir / "table.csv", csv(s));
     write_file_atomic(dir / "table.json", json(p, s).dump(2) + "\n");
-    plot(dir, p, s);
-    if (!quiet) fmt::print("{}\n", estimate_note(s));
+    plot(dir, p.name, s);
+    if (!quiet) fmt::print("{}\n", estimate_note(s, "curves"));
+}
+
+void write_surface_self_convergence_study(const SurfaceProblem& p, const SurfaceLawText& law,
+                                          const SurfaceRunOptions& base, int resolutions,
+                                          bool quiet, const std::filesystem::path& dir) {
+    const SurfaceSelfConvergenceResult s = surface_self_convergence(
+        p.initial, *p.law, p.domain, base, resolutions, [&](const SurfaceResolutionRun& r) {
+            if (!quiet) {
+                fmt::print(stderr, "{}: {} at t = {:.6g}, {} triangles, {:.3g} s cpu\n",
+                           run_name(r.options), to_string(r.result.status), r.result.t,
+                           r.result.surface.size(), r.result.cpu_s);
+            }
+        });
+    for (const SurfaceResolutionRun& r : s.runs)
+        write_file_atomic(dir / fmt::format("final_{}.obj", r.level), obj_text(r.result.surface));
+    write_file_atomic(dir / "table.md", surface_markdown(p, law, s));
+    write_file_atomic(dir / "table.csv", surface_csv(s));
+    write_file_atomic(dir / "table.json", surface_json(p, law, s).dump(2) + "\n");
+    plot(dir, p.name, s);
+    if (!quiet) fmt::print("{}\n", estimate_note(s, "surfaces"));
 }
 
 }  // namespace slc::cli

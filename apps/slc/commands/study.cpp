@@ -1,6 +1,6 @@
 // slc study: the paper's 5×5 convergence table for a problem with an exact solution (Tables 5–7),
 // with observed orders, the paper's numbers beside ours when given, and error against CPU time
-// (Fig. 10); or, for the user's curve (--initial), a self-convergence study.
+// (Fig. 10); or, for the user's curve or surface (--initial), a self-convergence study.
 #include "slc/evolve/study.hpp"
 
 #include <fmt/format.h>
@@ -17,12 +17,14 @@
 #include "commands/problem_source.hpp"
 #include "commands/run_options.hpp"
 #include "commands/self_convergence.hpp"
+#include "commands/surface_run.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/evolve/surface_study.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
 #include "slc/io/surface_files.hpp"
+#include "slc/tree/tetrahedralization.hpp"
 
 namespace slc::cli {
 namespace {
@@ -356,8 +358,9 @@ void run_surface_study(const StudyCommand& o) {
 /// The deepest contouring tree -K accepts.
 constexpr int max_depth = 24;
 
-/// --initial: runs at 3..5 resolutions compared with each other.
-void run_self_convergence(const StudyCommand& o) {
+/// --rows with --initial, 3..5 (default 3): InvalidInput for fewer, or for a finest run of a
+/// depth K + rows − 1 beyond `deepest`.
+int self_convergence_rows(const StudyCommand& o, int depth, int deepest) {
     const int rows = o.rows.value_or(3);
     if (rows < 3) {
         throw InvalidInput(
@@ -365,14 +368,20 @@ void run_self_convergence(const StudyCommand& o) {
                         "for an order), got {}",
                         rows));
     }
-    const Problem p = resolve_problem(o.source);
-    const RunOptions base = resolve_run_options(o.method, p);
-    if (base.step.contour.depth + rows - 1 > max_depth) {
+    if (depth + rows - 1 > deepest) {
         throw InvalidInput(
             fmt::format("the finest of {} resolutions would have K = {}; K + rows - 1 "
                         "must not exceed {}",
-                        rows, base.step.contour.depth + rows - 1, max_depth));
+                        rows, depth + rows - 1, deepest));
     }
+    return rows;
+}
+
+/// --initial: runs at 3..5 resolutions compared with each other.
+void run_self_convergence(const StudyCommand& o) {
+    const Problem p = resolve_problem(o.source);
+    const RunOptions base = resolve_run_options(o.method, p);
+    const int rows = self_convergence_rows(o, base.step.contour.depth, max_depth);
     const std::optional<GeometryModule> module = geometry_module(o.method);
     const auto law = problem_law(p, module ? module : p.module);
     OutputFolder folder(o.out, false);
@@ -380,14 +389,59 @@ void run_self_convergence(const StudyCommand& o) {
     folder.commit();
 }
 
+/// --initial with a surface: runs at 3..5 resolutions compared with each other.
+void run_surface_self_convergence(const StudyCommand& o) {
+    const MethodOptions& m = o.method;
+    const std::vector<std::pair<bool, const char*>> curve_only = {
+        {o.source.field_file.has_value(), "--field-file"},
+        {m.mesh.has_value(), "--mesh"},
+        {m.smooth.has_value(), "-S/--smooth"},
+        {m.extension.has_value(), "--extension"},
+        {!m.geometry.empty(), "--geometry"},
+        {m.arcs.has_value(), "--arcs"},
+        {m.arc_width.has_value(), "--arc-width"},
+        {!o.reference.empty(), "--reference"},
+        {o.columns.has_value(), "--columns"}};
+    for (const auto& [given, name] : curve_only) {
+        if (given) {
+            throw InvalidInput(
+                fmt::format("{} does not apply to the self-convergence study of a surface", name));
+        }
+    }
+    SurfaceRunRequest request;
+    request.initial = o.source.initial;
+    request.velocity = o.source.velocity;
+    request.speed = o.source.speed;
+    request.field = o.source.field;
+    request.params = o.source.params;
+    request.t_end = o.source.t_end;
+    request.domain = o.source.domain;
+    request.steps = m.steps;
+    request.depth = m.depth;
+    request.refine = m.refine;
+    request.eps = m.eps;
+    request.eta = m.eta;
+    request.thin_depth = m.thin_depth;
+    request.tree_depth = m.tree_depth;
+    request.volume_correction = m.area_correction;
+    const SurfaceRunSetup setup = resolve_surface_run(request);
+    const int rows =
+        self_convergence_rows(o, setup.options.step.contour.depth, max_tetrahedralized_depth);
+    OutputFolder folder(o.out, false);
+    const SurfaceLawText law{o.source.speed   ? "speed"
+                             : o.source.field ? "field"
+                                              : o.source.velocity,
+                             o.source.speed ? *o.source.speed : o.source.field.value_or(""),
+                             parse_params(o.source.params)};
+    write_surface_self_convergence_study(setup.problem, law, setup.options, rows, o.quiet,
+                                         folder.path());
+    folder.commit();
+}
+
 void run_study(const StudyCommand& o) {
     apply_threads(o.method.threads);
     if (!o.source.initial.empty()) {
-        if (is_surface_file(o.source.initial)) {
-            throw InvalidInput(
-                "--initial with a surface: a study of surfaces takes --problem (sphere-rotation, "
-                "sphere-curvature, merging-spheres)");
-        }
+        if (is_surface_file(o.source.initial)) return run_surface_self_convergence(o);
         if (o.columns) throw InvalidInput("--columns is for the study of a surface");
         return run_self_convergence(o);
     }
@@ -439,16 +493,19 @@ void add_study_command(CLI::App& app) {
         "(table.md, table.csv, table.json, error_vs_time.svg/.png); for a problem of surfaces "
         "(sphere-rotation, sphere-curvature, merging-spheres) --rows x --columns of it. --initial "
         "FILE --velocity LAW "
-        "--t-end T: self-convergence of your curve, which has none: the run at --rows "
+        "--t-end T: self-convergence of your curve or surface (.obj, .stl, .ply), which has "
+        "none: the run at --rows "
         "resolutions (N doubled, K + 1 and eps / 4 each; the rest as slc run takes it), each "
-        "final interface compared with the next (Hausdorff distance at vertices and midpoints), "
+        "final interface compared with the next (Hausdorff distance at vertices and segment "
+        "midpoints, or triangle centroids), "
         "observed orders, and an estimate of the finest run's error (table.md, table.csv, "
-        "table.json, convergence.svg/.png)");
+        "table.json, convergence.svg/.png, final_r.json or final_r.obj)");
     add_problem_source_options(*cmd, o->source);
     cmd->add_option("--rows", o->rows,
                     "Rows of the table to run, 1..5 (default 5); with --initial the resolutions, "
-                    "3..5 (default 3), each costing about 4 times the one before or more; for a "
-                    "surface 1..5 (default 3), each costing about 8 times the one before")
+                    "3..5 (default 3), each costing about 4 times the one before or more (a "
+                    "surface's about 8 times); for a surface problem 1..5 (default 3), each "
+                    "costing about 8 times the one before")
         ->check(integer_in(1, 5));
     cmd->add_option("--columns", o->columns,
                     "For a surface: columns P = 0 .. C - 1 of passes of refinement, 1..5 "

@@ -96,7 +96,7 @@ bool is_surface_run(const std::string& problem, const std::string& initial) {
            (!initial.empty() && is_surface_file(initial));
 }
 
-void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
+SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
     const VelocityParams params = parse_params(r.params);
     SurfaceProblem p;
     SurfaceRunOptions options;
@@ -147,6 +147,14 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         throw InvalidInput(
             fmt::format("eps must be at least eta = {:g}, got {:g}", c.eta, c.resolved_eps()));
     }
+    return {std::move(p), options};
+}
+
+void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
+    SurfaceRunSetup setup = resolve_surface_run(r);
+    SurfaceProblem& p = setup.problem;
+    const SurfaceRunOptions& options = setup.options;
+    const SurfaceContourOptions& c = options.step.contour;
     // A named problem's surface at the run's own K, P, ε and η when they are given: a run at
     // K = 7 starts from the contour at K = 7, not from the problem's coarser one.
     if (!r.problem.empty() && (r.depth || r.refine || r.eps || r.eta || r.thin_depth))

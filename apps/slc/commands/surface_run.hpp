@@ -10,6 +10,7 @@
 #include "commands/checkpoint.hpp"
 #include "commands/common.hpp"
 #include "commands/output_folder.hpp"
+#include "slc/evolve/surface_problems.hpp"
 
 namespace slc::cli {
 
@@ -53,6 +54,18 @@ struct SurfaceRunRequest {
     /// throws Interrupted.
     const std::atomic<int>* stop_signal = nullptr;
 };
+
+/// A surface run's problem (its law, domain and surface as given: a user's surface not yet
+/// contoured as the steps read it) and options, from the request.
+struct SurfaceRunSetup {
+    SurfaceProblem problem;
+    SurfaceRunOptions options;
+};
+
+/// The problem and options of request: command line over the problem's settings or the
+/// defaults of a user's surface. Throws InvalidInput for a missing or second law, a missing
+/// --t-end, bad parameters or files, and ε below η.
+SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& request);
 
 /// True when `slc run` was given a surface problem or a surface file.
 bool is_surface_run(const std::string& problem, const std::string& initial);

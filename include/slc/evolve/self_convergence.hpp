@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "slc/evolve/run.hpp"
@@ -45,12 +46,14 @@ double interface_distance(const Interface& a, const Interface& b);
 /// ended empty (vanished: the time of vanishing, not the curves, is then what differs).
 double final_distance(const RunResult& a, const RunResult& b);
 
-/// One resolution of a self-convergence study.
-struct ResolutionRun {
-    int level = 0;       ///< r = 0..R − 1
-    RunOptions options;  ///< resolution_options(base, r)
-    RunResult result;    ///< how it ended, its final curves and cost
+/// One resolution of a self-convergence study, of curves or of surfaces.
+template <class Options, class Result>
+struct BasicResolutionRun {
+    int level = 0;    ///< r = 0..R − 1
+    Options options;  ///< the options of resolution r (resolution_options(base, r))
+    Result result;    ///< how it ended, its final interface and cost
 };
+using ResolutionRun = BasicResolutionRun<RunOptions, RunResult>;
 
 /// The order p that error_estimate assumes is the last observed one, clamped to this range: an
 /// order below 1/2 would multiply the distance by more than 2.4, one above 4 (rounding, or two
@@ -66,8 +69,9 @@ struct ErrorEstimate {
 };
 
 /// What a self-convergence study found.
-struct SelfConvergenceResult {
-    std::vector<ResolutionRun> runs;  ///< R runs, coarsest first
+template <class Run>
+struct BasicSelfConvergenceResult {
+    std::vector<Run> runs;  ///< R runs, coarsest first
     /// R − 1 distances: d_r = final_distance(run r, run r + 1); +inf where they differ in status,
     /// time, or one is empty.
     std::vector<double> distances;
@@ -77,6 +81,16 @@ struct SelfConvergenceResult {
     /// +inf. When no order was observed (d_{R−3} infinite), p = 1 (ErrorEstimate::observed false).
     std::optional<ErrorEstimate> estimate;
 };
+using SelfConvergenceResult = BasicSelfConvergenceResult<ResolutionRun>;
+
+/// Throws InvalidInput for a number of resolutions outside 3..5: runs are compared in pairs, and
+/// two pairs give an order.
+void check_resolutions(int resolutions);
+
+/// The observed orders and the estimate of BasicSelfConvergenceResult from its distances (at
+/// least one).
+void observe_orders(std::span<const double> distances, std::vector<std::optional<double>>& orders,
+                    std::optional<ErrorEstimate>& estimate);
 
 /// error_estimate(d, p) = d / (2^p − 1) with p clamped to [min_estimate_order,
 /// max_estimate_order]: the error of the finer of two runs that differ by d when the error falls

@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 
+#include "slc/evolve/self_convergence.hpp"
 #include "slc/evolve/study.hpp"
 #include "slc/evolve/surface_problems.hpp"
 
@@ -63,5 +64,25 @@ using SurfaceStudyObserver = std::function<void(const SurfaceStudyCell&)>;
 /// InvalidInput for a problem without a plan or an exact solution, or rows or columns out of range.
 SurfaceStudyResult surface_study(const SurfaceProblem& problem, int rows, int columns,
                                  const SurfaceStudyObserver& observer = {});
+
+/// One resolution of a self-convergence study of a surface, and what the study found.
+using SurfaceResolutionRun = BasicResolutionRun<SurfaceRunOptions, SurfaceRunResult>;
+using SurfaceSelfConvergenceResult = BasicSelfConvergenceResult<SurfaceResolutionRun>;
+
+/// Called after each run of a self-convergence study of a surface.
+using SurfaceSelfConvergenceObserver = std::function<void(const SurfaceResolutionRun&)>;
+
+/// Self-convergence of a surface that has no exact solution (`slc study --initial S.obj`): runs
+/// at resolutions r = 0..resolutions − 1 of base (surface_resolution_options: N·2^r, K + r,
+/// ε/4^r), coarsest first, each from `initial` as the steps read it at that resolution
+/// (surface_as_read, as `slc run --initial` starts), and compares the final surfaces of
+/// neighbours (final_distance). A run that ends badly (status error, unstable) is reported like
+/// any other, never thrown. Deterministic: the same for any number of threads, CPU seconds
+/// aside. Throws InvalidInput for resolutions outside 3..5 and as run() and surface_as_read()
+/// do.
+SurfaceSelfConvergenceResult surface_self_convergence(
+    const Surface& initial, const SurfaceVelocityLaw& law, const Box3& domain,
+    const SurfaceRunOptions& base, int resolutions,
+    const SurfaceSelfConvergenceObserver& observer = {});
 
 }  // namespace slc

@@ -131,6 +131,29 @@ TEST(ErrorEstimate, ClampsTheOrder) {
     EXPECT_DOUBLE_EQ(error_estimate(1.0, -3.0), 1.0 / (std::sqrt(2.0) - 1));  // p = 1/2
 }
 
+TEST(ObserveOrders, FromTheDistancesOfNeighbours) {
+    std::vector<std::optional<double>> orders;
+    std::optional<ErrorEstimate> estimate;
+    observe_orders(std::vector{0.4, 0.1, 0.025}, orders, estimate);
+    ASSERT_EQ(orders.size(), 2u);
+    EXPECT_DOUBLE_EQ(*orders[0], 2.0);
+    EXPECT_DOUBLE_EQ(*orders[1], 2.0);
+    ASSERT_TRUE(estimate);
+    EXPECT_DOUBLE_EQ(estimate->error, 0.025 / 3.0);
+    EXPECT_TRUE(estimate->observed);
+    // No order before the last pair: first order assumed.
+    observe_orders(std::vector{infinity, 0.1}, orders, estimate);
+    ASSERT_EQ(orders.size(), 1u);
+    EXPECT_FALSE(orders[0]);
+    ASSERT_TRUE(estimate);
+    EXPECT_DOUBLE_EQ(estimate->error, 0.1);
+    EXPECT_FALSE(estimate->observed);
+    // The last pair not comparable: no estimate.
+    observe_orders(std::vector{0.1, infinity}, orders, estimate);
+    EXPECT_FALSE(orders[0]);
+    EXPECT_FALSE(estimate);
+}
+
 TEST(SelfConvergence, RejectsResolutionsOutOfRange) {
     const Interface circle({shapes::circle({}, 0.5, 32)});
     const Rotation law(1.0);

@@ -1,5 +1,5 @@
-// Tests of the pieces of surface studies and estimates: the options of a resolution, and the
-// distance between two surfaces against its exact value for spheres.
+// Tests of the pieces of surface studies and estimates: the options of a resolution, the
+// distance between two surfaces against its exact value for spheres, and self-convergence.
 #include "slc/evolve/surface_study.hpp"
 
 #include <gtest/gtest.h>
@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "slc/core/error.hpp"
+#include "slc/evolve/surface_problems.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 
 namespace slc {
@@ -46,6 +47,44 @@ TEST(SurfaceDistance, OfConcentricSpheresIsTheirRadii) {
     EXPECT_LE(surface_distance(a, a), 1e-15);  // a centroid's rounding
     EXPECT_EQ(surface_distance(Surface{}, Surface{}), 0.0);
     EXPECT_EQ(surface_distance(a, Surface{}), std::numeric_limits<double>::infinity());
+}
+
+TEST(SurfaceSelfConvergence, RejectsResolutionsOutOfRange) {
+    const Surface ball = sphere({}, 0.3, 2);
+    const auto law = make_surface_velocity("unit-normal", {});
+    SurfaceRunOptions base;
+    base.t_end = 0.1;
+    for (int r : {0, 2, 6}) {
+        EXPECT_THROW(surface_self_convergence(ball, *law, Box3::cube({}, 1.0), base, r),
+                     InvalidInput);
+    }
+}
+
+TEST(SurfaceSelfConvergence, ReportsRunsThatCannotBeCompared) {
+    // A sphere of radius 0.3 shrinking at unit speed vanishes at t = 0.3: every run ends empty.
+    const Surface ball = sphere({0.01, -0.02, 0.03}, 0.3, 2);
+    const auto law = make_surface_velocity("unit-normal", {{"speed", -1.0}});
+    SurfaceRunOptions base;
+    base.t_end = 0.5;
+    base.steps = 1;
+    base.step.contour = {
+        .depth = 2, .refine_passes = SurfaceContourOptions::until_converged, .eps = 2e-2};
+    std::vector<int> seen;
+    const SurfaceSelfConvergenceResult s =
+        surface_self_convergence(ball, *law, Box3::cube({}, 0.5), base, 3,
+                                 [&](const SurfaceResolutionRun& r) { seen.push_back(r.level); });
+    EXPECT_EQ(seen, (std::vector{0, 1, 2}));
+    ASSERT_EQ(s.runs.size(), 3u);
+    for (const SurfaceResolutionRun& r : s.runs) {
+        EXPECT_EQ(r.result.status, RunStatus::vanished);
+        EXPECT_EQ(r.options.steps, 1 << r.level);
+        EXPECT_EQ(r.options.step.contour.depth, 2 + r.level);
+    }
+    ASSERT_EQ(s.distances.size(), 2u);
+    for (double d : s.distances) EXPECT_EQ(d, std::numeric_limits<double>::infinity());
+    ASSERT_EQ(s.orders.size(), 1u);
+    EXPECT_FALSE(s.orders[0]);
+    EXPECT_FALSE(s.estimate);
 }
 
 }  // namespace
