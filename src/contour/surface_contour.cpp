@@ -621,8 +621,8 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
     }
 
     // Marching tetrahedra: a surface vertex on every edge where G changes sign, found once
-    // for all the tetrahedra around the edge.
-    KeyMap<std::uint32_t> on_edge;
+    // for all the tetrahedra around the edge (fewer edges than tetrahedra: each is shared).
+    KeyMap<std::uint32_t> on_edge(crossing.size());
     std::vector<Bracket3> brackets;
     auto vertex_on = [&](std::uint32_t a, std::uint32_t b) {
         if (a > b) std::swap(a, b);

@@ -714,6 +714,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
             }
             std::vector<double> values(points.size());
             g(points, values);
+            midpoint_value.reserve(midpoint_value.size() + points.size());
             for (std::size_t i = 0; i < points.size(); ++i) {
                 const std::uint32_t e = which[i];
                 mid[e] = values[i];

@@ -122,6 +122,7 @@ Tetrahedralization tetrahedralize(const Octree& tree) {
     mesh.vertex_offsets.reserve(tree.size() + 1);
     mesh.vertex_offsets.push_back(0);
     std::vector<GridPoint> ring;
+    std::vector<std::uint32_t> ids;
     for (std::size_t c = 0; c < tree.size(); ++c) {
         if (tree.is_leaf(c)) {
             const auto [lo, u] = corner_of(c);
@@ -150,11 +151,15 @@ Tetrahedralization tetrahedralize(const Octree& tree) {
                         }
                         const GridPoint face = midpoint(corners[0], corners[2]);
                         const std::uint32_t f = table.at(face);
+                        // The ring's vertices in order: the order of first use of a fan's
+                        // tetrahedra (apex, f, p, q), each looked up once.
+                        ids.clear();
+                        for (const GridPoint& p : ring) ids.push_back(table.at(p));
                         for (std::size_t k = 0; k < ring.size(); ++k) {
-                            const GridPoint& p = ring[k];
-                            const GridPoint& q = ring[(k + 1) % ring.size()];
-                            std::array<std::uint32_t, 4> t{apex, f, table.at(p), table.at(q)};
-                            if (!positively_oriented(centre, face, p, q)) std::swap(t[2], t[3]);
+                            const std::size_t l = (k + 1) % ring.size();
+                            std::array<std::uint32_t, 4> t{apex, f, ids[k], ids[l]};
+                            if (!positively_oriented(centre, face, ring[k], ring[l]))
+                                std::swap(t[2], t[3]);
                             mesh.tetrahedra.push_back(t);
                         }
                     }

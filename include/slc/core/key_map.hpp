@@ -27,6 +27,10 @@ public:
     explicit KeyMap(std::size_t expected = 16) { rehash(capacity_for(expected)); }
 
     std::size_t size() const { return size_; }
+    /// Room for about `expected` entries in all before the next growth.
+    void reserve(std::size_t expected) {
+        if (capacity_for(expected) > slots_.size()) rehash(capacity_for(expected));
+    }
     bool contains(std::uint64_t key) const { return find(key) != nullptr; }
 
     /// The value of key, or nullptr.

@@ -51,5 +51,18 @@ TEST(KeyMap, ValuesCanBeChangedInPlace) {
     EXPECT_EQ(map.size(), 1u);
 }
 
+TEST(KeyMap, ReserveKeepsTheEntries) {
+    KeyMap<std::uint32_t> map;
+    for (std::uint32_t k = 0; k < 100; ++k) map.try_emplace(3 * std::uint64_t{k} + 1, k);
+    map.reserve(100'000);
+    map.reserve(10);  // never shrinks
+    EXPECT_EQ(map.size(), 100u);
+    for (std::uint32_t k = 0; k < 100; ++k) {
+        ASSERT_NE(map.find(3 * std::uint64_t{k} + 1), nullptr);
+        EXPECT_EQ(map.at(3 * std::uint64_t{k} + 1), k);
+        EXPECT_EQ(map.find(3 * std::uint64_t{k} + 2), nullptr);
+    }
+}
+
 }  // namespace
 }  // namespace slc
