@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <numbers>
 
 #include "slc/core/error.hpp"
 #include "slc/tree/tetrahedralization.hpp"
@@ -125,7 +126,7 @@ Box3 doubled_domain(const Box3& domain, int times) {
 }
 
 std::optional<std::string> surface_invariant_violation(const Invariants& law, const Surface& before,
-                                                       const Surface& after, double, double eps) {
+                                                       const Surface& after, double k, double eps) {
     if (before.empty()) return std::nullopt;
     constexpr double fraction = 1e-2, eps_multiple = 20.0;
     const double a0 = area(before);
@@ -178,6 +179,27 @@ std::optional<std::string> surface_invariant_violation(const Invariants& law, co
         if (a1 > a0 * (1.0 + fraction) + eps_multiple * eps * std::sqrt(a0)) {
             return fmt::format("the area grew by {:.3g}% in one step under a law that shrinks it",
                                100.0 * (a1 - a0) / a0);
+        }
+    }
+    // A constant normal speed s offsets the surface by d = s k in the step: the area of the
+    // offset by x is A₀ + x ∫H dA + 2π χ x² (Steiner's tube formula, χ the Euler
+    // characteristic), so the volume it sweeps, its integral to d, is d (A₀ + A₁)/2 − π χ d³/3,
+    // exactly, while the offset stays smooth. A component that merges or vanishes within the
+    // step changes the area abruptly, and the formula does not hold across it.
+    if (law.volume_rate_per_area && component_count(before) == component_count(after)) {
+        constexpr double rate_fraction = 0.1;
+        const double d = *law.volume_rate_per_area * k;
+        const auto chi = static_cast<double>(2 * static_cast<long long>(component_count(before)) -
+                                             2 * genus(before));
+        const double expected =
+            d * 0.5 * (a0 + area(after)) - std::numbers::pi * chi * d * d * d / 3.0;
+        const double change = volume(after) - volume(before);
+        if (std::abs(change - expected) >
+            std::max(rate_fraction * std::abs(expected), eps_multiple * eps * a0)) {
+            return fmt::format(
+                "the volume changed by {:.3g} in one step where the law's speed moves it by {:.3g} "
+                "(the volume of the offset by speed times k)",
+                change, expected);
         }
     }
     return std::nullopt;

@@ -112,7 +112,10 @@ Box3 doubled_domain(const Box3& domain, int times);
 /// components and the genus; a law that cannot split the surface (a smooth flow field) does not
 /// raise the number of components; a surface that cannot vanish does not; a law that shrinks
 /// area (the mean curvature flows) may grow it in a step by at most the larger of 1% and 20 ε
-/// times its square root. eps: the step's contour tolerance.
+/// times its square root; under a constant normal speed s the volume changes by that of the
+/// offset by d = s k, d (A₀ + A₁)/2 − π χ d³/3 (χ the Euler characteristic), within the larger of
+/// 10% of that and 20 ε A, unless the number of components changed. eps: the step's contour
+/// tolerance.
 std::optional<std::string> surface_invariant_violation(const Invariants& law, const Surface& before,
                                                        const Surface& after, double k, double eps);
 

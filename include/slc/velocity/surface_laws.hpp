@@ -64,10 +64,10 @@ public:
     /// speed: s, length per unit time.
     explicit SurfaceNormalSpeed(double speed = 1.0) : speed_(speed) {}
     std::string name() const override { return "unit-normal"; }
-    /// No motion at speed 0; a growing surface at speed > 0.
+    /// No motion at speed 0; a growing surface at speed > 0; the volume changing at s·A.
     Invariants invariants() const override {
         if (speed_ == 0.0) return {.keeps_area = true, .rigid = true};
-        return {.cannot_vanish = speed_ > 0.0};
+        return {.cannot_vanish = speed_ > 0.0, .volume_rate_per_area = speed_};
     }
     void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
                        std::span<double> out) const override;

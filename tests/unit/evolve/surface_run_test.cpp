@@ -287,6 +287,21 @@ TEST(SurfaceRun, GuardsOfTheLawsInvariants) {
     const Surface bigger = sphere({}, 0.31, 2);
     EXPECT_TRUE(surface_invariant_violation({.shortens = true}, one, bigger, 0.1, 1e-6));
     EXPECT_FALSE(surface_invariant_violation({.shortens = true}, bigger, one, 0.1, 1e-6));
+    // A constant normal speed s moves the volume by s k A: the sphere of radius 0.3 grown to
+    // 0.33 keeps it at s = 1 over k = 0.03, not at s = 0.5 nor over k = 0.06, and shrinks back
+    // at s = −1. Where the components change, the rule is not applied.
+    const Surface grown = sphere({}, 0.33, 3), fine = sphere({}, 0.3, 3);
+    EXPECT_FALSE(
+        surface_invariant_violation({.volume_rate_per_area = 1.0}, fine, grown, 0.03, 1e-6));
+    EXPECT_FALSE(
+        surface_invariant_violation({.volume_rate_per_area = -1.0}, grown, fine, 0.03, 1e-6));
+    const auto slow =
+        surface_invariant_violation({.volume_rate_per_area = 0.5}, fine, grown, 0.03, 1e-6);
+    ASSERT_TRUE(slow);
+    EXPECT_NE(slow->find("where the law's speed moves it by"), std::string::npos) << *slow;
+    EXPECT_TRUE(
+        surface_invariant_violation({.volume_rate_per_area = 1.0}, fine, grown, 0.06, 1e-6));
+    EXPECT_FALSE(surface_invariant_violation({.volume_rate_per_area = 1.0}, two, one, 0.06, 1e-6));
 }
 
 TEST(SurfaceRun, VolumeDriftOverTheRunIsUnstable) {
