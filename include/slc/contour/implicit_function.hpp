@@ -21,8 +21,8 @@ namespace slc {
 
 /// Bounds on a value: lo ≤ G ≤ hi. {−∞, ∞} says nothing.
 struct Interval {
-    double lo = -std::numeric_limits<double>::infinity();
-    double hi = std::numeric_limits<double>::infinity();
+    double lo = -std::numeric_limits<double>::infinity();  ///< lower bound
+    double hi = std::numeric_limits<double>::infinity();   ///< upper bound
 };
 
 /// A function G of the plane (Point Vec2) or of space (Vec3) evaluated on batches: g(points,

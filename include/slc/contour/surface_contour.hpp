@@ -101,8 +101,8 @@ struct SurfaceContourStats {
 
 /// A contoured surface and its statistics.
 struct SurfaceContour {
-    Surface surface;
-    SurfaceContourStats stats;
+    Surface surface;            ///< the contour: closed, oriented, its vertices on the zero set
+    SurfaceContourStats stats;  ///< what contouring it took
 };
 
 /// Contours the zero set of G inside domain (a cube). The result is a closed surface (possibly

@@ -26,11 +26,13 @@ public:
     /// Room for about `expected` entries before the first growth.
     explicit KeyMap(std::size_t expected = 16) { rehash(capacity_for(expected)); }
 
+    /// The number of entries.
     std::size_t size() const { return size_; }
     /// Room for about `expected` entries in all before the next growth.
     void reserve(std::size_t expected) {
         if (capacity_for(expected) > slots_.size()) rehash(capacity_for(expected));
     }
+    /// Whether key has an entry.
     bool contains(std::uint64_t key) const { return find(key) != nullptr; }
 
     /// The value of key, or nullptr.
@@ -40,6 +42,7 @@ public:
             if (slots_[i].key == no_key) return nullptr;
         }
     }
+    /// The value of key, or nullptr, to change.
     Value* find(std::uint64_t key) { return const_cast<Value*>(std::as_const(*this).find(key)); }
     /// The value of a key that must be present.
     const Value& at(std::uint64_t key) const {
@@ -47,6 +50,7 @@ public:
         SLC_ASSERT(v != nullptr, "KeyMap::at: the key is present");
         return *v;
     }
+    /// The value of a key that must be present, to change.
     Value& at(std::uint64_t key) { return const_cast<Value&>(std::as_const(*this).at(key)); }
 
     /// Inserts (key, value) unless key is present; returns its value and whether it was inserted.

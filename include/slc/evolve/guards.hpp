@@ -20,7 +20,7 @@ namespace slc {
 /// of A in a step (the single vortex, whose filaments thin below a cell), and curvature flow's area
 /// falls within a quarter of 2πk per curve.
 struct GuardBudget {
-    double area_fraction = 1e-2;
+    double area_fraction = 1e-2;  ///< of the area a law that keeps it may change by in a step
     /// A law that shortens the curves may lengthen them by at most this fraction in a step
     /// (the chords of a contour grow towards the arcs they cut as it is refined).
     double length_fraction = 1e-2;
@@ -48,7 +48,7 @@ struct GuardBudget {
     double run_length_growth = 5e-3;
     /// T, the length of the run; 0 for no run-wide budget.
     double run_length = 0.0;
-    double eps_lengths = 20.0;
+    double eps_lengths = 20.0;    ///< the least tolerance, in ε times the length
     double rate_fraction = 0.25;  ///< of the area a law with an area rate should change by
     /// Under a law that shrinks curves at a rate, the curves may vanish in a step once their area
     /// is below |ΔA| plus this, and below this their rate is not checked: π h² for the finest
@@ -61,8 +61,8 @@ struct GuardBudget {
 /// The least value a quantity has reached over a run (a shortening law's length, a shrinking
 /// law's area) and the time it was reached; value 0 before the first.
 struct RunLeast {
-    double value = 0.0;
-    double t = 0.0;
+    double value = 0.0;  ///< the least value
+    double t = 0.0;      ///< when it was reached
 };
 
 /// Records x, reached at time t, in least. Returns x's growth above the least, as a fraction of
@@ -78,8 +78,8 @@ std::optional<double> area_change_expected(const Invariants& law, const Interfac
 
 /// Curves' area and length as a step reads them (step_area, step_length).
 struct CurveMeasures {
-    double area = 0.0;
-    double length = 0.0;
+    double area = 0.0;    ///< signed area enclosed
+    double length = 0.0;  ///< total length
 };
 
 /// Why a step of length k from `before` to `after` breaks the law's invariants, in one line

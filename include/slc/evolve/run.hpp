@@ -81,17 +81,17 @@ struct RunResult {
     int domain_doublings = 0;
     /// The area StepOptions::area_correction gave back over the run, summed with signs.
     double area_corrected = 0.0;
-    double domain_grown_at = std::numeric_limits<double>::quiet_NaN();
+    double domain_grown_at = std::numeric_limits<double>::quiet_NaN();  ///< (see domain_doublings)
     /// Steps the guards split into sub-steps (RunOptions::guards), and the most sub-steps one
     /// step took (1 when none was split).
     int split_steps = 0;
-    int most_substeps = 1;
+    int most_substeps = 1;  ///< (see split_steps)
     /// For a law with an area rate (curvature flow) or a rigid motion: the area at the start of
     /// the run (GuardBudget::start_area), and, with a rate, the sum over its steps of the area
     /// change minus the law's (area_change_expected), which the guards keep within
     /// GuardBudget::run_lag_fraction of the start's area.
     double start_area = 0.0;
-    double area_lag = 0.0;
+    double area_lag = 0.0;  ///< (see start_area)
     /// For a rigid motion: the segments of the run's first contour (0 before it), which the
     /// guards keep the later contours within GuardBudget::rigid_segments_growth of.
     std::size_t rigid_segments = 0;

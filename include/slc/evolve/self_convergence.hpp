@@ -53,13 +53,14 @@ struct BasicResolutionRun {
     Options options;  ///< the options of resolution r (resolution_options(base, r))
     Result result;    ///< how it ended, its final interface and cost
 };
+/// One resolution of a self-convergence study of curves.
 using ResolutionRun = BasicResolutionRun<RunOptions, RunResult>;
 
 /// The order p that error_estimate assumes is the last observed one, clamped to this range: an
 /// order below 1/2 would multiply the distance by more than 2.4, one above 4 (rounding, or two
 /// runs that happen to agree) would shrink it below a fifteenth.
 constexpr double min_estimate_order = 0.5;
-constexpr double max_estimate_order = 4.0;
+constexpr double max_estimate_order = 4.0;  ///< (see min_estimate_order)
 
 /// The Richardson estimate of the finest run's error.
 struct ErrorEstimate {
@@ -81,6 +82,7 @@ struct BasicSelfConvergenceResult {
     /// +inf. When no order was observed (d_{R−3} infinite), p = 1 (ErrorEstimate::observed false).
     std::optional<ErrorEstimate> estimate;
 };
+/// What a self-convergence study of curves found.
 using SelfConvergenceResult = BasicSelfConvergenceResult<ResolutionRun>;
 
 /// Throws InvalidInput for a number of resolutions outside 3..5: runs are compared in pairs, and

@@ -43,7 +43,7 @@ struct SurfaceProblem {
     /// The direction its pictures look from: degrees about the z axis from the +x axis, and
     /// above the xy plane (SurfaceView).
     double azimuth = 35.0;
-    double elevation = 25.0;
+    double elevation = 25.0;  ///< (see azimuth)
     /// The implicit function whose contour is the initial surface (negative inside), empty for
     /// a surface given by its triangles (box-normal); 1-Lipschitz, so initial_surface()
     /// contours it with a distance slack of 0.

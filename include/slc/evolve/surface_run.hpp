@@ -71,7 +71,7 @@ struct SurfaceRunResult {
     double cpu_s = 0.0;                ///< process CPU seconds of the time loop (all threads)
     /// Steps the guards split into sub-steps, and the most sub-steps one step took.
     int split_steps = 0;
-    int most_substeps = 1;
+    int most_substeps = 1;  ///< (see split_steps)
     /// The volume the run started with, which the guard of volume drift compares with.
     double volume_initial = 0.0;
     /// The volume given back by the steps' volume correction (SurfaceStepOptions::
@@ -84,11 +84,11 @@ struct SurfaceRunResult {
     /// a midpoint or centroid beyond ε (splits the safeguards refused, as along sharp edges),
     /// and the largest |G| such a contour left (SurfaceContourStats::residual).
     int unconverged_steps = 0;
-    double largest_residual = 0.0;
+    double largest_residual = 0.0;  ///< (see unconverged_steps)
     /// The most times a step's domain was doubled (SurfaceRunOptions::max_domain_doublings), and
     /// the time of the first step that needed it (NaN when none did).
     int domain_doublings = 0;
-    double domain_grown_at = std::numeric_limits<double>::quiet_NaN();
+    double domain_grown_at = std::numeric_limits<double>::quiet_NaN();  ///< (see domain_doublings)
     /// With the guards off: where and how the run first broke what its law keeps, as in the
     /// message of an unstable run; empty while it has not.
     std::string broken;

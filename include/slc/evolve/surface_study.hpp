@@ -65,8 +65,9 @@ using SurfaceStudyObserver = std::function<void(const SurfaceStudyCell&)>;
 SurfaceStudyResult surface_study(const SurfaceProblem& problem, int rows, int columns,
                                  const SurfaceStudyObserver& observer = {});
 
-/// One resolution of a self-convergence study of a surface, and what the study found.
+/// One resolution of a self-convergence study of a surface.
 using SurfaceResolutionRun = BasicResolutionRun<SurfaceRunOptions, SurfaceRunResult>;
+/// What a self-convergence study of a surface found.
 using SurfaceSelfConvergenceResult = BasicSelfConvergenceResult<SurfaceResolutionRun>;
 
 /// Called after each run of a self-convergence study of a surface.

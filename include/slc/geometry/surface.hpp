@@ -56,6 +56,7 @@ struct HalfEdgeBuckets {
     std::vector<std::uint32_t> start;                             ///< V + 1 offsets
     std::vector<std::pair<std::uint32_t, std::uint32_t>> halves;  ///< 3N pairs
 };
+/// The half-edges of s by lower vertex (HalfEdgeBuckets).
 HalfEdgeBuckets half_edges_by_lower_vertex(const Surface& s);
 
 /// For each triangle and each of its edges k (corner k to corner k + 1), the triangle across
@@ -69,6 +70,7 @@ struct VertexCorners {
     std::vector<std::uint32_t> start;    ///< V + 1 offsets
     std::vector<std::uint32_t> corners;  ///< 3N corner numbers
 };
+/// The corners of s at each vertex (VertexCorners).
 VertexCorners vertex_corners(const Surface& s);
 
 /// Removes the vertices no triangle uses; the others keep their order.

@@ -123,11 +123,14 @@ std::optional<double> interpolate(const LocalMesh& mesh, std::span<const double>
 /// and reuses them for the next point in the same cell (consecutive vertices of a curve often
 /// share one). Use one per thread, and only with the same mesh, fields and order.
 struct CellStencils {
-    static constexpr std::size_t max_fields = 4;
-    bool valid = false;
-    std::int32_t i = 0, j = 0;  ///< the lattice cell
-    int lo = 0, hi = 0;         ///< rows[lo..hi] hold the cell's corners
-    std::array<const LocalMesh::Interval*, 2 * eno::max_order> rows{};
+    static constexpr std::size_t max_fields = 4;  ///< fields interpolated at once, at most
+    bool valid = false;                           ///< whether the rest holds a cell
+    std::int32_t i = 0;                           ///< the lattice cell: its column
+    std::int32_t j = 0;                           ///< and its row
+    int lo = 0;                                   ///< rows[lo..hi] hold the cell's corners
+    int hi = 0;                                   ///< (see lo)
+    std::array<const LocalMesh::Interval*, 2 * eno::max_order> rows{};  ///< the rows around it
+    /// Each field's ENO stencil along each row.
     std::array<std::array<eno::Stencil, 2 * eno::max_order>, max_fields> stencils{};
 };
 

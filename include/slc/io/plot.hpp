@@ -14,16 +14,16 @@ namespace slc {
 
 /// One graph: the polyline through (x[i], y[i]) in order (a dot when there is one point).
 struct PlotSeries {
-    std::vector<double> x;  ///< abscissae, as many as y, finite
-    std::vector<double> y;  ///< ordinates, finite
-    Color color = palette_color(0);
-    double line_width = 1.5;  ///< in layout pixels, > 0
+    std::vector<double> x;           ///< abscissae, as many as y, finite
+    std::vector<double> y;           ///< ordinates, finite
+    Color color = palette_color(0);  ///< of the line
+    double line_width = 1.5;         ///< in layout pixels, > 0
 };
 
 /// A panel: one y axis, named y_name (turned to read along the axis), and its graphs.
 struct PlotPanel {
-    std::string y_name;
-    std::vector<PlotSeries> series;
+    std::string y_name;              ///< the y axis's name
+    std::vector<PlotSeries> series;  ///< its graphs
 };
 
 /// Panels stacked from top to bottom, sharing one x axis named x_name below the last, under a
@@ -31,9 +31,9 @@ struct PlotPanel {
 /// 5%, widened to at least 0.1% of its largest magnitude so that a nearly constant quantity is
 /// drawn flat with readable ticks.
 struct LinePlot {
-    std::string title;
-    std::string x_name = "x";
-    std::vector<PlotPanel> panels;
+    std::string title;              ///< above the panels
+    std::string x_name = "x";       ///< the x axis's name
+    std::vector<PlotPanel> panels;  ///< top to bottom
 };
 
 /// Writes plot to path, atomically (write_file_atomic semantics); the extension (.svg or .png)

@@ -53,11 +53,11 @@ nlohmann::json surface_run_summary(const SurfaceProblem& problem, const Surface&
 /// How the run at half resolution of an error estimate ended, and the distance between its final
 /// curves or surface and the run's (+inf when they cannot be compared).
 struct CoarseRun {
-    RunStatus status = RunStatus::ok;
-    double t = 0.0;
-    double cpu_s = 0.0;
-    bool empty = false;  ///< it ended with no curves or surface
-    double distance = 0.0;
+    RunStatus status = RunStatus::ok;  ///< how it ended
+    double t = 0.0;                    ///< the time it reached
+    double cpu_s = 0.0;                ///< its CPU seconds
+    bool empty = false;                ///< it ended with no curves or surface
+    double distance = 0.0;             ///< between its final curves or surface and the run's
 };
 
 /// Throws InvalidInput unless a run of N steps at depth K has a run at half resolution (N, K ≥ 2);

@@ -75,7 +75,9 @@ public:
 
     /// Integer coordinates of a cell at the deepest existing level.
     struct LatticePoint {
-        std::uint64_t ix = 0, iy = 0, iz = 0;
+        std::uint64_t ix = 0;  ///< along x
+        std::uint64_t iy = 0;  ///< along y
+        std::uint64_t iz = 0;  ///< along z
     };
     /// The lattice point, at the deepest existing level, of the cell holding p (moved first to
     /// the nearest point of the root box). O(1).

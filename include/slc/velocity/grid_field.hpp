@@ -43,6 +43,7 @@ public:
     /// values.size() == nx·ny, the spacing is positive and everything is finite.
     GridField(GridVelocity grid, std::string name);
     std::string name() const override { return name_; }
+    /// The field at each point, as the base's sample().
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
     std::optional<Box> extent() const override { return grid_.box(); }
 

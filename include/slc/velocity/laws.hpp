@@ -19,6 +19,7 @@ public:
     explicit Rotation(double omega = 1.0, Vec2 centre = {}) : omega_(omega), centre_(centre) {}
     std::string name() const override { return "rotation"; }
     Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
+    /// The field at each point, as the base's sample().
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
 
 private:
@@ -33,6 +34,7 @@ public:
     explicit Translation(Vec2 u) : u_(u) {}
     std::string name() const override { return "translation"; }
     Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
+    /// The field at each point, as the base's sample().
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
 
 private:
@@ -48,6 +50,7 @@ public:
     explicit SingleVortex(double period = 8.0);
     std::string name() const override { return "vortex"; }
     Invariants invariants() const override { return {.keeps_area = true}; }
+    /// The field at each point, as the base's sample().
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
 
 private:
@@ -69,6 +72,7 @@ public:
         if (speed_ == 0.0) return {.keeps_area = true, .rigid = true};
         return {.cannot_vanish = speed_ > 0.0};
     }
+    /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
                        std::span<double> out) const override;
 
@@ -89,6 +93,7 @@ public:
     std::string name() const override { return "anisotropic"; }
     /// Growing in every direction when R > |ε|.
     Invariants invariants() const override { return {.cannot_vanish = r_ > std::abs(eps_)}; }
+    /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
                        std::span<double> out) const override;
 
@@ -112,6 +117,7 @@ public:
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = true, .module = module_};
     }
+    /// The vertex velocities, as the base's velocities().
     std::vector<Vec2> velocities(double t, const Interface& curves,
                                  const VertexGeometry& geometry) const override;
 
@@ -135,6 +141,7 @@ public:
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = true, .module = module_};
     }
+    /// The vertex velocities, as the base's velocities().
     std::vector<Vec2> velocities(double t, const Interface& curves,
                                  const VertexGeometry& geometry) const override;
 

@@ -20,6 +20,7 @@ public:
     explicit SurfaceRotation(double omega = 1.0, Vec3 axis = {0.0, 0.0, 1.0}, Vec3 centre = {});
     std::string name() const override { return "rotation"; }
     Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
+    /// The field at each point, as the base's sample().
     void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override;
 
 private:
@@ -34,6 +35,7 @@ public:
     explicit SurfaceTranslation(Vec3 u) : u_(u) {}
     std::string name() const override { return "translation"; }
     Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
+    /// The field at each point, as the base's sample().
     void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override;
 
 private:
@@ -52,6 +54,7 @@ public:
     std::string name() const override { return "enright"; }
     /// A smooth divergence-free flow: it keeps the volume and cannot tear the surface.
     Invariants invariants() const override { return {.keeps_area = true, .cannot_split = true}; }
+    /// The field at each point, as the base's sample().
     void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override;
 
 private:
@@ -69,6 +72,7 @@ public:
         if (speed_ == 0.0) return {.keeps_area = true, .rigid = true};
         return {.cannot_vanish = speed_ > 0.0, .volume_rate_per_area = speed_};
     }
+    /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
                        std::span<double> out) const override;
     std::optional<double> speed_bound() const override { return std::abs(speed_); }
@@ -89,6 +93,7 @@ public:
         return {.cannot_vanish =
                     r_ - 0.4 * std::abs(eps_) > 0.0};  // the cubic part lies in [−4/15, 2/5]
     }
+    /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
                        std::span<double> out) const override;
     /// |V| ≤ |R| + 2/5 |ε|: the cubic part lies in [−4/15, 2/5].
@@ -108,6 +113,7 @@ public:
     /// The area only falls (the flow is area's gradient flow); surfaces may pinch and split.
     Invariants invariants() const override { return {.shortens = true}; }
     GeometryNeeds needs() const override { return {.normals = true, .curvature = true}; }
+    /// The vertex velocities, as the base's velocities().
     std::vector<Vec3> velocities(double t, const Surface& surface,
                                  const SurfaceGeometry& geometry) const override;
 };
@@ -120,6 +126,7 @@ public:
     bool preserves_area() const override { return true; }
     Invariants invariants() const override { return {.keeps_area = true, .shortens = true}; }
     GeometryNeeds needs() const override { return {.normals = true, .curvature = true}; }
+    /// The vertex velocities, as the base's velocities().
     std::vector<Vec3> velocities(double t, const Surface& surface,
                                  const SurfaceGeometry& geometry) const override;
 };

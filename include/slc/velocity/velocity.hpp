@@ -161,12 +161,14 @@ public:
     using typename BasicVelocityLaw<dim>::Point;
     using typename BasicVelocityLaw<dim>::Shape;
     using typename BasicVelocityLaw<dim>::Geometry;
+    /// The vertex velocities, as the base's velocities().
     std::vector<Point> velocities(double t, const Shape& interface, const Geometry&) const final {
         const std::span<const Point> x = vertex_points(interface);
         std::vector<Point> u(x.size());
         this->sample(t, x, u);
         return u;
     }
+    /// True: a flow field.
     bool is_field() const final { return true; }
 };
 /// A flow field moving curves.
@@ -187,9 +189,12 @@ public:
     /// GeometryNeeds::resolved_module(). Surfaces have one module: leave it unset.
     explicit BasicNormalLaw(std::optional<GeometryModule> module = std::nullopt)
         : module_(module) {}
+    /// The vertex normals.
     GeometryNeeds needs() const override { return {.normals = true, .module = module_}; }
+    /// The vertex velocities, as the base's velocities().
     std::vector<Point> velocities(double t, const Shape& interface,
                                   const Geometry& geometry) const override;
+    /// True: a normal law.
     bool is_normal_law() const override { return true; }
 
 private:
@@ -295,6 +300,7 @@ public:
     /// name: the law's name in messages; f: the velocity field.
     FieldLaw(std::string name, F f) : name_(std::move(name)), f_(std::move(f)) {}
     std::string name() const override { return name_; }
+    /// The field at each point, as the base's sample().
     void sample(double t, std::span<const Point> points, std::span<Point> out) const override {
         parallel_for(points.size(), [&](std::size_t i) { out[i] = f_(t, points[i]); });
     }
@@ -319,6 +325,7 @@ public:
     NormalSpeedLaw(std::string name, F f, std::optional<GeometryModule> module = std::nullopt)
         : BasicNormalLaw<dim>(module), name_(std::move(name)), f_(std::move(f)) {}
     std::string name() const override { return name_; }
+    /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Point> points, std::span<const Point> normals,
                        std::span<double> out) const override {
         parallel_for(points.size(), [&](std::size_t i) { out[i] = f_(t, points[i], normals[i]); });
@@ -343,6 +350,7 @@ public:
         : name_(std::move(name)), needs_(needs), f_(std::move(f)) {}
     std::string name() const override { return name_; }
     GeometryNeeds needs() const override { return needs_; }
+    /// The vertex velocities, as the base's velocities().
     std::vector<Point> velocities(double t, const Shape& interface,
                                   const Geometry& geometry) const override {
         const std::span<const Point> x = vertex_points(interface);
@@ -378,6 +386,7 @@ public:
         : name_(std::move(name)), needs_(needs), f_(std::move(f)) {}
     std::string name() const override { return name_; }
     GeometryNeeds needs() const override { return needs_; }
+    /// The vertex velocities, as the base's velocities().
     std::vector<Point> velocities(double t, const Shape& interface,
                                   const Geometry& geometry) const override {
         return f_(t, interface, geometry);
