@@ -205,6 +205,33 @@ std::optional<std::string> surface_invariant_violation(const Invariants& law, co
     return std::nullopt;
 }
 
+std::optional<double> thinnest_new_component(const Surface& before, const Surface& after) {
+    if (after.empty()) return std::nullopt;
+    const std::size_t old_count = before.empty() ? 0 : component_count(before);
+    const std::vector<std::uint32_t> label = component_labels(after);
+    const std::size_t count =
+        label.empty() ? 0 : *std::max_element(label.begin(), label.end()) + std::size_t{1};
+    if (count <= old_count) return std::nullopt;
+    // Each component's volume (the divergence theorem, from any origin: its own first vertex)
+    // and area.
+    std::vector<double> v(count, 0.0), a(count, 0.0);
+    std::vector<Vec3> origin(count);
+    std::vector<std::uint8_t> seen(count, 0);
+    for (std::size_t t = 0; t < after.size(); ++t) {
+        const std::uint32_t c = label[t];
+        const Triangle3 tri = after.triangle(t);
+        if (!seen[c]) origin[c] = tri.a, seen[c] = 1;
+        const Vec3 p = tri.a - origin[c], q = tri.b - origin[c], r = tri.c - origin[c];
+        v[c] += dot(p, cross(q, r)) / 6.0;
+        a[c] += 0.5 * norm(cross(tri.b - tri.a, tri.c - tri.a));
+    }
+    // The new components are the thinnest ones: a split makes parts of a whole.
+    std::vector<double> thickness(count);
+    for (std::size_t c = 0; c < count; ++c) thickness[c] = a[c] > 0.0 ? 3.0 * v[c] / a[c] : 0.0;
+    std::sort(thickness.begin(), thickness.end());
+    return thickness[count - old_count - 1];
+}
+
 SurfaceRunResult run(const Surface& initial, const SurfaceVelocityLaw& law, const Box3& domain,
                      const SurfaceRunOptions& options, const SurfaceObserver& observer) {
     if (initial.empty()) throw InvalidInput("the initial surface has no triangles");
@@ -244,6 +271,10 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
     };
     const Invariants invariants = law.invariants();
     const double eps = options.step.contour.resolved_eps();
+    // The finest cell of the contours (thin cells included), the same in a domain grown (K a
+    // level deeper each time).
+    const double cell =
+        std::ldexp(domain.width(), -(options.step.contour.depth + options.step.contour.thin_depth));
     const bool until_converged =
         options.step.contour.refine_passes == SurfaceContourOptions::until_converged;
     const double volume0 = from.volume_initial;
@@ -269,6 +300,7 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                 double corrected = 0.0;
                 bool unconverged = false;
                 double residual = 0.0;
+                double thin_at = std::numeric_limits<double>::quiet_NaN(), thin_thickness = 0.0;
                 for (int j = 0; j < pieces && !s.empty(); ++j) {
                     SurfaceStepResult step =
                         advance_in_growing_domain(s, t0 + j * k, k, law, domain, options, r);
@@ -280,6 +312,11 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                         residual = std::max(residual, step.stats.corrector.residual);
                     }
                     stats = step.stats;
+                    if (const auto thin = thinnest_new_component(s, step.surface);
+                        thin && *thin < cell && std::isnan(thin_at)) {
+                        thin_at = t0 + (j + 1) * k;
+                        thin_thickness = *thin;
+                    }
                     if (auto v = surface_invariant_violation(invariants, s, step.surface, k, eps)) {
                         if (options.guards) {
                             broken = std::move(v);
@@ -303,6 +340,10 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
                     if (unconverged) {
                         ++r.unconverged_steps;
                         r.largest_residual = std::max(r.largest_residual, residual);
+                    }
+                    if (std::isnan(r.thin_split_at) && !std::isnan(thin_at)) {
+                        r.thin_split_at = thin_at;
+                        r.thin_split_thickness = thin_thickness;
                     }
                     break;
                 }

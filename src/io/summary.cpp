@@ -153,17 +153,34 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
         {"cpu_s", r.cpu_s},
         {"wall_s", r.wall_s}};
     if (!r.message.empty()) summary["message"] = r.message;
+    std::vector<std::string> notes;
     if (c.refine_passes == SurfaceContourOptions::until_converged) {
         summary["unconverged_steps"] = r.unconverged_steps;
         if (r.unconverged_steps > 0) {
             summary["largest_residual"] = r.largest_residual;
-            summary["note"] = fmt::format(
+            notes.push_back(fmt::format(
                 "in {} of {} steps refinement left |G| up to {:.3g} at an edge midpoint or "
                 "centroid, above eps = {:.3g} (splits its safeguards refused, as along sharp "
                 "edges): the surface is that far from each step's, not eps (unconverged_steps, "
                 "largest_residual); a larger depth K resolves such features finer",
-                r.unconverged_steps, r.steps_done, r.largest_residual, c.resolved_eps());
+                r.unconverged_steps, r.steps_done, r.largest_residual, c.resolved_eps()));
         }
+    }
+    if (!std::isnan(r.thin_split_at)) {
+        const double cell = std::ldexp(p.domain.width(), -(c.depth + c.thin_depth));
+        summary["thin_split"] = {
+            {"at_t", r.thin_split_at}, {"thickness", r.thin_split_thickness}, {"cell", cell}};
+        notes.push_back(fmt::format(
+            "the step to t = {:.6g} split off a component {:.3g} thick (3 volume / area), "
+            "thinner than the finest cell, {:.3g}: the contours may have torn a part thinner "
+            "than they resolve rather than the law splitting it (thin_split); a larger depth K "
+            "or --thin-depth resolves such parts",
+            r.thin_split_at, r.thin_split_thickness, cell));
+    }
+    if (!notes.empty()) {
+        std::string note = notes[0];
+        for (std::size_t i = 1; i < notes.size(); ++i) note += "; and " + notes[i];
+        summary["note"] = note;
     }
     if (options.step.resolved_volume_correction(*p.law))
         summary["volume_corrected"] = r.volume_corrected;

@@ -130,6 +130,10 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
         json["largest_residual"] = s.largest_residual;
         json["domain_doublings"] = s.domain_doublings;
         if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
+        if (!std::isnan(s.thin_split_at)) {
+            json["thin_split_at"] = s.thin_split_at;
+            json["thin_split_thickness"] = s.thin_split_thickness;
+        }
         json["least_area"] = s.least_area.value;
         json["least_area_t"] = s.least_area.t;
         if (!s.broken.empty()) json["broken"] = s.broken;
@@ -190,6 +194,10 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
             if (s.domain_doublings > 0)
                 s.domain_grown_at = json.at("domain_grown_at").get<double>();
             s.least_area = {json.value("least_area", 0.0), json.value("least_area_t", 0.0)};
+            if (json.contains("thin_split_at")) {
+                s.thin_split_at = json.at("thin_split_at").get<double>();
+                s.thin_split_thickness = json.at("thin_split_thickness").get<double>();
+            }
             s.broken = json.value("broken", std::string());
             s.status = RunStatus::interrupted;
             c.frames_kept = json.at("frames_kept").get<int>();

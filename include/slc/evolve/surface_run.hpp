@@ -89,6 +89,11 @@ struct SurfaceRunResult {
     /// the time of the first step that needed it (NaN when none did).
     int domain_doublings = 0;
     double domain_grown_at = std::numeric_limits<double>::quiet_NaN();  ///< (see domain_doublings)
+    /// The time of the first step that split off a component thinner than a finest cell (its
+    /// thickness 3V/A, a sphere's radius, below the cell's width, thin cells included: the
+    /// contours may tear such a part), and that thickness; NaN and 0 when no step did.
+    double thin_split_at = std::numeric_limits<double>::quiet_NaN();
+    double thin_split_thickness = 0.0;  ///< (see thin_split_at)
     /// With the guards off: where and how the run first broke what its law keeps, as in the
     /// message of an unstable run; empty while it has not.
     std::string broken;
@@ -102,6 +107,10 @@ struct SurfaceRunResult {
 /// which the guards would take for a broken law. Throws as advance() does, and InvalidInput when
 /// the contour misses a surface that is not empty (smaller than the contours resolve).
 Surface surface_as_read(const Surface& s, const Box3& domain, const SurfaceRunOptions& options);
+
+/// The least thickness 3V/A (V the volume, A the area; a sphere's radius) of the components of
+/// `after` beyond those of `before`, when `after` has more components; nullopt otherwise.
+std::optional<double> thinnest_new_component(const Surface& before, const Surface& after);
 
 /// The cube domain doubled about its centre `times` times.
 Box3 doubled_domain(const Box3& domain, int times);

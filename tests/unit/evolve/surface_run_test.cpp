@@ -304,6 +304,21 @@ TEST(SurfaceRun, GuardsOfTheLawsInvariants) {
     EXPECT_FALSE(surface_invariant_violation({.volume_rate_per_area = 1.0}, two, one, 0.06, 1e-6));
 }
 
+TEST(SurfaceRun, ThinnestNewComponentIsThreeVolumesOverArea) {
+    // One sphere become two: the new component is the thinner, 3V/A about its radius (an
+    // icosphere's centroids lie inside the sphere by their sag).
+    const Surface one = sphere({}, 0.3, 3);
+    const Surface two = join({sphere({-0.5, 0, 0}, 0.3, 3), sphere({0.5, 0.1, 0}, 0.05, 3)});
+    const std::optional<double> thin = thinnest_new_component(one, two);
+    ASSERT_TRUE(thin);
+    EXPECT_NEAR(*thin, 0.05, 1e-3);
+    EXPECT_FALSE(thinnest_new_component(two, one));
+    EXPECT_FALSE(thinnest_new_component(one, one));
+    EXPECT_FALSE(thinnest_new_component(one, Surface{}));
+    // From nothing, every component is new.
+    EXPECT_NEAR(*thinnest_new_component(Surface{}, one), 0.3, 5e-3);
+}
+
 TEST(SurfaceRun, VolumeDriftOverTheRunIsUnstable) {
     // A slow contraction loses 0.75% of the volume a step, within a step's budget; after two
     // steps the run has lost more than 1% of it. (A fine start: a coarse icosphere's own
