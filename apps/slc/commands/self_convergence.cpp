@@ -233,6 +233,22 @@ std::string law_text(const SurfaceLawText& law) {
     return text;
 }
 
+/// The estimate's note, and which runs left steps beyond ε: their distances measure those
+/// contours rather than convergence, and an order from them may mislead.
+std::string surface_note(const SurfaceSelfConvergenceResult& s) {
+    std::string note = estimate_note(s, "surfaces");
+    for (const SurfaceResolutionRun& r : s.runs) {
+        if (r.result.unconverged_steps == 0) continue;
+        note += fmt::format(
+            " Run {} left {} of {} steps beyond ε (up to {:.3g} against {:.3g}): the distances "
+            "from it measure those contours rather than convergence, and an order from them may "
+            "mislead.",
+            r.level, r.result.unconverged_steps, r.result.steps_done, r.result.largest_residual,
+            r.options.step.contour.resolved_eps());
+    }
+    return note;
+}
+
 std::string surface_markdown(const SurfaceProblem& p, const SurfaceLawText& law,
                              const SurfaceSelfConvergenceResult& s) {
     const int threads = thread_count();
@@ -265,7 +281,7 @@ std::string surface_markdown(const SurfaceProblem& p, const SurfaceLawText& law,
             f.empty() ? 0 : component_count(f), f.empty() ? 0 : genus(f), volume(f), area(f),
             res.cpu_s, distance_cell(s, r), order);
     }
-    md += "\n" + estimate_note(s, "surfaces") + "\n";
+    md += "\n" + surface_note(s) + "\n";
     return md;
 }
 
@@ -325,7 +341,7 @@ nlohmann::json surface_json(const SurfaceProblem& p, const SurfaceLawText& law,
                         {"resolutions", runs},
                         {"pairs", pairs_json(s)},
                         {"estimate", estimate_json(s)},
-                        {"note", estimate_note(s, "surfaces")}};
+                        {"note", surface_note(s)}};
     if (!law.expression.empty()) j["velocity_expression"] = law.expression;
     return j;
 }
@@ -372,7 +388,7 @@ void write_surface_self_convergence_study(const SurfaceProblem& p, const Surface
     write_file_atomic(dir / "table.csv", surface_csv(s));
     write_file_atomic(dir / "table.json", surface_json(p, law, s).dump(2) + "\n");
     plot(dir, p.name, s);
-    if (!quiet) fmt::print("{}\n", estimate_note(s, "surfaces"));
+    if (!quiet) fmt::print("{}\n", surface_note(s));
 }
 
 }  // namespace slc::cli
