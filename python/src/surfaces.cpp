@@ -175,14 +175,18 @@ void save_surface_file(const std::string& path, const Array& vertices, const Ind
     }
 }
 
-/// volume, area, components and genus of a valid surface.
-py::dict surface_measures(const Array& vertices, const IndexArray& triangles) {
-    const Surface s = surface_of(vertices, triangles);
-    py::dict d;
+/// Sets d's volume, area, components and genus to those of s (valid).
+void put_measures(py::dict& d, const Surface& s) {
     d["volume"] = volume(s);
     d["area"] = area(s);
-    d["components"] = s.empty() ? 0 : component_count(s);
-    d["genus"] = s.empty() ? 0 : genus(s);
+    d["components"] = component_count(s);
+    d["genus"] = genus(s);
+}
+
+/// volume, area, components and genus of a valid surface.
+py::dict surface_measures(const Array& vertices, const IndexArray& triangles) {
+    py::dict d;
+    put_measures(d, surface_of(vertices, triangles));
     return d;
 }
 
@@ -326,10 +330,7 @@ py::dict self_convergence_surface(const SurfaceSubject& subject, int resolutions
         d["status"] = to_string(r.result.status);
         d["message"] = r.result.message;
         d["t"] = r.result.t;
-        d["volume"] = volume(f);
-        d["area"] = area(f);
-        d["components"] = f.empty() ? 0 : component_count(f);
-        d["genus"] = f.empty() ? 0 : genus(f);
+        put_measures(d, f);
         d["unconverged_steps"] = r.result.unconverged_steps;
         d["largest_residual"] = r.result.largest_residual;
         d["cpu_s"] = r.result.cpu_s;

@@ -189,8 +189,7 @@ std::optional<std::string> surface_invariant_violation(const Invariants& law, co
     if (law.volume_rate_per_area && component_count(before) == component_count(after)) {
         constexpr double rate_fraction = 0.1;
         const double d = *law.volume_rate_per_area * k;
-        const auto chi = static_cast<double>(2 * static_cast<long long>(component_count(before)) -
-                                             2 * genus(before));
+        const auto chi = static_cast<double>(euler_characteristic(before));
         const double expected =
             d * 0.5 * (a0 + area(after)) - std::numbers::pi * chi * d * d * d / 3.0;
         const double change = volume(after) - volume(before);

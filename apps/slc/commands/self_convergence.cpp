@@ -278,8 +278,8 @@ std::string surface_markdown(const SurfaceProblem& p, const SurfaceLawText& law,
         md += fmt::format(
             "| {} | {} | {} | {} | {} | {} | {} | {:.6g} | {:.6g} | {:.3g} | {} | {} |\n", r,
             run_name(s.runs[r].options), to_string(res.status), beyond, f.size(),
-            f.empty() ? 0 : component_count(f), f.empty() ? 0 : genus(f), volume(f), area(f),
-            res.cpu_s, distance_cell(s, r), order);
+            component_count(f), genus(f), volume(f), area(f), res.cpu_s, distance_cell(s, r),
+            order);
     }
     md += "\n" + surface_note(s) + "\n";
     return md;
@@ -293,12 +293,12 @@ std::string surface_csv(const SurfaceSelfConvergenceResult& s) {
         const SurfaceRunOptions& o = s.runs[r].options;
         const SurfaceRunResult& res = s.runs[r].result;
         const Surface& f = res.surface;
-        out += fmt::format(
-            "{},{},{},{},{:.6g},{},{},{},{:.6g},{},{},{},{:.17g},{:.17g},{:.6g},{}\n", r, o.steps,
-            o.step.contour.depth, refine_name(o.step.contour.refine_passes),
-            o.step.contour.resolved_eps(), to_string(res.status), res.t, res.unconverged_steps,
-            res.largest_residual, f.size(), f.empty() ? 0 : component_count(f),
-            f.empty() ? 0 : genus(f), volume(f), area(f), res.cpu_s, csv_tail(s, r));
+        out +=
+            fmt::format("{},{},{},{},{:.6g},{},{},{},{:.6g},{},{},{},{:.17g},{:.17g},{:.6g},{}\n",
+                        r, o.steps, o.step.contour.depth, refine_name(o.step.contour.refine_passes),
+                        o.step.contour.resolved_eps(), to_string(res.status), res.t,
+                        res.unconverged_steps, res.largest_residual, f.size(), component_count(f),
+                        genus(f), volume(f), area(f), res.cpu_s, csv_tail(s, r));
     }
     return out;
 }
@@ -325,8 +325,8 @@ nlohmann::json surface_json(const SurfaceProblem& p, const SurfaceLawText& law,
             {"unconverged_steps", res.unconverged_steps},
             {"largest_residual", res.largest_residual},
             {"triangles", f.size()},
-            {"components", f.empty() ? 0 : component_count(f)},
-            {"genus", f.empty() ? 0 : genus(f)},
+            {"components", component_count(f)},
+            {"genus", genus(f)},
             {"volume", volume(f)},
             {"area", area(f)},
             {"cpu_s", res.cpu_s}};
