@@ -3,57 +3,33 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <limits>
 #include <utility>
 
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
+#include "slc/core/parallel.hpp"
 
 namespace slc {
 namespace {
 
 using GridPoint = std::array<std::uint64_t, 3>;
 
-/// The mesh's vertices by grid point, created on first use, and the set of leaf corners.
-class VertexTable {
+/// The set of the leaves' corners, by grid point.
+class CornerSet {
 public:
-    VertexTable(const Octree& tree, Tetrahedralization& mesh)
-        : tree_(tree),
-          mesh_(mesh),
-          step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << (tree.max_depth() + 1))),
-          index_(4 * tree.size()),
-          corners_(2 * tree.size()) {}
-
-    /// The vertex at grid point p.
-    std::uint32_t at(const GridPoint& p) {
-        const auto [index, inserted] =
-            index_.try_emplace(Tetrahedralization::key(p[0], p[1], p[2]),
-                               static_cast<std::uint32_t>(mesh_.vertices.size()));
-        if (inserted) {
-            const Vec3 lo = tree_.root_box().lo;
-            mesh_.vertices.push_back({lo.x + static_cast<double>(p[0]) * step_,
-                                      lo.y + static_cast<double>(p[1]) * step_,
-                                      lo.z + static_cast<double>(p[2]) * step_});
-            mesh_.grid.push_back({static_cast<std::uint32_t>(p[0]),
-                                  static_cast<std::uint32_t>(p[1]),
-                                  static_cast<std::uint32_t>(p[2])});
-        }
-        return *index;
-    }
-
+    explicit CornerSet(std::size_t cells) : corners_(2 * cells) {}
     /// Records p as a corner of a leaf.
-    void add_corner(const GridPoint& p) {
+    void add(const GridPoint& p) {
         corners_.try_emplace(Tetrahedralization::key(p[0], p[1], p[2]), 1);
     }
-    /// True when p is a corner of some leaf.
-    bool is_corner(const GridPoint& p) const {
+    /// True when p is a corner of some leaf. Safe to call from several threads at once.
+    bool contains(const GridPoint& p) const {
         return corners_.contains(Tetrahedralization::key(p[0], p[1], p[2]));
     }
 
 private:
-    const Octree& tree_;
-    Tetrahedralization& mesh_;
-    double step_;
-    KeyMap<std::uint32_t> index_;
     KeyMap<std::uint8_t> corners_;
 };
 
@@ -64,13 +40,13 @@ GridPoint midpoint(const GridPoint& p, const GridPoint& q) {
 /// Appends to ring the leaf corners strictly inside the edge p → q, in order from p. A corner
 /// inside an edge makes its midpoint a corner too (the cell of the next level holding it is
 /// split, and its children meet at the midpoint), so the search descends only through corners.
-void collect_edge(const VertexTable& table, const GridPoint& p, const GridPoint& q,
+void collect_edge(const CornerSet& corners, const GridPoint& p, const GridPoint& q,
                   std::vector<GridPoint>& ring) {
     const GridPoint m = midpoint(p, q);
-    if (m == p || !table.is_corner(m)) return;  // p == m: the edge is one unit long
-    collect_edge(table, p, m, ring);
+    if (m == p || !corners.contains(m)) return;  // p == m: the edge is one unit long
+    collect_edge(corners, p, m, ring);
     ring.push_back(m);
-    collect_edge(table, m, q, ring);
+    collect_edge(corners, m, q, ring);
 }
 
 /// The sign of (b − a) · ((c − a) × (d − a)) for grid points: differences are exact in doubles,
@@ -96,6 +72,81 @@ bool has_finer_neighbour(const Octree& tree, std::size_t c, int d) {
     return tree.cell(n).level == level && !tree.is_leaf(n);
 }
 
+/// One leaf's tetrahedra over its own list of vertices: their keys in order of first use, and
+/// each tetrahedron as four places in that list.
+struct LeafTetrahedra {
+    std::vector<std::uint64_t> keys;
+    std::vector<std::array<std::uint16_t, 4>> tetrahedra;
+
+    /// The place of grid point p in keys, added at the end when new.
+    std::uint16_t at(const GridPoint& p) {
+        const std::uint64_t k = Tetrahedralization::key(p[0], p[1], p[2]);
+        for (std::size_t i = keys.size(); i-- > 0;)
+            if (keys[i] == k) return static_cast<std::uint16_t>(i);
+        if (keys.size() == std::numeric_limits<std::uint16_t>::max() + std::size_t{1})
+            throw InvalidInput("tetrahedralize: a leaf has more than 65536 vertices");
+        keys.push_back(k);
+        return static_cast<std::uint16_t>(keys.size() - 1);
+    }
+};
+
+/// Appends leaf c's cones to out: for each face (or quarter, where the neighbour is finer) a fan
+/// from its centre over its ring, each cone from the leaf's centre.
+void cones_of_leaf(const Octree& tree, const CornerSet& corners, std::size_t c,
+                   LeafTetrahedra& out) {
+    const int shift = tree.max_depth() + 1;
+    const auto& cell = tree.cell(c);
+    const std::uint64_t u = std::uint64_t{1} << (shift - cell.level);
+    const GridPoint lo{cell.ix * u, cell.iy * u, cell.iz * u};
+    const GridPoint centre{lo[0] + u / 2, lo[1] + u / 2, lo[2] + u / 2};
+    const std::uint16_t apex = out.at(centre);
+    thread_local std::vector<GridPoint> ring;
+    thread_local std::vector<std::uint16_t> ids;
+    // Face d lies across axis a = d / 2 on the low (d even) or high side; its square spans the
+    // two other axes b and e.
+    for (int d = 0; d < 6; ++d) {
+        const int a = d / 2, b = (a + 1) % 3, e = (a + 2) % 3;
+        const std::uint64_t w = has_finer_neighbour(tree, c, d) ? u / 2 : u;
+        for (std::uint64_t sb = 0; sb < u; sb += w) {
+            for (std::uint64_t se = 0; se < u; se += w) {
+                // The square [sb, sb + w] × [se, se + w] of the face, its corners in turn.
+                GridPoint square[4];
+                for (int k = 0; k < 4; ++k) {
+                    GridPoint p = lo;
+                    p[a] += (d & 1) ? u : 0;
+                    p[b] += sb + ((k == 1 || k == 2) ? w : 0);
+                    p[e] += se + ((k >= 2) ? w : 0);
+                    square[k] = p;
+                }
+                ring.clear();
+                for (int k = 0; k < 4; ++k) {
+                    ring.push_back(square[k]);
+                    collect_edge(corners, square[k], square[(k + 1) % 4], ring);
+                }
+                const GridPoint face = midpoint(square[0], square[2]);
+                const std::uint16_t f = out.at(face);
+                ids.clear();
+                for (const GridPoint& p : ring) ids.push_back(out.at(p));
+                for (std::size_t k = 0; k < ring.size(); ++k) {
+                    const std::size_t l = (k + 1) % ring.size();
+                    std::array<std::uint16_t, 4> t{apex, f, ids[k], ids[l]};
+                    if (!positively_oriented(centre, face, ring[k], ring[l])) std::swap(t[2], t[3]);
+                    out.tetrahedra.push_back(t);
+                }
+            }
+        }
+    }
+}
+
+/// A hash of a key for sorting keys into buckets, unlike KeyMap's (the top bits of the key
+/// times 2^64/φ), so that each bucket's own KeyMap spreads its keys.
+std::size_t bucket_of(std::uint64_t key, int bits) {
+    key ^= key >> 31;
+    key *= 0xBF58476D1CE4E5B9ull;
+    key ^= key >> 29;
+    return static_cast<std::size_t>(key >> (64 - bits));
+}
+
 }  // namespace
 
 Tetrahedralization tetrahedralize(const Octree& tree) {
@@ -103,72 +154,121 @@ Tetrahedralization tetrahedralize(const Octree& tree) {
         throw InvalidInput(fmt::format("tetrahedralize: octree depth {} exceeds {}",
                                        tree.max_depth(), max_tetrahedralized_depth));
     }
-    Tetrahedralization mesh;
-    VertexTable table(tree, mesh);
+    const std::size_t cells = tree.size();
     const int shift = tree.max_depth() + 1;
-    auto corner_of = [&](std::size_t c) {
+    CornerSet corners(cells);
+    for (std::size_t c = 0; c < cells; ++c) {
+        if (!tree.is_leaf(c)) continue;
         const auto& cell = tree.cell(c);
         const std::uint64_t u = std::uint64_t{1} << (shift - cell.level);
-        return std::pair{GridPoint{cell.ix * u, cell.iy * u, cell.iz * u}, u};
-    };
-    for (std::size_t c = 0; c < tree.size(); ++c) {
-        if (!tree.is_leaf(c)) continue;
-        const auto [lo, u] = corner_of(c);
+        const GridPoint lo{cell.ix * u, cell.iy * u, cell.iz * u};
         for (std::uint64_t k = 0; k < 8; ++k)
-            table.add_corner({lo[0] + (k & 1) * u, lo[1] + (k >> 1 & 1) * u, lo[2] + (k >> 2) * u});
+            corners.add({lo[0] + (k & 1) * u, lo[1] + (k >> 1 & 1) * u, lo[2] + (k >> 2) * u});
     }
-    mesh.cell_offsets.reserve(tree.size() + 1);
-    mesh.cell_offsets.push_back(0);
-    mesh.vertex_offsets.reserve(tree.size() + 1);
-    mesh.vertex_offsets.push_back(0);
-    std::vector<GridPoint> ring;
-    std::vector<std::uint32_t> ids;
-    for (std::size_t c = 0; c < tree.size(); ++c) {
-        if (tree.is_leaf(c)) {
-            const auto [lo, u] = corner_of(c);
-            const GridPoint centre{lo[0] + u / 2, lo[1] + u / 2, lo[2] + u / 2};
-            const std::uint32_t apex = table.at(centre);
-            // Face d lies across axis a = d / 2 on the low (d even) or high side; its square
-            // spans the two other axes b and e.
-            for (int d = 0; d < 6; ++d) {
-                const int a = d / 2, b = (a + 1) % 3, e = (a + 2) % 3;
-                const std::uint64_t w = has_finer_neighbour(tree, c, d) ? u / 2 : u;
-                for (std::uint64_t sb = 0; sb < u; sb += w) {
-                    for (std::uint64_t se = 0; se < u; se += w) {
-                        // The square [sb, sb + w] × [se, se + w] of the face, its corners in turn.
-                        GridPoint corners[4];
-                        for (int k = 0; k < 4; ++k) {
-                            GridPoint p = lo;
-                            p[a] += (d & 1) ? u : 0;
-                            p[b] += sb + ((k == 1 || k == 2) ? w : 0);
-                            p[e] += se + ((k >= 2) ? w : 0);
-                            corners[k] = p;
-                        }
-                        ring.clear();
-                        for (int k = 0; k < 4; ++k) {
-                            ring.push_back(corners[k]);
-                            collect_edge(table, corners[k], corners[(k + 1) % 4], ring);
-                        }
-                        const GridPoint face = midpoint(corners[0], corners[2]);
-                        const std::uint32_t f = table.at(face);
-                        // The ring's vertices in order: the order of first use of a fan's
-                        // tetrahedra (apex, f, p, q), each looked up once.
-                        ids.clear();
-                        for (const GridPoint& p : ring) ids.push_back(table.at(p));
-                        for (std::size_t k = 0; k < ring.size(); ++k) {
-                            const std::size_t l = (k + 1) % ring.size();
-                            std::array<std::uint32_t, 4> t{apex, f, ids[k], ids[l]};
-                            if (!positively_oriented(centre, face, ring[k], ring[l]))
-                                std::swap(t[2], t[3]);
-                            mesh.tetrahedra.push_back(t);
-                        }
-                    }
+    // Each leaf's cones over its own vertices, on all threads, in blocks of cells.
+    constexpr std::size_t block = 64;
+    const std::size_t blocks = (cells + block - 1) / block;
+    std::vector<LeafTetrahedra> made(blocks);
+    std::vector<std::uint32_t> key_count(cells + 1, 0), tetrahedron_count(cells + 1, 0);
+    parallel_for(
+        blocks,
+        [&](std::size_t b) {
+            LeafTetrahedra& out = made[b];
+            for (std::size_t c = b * block; c < std::min(cells, (b + 1) * block); ++c) {
+                if (!tree.is_leaf(c)) continue;
+                thread_local LeafTetrahedra leaf;
+                leaf.keys.clear();
+                leaf.tetrahedra.clear();
+                cones_of_leaf(tree, corners, c, leaf);
+                key_count[c + 1] = static_cast<std::uint32_t>(leaf.keys.size());
+                tetrahedron_count[c + 1] = static_cast<std::uint32_t>(leaf.tetrahedra.size());
+                out.keys.insert(out.keys.end(), leaf.keys.begin(), leaf.keys.end());
+                out.tetrahedra.insert(out.tetrahedra.end(), leaf.tetrahedra.begin(),
+                                      leaf.tetrahedra.end());
+            }
+        },
+        1);
+    // Every leaf's vertex keys in one list, leaf after leaf ("uses"); key_count becomes the
+    // offsets of the leaves' uses and tetrahedron_count those of their tetrahedra.
+    for (std::size_t c = 0; c < cells; ++c) {
+        key_count[c + 1] += key_count[c];
+        tetrahedron_count[c + 1] += tetrahedron_count[c];
+    }
+    const std::size_t uses = key_count[cells];
+    std::vector<std::uint64_t> key(uses);
+    parallel_for(
+        blocks,
+        [&](std::size_t b) {
+            std::copy(made[b].keys.begin(), made[b].keys.end(), key.begin() + key_count[b * block]);
+        },
+        1);
+    // The first use of each key: the uses sorted into buckets by key, each bucket's in order,
+    // on all threads; first[i] is the first use of use i's key.
+    constexpr int bucket_bits = 10;
+    const Buckets buckets = counting_sort(uses, std::size_t{1} << bucket_bits, [&](std::size_t i) {
+        return bucket_of(key[i], bucket_bits);
+    });
+    std::vector<std::uint32_t> first(uses);
+    parallel_for(
+        std::size_t{1} << bucket_bits,
+        [&](std::size_t b) {
+            KeyMap<std::uint32_t> seen(buckets.start[b + 1] - buckets.start[b]);
+            for (std::uint32_t k = buckets.start[b]; k < buckets.start[b + 1]; ++k) {
+                const std::uint32_t i = buckets.items[k];
+                first[i] = *seen.try_emplace(key[i], i).first;
+            }
+        },
+        1);
+    // The vertices, numbered in order of first use: leaf after leaf, each leaf's new keys in
+    // their order there.
+    Tetrahedralization mesh;
+    mesh.vertex_offsets.assign(cells + 1, 0);
+    parallel_for(cells, [&](std::size_t c) {
+        std::uint32_t fresh = 0;
+        for (std::uint32_t i = key_count[c]; i < key_count[c + 1]; ++i) fresh += first[i] == i;
+        mesh.vertex_offsets[c + 1] = fresh;
+    });
+    for (std::size_t c = 0; c < cells; ++c) mesh.vertex_offsets[c + 1] += mesh.vertex_offsets[c];
+    const std::size_t vertices = mesh.vertex_offsets[cells];
+    mesh.vertices.resize(vertices);
+    mesh.grid.resize(vertices);
+    std::vector<std::uint32_t> id(uses);
+    const Vec3 origin = tree.root_box().lo;
+    const double step = tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift);
+    parallel_for(cells, [&](std::size_t c) {
+        std::uint32_t v = mesh.vertex_offsets[c];
+        for (std::uint32_t i = key_count[c]; i < key_count[c + 1]; ++i) {
+            if (first[i] != i) continue;
+            constexpr std::uint64_t mask = (std::uint64_t{1} << 21) - 1;
+            const std::array<std::uint32_t, 3> g{static_cast<std::uint32_t>(key[i] >> 42),
+                                                 static_cast<std::uint32_t>(key[i] >> 21 & mask),
+                                                 static_cast<std::uint32_t>(key[i] & mask)};
+            mesh.grid[v] = g;
+            mesh.vertices[v] = {origin.x + static_cast<double>(g[0]) * step,
+                                origin.y + static_cast<double>(g[1]) * step,
+                                origin.z + static_cast<double>(g[2]) * step};
+            id[i] = v++;
+        }
+    });
+    parallel_for(uses, [&](std::size_t i) {
+        if (first[i] != i) id[i] = id[first[i]];
+    });
+    // The tetrahedra, each leaf's at its place.
+    mesh.cell_offsets = std::move(tetrahedron_count);
+    mesh.tetrahedra.resize(mesh.cell_offsets[cells]);
+    parallel_for(
+        blocks,
+        [&](std::size_t b) {
+            const std::array<std::uint16_t, 4>* local = made[b].tetrahedra.data();
+            for (std::size_t c = b * block; c < std::min(cells, (b + 1) * block); ++c) {
+                const std::uint32_t* ids = id.data() + key_count[c];
+                for (std::uint32_t t = mesh.cell_offsets[c]; t < mesh.cell_offsets[c + 1]; ++t) {
+                    const std::array<std::uint16_t, 4>& l = *local++;
+                    mesh.tetrahedra[t] = {ids[l[0]], ids[l[1]], ids[l[2]], ids[l[3]]};
                 }
             }
-        }
-        mesh.cell_offsets.push_back(static_cast<std::uint32_t>(mesh.tetrahedra.size()));
-        mesh.vertex_offsets.push_back(static_cast<std::uint32_t>(mesh.vertices.size()));
-    }
+        },
+        1);
     return mesh;
 }
 

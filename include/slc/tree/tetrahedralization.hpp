@@ -44,8 +44,10 @@ struct Tetrahedralization {
 inline constexpr int max_tetrahedralized_depth = 20;
 
 /// Tetrahedralizes a balanced octree: 24 to 96 tetrahedra a leaf (24 when all six neighbours are
-/// leaves of its size). Cost O(leaves · depth). Throws InvalidInput if the tree is not 2:1
-/// balanced or deeper than max_tetrahedralized_depth.
+/// leaves of its size). Cost O(leaves · depth), on all worker threads: each leaf's cones over its
+/// own list of vertices, then the vertices numbered by first use through keys sorted into
+/// buckets, so the mesh is the same for any number of threads. Throws InvalidInput if the tree
+/// is not 2:1 balanced or deeper than max_tetrahedralized_depth.
 Tetrahedralization tetrahedralize(const Octree& tree);
 
 }  // namespace slc

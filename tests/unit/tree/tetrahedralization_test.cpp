@@ -7,6 +7,7 @@
 #include <random>
 
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 
 namespace slc {
 namespace {
@@ -111,6 +112,48 @@ TEST(Tetrahedralization, GridCoordinatesNameTheVertices) {
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
         for (int a = 0; a < 3; ++a) EXPECT_EQ(mesh.vertices[v][a], -1.0 + mesh.grid[v][a] * step);
     }
+}
+
+TEST(Tetrahedralization, VerticesAreNumberedByFirstUseTheSameOnAnyThreadCount) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Octree tree(Box3::centered_cube(1.0), 6);
+    for (std::size_t c = 0; c < tree.size(); ++c) {
+        const int level = tree.cell(c).level;
+        if (level < 6 && u(rng) < (level < 3 ? 0.95 : 0.3)) tree.split(c);
+    }
+    tree.balance();
+    set_thread_count(1);
+    const Tetrahedralization one = tetrahedralize(tree);
+    set_thread_count(2);
+    const Tetrahedralization two = tetrahedralize(tree);
+    set_thread_count(0);
+    EXPECT_EQ(one.tetrahedra, two.tetrahedra);
+    EXPECT_EQ(one.grid, two.grid);
+    EXPECT_EQ(one.vertex_offsets, two.vertex_offsets);
+    ASSERT_GT(one.tetrahedra.size(), 10000u);
+    // Reading the cells' tetrahedra in order, each vertex is first met in the cell whose range
+    // of vertex_offsets holds it, and the first new vertex of a leaf is its centre.
+    std::vector<std::uint8_t> met(one.vertices.size(), 0);
+    for (std::size_t c = 0; c < tree.size(); ++c) {
+        std::vector<std::uint32_t> fresh;
+        for (auto t = one.cell_offsets[c]; t < one.cell_offsets[c + 1]; ++t) {
+            for (const std::uint32_t v : one.tetrahedra[t]) {
+                if (met[v]) continue;
+                met[v] = 1;
+                fresh.push_back(v);
+            }
+        }
+        std::sort(fresh.begin(), fresh.end());
+        ASSERT_EQ(fresh.size(), one.vertex_offsets[c + 1] - one.vertex_offsets[c]);
+        for (std::size_t i = 0; i < fresh.size(); ++i) {
+            ASSERT_EQ(fresh[i], one.vertex_offsets[c] + i);
+        }
+        if (tree.is_leaf(c)) {
+            EXPECT_EQ(one.vertices[one.vertex_offsets[c]], tree.box(c).center());
+        }
+    }
+    EXPECT_EQ(std::count(met.begin(), met.end(), 0), 0);
 }
 
 TEST(Tetrahedralization, RefusesAnUnbalancedTree) {
