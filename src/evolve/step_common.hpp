@@ -31,22 +31,22 @@ std::vector<typename Space<dim>::Point> runge_kutta_feet(
     for (int s = substeps; s > 0; --s) {
         const double top = t + s * h;  // this substep goes from top back to top − h
         field_velocities(law, top, std::span<const Point>(x), std::span<Point>(v));
-        parallel_for(m, [&](std::size_t i) {
+        parallel_for_cheap(m, [&](std::size_t i) {
             sum[i] = v[i];
             y[i] = x[i] - half * v[i];
         });
         field_velocities(law, top - half, std::span<const Point>(y), std::span<Point>(v));
-        parallel_for(m, [&](std::size_t i) {
+        parallel_for_cheap(m, [&](std::size_t i) {
             sum[i] = sum[i] + 2.0 * v[i];
             y[i] = x[i] - half * v[i];
         });
         field_velocities(law, top - half, std::span<const Point>(y), std::span<Point>(v));
-        parallel_for(m, [&](std::size_t i) {
+        parallel_for_cheap(m, [&](std::size_t i) {
             sum[i] = sum[i] + 2.0 * v[i];
             y[i] = x[i] - h * v[i];
         });
         field_velocities(law, top - h, std::span<const Point>(y), std::span<Point>(v));
-        parallel_for(m, [&](std::size_t i) { x[i] -= (h / 6.0) * (sum[i] + v[i]); });
+        parallel_for_cheap(m, [&](std::size_t i) { x[i] -= (h / 6.0) * (sum[i] + v[i]); });
     }
     return x;
 }

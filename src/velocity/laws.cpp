@@ -37,8 +37,8 @@ std::vector<Vec2> normal_velocities(const VelocityLaw& law, const Interface& cur
 }  // namespace
 
 void Rotation::sample(double, std::span<const Vec2> points, std::span<Vec2> out) const {
-    parallel_for(points.size(),
-                 [&](std::size_t i) { out[i] = omega_ * perp(points[i] - centre_); });
+    parallel_for_cheap(points.size(),
+                       [&](std::size_t i) { out[i] = omega_ * perp(points[i] - centre_); });
 }
 
 void Translation::sample(double, std::span<const Vec2> points, std::span<Vec2> out) const {

@@ -34,8 +34,8 @@ SurfaceRotation::SurfaceRotation(double omega, Vec3 axis, Vec3 centre)
 }
 
 void SurfaceRotation::sample(double, std::span<const Vec3> points, std::span<Vec3> out) const {
-    parallel_for(points.size(),
-                 [&](std::size_t i) { out[i] = omega_ * cross(axis_, points[i] - centre_); });
+    parallel_for_cheap(points.size(),
+                       [&](std::size_t i) { out[i] = omega_ * cross(axis_, points[i] - centre_); });
 }
 
 void SurfaceTranslation::sample(double, std::span<const Vec3> points, std::span<Vec3> out) const {
@@ -68,7 +68,7 @@ void SurfaceNormalSpeed::normal_speeds(double, std::span<const Vec3> points, std
 void SurfaceAnisotropicNormalSpeed::normal_speeds(double, std::span<const Vec3> points,
                                                   std::span<const Vec3> normals,
                                                   std::span<double> out) const {
-    parallel_for(points.size(), [&](std::size_t i) {
+    parallel_for_cheap(points.size(), [&](std::size_t i) {
         const Vec3 n = normals[i];
         const double quartic =
             n.x * n.x * n.x * n.x + n.y * n.y * n.y * n.y + n.z * n.z * n.z * n.z;

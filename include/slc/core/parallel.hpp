@@ -25,6 +25,9 @@ int thread_count();
 
 /// Below this many iterations a loop runs on the calling thread: starting threads costs more.
 inline constexpr std::size_t parallel_grain = 256;
+/// The same for loops whose every iteration is a few arithmetic operations on a few numbers
+/// (parallel_for_cheap): below this many, waking the other threads costs more than the loop.
+inline constexpr std::size_t cheap_grain = std::size_t{1} << 14;
 /// The same for loops whose every iteration costs a microsecond or more (an evaluation of G, a
 /// closest-point query): there, 32 iterations already repay starting the threads.
 inline constexpr std::size_t expensive_grain = 32;
@@ -65,6 +68,27 @@ void parallel_for(std::size_t n, Body&& body, std::size_t min_iterations = paral
         }
     }
     if (failure) std::rethrow_exception(failure);
+}
+
+/// parallel_for for loops whose every iteration is a few arithmetic operations on a few numbers,
+/// bound by memory: one contiguous part of [0, n) a thread, each in order, and on the calling
+/// thread alone below cheap_grain. Chunks handed out as threads come free, as parallel_for hands
+/// them, interleave the threads' memory and make such a loop slower on two threads than on one.
+/// The same contract: body(i) writes only what iteration i owns, and the exception thrown is the
+/// one of the least failing i.
+template <class Body>
+void parallel_for_cheap(std::size_t n, Body&& body) {
+    const auto parts = static_cast<std::size_t>(std::max(1, thread_count()));
+    if (n < cheap_grain || parts == 1) {
+        for (std::size_t i = 0; i < n; ++i) body(i);
+        return;
+    }
+    parallel_for(
+        parts,
+        [&](std::size_t p) {
+            for (std::size_t i = n * p / parts; i < n * (p + 1) / parts; ++i) body(i);
+        },
+        1);
 }
 
 /// Items 0 to n − 1 sorted into `buckets` buckets by key(i) < buckets: bucket b holds

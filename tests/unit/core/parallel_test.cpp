@@ -55,6 +55,36 @@ TEST(ParallelFor, AFailureOnlyLateInTheLoopIsStillThrown) {
                  std::logic_error);
 }
 
+TEST(ParallelForCheap, RunsEveryIterationOnceOnAnyThreadCount) {
+    const AllCoresAfterwards restore;
+    for (int threads : {1, 2, 3}) {
+        set_thread_count(threads);
+        // Above cheap_grain (on all threads, one part a thread) and below it (on this thread).
+        for (const std::size_t n : {cheap_grain * 3 + 7, cheap_grain / 2}) {
+            std::vector<int> runs(n, 0);
+            parallel_for_cheap(n, [&](std::size_t i) { ++runs[i]; });
+            EXPECT_EQ(std::vector<int>(n, 1), runs) << threads << " threads, n " << n;
+        }
+    }
+}
+
+TEST(ParallelForCheap, ThrowsWhatTheLeastFailingIterationThrewOnAnyThreadCount) {
+    const AllCoresAfterwards restore;
+    const std::size_t n = 4 * cheap_grain;
+    for (int threads : {1, 2, 3}) {
+        set_thread_count(threads);
+        try {
+            parallel_for_cheap(n, [&](std::size_t i) {
+                if (i == n / 3 || i == n / 2 || i == n - 1)
+                    throw std::runtime_error("iteration " + std::to_string(i));
+            });
+            ADD_FAILURE() << "expected the body's exception on " << threads << " threads";
+        } catch (const std::runtime_error& e) {
+            EXPECT_EQ("iteration " + std::to_string(n / 3), e.what()) << threads << " threads";
+        }
+    }
+}
+
 TEST(CountingSort, IsAStableSortByKeyOnAnyThreadCount) {
     const AllCoresAfterwards restore;
     const std::size_t n = 30001, buckets = 97;
