@@ -5,10 +5,11 @@
 //
 // A step's time is the least wall time of --repeats calls of advance() on the same surface, the
 // calls alternating between one thread and all (each call does all of a step's work, from the
-// distance tree of the surface given to the contour of the next). The surfaces from one thread and
-// from all are compared to the last bit.
+// distance tree of the surface given to the contour of the next), in each of --rounds rounds
+// over every row, minutes apart. The surfaces from one thread and from all are compared to the
+// last bit.
 //
-// Usage: surface_performance_bench [--out FILE] [--enright FILE] [--repeats n]
+// Usage: surface_performance_bench [--out FILE] [--enright FILE] [--repeats n] [--rounds n]
 //                                  [--largest-depth K] [--triangles n]
 #include <fmt/format.h>
 
@@ -155,37 +156,59 @@ int main(int argc, char** argv) {
     using slc::bench::take_flag;
     const std::string out = take_flag(argc, argv, "--out", "docs/performance.md");
     const std::string enright = take_flag(argc, argv, "--enright", "docs/tables/enright.md");
-    const int repeats = std::stoi(take_flag(argc, argv, "--repeats", "5"));
+    const int repeats = std::stoi(take_flag(argc, argv, "--repeats", "3"));
+    const int rounds = std::stoi(take_flag(argc, argv, "--rounds", "2"));
     const int largest = std::stoi(take_flag(argc, argv, "--largest-depth", "7"));
     const double target = std::stod(take_flag(argc, argv, "--triangles", "1.4e5"));
     constexpr int law_depth = 6;
-    if (repeats < 1 || largest < 4) {
-        fmt::print(stderr, "surface_performance_bench: --repeats >= 1 and --largest-depth >= 4\n");
+    if (repeats < 1 || rounds < 1 || largest < 4) {
+        fmt::print(stderr,
+                   "surface_performance_bench: --repeats >= 1, --rounds >= 1 and "
+                   "--largest-depth >= 4\n");
         return 2;
     }
     const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
-    // Rows of about 5,000, 20,000, 80,000 and 320,000 triangles (K = 4..7).
+    // Rows of about 5,000, 20,000, 80,000 and 320,000 triangles (K = 4..7), then each kind of
+    // law on a surface of about `target` triangles. A slow spell of this machine (up to 1.45×
+    // for minutes) slows two threads more than one when it takes part of a core: every row is
+    // timed again in each round, minutes after the last, and keeps its least times.
+    struct Row {
+        std::string name;
+        int depth;
+        double eps;
+    };
     const char* sized[] = {"sphere-rotation", "sphere-curvature"};
-    std::vector<StepTiming> sizes[2];
-    for (int which = 0; which < 2; ++which) {
-        for (int depth = 4; depth <= largest; ++depth) {
-            const double eps = eps_for(sized[which], depth, 5000.0 * std::pow(4.0, depth - 4));
-            sizes[which].push_back(time_step(sized[which], depth, eps, repeats, threads));
-            const StepTiming& r = sizes[which].back();
-            fmt::print(stderr, "{} K = {}: {} triangles, {:.3f} s / {:.3f} s\n", sized[which],
-                       depth, r.triangles_in, r.one, r.all);
+    std::vector<Row> rows;
+    for (const char* name : sized) {
+        for (int depth = 4; depth <= largest; ++depth)
+            rows.push_back({name, depth, eps_for(name, depth, 5000.0 * std::pow(4.0, depth - 4))});
+    }
+    const std::size_t sized_rows = rows.size();
+    for (const char* name :
+         {"sphere-curvature", "sphere-rotation", "merging-spheres", "peanut-volume"})
+        rows.push_back({name, law_depth, eps_for(name, law_depth, target)});
+    std::vector<StepTiming> timed;
+    for (int round = 0; round < rounds; ++round) {
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            const StepTiming r =
+                time_step(rows[i].name, rows[i].depth, rows[i].eps, repeats, threads);
+            if (round == 0) {
+                timed.push_back(r);
+            } else {
+                timed[i].one = std::min(timed[i].one, r.one);
+                timed[i].all = std::min(timed[i].all, r.all);
+                timed[i].identical = timed[i].identical && r.identical;
+            }
+            fmt::print(stderr, "round {}: {} K = {}: {} triangles, {:.3f} s / {:.3f} s\n",
+                       round + 1, r.problem, r.depth, r.triangles_in, r.one, r.all);
         }
     }
-    // Each kind of law on a surface of about `target` triangles.
-    std::vector<StepTiming> laws;
-    for (const char* name :
-         {"sphere-curvature", "sphere-rotation", "merging-spheres", "peanut-volume"}) {
-        laws.push_back(
-            time_step(name, law_depth, eps_for(name, law_depth, target), repeats, threads));
-        fmt::print(stderr, "{}: {} triangles, {:.3f} s / {:.3f} s\n", name,
-                   laws.back().triangles_in, laws.back().one, laws.back().all);
-    }
+    std::vector<StepTiming> sizes[2];
+    for (std::size_t i = 0; i < sized_rows; ++i)
+        sizes[rows[i].name == sized[0] ? 0 : 1].push_back(timed[i]);
+    std::vector<StepTiming> laws(timed.begin() + static_cast<std::ptrdiff_t>(sized_rows),
+                                 timed.end());
 
     std::string md = "## Moving surfaces\n\n";
     md += fmt::format(
@@ -193,11 +216,13 @@ int main(int argc, char** argv) {
         "law from its initial surface contoured at K and ε (refinement until converged), the "
         "step's own k = t_end / N; the least wall time of up to {} calls on one thread and on {} "
         "threads, alternating (no pair begun after two minutes), so that a slow spell of the "
-        "machine falls on both. Each call does all of a step's work, from the "
+        "machine falls on both, in each of {} rounds over all the rows, minutes apart (a spell "
+        "that takes part of a core slows two threads more than one). Each call does all of a "
+        "step's work, from the "
         "distance tree of the surface "
         "given to the refined contour of the next. *identical*: the two surfaces agree to the "
         "last bit. G per vertex: evaluations of G̃ and G over the new surface's vertices.\n\n",
-        repeats, threads);
+        repeats, threads, rounds);
     const SurfaceProblem curvature = make_surface_problem("sphere-curvature");
     md += fmt::format(
         "### Against the number of triangles\n\nsphere-rotation (a flow field: one contour, of "
