@@ -72,6 +72,13 @@ bool has_finer_neighbour(const Octree& tree, std::size_t c, int d) {
     return tree.cell(n).level == level && !tree.is_leaf(n);
 }
 
+/// The low corner of cell c on the grid of half the finest edge, and its edge there.
+std::pair<GridPoint, std::uint64_t> low_corner(const Octree& tree, std::size_t c) {
+    const auto& cell = tree.cell(c);
+    const std::uint64_t u = std::uint64_t{1} << (tree.max_depth() + 1 - cell.level);
+    return {GridPoint{cell.ix * u, cell.iy * u, cell.iz * u}, u};
+}
+
 /// One leaf's tetrahedra over its own list of vertices: their keys in order of first use, and
 /// each tetrahedron as four places in that list.
 struct LeafTetrahedra {
@@ -94,10 +101,7 @@ struct LeafTetrahedra {
 /// from its centre over its ring, each cone from the leaf's centre.
 void cones_of_leaf(const Octree& tree, const CornerSet& corners, std::size_t c,
                    LeafTetrahedra& out) {
-    const int shift = tree.max_depth() + 1;
-    const auto& cell = tree.cell(c);
-    const std::uint64_t u = std::uint64_t{1} << (shift - cell.level);
-    const GridPoint lo{cell.ix * u, cell.iy * u, cell.iz * u};
+    const auto [lo, u] = low_corner(tree, c);
     const GridPoint centre{lo[0] + u / 2, lo[1] + u / 2, lo[2] + u / 2};
     const std::uint16_t apex = out.at(centre);
     thread_local std::vector<GridPoint> ring;
@@ -159,9 +163,7 @@ Tetrahedralization tetrahedralize(const Octree& tree) {
     CornerSet corners(cells);
     for (std::size_t c = 0; c < cells; ++c) {
         if (!tree.is_leaf(c)) continue;
-        const auto& cell = tree.cell(c);
-        const std::uint64_t u = std::uint64_t{1} << (shift - cell.level);
-        const GridPoint lo{cell.ix * u, cell.iy * u, cell.iz * u};
+        const auto [lo, u] = low_corner(tree, c);
         for (std::uint64_t k = 0; k < 8; ++k)
             corners.add({lo[0] + (k & 1) * u, lo[1] + (k >> 1 & 1) * u, lo[2] + (k >> 2) * u});
     }
