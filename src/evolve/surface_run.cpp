@@ -204,9 +204,12 @@ std::optional<std::string> surface_invariant_violation(const Invariants& law, co
     return std::nullopt;
 }
 
+double finest_cell(const Box3& domain, const SurfaceContourOptions& contour) {
+    return std::ldexp(domain.width(), -(contour.depth + contour.thin_depth));
+}
+
 std::optional<double> thinnest_new_component(const Surface& before, const Surface& after) {
-    if (after.empty()) return std::nullopt;
-    const std::size_t old_count = before.empty() ? 0 : component_count(before);
+    const std::size_t old_count = component_count(before);
     const std::vector<std::uint32_t> label = component_labels(after);
     const std::size_t count =
         label.empty() ? 0 : *std::max_element(label.begin(), label.end()) + std::size_t{1};
@@ -270,10 +273,7 @@ SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& 
     };
     const Invariants invariants = law.invariants();
     const double eps = options.step.contour.resolved_eps();
-    // The finest cell of the contours (thin cells included), the same in a domain grown (K a
-    // level deeper each time).
-    const double cell =
-        std::ldexp(domain.width(), -(options.step.contour.depth + options.step.contour.thin_depth));
+    const double cell = finest_cell(domain, options.step.contour);
     const bool until_converged =
         options.step.contour.refine_passes == SurfaceContourOptions::until_converged;
     const double volume0 = from.volume_initial;

@@ -167,7 +167,7 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
         }
     }
     if (!std::isnan(r.thin_split_at)) {
-        const double cell = std::ldexp(p.domain.width(), -(c.depth + c.thin_depth));
+        const double cell = finest_cell(p.domain, c);
         summary["thin_split"] = {
             {"at_t", r.thin_split_at}, {"thickness", r.thin_split_thickness}, {"cell", cell}};
         notes.push_back(fmt::format(

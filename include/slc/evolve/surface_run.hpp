@@ -112,6 +112,10 @@ Surface surface_as_read(const Surface& s, const Box3& domain, const SurfaceRunOp
 /// `after` beyond those of `before`, when `after` has more components; nullopt otherwise.
 std::optional<double> thinnest_new_component(const Surface& before, const Surface& after);
 
+/// The edge of the finest cell the contours of `contour` make in `domain`, thin cells included
+/// (the same in a domain grown: K a level deeper each time).
+double finest_cell(const Box3& domain, const SurfaceContourOptions& contour);
+
 /// The cube domain doubled about its centre `times` times.
 Box3 doubled_domain(const Box3& domain, int times);
 
