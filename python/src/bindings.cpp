@@ -190,6 +190,7 @@ py::tuple contour_surface_function(const py::object& f, const std::vector<double
     stats["passes"] = st.passes;
     stats["converged"] = st.converged;
     stats["eps"] = options.resolved_eps();
+    stats["eta"] = options.resolved_eta();
     stats["domain"] = py::make_tuple(domain.lo.x, domain.lo.y, domain.lo.z, domain.hi.x,
                                      domain.hi.y, domain.hi.z);
     return py::make_tuple(arrays[0], arrays[1], stats);

@@ -96,9 +96,9 @@ SurfaceRunOptions resolve(const SurfaceSubject& s, const SurfaceOverrides& q) {
     if (q.volume_correction) o.step.volume_correction = q.volume_correction;
     if (q.volume_drift) o.volume_drift = *q.volume_drift;
     if (q.guards) o.guards = *q.guards;
-    if (c.resolved_eps() < c.eta) {
-        throw InvalidInput(
-            fmt::format("eps ({}) must not be below eta ({})", c.resolved_eps(), c.eta));
+    if (c.resolved_eps() < o.step.resolved_eta()) {
+        throw InvalidInput(fmt::format("eps ({}) must not be below eta ({})", c.resolved_eps(),
+                                       o.step.resolved_eta()));
     }
     return o;
 }

@@ -149,7 +149,9 @@ def test_contour_surface_of_a_torus_is_closed_and_within_eps():
     vertices, triangles, stats = slc.contour_surface(g, 1.0, 4, eps=eps)
     assert vertices.shape[1] == 3 and triangles.shape[1] == 3
     assert stats["converged"] and stats["triangles"] == len(triangles)
-    assert np.abs(g(vertices)).max() < 1e-9  # vertices: root tolerance
+    # Vertices: roots to eta, by default eps/100 when refining.
+    assert stats["eta"] == pytest.approx(eps / 100)
+    assert np.abs(g(vertices)).max() <= stats["eta"]
     a, b, c = (vertices[triangles[:, k]] for k in range(3))
     for p in (0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (a + b + c) / 3):
         assert np.abs(g(p)).max() <= eps

@@ -46,7 +46,8 @@ void validate(const SurfaceContourOptions& o, const Box3& domain) {
         throw InvalidInput(fmt::format("contour depth K must be between 0 and {}, got {}",
                                        max_tetrahedralized_depth, o.depth));
     }
-    if (!positive(o.eta)) throw InvalidInput(fmt::format("eta must be positive, got {}", o.eta));
+    if (o.eta && !positive(*o.eta))
+        throw InvalidInput(fmt::format("eta must be positive, got {}", *o.eta));
     if (!positive(o.gamma))
         throw InvalidInput(fmt::format("gamma must be positive, got {}", o.gamma));
     if (o.thin_depth < 0) {
@@ -61,8 +62,9 @@ void validate(const SurfaceContourOptions& o, const Box3& domain) {
         throw InvalidInput(
             fmt::format("distance slack must be >= 0 and finite, got {}", *o.distance_slack));
     }
-    if (o.eps && (!positive(*o.eps) || *o.eps < o.eta)) {
-        throw InvalidInput(fmt::format("eps must be at least eta = {}, got {}", o.eta, *o.eps));
+    if (o.eps && (!positive(*o.eps) || *o.eps < o.resolved_eta())) {
+        throw InvalidInput(
+            fmt::format("eps must be at least eta = {}, got {}", o.resolved_eta(), *o.eps));
     }
     const double w = domain.width();
     if (!(w > 0.0) || !std::isfinite(w) || !is_finite(domain.lo) || !domain.is_cube()) {
@@ -456,6 +458,7 @@ constexpr int others[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
                                const SurfaceContourOptions& options) {
     validate(options, domain);
+    const double eta = options.resolved_eta();
     SurfaceContour out;
     SurfaceContourStats& stats = out.stats;
     const Evaluator tree_g(g, stats.g_evals_tree);
@@ -465,7 +468,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
     const double rounding = 1e-12 * std::max(domain.largest_magnitude(), domain.width());
     const std::optional<double> slack =
         options.distance_slack ? std::optional(*options.distance_slack + rounding) : std::nullopt;
-    TreeSampler sampler(tree, tree_g, slack, options.eta, options.depth);
+    TreeSampler sampler(tree, tree_g, slack, eta, options.depth);
     stats.gamma = build_tree(tree, sampler, options.gamma, options.depth);
     stats.thin_cells = split_thin(tree, sampler, stats.gamma, options.depth);
     stats.cells = tree.size();
@@ -520,7 +523,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
     // (On all threads: parallel_for throws the first failure in order, as one thread would.)
     const auto extent = static_cast<std::uint32_t>(std::uint64_t{2} << tree.max_depth());
     parallel_for(n, [&](std::size_t v) {
-        if (on_boundary(mesh.grid[v], extent) && std::abs(values[v]) <= options.eta) {
+        if (on_boundary(mesh.grid[v], extent) && std::abs(values[v]) <= eta) {
             throw LeftDomain(
                 fmt::format("the contour reaches the domain boundary near {}; enlarge the domain "
                             "(--domain, --box)",
@@ -551,7 +554,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
         const double h = tree.edge(tree.depth());
         std::vector<std::uint32_t> todo;
         for (std::uint32_t v = 0; v < n; ++v)
-            if (std::abs(values[v]) <= options.eta) todo.push_back(v);
+            if (std::abs(values[v]) <= eta) todo.push_back(v);
         stats.perturbed = todo.size();
         const std::vector<Vec3> original = [&] {
             std::vector<Vec3> o;
@@ -566,7 +569,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
                     "G vanishes (|G| <= eta = {}) at and around {} after {} perturbations up to "
                     "{:.3g}: G and its gradient seem to vanish together, so the contour is "
                     "ill-posed there",
-                    options.eta, place(original[slot.front()]), max_perturbations,
+                    eta, place(original[slot.front()]), max_perturbations,
                     first_perturbation * std::ldexp(h, max_perturbations - 1)));
             }
             std::vector<Vec3> points;
@@ -581,7 +584,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
             for (std::size_t i = 0; i < todo.size(); ++i) {
                 mesh.vertices[todo[i]] = points[i];
                 values[todo[i]] = got[i];
-                if (std::abs(got[i]) <= options.eta) {
+                if (std::abs(got[i]) <= eta) {
                     left.push_back(todo[i]);
                     left_slot.push_back(slot[i]);
                 }
@@ -671,7 +674,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
         const Evaluator root_g(g, root_evals);
         const std::vector<Root3> roots = find_roots(
             [&](std::span<const Vec3> points, std::span<double> got) { root_g(points, got); },
-            brackets, RootOptions{.eta = options.eta, .method = options.root_method});
+            brackets, RootOptions{.eta = eta, .method = options.root_method});
         stats.g_evals_roots = root_evals;
         out.surface.vertices.reserve(roots.size());
         for (const Root3& r : roots) {
@@ -700,7 +703,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
         const Evaluator refine_g(g, stats.g_evals_refine);
         const contouring::SurfaceRefinement r = contouring::refine_surface(
             out.surface, refine_g, options.resolved_eps(),
-            RootOptions{.eta = options.eta, .method = options.root_method}, options.refine_passes,
+            RootOptions{.eta = eta, .method = options.root_method}, options.refine_passes,
             options.max_refine_passes, options.max_vertices);
         stats.passes = r.passes;
         stats.splits = r.splits;
@@ -717,6 +720,11 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
                                                    : static_cast<double>(stats.g_evals) /
                                                          static_cast<double>(stats.vertices);
     return out;
+}
+
+double SurfaceContourOptions::resolved_eta() const {
+    if (eta) return *eta;
+    return refine_passes == 0 ? default_eta : std::max(default_eta, resolved_eps() / 100.0);
 }
 
 double SurfaceContourOptions::resolved_eps() const { return eps.value_or(std::pow(10.0, -depth)); }

@@ -279,6 +279,8 @@ Surface initial_surface(const SurfaceProblem& p, const SurfaceContourOptions& op
     // points far from its zero set need no value.
     SurfaceContourOptions o = options;
     if (!o.distance_slack) o.distance_slack = 0.0;
+    // Its vertices are the first step's, which differentiates them (advance_contours).
+    if (!o.eta) o.eta = SurfaceContourOptions::default_eta;
     return contour_surface(g, p.domain, o).surface;
 }
 

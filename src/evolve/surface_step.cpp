@@ -275,7 +275,9 @@ std::pair<Surface, double> corrected_volume(const Surface& s, double target,
 
 SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
                                    const SurfaceVelocityLaw& law, const Box3& domain,
-                                   const SurfaceStepOptions& options) {
+                                   const SurfaceStepOptions& given) {
+    SurfaceStepOptions options = given;
+    options.contour.eta = given.resolved_eta();
     if (!(k > 0.0) || !std::isfinite(k))
         throw InvalidInput(fmt::format("time step must be positive and finite, got {}", k));
     if (surface.empty()) throw InvalidInput("the surface to advance has no triangles");

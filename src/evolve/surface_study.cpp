@@ -59,8 +59,8 @@ SurfaceRunOptions surface_resolution_options(const SurfaceRunOptions& base, int 
             fmt::format("resolution {} of N = {}, K = {} needs at least one step and depth 1",
                         level, base.steps, base.step.contour.depth));
     }
-    o.step.contour.eps =
-        std::max(base.step.contour.resolved_eps() * std::pow(4.0, -level), base.step.contour.eta);
+    o.step.contour.eps = std::max(base.step.contour.resolved_eps() * std::pow(4.0, -level),
+                                  base.step.resolved_eta());
     return o;
 }
 

@@ -128,7 +128,7 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
           {"P", c.refine_passes < 0 ? nlohmann::json("until converged")
                                     : nlohmann::json(c.refine_passes)},
           {"eps", c.resolved_eps()},
-          {"eta", c.eta},
+          {"eta", options.step.resolved_eta()},
           {"thin_depth", c.thin_depth},
           {"volume_drift", options.volume_drift},
           {"guards", options.guards},

@@ -36,7 +36,7 @@ struct ContourCommandOptions {
     int depth = 0;
     std::optional<double> eps;
     int refine = 0;
-    double eta = 1e-10;
+    std::optional<double> eta;
     int thin_depth = 0;
     double rho = 0.1;
     DomainOptions domain;
@@ -107,7 +107,7 @@ ContourOptions library_options(const ContourCommandOptions& o) {
     options.depth = o.depth;
     options.refine_passes = o.refine;
     options.eps = o.eps;
-    options.eta = o.eta;
+    if (o.eta) options.eta = *o.eta;
     options.rho = o.rho;
     options.distance_slack = 0.0;  // G is the exact signed distance, 1-Lipschitz
     return options;
@@ -124,7 +124,7 @@ nlohmann::json summary_head(const ContourCommandOptions& o, const LoadedInterfac
              {{"K", o.depth},
               {"P", o.refine},
               {"eps", options.resolved_eps()},
-              {"eta", o.eta},
+              {"eta", options.eta},
               {"rho", o.rho},
               {"gamma", options.gamma},
               {"L", tree_depth},
@@ -237,7 +237,8 @@ void add_contour_command(CLI::App& app) {
                         "exit status 3")
             ->check(integer_in(0, 1000000));
     cmd->add_option("--eta", o->eta,
-                    "Root-finding tolerance eta: |G| <= eta at every vertex (default 1e-10)")
+                    "Root-finding tolerance eta: |G| <= eta at every vertex (default 1e-10; for "
+                    "a surface refined to eps, the larger of 1e-10 and eps/100)")
         ->check(positive_number());
     cmd->add_option("--thin-depth", o->thin_depth,
                     "For a surface: levels beyond K for cells where the zero set's two sides, or a "

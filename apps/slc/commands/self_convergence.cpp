@@ -319,7 +319,7 @@ nlohmann::json surface_json(const SurfaceProblem& p, const SurfaceLawText& law,
                       ? nlohmann::json("converged")
                       : nlohmann::json(o.step.contour.refine_passes)},
             {"eps", o.step.contour.resolved_eps()},
-            {"eta", o.step.contour.eta},
+            {"eta", o.step.resolved_eta()},
             {"status", to_string(res.status)},
             {"t", res.t},
             {"unconverged_steps", res.unconverged_steps},

@@ -98,7 +98,6 @@ void run_surface_contour(const SurfaceContourRequest& r) {
                               {"params",
                                {{"K", r.depth},
                                 {"P", r.refine},
-                                {"eta", r.eta},
                                 {"thin_depth", r.thin_depth},
                                 {"threads", thread_count()}}}};
     OutputFolder folder(r.out, false);
@@ -120,6 +119,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         .thin_depth = r.thin_depth,
         .distance_slack = source.lipschitz ? std::optional(0.0) : std::nullopt};
     summary["params"]["eps"] = options.resolved_eps();
+    summary["params"]["eta"] = options.resolved_eta();
     // cpu_s and wall_s time the contour alone, evaluations of G included.
     const std::clock_t cpu_start = std::clock();
     const auto wall_start = std::chrono::steady_clock::now();

@@ -16,7 +16,7 @@ struct SurfaceContourRequest {
     int depth = 0;
     int refine = 0;
     std::optional<double> eps;
-    double eta = 1e-10;
+    std::optional<double> eta;  ///< unset: SurfaceContourOptions::resolved_eta
     int thin_depth = 0;
     DomainOptions domain;
     std::optional<int> tree_depth;

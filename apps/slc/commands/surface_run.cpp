@@ -142,11 +142,9 @@ SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
     if (r.volume_correction) options.step.volume_correction = r.volume_correction;
     if (r.volume_drift) options.volume_drift = *r.volume_drift;
     options.guards = r.guards;
-    const SurfaceContourOptions& c = options.step.contour;
-    if (c.resolved_eps() < c.eta) {
-        throw InvalidInput(
-            fmt::format("eps must be at least eta = {:g}, got {:g}", c.eta, c.resolved_eps()));
-    }
+    const double eps = options.step.contour.resolved_eps(), eta = options.step.resolved_eta();
+    if (eps < eta)
+        throw InvalidInput(fmt::format("eps must be at least eta = {:g}, got {:g}", eta, eps));
     return {std::move(p), options};
 }
 

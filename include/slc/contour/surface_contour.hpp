@@ -40,8 +40,9 @@ struct SurfaceContourOptions {
     int max_refine_passes = 64;
     /// Refinement that would pass this many vertices throws LimitExceeded naming ε.
     std::size_t max_vertices = std::size_t{1} << 23;
-    /// η > 0: root-finding tolerance, |G| ≤ η at every vertex.
-    double eta = 1e-10;
+    /// η > 0: root-finding tolerance, |G| ≤ η at every vertex; mesh vertices with |G| ≤ η
+    /// are moved off zero. Unset (the default): resolved_eta().
+    std::optional<double> eta = std::nullopt;
     /// γ > 0: starting estimate of the gradient bound |∇G| ≤ γ, doubled until the tree balances.
     double gamma = 1.0;
     /// Levels beyond K, 0..(max_tetrahedralized_depth − K), for cells at depth K near the zero
@@ -63,6 +64,14 @@ struct SurfaceContourOptions {
     /// every tree point is evaluated.
     std::optional<double> distance_slack = std::nullopt;
 
+    /// η when ε is not refined to: the linear contour's vertices on the zero set to 10⁻¹⁰.
+    static constexpr double default_eta = 1e-10;
+    /// η as given; unset, default_eta for the linear contour (P = 0), and max(default_eta, ε/100)
+    /// when refinement follows. Refinement holds G within ε at every edge midpoint and centroid,
+    /// so vertices within ε/100 change the surface's error by at most a hundredth of ε, and
+    /// roots found to that tolerance rather than 10⁻¹⁰ cost about one evaluation of G fewer per
+    /// split (docs/tables/table3_3d.md).
+    double resolved_eta() const;
     /// ε as given, or its default 10^−K.
     double resolved_eps() const;
 };
@@ -107,10 +116,10 @@ struct SurfaceContour {
 
 /// Contours the zero set of G inside domain (a cube). The result is a closed surface (possibly
 /// empty, possibly several components) whose triangles face G > 0; its vertices satisfy
-/// |G| ≤ η. Deterministic: the same for any thread count. Throws InvalidInput for bad options
-/// or a domain that is not a cube; LeftDomain when the zero set reaches the domain's boundary;
-/// NumericalFailure when G is not finite somewhere it is evaluated, or stays within η of zero
-/// around a mesh vertex.
+/// |G| ≤ η (SurfaceContourOptions::resolved_eta). Deterministic: the same for any thread count.
+/// Throws InvalidInput for bad options or a domain that is not a cube; LeftDomain when the zero set
+/// reaches the domain's boundary; NumericalFailure when G is not finite somewhere it is evaluated,
+/// or stays within η of zero around a mesh vertex.
 SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
                                const SurfaceContourOptions& options);
 

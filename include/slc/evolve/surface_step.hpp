@@ -21,7 +21,7 @@ namespace slc {
 
 /// The parameters of a surface step (paper Table 4).
 struct SurfaceStepOptions {
-    SurfaceContourOptions contour;  ///< K, P, ε, η of both contours
+    SurfaceContourOptions contour;  ///< K, P, ε, η (resolved_eta) of both contours
     int tree_depth = 0;  ///< L, the distance trees' depth; 0: SurfaceDistanceTree::default_depth
     /// How W is extended off the surface: direct or nearest_point (Whitney is for curves only);
     /// unset: resolved_extension().
@@ -45,6 +45,9 @@ struct SurfaceStepOptions {
     /// The extension as given, or the law itself (direct) for flow fields and normal laws and
     /// the nearest-point extension for every other law.
     Extension resolved_extension(const SurfaceVelocityLaw& law) const;
+    /// η as given, or 10⁻¹⁰: the step differentiates its vertices (normals, curvature), which
+    /// magnifies their distance from the zero set by 1/h², so not contour_surface's ε/100.
+    double resolved_eta() const { return contour.eta.value_or(SurfaceContourOptions::default_eta); }
     /// σ as given, or √k.
     double resolved_smoothing(double k) const { return smoothing.value_or(std::sqrt(k)); }
     /// volume_correction as given, or by default on for laws that keep the volume.

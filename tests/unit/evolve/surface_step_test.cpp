@@ -54,6 +54,22 @@ TEST(SurfaceStep, SameSurfaceForAnyThreadCount) {
     EXPECT_EQ(one.triangles, two.triangles);
 }
 
+TEST(SurfaceStep, EtaUnsetPutsTheVerticesOnTheZeroSetToTenToTheMinusTen) {
+    // The next step differentiates the vertices, so a step does not take contour_surface's
+    // ε/100 for η unset: the same surface as η = 10⁻¹⁰ given.
+    const SurfaceStepOptions unset = refined(4, 1e-3);
+    EXPECT_EQ(unset.resolved_eta(), 1e-10);
+    EXPECT_DOUBLE_EQ(unset.contour.resolved_eta(), 1e-5);
+    SurfaceStepOptions given = unset;
+    given.contour.eta = 1e-10;
+    const Surface start = sphere({0.3, 0.0, 0.0}, 0.2, 3);
+    const SurfaceRotation rotation;
+    const Surface a = advance(start, 0.0, 0.1, rotation, unit_domain, unset).surface;
+    const Surface b = advance(start, 0.0, 0.1, rotation, unit_domain, given).surface;
+    EXPECT_EQ(a.vertices, b.vertices);
+    EXPECT_EQ(a.triangles, b.triangles);
+}
+
 TEST(SurfaceStep, BadInput) {
     const Surface s = sphere({}, 0.3, 2);
     const SurfaceStepOptions o{.contour = {.depth = 3}};
