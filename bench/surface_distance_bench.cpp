@@ -65,6 +65,23 @@ const std::vector<Vec3>& near_points() {
     return xs;
 }
 
+/// 10^3 deterministic query points within 0.1 of the sphere's centre, where every patch of the
+/// sphere is nearly as near as the nearest (a distance field on a grid asks about such points).
+const std::vector<Vec3>& deep_points() {
+    static const std::vector<Vec3> xs = [] {
+        std::mt19937 rng(43);
+        std::uniform_real_distribution<double> u(-0.1, 0.1);
+        std::vector<Vec3> out;
+        for (int i = 0; i < 1000; ++i)
+            out.push_back(Vec3{0.013, -0.007, 0.005} + Vec3{u(rng), u(rng), u(rng)});
+        return out;
+    }();
+    return xs;
+}
+
+/// The deep queries stop at 20·4^6 triangles: a query there scans a large part of the sphere.
+constexpr int last_deep_level = 6;
+
 void BM_SurfaceTreeBuild(benchmark::State& state) {
     const Surface& s = sphere_of(static_cast<int>(state.range(0)));
     const int depth = SurfaceDistanceTree::default_depth(s, domain);
@@ -79,11 +96,11 @@ void BM_SurfaceTreeBuild(benchmark::State& state) {
     state.counters["cells"] = static_cast<double>(cells);
 }
 
-void BM_SurfaceTreeQuery(benchmark::State& state) {
+/// The tree's signed closest points of xs, timed.
+void tree_queries(benchmark::State& state, const std::vector<Vec3>& xs) {
     const Surface& s = sphere_of(static_cast<int>(state.range(0)));
     const SurfaceDistanceTree tree(s, domain,
                                    {.depth = SurfaceDistanceTree::default_depth(s, domain)});
-    const auto& xs = near_points();
     for (auto _ : state) {
         double sum = 0.0;
         for (const Vec3 x : xs) sum += tree.closest_point(x).distance;
@@ -94,6 +111,10 @@ void BM_SurfaceTreeQuery(benchmark::State& state) {
         static_cast<double>(xs.size()),
         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
+
+void BM_SurfaceTreeQuery(benchmark::State& state) { tree_queries(state, near_points()); }
+
+void BM_SurfaceTreeDeepQuery(benchmark::State& state) { tree_queries(state, deep_points()); }
 
 void BM_BruteForceQuery(benchmark::State& state) {
     const Surface& s = sphere_of(static_cast<int>(state.range(0)));
@@ -140,13 +161,14 @@ void BM_CgalBuild(benchmark::State& state) {
     state.counters["triangles"] = static_cast<double>(s.size());
 }
 
-void BM_CgalQuery(benchmark::State& state) {
+/// CGAL's closest points of xs, timed; the largest difference of the two (unsigned) distances
+/// relative to the radius, outside the timed loop, in counter max_gap.
+void cgal_queries(benchmark::State& state, const std::vector<Vec3>& xs) {
     const Surface& s = sphere_of(static_cast<int>(state.range(0)));
     const CgalTriangles triangles = cgal_triangles(s);
     CgalTree tree(triangles.cbegin(), triangles.cend());
     tree.build();
     tree.accelerate_distance_queries();
-    const auto& xs = near_points();
     for (auto _ : state) {
         double sum = 0.0;
         for (const Vec3 x : xs) {
@@ -155,7 +177,6 @@ void BM_CgalQuery(benchmark::State& state) {
         }
         benchmark::DoNotOptimize(sum);
     }
-    // Agreement of the two (unsigned) distances, outside the timed loop.
     const SurfaceDistanceTree ours(s, domain,
                                    {.depth = SurfaceDistanceTree::default_depth(s, domain)});
     double gap = 0.0;
@@ -165,13 +186,17 @@ void BM_CgalQuery(benchmark::State& state) {
     }
     state.counters["triangles"] = static_cast<double>(s.size());
     state.counters["max_gap"] = gap;
-    state.counters["per_query"] = benchmark::Counter(
-        static_cast<double>(xs.size()),
-        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
+
+void BM_CgalQuery(benchmark::State& state) { cgal_queries(state, near_points()); }
+
+void BM_CgalDeepQuery(benchmark::State& state) { cgal_queries(state, deep_points()); }
 
 BENCHMARK(BM_CgalBuild)->DenseRange(first_level, last_level)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CgalQuery)->DenseRange(first_level, last_level)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CgalDeepQuery)
+    ->DenseRange(first_level, last_deep_level)
+    ->Unit(benchmark::kMillisecond);
 constexpr bool have_cgal = true;
 #else
 constexpr bool have_cgal = false;
@@ -179,6 +204,9 @@ constexpr bool have_cgal = false;
 
 BENCHMARK(BM_SurfaceTreeBuild)->DenseRange(first_level, last_level)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SurfaceTreeQuery)->DenseRange(first_level, last_level)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SurfaceTreeDeepQuery)
+    ->DenseRange(first_level, last_deep_level)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BruteForceQuery)->DenseRange(first_level, 5)->Unit(benchmark::kMillisecond);
 
 /// A run's time as text in the given unit (1e3: ms, 1e6: µs), or "—" when it was not run.
@@ -206,16 +234,20 @@ void write_table(const Recorder& rec, const std::string& path) {
         "(ours); the AABB tree, by `build()` (which CGAL would otherwise defer to the first "
         "query), and the search tree of `accelerate_distance_queries()` (CGAL). Query: one "
         "closest point (ours also signed) for each of 10^4 fixed points within 0.05 of the "
-        "sphere. Brute force: a scan of every triangle. The last build column is the build time "
-        "divided by N log₂ N: constant when the build is O(N log N).\n\n";
+        "sphere. Deep query: one closest point for each of 10^3 fixed points within 0.1 of the "
+        "sphere's centre (up to N = 81920), where a patch's bounding box reaches towards the point "
+        "and bounds nothing; the hierarchy's slabs across the patches' normals do. Brute force: a "
+        "scan of every triangle. The last build column is the build time divided by N log₂ N: "
+        "constant when the build is O(N log N).\n\n";
     if (!have_cgal)
         md +=
             "NOTE: CGAL was not found when this benchmark was built (`apt-get install "
             "libcgal-dev`, or `scripts/bench`), so its columns are empty.\n\n";
     md +=
         "| N | depth | cells | build ms | CGAL build ms | build ÷ CGAL | build ns / N log₂ N "
-        "| query µs | CGAL query µs | query ÷ CGAL | brute force µs |\n"
-        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        "| query µs | CGAL query µs | query ÷ CGAL | deep query µs | CGAL deep query µs | brute "
+        "force µs |\n"
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     double gap = 0.0;
     for (int k = first_level; k <= last_level; ++k) {
         const auto& build = rec.results.at(fmt::format("BM_SurfaceTreeBuild/{}", k));
@@ -227,6 +259,15 @@ void write_table(const Recorder& rec, const std::string& path) {
         const auto cgal_run = rec.results.find(fmt::format("BM_CgalQuery/{}", k));
         if (cgal_run != rec.results.end())
             gap = std::max(gap, cgal_run->second.counters.at("max_gap").value);
+        const auto cgal_deep = rec.results.find(fmt::format("BM_CgalDeepQuery/{}", k));
+        if (cgal_deep != rec.results.end())
+            gap = std::max(gap, cgal_deep->second.counters.at("max_gap").value);
+        // µs a deep query: the run's time over its 10^3 points.
+        auto deep_us = [&](const char* name) {
+            const auto it = rec.results.find(fmt::format("{}/{}", name, k));
+            return it == rec.results.end() ? std::string()
+                                           : fmt::format("{:.3g}", seconds(it->second) * 1e3);
+        };
         const std::string build_ratio =
             cgal_build == rec.results.end()
                 ? "—"
@@ -237,12 +278,13 @@ void write_table(const Recorder& rec, const std::string& path) {
         const std::string brute_us =
             brute == rec.results.end() ? "" : fmt::format("{:.3g}", seconds(brute->second) * 1e4);
         md += fmt::format(
-            "| {:.0f} | {:.0f} | {:.0f} | {:.3g} | {} | {} | {:.1f} | {:.3g} | {} | {} | {} |\n", n,
-            build.counters.at("depth").value, build.counters.at("cells").value, ours_build * 1e3,
+            "| {:.0f} | {:.0f} | {:.0f} | {:.3g} | {} | {} | {:.1f} | {:.3g} | {} | {} | {} | {} | "
+            "{} |\n",
+            n, build.counters.at("depth").value, build.counters.at("cells").value, ours_build * 1e3,
             time_of(rec, fmt::format("BM_CgalBuild/{}", k), 1e3), build_ratio,
             ours_build / (n * std::log2(n)) * 1e9, ours_query * 1e6,
             cgal_query > 0.0 ? fmt::format("{:.3g}", cgal_query * 1e6) : "—", query_ratio,
-            brute_us);
+            deep_us("BM_SurfaceTreeDeepQuery"), deep_us("BM_CgalDeepQuery"), brute_us);
     }
     if (have_cgal)
         md += fmt::format(

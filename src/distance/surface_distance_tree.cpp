@@ -123,7 +123,7 @@ SurfaceDistanceTree::SurfaceDistanceTree(const Surface& surface, Box3 domain, Op
     corners_.resize(surface.size());
     for (std::size_t t = 0; t < surface.size(); ++t) corners_[t] = surface.triangle(t);
     normals_ = pseudo_normals(surface);
-    hierarchy_ = TriangleHierarchy(corners_);
+    hierarchy_ = TriangleHierarchy(corners_, TriangleHierarchy::Bounds::boxes_and_slabs);
     build_lists();
     if (options.balanced) {
         tree_.balance([&](std::size_t c) {

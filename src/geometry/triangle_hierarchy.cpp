@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -15,6 +17,12 @@ namespace {
 /// triangle whose computed distance ties the best to rounding is still examined, so that the
 /// least index wins as in a scan of every triangle.
 constexpr double prune_slack = 1.0 + 1e-12;
+/// A bound on the relative rounding of a dot product of a unit axis with a point: 10⁻¹⁴ of its
+/// largest coordinate, against about 3.3·10⁻¹⁶ at most.
+constexpr double rounding = 1e-14;
+/// Nodes of more triangles have no slab (the whole line): a large patch of a curved surface
+/// has a thick one, and each level of slabs costs a pass over every triangle's corners.
+constexpr std::uint32_t largest_slab = 4096;
 
 }  // namespace
 
@@ -33,7 +41,7 @@ std::uint64_t spread_by_three(std::uint64_t v) {
 
 }  // namespace
 
-TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
+TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles, Bounds bounds) {
     const auto n = static_cast<std::uint32_t>(triangles.size());
     if (n == 0) return;
     boxes_.resize(n);
@@ -72,13 +80,24 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
     order_.resize(n);
     parallel_for(n, [&](std::size_t k) { order_[k] = keyed[k].second; });
     nodes_.reserve(2 * (n / leaf_size + 1));
-    nodes_.push_back({Box3::empty(), 0, n});
+    auto node_of = [](std::uint32_t first, std::uint32_t count) {
+        Node node;
+        node.box = Box3::empty();
+        node.first = first;
+        node.count = count;
+        return node;
+    };
+    nodes_.push_back(node_of(0, n));
     // Nodes are split in creation order; a split node's children are appended side by side. A
     // node is cut where its highest differing Morton bit turns on, which separates space, when
     // that leaves each side at least a third; otherwise in half. Depth stays below 64 (the stack
     // of the queries): each side keeps at most two thirds.
+    // Each node's range of the order, which an inner node's first and count give up.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> range;
+    range.reserve(nodes_.capacity());
     for (std::size_t i = 0; i < nodes_.size(); ++i) {
         const std::uint32_t first = nodes_[i].first, count = nodes_[i].count;
+        range.emplace_back(first, count);
         if (count <= leaf_size) continue;
         const std::uint64_t lo = keyed[first].first, hi = keyed[first + count - 1].first;
         std::uint32_t cut = count / 2;
@@ -93,8 +112,8 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
         const auto child = static_cast<std::uint32_t>(nodes_.size());
         nodes_[i].first = child;
         nodes_[i].count = 0;
-        nodes_.push_back({Box3::empty(), first, cut});
-        nodes_.push_back({Box3::empty(), first + cut, count - cut});
+        nodes_.push_back(node_of(first, cut));
+        nodes_.push_back(node_of(first + cut, count - cut));
     }
     // The leaves' boxes on all threads, then the others bottom up: children come after their
     // parent.
@@ -110,19 +129,77 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles) {
         Node& node = nodes_[i];
         if (node.count == 0) node.box = unite(nodes_[node.first].box, nodes_[node.first + 1].box);
     }
+    if (bounds == Bounds::boxes) return;
+    slabs_ = true;
+    // The slabs: each node's axis its triangles' area normals summed (the leaves' on all threads,
+    // then bottom up), and the extent of their corners along it, on all threads, from the
+    // triangles copied in the order so that every node reads a contiguous range.
+    std::vector<Triangle3> ordered(n);
+    parallel_for(n, [&](std::size_t k) { ordered[k] = triangles[order_[k]]; });
+    std::vector<Vec3> normal_sum(nodes_.size());
+    parallel_for(nodes_.size(), [&](std::size_t i) {
+        const Node& node = nodes_[i];
+        Vec3 sum{};
+        for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+            const Triangle3& t = ordered[k];
+            sum += cross(t.b - t.a, t.c - t.a);
+        }
+        normal_sum[i] = sum;
+    });
+    for (std::size_t i = nodes_.size(); i-- > 0;) {
+        const Node& node = nodes_[i];
+        if (node.count == 0) normal_sum[i] = normal_sum[node.first] + normal_sum[node.first + 1];
+    }
+    parallel_for(nodes_.size(), [&](std::size_t i) {
+        Node& node = nodes_[i];
+        const double length = norm(normal_sum[i]);
+        // Any unit axis bounds the distance; one across the triangles bounds it best.
+        node.axis = length > 0.0 && std::isfinite(length) ? (1.0 / length) * normal_sum[i]
+                                                          : Vec3{1.0, 0.0, 0.0};
+        const auto [first, count] = range[i];
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        if (count > largest_slab) {  // no slab: it would prune little, and cost a pass
+            node.lo = -std::numeric_limits<double>::infinity();
+            node.hi = std::numeric_limits<double>::infinity();
+            return;
+        }
+        for (std::uint32_t k = first; k < first + count; ++k) {
+            const Triangle3& t = ordered[k];
+            for (const Vec3 v : {t.a, t.b, t.c}) {
+                const double d = dot(node.axis, v);
+                lo = std::min(lo, d);
+                hi = std::max(hi, d);
+            }
+        }
+        // Widened by the dot products' rounding, a few units in the last place of the corners'
+        // coordinates (the query's are allowed for in nearest()).
+        double scale = 0.0;
+        for (int a = 0; a < 3; ++a)
+            scale = std::max({scale, std::abs(node.box.lo[a]), std::abs(node.box.hi[a])});
+        node.lo = lo - rounding * scale;
+        node.hi = hi + rounding * scale;
+    });
 }
 
 void TriangleHierarchy::nearest(std::span<const Triangle3> triangles, Vec3 x,
                                 NearestFacet& best) const {
     if (nodes_.empty()) return;
+    const double slack = rounding * std::max({std::abs(x.x), std::abs(x.y), std::abs(x.z)});
     std::uint32_t stack[64];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         const Node& n = nodes_[stack[--top]];
-        // A box farther than the best so far holds nothing nearer; one as far (to rounding) may
-        // hold a tie with a smaller index, so only clearly farther boxes are skipped.
-        if (distance2(n.box, x) > best.distance2 * prune_slack) continue;
+        // A box or slab farther than the best so far holds nothing nearer; one as far (to
+        // rounding) may hold a tie with a smaller index, so only clearly farther ones are
+        // skipped. The box first: it is cheaper, and settles most nodes near the surface.
+        const double limit = best.distance2 * prune_slack;
+        if (distance2(n.box, x) > limit) continue;
+        if (slabs_) {
+            const double along = dot(n.axis, x);
+            const double gap = std::max(n.lo - along, along - n.hi) - slack;
+            if (gap > 0.0 && gap * gap > limit) continue;
+        }
         if (n.count > 0) {
             for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
                 const std::uint32_t t = order_[i];

@@ -26,10 +26,15 @@ public:
     /// Triangles per leaf box, at most.
     static constexpr std::uint32_t leaf_size = 4;
 
+    /// What bounds the nodes: boxes, for the pairs of triangles that meet; boxes and slabs, for
+    /// nearest(), which then prunes deep inside closed surfaces too (the build passes over the
+    /// triangles of every node of up to 4096 of them once more).
+    enum class Bounds { boxes, boxes_and_slabs };
+
     TriangleHierarchy() = default;
-    /// Builds the boxes over triangles (which the queries must be given again, unchanged).
-    /// O(N log N).
-    explicit TriangleHierarchy(std::span<const Triangle3> triangles);
+    /// Builds the boxes (and slabs) over triangles (which the queries must be given again,
+    /// unchanged). O(N log N).
+    explicit TriangleHierarchy(std::span<const Triangle3> triangles, Bounds bounds = Bounds::boxes);
 
     /// The bounding box of each triangle, by index.
     std::span<const Box3> boxes() const { return boxes_; }
@@ -87,18 +92,26 @@ public:
     }
 
     /// Lowers best to the least (distance2, triangle) over all triangles: exact, the same answer
-    /// as a scan of every triangle. A best already found only prunes more.
+    /// as a scan of every triangle. A best already found only prunes more; so do slabs
+    /// (Bounds::boxes_and_slabs), by a factor of 10 to 15 for points deep inside a sphere
+    /// (docs/tables/table1_3d.md).
     void nearest(std::span<const Triangle3> triangles, Vec3 x, NearestFacet& best) const;
 
 private:
     /// A leaf (count > 0) holds order_[first, first + count); an inner node has children
-    /// nodes_[first] and nodes_[first + 1].
+    /// nodes_[first] and nodes_[first + 1]. Its triangles lie in the box and in the slab
+    /// lo ≤ axis · p ≤ hi across their mean normal (a unit axis; lo and hi widened by rounding):
+    /// for a point deep inside a closed surface, the box of a patch reaches towards it, where
+    /// the slab of a patch curved little does not.
     struct Node {
         Box3 box;
+        Vec3 axis{};
+        double lo = 0.0, hi = 0.0;
         std::uint32_t first = 0;
         std::uint32_t count = 0;
     };
     std::vector<Node> nodes_;
+    bool slabs_ = false;                ///< whether the nodes' slabs are set
     std::vector<std::uint32_t> order_;  ///< triangle indices, grouped by leaf
     std::vector<Box3> boxes_;           ///< each triangle's bounding box
 };

@@ -1,0 +1,74 @@
+// Tests of the triangle hierarchy's nearest-triangle search against a scan of every triangle:
+// the same triangle and distance, to the bit, wherever the point is.
+#include "slc/geometry/triangle_hierarchy.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "slc/geometry/surface_shapes.hpp"
+
+namespace slc {
+namespace {
+
+std::vector<Triangle3> corners_of(const Surface& s) {
+    std::vector<Triangle3> out;
+    for (std::size_t t = 0; t < s.size(); ++t) out.push_back(s.triangle(t));
+    return out;
+}
+
+NearestFacet scan(std::span<const Triangle3> triangles, Vec3 x) {
+    NearestFacet best;
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+        best.offer(static_cast<std::uint32_t>(t), closest_point(triangles[t], x));
+    return best;
+}
+
+TEST(TriangleHierarchy, NearestIsTheScansEverywhereAndDeepInsideClosedSurfaces) {
+    // Deep inside a closed surface every patch's box reaches towards the point, so boxes alone
+    // prune almost nothing there; the slabs across the patches' normals must prune without
+    // losing the nearest triangle or a tie's least index (the centre of the sphere ties every
+    // triangle to rounding).
+    const Vec3 centre{0.03, -0.02, 0.01};
+    struct Case {
+        std::string name;
+        Surface surface;
+        std::vector<Vec3> deep;  // points far inside
+    };
+    std::vector<Case> cases{
+        {"sphere", sphere(centre, 0.6, 5), {centre}},
+        {"torus", torus({}, 0.6, 0.25, 96, 32), {}},
+        {"box", box_surface({-0.5, -0.4, -0.3}, {0.6, 0.5, 0.4}, 6), {}},
+    };
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), angle(0.0, 6.283185307179586);
+    for (int k = 0; k < 200; ++k) {
+        cases[0].deep.push_back(centre + 0.1 * Vec3{u(rng), u(rng), u(rng)});
+        const double a = angle(rng);  // near the torus's core circle
+        cases[1].deep.push_back(Vec3{0.6 * std::cos(a), 0.6 * std::sin(a), 0.0} +
+                                0.05 * Vec3{u(rng), u(rng), u(rng)});
+        cases[2].deep.push_back(Vec3{0.05, 0.05, 0.05} + 0.2 * Vec3{u(rng), u(rng), u(rng)});
+    }
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        const std::vector<Triangle3> triangles = corners_of(c.surface);
+        const TriangleHierarchy boxes(triangles);
+        const TriangleHierarchy slabs(triangles, TriangleHierarchy::Bounds::boxes_and_slabs);
+        std::vector<Vec3> points = c.deep;
+        for (int k = 0; k < 300; ++k) points.push_back(1.5 * Vec3{u(rng), u(rng), u(rng)});
+        for (const Vec3 x : points) {
+            const NearestFacet slow = scan(triangles, x);
+            for (const TriangleHierarchy* h : {&boxes, &slabs}) {
+                NearestFacet fast;
+                h->nearest(triangles, x, fast);
+                ASSERT_EQ(fast.triangle, slow.triangle) << x.x << " " << x.y << " " << x.z;
+                ASSERT_EQ(fast.distance2, slow.distance2);
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace slc
