@@ -160,7 +160,7 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
 
 
 def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None = None,
-                    refine=None, slack: float | None = None):
+                    refine=None, slack: float | None = None, eta: float | None = None):
     """The zero set of f, a vectorised function f((m, 3) array) -> (m,) array, in box, by the
     contouring of space (paper §2 with d = 3): a closed, oriented triangle surface facing f > 0.
 
@@ -169,8 +169,9 @@ def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float 
     midpoints and centroids (default 10^-K). refine: P passes, or "converged"; by default
     converged when eps is given, none otherwise. slack: δ >= 0 when
     |f(x) - f(y)| <= |x - y| + δ everywhere (0 for a signed distance): points far from the
-    surface are then not evaluated, and the surface is the same. Returns (vertices (n, 3) float
-    array, triangles (m, 3) int array of vertex indices, stats dict).
+    surface are then not evaluated, and the surface is the same. eta: η, |f| <= η at every
+    vertex (default 1e-10, or eps/100 when refining). Returns (vertices (n, 3) float array,
+    triangles (m, 3) int array of vertex indices, stats dict).
     """
     if isinstance(box, numbers.Real):
         box = (-box, -box, -box, box, box, box)
@@ -180,4 +181,5 @@ def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float 
     if isinstance(depth, bool) or not isinstance(depth, numbers.Integral):
         raise TypeError(f"depth must be an integer, got {depth!r}")
     return _slc.contour_surface(f, box, int(depth), None if eps is None else float(eps),
-                                _refine(refine), None if slack is None else float(slack))
+                                _refine(refine), None if slack is None else float(slack),
+                                None if eta is None else float(eta))

@@ -166,10 +166,10 @@ void call_batch3(const py::object& f, std::span<const Vec3> points, std::span<do
 
 py::tuple contour_surface_function(const py::object& f, const std::vector<double>& box, int depth,
                                    std::optional<double> eps, int refine,
-                                   std::optional<double> slack) {
+                                   std::optional<double> slack, std::optional<double> eta) {
     const Box3 domain = cube_around_corners(box, "box");
     const SurfaceContourOptions options{
-        .depth = depth, .refine_passes = refine, .eps = eps, .distance_slack = slack};
+        .depth = depth, .refine_passes = refine, .eps = eps, .eta = eta, .distance_slack = slack};
     auto g = [&f](std::span<const Vec3> points, std::span<double> values) {
         call_batch3(f, points, values);
     };
@@ -228,7 +228,7 @@ PYBIND11_MODULE(_slc, m) {
     m.def("contour", &contour_function, py::arg("f"), py::arg("box"), py::arg("depth"),
           py::arg("eps"), py::arg("refine"));
     m.def("contour_surface", &contour_surface_function, py::arg("f"), py::arg("box"),
-          py::arg("depth"), py::arg("eps"), py::arg("refine"), py::arg("slack"));
+          py::arg("depth"), py::arg("eps"), py::arg("refine"), py::arg("slack"), py::arg("eta"));
     add_run_functions(m);
     add_surface_functions(m);
     m.def("velocity_names", &velocity_names);

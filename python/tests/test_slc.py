@@ -149,9 +149,12 @@ def test_contour_surface_of_a_torus_is_closed_and_within_eps():
     vertices, triangles, stats = slc.contour_surface(g, 1.0, 4, eps=eps)
     assert vertices.shape[1] == 3 and triangles.shape[1] == 3
     assert stats["converged"] and stats["triangles"] == len(triangles)
-    # Vertices: roots to eta, by default eps/100 when refining.
+    # Vertices: roots to eta, by default eps/100 when refining; an eta given is kept.
     assert stats["eta"] == pytest.approx(eps / 100)
     assert np.abs(g(vertices)).max() <= stats["eta"]
+    v1, _, s1 = slc.contour_surface(g, 1.0, 4, eps=eps, eta=1e-10)
+    assert s1["eta"] == 1e-10 and np.abs(g(v1)).max() <= 1e-10
+    assert s1["g_evals"] > stats["g_evals"]
     a, b, c = (vertices[triangles[:, k]] for k in range(3))
     for p in (0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (a + b + c) / 3):
         assert np.abs(g(p)).max() <= eps
@@ -167,6 +170,8 @@ def test_contour_surface_of_a_torus_is_closed_and_within_eps():
     v2, t2, s2 = slc.contour_surface(g, 1.0, 4, eps=eps, slack=0)
     assert np.array_equal(v2, vertices) and np.array_equal(t2, triangles)
     assert s2["settled"] > 0 and s2["g_evals"] < stats["g_evals"]
+    with pytest.raises(ValueError, match="eta must be positive"):
+        slc.contour_surface(g, 1.0, 3, eta=-1)
     with pytest.raises(ValueError, match="distance slack must be >= 0"):
         slc.contour_surface(g, 1.0, 3, slack=-1)
     with pytest.raises(ValueError, match="box must be six numbers"):
