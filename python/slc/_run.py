@@ -14,7 +14,7 @@ from . import _slc
 from ._interface import Interface, _interface, _points, _refine
 from ._tables import errors_markdown, nan_array as _array
 from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, run_surface,
-                       study_surface, _options as _surface_options)
+                       study_surface)
 
 
 class FlowField:
@@ -182,14 +182,10 @@ def problems() -> dict[str, str]:
     return dict(_slc.problems()) | dict(_slc.surface_problems())
 
 
-_SURFACE_VELOCITIES = ["rotation", "translation", "enright", "unit-normal", "anisotropic",
-                       "curvature", "volume-preserving-curvature"]
-
-
 def velocities(dimension: int = 2) -> list[str]:
     """The built-in velocity laws' names: of curves (dimension 2) or of surfaces (3)."""
     if dimension == 3:
-        return list(_SURFACE_VELOCITIES)
+        return list(_slc.surface_velocity_names())
     if dimension != 2:
         raise ValueError(f"dimension must be 2 or 3, got {dimension}")
     return list(_slc.velocity_names())
@@ -246,8 +242,11 @@ def _integer(name: str, value) -> int | None:
 
 
 def _overrides(steps=None, depth=None, refine=None, eps=None, eta=None, smoothing=None,
-               extension=None, arcs=None, area_correction=None):
-    o = _slc.Overrides()
+               extension=None, arcs=None, area_correction=None, thin_depth=None,
+               volume_drift=None, guards=None):
+    """The settings given, as the library's RunOverrides: it checks their ranges and refuses those
+    of the other dimension (ValueError naming them)."""
+    o = _slc.RunOverrides()
     o.steps = _integer("steps", steps)
     o.depth = _integer("depth", depth)
     o.refine = None if refine is None else _refine(refine)
@@ -257,6 +256,13 @@ def _overrides(steps=None, depth=None, refine=None, eps=None, eta=None, smoothin
     o.extension = extension
     o.arcs = None if arcs is None else bool(arcs)
     o.area_correction = None if area_correction is None else bool(area_correction)
+    o.thin_depth = _integer("thin_depth", thin_depth)
+    if isinstance(volume_drift, bool):
+        raise TypeError(f"volume_drift must be a number, got {volume_drift!r}")
+    o.volume_drift = None if volume_drift is None else float(volume_drift)
+    if guards is not None and not isinstance(guards, bool):
+        raise TypeError(f"guards must be True or False, got {guards!r}")
+    o.guards = guards
     return o
 
 
@@ -328,21 +334,13 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     interfaces in ``summary["error_estimate"]`` (an estimate of this run's error when it
     converges at first order or faster; a note says why there is none).
     """
+    options = _overrides(steps, depth, refine, eps, eta, smoothing, extension, arcs,
+                         area_correction, thin_depth, volume_drift, guards)
     if isinstance(interface, (Surface, SurfaceProblem)):
-        curve_only = {"smoothing": smoothing, "geometry": geometry, "extension": extension,
-                      "arcs": arcs}
-        for name, value in curve_only.items():
-            if value is not None:
-                raise ValueError(f"{name} is for curves, not surfaces")
+        if geometry is not None:
+            raise ValueError("geometry is for curves, not surfaces")
         p = _surface_subject(interface, velocity, t_end, params)
-        return run_surface(p, frames, observer, threads, estimate, steps=steps, depth=depth,
-                           refine=refine, eps=eps, eta=eta, thin_depth=thin_depth,
-                           area_correction=area_correction, volume_drift=volume_drift,
-                           guards=guards)
-    for name, value in {"thin_depth": thin_depth, "volume_drift": volume_drift,
-                        "guards": guards}.items():
-        if value is not None:
-            raise ValueError(f"{name} is for surfaces, not curves")
+        return run_surface(p, options, frames, observer, threads, estimate)
     p, law = _subject(interface, velocity, t_end, params, geometry)
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
         raise TypeError(f"frames must be an integer, got {frames!r}")
@@ -352,8 +350,6 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
         def on_step(step, n, t, arrays, cpu_s):
             return observer(Step(step, n, t, Interface._trusted(arrays, t), cpu_s))
 
-    options = _overrides(steps, depth, refine, eps, eta, smoothing, extension, arcs,
-                         area_correction)
     out = _slc.run(p, law, options, int(frames), int(threads), on_step, bool(estimate))
     return RunResult(
         interface=Interface._trusted(out["curves"], out["t"]),
@@ -440,7 +436,7 @@ def study(subject, velocity=None, t_end: float | None = None, *, rows: int | Non
             def on_surface_run(r):
                 return observer(_surface_run_dict(r))
         s = _slc.self_convergence_surface(p, 3 if rows is None else _integer("rows", rows),
-                                          _surface_options(**options), int(threads),
+                                          _overrides(**options), int(threads),
                                           on_surface_run)
         return SelfConvergence(
             runs=[_surface_run_dict(r) for r in s["runs"]],

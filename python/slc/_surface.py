@@ -215,42 +215,20 @@ class SurfaceRunResult:
         return self.summary.get("e_inf")
 
 
-def _options(steps=None, depth=None, refine=None, eps=None, eta=None, thin_depth=None,
-             area_correction=None, volume_drift=None, guards=None):
-    from ._interface import _refine
-    from ._run import _integer
-
-    o = _slc.SurfaceOverrides()
-    o.steps = _integer("steps", steps)
-    o.depth = _integer("depth", depth)
-    o.refine = None if refine is None else _refine(refine)
-    o.eps = None if eps is None else float(eps)
-    o.eta = None if eta is None else float(eta)
-    o.thin_depth = _integer("thin_depth", thin_depth)
-    o.volume_correction = None if area_correction is None else bool(area_correction)
-    if isinstance(volume_drift, bool):
-        raise TypeError(f"volume_drift must be a number, got {volume_drift!r}")
-    o.volume_drift = None if volume_drift is None else float(volume_drift)
-    if guards is not None and not isinstance(guards, bool):
-        raise TypeError(f"guards must be True or False, got {guards!r}")
-    o.guards = guards
-    return o
-
-
-def run_surface(p, frames: int, observer: Callable[[SurfaceStep], Any] | None, threads: int,
-                estimate: bool = False, **options) -> SurfaceRunResult:
-    """Runs the _slc.SurfaceProblem p with the options set (steps, depth, refine, eps, eta,
-    thin_depth, area_correction: the volume correction, volume_drift: the fraction of the
-    volume a law that keeps it may drift before the run ends "unstable", guards: False to go on
-    to the end through steps that break what the law keeps, status "broken");
-    estimate: run it again at half resolution and add summary["error_estimate"]."""
+def run_surface(p, options, frames: int, observer: Callable[[SurfaceStep], Any] | None,
+                threads: int, estimate: bool = False) -> SurfaceRunResult:
+    """Runs the _slc.SurfaceProblem p with the settings `options` (a _slc.RunOverrides: steps,
+    depth, refine, eps, eta, thin_depth, area_correction: the volume correction, volume_drift:
+    the fraction of the volume a law that keeps it may drift before the run ends "unstable",
+    guards: False to go on to the end through steps that break what the law keeps, status
+    "broken"); estimate: run it again at half resolution and add summary["error_estimate"]."""
     if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
         raise TypeError(f"frames must be an integer, got {frames!r}")
     on_step = None
     if observer is not None:
         def on_step(step, n, t, v, tri, cpu_s):
             return observer(SurfaceStep(step, n, t, Surface._trusted(v, tri, t), cpu_s))
-    out = _slc.run_surface(p, _options(**options), int(frames), int(threads), on_step,
+    out = _slc.run_surface(p, options, int(frames), int(threads), on_step,
                            bool(estimate))
     if "note" in out["summary"]:  # contours left beyond eps (summary's unconverged_steps)
         warnings.warn(out["summary"]["note"], stacklevel=3)

@@ -202,6 +202,12 @@ py::list velocity_names() {
     return out;
 }
 
+py::list surface_velocity_names() {
+    py::list out;
+    for (const VelocityInfo& v : surface_velocity_catalog()) out.append(v.name);
+    return out;
+}
+
 }  // namespace
 }  // namespace slc::python
 
@@ -232,5 +238,6 @@ PYBIND11_MODULE(_slc, m) {
     add_run_functions(m);
     add_surface_functions(m);
     m.def("velocity_names", &velocity_names);
+    m.def("surface_velocity_names", &surface_velocity_names);
     m.attr("until_converged") = slc::ContourOptions::until_converged;
 }

@@ -13,6 +13,7 @@
 #include "laws.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/evolve/defaults.hpp"
+#include "slc/evolve/overrides.hpp"
 #include "slc/evolve/problems.hpp"
 #include "slc/evolve/run.hpp"
 #include "slc/evolve/self_convergence.hpp"
@@ -23,61 +24,17 @@
 namespace slc::python {
 namespace {
 
-/// The run options the caller set (None for unset): steps, depth, refine, eps, eta, smoothing,
-/// extension, arcs, area_correction.
-struct Overrides {
-    std::optional<int> steps, depth, refine, smoothing;
-    std::optional<double> eps, eta;
-    std::optional<std::string> extension;
-    std::optional<bool> arcs, area_correction;
-};
-
+/// The extension a name (nearest, whitney, direct) gives; ValueError for another.
 Extension extension_of(const std::string& name) {
     for (const Extension e : {Extension::nearest_point, Extension::whitney, Extension::direct})
         if (name == to_string(e)) return e;
     throw InvalidInput("extension must be one of nearest, whitney, direct, got '" + name + "'");
 }
 
-/// The problem's own options with the caller's over them; ε follows K (10^−K ℓ) when K is set
-/// without ε, as `slc run -K` does.
-RunOptions resolve(const Problem& p, const Overrides& q) {
-    RunOptions r = problem_run_options(p);
-    ContourOptions& c = r.step.contour;
-    if (q.steps) {
-        if (*q.steps < 1 || *q.steps > 100'000'000)
-            throw InvalidInput(fmt::format("steps must be from 1 to 1e8, got {}", *q.steps));
-        r.steps = *q.steps;
-    }
-    if (q.depth) {
-        if (*q.depth < 1 || *q.depth > 24)
-            throw InvalidInput(fmt::format("depth must be from 1 to 24, got {}", *q.depth));
-        c.depth = *q.depth;
-        c.eps = eps_for_depth(c.depth, p.length_scale);
-        r.step.embedded.mesh = default_mesh_size(c.depth);
-    }
-    if (q.refine) {
-        if (*q.refine != ContourOptions::until_converged && (*q.refine < 0 || *q.refine > 64))
-            throw InvalidInput(
-                fmt::format("refine must be from 0 to 64 or 'converged', got {}", *q.refine));
-        c.refine_passes = *q.refine;
-    }
-    for (const auto& [value, name] : {std::pair{q.eps, "eps"}, std::pair{q.eta, "eta"}}) {
-        if (value && (!(*value > 0.0) || !std::isfinite(*value)))
-            throw InvalidInput(fmt::format("{} must be positive and finite, got {}", name, *value));
-    }
-    if (q.eps) c.eps = *q.eps;
-    c.eta = q.eta ? *q.eta : eta_for_eps(c.eta, *c.eps);
-    if (*c.eps < c.eta)
-        throw InvalidInput(fmt::format("eps ({}) must not be below eta ({})", *c.eps, c.eta));
-    if (q.smoothing) {
-        if (*q.smoothing < 0 || *q.smoothing > 64)
-            throw InvalidInput(fmt::format("smoothing must be from 0 to 64, got {}", *q.smoothing));
-        r.step.embedded.smoothing = *q.smoothing;
-    }
-    if (q.extension) r.step.extension = extension_of(*q.extension);
-    if (q.arcs) r.step.arcs = q.arcs;
-    if (q.area_correction) r.step.area_correction = q.area_correction;
-    return r;
+/// The problem's own options with the caller's over them (apply_overrides, as `slc run` takes
+/// them).
+RunOptions resolve(const Problem& p, const RunOverrides& q) {
+    return apply_overrides(q, problem_run_options(p), p.length_scale);
 }
 
 /// The history of a run: t, area, length, components, segments, cpu_s per row.
@@ -112,7 +69,7 @@ std::unique_ptr<VelocityLaw> law_of(const Problem& p, const std::optional<LawSpe
 /// The problem's initial curves, validated in its domain.
 Interface initial_of(const Problem& p) { return prepare_interface(p.initial, p.domain).curves; }
 
-py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const Overrides& q,
+py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const RunOverrides& q,
                      int frames, int threads, const py::object& on_step, bool estimate) {
     if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
     const std::unique_ptr<VelocityLaw> law = law_of(p, spec);
@@ -190,7 +147,7 @@ py::dict cell_dict(const StudyCell& c) {
     return d;
 }
 
-py::dict study_problem(const Problem& p, int rows, const Overrides& q, int threads,
+py::dict study_problem(const Problem& p, int rows, const RunOverrides& q, int threads,
                        const py::object& on_cell) {
     if (!p.exact)
         throw InvalidInput("problem '" + p.name +
@@ -234,7 +191,7 @@ py::dict study_problem(const Problem& p, int rows, const Overrides& q, int threa
 }
 
 py::dict self_convergence_problem(const Problem& p, const std::optional<LawSpec>& spec,
-                                  int resolutions, const Overrides& q, int threads,
+                                  int resolutions, const RunOverrides& q, int threads,
                                   const py::object& on_run) {
     const std::unique_ptr<VelocityLaw> law = law_of(p, spec);
     const Interface initial = initial_of(p);
@@ -300,17 +257,27 @@ void add_run_functions(py::module_& m) {
              }),
              py::arg("velocity"), py::arg("kind"), py::arg("name"), py::arg("params"),
              py::arg("geometry"));
-    py::class_<Overrides>(m, "Overrides")
+    py::class_<RunOverrides>(m, "RunOverrides")
         .def(py::init<>())
-        .def_readwrite("steps", &Overrides::steps)
-        .def_readwrite("depth", &Overrides::depth)
-        .def_readwrite("refine", &Overrides::refine)
-        .def_readwrite("smoothing", &Overrides::smoothing)
-        .def_readwrite("eps", &Overrides::eps)
-        .def_readwrite("eta", &Overrides::eta)
-        .def_readwrite("extension", &Overrides::extension)
-        .def_readwrite("arcs", &Overrides::arcs)
-        .def_readwrite("area_correction", &Overrides::area_correction);
+        .def_readwrite("steps", &RunOverrides::steps)
+        .def_readwrite("depth", &RunOverrides::depth)
+        .def_readwrite("refine", &RunOverrides::refine)
+        .def_readwrite("eps", &RunOverrides::eps)
+        .def_readwrite("eta", &RunOverrides::eta)
+        .def_readwrite("smoothing", &RunOverrides::smoothing)
+        .def_property(
+            "extension",
+            [](const RunOverrides& q) {
+                return q.extension ? std::optional(to_string(*q.extension)) : std::nullopt;
+            },
+            [](RunOverrides& q, const std::optional<std::string>& name) {
+                q.extension = name ? std::optional(extension_of(*name)) : std::nullopt;
+            })
+        .def_readwrite("arcs", &RunOverrides::arcs)
+        .def_readwrite("area_correction", &RunOverrides::area_correction)
+        .def_readwrite("thin_depth", &RunOverrides::thin_depth)
+        .def_readwrite("volume_drift", &RunOverrides::volume_drift)
+        .def_readwrite("guards", &RunOverrides::guards);
     py::class_<Problem>(m, "Problem")
         .def_readonly("name", &Problem::name)
         .def_readonly("description", &Problem::description)

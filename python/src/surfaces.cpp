@@ -16,6 +16,7 @@
 #include "laws.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/core/tolerances.hpp"
+#include "slc/evolve/overrides.hpp"
 #include "slc/evolve/surface_problems.hpp"
 #include "slc/evolve/surface_study.hpp"
 #include "slc/geometry/validate_surface.hpp"
@@ -36,77 +37,13 @@ struct SurfaceSubject {
     double t_start = 0.0;
 };
 
-/// The options a caller set (None for unset): steps, depth, refine, eps, eta, thin_depth, and
-/// the volume correction (area_correction), the volume drift allowed (volume_drift) and the
-/// guards (SurfaceRunOptions::guards).
-struct SurfaceOverrides {
-    std::optional<int> steps, depth, refine, thin_depth;
-    std::optional<double> eps, eta, volume_drift;
-    std::optional<bool> volume_correction, guards;
-};
-
-/// The problem's own options with the caller's over them, as `slc run` on a surface takes
-/// -N, -K, -P, --eps and --eta.
-SurfaceRunOptions resolve(const SurfaceSubject& s, const SurfaceOverrides& q) {
+/// The problem's own options with the caller's over them (apply_overrides, as `slc run` on a
+/// surface takes them).
+SurfaceRunOptions resolve(const SurfaceSubject& s, const RunOverrides& q) {
     const SurfaceProblem& p = s.problem;
-    SurfaceRunOptions o;
-    if (s.named) {
-        o.t_end = p.t_end;
-        o.steps = p.steps;
-        o.step.contour = {.depth = p.depth,
-                          .refine_passes = SurfaceContourOptions::until_converged,
-                          .eps = p.eps,
-                          .thin_depth = p.thin_depth};
-    } else {
-        o = default_surface_run_options(p.initial, s.t_start, p.t_end);
-    }
-    if (q.steps) {
-        if (*q.steps < 1 || *q.steps > 100'000'000)
-            throw InvalidInput(fmt::format("steps must be from 1 to 1e8, got {}", *q.steps));
-        o.steps = *q.steps;
-    }
-    SurfaceContourOptions& c = o.step.contour;
-    if (q.depth) {
-        if (*q.depth < 1 || *q.depth > max_tetrahedralized_depth) {
-            throw InvalidInput(fmt::format("depth must be from 1 to {}, got {}",
-                                           max_tetrahedralized_depth, *q.depth));
-        }
-        c.depth = *q.depth;
-    }
-    if (q.refine) {
-        if (*q.refine != SurfaceContourOptions::until_converged &&
-            (*q.refine < 0 || *q.refine > 64))
-            throw InvalidInput(
-                fmt::format("refine must be from 0 to 64 or 'converged', got {}", *q.refine));
-        c.refine_passes = *q.refine;
-    }
-    for (const auto& [value, name] : {std::pair{q.eps, "eps"}, std::pair{q.eta, "eta"},
-                                      std::pair{q.volume_drift, "volume_drift"}}) {
-        if (value && (!(*value > 0.0) || !std::isfinite(*value)))
-            throw InvalidInput(fmt::format("{} must be positive and finite, got {}", name, *value));
-    }
-    if (q.eps) c.eps = *q.eps;
-    if (q.eta) c.eta = *q.eta;
-    if (q.thin_depth) {
-        if (*q.thin_depth < 0 || *q.thin_depth > 8)
-            throw InvalidInput(
-                fmt::format("thin_depth must be from 0 to 8, got {}", *q.thin_depth));
-        c.thin_depth = *q.thin_depth;
-    }
-    if (q.volume_correction) o.step.volume_correction = q.volume_correction;
-    if (q.volume_drift) o.volume_drift = *q.volume_drift;
-    if (q.guards) o.guards = *q.guards;
-    if (c.resolved_eps() < o.step.resolved_eta()) {
-        throw InvalidInput(fmt::format("eps ({}) must not be below eta ({})", c.resolved_eps(),
-                                       o.step.resolved_eta()));
-    }
-    return o;
-}
-
-/// True when the caller set any of K, P, ε, η or the thin depth: a named problem's surface is
-/// then contoured again with them (as `slc run --problem NAME -K k` does).
-bool sets_contour(const SurfaceOverrides& q) {
-    return q.depth || q.refine || q.eps || q.eta || q.thin_depth;
+    if (s.named) return apply_overrides(q, named_surface_run_options(p), 1.0);
+    return apply_overrides(q, default_surface_run_options(p.initial, s.t_start, p.t_end),
+                           length_scale(p.initial));
 }
 
 /// The history of a run of a surface: t, volume, area, triangles, components, cpu_s per row.
@@ -231,7 +168,7 @@ std::shared_ptr<SurfaceSubject> user_surface_problem(const Array& vertices,
     return s;
 }
 
-py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrides& q, int frames,
+py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& q, int frames,
                              int threads, const py::object& on_step, bool estimate) {
     if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
     const SurfaceRunOptions options = resolve(subject, q);
@@ -311,8 +248,7 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const SurfaceOverrid
 }
 
 py::dict self_convergence_surface(const SurfaceSubject& subject, int resolutions,
-                                  const SurfaceOverrides& q, int threads,
-                                  const py::object& on_run) {
+                                  const RunOverrides& q, int threads, const py::object& on_run) {
     if (subject.named) {
         throw InvalidInput(
             "a self-convergence study takes a Surface under a velocity; a named problem's own "
@@ -410,17 +346,6 @@ py::dict study_surface_problem(const SurfaceSubject& subject, int rows, int colu
 }  // namespace
 
 void add_surface_functions(py::module_& m) {
-    py::class_<SurfaceOverrides>(m, "SurfaceOverrides")
-        .def(py::init<>())
-        .def_readwrite("steps", &SurfaceOverrides::steps)
-        .def_readwrite("depth", &SurfaceOverrides::depth)
-        .def_readwrite("refine", &SurfaceOverrides::refine)
-        .def_readwrite("eps", &SurfaceOverrides::eps)
-        .def_readwrite("eta", &SurfaceOverrides::eta)
-        .def_readwrite("thin_depth", &SurfaceOverrides::thin_depth)
-        .def_readwrite("volume_correction", &SurfaceOverrides::volume_correction)
-        .def_readwrite("volume_drift", &SurfaceOverrides::volume_drift)
-        .def_readwrite("guards", &SurfaceOverrides::guards);
     py::class_<SurfaceSubject, std::shared_ptr<SurfaceSubject>>(m, "SurfaceProblem")
         .def_property_readonly("name", [](const SurfaceSubject& s) { return s.problem.name; })
         .def_property_readonly("description",

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rounding.hpp"
 #include "slc/core/error.hpp"
 #include "stages.hpp"
 
@@ -78,34 +79,11 @@ Interface drop_slivers(Interface curves, double eta, std::size_t& dropped) {
     return dropped == 0 ? curves : Interface(kept);
 }
 
-/// The smallest |G| that doubles tell from zero in the domain: two ulps of its largest
-/// coordinate, the rounding of a distance evaluated there. No root and no midpoint can be
-/// brought closer to the zero set than this.
-double rounding_floor(const Box& domain) {
-    return 2.0 * std::numeric_limits<double>::epsilon() * domain.largest_magnitude();
-}
-
-/// The options with η raised to the rounding floor and ε resolved: a given ε below the floor is
-/// bad input (refinement would stop short of it with every split rejected, silently), a default
-/// 10^−K below it is raised to it.
-ContourOptions within_rounding(ContourOptions o, const Box& domain) {
-    const double floor = rounding_floor(domain);
-    if (o.eps && *o.eps < floor) {
-        throw InvalidInput(fmt::format(
-            "eps {:g} is below what doubles resolve in this domain ({:.2g}, two ulps of its "
-            "coordinates up to {:g}): raise eps",
-            *o.eps, floor, domain.largest_magnitude()));
-    }
-    o.eps = std::max(o.resolved_eps(), floor);
-    o.eta = std::max(o.eta, floor);
-    return o;
-}
-
 /// contour() with or without bounds on G.
 ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourOptions& given,
                            std::optional<BatchBoundsRef> bounds) {
     validate(given, domain);
-    const ContourOptions options = within_rounding(given, domain);
+    const ContourOptions options = contouring::within_rounding(given, domain);
     ContourStats stats;
     std::size_t evaluations = 0;
     const contouring::CountingFunction counted(g, evaluations);

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "rounding.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
 #include "slc/core/parallel.hpp"
@@ -456,8 +457,9 @@ constexpr int others[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 }  // namespace
 
 SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
-                               const SurfaceContourOptions& options) {
-    validate(options, domain);
+                               const SurfaceContourOptions& given) {
+    validate(given, domain);
+    const SurfaceContourOptions options = contouring::within_rounding(given, domain);
     const double eta = options.resolved_eta();
     SurfaceContour out;
     SurfaceContourStats& stats = out.stats;

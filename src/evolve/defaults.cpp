@@ -8,6 +8,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/tolerances.hpp"
+#include "slc/evolve/overrides.hpp"
 
 namespace slc {
 
@@ -45,7 +46,7 @@ RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, 
     o.max_domain_doublings = 6;
     ContourOptions& c = o.step.contour;
     c.depth = 5;
-    c.eps = 1e-5 * scale;
+    c.eps = eps_for_depth(2, c.depth, scale);
     c.eta = 1e-10 * scale;
     // Curvature is noisier where refinement leaves the vertices unevenly spaced: such laws take
     // the paper's two passes. Elsewhere a pass splits only the segments whose midpoint misses ε,
@@ -56,12 +57,6 @@ RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, 
     o.step.embedded.mesh = default_mesh_size(c.depth);
     return o;
 }
-
-double eps_for_depth(int depth, double length_scale) {
-    return std::max(std::pow(10.0, -depth), 1e-13) * length_scale;
-}
-
-double eta_for_eps(double eta, double eps) { return std::min(eta, 0.1 * eps); }
 
 Problem curve_problem(std::string name, const Interface& curves, const Box& domain, double t_start,
                       double t_end, const VelocityLaw& law, std::string velocity,

@@ -10,6 +10,7 @@
 
 #include "slc/contour/surface_contour.hpp"
 #include "slc/core/error.hpp"
+#include "slc/evolve/overrides.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/velocity/surface_laws.hpp"
 
@@ -225,53 +226,6 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
     return p;
 }
 
-std::unique_ptr<SurfaceVelocityLaw> make_surface_velocity(const std::string& name,
-                                                          const VelocityParams& params) {
-    const std::string what = fmt::format("velocity '{}'", name);
-    if (name == "rotation") {
-        const VelocityParams v = resolve(what,
-                                         {{"omega", 1.0},
-                                          {"ax", 0.0},
-                                          {"ay", 0.0},
-                                          {"az", 1.0},
-                                          {"cx", 0.0},
-                                          {"cy", 0.0},
-                                          {"cz", 0.0}},
-                                         params);
-        return std::make_unique<SurfaceRotation>(v.at("omega"),
-                                                 Vec3{v.at("ax"), v.at("ay"), v.at("az")},
-                                                 Vec3{v.at("cx"), v.at("cy"), v.at("cz")});
-    }
-    if (name == "translation") {
-        const VelocityParams v = resolve(what, {{"ux", nan}, {"uy", nan}, {"uz", nan}}, params);
-        return std::make_unique<SurfaceTranslation>(Vec3{v.at("ux"), v.at("uy"), v.at("uz")});
-    }
-    if (name == "enright") {
-        return std::make_unique<EnrightField>(
-            resolve(what, {{"period", 3.0}}, params).at("period"));
-    }
-    if (name == "unit-normal") {
-        return std::make_unique<SurfaceNormalSpeed>(
-            resolve(what, {{"speed", 1.0}}, params).at("speed"));
-    }
-    if (name == "anisotropic") {
-        const VelocityParams v = resolve(what, {{"R", 1.0}, {"eps", 0.5}}, params);
-        return std::make_unique<SurfaceAnisotropicNormalSpeed>(v.at("R"), v.at("eps"));
-    }
-    if (name == "curvature") {
-        resolve(what, {}, params);
-        return std::make_unique<SurfaceMeanCurvatureFlow>();
-    }
-    if (name == "volume-preserving-curvature") {
-        resolve(what, {}, params);
-        return std::make_unique<SurfaceVolumePreservingFlow>();
-    }
-    throw InvalidInput(
-        fmt::format("unknown velocity '{}' for a surface; known: rotation, translation, enright, "
-                    "unit-normal, anisotropic, curvature, volume-preserving-curvature",
-                    name));
-}
-
 Surface initial_surface(const SurfaceProblem& p, const SurfaceContourOptions& options) {
     if (!p.initial_function) return p.initial;
     const auto g = pointwise<Vec3>(p.initial_function);
@@ -284,6 +238,11 @@ Surface initial_surface(const SurfaceProblem& p, const SurfaceContourOptions& op
     return contour_surface(g, p.domain, o).surface;
 }
 
+double length_scale(const Surface& surface) {
+    const Box3 b = bounding_box(surface);
+    return 0.5 * std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z});
+}
+
 SurfaceRunOptions default_surface_run_options(const Surface& surface, double t_start,
                                               double t_end) {
     if (surface.empty()) throw InvalidInput("the initial surface has no triangles");
@@ -291,8 +250,7 @@ SurfaceRunOptions default_surface_run_options(const Surface& surface, double t_s
         throw InvalidInput(fmt::format("t-end must be finite and after the start time {}, got {}",
                                        t_start, t_end));
     }
-    const Box3 b = bounding_box(surface);
-    const double scale = 0.5 * std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z});
+    const double scale = length_scale(surface);
     SurfaceRunOptions o;
     o.t_start = t_start;
     o.t_end = t_end;
@@ -300,7 +258,7 @@ SurfaceRunOptions default_surface_run_options(const Surface& surface, double t_s
     o.max_domain_doublings = 6;
     o.step.contour = {.depth = 5,
                       .refine_passes = SurfaceContourOptions::until_converged,
-                      .eps = 1e-3 * scale,
+                      .eps = eps_for_depth(3, 5, scale),
                       .eta = 1e-10 * scale};
     return o;
 }

@@ -4,8 +4,11 @@
 #include <fmt/format.h>
 #include <sys/resource.h>
 
+#include <algorithm>
+
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/tolerances.hpp"
 #include "slc/evolve/surface_study.hpp"
 
 namespace slc {
@@ -53,7 +56,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"P", c.refine_passes == ContourOptions::until_converged ? nlohmann::json("converged")
                                                                  : nlohmann::json(c.refine_passes)},
         {"eps", c.resolved_eps()},
-        {"eta", c.eta},
+        {"eta", std::max(c.eta, tolerance::rounding_floor(p.domain))},
         {"rho", c.rho},
         {"M", o.step.embedded.mesh},
         {"E", o.step.embedded.eno_order},
@@ -128,7 +131,7 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
           {"P", c.refine_passes < 0 ? nlohmann::json("until converged")
                                     : nlohmann::json(c.refine_passes)},
           {"eps", c.resolved_eps()},
-          {"eta", options.step.resolved_eta()},
+          {"eta", std::max(options.step.resolved_eta(), tolerance::rounding_floor(p.domain))},
           {"thin_depth", c.thin_depth},
           {"volume_drift", options.volume_drift},
           {"guards", options.guards},

@@ -1,5 +1,6 @@
-// The built-in velocity laws by name: the catalog of names and parameters, and make_velocity,
-// which checks the parameters and builds the law.
+// The built-in velocity laws by name, of curves and of surfaces: the catalogs of names and
+// parameters, and make_velocity / make_surface_velocity, which check the parameters (one code for
+// both) and build the law.
 #include "slc/velocity/factory.hpp"
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/velocity/laws.hpp"
+#include "slc/velocity/surface_laws.hpp"
 
 namespace slc {
 namespace {
@@ -21,12 +23,13 @@ struct Resolved {
     bool has(const std::string& key) const { return values.count(key) != 0; }
 };
 
-using Builder =
-    std::function<std::unique_ptr<VelocityLaw>(const Resolved&, std::optional<GeometryModule>)>;
-
+/// A law of dimension dim by name: what --help and Python list, and how it is built.
+template <int dim>
 struct Entry {
     VelocityInfo info;
-    Builder build;
+    std::function<std::unique_ptr<BasicVelocityLaw<dim>>(const Resolved&,
+                                                         std::optional<GeometryModule>)>
+        build;
 };
 
 VelocityParameter param(std::string name, double value, std::string meaning) {
@@ -46,9 +49,9 @@ std::unique_ptr<VelocityLaw> make_anisotropic(const Resolved& p,
                                                     p["tilt"] * std::numbers::pi / 180.0, module);
 }
 
-const std::vector<Entry>& entries() {
+const std::vector<Entry<2>>& curve_entries() {
     using M = std::optional<GeometryModule>;
-    static const std::vector<Entry> table = {
+    static const std::vector<Entry<2>> table = {
         {{"rotation",
           "rigid counterclockwise rotation u = omega (-(y - cy), x - cx)",
           {param("omega", 1, "angular velocity"), param("cx", 0, "x of the centre"),
@@ -82,6 +85,50 @@ const std::vector<Entry>& entries() {
           "LeVeque's single vortex on [0, 1]^2, reversed at t = period/2",
           {param("period", 8, "period T: the flow is multiplied by cos(pi t / T)")}},
          [](const Resolved& p, M) { return std::make_unique<SingleVortex>(p["period"]); }},
+    };
+    return table;
+}
+
+const std::vector<Entry<3>>& surface_entries() {
+    using M = std::optional<GeometryModule>;
+    static const std::vector<Entry<3>> table = {
+        {{"rotation",
+          "rigid rotation u = omega a x (x - c) about the axis a through c",
+          {param("omega", 1, "angular velocity"), param("ax", 0, "x of the axis"),
+           param("ay", 0, "y of the axis"), param("az", 1, "z of the axis"),
+           param("cx", 0, "x of a point on the axis"), param("cy", 0, "y of that point"),
+           param("cz", 0, "z of that point")}},
+         [](const Resolved& p, M) {
+             return std::make_unique<SurfaceRotation>(p["omega"], Vec3{p["ax"], p["ay"], p["az"]},
+                                                      Vec3{p["cx"], p["cy"], p["cz"]});
+         }},
+        {{"translation",
+          "constant velocity u = (ux, uy, uz)",
+          {{"ux", std::nullopt, "required", "x velocity", true},
+           {"uy", std::nullopt, "required", "y velocity", true},
+           {"uz", std::nullopt, "required", "z velocity", true}}},
+         [](const Resolved& p, M) {
+             return std::make_unique<SurfaceTranslation>(Vec3{p["ux"], p["uy"], p["uz"]});
+         }},
+        {{"enright",
+          "Enright's deformation field on the unit cube, reversed at t = period/2",
+          {param("period", 3, "period T: the flow is multiplied by cos(pi t / T)")}},
+         [](const Resolved& p, M) { return std::make_unique<EnrightField>(p["period"]); }},
+        {{"unit-normal",
+          "constant normal speed u = speed N (positive grows)",
+          {param("speed", 1, "normal speed, either sign")}},
+         [](const Resolved& p, M) { return std::make_unique<SurfaceNormalSpeed>(p["speed"]); }},
+        {{"anisotropic",
+          "anisotropic normal speed u = (R + eps (nx^4 + ny^4 + nz^4 - 3/5)) N",
+          {param("R", 1, "isotropic part of the normal speed"),
+           param("eps", 0.5, "amplitude of the anisotropy")}},
+         [](const Resolved& p, M) {
+             return std::make_unique<SurfaceAnisotropicNormalSpeed>(p["R"], p["eps"]);
+         }},
+        {{"curvature", "mean curvature flow u = C N (spheres: R^2 = R0^2 - 4t)", {}},
+         [](const Resolved&, M) { return std::make_unique<SurfaceMeanCurvatureFlow>(); }},
+        {{"volume-preserving-curvature", "nonlocal u = (C - mean of C over the surface) N", {}},
+         [](const Resolved&, M) { return std::make_unique<SurfaceVolumePreservingFlow>(); }},
     };
     return table;
 }
@@ -120,25 +167,50 @@ Resolved resolve(const VelocityInfo& info, const VelocityParams& given) {
     return r;
 }
 
+/// The infos of a table, in its order.
+template <int dim>
+std::vector<VelocityInfo> catalog_of(const std::vector<Entry<dim>>& table) {
+    std::vector<VelocityInfo> c;
+    for (const Entry<dim>& e : table) c.push_back(e.info);
+    return c;
+}
+
+/// The law `name` of table, built from params; `of` follows the name in the message of an
+/// unknown law ("" or " for a surface").
+template <int dim>
+std::unique_ptr<BasicVelocityLaw<dim>> make_from(const std::vector<Entry<dim>>& table,
+                                                 const std::string& name,
+                                                 const VelocityParams& params,
+                                                 std::optional<GeometryModule> module,
+                                                 const char* of) {
+    std::string known;
+    for (const Entry<dim>& e : table) {
+        if (e.info.name == name) return e.build(resolve(e.info, params), module);
+        known += (known.empty() ? "" : ", ") + e.info.name;
+    }
+    throw InvalidInput(fmt::format("unknown velocity '{}'{}; known: {}", name, of, known));
+}
+
 }  // namespace
 
 const std::vector<VelocityInfo>& velocity_catalog() {
-    static const std::vector<VelocityInfo> catalog = [] {
-        std::vector<VelocityInfo> c;
-        for (const Entry& e : entries()) c.push_back(e.info);
-        return c;
-    }();
+    static const std::vector<VelocityInfo> catalog = catalog_of(curve_entries());
+    return catalog;
+}
+
+const std::vector<VelocityInfo>& surface_velocity_catalog() {
+    static const std::vector<VelocityInfo> catalog = catalog_of(surface_entries());
     return catalog;
 }
 
 std::unique_ptr<VelocityLaw> make_velocity(const std::string& name, const VelocityParams& params,
                                            std::optional<GeometryModule> module) {
-    std::string known;
-    for (const Entry& e : entries()) {
-        if (e.info.name == name) return e.build(resolve(e.info, params), module);
-        known += (known.empty() ? "" : ", ") + e.info.name;
-    }
-    throw InvalidInput(fmt::format("unknown velocity '{}'; known: {}", name, known));
+    return make_from(curve_entries(), name, params, module, "");
+}
+
+std::unique_ptr<SurfaceVelocityLaw> make_surface_velocity(const std::string& name,
+                                                          const VelocityParams& params) {
+    return make_from(surface_entries(), name, params, std::nullopt, " for a surface");
 }
 
 }  // namespace slc

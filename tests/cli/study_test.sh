@@ -119,7 +119,7 @@ check "cube: the table's beyond-eps column" grep -q '| 2 of 2 (' cube/table.md
 expect_error "surface self-convergence: --rows 2" "--rows must be 3 to 5 with --initial" -- \
     study --initial ball/final.obj --velocity unit-normal --t-end 0.1 --rows 2 --out bad
 expect_error "surface self-convergence: --mesh" \
-    "--mesh does not apply to the self-convergence study of a surface" -- \
+    "--mesh is for curves, not surfaces" -- \
     study --initial ball/final.obj --velocity unit-normal --t-end 0.1 --mesh 16 --out bad
 expect_error "surface self-convergence: no law" "--initial with a surface needs --velocity" -- \
     study --initial ball/final.obj --t-end 0.1 --out bad

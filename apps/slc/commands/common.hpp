@@ -13,6 +13,7 @@
 
 #include "slc/core/box.hpp"
 #include "slc/core/box3.hpp"
+#include "slc/evolve/overrides.hpp"
 #include "slc/evolve/run.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/surface.hpp"
@@ -80,6 +81,8 @@ void print_estimate(const nlohmann::json& estimate);
 CLI::Validator positive_number();
 CLI::Validator nonnegative_number();
 CLI::Validator integer_in(int lo, int hi);
+/// The same for one of the library's ranges (setting_range).
+inline CLI::Validator integer_in(IntRange r) { return integer_in(r.lo, r.hi); }
 CLI::Validator fraction_below_one();
 
 }  // namespace slc::cli

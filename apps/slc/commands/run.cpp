@@ -408,19 +408,23 @@ void resume_command(const CLI::App& cmd, const RunCommand& o) {
     run_command(resumed, c.options, c.run_id, &c, out);
 }
 
+/// The settings of a surface run: the method options, the volume drift and the guards.
+RunOverrides surface_settings(const RunCommand& o) {
+    RunOverrides q = overrides_of(o.method);
+    q.volume_drift = o.volume_drift;
+    if (o.no_guards) q.guards = false;
+    return q;
+}
+
 /// slc run on a surface: the options that apply to surfaces, the others refused by name; from
 /// the checkpoint `from` when given. The caller installs the StopSignals.
 void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                      const std::string& id, const Checkpoint* from, OutputFolder& folder) {
+    // The settings of curves among the method options are refused by apply_overrides.
     const std::vector<std::pair<bool, const char*>> curve_only = {
         {o.source.field_file.has_value(), "--field-file"},
         {o.vtk, "--vtk"},
-        {o.method.mesh.has_value(), "--mesh"},
-        {o.method.smooth.has_value(), "-S/--smooth"},
-        {o.method.extension.has_value(), "--extension"},
-        {!o.method.geometry.empty(), "--geometry"},
-        {o.method.arcs.has_value(), "--arcs"},
-        {o.method.arc_width.has_value(), "--arc-width"}};
+        {!o.method.geometry.empty(), "--geometry"}};
     for (const auto& [given_option, name] : curve_only)
         if (given_option) throw InvalidInput(fmt::format("{} is for curves, not surfaces", name));
     apply_threads(o.method.threads);
@@ -432,16 +436,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  .params = o.source.params,
                  .t_end = o.source.t_end,
                  .domain = o.source.domain,
-                 .steps = o.method.steps,
-                 .depth = o.method.depth,
-                 .refine = o.method.refine,
-                 .eps = o.method.eps,
-                 .eta = o.method.eta,
-                 .thin_depth = o.method.thin_depth,
-                 .tree_depth = o.method.tree_depth,
-                 .volume_correction = o.method.area_correction,
-                 .volume_drift = o.volume_drift,
-                 .guards = !o.no_guards,
+                 .settings = surface_settings(o),
                  .frames = o.frames,
                  .estimate = o.estimate,
                  .view = o.view,
@@ -469,8 +464,6 @@ void add_run_command(CLI::App& app) {
         if (o->out.empty()) throw InvalidInput("--out DIR is required");
         const bool surface = is_surface_run(o->source.problem, o->source.initial);
         if (!surface && o->view) throw InvalidInput("--view is for surfaces, not curves");
-        if (!surface && o->method.thin_depth)
-            throw InvalidInput("--thin-depth is for surfaces, not curves");
         if (!surface && o->volume_drift)
             throw InvalidInput("--volume-drift is for surfaces, not curves");
         if (!surface && o->no_guards) throw InvalidInput("--no-guards is for surfaces, not curves");

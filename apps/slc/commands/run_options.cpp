@@ -29,9 +29,15 @@ const std::map<std::string, GeometryModule> geometry_names = {
 
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
     cmd.add_option("-N,--steps", o.steps, "N: time steps on [0, a] (problem's default)")
-        ->check(integer_in(1, 100000000));
-    cmd.add_option("-K,--depth", o.depth, "K: depth of the contouring tree (problem's default)")
-        ->check(integer_in(1, 24));
+        ->check(integer_in(setting_range::steps));
+    cmd.add_option("-K,--depth", o.depth,
+                   fmt::format("K: depth of the contouring tree (problem's default; {} to {} for "
+                               "curves, {} to {} for surfaces)",
+                               setting_range::curve_depth.lo, setting_range::curve_depth.hi,
+                               setting_range::surface_depth.lo, setting_range::surface_depth.hi))
+        ->check(
+            integer_in(setting_range::curve_depth.lo,
+                       std::max(setting_range::curve_depth.hi, setting_range::surface_depth.hi)));
     cmd.add_option("-P,--refine", o.refine,
                    "P: passes of adaptive refinement, or 'converged': until every segment "
                    "midpoint is within eps (a named problem's own P; converged for --initial)")
@@ -42,36 +48,39 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                     return std::string();
                 }
                 std::string copy = text;
-                if (integer_in(0, 64)(copy).empty()) return std::string();
-                return fmt::format("must be an integer from 0 to 64 or 'converged', got '{}'",
-                                   text);
+                if (integer_in(setting_range::refine)(copy).empty()) return std::string();
+                return fmt::format("must be an integer from {} to {} or 'converged', got '{}'",
+                                   setting_range::refine.lo, setting_range::refine.hi, text);
             },
             "in [0, 64] or converged"));
     cmd.add_option("--eps", o.eps,
-                   "epsilon: midpoint tolerance of refinement (a problem's own; 10^-K with -K, "
-                   "not below 1e-13; 1e-5 times the curves' half-width for --initial; at least "
-                   "two ulps of the domain's largest coordinate)")
+                   "epsilon: midpoint tolerance of refinement (a problem's own; with -K, or for "
+                   "--initial at its K, the rule of the dimension times the shape's half-width "
+                   "(1 for a problem): 10^-K for curves, not below 1e-13, and 1e-3 4^(5-K) for "
+                   "surfaces; at least two ulps of the domain's largest coordinate)")
         ->check(positive_number());
     cmd.add_option("--eta", o.eta,
-                   "eta: root-finding tolerance (default 1e-10, times the curves' half-width for "
-                   "--initial; lowered to eps/10 when eps is below it)")
+                   "eta: root-finding tolerance (default 1e-10, times the shape's half-width for "
+                   "--initial; for curves lowered to eps/10 when eps is below it; raised to two "
+                   "ulps of the domain's largest coordinate, below which doubles cannot place a "
+                   "root)")
         ->check(positive_number());
     cmd.add_option("--thin-depth", o.thin_depth,
                    "For a surface: levels beyond K for cells where the zero set's two sides, or a "
                    "sharp turn, lie within one cell (a problem's own; 0 for --initial)")
-        ->check(integer_in(0, 8));
+        ->check(integer_in(setting_range::thin_depth));
     cmd.add_option("--rho", o.rho, "rho: pruning ratio in [0, 1) (default 0.1)")
         ->check(fraction_below_one());
     cmd.add_option("--mesh", o.mesh, "M: embedded mesh points per side (default 2^(K+1))")
-        ->check(integer_in(8, 1 << 22));
+        ->check(integer_in(setting_range::mesh));
     cmd.add_option("--eno-order", o.eno_order, "E: ENO order of the embedded module (default 3)")
-        ->check(integer_in(1, 5));
+        ->check(integer_in(setting_range::eno_order));
     cmd.add_option("-S,--smooth", o.smooth, "S: cosine smoothing passes (problem's default)")
-        ->check(integer_in(0, 64));
+        ->check(integer_in(setting_range::smoothing));
     cmd.add_option(
            "-L,--tree-depth", o.tree_depth,
            "L: distance tree depth (default K + P/2 rounded down; K + P with --extension whitney)")
-        ->check(integer_in(1, 30));
+        ->check(integer_in(setting_range::tree_depth));
     cmd.add_option("--extension", o.extension,
                    "Velocity off the curve: nearest (the vertex velocities at the nearest point), "
                    "whitney, or direct (the law itself: a flow field sampled along each "
@@ -114,32 +123,29 @@ std::optional<GeometryModule> geometry_module(const MethodOptions& method) {
     return geometry_names.at(method.geometry);
 }
 
+RunOverrides overrides_of(const MethodOptions& m) {
+    RunOverrides q;
+    q.steps = m.steps;
+    q.depth = m.depth;
+    q.refine = m.refine;
+    q.eps = m.eps;
+    q.eta = m.eta;
+    q.tree_depth = m.tree_depth;
+    q.rho = m.rho;
+    q.mesh = m.mesh;
+    q.eno_order = m.eno_order;
+    q.smoothing = m.smooth;
+    if (m.extension) q.extension = extension_names.at(*m.extension);
+    q.arcs = m.arcs;
+    q.arc_width = m.arc_width;
+    q.thin_depth = m.thin_depth;
+    q.area_correction = m.area_correction;
+    return q;
+}
+
 RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
-    RunOptions r = problem_run_options(p);
-    if (m.steps) r.steps = *m.steps;
-    ContourOptions& c = r.step.contour;
-    if (m.depth) {
-        c.depth = *m.depth;
-        c.eps = eps_for_depth(c.depth, p.length_scale);
-    }
-    if (m.refine) c.refine_passes = *m.refine;
-    if (m.eps) c.eps = *m.eps;
-    if (m.eta)
-        c.eta = *m.eta;
-    else
-        c.eta = eta_for_eps(c.eta, *c.eps);
-    c.rho = m.rho;
-    if (*c.eps < c.eta)
-        throw InvalidInput(fmt::format("--eps ({}) must not be below --eta ({})", *c.eps, c.eta));
-    r.step.tree_depth = m.tree_depth.value_or(0);
-    if (m.extension) r.step.extension = extension_names.at(*m.extension);
-    r.step.embedded.mesh = m.mesh.value_or(default_mesh_size(c.depth));
-    r.step.embedded.eno_order = m.eno_order;
-    if (m.smooth) r.step.embedded.smoothing = *m.smooth;
-    if (m.arcs) r.step.arcs = m.arcs;
-    if (m.area_correction) r.step.area_correction = m.area_correction;
-    r.step.arc_width = m.arc_width;
-    return r;
+    return apply_overrides(overrides_of(m), problem_run_options(p), p.length_scale,
+                           SettingNames::tool);
 }
 
 std::map<std::string, double> parse_params(const std::vector<std::string>& params) {
@@ -175,24 +181,20 @@ std::string problem_help() {
 }
 
 std::string velocity_help() {
-    std::string text = "Velocity law for --initial:";
-    for (const auto& v : velocity_catalog()) {
-        std::string params;
-        for (const auto& q : v.parameters)
-            params += fmt::format(" {}[{}]", q.name,
-                                  q.default_text.empty() ? "required" : q.default_text);
-        text += fmt::format("\n  {}:{} — {}", v.name, params, v.summary);
-    }
-    text +=
-        "\nVelocity law for --initial with a surface (.obj, .stl, .ply):"
-        "\n  rotation: omega[1] ax[0] ay[0] az[1] cx[0] cy[0] cz[0] — u = omega a x (x - c)"
-        "\n  translation: ux uy uz[required] — constant velocity"
-        "\n  enright: period[3] — Enright's deformation field on the unit cube"
-        "\n  unit-normal: speed[1] — u = speed N"
-        "\n  anisotropic: R[1] eps[0.5] — u = (R + eps (nx^4 + ny^4 + nz^4 - 3/5)) N"
-        "\n  curvature — mean curvature flow u = C N (spheres: R^2 = R0^2 - 4t)"
-        "\n  volume-preserving-curvature — u = (C - mean C) N";
-    return text;
+    auto listed = [](const std::vector<VelocityInfo>& catalog) {
+        std::string text;
+        for (const auto& v : catalog) {
+            std::string params;
+            for (const auto& q : v.parameters)
+                params += fmt::format(" {}[{}]", q.name,
+                                      q.default_text.empty() ? "required" : q.default_text);
+            text += fmt::format("\n  {}:{} — {}", v.name, params, v.summary);
+        }
+        return text;
+    };
+    return "Velocity law for --initial:" + listed(velocity_catalog()) +
+           "\nVelocity law for --initial with a surface (.obj, .stl, .ply):" +
+           listed(surface_velocity_catalog());
 }
 
 }  // namespace slc::cli

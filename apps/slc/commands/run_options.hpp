@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "slc/evolve/overrides.hpp"
 #include "slc/evolve/problems.hpp"
 #include "slc/evolve/run.hpp"
 #include "slc/io/summary.hpp"
@@ -24,9 +25,9 @@ struct MethodOptions {
     std::optional<double> eps;
     std::optional<double> eta;
     std::optional<int> thin_depth;
-    double rho = 0.1;
+    std::optional<double> rho;
     std::optional<int> mesh;
-    int eno_order = 3;
+    std::optional<int> eno_order;
     std::optional<int> smooth;
     std::optional<int> tree_depth;
     std::optional<std::string> extension;  ///< unset: the problem's, else the law's default
@@ -44,7 +45,12 @@ void add_method_options(CLI::App& cmd, MethodOptions& options);
 /// The geometry module --geometry names, if given.
 std::optional<GeometryModule> geometry_module(const MethodOptions& method);
 
-/// The run's options: command line over problem defaults over DESIGN §4 defaults.
+/// The settings of the command line as the library's RunOverrides (all but the geometry module
+/// and threads, which the tool applies itself).
+RunOverrides overrides_of(const MethodOptions& method);
+
+/// The run's options: command line over problem defaults over DESIGN §4 defaults
+/// (apply_overrides, its messages naming the flags).
 RunOptions resolve_run_options(const MethodOptions& method, const Problem& problem);
 
 /// --param key=value pairs; InvalidInput for a malformed one.

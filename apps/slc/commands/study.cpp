@@ -392,14 +392,10 @@ void run_self_convergence(const StudyCommand& o) {
 /// --initial with a surface: runs at 3..5 resolutions compared with each other.
 void run_surface_self_convergence(const StudyCommand& o) {
     const MethodOptions& m = o.method;
+    // The settings of curves among the method options are refused by apply_overrides.
     const std::vector<std::pair<bool, const char*>> curve_only = {
         {o.source.field_file.has_value(), "--field-file"},
-        {m.mesh.has_value(), "--mesh"},
-        {m.smooth.has_value(), "-S/--smooth"},
-        {m.extension.has_value(), "--extension"},
         {!m.geometry.empty(), "--geometry"},
-        {m.arcs.has_value(), "--arcs"},
-        {m.arc_width.has_value(), "--arc-width"},
         {!o.reference.empty(), "--reference"},
         {o.columns.has_value(), "--columns"}};
     for (const auto& [given, name] : curve_only) {
@@ -416,14 +412,7 @@ void run_surface_self_convergence(const StudyCommand& o) {
     request.params = o.source.params;
     request.t_end = o.source.t_end;
     request.domain = o.source.domain;
-    request.steps = m.steps;
-    request.depth = m.depth;
-    request.refine = m.refine;
-    request.eps = m.eps;
-    request.eta = m.eta;
-    request.thin_depth = m.thin_depth;
-    request.tree_depth = m.tree_depth;
-    request.volume_correction = m.area_correction;
+    request.settings = overrides_of(m);
     const SurfaceRunSetup setup = resolve_surface_run(request);
     const int rows =
         self_convergence_rows(o, setup.options.step.contour.depth, max_tetrahedralized_depth);

@@ -99,7 +99,8 @@ bool is_surface_run(const std::string& problem, const std::string& initial) {
 SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
     const VelocityParams params = parse_params(r.params);
     SurfaceProblem p;
-    SurfaceRunOptions options;
+    SurfaceRunOptions defaults;
+    double scale = 1.0;
     if (!r.problem.empty()) {
         p = make_surface_problem(r.problem, params);
         if (r.t_end) p.t_end = *r.t_end;
@@ -110,12 +111,7 @@ SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
                     throw InvalidInput("the problem's surface leaves the domain given");
             }
         }
-        options.t_end = p.t_end;
-        options.steps = p.steps;
-        options.step.contour = {.depth = p.depth,
-                                .refine_passes = SurfaceContourOptions::until_converged,
-                                .eps = p.eps,
-                                .thin_depth = p.thin_depth};
+        defaults = named_surface_run_options(p);
     } else {
         one_velocity_law({{"--velocity", !r.velocity.empty()},
                           {"--speed", r.speed.has_value()},
@@ -130,22 +126,10 @@ SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
                 : r.field ? surface_field_expression_law(*r.field, params)
                           : make_surface_velocity(r.velocity, params);
         p.t_end = *r.t_end;
-        options = default_surface_run_options(p.initial, 0.0, p.t_end);
+        defaults = default_surface_run_options(p.initial, 0.0, p.t_end);
+        scale = length_scale(p.initial);
     }
-    if (r.steps) options.steps = *r.steps;
-    if (r.depth) options.step.contour.depth = *r.depth;
-    if (r.refine) options.step.contour.refine_passes = *r.refine;
-    if (r.eps) options.step.contour.eps = *r.eps;
-    if (r.eta) options.step.contour.eta = *r.eta;
-    if (r.thin_depth) options.step.contour.thin_depth = *r.thin_depth;
-    if (r.tree_depth) options.step.tree_depth = *r.tree_depth;
-    if (r.volume_correction) options.step.volume_correction = r.volume_correction;
-    if (r.volume_drift) options.volume_drift = *r.volume_drift;
-    options.guards = r.guards;
-    const double eps = options.step.contour.resolved_eps(), eta = options.step.resolved_eta();
-    if (eps < eta)
-        throw InvalidInput(fmt::format("eps must be at least eta = {:g}, got {:g}", eta, eps));
-    return {std::move(p), options};
+    return {std::move(p), apply_overrides(r.settings, defaults, scale, SettingNames::tool)};
 }
 
 void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
@@ -155,8 +139,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     const SurfaceContourOptions& c = options.step.contour;
     // A named problem's surface at the run's own K, P, ε and η when they are given: a run at
     // K = 7 starts from the contour at K = 7, not from the problem's coarser one.
-    if (!r.problem.empty() && (r.depth || r.refine || r.eps || r.eta || r.thin_depth))
-        p.initial = initial_surface(p, c);
+    if (!r.problem.empty() && sets_contour(r.settings)) p.initial = initial_surface(p, c);
     // A user's surface as the steps read it (surface_as_read), contoured at the run's K and ε.
     if (r.problem.empty()) p.initial = surface_as_read(p.initial, p.domain, options);
     SurfaceView view;

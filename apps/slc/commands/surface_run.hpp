@@ -24,20 +24,9 @@ struct SurfaceRunRequest {
     std::vector<std::string> params;   ///< key=value
     std::optional<double> t_end;
     DomainOptions domain;
-    std::optional<int> steps;
-    std::optional<int> depth;
-    std::optional<int> refine;
-    std::optional<double> eps;
-    std::optional<double> eta;
-    std::optional<int> thin_depth;
-    std::optional<int> tree_depth;
-    /// --area-correction / --no-area-correction: the volume correction of a law that keeps the
-    /// volume (SurfaceStepOptions::volume_correction); unset, on for such laws.
-    std::optional<bool> volume_correction;
-    /// --volume-drift: SurfaceRunOptions::volume_drift; unset, its default.
-    std::optional<double> volume_drift;
-    /// --no-guards: SurfaceRunOptions::guards off.
-    bool guards = true;
+    /// N, K, P, ε, η, L, the thin depth, the volume correction (area_correction), the volume
+    /// drift and the guards as given; apply_overrides refuses the settings of curves by name.
+    RunOverrides settings;
     int frames = 0;
     /// --estimate: the run again at half resolution, and the distance between the two final
     /// surfaces in summary.json's "error_estimate".

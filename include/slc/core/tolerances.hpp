@@ -2,6 +2,8 @@
 /// Named tolerances shared by the modules, each with the reason for its size.
 #pragma once
 
+#include <limits>
+
 /// Named tolerances shared by the modules.
 namespace slc::tolerance {
 
@@ -20,5 +22,14 @@ inline constexpr double min_domain_width = 1e-100;
 /// Smallest edge of a tree cell, relative to the largest coordinate magnitude of the domain: 2^-42
 /// is about 1000 spacings of doubles there, so that a cell still holds distinct points.
 inline constexpr double min_relative_cell = 0x1p-42;
+
+/// The smallest |G| that doubles tell from zero in a domain (a Box or a Box3): two ulps of its
+/// largest coordinate, the rounding of a distance evaluated there. No contour's root or midpoint
+/// can be brought closer to the zero set, so η and ε are never below it (contour(),
+/// contour_surface()).
+template <class Domain>
+double rounding_floor(const Domain& domain) {
+    return 2.0 * std::numeric_limits<double>::epsilon() * domain.largest_magnitude();
+}
 
 }  // namespace slc::tolerance

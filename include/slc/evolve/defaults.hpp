@@ -25,8 +25,8 @@ double length_scale(const Interface& curves);
 /// The run options for curves (valid, not empty) moved by law from t_start to t_end:
 /// - N = 40 steps, K = 5 (the finest cell 1/32 of the domain, which doubles, K one level deeper,
 ///   up to 6 times when the curves near its edge: RunOptions::max_domain_doublings);
-/// - lengths relative to the curves' half-width ℓ: ε = 1e−5 ℓ, η = 1e−10 ℓ, so that a curve
-///   scaled by any factor runs alike;
+/// - lengths relative to the curves' half-width ℓ: ε = 1e−5 ℓ (eps_for_depth, the rule -K
+///   follows), η = 1e−10 ℓ, so that a curve scaled by any factor runs alike;
 /// - a law that needs curvature: its module's default (arclength) with arcs, P = 2 passes;
 ///   every other law: refinement until converged without the triangle safeguard, so that
 ///   corners the tree cuts are found again (ContourOptions::triangle_safeguard);
@@ -36,14 +36,6 @@ double length_scale(const Interface& curves);
 /// Throws InvalidInput for empty curves or t_end not after t_start.
 RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, double t_start,
                                double t_end);
-
-/// ε for a tree of depth K when only K is given: 10^−K ℓ, but not below 1e−13 ℓ (a few hundred
-/// units in the last place of coordinates of size ℓ, as fine as root finding can place a vertex).
-double eps_for_depth(int depth, double length_scale);
-
-/// η for a tolerance ε: the given η, lowered to ε/10 when ε is below it (so that any K up to
-/// Quadtree::max_supported_depth runs with the default η of 1e−10 ℓ).
-double eta_for_eps(double eta, double eps);
 
 /// A user's curves (valid, not empty, inside domain) moved by law from t_start to t_end, as a
 /// Problem with the settings of default_run_options (ℓ = length_scale(curves)) and the law's

@@ -69,24 +69,16 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
 /// contour_surface() does.
 Surface initial_surface(const SurfaceProblem& problem, const SurfaceContourOptions& options);
 
-/// The built-in law of surfaces `name` with the given parameters (missing ones take defaults):
-///   rotation        omega [1], ax [0], ay [0], az [1], cx, cy, cz [0]   u = ω a × (x − c)
-///   translation     ux, uy, uz (required)                              u = (ux, uy, uz)
-///   enright         period [3]                                          Enright's field
-///   unit-normal     speed [1]                                           u = speed·N
-///   anisotropic     R [1], eps [0.5]                     u = (R + eps (Σ n_i⁴ − 3/5))·N
-///   curvature                                                           u = C·N
-///   volume-preserving-curvature                                         u = (C − C̄)·N
-/// Throws InvalidInput for an unknown law or parameter, a missing required or a non-finite
-/// value.
-std::unique_ptr<SurfaceVelocityLaw> make_surface_velocity(const std::string& name,
-                                                          const VelocityParams& params = {});
+/// ℓ, the largest half-side of the surface's bounding box: the length a user's surface's
+/// defaults scale with. Precondition: surface is not empty.
+double length_scale(const Surface& surface);
 
 /// The run options for a user's surface (valid, not empty) from t_start to t_end, lengths
-/// relative to ℓ, the largest half-side of its bounding box: N = 20 steps, K = 5 (the finest
-/// cell 1/32 of the domain), refinement until converged with ε = 1e−3 ℓ (triangles grow as 1/ε:
-/// a sphere takes about 20,000), η = 1e−10 ℓ; the law's own extension, and the curvature
-/// smoothed over √k. Throws InvalidInput for an empty surface or t_end not after t_start.
+/// relative to ℓ = length_scale(surface): N = 20 steps, K = 5 (the finest cell 1/32 of the
+/// domain), refinement until converged with ε = 1e−3 ℓ (eps_for_depth, the rule -K follows)
+/// (triangles grow as 1/ε: a sphere takes about 20,000), η = 1e−10 ℓ; the law's own extension, and
+/// the curvature smoothed over √k. Throws InvalidInput for an empty surface or t_end not after
+/// t_start.
 SurfaceRunOptions default_surface_run_options(const Surface& surface, double t_start, double t_end);
 
 }  // namespace slc

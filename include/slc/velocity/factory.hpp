@@ -1,6 +1,7 @@
 /// @file
-/// The built-in velocity laws by name, with their parameters by name, as the command line gives
-/// them (`--velocity NAME --param key=value`, DESIGN §6).
+/// The built-in velocity laws of curves and of surfaces by name, with their parameters by name, as
+/// the command line gives them (`--velocity NAME --param key=value`, DESIGN §6) and Python lists
+/// them: one catalog per dimension, from which --help, Python and the factories all read.
 #pragma once
 
 #include <map>
@@ -52,5 +53,21 @@ const std::vector<VelocityInfo>& velocity_catalog();
 std::unique_ptr<VelocityLaw> make_velocity(const std::string& name,
                                            const VelocityParams& params = {},
                                            std::optional<GeometryModule> module = std::nullopt);
+
+/// Every built-in law of surfaces, in a fixed order: rotation, translation, enright, unit-normal,
+/// anisotropic, curvature, volume-preserving-curvature.
+const std::vector<VelocityInfo>& surface_velocity_catalog();
+
+/// The built-in law of surfaces `name` with the given parameters (missing ones take defaults):
+///   rotation        omega [1], ax [0], ay [0], az [1], cx, cy, cz [0]   u = ω a × (x − c)
+///   translation     ux, uy, uz (required)                              u = (ux, uy, uz)
+///   enright         period [3]                                          Enright's field
+///   unit-normal     speed [1]                                           u = speed·N
+///   anisotropic     R [1], eps [0.5]                     u = (R + eps (Σ n_i⁴ − 3/5))·N
+///   curvature                                                           u = C·N
+///   volume-preserving-curvature                                         u = (C − C̄)·N
+/// Throws InvalidInput as make_velocity does ("unknown velocity 'x' for a surface; known: ...").
+std::unique_ptr<SurfaceVelocityLaw> make_surface_velocity(const std::string& name,
+                                                          const VelocityParams& params = {});
 
 }  // namespace slc

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numbers>
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/tolerances.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/geometry/validate_surface.hpp"
@@ -280,6 +282,31 @@ TEST(SurfaceContour, EtaUnsetIsTenToTheMinusTenOrAHundredthOfEpsWhenRefining) {
     EXPECT_THROW(contour_surface(pointwise<Vec3>([](Vec3 x) { return norm(x) - 0.5; }),
                                  Box3::centered_cube(1.0), {.eta = -1.0}),
                  InvalidInput);
+}
+
+TEST(SurfaceContour, EpsAndEtaAreNeverBelowWhatDoublesResolve) {
+    // As for curves: η below two ulps of the domain's largest coordinate is raised to it (roots
+    // cannot be placed closer, and refinement would stop short of ε with status ok), and a
+    // given ε below it is bad input.
+    const Box3 domain = Box3::centered_cube(1.0);
+    const double floor = tolerance::rounding_floor(domain);
+    EXPECT_EQ(floor, 2.0 * std::numeric_limits<double>::epsilon());
+    const auto g = sphere_g({0.01, -0.02, 0.03}, 0.5);
+    const SurfaceContourOptions tiny{.depth = 3,
+                                     .refine_passes = SurfaceContourOptions::until_converged,
+                                     .eps = 1e-3,
+                                     .eta = 1e-300};
+    SurfaceContourOptions at_floor = tiny;
+    at_floor.eta = floor;
+    const SurfaceContour a = contour_surface(g, domain, tiny);
+    const SurfaceContour b = contour_surface(g, domain, at_floor);
+    EXPECT_TRUE(a.stats.converged);
+    EXPECT_EQ(a.surface.vertices, b.surface.vertices);
+    EXPECT_EQ(a.surface.triangles, b.surface.triangles);
+    SurfaceContourOptions below = tiny;
+    below.eps = 1e-17;
+    below.eta = 1e-18;
+    EXPECT_THROW(contour_surface(g, domain, below), InvalidInput);
 }
 
 TEST(SurfaceContour, NeedleClustersOfTheLinearContourAreCollapsed) {

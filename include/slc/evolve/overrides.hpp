@@ -1,0 +1,102 @@
+/// @file
+/// What a user sets of a run, over a problem's or a law's defaults (DESIGN §4): the settings that
+/// `slc run`'s flags and Python's keywords carry, their ranges, and one function per dimension
+/// that applies them. The tool and the Python package both call these, so that their defaults,
+/// ranges and messages cannot disagree with each other or with the library.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "slc/evolve/problems.hpp"
+#include "slc/evolve/run.hpp"
+#include "slc/evolve/surface_run.hpp"
+#include "slc/tree/tetrahedralization.hpp"
+
+namespace slc {
+
+struct SurfaceProblem;
+
+/// A closed range of an integer setting.
+struct IntRange {
+    int lo;  ///< least value allowed
+    int hi;  ///< largest value allowed
+};
+
+/// The ranges of the integer settings, for the tool's checks and the library's.
+namespace setting_range {
+inline constexpr IntRange steps{1, 100'000'000};  ///< N
+inline constexpr IntRange curve_depth{1, 24};     ///< K of curves (memory: 4^K cells at worst)
+/// K of surfaces: as deep as tetrahedralization keys allow.
+inline constexpr IntRange surface_depth{1, max_tetrahedralized_depth};
+inline constexpr IntRange refine{0, 64};      ///< P, or until_converged
+inline constexpr IntRange thin_depth{0, 8};   ///< levels beyond K for thin cells (surfaces)
+inline constexpr IntRange tree_depth{1, 30};  ///< L
+inline constexpr IntRange mesh{8, 1 << 22};   ///< M (curves)
+inline constexpr IntRange eno_order{1, 5};    ///< E (curves)
+inline constexpr IntRange smoothing{0, 64};   ///< S (curves)
+/// K of the given dimension (2: curves, 3: surfaces).
+constexpr IntRange depth(int dim) { return dim == 2 ? curve_depth : surface_depth; }
+}  // namespace setting_range
+
+/// ε that K sets when ε is not given, in both dimensions the rule a user's own shape defaults to
+/// (ℓ its length scale, 1 for a named problem): 10^−K ℓ for curves, as the paper's runs
+/// N/S/K/P/ε (not below 1e−13 ℓ, as fine as root finding places a vertex); 10^−3 · 4^(5−K) ℓ
+/// for surfaces, the default 10^−3 ℓ at K = 5 scaled as h², since a surface refined to ε takes
+/// about 1/ε triangles where a curve takes 1/√ε segments. dim is 2 or 3.
+double eps_for_depth(int dim, int depth, double length_scale);
+
+/// The settings a user gave of a run; unset ones keep the problem's or the law's defaults. Names
+/// are those of the Python keywords; `name_of` below gives the tool's flags.
+struct RunOverrides {
+    std::optional<int> steps = std::nullopt;   ///< N
+    std::optional<int> depth = std::nullopt;   ///< K; without eps, ε follows it (eps_for_depth)
+    std::optional<int> refine = std::nullopt;  ///< P, or ContourOptions::until_converged
+    std::optional<double> eps = std::nullopt;  ///< ε
+    std::optional<double> eta =
+        std::nullopt;  ///< η; for curves, unset: lowered to ε/10 when ε is below it
+    std::optional<int> tree_depth = std::nullopt;  ///< L
+    // Curves only.
+    std::optional<double> rho = std::nullopt;           ///< ρ, the pruning ratio in [0, 1)
+    std::optional<int> mesh = std::nullopt;             ///< M; unset: 2^(K+1)
+    std::optional<int> eno_order = std::nullopt;        ///< E
+    std::optional<int> smoothing = std::nullopt;        ///< S
+    std::optional<Extension> extension = std::nullopt;  ///< how W leaves the curve
+    std::optional<bool> arcs = std::nullopt;            ///< StepOptions::arcs
+    std::optional<double> arc_width = std::nullopt;     ///< σ of the arclength module
+    // Surfaces only.
+    std::optional<int> thin_depth = std::nullopt;       ///< SurfaceContourOptions::thin_depth
+    std::optional<double> volume_drift = std::nullopt;  ///< SurfaceRunOptions::volume_drift
+    std::optional<bool> guards = std::nullopt;          ///< SurfaceRunOptions::guards
+    /// Curves: StepOptions::area_correction; surfaces: SurfaceStepOptions::volume_correction.
+    std::optional<bool> area_correction = std::nullopt;
+};
+
+/// How a front end names the settings in its messages.
+enum class SettingNames {
+    python,  ///< the keywords: depth, eps, thin_depth
+    tool,    ///< the flags: -K/--depth, --eps, --thin-depth
+};
+
+/// The run options of curves: overrides over `defaults` (problem_run_options of a problem, or
+/// default_run_options of a user's curves), ℓ = length_scale. K without ε sets ε by
+/// eps_for_depth and M by default_mesh_size. Throws InvalidInput naming the setting (in `names`)
+/// for a value out of range, ε below η, or a setting of surfaces.
+RunOptions apply_overrides(const RunOverrides& overrides, RunOptions defaults, double length_scale,
+                           SettingNames names = SettingNames::python);
+
+/// The run options of surfaces, the same way: overrides over `defaults`
+/// (named_surface_run_options or default_surface_run_options). Throws InvalidInput as above,
+/// and for a setting of curves.
+SurfaceRunOptions apply_overrides(const RunOverrides& overrides, SurfaceRunOptions defaults,
+                                  double length_scale, SettingNames names = SettingNames::python);
+
+/// The options a named problem of surfaces runs with: its N, K and ε, refinement until
+/// converged, its thin depth, and a fixed domain.
+SurfaceRunOptions named_surface_run_options(const SurfaceProblem& problem);
+
+/// True when overrides set any of K, P, ε, η or the thin depth: a named problem's surface is then
+/// contoured again with them (a run at K = 7 starts from the contour at K = 7).
+bool sets_contour(const RunOverrides& overrides);
+
+}  // namespace slc

@@ -1,0 +1,181 @@
+// A user's settings of a run applied over a problem's or a law's defaults, for curves and for
+// surfaces, with every range check in one place.
+#include "slc/evolve/overrides.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "slc/core/error.hpp"
+#include "slc/evolve/surface_problems.hpp"
+#include "slc/geometry_modules/embedded.hpp"
+
+namespace slc {
+namespace {
+
+/// A setting's name as a front end spells it: Python's keyword, or the tool's flag.
+struct Name {
+    const char* python;
+    const char* tool;
+};
+
+constexpr Name steps_name{"steps", "--steps"};
+constexpr Name depth_name{"depth", "--depth"};
+constexpr Name refine_name{"refine", "--refine"};
+constexpr Name eps_name{"eps", "--eps"};
+constexpr Name eta_name{"eta", "--eta"};
+constexpr Name tree_depth_name{"tree_depth", "--tree-depth"};
+
+/// Reads the overrides with the names of one front end and checks each value's range.
+class Checker {
+public:
+    explicit Checker(SettingNames names) : names_(names) {}
+
+    const char* operator()(Name n) const {
+        return names_ == SettingNames::python ? n.python : n.tool;
+    }
+
+    /// v within r (or, with `converged`, ContourOptions::until_converged); InvalidInput else.
+    void range(std::optional<int> v, IntRange r, Name n, const char* what = "",
+               bool converged = false) const {
+        if (!v || (*v >= r.lo && *v <= r.hi)) return;
+        if (converged && *v == ContourOptions::until_converged) return;
+        throw InvalidInput(fmt::format("{}: must be an integer from {} to {}{}{}, got {}",
+                                       (*this)(n), r.lo, r.hi, converged ? " or 'converged'" : "",
+                                       what, *v));
+    }
+    /// v positive and finite; InvalidInput else.
+    void positive(std::optional<double> v, Name n) const {
+        if (v && !(*v > 0.0 && std::isfinite(*v)))
+            throw InvalidInput(
+                fmt::format("{}: must be a positive finite number, got {}", (*this)(n), *v));
+    }
+    /// ε ≥ η; InvalidInput naming both else.
+    void eps_not_below_eta(double eps, double eta) const {
+        if (eps < eta) {
+            throw InvalidInput(fmt::format("{} ({}) must not be below {} ({})", (*this)(eps_name),
+                                           eps, (*this)(eta_name), eta));
+        }
+    }
+    /// InvalidInput naming the first given setting that belongs to the other dimension.
+    void none_of(const std::vector<std::pair<bool, Name>>& given, const char* other,
+                 const char* these) const {
+        for (const auto& [is_given, n] : given) {
+            if (is_given)
+                throw InvalidInput(fmt::format("{} is for {}, not {}", (*this)(n), other, these));
+        }
+    }
+
+private:
+    SettingNames names_;
+};
+
+/// The settings both dimensions share: N, K, P, their ranges, and ε and η checked positive.
+template <class Options>
+void apply_shared(const RunOverrides& q, const Checker& check, int dim, Options& o) {
+    check.range(q.steps, setting_range::steps, steps_name);
+    check.range(q.depth, setting_range::depth(dim), depth_name,
+                dim == 2 ? " for curves" : " for a surface");
+    check.range(q.refine, setting_range::refine, refine_name, "", true);
+    check.range(q.tree_depth, setting_range::tree_depth, tree_depth_name);
+    check.positive(q.eps, eps_name);
+    check.positive(q.eta, eta_name);
+    if (q.steps) o.steps = *q.steps;
+    if (q.refine) o.step.contour.refine_passes = *q.refine;
+    if (q.tree_depth) o.step.tree_depth = *q.tree_depth;
+}
+
+}  // namespace
+
+double eps_for_depth(int dim, int depth, double length_scale) {
+    if (dim == 2) return std::max(std::pow(10.0, -depth), 1e-13) * length_scale;
+    return 1e-3 * std::pow(4.0, 5 - depth) * length_scale;
+}
+
+RunOptions apply_overrides(const RunOverrides& q, RunOptions r, double length_scale,
+                           SettingNames names) {
+    const Checker check(names);
+    check.none_of({{q.thin_depth.has_value(), {"thin_depth", "--thin-depth"}},
+                   {q.volume_drift.has_value(), {"volume_drift", "--volume-drift"}},
+                   {q.guards.has_value(), {"guards", "--no-guards"}}},
+                  "surfaces", "curves");
+    apply_shared(q, check, 2, r);
+    check.range(q.mesh, setting_range::mesh, {"mesh", "--mesh"});
+    check.range(q.eno_order, setting_range::eno_order, {"eno_order", "--eno-order"});
+    check.range(q.smoothing, setting_range::smoothing, {"smoothing", "--smooth"});
+    if (q.rho && !(*q.rho >= 0.0 && *q.rho < 1.0))
+        throw InvalidInput(
+            fmt::format("{}: must be in [0, 1), got {}", check({"rho", "--rho"}), *q.rho));
+    if (q.arc_width && !(*q.arc_width >= 0.0 && std::isfinite(*q.arc_width))) {
+        throw InvalidInput(fmt::format("{}: must be a non-negative finite number, got {}",
+                                       check({"arc_width", "--arc-width"}), *q.arc_width));
+    }
+    ContourOptions& c = r.step.contour;
+    if (q.depth) {
+        c.depth = *q.depth;
+        c.eps = eps_for_depth(2, c.depth, length_scale);
+        r.step.embedded.mesh = default_mesh_size(c.depth);
+    }
+    if (q.eps) c.eps = *q.eps;
+    // An η left unset is lowered to ε/10 when ε is below it, so that any K runs with the default.
+    c.eta = q.eta ? *q.eta : std::min(c.eta, 0.1 * *c.eps);
+    check.eps_not_below_eta(*c.eps, c.eta);
+    if (q.rho) c.rho = *q.rho;
+    if (q.mesh) r.step.embedded.mesh = *q.mesh;
+    if (q.eno_order) r.step.embedded.eno_order = *q.eno_order;
+    if (q.smoothing) r.step.embedded.smoothing = *q.smoothing;
+    if (q.extension) r.step.extension = *q.extension;
+    if (q.arcs) r.step.arcs = q.arcs;
+    if (q.area_correction) r.step.area_correction = q.area_correction;
+    if (q.arc_width) r.step.arc_width = q.arc_width;
+    return r;
+}
+
+SurfaceRunOptions apply_overrides(const RunOverrides& q, SurfaceRunOptions o, double length_scale,
+                                  SettingNames names) {
+    const Checker check(names);
+    check.none_of({{q.rho.has_value(), {"rho", "--rho"}},
+                   {q.mesh.has_value(), {"mesh", "--mesh"}},
+                   {q.eno_order.has_value(), {"eno_order", "--eno-order"}},
+                   {q.smoothing.has_value(), {"smoothing", "-S/--smooth"}},
+                   {q.extension.has_value(), {"extension", "--extension"}},
+                   {q.arcs.has_value(), {"arcs", "--arcs"}},
+                   {q.arc_width.has_value(), {"arc_width", "--arc-width"}}},
+                  "curves", "surfaces");
+    apply_shared(q, check, 3, o);
+    check.range(q.thin_depth, setting_range::thin_depth, {"thin_depth", "--thin-depth"});
+    check.positive(q.volume_drift, {"volume_drift", "--volume-drift"});
+    SurfaceContourOptions& c = o.step.contour;
+    if (q.depth) {
+        c.depth = *q.depth;
+        c.eps = eps_for_depth(3, c.depth, length_scale);
+    }
+    if (q.eps) c.eps = *q.eps;
+    if (q.eta) c.eta = *q.eta;
+    if (q.thin_depth) c.thin_depth = *q.thin_depth;
+    if (q.area_correction) o.step.volume_correction = q.area_correction;
+    if (q.volume_drift) o.volume_drift = *q.volume_drift;
+    if (q.guards) o.guards = *q.guards;
+    check.eps_not_below_eta(c.resolved_eps(), o.step.resolved_eta());
+    return o;
+}
+
+SurfaceRunOptions named_surface_run_options(const SurfaceProblem& p) {
+    SurfaceRunOptions o;
+    o.t_end = p.t_end;
+    o.steps = p.steps;
+    o.step.contour = {.depth = p.depth,
+                      .refine_passes = SurfaceContourOptions::until_converged,
+                      .eps = p.eps,
+                      .thin_depth = p.thin_depth};
+    return o;
+}
+
+bool sets_contour(const RunOverrides& q) {
+    return q.depth || q.refine || q.eps || q.eta || q.thin_depth;
+}
+
+}  // namespace slc
