@@ -1,6 +1,7 @@
 // What the benchmark programs share: a reporter that keeps every run so that a program can write
-// its markdown tables after the console report, CPU seconds of a run, and a flag of the program's
-// own taken out of argv before Google Benchmark parses the rest.
+// its markdown tables after the console report, CPU seconds of a run, and flags of the program's
+// own taken out of argv before Google Benchmark parses the rest. The regions a program writes
+// into a page written by hand: doc_regions.hpp.
 #pragma once
 
 #include <benchmark/benchmark.h>
@@ -41,12 +42,6 @@ inline double wall_now() {
         .count();
 }
 
-/// The markers of the section on moving surfaces that surface_performance_bench writes into
-/// docs/performance.md and performance_bench keeps when it writes the rest.
-inline constexpr const char* surfaces_begin =
-    "<!-- surfaces: written by bench/surface_performance_bench.cpp -->";
-inline constexpr const char* surfaces_end = "<!-- surfaces: end -->";
-
 /// Removes `--flag value` from argv and returns value, or fallback.
 inline std::string take_flag(int& argc, char** argv, const char* flag, std::string fallback) {
     for (int i = 1; i + 1 < argc; ++i) {
@@ -58,6 +53,18 @@ inline std::string take_flag(int& argc, char** argv, const char* flag, std::stri
         }
     }
     return fallback;
+}
+
+/// Removes `--flag` from argv and returns whether it was there.
+inline bool take_switch(int& argc, char** argv, const char* flag) {
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], flag) == 0) {
+            for (int j = i; j + 1 <= argc; ++j) argv[j] = argv[j + 1];
+            argc -= 1;
+            return true;
+        }
+    }
+    return false;
 }
 
 }  // namespace slc::bench

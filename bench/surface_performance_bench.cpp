@@ -1,7 +1,8 @@
 // Moving surfaces: one step on one thread and on all, against the number of triangles and for
 // each kind of law, and Enright's test beside OpenVDB (from docs/tables/enright.md, which
-// bench/enright.py writes). Writes the section "Moving surfaces" of docs/performance.md between
-// its markers; performance_bench keeps that section when it writes the rest of the file.
+// bench/enright.py writes). Writes its tables and summaries into their regions of the section
+// "Moving surfaces" of docs/performance.md, a page written by hand (doc_regions.hpp); with
+// --check-page it only checks that the page holds those regions.
 //
 // A step's time is the least wall time of --repeats calls of advance() on the same surface, the
 // calls alternating between one thread and all (each call does all of a step's work, from the
@@ -10,7 +11,7 @@
 // last bit.
 //
 // Usage: surface_performance_bench [--out FILE] [--enright FILE] [--repeats n] [--rounds n]
-//                                  [--largest-depth K] [--triangles n]
+//                                  [--largest-depth K] [--triangles n] [--check-page]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 #include <vector>
 
 #include "bench_support.hpp"
+#include "doc_regions.hpp"
 #include "slc/evolve/surface_problems.hpp"
 #include "slc/evolve/surface_step.hpp"
 #include "slc/slc.hpp"
@@ -30,8 +32,6 @@ namespace {
 
 using namespace slc;
 
-using bench::surfaces_begin;
-using bench::surfaces_end;
 using bench::wall_now;
 
 bool same_surface(const Surface& a, const Surface& b) {
@@ -116,45 +116,40 @@ std::string grouped(std::size_t n) {
     return s;
 }
 
-/// The table of docs/tables/enright.md (its lines starting with '|') and what follows it.
+/// The table of docs/tables/enright.md (its lines starting with '|') and the lists after it (the
+/// comparisons with OpenVDB, where slc's runs stopped), each with the line that leads to it; the
+/// paragraph defining the columns stays there, and docs/performance.md explains them in its own
+/// words. Empty when the file is missing.
 std::string enright_table(const std::filesystem::path& path) {
     std::ifstream in(path);
     if (!in) return "";
-    std::string line, table, after;
-    bool seen = false;
+    std::string line, table;
+    std::vector<std::string> blocks(1);  // after the table, separated by blank lines
     while (std::getline(in, line)) {
-        if (line.starts_with("|")) {
+        if (line.starts_with("|") && blocks.size() == 1 && blocks[0].empty()) {
             table += line + "\n";
-            seen = true;
-        } else if (seen && !line.empty()) {
-            after += line + "\n";
-        } else if (seen && !after.empty() && !after.ends_with("\n\n")) {
-            after += "\n";  // the blank line between blocks
+        } else if (!table.empty() && line.empty()) {
+            if (!blocks.back().empty()) blocks.emplace_back();
+        } else if (!table.empty()) {
+            blocks.back() += line + "\n";
         }
     }
-    while (after.ends_with("\n\n")) after.pop_back();
-    return table.empty() ? "" : table + "\n" + after;
+    std::string md = table;
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+        const std::string& b = blocks[i];
+        const bool list = b.starts_with("- ");
+        const bool leads =
+            b.ends_with(":\n") && i + 1 < blocks.size() && blocks[i + 1].starts_with("- ");
+        if (list || leads) md += "\n" + b;
+    }
+    return table.empty() ? "" : md;
 }
 
-/// Replaces the section between the markers in the file's text, or puts it before "## Where
-/// the time goes" (or at the end) when the file has none.
-std::string with_section(const std::string& text, const std::string& section) {
-    const std::string block = std::string(surfaces_begin) + "\n" + section + surfaces_end + "\n";
-    const auto b = text.find(surfaces_begin);
-    const auto e = text.find(surfaces_end);
-    if (b != std::string::npos && e != std::string::npos && e > b)
-        return text.substr(0, b) + block + text.substr(e + std::string(surfaces_end).size() + 1);
-    const auto where = text.find("## Where the time goes");
-    if (where == std::string::npos) return text + "\n" + block;
-    return text.substr(0, where) + block + "\n" + text.substr(where);
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-    slc::keep_freed_memory();  // as the slc tool does: the timings are the tool's
+int run_bench(int argc, char** argv) {
     using slc::bench::take_flag;
     const std::string out = take_flag(argc, argv, "--out", "docs/performance.md");
+    const std::vector<std::string> regions = {"surfaces-settings", "surface-sizes", "surface-laws",
+                                              "surface-speedups", "enright"};
     const std::string enright = take_flag(argc, argv, "--enright", "docs/tables/enright.md");
     const int repeats = std::stoi(take_flag(argc, argv, "--repeats", "3"));
     const int rounds = std::stoi(take_flag(argc, argv, "--rounds", "2"));
@@ -168,6 +163,13 @@ int main(int argc, char** argv) {
         return 2;
     }
     const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    if (bench::take_switch(argc, argv, "--check-page")) {
+        bench::check_regions(out, regions);
+        fmt::print(stderr, "{} holds every region this program writes\n", out);
+        return 0;
+    }
+    // Before the measurements, not after.
+    bench::require_regions(out, regions);
 
     // Rows of about 5,000, 20,000, 80,000 and 320,000 triangles (K = 4..7), then each kind of
     // law on a surface of about `target` triangles. A slow spell of this machine (up to 1.45×
@@ -210,28 +212,18 @@ int main(int argc, char** argv) {
     std::vector<StepTiming> laws(timed.begin() + static_cast<std::ptrdiff_t>(sized_rows),
                                  timed.end());
 
-    std::string md = "## Moving surfaces\n\n";
-    md += fmt::format(
-        "Written by `scripts/bench` (bench/surface_performance_bench.cpp). One step of a problem's "
-        "law from its initial surface contoured at K and ε (refinement until converged), the "
-        "step's own k = t_end / N; the least wall time of up to {} calls on one thread and on {} "
-        "threads, alternating (no pair begun after two minutes), so that a slow spell of the "
-        "machine falls on both, in each of {} rounds over all the rows, minutes apart (a spell "
-        "that takes part of a core slows two threads more than one). Each call does all of a "
-        "step's work, from the "
-        "distance tree of the surface "
-        "given to the refined contour of the next. *identical*: the two surfaces agree to the "
-        "last bit. G per vertex: evaluations of G̃ and G over the new surface's vertices.\n\n",
-        repeats, threads, rounds);
     const SurfaceProblem curvature = make_surface_problem("sphere-curvature");
-    md += fmt::format(
-        "### Against the number of triangles\n\nsphere-rotation (a flow field: one contour, of "
-        "G(x) = F(x*) with x* the characteristic's foot) and sphere-curvature (mean curvature "
-        "flow: predictor and corrector, the curvature a Gaussian mean over σ = √k = {}, which "
-        "covers more vertices as the triangles shrink). The time on one thread over N log₂ N "
-        "is constant for a step that costs O(N log N).\n\n",
-        sci(std::sqrt(curvature.t_end / curvature.steps)));
-    md += fmt::format(
+    std::vector<bench::Region> page;
+    page.emplace_back(
+        "surfaces-settings",
+        fmt::format("Machine: {} hardware threads. Each step timed up to {} times on one thread "
+                    "and on {} threads, alternating, in each of {} rounds over all the rows; "
+                    "sphere-curvature's mean over σ = √k = {}; the laws' rows at K = {}, ε for "
+                    "about {} triangles.",
+                    threads, repeats, threads, rounds,
+                    sci(std::sqrt(curvature.t_end / curvature.steps)), law_depth,
+                    grouped(static_cast<std::size_t>(target))));
+    std::string md = fmt::format(
         "| problem | K | ε | triangles | s, 1 thread | µs per triangle | ns / (N log₂ N) | s, {} "
         "threads | speed-up | G per vertex | identical |\n|---|---:|---:|---:|---:|---:|---:|---:|"
         "---:|---:|---|\n",
@@ -246,9 +238,8 @@ int main(int argc, char** argv) {
                 r.g_per_vertex, r.identical ? "yes" : "**no**");
         }
     }
-    md += fmt::format("\n### Each kind of law (K = {}, ε for about {} triangles)\n\n", law_depth,
-                      grouped(static_cast<std::size_t>(target)));
-    md += fmt::format(
+    page.emplace_back("surface-sizes", md);
+    md = fmt::format(
         "| problem | law | ε | triangles in | triangles out | s, 1 thread | s, {} threads | "
         "speed-up | G per vertex | identical |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n",
         threads);
@@ -264,6 +255,7 @@ int main(int argc, char** argv) {
                           grouped(r.triangles_out), sci(r.one), sci(r.all), r.one / r.all,
                           r.g_per_vertex, r.identical ? "yes" : "**no**");
     }
+    page.emplace_back("surface-laws", md);
     // Over every step above of more than 10^5 triangles.
     std::vector<double> speedups;
     bool identical = true;
@@ -275,35 +267,34 @@ int main(int argc, char** argv) {
     }
     if (!speedups.empty()) {
         const auto [least, most] = std::minmax_element(speedups.begin(), speedups.end());
-        md += fmt::format(
-            "\nThe {} steps above over 10⁵ triangles: {} threads are {:.2f}× to {:.2f}× faster "
+        md = fmt::format(
+            "The {} steps above over 10⁵ triangles: {} threads are {:.2f}× to {:.2f}× faster "
             "than one (goal ≥ 1.8× for every such step: {}). The surfaces are {} for one thread "
             "and for {}.\n",
             speedups.size(), threads, *least, *most, *least >= 1.8 ? "met" : "not met",
             identical ? "the same to the last bit" : "**not** the same", threads);
     } else {
-        md += "\nNo step above reached 10⁵ triangles.\n";
+        md = "No step above reached 10⁵ triangles.\n";
     }
-    md +=
-        "\nThe convergence studies of moving surfaces, with CPU seconds per step on two threads, "
-        "are docs/tables/table5_3d.md (sphere rotation), table6_3d.md (merging spheres) and "
-        "table7_3d.md (shrinking sphere); the named problems at their own settings are "
-        "docs/tables/surface_problems.md.\n\n";
-    md += "### Enright's test beside OpenVDB\n\n";
+    page.emplace_back("surface-speedups", md);
     const std::string table = enright_table(enright);
-    if (table.empty()) {
-        md += fmt::format("{} is missing: run bench/enright.py (scripts/bench runs it).\n\n",
-                          enright);
-    } else {
-        md +=
-            "From docs/tables/enright.md (bench/enright.py, in the same run as OpenVDB's "
-            "`tools::LevelSetAdvection`; wall time on this machine). Goal: under 0.001% of "
-            "the volume lost and within 1e−3 of the sphere at t = 3, in minutes, and faster "
-            "than OpenVDB at every accuracy OpenVDB reaches.\n\n" +
-            table + "\n";
-    }
-
-    const std::string text = std::filesystem::exists(out) ? read_text_file(out) : std::string();
-    write_file_atomic(out, with_section(text, md));
+    page.emplace_back("enright", table.empty() ? fmt::format("{} is missing: run bench/enright.py "
+                                                             "(scripts/bench runs it).\n",
+                                                             enright)
+                                               : table);
+    bench::write_regions(out, page);
     fmt::print(stderr, "wrote {}\n", out);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    slc::keep_freed_memory();  // as the slc tool does: the timings are the tool's
+    try {
+        return run_bench(argc, argv);
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "surface_performance_bench: {}\n", e.what());
+        return 1;
+    }
 }
