@@ -301,13 +301,9 @@ private:
     std::optional<WhitneyExtension<Vec2>> whitney_;
 };
 
-/// Checks a foot point's velocity, which a law may have produced anywhere.
+/// A foot point's velocity, checked (detail::checked_velocity).
 Vec2 finite(Vec2 w, const VelocityLaw& law, double t, Vec2 x) {
-    if (!is_finite(w)) {
-        throw NumericalFailure(fmt::format("velocity '{}' is not finite at t = {} near ({}, {})",
-                                           law.name(), t, x.x, x.y));
-    }
-    return w;
+    return detail::checked_velocity(w, law.name(), t, x);
 }
 
 /// A normal law's step with the distance field's normal N = ∇F (Extension::direct). F is a

@@ -1,5 +1,6 @@
 // What the steps of curves and surfaces share (internal to evolve): feet of characteristics of a
-// flow field, a normal law's checked speeds, and the normal law's predictor and corrector.
+// flow field, the checks of a velocity and of a normal law's speeds, and the normal law's
+// predictor and corrector.
 #pragma once
 
 #include <fmt/format.h>
@@ -86,6 +87,17 @@ int departure_substeps(const BasicVelocityLaw<dim>& law, double t, double k,
 /// "(x, y)" or "(x, y, z)", for messages.
 inline std::string point_text(Vec2 p) { return fmt::format("({}, {})", p.x, p.y); }
 inline std::string point_text(Vec3 p) { return fmt::format("({}, {}, {})", p.x, p.y, p.z); }
+
+/// W(x) at a point where the step evaluates it (an extension or a law may give it anywhere),
+/// checked: NumericalFailure naming the law, the time and the point unless finite.
+template <class Point>
+Point checked_velocity(Point w, const std::string& law, double t, Point x) {
+    if (!is_finite(w)) {
+        throw NumericalFailure(
+            fmt::format("velocity '{}' is not finite at t = {} near {}", law, t, point_text(x)));
+    }
+    return w;
+}
 
 /// V(t, x_i, n_i) for a batch, one call of the law; NumericalFailure naming the point unless all
 /// are finite.

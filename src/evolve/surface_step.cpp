@@ -273,6 +273,11 @@ std::pair<Surface, double> corrected_volume(const Surface& s, double target,
     return {s, 0.0};
 }
 
+/// A foot point's velocity, checked (detail::checked_velocity), as curves' steps check it.
+Vec3 finite(Vec3 w, const SurfaceVelocityLaw& law, double t, Vec3 x) {
+    return detail::checked_velocity(w, law.name(), t, x);
+}
+
 SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
                                    const SurfaceVelocityLaw& law, const Box3& domain,
                                    const SurfaceStepOptions& given) {
@@ -321,7 +326,9 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
     const auto predictor = [&](std::span<const Vec3> xs, std::span<double> values) {
         parallel_for(
             xs.size(),
-            [&](std::size_t i) { values[i] = now.distance(xs[i] - k * now.velocity(xs[i])); },
+            [&](std::size_t i) {
+                values[i] = now.distance(xs[i] - k * finite(now.velocity(xs[i]), law, t, xs[i]));
+            },
             expensive_grain);
     };
     SurfaceContour predicted = contour_surface(predictor, domain, contour_options);
@@ -336,8 +343,10 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
             xs.size(),
             [&](std::size_t i) {
                 const Vec3 x = xs[i];
-                const Vec3 foot = x - k * now.velocity(x);
-                values[i] = now.distance(x - (0.5 * k) * (now.velocity(foot) + next.velocity(x)));
+                const Vec3 foot = x - k * finite(now.velocity(x), law, t, x);
+                const Vec3 w_foot = finite(now.velocity(foot), law, t, foot);
+                const Vec3 w_next = finite(next.velocity(x), law, t + k, x);
+                values[i] = now.distance(x - (0.5 * k) * (w_foot + w_next));
             },
             expensive_grain);
     };
