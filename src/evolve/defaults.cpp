@@ -9,6 +9,7 @@
 #include "slc/core/error.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/evolve/overrides.hpp"
+#include "user_defaults.hpp"
 
 namespace slc {
 
@@ -34,20 +35,9 @@ double length_scale(const Interface& curves) {
 RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, double t_start,
                                double t_end) {
     if (curves.empty()) throw InvalidInput("no curves: the interface is empty");
-    if (!std::isfinite(t_start) || !std::isfinite(t_end) || !(t_end > t_start)) {
-        throw InvalidInput(fmt::format("t-end must be finite and after the start time {}, got {}",
-                                       t_start, t_end));
-    }
-    const double scale = length_scale(curves);
-    RunOptions o;
-    o.t_start = t_start;
-    o.t_end = t_end;
-    o.steps = 40;
-    o.max_domain_doublings = 6;
+    RunOptions o =
+        detail::user_run_options<2, RunOptions>(t_start, t_end, length_scale(curves), 40);
     ContourOptions& c = o.step.contour;
-    c.depth = 5;
-    c.eps = eps_for_depth(2, c.depth, scale);
-    c.eta = 1e-10 * scale;
     // Curvature is noisier where refinement leaves the vertices unevenly spaced: such laws take
     // the paper's two passes. Elsewhere a pass splits only the segments whose midpoint misses ε,
     // so refining to convergence puts the cost where the curve needs it.

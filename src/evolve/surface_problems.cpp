@@ -13,6 +13,7 @@
 #include "slc/evolve/overrides.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/velocity/surface_laws.hpp"
+#include "user_defaults.hpp"
 
 namespace slc {
 namespace {
@@ -246,20 +247,9 @@ double length_scale(const Surface& surface) {
 SurfaceRunOptions default_surface_run_options(const Surface& surface, double t_start,
                                               double t_end) {
     if (surface.empty()) throw InvalidInput("the initial surface has no triangles");
-    if (!(t_end > t_start) || !std::isfinite(t_start) || !std::isfinite(t_end)) {
-        throw InvalidInput(fmt::format("t-end must be finite and after the start time {}, got {}",
-                                       t_start, t_end));
-    }
-    const double scale = length_scale(surface);
-    SurfaceRunOptions o;
-    o.t_start = t_start;
-    o.t_end = t_end;
-    o.steps = 20;
-    o.max_domain_doublings = 6;
-    o.step.contour = {.depth = 5,
-                      .refine_passes = SurfaceContourOptions::until_converged,
-                      .eps = eps_for_depth(3, 5, scale),
-                      .eta = 1e-10 * scale};
+    SurfaceRunOptions o =
+        detail::user_run_options<3, SurfaceRunOptions>(t_start, t_end, length_scale(surface), 20);
+    o.step.contour.refine_passes = SurfaceContourOptions::until_converged;
     return o;
 }
 

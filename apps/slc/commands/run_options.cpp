@@ -28,9 +28,9 @@ const std::map<std::string, GeometryModule> geometry_names = {
 }  // namespace
 
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
-    cmd.add_option("-N,--steps", o.steps, "N: time steps on [0, a] (problem's default)")
+    cmd.add_option("-N,--steps", o.settings.steps, "N: time steps on [0, a] (problem's default)")
         ->check(integer_in(setting_range::steps));
-    cmd.add_option("-K,--depth", o.depth,
+    cmd.add_option("-K,--depth", o.settings.depth,
                    fmt::format("K: depth of the contouring tree (problem's default; {} to {} for "
                                "curves, {} to {} for surfaces)",
                                setting_range::curve_depth.lo, setting_range::curve_depth.hi,
@@ -38,7 +38,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         ->check(
             integer_in(setting_range::curve_depth.lo,
                        std::max(setting_range::curve_depth.hi, setting_range::surface_depth.hi)));
-    cmd.add_option("-P,--refine", o.refine,
+    cmd.add_option("-P,--refine", o.settings.refine,
                    "P: passes of adaptive refinement, or 'converged': until every segment "
                    "midpoint is within eps (a named problem's own P; converged for --initial)")
         ->transform(CLI::Validator(
@@ -53,32 +53,34 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                                    setting_range::refine.lo, setting_range::refine.hi, text);
             },
             "in [0, 64] or converged"));
-    cmd.add_option("--eps", o.eps,
+    cmd.add_option("--eps", o.settings.eps,
                    "epsilon: midpoint tolerance of refinement (a problem's own; with -K, or for "
                    "--initial at its K, the rule of the dimension times the shape's half-width "
                    "(1 for a problem): 10^-K for curves, not below 1e-13, and 1e-3 4^(5-K) for "
                    "surfaces; at least two ulps of the domain's largest coordinate)")
         ->check(positive_number());
-    cmd.add_option("--eta", o.eta,
+    cmd.add_option("--eta", o.settings.eta,
                    "eta: root-finding tolerance (default 1e-10, times the shape's half-width for "
                    "--initial; for curves lowered to eps/10 when eps is below it; raised to two "
                    "ulps of the domain's largest coordinate, below which doubles cannot place a "
                    "root)")
         ->check(positive_number());
-    cmd.add_option("--thin-depth", o.thin_depth,
+    cmd.add_option("--thin-depth", o.settings.thin_depth,
                    "For a surface: levels beyond K for cells where the zero set's two sides, or a "
                    "sharp turn, lie within one cell (a problem's own; 0 for --initial)")
         ->check(integer_in(setting_range::thin_depth));
-    cmd.add_option("--rho", o.rho, "rho: pruning ratio in [0, 1) (default 0.1)")
+    cmd.add_option("--rho", o.settings.rho, "rho: pruning ratio in [0, 1) (default 0.1)")
         ->check(fraction_below_one());
-    cmd.add_option("--mesh", o.mesh, "M: embedded mesh points per side (default 2^(K+1))")
+    cmd.add_option("--mesh", o.settings.mesh, "M: embedded mesh points per side (default 2^(K+1))")
         ->check(integer_in(setting_range::mesh));
-    cmd.add_option("--eno-order", o.eno_order, "E: ENO order of the embedded module (default 3)")
+    cmd.add_option("--eno-order", o.settings.eno_order,
+                   "E: ENO order of the embedded module (default 3)")
         ->check(integer_in(setting_range::eno_order));
-    cmd.add_option("-S,--smooth", o.smooth, "S: cosine smoothing passes (problem's default)")
+    cmd.add_option("-S,--smooth", o.settings.smoothing,
+                   "S: cosine smoothing passes (problem's default)")
         ->check(integer_in(setting_range::smoothing));
     cmd.add_option(
-           "-L,--tree-depth", o.tree_depth,
+           "-L,--tree-depth", o.settings.tree_depth,
            "L: distance tree depth (default K + P/2 rounded down; K + P with --extension whitney)")
         ->check(integer_in(setting_range::tree_depth));
     cmd.add_option("--extension", o.extension,
@@ -96,7 +98,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         ->check(CLI::IsMember(geometry_names));
     // A flag function, called only when given: a flag bound to the optional would set it always.
     cmd.add_flag_function(
-        "--arcs,!--no-arcs", [&o](std::int64_t count) { o.arcs = count > 0; },
+        "--arcs,!--no-arcs", [&o](std::int64_t count) { o.settings.arcs = count > 0; },
         "Read the curve as circular arcs through its vertices, not as chords, when G is "
         "evaluated (corners turning by more than 0.5 rad stay sharp): for smooth curves, "
         "whose chords lose a little area each step. Default: on for curvature laws with "
@@ -104,12 +106,12 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         "flow fields), off otherwise and for named problems");
     cmd.add_flag_function(
         "--area-correction,!--no-area-correction",
-        [&o](std::int64_t count) { o.area_correction = count > 0; },
+        [&o](std::int64_t count) { o.settings.area_correction = count > 0; },
         "After each step under a law that keeps the area (volume-preserving curvature), shift "
         "the curves along their normals by the area lost over the length, as summary.json's "
         "area_corrected reports; for a surface, the volume over the area (volume_corrected). "
         "Default: on for such laws, off for named problems of curves (the paper's method)");
-    cmd.add_option("--arc-width", o.arc_width,
+    cmd.add_option("--arc-width", o.settings.arc_width,
                    "sigma: arc length over which the arclength geometry module averages the "
                    "curvature (default sqrt(k); curvature flow is stable from 0.76 sqrt(k))")
         ->check(nonnegative_number());
@@ -124,22 +126,8 @@ std::optional<GeometryModule> geometry_module(const MethodOptions& method) {
 }
 
 RunOverrides overrides_of(const MethodOptions& m) {
-    RunOverrides q;
-    q.steps = m.steps;
-    q.depth = m.depth;
-    q.refine = m.refine;
-    q.eps = m.eps;
-    q.eta = m.eta;
-    q.tree_depth = m.tree_depth;
-    q.rho = m.rho;
-    q.mesh = m.mesh;
-    q.eno_order = m.eno_order;
-    q.smoothing = m.smooth;
+    RunOverrides q = m.settings;
     if (m.extension) q.extension = extension_names.at(*m.extension);
-    q.arcs = m.arcs;
-    q.arc_width = m.arc_width;
-    q.thin_depth = m.thin_depth;
-    q.area_correction = m.area_correction;
     return q;
 }
 

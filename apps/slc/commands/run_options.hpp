@@ -16,27 +16,15 @@
 
 namespace slc::cli {
 
-/// N, K, P, ε, η, ρ, M, E, S, L, the extension, the geometry module, arcs and threads; unset ones
-/// take the problem's values or the defaults of DESIGN §4.
+/// The method options of the command line: the library's settings (RunOverrides) that the flags
+/// set, and what the tool applies itself; unset ones take the problem's values or the defaults of
+/// DESIGN §4 (apply_overrides).
 struct MethodOptions {
-    std::optional<int> steps;
-    std::optional<int> depth;
-    std::optional<int> refine;
-    std::optional<double> eps;
-    std::optional<double> eta;
-    std::optional<int> thin_depth;
-    std::optional<double> rho;
-    std::optional<int> mesh;
-    std::optional<int> eno_order;
-    std::optional<int> smooth;
-    std::optional<int> tree_depth;
-    std::optional<std::string> extension;  ///< unset: the problem's, else the law's default
+    /// -N, -K, -P, --eps, --eta, -L, --rho, --mesh, --eno-order, -S, --arcs, --arc-width,
+    /// --thin-depth and --area-correction as given.
+    RunOverrides settings;
+    std::optional<std::string> extension;  ///< --extension by name: settings.extension from it
     std::string geometry;                  ///< empty: the law's (or the problem's) own
-    std::optional<bool> arcs;              ///< --arcs / --no-arcs; unset: as extension
-    /// --area-correction / --no-area-correction; unset: on for area-keeping laws, off for named
-    /// problems (StepOptions::area_correction)
-    std::optional<bool> area_correction;
-    std::optional<double> arc_width;
     int threads = 0;
 };
 

@@ -1,0 +1,38 @@
+// What the defaults of a user's own curves and of a user's own surface share (internal to
+// evolve): the time interval checked, the depth K = 5 with ε by eps_for_depth and η = 1e−10 ℓ at
+// the shape's length scale ℓ, and a domain that may double as the shape grows. The rest (steps,
+// refinement, extension) is each dimension's own (default_run_options,
+// default_surface_run_options).
+#pragma once
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "slc/core/error.hpp"
+#include "slc/evolve/overrides.hpp"
+
+namespace slc::detail {
+
+/// RunOptions (dim 2) or SurfaceRunOptions (dim 3) for a shape of length scale ℓ from t_start to
+/// t_end in N = steps steps: K = 5, ε = eps_for_depth(dim, 5, ℓ), η = 1e−10 ℓ, up to six
+/// doublings of the domain. Throws InvalidInput unless t_start and t_end are finite with t_end
+/// after t_start.
+template <int dim, class Options>
+Options user_run_options(double t_start, double t_end, double length_scale, int steps) {
+    if (!std::isfinite(t_start) || !std::isfinite(t_end) || !(t_end > t_start)) {
+        throw InvalidInput(fmt::format("t-end must be finite and after the start time {}, got {}",
+                                       t_start, t_end));
+    }
+    Options o;
+    o.t_start = t_start;
+    o.t_end = t_end;
+    o.steps = steps;
+    o.max_domain_doublings = 6;
+    o.step.contour.depth = 5;
+    o.step.contour.eps = eps_for_depth(dim, o.step.contour.depth, length_scale);
+    o.step.contour.eta = 1e-10 * length_scale;
+    return o;
+}
+
+}  // namespace slc::detail
