@@ -12,6 +12,7 @@ import numpy as np
 
 from . import _slc
 from ._interface import Interface, _interface, _points, _refine
+from ._problem import _NamedProblem
 from ._tables import errors_markdown, nan_array as _array
 from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, run_surface,
                        study_surface)
@@ -112,32 +113,18 @@ class RunResult:
         return self.summary.get("e_inf")
 
 
-class Problem:
+class Problem(_NamedProblem):
     """One of the paper's experiments or a standard benchmark (``slc.problem(name)``): initial
     curves, law, final time and the paper's settings, and the exact solution where one is known.
     ``slc.run(problem)`` runs it as ``slc run --problem NAME`` does."""
 
-    __slots__ = ("_p", "_params")
+    __slots__ = ()
+    _make = staticmethod(_slc.make_problem)
+    _kind = "Problem"
 
-    def __init__(self, name: str, params: dict[str, float] | None = None):
-        self._params = {k: float(v) for k, v in (params or {}).items()}
-        self._p = _slc.make_problem(name, self._params)
-
-    def _fresh(self, t_end: float | None):
-        p = _slc.make_problem(self._p.name, self._params)
-        if t_end is not None:
-            p.t_end = float(t_end)
-        return p
-
-    name = property(lambda self: self._p.name, doc="as in ``slc run --problem NAME``")
-    description = property(lambda self: self._p.description, doc="what it is, where in the paper")
-    t_end = property(lambda self: self._p.t_end, doc="the final time a")
-    velocity = property(lambda self: self._p.velocity, doc="the built-in law's name")
     params = property(lambda self: dict(self._p.velocity_params), doc="the law's parameters")
     parameters = property(lambda self: dict(self._p.parameters),
                           doc="the problem's own parameters (R0, tilt, ...), in use")
-    domain = property(lambda self: self._p.domain, doc="(x0, y0, x1, y1), the square it runs in")
-    has_exact = property(lambda self: self._p.has_exact, doc="whether the exact solution is known")
 
     @property
     def settings(self) -> dict[str, Any]:
@@ -162,9 +149,6 @@ class Problem:
         their vertices and segment midpoints; None where the exact solution is not known."""
         curves = _interface(interface)
         return self._p.error(curves._curves, curves.time)
-
-    def __repr__(self) -> str:
-        return f"<slc.Problem {self.name}: {self.description}>"
 
 
 def problem(name: str, **params: float) -> Problem | SurfaceProblem:

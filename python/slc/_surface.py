@@ -13,6 +13,7 @@ from typing import Any, Callable, NamedTuple
 import numpy as np
 
 from . import _slc
+from ._problem import _NamedProblem
 from ._tables import errors_markdown, nan_array as _array
 
 
@@ -136,31 +137,17 @@ def _surface(x) -> Surface:
     return x if isinstance(x, Surface) else Surface(x)
 
 
-class SurfaceProblem:
+class SurfaceProblem(_NamedProblem):
     """A named problem of surfaces (``slc.problem("sphere-rotation")``): initial surface, law,
     final time, settings and the exact solution where it is known; ``slc.run(problem)`` runs it
     as ``slc run --problem NAME`` does."""
 
-    __slots__ = ("_p", "_params")
+    __slots__ = ()
+    _make = staticmethod(_slc.make_surface_problem)
+    _kind = "SurfaceProblem"
 
-    def __init__(self, name: str, params: dict[str, float] | None = None):
-        self._params = {k: float(v) for k, v in (params or {}).items()}
-        self._p = _slc.make_surface_problem(name, self._params)
-
-    def _fresh(self, t_end: float | None):
-        p = _slc.make_surface_problem(self._p.name, self._params)
-        if t_end is not None:
-            p.t_end = float(t_end)
-        return p
-
-    name = property(lambda self: self._p.name, doc="as in ``slc run --problem NAME``")
-    description = property(lambda self: self._p.description, doc="what it is")
-    t_end = property(lambda self: self._p.t_end, doc="the final time")
-    velocity = property(lambda self: self._p.velocity, doc="the law's name")
     settings = property(lambda self: dict(self._p.settings),
                         doc="its steps N, depth K, refine P and eps")
-    domain = property(lambda self: self._p.domain, doc="(x0, y0, z0, x1, y1, z1), a cube")
-    has_exact = property(lambda self: self._p.has_exact, doc="whether the exact surface is known")
 
     @property
     def surface(self) -> Surface:
@@ -178,9 +165,6 @@ class SurfaceProblem:
         None where the exact surface is not known."""
         s = _surface(surface)
         return self._p.error(s._vertices, s._triangles, s.time)
-
-    def __repr__(self) -> str:
-        return f"<slc.SurfaceProblem {self.name}: {self.description}>"
 
 
 class SurfaceStep(NamedTuple):

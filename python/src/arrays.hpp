@@ -8,6 +8,8 @@
 
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
+#include <optional>
 #include <span>
 #include <string>
 #include <type_traits>
@@ -147,6 +149,53 @@ inline Array numbers_of(const py::object& result, const std::string& what) {
     if (!a || a.dtype().kind() == 'O' || a.dtype().kind() == 'U' || a.dtype().kind() == 'S')
         throw InvalidInput(what + " must return an array of numbers");
     return a.cast<Array>();
+}
+
+/// A run's history, curves' or a surface's: one row a step, columns by name, each an array in the
+/// end (int64 for the counting columns).
+class History {
+public:
+    /// A column's name and whether it counts (components, segments, triangles).
+    struct Column {
+        const char* name;
+        bool counts = false;
+    };
+    explicit History(std::vector<Column> columns)
+        : columns_(std::move(columns)), values_(columns_.size()) {}
+    /// One row, a value a column in their order.
+    void add(std::initializer_list<double> row) {
+        std::size_t i = 0;
+        for (const double v : row) values_[i++].push_back(v);
+    }
+    /// The columns as a dict of arrays.
+    py::dict arrays() const {
+        py::dict h;
+        for (std::size_t i = 0; i < columns_.size(); ++i) {
+            py::object a = array_of(std::span<const double>(values_[i]));
+            h[columns_[i].name] = columns_[i].counts ? a.attr("astype")("int64") : a;
+        }
+        return h;
+    }
+
+private:
+    std::vector<Column> columns_;
+    std::vector<std::vector<double>> values_;
+};
+
+/// A study's observed orders as a list of rows, each of floats or None: order(r, c) for r below
+/// rows and c below columns (order an optional<double> of them).
+template <class Order>
+py::list order_table(Order order, int rows, int columns) {
+    py::list table;
+    for (int r = 0; r < rows; ++r) {
+        py::list row;
+        for (int c = 0; c < columns; ++c) {
+            const std::optional<double> o = order(r, c);
+            row.append(o ? py::cast(*o) : py::object(py::none()));
+        }
+        table.append(row);
+    }
+    return table;
 }
 
 }  // namespace slc::python

@@ -37,28 +37,17 @@ RunOptions resolve(const Problem& p, const RunOverrides& q) {
     return apply_overrides(q, problem_run_options(p), p.length_scale);
 }
 
-/// The history of a run: t, area, length, components, segments, cpu_s per row.
-struct History {
-    std::vector<double> t, area, length, cpu_s, components, segments;
-    void add(double time, const Interface& curves, double cpu) {
-        t.push_back(time);
-        area.push_back(slc::area(curves));
-        length.push_back(slc::length(curves));
-        components.push_back(static_cast<double>(curves.curve_count()));
-        segments.push_back(static_cast<double>(curves.size()));
-        cpu_s.push_back(cpu);
-    }
-    py::dict arrays() const {
-        py::dict h;
-        h["t"] = array_of(std::span<const double>(t));
-        h["area"] = array_of(std::span<const double>(area));
-        h["length"] = array_of(std::span<const double>(length));
-        h["components"] = array_of(std::span<const double>(components)).attr("astype")("int64");
-        h["segments"] = array_of(std::span<const double>(segments)).attr("astype")("int64");
-        h["cpu_s"] = array_of(std::span<const double>(cpu_s));
-        return h;
-    }
-};
+/// The history of a run of curves: t, area, length, components, segments, cpu_s per row.
+History curve_history() {
+    return History(
+        {{"t"}, {"area"}, {"length"}, {"components", true}, {"segments", true}, {"cpu_s"}});
+}
+
+/// Adds the curves at time t to h, with the CPU seconds the step took.
+void add_row(History& h, double t, const Interface& curves, double cpu) {
+    h.add({t, area(curves), length(curves), static_cast<double>(curves.curve_count()),
+           static_cast<double>(curves.size()), cpu});
+}
 
 /// The problem's law: spec when given (a user's curves), else the problem's built-in one.
 std::unique_ptr<VelocityLaw> law_of(const Problem& p, const std::optional<LawSpec>& spec) {
@@ -81,12 +70,12 @@ py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const
     const std::optional<RunOptions> coarse =
         estimate ? std::optional(resolution_options(options, -1)) : std::nullopt;
 
-    History history;
-    history.add(options.t_start, initial, 0.0);
+    History history = curve_history();
+    add_row(history, options.t_start, initial, 0.0);
     py::list frame_list;
     if (frames > 0) frame_list.append(py::make_tuple(options.t_start, arrays_of(initial)));
     const Observer observer = [&](const StepReport& s) {
-        history.add(s.t, *s.curves, s.step_cpu_s);
+        add_row(history, s.t, *s.curves, s.step_cpu_s);
         py::gil_scoped_acquire hold;
         if (frames > 0 && (std::int64_t{s.step} * frames) % s.steps < frames)
             frame_list.append(py::make_tuple(s.t, arrays_of(*s.curves)));
@@ -166,26 +155,14 @@ py::dict study_problem(const Problem& p, int rows, const RunOverrides& q, int th
     }
     py::list cells;
     for (const StudyCell& c : s.cells) cells.append(cell_dict(c));
-    auto order_table = [&s](auto order, int columns) {
-        py::list table;
-        for (int r = 0; r < s.rows; ++r) {
-            py::list row;
-            for (int c = 0; c < columns; ++c) {
-                const std::optional<double> o = order(r, c);
-                row.append(o ? py::cast(*o) : py::object(py::none()));
-            }
-            table.append(row);
-        }
-        return table;
-    };
     py::dict out;
     out["rows"] = s.rows;
     out["columns"] = s.columns;
     out["cells"] = cells;
     out["row_orders"] =
-        order_table([&s](int r, int c) { return s.row_order(r, c); }, s.columns - 1);
+        order_table([&s](int r, int c) { return s.row_order(r, c); }, s.rows, s.columns - 1);
     out["column_orders"] = order_table(
-        [&s](int r, int c) { return r + 1 < s.rows ? s.column_order(r, c) : std::nullopt; },
+        [&s](int r, int c) { return r + 1 < s.rows ? s.column_order(r, c) : std::nullopt; }, s.rows,
         s.columns);
     return out;
 }

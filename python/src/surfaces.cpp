@@ -47,27 +47,16 @@ SurfaceRunOptions resolve(const SurfaceSubject& s, const RunOverrides& q) {
 }
 
 /// The history of a run of a surface: t, volume, area, triangles, components, cpu_s per row.
-struct SurfaceHistory {
-    std::vector<double> t, volume, area, triangles, components, cpu_s;
-    void add(double time, const Surface& s, double cpu) {
-        t.push_back(time);
-        volume.push_back(slc::volume(s));
-        area.push_back(slc::area(s));
-        triangles.push_back(static_cast<double>(s.size()));
-        components.push_back(s.empty() ? 0.0 : static_cast<double>(component_count(s)));
-        cpu_s.push_back(cpu);
-    }
-    py::dict arrays() const {
-        py::dict h;
-        h["t"] = array_of(std::span<const double>(t));
-        h["volume"] = array_of(std::span<const double>(volume));
-        h["area"] = array_of(std::span<const double>(area));
-        h["triangles"] = array_of(std::span<const double>(triangles)).attr("astype")("int64");
-        h["components"] = array_of(std::span<const double>(components)).attr("astype")("int64");
-        h["cpu_s"] = array_of(std::span<const double>(cpu_s));
-        return h;
-    }
-};
+History surface_history() {
+    return History(
+        {{"t"}, {"volume"}, {"area"}, {"triangles", true}, {"components", true}, {"cpu_s"}});
+}
+
+/// Adds the surface at time t to h, with the CPU seconds the step took.
+void add_row(History& h, double t, const Surface& s, double cpu) {
+    h.add({t, volume(s), area(s), static_cast<double>(s.size()),
+           s.empty() ? 0.0 : static_cast<double>(component_count(s)), cpu});
+}
 
 /// (vertices, triangles, notes) of a valid surface made of the arrays, oriented outward;
 /// ValueError naming the triangle, edge or vertex at fault.
@@ -189,8 +178,8 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& 
     for (const Vec3& v : initial.vertices) {
         if (!p.domain.contains(v)) throw InvalidInput("the surface leaves the domain it runs in");
     }
-    SurfaceHistory history;
-    history.add(options.t_start, initial, 0.0);
+    History history = surface_history();
+    add_row(history, options.t_start, initial, 0.0);
     py::list frame_list;
     if (frames > 0) {
         const py::tuple a = surface_arrays(initial);
@@ -200,7 +189,7 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& 
     const SurfaceObserver observer = [&](const SurfaceStepReport& s) {
         const double cpu = s.run->cpu_s - cpu_before;
         cpu_before = s.run->cpu_s;
-        history.add(s.t, *s.surface, cpu);
+        add_row(history, s.t, *s.surface, cpu);
         py::gil_scoped_acquire hold;
         if (frames > 0 && (std::int64_t{s.step} * frames) % s.steps < frames) {
             const py::tuple a = surface_arrays(*s.surface);
@@ -320,26 +309,14 @@ py::dict study_surface_problem(const SurfaceSubject& subject, int rows, int colu
     }
     py::list cells;
     for (const SurfaceStudyCell& c : s.cells) cells.append(surface_cell_dict(c));
-    auto table = [](auto order, int n_rows, int n_columns) {
-        py::list out;
-        for (int r = 0; r < n_rows; ++r) {
-            py::list row;
-            for (int c = 0; c < n_columns; ++c) {
-                const std::optional<double> o = order(r, c);
-                row.append(o ? py::cast(*o) : py::object(py::none()));
-            }
-            out.append(row);
-        }
-        return out;
-    };
     py::dict out;
     out["rows"] = s.rows;
     out["columns"] = s.columns;
     out["cells"] = cells;
     out["row_orders"] =
-        table([&s](int r, int c) { return s.row_order(r, c); }, s.rows, s.columns - 1);
+        order_table([&s](int r, int c) { return s.row_order(r, c); }, s.rows, s.columns - 1);
     out["column_orders"] =
-        table([&s](int r, int c) { return s.column_order(r, c); }, s.rows - 1, s.columns);
+        order_table([&s](int r, int c) { return s.column_order(r, c); }, s.rows - 1, s.columns);
     return out;
 }
 
