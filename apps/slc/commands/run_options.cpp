@@ -28,19 +28,23 @@ const std::map<std::string, GeometryModule> geometry_names = {
 }  // namespace
 
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
-    cmd.add_option("-N,--steps", o.settings.steps, "N: time steps on [0, a] (problem's default)")
+    cmd.add_option("-N,--steps", o.settings.steps,
+                   "N: time steps on [0, a] (a problem's own; for --initial 40 for curves and 20 "
+                   "for a surface, under every law)")
         ->check(integer_in(setting_range::steps));
     cmd.add_option("-K,--depth", o.settings.depth,
-                   fmt::format("K: depth of the contouring tree (problem's default; {} to {} for "
-                               "curves, {} to {} for surfaces)",
+                   fmt::format("K: depth of the contouring tree (a problem's own; 5 for --initial; "
+                               "{} to {} for curves, {} to {} for surfaces)",
                                setting_range::curve_depth.lo, setting_range::curve_depth.hi,
                                setting_range::surface_depth.lo, setting_range::surface_depth.hi))
         ->check(
             integer_in(setting_range::curve_depth.lo,
                        std::max(setting_range::curve_depth.hi, setting_range::surface_depth.hi)));
-    cmd.add_option("-P,--refine", o.settings.refine,
-                   "P: passes of adaptive refinement, or 'converged': until every segment "
-                   "midpoint is within eps (a named problem's own P; converged for --initial)")
+    cmd.add_option(
+           "-P,--refine", o.settings.refine,
+           "P: passes of adaptive refinement, or 'converged': until every segment "
+           "midpoint is within eps (a named problem's own P; for --initial converged, or 2 for "
+           "curves under a law of curvature)")
         ->transform(CLI::Validator(
             [](std::string& text) {
                 if (text == "converged") {
