@@ -116,17 +116,6 @@ py::dict surface_measures(const Array& vertices, const IndexArray& triangles) {
     return d;
 }
 
-/// The cube a user's surface runs in: about its bounding box, 1.5 times its largest half-side
-/// (as `slc run --initial S.obj` without --domain).
-Box3 default_cube(const Surface& s) {
-    const Box3 b = bounding_box(s);
-    const double half = 0.75 * std::max({b.extent(0), b.extent(1), b.extent(2)});
-    if (!(2.0 * half >= tolerance::min_domain_width))
-        throw InvalidInput(
-            fmt::format("the surface spans only {:.3g}: scale it", 2.0 * half / 1.5));
-    return Box3::cube(b.center(), half);
-}
-
 std::shared_ptr<SurfaceSubject> named_surface_problem(const std::string& name,
                                                       const VelocityParams& params) {
     auto s = std::make_shared<SurfaceSubject>();
@@ -150,7 +139,7 @@ std::shared_ptr<SurfaceSubject> user_surface_problem(const Array& vertices,
     }
     s->problem.law = make_surface_law(spec);
     s->problem.name = spec.name;
-    s->problem.domain = default_cube(surface);
+    s->problem.domain = default_domain(bounding_box(surface));
     s->problem.initial = std::move(surface);
     s->problem.t_end = t_end;
     s->t_start = t_start;

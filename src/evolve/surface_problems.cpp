@@ -10,6 +10,7 @@
 
 #include "slc/contour/surface_contour.hpp"
 #include "slc/core/error.hpp"
+#include "slc/core/tolerances.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/velocity/surface_laws.hpp"
@@ -237,6 +238,16 @@ Surface initial_surface(const SurfaceProblem& p, const SurfaceContourOptions& op
     // Its vertices are the first step's, which differentiates them (advance_contours).
     if (!o.eta) o.eta = SurfaceContourOptions::default_eta;
     return contour_surface(g, p.domain, o).surface;
+}
+
+Box3 default_domain(const Box3& b) {
+    const double half = 0.75 * std::max({b.extent(0), b.extent(1), b.extent(2)});
+    if (!(2.0 * half >= tolerance::min_domain_width)) {
+        throw InvalidInput(fmt::format(
+            "the surface spans only {:.3g}: give --domain or --box at least {:g} wide, or scale it",
+            2.0 * half / 1.5, tolerance::min_domain_width));
+    }
+    return Box3::cube(b.center(), half);
 }
 
 double length_scale(const Surface& surface) {

@@ -13,6 +13,7 @@
 #include "slc/core/parallel.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/evolve/defaults.hpp"
+#include "slc/evolve/surface_problems.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/geometry/validate_surface.hpp"
 #include "slc/io/interface_json.hpp"
@@ -109,13 +110,7 @@ Box3 resolve_domain3(const DomainOptions& options, const Box3& bounds) {
         return Box3::centered_cube(b);
     }
     if (options.box) return parse_box3(*options.box);
-    double half = 0.75 * std::max({bounds.extent(0), bounds.extent(1), bounds.extent(2)});
-    if (!(2.0 * half >= tolerance::min_domain_width)) {
-        throw InvalidInput(fmt::format(
-            "the surface spans only {:.3g}: give --domain or --box at least {:g} wide, or scale it",
-            2.0 * half / 1.5, tolerance::min_domain_width));
-    }
-    return Box3::cube(bounds.center(), half);
+    return default_domain(bounds);
 }
 
 LoadedSurface load_surface(const std::string& path, const DomainOptions& domain) {

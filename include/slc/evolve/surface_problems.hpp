@@ -69,6 +69,11 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
 /// contour_surface() does.
 Surface initial_surface(const SurfaceProblem& problem, const SurfaceContourOptions& options);
 
+/// The default domain of a user's surface whose bounding box is `bounds`: the cube centred on it
+/// with 1.5 times its largest half-side, as default_domain of curves. Throws InvalidInput when
+/// the surface spans less than tolerance::min_domain_width.
+Box3 default_domain(const Box3& bounds);
+
 /// ℓ, the largest half-side of the surface's bounding box: the length a user's surface's
 /// defaults scale with. Precondition: surface is not empty.
 double length_scale(const Surface& surface);
