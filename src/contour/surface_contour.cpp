@@ -20,7 +20,7 @@
 #include "slc/core/parallel.hpp"
 #include "slc/geometry/surface.hpp"
 #include "slc/geometry/triangle3.hpp"
-#include "slc/tree/octree.hpp"
+#include "slc/tree/orthtree.hpp"
 #include "slc/tree/tetrahedralization.hpp"
 #include "surface_stages.hpp"
 
@@ -249,7 +249,7 @@ private:
     void for_points(std::uint32_t c, F f) const {
         const auto& cell = tree_.cell(c);
         const std::uint64_t u = std::uint64_t{1} << (shift_ - cell.level);
-        const std::uint64_t x = cell.ix * u, y = cell.iy * u, z = cell.iz * u;
+        const std::uint64_t x = cell.coords[0] * u, y = cell.coords[1] * u, z = cell.coords[2] * u;
         auto at = [&](std::uint64_t gx, std::uint64_t gy, std::uint64_t gz) {
             const Vec3 lo = tree_.root_box().lo;
             f(Tetrahedralization::key(gx, gy, gz),

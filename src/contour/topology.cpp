@@ -276,7 +276,8 @@ private:
     };
     Keys sample_keys(std::uint32_t c, bool with_centre = false) const {
         const auto& cell = tree_.cell(c);
-        const std::uint64_t u = grid_.units(cell.level), x0 = cell.ix * u, y0 = cell.iy * u;
+        const std::uint64_t u = grid_.units(cell.level), x0 = cell.coords[0] * u,
+                            y0 = cell.coords[1] * u;
         const bool centre = with_centre || cell.level < tree_.max_depth();
         return {{SampleGrid::key(x0, y0), SampleGrid::key(x0 + u, y0), SampleGrid::key(x0, y0 + u),
                  SampleGrid::key(x0 + u, y0 + u), SampleGrid::key(x0 + u / 2, y0 + u / 2)},
