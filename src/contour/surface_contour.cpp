@@ -1,5 +1,6 @@
 // contour_surface(): topology resolution in space (paper §2.1 with d = 3) — the octree split by
-// min|G| against γ·edge with γ doubled until it is 2:1 balanced, its tetrahedral mesh, G at the
+// min|G| against γ·edge with γ doubled until it is 2:1 balanced (tree_sampler.hpp, written once
+// with the plane), thin cells split beyond K where G bends, its tetrahedral mesh, G at the
 // mesh vertices, perturbation of vertices where |G| ≤ η, the boundary check — and marching
 // tetrahedra with roots on the tetrahedra's edges.
 #include "slc/contour/surface_contour.hpp"
@@ -23,18 +24,17 @@
 #include "slc/tree/orthtree.hpp"
 #include "slc/tree/tetrahedralization.hpp"
 #include "surface_stages.hpp"
+#include "tree_sampler.hpp"
 
 namespace slc {
 namespace {
 
-/// After this many doublings of γ (a factor of about 10^7) the tree is balanced by brute force.
-constexpr int max_gamma_doublings = 24;
 /// Perturbation: the first displacement is this fraction of the finest cell edge, doubled at each
 /// attempt; after max_perturbations attempts it is 3.2% of that edge, well below the smallest
 /// altitude of the mesh's tetrahedra (an eighth of the finest edge), so the mesh stays valid.
 constexpr double first_perturbation = 1e-3;
 constexpr int max_perturbations = 6;
-/// A cell's G bends (TreeSampler::bends) when a body diagonal's centre is nearer zero than its
+/// A cell's G bends (SurfaceSampler::bends) when a body diagonal's centre is nearer zero than its
 /// ends' mean by this fraction of the half-diagonal.
 constexpr double thin_dip = 0.25;
 
@@ -77,106 +77,19 @@ void validate(const SurfaceContourOptions& o, const Box3& domain) {
 
 using Evaluator = contouring::SpaceEvaluator;
 
-/// What a cell's samples say of G bending within it (TreeSampler::bends).
+/// What a cell's samples say of G bending within it (SurfaceSampler::bends).
 enum class Bend { no, yes, unsure };
 
-/// G, or a stand-in for it, at a sample point of the tree.
-struct Sample {
-    double value;  ///< G, or a stand-in: a lower bound of |G| with G's sign
-    double upper;  ///< |G| ≤ upper: |value| when exact
-    bool exact;    ///< value is G
-};
-/// A point waiting for G.
-constexpr Sample pending{std::numeric_limits<double>::quiet_NaN(),
-                         std::numeric_limits<double>::infinity(), false};
+using contouring::Sample;
 
-/// G at the grid points of the tree's cells (corners and centres, on the grid of half the finest
-/// edge), each point evaluated at most once and only where a split test, the sign of a
-/// tetrahedron or root finding needs it, and the least |G| at each cell's nine points.
-///
-/// With SurfaceContourOptions::distance_slack δ, |G(x) − G(y)| ≤ |x − y| + δ, so a new point x
-/// near a known sample y has |G(y)| − |x − y| − δ ≤ |G(x)| ≤ |G(y)| + |x − y| + δ and, when the
-/// lower bound exceeds η, G(y)'s sign: the lower bound with that sign stands in for G. A cell's
-/// split test needs no value where some sample's upper bound is below its threshold γ·edge (it
-/// splits), nor where a stand-in's lower bound reaches it; the stand-ins it does need are
-/// evaluated first (settle_tests). So every split is the one exact values give, and the tree is
-/// the same; far from the surface, cells are settled by their parents' samples without G.
-class TreeSampler {
+/// The tree sampler of space (TreeSampler<3>: every cell samples its eight corners and its
+/// centre), and what thin cells and the tetrahedra need of it.
+class SurfaceSampler : public contouring::TreeSampler<3> {
 public:
     /// γ splits cells down to level `limit` (K); the tree may go deeper (thin cells).
-    TreeSampler(const Octree& tree, const Evaluator& g, std::optional<double> slack, double eta,
-                int limit)
-        : tree_(tree),
-          g_(g),
-          shift_(tree.max_depth() + 1),
-          step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)),
-          slack_(slack),
-          eta_(eta),
-          limit_(limit) {}
-
-    /// Samples the given cells (the root, or children of sampled cells): new points whose sign
-    /// their parent's samples do not give are evaluated, in one batch.
-    void sample(std::span<const std::uint32_t> cells) {
-        ids_.resize(tree_.size(), no_samples);
-        min_abs_.resize(tree_.size(), 0.0);
-        // New points in cell order, each with the cell that met it first.
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> fresh;  // (id, cell)
-        for (std::uint32_t c : cells) {
-            int j = 0;
-            for_points(c, [&](std::uint64_t key, Vec3 p) {
-                const auto [id, is_new] =
-                    index_.try_emplace(key, static_cast<std::uint32_t>(samples_.size()));
-                if (is_new) {
-                    samples_.push_back(pending);
-                    points_.push_back(p);
-                    fresh.emplace_back(*id, c);
-                }
-                ids_[c][j++] = *id;
-            });
-        }
-        // Stand-ins from the samples of the parent of that cell, on all threads.
-        if (slack_) {
-            parallel_for(fresh.size(), [&](std::size_t i) {
-                const auto [id, c] = fresh[i];
-                if (c == 0) return;  // the root has no parent
-                if (const auto s = from_donors(points_[id], ids_[tree_.cell(c).parent]))
-                    samples_[id] = *s;
-            });
-        }
-        std::vector<std::uint32_t> open;
-        for (const auto& [id, c] : fresh)
-            if (std::isnan(samples_[id].value)) open.push_back(id);
-        evaluate(open);
-        for (std::uint32_t c : cells) update_min(c);
-    }
-
-    /// Before cells are tested against γ: evaluates the stand-ins a test would rest on, in one
-    /// batch, so that each test decides what exact values would.
-    void settle_tests(std::span<const std::uint32_t> cells, double gamma) {
-        if (!slack_) return;
-        std::vector<std::uint32_t> touched, open;
-        for (std::uint32_t c : cells) {
-            const int level = tree_.cell(c).level;
-            const double threshold = gamma * tree_.edge(level);
-            if (level >= limit_ || !(threshold > min_abs_[c])) continue;
-            touched.push_back(c);
-            const auto& ids = ids_[c];
-            if (std::any_of(ids.begin(), ids.end(),
-                            [&](std::uint32_t id) { return samples_[id].upper < threshold; }))
-                continue;  // the cell splits whatever G is at its stand-ins
-            for (std::uint32_t id : ids) {
-                Sample& s = samples_[id];
-                if (!s.exact && !std::isnan(s.value) && std::abs(s.value) < threshold) {
-                    s = pending;
-                    open.push_back(id);
-                }
-            }
-        }
-        evaluate(open);
-        for (std::uint32_t c : touched) update_min(c);
-    }
-
-    double min_abs(std::uint32_t c) const { return min_abs_[c]; }
+    SurfaceSampler(const Octree& tree, const Evaluator& g, std::optional<double> distance_slack,
+                   double rounding, double eta, int limit)
+        : TreeSampler<3>(tree, g, std::nullopt, distance_slack, rounding, eta, limit) {}
 
     /// Whether G bends within cell c: along a body diagonal, the ends and the centre of one sign
     /// and the centre nearer zero than the ends' mean by more than thin_dip of the
@@ -186,7 +99,7 @@ public:
     /// centre's |G| at most the half-diagonal). From the samples' bounds: unsure when stand-ins
     /// leave it open, and then the stand-ins that would settle it are appended to `wanted`.
     Bend bends(std::uint32_t c, std::vector<std::uint32_t>& wanted) const {
-        const auto& ids = ids_[c];
+        const CellSamples& ids = cell_samples_[c];
         const Sample& m = samples_[ids[8]];
         const double half_diagonal = 0.5 * std::sqrt(3.0) * tree_.edge(tree_.cell(c).level);
         if (std::abs(m.value) > half_diagonal) return Bend::no;
@@ -207,7 +120,7 @@ public:
             if (!(most > threshold)) continue;
             unsure = true;
             for (const std::uint32_t id : {ids[k], ids[7 - k], ids[8]})
-                if (!samples_[id].exact) wanted.push_back(id);
+                if (!samples_[id].is_exact()) wanted.push_back(id);
         }
         return unsure ? Bend::unsure : Bend::no;
     }
@@ -217,150 +130,31 @@ public:
     void make_exact(std::vector<std::uint32_t> ids, std::span<const std::uint32_t> cells) {
         std::sort(ids.begin(), ids.end());
         ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-        for (std::uint32_t id : ids) samples_[id] = pending;
+        for (std::uint32_t id : ids) samples_[id] = contouring::pending;
         evaluate(ids);
         for (std::uint32_t c : cells) update_min(c);
     }
     /// Tree points with a stand-in rather than G.
     std::size_t settled() const {
-        return static_cast<std::size_t>(std::count_if(samples_.begin(), samples_.end(),
-                                                      [](const Sample& s) { return !s.exact; }));
+        return static_cast<std::size_t>(std::count_if(
+            samples_.begin(), samples_.end(), [](const Sample& s) { return !s.is_exact(); }));
     }
-    /// The sample at a grid point, or nullptr.
+    /// The sample at a grid point (Tetrahedralization::key), or nullptr.
     const Sample* at(std::uint64_t key) const {
         const std::uint32_t* id = index_.find(key);
         return id ? &samples_[*id] : nullptr;
     }
     /// A stand-in for G at x from the samples of leaf c, when they give its sign.
     std::optional<Sample> stand_in(Vec3 x, std::uint32_t c) const {
-        if (!slack_) return std::nullopt;
-        return from_donors(x, ids_[c]);
+        return from_donors(x, donors_of(cell_samples_[c]));
     }
-
-private:
-    static constexpr double infinity = std::numeric_limits<double>::infinity();
-    static constexpr std::uint32_t no_sample = 0xffffffffu;
-    static constexpr std::array<std::uint32_t, 9> no_samples{no_sample, no_sample, no_sample,
-                                                             no_sample, no_sample, no_sample,
-                                                             no_sample, no_sample, no_sample};
-
-    /// f(key, point) for the eight corners and the centre of cell c.
-    template <class F>
-    void for_points(std::uint32_t c, F f) const {
-        const auto& cell = tree_.cell(c);
-        const std::uint64_t u = std::uint64_t{1} << (shift_ - cell.level);
-        const std::uint64_t x = cell.coords[0] * u, y = cell.coords[1] * u, z = cell.coords[2] * u;
-        auto at = [&](std::uint64_t gx, std::uint64_t gy, std::uint64_t gz) {
-            const Vec3 lo = tree_.root_box().lo;
-            f(Tetrahedralization::key(gx, gy, gz),
-              Vec3{lo.x + static_cast<double>(gx) * step_, lo.y + static_cast<double>(gy) * step_,
-                   lo.z + static_cast<double>(gz) * step_});
-        };
-        for (std::uint64_t k = 0; k < 8; ++k)
-            at(x + (k & 1) * u, y + (k >> 1 & 1) * u, z + (k >> 2) * u);
-        at(x + u / 2, y + u / 2, z + u / 2);
-    }
-
-    /// The bounds the samples ids give on G at x: a stand-in when they give its sign (a lower
-    /// bound above η, so that the point is never a perturbation candidate).
-    std::optional<Sample> from_donors(Vec3 x, const std::array<std::uint32_t, 9>& ids) const {
-        double lower = 0.0, sign = 0.0, upper = infinity;
-        for (std::uint32_t id : ids) {
-            const Sample& d = samples_[id];
-            const double reach = norm(x - points_[id]) + *slack_;
-            const double b = std::abs(d.value) - reach;
-            if (b > lower) {
-                lower = b;
-                sign = d.value;
-            }
-            upper = std::min(upper, d.upper + reach);
-        }
-        if (!(lower > eta_)) return std::nullopt;
-        return Sample{std::copysign(lower, sign), upper, false};
-    }
-
-    void update_min(std::uint32_t c) {
-        double least = infinity;
-        for (std::uint32_t id : ids_[c]) least = std::min(least, std::abs(samples_[id].value));
-        min_abs_[c] = least;
-    }
-
-    void evaluate(std::span<const std::uint32_t> ids) {
-        std::vector<Vec3> points;
-        points.reserve(ids.size());
-        for (std::uint32_t id : ids) points.push_back(points_[id]);
-        std::vector<double> values(points.size());
-        g_(points, values);
-        for (std::size_t i = 0; i < ids.size(); ++i)
-            samples_[ids[i]] = Sample{values[i], std::abs(values[i]), true};
-    }
-
-    const Octree& tree_;
-    const Evaluator& g_;
-    int shift_;
-    double step_;
-    std::optional<double> slack_;
-    double eta_;
-    int limit_;
-    KeyMap<std::uint32_t> index_;
-    std::vector<Sample> samples_;
-    std::vector<Vec3> points_;
-    /// Per cell, the ids of its eight corners and its centre (for_points' order).
-    std::vector<std::array<std::uint32_t, 9>> ids_;
-    std::vector<double> min_abs_;
 };
 
-/// Splits, level by level from the frontier down to level `limit`, every cell whose edge exceeds
-/// min|G|/γ.
-void split_while_coarse(Octree& tree, TreeSampler& sampler, std::vector<std::uint32_t> frontier,
-                        double gamma, int limit) {
-    while (!frontier.empty()) {
-        sampler.sample(frontier);
-        sampler.settle_tests(frontier, gamma);
-        std::vector<std::uint32_t> next;
-        for (std::uint32_t c : frontier) {
-            const int level = tree.cell(c).level;
-            if (level < limit && gamma * tree.edge(level) > sampler.min_abs(c)) {
-                const std::uint32_t first = tree.split(c);
-                for (std::uint32_t k = 0; k < 8; ++k) next.push_back(first + k);
-            }
-        }
-        frontier = std::move(next);
-    }
-}
-
-/// Builds the tree down to level `limit`, doubling γ until it is balanced; the split criterion is
-/// monotone in γ, so each doubling offers the leaves to it again. Returns γ.
-double build_tree(Octree& tree, TreeSampler& sampler, double gamma, int limit) {
-    split_while_coarse(tree, sampler, {0}, gamma, limit);
-    for (int doubling = 0; !tree.is_balanced(); ++doubling) {
-        if (doubling == max_gamma_doublings) {
-            tree.balance();
-            break;
-        }
-        gamma *= 2.0;
-        std::vector<std::uint32_t> leaves;
-        for (std::uint32_t c : tree.leaves())
-            if (tree.cell(c).level < limit) leaves.push_back(c);
-        sampler.settle_tests(leaves, gamma);
-        // Leaves are sampled already: test them, then sample and test their children.
-        std::vector<std::uint32_t> next;
-        for (std::uint32_t c : leaves) {
-            if (gamma * tree.edge(tree.cell(c).level) > sampler.min_abs(c)) {
-                const std::uint32_t first = tree.split(c);
-                for (std::uint32_t k = 0; k < 8; ++k) next.push_back(first + k);
-            }
-        }
-        split_while_coarse(tree, sampler, std::move(next), gamma, limit);
-    }
-    return gamma;
-}
-
 /// Splits the leaves at level `limit` near the zero set (min|G| below γ times their edge) where G
-/// bends within them (TreeSampler::bends), and their children where it still does, down to the
+/// bends within them (SurfaceSampler::bends), and their children where it still does, down to the
 /// tree's deepest level; then balances the tree again, sampling the cells balancing makes.
 /// Returns the cells split.
-std::size_t split_thin(Octree& tree, TreeSampler& sampler, double gamma, int limit) {
+std::size_t split_thin(Octree& tree, SurfaceSampler& sampler, double gamma, int limit) {
     std::vector<std::uint32_t> frontier;
     for (std::uint32_t c : tree.leaves())
         if (tree.cell(c).level == limit && gamma * tree.edge(limit) > sampler.min_abs(c))
@@ -466,10 +260,8 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
     Octree tree(domain, options.depth + thin_depth);
     // The slack allows for rounding in G too: a few thousand ulps of the domain's coordinates.
     const double rounding = 1e-12 * std::max(domain.largest_magnitude(), domain.width());
-    const std::optional<double> slack =
-        options.distance_slack ? std::optional(*options.distance_slack + rounding) : std::nullopt;
-    TreeSampler sampler(tree, tree_g, slack, eta, options.depth);
-    stats.gamma = build_tree(tree, sampler, options.gamma, options.depth);
+    SurfaceSampler sampler(tree, tree_g, options.distance_slack, rounding, eta, options.depth);
+    stats.gamma = contouring::build_tree(tree, sampler, options.gamma);
     stats.thin_cells = split_thin(tree, sampler, stats.gamma, options.depth);
     stats.cells = tree.size();
     stats.leaves = tree.leaves().size();
@@ -508,7 +300,7 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
                     s ? std::optional(*s) : sampler.stand_in(mesh.vertices[v], c);
                 if (!guess) continue;
                 values[v] = guess->value;
-                exact[v] = guess->exact ? 1 : 0;
+                exact[v] = guess->is_exact() ? 1 : 0;
                 guessed[v] = 1;
             }
         });
