@@ -102,7 +102,7 @@ public:
     }
     /// A stand-in for G at x from the samples of leaf c, when they give its sign.
     std::optional<Sample> stand_in(Vec3 x, std::uint32_t c) const {
-        return from_donors(x, donors_of(cell_samples_[c]));
+        return from_donors(x, cell_samples_[c]);
     }
 };
 

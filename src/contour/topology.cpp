@@ -48,13 +48,13 @@ public:
         // threads.
         const std::size_t first = samples_.size();
         samples_.resize(first + finest.size(), pending);
-        keys_.resize(first + finest.size());
+        points_.resize(first + finest.size());
         parallel_for(finest.size(), [&](std::size_t i) {
             const std::uint32_t c = finest[i];
             const auto id = static_cast<std::uint32_t>(first + i);
             CellSamples& ids = cell_samples_[c];
             ids[4] = id;
-            keys_[id] = sample_keys(c, true).k[4];
+            points_[id] = grid_.point(sample_keys(c, true).at[4]);
             double lo = infinity, hi = -infinity;
             for (int j = 0; j < 4; ++j) {
                 lo = std::min(lo, samples_[ids[j]].value);
@@ -62,8 +62,7 @@ public:
             }
             if (lo > clearance || hi < -clearance) {
                 samples_[id] = Sample{lo > 0.0 ? lo : hi, infinity, Source::parents};
-            } else if (const auto stand_in =
-                           from_donors(point(id), donors_of(std::span(ids).first(4)))) {
+            } else if (const auto stand_in = from_donors(points_[id], std::span(ids).first(4))) {
                 samples_[id] = *stand_in;
             }
         });

@@ -26,7 +26,7 @@ TreeSampler<dim>::TreeSampler(const Tree& tree, FunctionRef g, std::optional<Bou
     // Room for the samples of a large contour up front: pages are touched only as the samples
     // come, and the arrays are never copied as they grow.
     samples_.reserve(reserved_samples);
-    keys_.reserve(reserved_samples);
+    points_.reserve(reserved_samples);
 }
 
 template <int dim>
@@ -46,7 +46,7 @@ void TreeSampler<dim>::sample(std::span<const std::uint32_t> cells) {
         const Keys keys = sample_keys(c);
         for (std::size_t j = 0; j < keys.n; ++j) {
             const auto [id, is_new] =
-                parent == Tree::no_cell ? add_point(keys.k[j]) : child_point(c, j, keys.k[j]);
+                parent == Tree::no_cell ? add_point(keys, j) : child_point(c, keys, j);
             cell_samples_[c][j] = id;
             if (is_new) fresh[i] |= static_cast<std::uint16_t>(1u << j);
         }
@@ -55,11 +55,12 @@ void TreeSampler<dim>::sample(std::span<const std::uint32_t> cells) {
         cells.size(),
         [&](std::size_t i) {
             if (fresh[i] == 0 || cells[i] == 0) return;  // the root has no donors
-            const Donors donors = donors_of(samples_of(tree_.cell(cells[i]).parent));
+            const auto donors = samples_of(tree_.cell(cells[i]).parent);
             for (std::size_t j = 0; j < cell_points; ++j) {
                 if ((fresh[i] >> j & 1u) == 0) continue;
                 const std::uint32_t id = cell_samples_[cells[i]][j];
-                if (const auto stand_in = from_donors(point(id), donors)) samples_[id] = *stand_in;
+                if (const auto stand_in = from_donors(points_[id], donors))
+                    samples_[id] = *stand_in;
             }
         },
         parallel_grain);
@@ -115,39 +116,39 @@ auto TreeSampler<dim>::sample_keys(std::uint32_t c, bool with_centre) const -> K
     }
     Keys keys;
     for (std::uint32_t j = 0; j < Tree::children; ++j) {
-        Coords corner = lo;
-        for (int i = 0; i < dim; ++i) corner[i] += ((j >> i) & 1u) * u;
-        keys.k[j] = SampleGrid<dim>::key(corner);
+        keys.at[j] = lo;
+        for (int i = 0; i < dim; ++i) keys.at[j][i] += ((j >> i) & 1u) * u;
     }
-    keys.k[Tree::children] = SampleGrid<dim>::key(centre);
+    keys.at[Tree::children] = centre;
+    for (std::size_t j = 0; j < cell_points; ++j) keys.k[j] = SampleGrid<dim>::key(keys.at[j]);
     const bool has_centre = with_centre || centres_at_depth_limit || cell.level < tree_.max_depth();
     keys.n = has_centre ? cell_points : cell_points - 1;
     return keys;
 }
 
 template <int dim>
-std::pair<std::uint32_t, bool> TreeSampler<dim>::add_point(std::uint64_t key) {
-    const auto [id, is_new] = index_.try_emplace(key, static_cast<std::uint32_t>(samples_.size()));
-    if (is_new) {
-        samples_.push_back(pending);
-        keys_.push_back(key);
-    }
+std::uint32_t TreeSampler<dim>::add_pending(const Keys& keys, std::size_t j) {
+    samples_.push_back(pending);
+    points_.push_back(grid_.point(keys.at[j]));
+    return static_cast<std::uint32_t>(samples_.size() - 1);
+}
+
+template <int dim>
+std::pair<std::uint32_t, bool> TreeSampler<dim>::add_point(const Keys& keys, std::size_t j) {
+    const auto [id, is_new] =
+        index_.try_emplace(keys.k[j], static_cast<std::uint32_t>(samples_.size()));
+    if (is_new) add_pending(keys, j);
     return {*id, is_new};
 }
 
 template <int dim>
-std::uint32_t TreeSampler<dim>::add_centre(std::uint64_t key) {
-    const auto id = static_cast<std::uint32_t>(samples_.size());
-    if constexpr (centres_in_table) index_.try_emplace(key, id);
-    samples_.push_back(pending);
-    keys_.push_back(key);
-    return id;
-}
-
-template <int dim>
-std::pair<std::uint32_t, bool> TreeSampler<dim>::child_point(std::uint32_t c, std::size_t j,
-                                                             std::uint64_t key) {
-    if (j == Tree::children) return {add_centre(key), true};
+std::pair<std::uint32_t, bool> TreeSampler<dim>::child_point(std::uint32_t c, const Keys& keys,
+                                                             std::size_t j) {
+    if (j == Tree::children) {
+        const std::uint32_t id = add_pending(keys, j);
+        if constexpr (centres_in_table) index_.try_emplace(keys.k[j], id);
+        return {id, true};
+    }
     const auto& cell = tree_.cell(c);
     const std::uint32_t k = c - tree_.cell(cell.parent).first_child;
     // Along axis i the corner is at 0, 1 or 2 half parent edges: at 0 or 2 along every axis it
@@ -163,7 +164,7 @@ std::pair<std::uint32_t, bool> TreeSampler<dim>::child_point(std::uint32_t c, st
     const CellSamples& parent = cell_samples_[cell.parent];
     if (halves == 0) return {parent[corner], false};
     if (halves == dim) return {parent[Tree::children], false};
-    return add_point(key);
+    return add_point(keys, j);
 }
 
 template <int dim>
@@ -185,25 +186,15 @@ void TreeSampler<dim>::for_needed_stand_ins(std::span<const std::uint32_t> touch
 }
 
 template <int dim>
-auto TreeSampler<dim>::donors_of(std::span<const std::uint32_t> ids) const -> Donors {
-    Donors d;
-    if (!slack_) return d;
-    for (std::uint32_t id : ids) {
-        const Sample& s = samples_[id];
-        if (std::isnan(s.value)) continue;
-        d.at[d.n] = point(id);
-        d.upper[d.n] = s.upper;
-        d.value[d.n++] = s.value;
-    }
-    return d;
-}
-
-template <int dim>
-std::optional<Sample> TreeSampler<dim>::from_donors(Point x, const Donors& donors) const {
+std::optional<Sample> TreeSampler<dim>::from_donors(Point x,
+                                                    std::span<const std::uint32_t> ids) const {
+    if (!slack_) return std::nullopt;
     double lower = 0.0, sign = 0.0, upper = infinity;
-    for (std::size_t i = 0; i < donors.n; ++i) {
+    for (const std::uint32_t id : ids) {
+        const Sample& donor = samples_[id];
+        if (std::isnan(donor.value)) continue;  // pending: not known yet
         // |r| to within an ulp, which the slack covers: √(r·r) in the plane, std::hypot in space.
-        const Point r = x - donors.at[i];
+        const Point r = x - points_[id];
         double length;
         if constexpr (dim == 2) {
             length = std::sqrt(dot(r, r));
@@ -211,12 +202,12 @@ std::optional<Sample> TreeSampler<dim>::from_donors(Point x, const Donors& donor
             length = norm(r);
         }
         const double reach = length + *slack_;
-        const double b = std::abs(donors.value[i]) - reach;
+        const double b = std::abs(donor.value) - reach;
         if (b > lower) {
             lower = b;
-            sign = donors.value[i];
+            sign = donor.value;
         }
-        upper = std::min(upper, donors.upper[i] + reach);
+        upper = std::min(upper, donor.upper + reach);
     }
     if (!certain(lower)) return std::nullopt;
     return Sample{std::copysign(lower, sign), upper, Source::parents};
@@ -257,7 +248,7 @@ template <int dim>
 auto TreeSampler<dim>::points_of(std::span<const std::uint32_t> ids) const -> std::vector<Point> {
     std::vector<Point> points;
     points.reserve(ids.size());
-    for (std::uint32_t id : ids) points.push_back(point(id));
+    for (std::uint32_t id : ids) points.push_back(points_[id]);
     return points;
 }
 

@@ -35,7 +35,6 @@ public:
     using Point = typename Space<dim>::Point;       ///< Vec2 or Vec3
     using Coords = std::array<std::uint64_t, dim>;  ///< a grid point
     static constexpr int key_bits = 64 / dim;       ///< bits of each coordinate in a key
-    static constexpr std::uint64_t key_mask = (std::uint64_t{1} << key_bits) - 1;
 
     explicit SampleGrid(const Orthtree<dim>& tree)
         : lo_(tree.root_box().lo),
@@ -58,13 +57,6 @@ public:
         std::uint64_t k = 0;
         for (int i = 0; i < dim; ++i) k = (k << key_bits) | g[i];
         return k;
-    }
-    /// The grid point of a key (x takes the bits above the others').
-    static Coords coords(std::uint64_t key) {
-        Coords g;
-        for (int i = dim - 1; i > 0; --i, key >>= key_bits) g[i] = key & key_mask;
-        g[0] = key;
-        return g;
     }
 
 private:
@@ -167,10 +159,11 @@ protected:
     static constexpr std::uint32_t no_sample = 0xffffffffu;
     using CellSamples = std::array<std::uint32_t, cell_points>;
 
-    /// A cell's sample points as keys: corners, then the centre when the cell samples it (or
-    /// always, with with_centre).
+    /// A cell's sample points, as keys and grid points: corners, then the centre when the cell
+    /// samples it (or always, with with_centre).
     struct Keys {
         std::array<std::uint64_t, cell_points> k;
+        std::array<typename SampleGrid<dim>::Coords, cell_points> at;
         std::size_t n;
     };
     Keys sample_keys(std::uint32_t c, bool with_centre = false) const;
@@ -179,20 +172,9 @@ protected:
         const bool centre = centres_at_depth_limit || tree_.cell(c).level < tree_.max_depth();
         return std::span(cell_samples_[c]).first(centre ? cell_points : cell_points - 1);
     }
-    /// The point of sample id.
-    Point point(std::uint32_t id) const { return grid_.point(SampleGrid<dim>::coords(keys_[id])); }
-
-    /// Known samples near a new point: where they are and G (or a stand-in) there.
-    struct Donors {
-        std::array<Point, cell_points> at;
-        std::array<double, cell_points> value;
-        std::array<double, cell_points> upper;
-        std::size_t n = 0;
-    };
-    /// The samples ids that are known, as donors; none without a distance slack.
-    Donors donors_of(std::span<const std::uint32_t> ids) const;
-    /// The donors' bounds on G at x: a stand-in when they give its sign.
-    std::optional<Sample> from_donors(Point x, const Donors& donors) const;
+    /// The bounds that the known samples among ids (the donors) give on G at x: a stand-in when
+    /// they give its sign. None without a distance slack.
+    std::optional<Sample> from_donors(Point x, std::span<const std::uint32_t> ids) const;
     /// The bounds at the samples ids (one batch; none without bounds), widened by the rounding
     /// allowance, tighten their stand-ins, or make stand-ins of the points pending for G whose
     /// sign they give. Returns the samples still pending.
@@ -204,8 +186,8 @@ protected:
 
     const Tree& tree_;
     SampleGrid<dim> grid_;
-    /// Every sample point: its key on the grid, G there or a stand-in.
-    std::vector<std::uint64_t> keys_;
+    /// Every sample point: where it is, G there or a stand-in.
+    std::vector<Point> points_;
     std::vector<Sample> samples_;
     /// Sample ids by key: the corners of every cell (and centres, centres_in_table).
     KeyMap<std::uint32_t> index_;
@@ -213,13 +195,14 @@ protected:
     std::vector<CellSamples> cell_samples_;
 
 private:
-    /// The id of the sample at key, and whether it is new (then pending for G).
-    std::pair<std::uint32_t, bool> add_point(std::uint64_t key);
-    /// A new centre: only its children's corners, through their parent's samples, meet it again.
-    std::uint32_t add_centre(std::uint64_t key);
-    /// Sample j of child c, as add_point(key) would give it, with no lookup where the parent has
-    /// it.
-    std::pair<std::uint32_t, bool> child_point(std::uint32_t c, std::size_t j, std::uint64_t key);
+    /// The id of sample j of keys, and whether it is new (then pending for G).
+    std::pair<std::uint32_t, bool> add_point(const Keys& keys, std::size_t j);
+    /// Sample j of child c, as add_point(keys, j) would give it, with no lookup where the parent
+    /// has it; the centre is new, and only its children's corners, through their parent's
+    /// samples, meet it again.
+    std::pair<std::uint32_t, bool> child_point(std::uint32_t c, const Keys& keys, std::size_t j);
+    /// Appends sample j of keys, pending for G; returns its id.
+    std::uint32_t add_pending(const Keys& keys, std::size_t j);
     /// Calls f(id, sample) once for each stand-in that the test of a touched cell needs: one
     /// whose lower bound is below the cell's threshold, in a cell where no sample's upper bound
     /// is below it.
