@@ -30,7 +30,7 @@
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
-#include "slc/tree/quadtree.hpp"
+#include "slc/tree/orthtree.hpp"
 #include "slc/velocity/factory.hpp"
 #include "surfaces.hpp"
 

@@ -13,7 +13,7 @@
 #include "slc/contour/root_finding.hpp"
 #include "slc/core/box.hpp"
 #include "slc/geometry/interface.hpp"
-#include "slc/tree/quadtree.hpp"
+#include "slc/tree/orthtree.hpp"
 #include "slc/tree/triangulation.hpp"
 
 namespace slc::contouring {

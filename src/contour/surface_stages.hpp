@@ -1,13 +1,22 @@
 // The stages of contour_surface() (paper §2 in space), internal to the contour module: G
-// evaluated and checked, and adaptive refinement of the linear contour (§2.2).
+// evaluated and checked, topology resolution on the tetrahedralized octree (§2.1,
+// surface_topology.cpp), and adaptive refinement of the linear contour (§2.2,
+// surface_refinement.cpp).
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include "slc/contour/implicit_function.hpp"
 #include "slc/contour/root_finding.hpp"
+#include "slc/contour/surface_contour.hpp"
+#include "slc/core/box3.hpp"
 #include "slc/geometry/surface.hpp"
+#include "slc/tree/orthtree.hpp"
+#include "slc/tree/tetrahedralization.hpp"
 
 namespace slc::contouring {
 
@@ -22,6 +31,33 @@ private:
     SpaceFunctionRef g_;
     std::size_t* count_;
 };
+
+/// The topology of the zero set in space (§2.1): the octree, its tetrahedra with G at every
+/// vertex (|G| > η everywhere after perturbation), and the tetrahedra G changes sign in.
+struct SurfaceTopology {
+    explicit SurfaceTopology(Octree t) : tree(std::move(t)) {}
+
+    Octree tree;              ///< balanced, K levels and thin cells beyond
+    Tetrahedralization mesh;  ///< vertices moved where they were perturbed
+    /// G at mesh.vertices, or a stand-in with G's sign where exact is 0 (never in a crossing
+    /// tetrahedron).
+    std::vector<double> values;
+    std::vector<std::uint8_t> exact;      ///< per vertex: values is G there
+    std::vector<std::uint32_t> crossing;  ///< the tetrahedra where G changes sign, in order
+    double gamma = 0.0;                   ///< the gradient bound at which the tree balanced
+    std::size_t thin_cells = 0;           ///< cells split beyond K where G bends
+    std::size_t settled = 0;              ///< tree points with a stand-in instead of G
+    std::size_t perturbed = 0;            ///< vertices moved off |G| ≤ η
+};
+
+/// Builds the K-level octree (γ doubled until balanced, thin cells beyond K), tetrahedralizes
+/// it, puts G (or a stand-in with its sign) at every vertex, checks that the zero set stays off
+/// the domain's boundary, perturbs vertices with |G| ≤ η and evaluates G at the stand-ins of the
+/// tetrahedra it changes sign in. Every evaluation through g. Throws LeftDomain naming the place
+/// where the zero set reaches the boundary; NumericalFailure when perturbation keeps failing or G
+/// is not finite. Options validated by the caller.
+SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& domain,
+                                         const SurfaceContourOptions& options);
 
 /// What refinement did.
 struct SurfaceRefinement {

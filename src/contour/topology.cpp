@@ -1,6 +1,7 @@
-// Topology resolution (paper §2.1): the K-level tree split by min|G|/γ with γ doubled until the
-// tree is 2:1 balanced, G on its triangulation, perturbation of vertices where |G| ≤ η, the
-// boundary check, and marching triangles into closed polygons with G > 0 on their right.
+// Topology resolution (paper §2.1) in the plane: the K-level tree split by min|G|/γ with γ doubled
+// until the tree is 2:1 balanced (tree_sampler.hpp, written once with space), G on its
+// triangulation, perturbation of vertices where |G| ≤ η, the boundary check, and marching
+// triangles into closed polygons with G > 0 on their right.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -12,173 +13,25 @@
 #include "slc/core/key_map.hpp"
 #include "slc/core/parallel.hpp"
 #include "stages.hpp"
+#include "tree_sampler.hpp"
 
 namespace slc::contouring {
 namespace {
 
-/// After this many doublings of γ (a factor of about 10^7) the tree is balanced by brute force
-/// instead: G has a gradient far beyond any estimate, or no useful one.
-constexpr int max_gamma_doublings = 24;
 /// Perturbation: the first displacement is this fraction of the finest cell edge, doubled at each
 /// attempt. After max_perturbations attempts it is 3.2% of that edge: far below the 35% of the
 /// edge that the smallest triangle altitude allows, so the triangulation stays valid.
 constexpr double first_perturbation = 1e-3;
 constexpr int max_perturbations = 6;
 
-/// Integer coordinates on the grid of half the finest cell edge (fan_leaves() names vertices by
-/// them), with the formula triangulate() uses to place its vertices: the triangulation's vertices
-/// are the sample points themselves, and G is never evaluated twice at one point.
-class SampleGrid {
+/// The tree sampler of the plane (TreeSampler<2>, with the caller's bounds on G), and what the
+/// triangulation needs of it: the centres of the finest leaves and the vertices' values.
+class CurveSampler : public TreeSampler<2> {
 public:
-    explicit SampleGrid(const Quadtree& tree)
-        : lo_(tree.root_box().lo),
-          shift_(tree.max_depth() + 1),
-          step_(tree.edge(0) / static_cast<double>(std::uint64_t{1} << shift_)) {}
-
-    std::uint64_t units(int level) const { return std::uint64_t{1} << (shift_ - level); }
-    std::uint64_t extent() const { return std::uint64_t{1} << shift_; }
-    Vec2 point(std::uint64_t gx, std::uint64_t gy) const {
-        return {lo_.x + static_cast<double>(gx) * step_, lo_.y + static_cast<double>(gy) * step_};
-    }
-    static std::uint64_t key(std::uint64_t gx, std::uint64_t gy) { return (gx << 32) | gy; }
-
-private:
-    Vec2 lo_;
-    int shift_;
-    double step_;
-};
-
-/// Where a sample's value comes from: G itself, or a stand-in from the parent's samples or
-/// from the caller's bounds (after which only G can tighten it).
-enum class Source : std::uint8_t { g, parents, bounds };
-/// G at a point, or a stand-in: a lower bound on |G| with G's sign, and an upper bound.
-struct Sample {
-    double value;
-    double upper;  ///< |G| ≤ upper: |value| when exact
-    Source source;
-    std::uint32_t vertex = no_vertex;  ///< its number in the triangulation, once numbered
-};
-/// A point in the batch for G.
-constexpr Sample pending{std::numeric_limits<double>::quiet_NaN(),
-                         std::numeric_limits<double>::infinity(), Source::g};
-
-/// G at the corners and centres of the tree's cells, each point evaluated at most once, in one
-/// batch per call, and the smallest |G| over each cell's sample points. Cells at the depth limit
-/// are never tested for splitting, so their centres wait for complete_centres().
-///
-/// A point is evaluated only when a split test, the sign of a triangle or root finding needs G
-/// there. With ContourOptions::distance_slack δ, |G(x) − G(y)| ≤ |x − y| + δ, so a new point x
-/// near a known sample y has |G(y)| − |x − y| − δ ≤ |G(x)| ≤ |G(y)| + |x − y| + δ and, when the
-/// lower bound is positive, G(y)'s sign; the caller's bounds on G, one batch, are tried next.
-/// Where either gives the sign, the lower bound with that sign stands in for G, beside the upper
-/// bound. A cell's test needs no value where some sample's upper bound is below its threshold
-/// γ·edge (it splits), nor where a stand-in's lower bound reaches it; the stand-ins it does need
-/// are offered to the caller's bounds, then evaluated. So every split decision is the one exact
-/// values give, and stand-ins left in triangles where G changes sign are evaluated before the
-/// contour is marched.
-///
-/// The samples live in one array, and every cell keeps the ids of its samples, so the split
-/// tests, the donors and the triangulation read them without a search. A new cell's corners are
-/// its parent's corners and centre, or midpoints of its parent's edges, which a neighbour's
-/// children may share: only those are looked up in a table of keys. A cell's centre is its own
-/// (its children's corners reach it through their parent), and so is never in the table.
-/// The new points' stand-ins are worked out on all threads, each from the first cell that
-/// meets it, so they are the same for any thread count.
-class TreeSampler {
-public:
-    TreeSampler(BatchFunctionRef g, std::optional<BatchBoundsRef> bounds, const Quadtree& tree,
-                const ContourOptions& options, double rounding)
-        : g_(g),
-          bounds_(bounds),
-          tree_(tree),
-          grid_(tree),
-          slack_(options.distance_slack ? std::optional(*options.distance_slack + rounding)
-                                        : std::nullopt),
-          rounding_(rounding),
-          eta_(options.eta) {
-        // Room for the samples of a large contour up front: pages are touched only as the
-        // samples come, and the arrays are never copied as they grow.
-        samples_.reserve(reserved_samples);
-        keys_.reserve(reserved_samples);
-    }
-
-    /// Samples the given cells (the root, or children of split cells): new points whose sign
-    /// neither their parent's samples nor the bounds (one batch) give are evaluated, in one batch.
-    void sample(std::span<const std::uint32_t> cells) {
-        cell_samples_.resize(tree_.size(), no_samples);
-        // Numbers the points in cell order, then works out the new points' stand-ins cell by
-        // cell on all threads: each new point's donors are the samples of the parent of the
-        // first cell that meets it, which the parent has before the call.
-        std::vector<std::uint8_t> fresh(cells.size(), 0);  // per cell, a bit per new sample
-        for (std::size_t i = 0; i < cells.size(); ++i) {
-            const std::uint32_t c = cells[i];
-            const std::uint32_t parent = c == 0 ? Quadtree::no_cell : tree_.cell(c).parent;
-            SLC_ASSERT(parent == Quadtree::no_cell || has_samples(parent),
-                       "a cell is sampled after its parent");
-            const Keys keys = sample_keys(c);
-            for (std::size_t j = 0; j < keys.n; ++j) {
-                const auto [id, is_new] = parent == Quadtree::no_cell
-                                              ? add_point(keys.k[j])
-                                              : child_point(c, j, keys.k[j]);
-                cell_samples_[c][j] = id;
-                if (is_new) fresh[i] |= static_cast<std::uint8_t>(1u << j);
-            }
-        }
-        parallel_for(
-            cells.size(),
-            [&](std::size_t i) {
-                if (fresh[i] == 0 || cells[i] == 0) return;  // the root has no donors
-                const Donors donors = donors_of(samples_of(tree_.cell(cells[i]).parent));
-                for (std::size_t j = 0; j < 5; ++j) {
-                    if ((fresh[i] >> j & 1u) == 0) continue;
-                    const std::uint32_t id = cell_samples_[cells[i]][j];
-                    if (const auto stand_in = from_donors(point(id), donors))
-                        samples_[id] = *stand_in;
-                }
-            },
-            parallel_grain);
-        std::vector<std::uint32_t> open;
-        for (std::size_t i = 0; i < cells.size(); ++i) {
-            for (std::size_t j = 0; j < 5; ++j) {
-                const std::uint32_t id = cell_samples_[cells[i]][j];
-                if ((fresh[i] >> j & 1u) != 0 && std::isnan(samples_[id].value)) open.push_back(id);
-            }
-        }
-        evaluate(apply_bounds(open));
-        cell_min_.resize(tree_.size(), infinity);
-        parallel_for(cells.size(), [&](std::size_t i) { update_min(cells[i]); });
-    }
-
-    /// Before the cells are tested against γ: resolves the stand-ins on which a test would rest,
-    /// so each test sees what exact values would decide. The parents' stand-ins among them are
-    /// offered to the bounds first (one batch); those still below the threshold are evaluated
-    /// (one batch).
-    void settle_tests(std::span<const std::uint32_t> cells, double gamma) {
-        std::vector<std::uint32_t> touched;
-        for (std::uint32_t c : cells) {
-            const int level = tree_.cell(c).level;
-            // The cell's least value may also be stale: a neighbour's test resolved a stand-in
-            // it shares.
-            if (level < tree_.max_depth() && gamma * tree_.edge(level) > cell_min_[c])
-                touched.push_back(c);
-        }
-        if (bounds_) {
-            std::vector<std::uint32_t> ids;
-            for_needed_stand_ins(touched, gamma, [&](std::uint32_t id, Sample& s) {
-                if (s.source != Source::parents) return;
-                s.source = Source::bounds;  // offered once
-                ids.push_back(id);
-            });
-            apply_bounds(ids);
-        }
-        std::vector<std::uint32_t> ids;
-        for_needed_stand_ins(touched, gamma, [&](std::uint32_t id, Sample& s) {
-            s = pending;
-            ids.push_back(id);
-        });
-        evaluate(ids);
-        for (std::uint32_t c : touched) update_min(c);
-    }
+    CurveSampler(BatchFunctionRef g, std::optional<BatchBoundsRef> bounds, const Quadtree& tree,
+                 const ContourOptions& options, double rounding)
+        : TreeSampler<2>(tree, g, bounds, options.distance_slack, rounding, options.eta,
+                         tree.max_depth()) {}
 
     /// Centres of the leaves at the depth limit, in one batch. A leaf whose corners share one sign
     /// with |G| > γ h/√2 holds no zero if |∇G| ≤ γ (every point is within h/√2 of a corner), and
@@ -195,13 +48,13 @@ public:
         // threads.
         const std::size_t first = samples_.size();
         samples_.resize(first + finest.size(), pending);
-        keys_.resize(first + finest.size());
+        points_.resize(first + finest.size());
         parallel_for(finest.size(), [&](std::size_t i) {
             const std::uint32_t c = finest[i];
             const auto id = static_cast<std::uint32_t>(first + i);
-            std::array<std::uint32_t, 5>& ids = cell_samples_[c];
+            CellSamples& ids = cell_samples_[c];
             ids[4] = id;
-            keys_[id] = sample_keys(c, true).k[4];
+            points_[id] = grid_.point(sample_keys(c, true).at[4]);
             double lo = infinity, hi = -infinity;
             for (int j = 0; j < 4; ++j) {
                 lo = std::min(lo, samples_[ids[j]].value);
@@ -209,8 +62,7 @@ public:
             }
             if (lo > clearance || hi < -clearance) {
                 samples_[id] = Sample{lo > 0.0 ? lo : hi, infinity, Source::parents};
-            } else if (const auto stand_in =
-                           from_donors(point(id), donors_of(std::span(ids).first(4)))) {
+            } else if (const auto stand_in = from_donors(points_[id], std::span(ids).first(4))) {
                 samples_[id] = *stand_in;
             }
         });
@@ -221,13 +73,6 @@ public:
         }
         evaluate(apply_bounds(open));
     }
-
-    /// Whether cell c has been sampled: sample() needs every cell's parent sampled first.
-    bool has_samples(std::uint32_t c) const {
-        return c < cell_samples_.size() && cell_samples_[c][0] != no_sample;
-    }
-    double min_abs(std::uint32_t c) const { return cell_min_[c]; }
-    std::size_t bound_evals() const { return bound_evals_; }
 
     /// The tree's triangulation (triangulate()'s, to the vertex numbers), with G or its stand-in
     /// at every vertex, the vertices found in the table of samples: every corner and centre of a
@@ -243,7 +88,7 @@ public:
         auto number = [&](Sample& s, std::uint64_t gx, std::uint64_t gy) {
             if (s.vertex == no_vertex) {
                 s.vertex = static_cast<std::uint32_t>(topo.mesh.vertices.size());
-                topo.mesh.vertices.push_back(grid_.point(gx, gy));
+                topo.mesh.vertices.push_back(grid_.point({gx, gy}));
                 topo.values.push_back(s.value);
                 topo.stand_in.push_back(s.source != Source::g);
                 on_boundary.push_back(gx == 0 || gy == 0 || gx == n || gy == n);
@@ -259,251 +104,12 @@ public:
                 // No cell is finer than the depth limit, and the midpoint of such a leaf's edge
                 // is on no coarser cell's corners or centre: no lookup is needed there.
                 if (tree_.cell(c).level == tree_.max_depth()) return no_vertex;
-                const std::uint32_t* id = index_.find(SampleGrid::key(gx, gy));
+                const std::uint32_t* id = index_.find(SampleGrid<2>::key({gx, gy}));
                 return id == nullptr ? no_vertex : number(samples_[*id], gx, gy);
             },
             topo.mesh);
     }
-
-private:
-    static constexpr double infinity = std::numeric_limits<double>::infinity();
-
-    /// A cell's sample points: corners, then the centre when the cell can be split (or always,
-    /// with with_centre).
-    struct Keys {
-        std::array<std::uint64_t, 5> k;
-        std::size_t n;
-    };
-    Keys sample_keys(std::uint32_t c, bool with_centre = false) const {
-        const auto& cell = tree_.cell(c);
-        const std::uint64_t u = grid_.units(cell.level), x0 = cell.ix * u, y0 = cell.iy * u;
-        const bool centre = with_centre || cell.level < tree_.max_depth();
-        return {{SampleGrid::key(x0, y0), SampleGrid::key(x0 + u, y0), SampleGrid::key(x0, y0 + u),
-                 SampleGrid::key(x0 + u, y0 + u), SampleGrid::key(x0 + u / 2, y0 + u / 2)},
-                centre ? 5u : 4u};
-    }
-    /// The sample ids of cell c: its corners, then its centre when the cell can be split.
-    std::span<const std::uint32_t> samples_of(std::uint32_t c) const {
-        return std::span(cell_samples_[c]).first(tree_.cell(c).level < tree_.max_depth() ? 5 : 4);
-    }
-    /// The id of the sample at key, and whether it is new (then pending for G).
-    std::pair<std::uint32_t, bool> add_point(std::uint64_t key) {
-        const auto [id, fresh] =
-            index_.try_emplace(key, static_cast<std::uint32_t>(samples_.size()));
-        if (fresh) {
-            samples_.push_back(pending);
-            keys_.push_back(key);
-        }
-        return {*id, fresh};
-    }
-    /// A new point that no other cell shares: the centre of a cell, which only its children's
-    /// corners (found through their parent's samples) meet again. It stays out of the table.
-    std::uint32_t add_centre(std::uint64_t key) {
-        samples_.push_back(pending);
-        keys_.push_back(key);
-        return static_cast<std::uint32_t>(samples_.size() - 1);
-    }
-    /// Sample j of child c, as add_point(key) would give it: of the nine corners of its
-    /// parent's four children, the parent's corners and centre are its samples already, and
-    /// only the midpoints of its edges, which the children of a neighbour may have added, are
-    /// looked up in the table; the child's centre is new.
-    std::pair<std::uint32_t, bool> child_point(std::uint32_t c, std::size_t j, std::uint64_t key) {
-        if (j == 4) return {add_centre(key), true};
-        const auto& cell = tree_.cell(c);
-        const std::uint32_t k = c - tree_.cell(cell.parent).first_child;
-        const std::uint32_t a = (k & 1u) + (j & 1u), b = (k >> 1) + (j >> 1);  // in 0..2
-        const auto& parent = cell_samples_[cell.parent];
-        if (a != 1 && b != 1) return {parent[a / 2 + b], false};
-        if (a == 1 && b == 1) return {parent[4], false};
-        return add_point(key);
-    }
-    Vec2 point(std::uint32_t id) const {
-        const std::uint64_t k = keys_[id];
-        return grid_.point(k >> 32, k & 0xffffffffu);
-    }
-
-    /// Calls f(id, sample) once for each stand-in that the test of a touched cell needs: one
-    /// whose lower bound is below the cell's threshold, in a cell where no sample's upper bound
-    /// is below it.
-    template <class F>
-    void for_needed_stand_ins(std::span<const std::uint32_t> touched, double gamma, F f) {
-        for (std::uint32_t c : touched) {
-            const double threshold = gamma * tree_.edge(tree_.cell(c).level);
-            const auto ids = samples_of(c);
-            if (std::any_of(ids.begin(), ids.end(),
-                            [&](std::uint32_t id) { return samples_[id].upper < threshold; })) {
-                continue;  // the cell splits whatever G is at its stand-ins
-            }
-            for (std::uint32_t id : ids) {
-                Sample& s = samples_[id];
-                if (s.source != Source::g && std::abs(s.value) < threshold) f(id, s);
-            }
-        }
-    }
-
-    /// Known samples near a new point: where they are and G (or a stand-in) there.
-    struct Donors {
-        std::array<Vec2, 5> at;
-        std::array<double, 5> value;
-        std::array<double, 5> upper;
-        std::size_t n = 0;
-    };
-    Donors donors_of(std::span<const std::uint32_t> ids) const {
-        Donors d;
-        if (!slack_) return d;
-        for (std::uint32_t id : ids) {
-            const Sample& s = samples_[id];
-            if (std::isnan(s.value)) continue;
-            d.at[d.n] = point(id);
-            d.upper[d.n] = s.upper;
-            d.value[d.n++] = s.value;
-        }
-        return d;
-    }
-    /// The donors' bounds on G at x: a stand-in when they give its sign.
-    std::optional<Sample> from_donors(Vec2 x, const Donors& donors) const {
-        double lower = 0.0, sign = 0.0, upper = infinity;
-        for (std::size_t i = 0; i < donors.n; ++i) {
-            const Vec2 r = x - donors.at[i];  // |r| to within an ulp, which the slack covers
-            const double reach = std::sqrt(dot(r, r)) + *slack_;
-            const double b = std::abs(donors.value[i]) - reach;
-            if (b > lower) {
-                lower = b;
-                sign = donors.value[i];
-            }
-            upper = std::min(upper, donors.upper[i] + reach);
-        }
-        if (!certain(lower)) return std::nullopt;
-        return Sample{std::copysign(lower, sign), upper, Source::parents};
-    }
-    /// A lower bound of |G| gives G's sign, and a stand-in, when it exceeds η (so that the point
-    /// is never a perturbation candidate).
-    bool certain(double lower) const { return lower > eta_; }
-
-    /// The bounds at the samples (one batch; none without bounds), widened by the rounding
-    /// allowance, tighten their stand-ins, or make stand-ins of the points pending for G whose
-    /// sign they give. Returns the samples still pending.
-    std::vector<std::uint32_t> apply_bounds(std::vector<std::uint32_t> ids) {
-        if (!bounds_ || ids.empty()) return ids;
-        const std::vector<Vec2> points = points_of(ids);
-        std::vector<Interval> bounds(points.size());
-        (*bounds_)(points, bounds);
-        bound_evals_ += points.size();
-        std::vector<std::uint32_t> left;
-        for (std::size_t i = 0; i < ids.size(); ++i) {
-            Sample& s = samples_[ids[i]];
-            const auto [lo, hi] = bounds[i];
-            // An interval that excludes 0 gives G's sign and |G| at least its end nearer 0; a
-            // NaN, or ends out of order, say nothing.
-            const bool valid = lo <= hi;
-            const double lower = valid ? (lo > 0.0 ? lo : (hi < 0.0 ? -hi : 0.0)) - rounding_ : 0.0;
-            const double upper =
-                valid ? std::max(std::abs(lo), std::abs(hi)) + rounding_ : infinity;
-            if (s.source != Source::g) {
-                // A stand-in already: both are true bounds, so they agree on a certain sign.
-                if (certain(lower) && lower > std::abs(s.value))
-                    s.value = std::copysign(lower, s.value);
-                s.upper = std::min(s.upper, upper);
-                s.source = Source::bounds;
-            } else if (certain(lower)) {
-                s = Sample{std::copysign(lower, lo), upper, Source::bounds};
-            } else {
-                left.push_back(ids[i]);
-            }
-        }
-        return left;
-    }
-    std::vector<Vec2> points_of(std::span<const std::uint32_t> ids) const {
-        std::vector<Vec2> points;
-        points.reserve(ids.size());
-        for (std::uint32_t id : ids) points.push_back(point(id));
-        return points;
-    }
-    void update_min(std::uint32_t c) {
-        double m = infinity;
-        for (std::uint32_t id : samples_of(c)) m = std::min(m, std::abs(samples_[id].value));
-        cell_min_[c] = m;
-    }
-    void evaluate(std::span<const std::uint32_t> ids) {
-        if (ids.empty()) return;
-        const std::vector<Vec2> points = points_of(ids);
-        std::vector<double> values(points.size());
-        g_(points, values);
-        for (std::size_t i = 0; i < ids.size(); ++i)
-            samples_[ids[i]] = Sample{values[i], std::abs(values[i]), Source::g};
-    }
-
-    /// Samples the arrays have room for before they first grow.
-    static constexpr std::size_t reserved_samples = std::size_t{1} << 16;
-    /// No sample yet: the centre of a cell at the depth limit before complete_centres().
-    static constexpr std::uint32_t no_sample = 0xffffffffu;
-    static constexpr std::array<std::uint32_t, 5> no_samples{no_sample, no_sample, no_sample,
-                                                             no_sample, no_sample};
-
-    BatchFunctionRef g_;
-    std::optional<BatchBoundsRef> bounds_;
-    std::size_t bound_evals_ = 0;
-    const Quadtree& tree_;
-    SampleGrid grid_;
-    std::optional<double> slack_;
-    double rounding_;
-    double eta_;
-    /// Every sample point: its key on the grid, G there or a stand-in, and its id in the table.
-    std::vector<std::uint64_t> keys_;
-    std::vector<Sample> samples_;
-    KeyMap<std::uint32_t> index_;
-    /// Per cell, the ids of its corners (in sample_keys() order) and centre.
-    std::vector<std::array<std::uint32_t, 5>> cell_samples_;
-    std::vector<double> cell_min_;
 };
-
-/// Splits, level by level from the frontier, every cell whose edge exceeds min|G|/γ, sampling
-/// each new level in one batch.
-void split_while_coarse(Quadtree& tree, TreeSampler& sampler, std::vector<std::uint32_t> frontier,
-                        double gamma) {
-    while (!frontier.empty()) {
-        sampler.settle_tests(frontier, gamma);
-        std::vector<std::uint32_t> children;
-        for (std::uint32_t c : frontier) {
-            const int level = tree.cell(c).level;
-            if (level < tree.max_depth() && gamma * tree.edge(level) > sampler.min_abs(c)) {
-                const std::uint32_t first = tree.split(c);
-                for (std::uint32_t k = 0; k < 4; ++k) children.push_back(first + k);
-            }
-        }
-        sampler.sample(children);
-        frontier = std::move(children);
-    }
-}
-
-/// The split criterion is monotone in γ, so the tree for 2γ refines the tree for γ: instead of
-/// rebuilding from the root, the leaves are offered to the criterion again. Returns γ.
-double build_tree(Quadtree& tree, TreeSampler& sampler, double gamma) {
-    sampler.sample(std::vector<std::uint32_t>{0});
-    std::vector<std::uint32_t> frontier{0};
-    for (int doubling = 0;; ++doubling) {
-        split_while_coarse(tree, sampler, std::move(frontier), gamma);
-        if (tree.is_balanced()) return gamma;
-        if (doubling == max_gamma_doublings) break;
-        gamma *= 2.0;
-        frontier.clear();
-        for (std::uint32_t c : tree.leaves())
-            if (tree.cell(c).level < tree.max_depth()) frontier.push_back(c);
-    }
-    std::vector<std::uint32_t> children;
-    tree.balance([&](std::size_t c) {
-        for (std::uint32_t k = 0; k < 4; ++k) children.push_back(tree.cell(c).first_child + k);
-    });
-    // balance() may split a cell it split itself: such children wait for their parent's samples.
-    while (!children.empty()) {
-        std::vector<std::uint32_t> ready, later;
-        for (std::uint32_t c : children)
-            (sampler.has_samples(tree.cell(c).parent) ? ready : later).push_back(c);
-        sampler.sample(ready);
-        children = std::move(later);
-    }
-    return gamma;
-}
 
 std::string place(Vec2 p) { return fmt::format("({:.6g}, {:.6g})", p.x, p.y); }
 
@@ -624,7 +230,7 @@ Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOp
     // Both bounds allow for rounding in G and in the bound: a few thousand ulps of the
     // coordinates.
     const double rounding = 1e-12 * std::max(domain.largest_magnitude(), domain.width());
-    TreeSampler sampler(g, bounds, topo.tree, options, rounding);
+    CurveSampler sampler(g, bounds, topo.tree, options, rounding);
     topo.gamma = build_tree(topo.tree, sampler, options.gamma);
     sampler.complete_centres(topo.gamma);
     topo.bound_evals = sampler.bound_evals();

@@ -202,7 +202,7 @@ void DistanceTree::build_start_grid() {
             continue;
         }
         const int up = start_level_ - cell.level;
-        const std::uint32_t x0 = cell.ix << up, y0 = cell.iy << up, w = 1u << up;
+        const std::uint32_t x0 = cell.coords[0] << up, y0 = cell.coords[1] << up, w = 1u << up;
         for (std::uint32_t gy = y0; gy < y0 + w; ++gy)
             std::fill_n(start_grid_.begin() + std::size_t{gy} * n + x0, w, c);
     }
@@ -213,13 +213,13 @@ std::uint32_t DistanceTree::leaf_at(Vec2 x) const {
     const int depth = tree_.depth();
     const int shift = depth - start_level_;
     std::uint32_t c =
-        start_grid_[(q.iy >> shift) * (std::uint64_t{1} << start_level_) + (q.ix >> shift)];
+        start_grid_[(q[1] >> shift) * (std::uint64_t{1} << start_level_) + (q[0] >> shift)];
     // Quadtree::descend over the compact child array: one bit of each coordinate per level.
     int bit = depth - tree_.cell(c).level - 1;
     for (std::uint32_t child = first_child_[c]; child != Quadtree::no_cell;
          child = first_child_[c], --bit) {
-        c = child + static_cast<std::uint32_t>((q.ix >> bit) & 1u) +
-            2u * static_cast<std::uint32_t>((q.iy >> bit) & 1u);
+        c = child + static_cast<std::uint32_t>((q[0] >> bit) & 1u) +
+            2u * static_cast<std::uint32_t>((q[1] >> bit) & 1u);
     }
     return c;
 }

@@ -59,7 +59,8 @@ public:
         bricks_.reserve((end - begin) / 8 + 1);
         for (std::size_t c = begin; c < end; ++c) {
             const Octree::Cell& cell = tree.cell(c);
-            at(cell, true)->present |= std::uint64_t{1} << bit(cell.ix, cell.iy, cell.iz);
+            at(cell, true)->present |= std::uint64_t{1}
+                                       << bit(cell.coords[0], cell.coords[1], cell.coords[2]);
         }
     }
 
@@ -79,7 +80,7 @@ public:
 
     /// The brick of a cell of the level.
     Brick* at(const Octree::Cell& cell, bool add = false) {
-        return find(cell.ix >> 2, cell.iy >> 2, cell.iz >> 2, add);
+        return find(cell.coords[0] >> 2, cell.coords[1] >> 2, cell.coords[2] >> 2, add);
     }
 
     /// The number of the brick b, from 0 to size() − 1.
@@ -304,7 +305,7 @@ void SurfaceDistanceTree::bin_lists(std::size_t begin, std::size_t end) {
         const Octree::Cell& cell = tree_.cell(c);
         Bricks::Brick& brick = *bricks.at(cell);
         const std::size_t i = bricks.index(brick);
-        const unsigned b = Bricks::bit(cell.ix, cell.iy, cell.iz);
+        const unsigned b = Bricks::bit(cell.coords[0], cell.coords[1], cell.coords[2]);
         std::uint64_t m = 0;
         for (std::size_t p = 0; p < parts; ++p) m += count[p][i][b];
         const bool stored = m <= longest_scanned_list;

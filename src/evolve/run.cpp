@@ -11,7 +11,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/evolve/guards.hpp"
-#include "slc/tree/quadtree.hpp"
+#include "slc/tree/orthtree.hpp"
 
 namespace slc {
 

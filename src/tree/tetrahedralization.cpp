@@ -76,7 +76,7 @@ bool has_finer_neighbour(const Octree& tree, std::size_t c, int d) {
 std::pair<GridPoint, std::uint64_t> low_corner(const Octree& tree, std::size_t c) {
     const auto& cell = tree.cell(c);
     const std::uint64_t u = std::uint64_t{1} << (tree.max_depth() + 1 - cell.level);
-    return {GridPoint{cell.ix * u, cell.iy * u, cell.iz * u}, u};
+    return {GridPoint{cell.coords[0] * u, cell.coords[1] * u, cell.coords[2] * u}, u};
 }
 
 /// One leaf's tetrahedra over its own list of vertices: their keys in order of first use, and

@@ -45,11 +45,11 @@ private:
     KeyMap<std::uint32_t> index_;
 };
 
-/// True when the neighbour of leaf c across the edge in direction (dx, dy) is finer than c.
+/// True when the neighbour of leaf c across edge d (0..3: −x, +x, −y, +y) is finer than c.
 /// Throws when it is a leaf coarser than c's parent: the tree is not 2:1 balanced (checked here,
 /// where every leaf's four neighbours are found anyway, instead of in a pass of its own).
-bool has_finer_neighbour(const Quadtree& tree, std::size_t c, int dx, int dy) {
-    const std::uint32_t n = tree.neighbour(c, dx, dy);
+bool has_finer_neighbour(const Quadtree& tree, std::size_t c, int d) {
+    const std::uint32_t n = tree.neighbour(c, d);
     if (n == Quadtree::no_cell) return false;
     const int level = tree.cell(c).level;
     if (tree.cell(n).level < level - 1)
@@ -66,8 +66,9 @@ Triangulation triangulate(const Quadtree& tree) {
         tree,
         [&](std::size_t, int, std::uint64_t gx, std::uint64_t gy) { return table.at(gx, gy); },
         [&](std::size_t c, int k, std::uint64_t gx, std::uint64_t gy) {
-            constexpr int dx[4] = {0, 1, 0, -1}, dy[4] = {-1, 0, 1, 0};
-            return has_finer_neighbour(tree, c, dx[k], dy[k]) ? table.at(gx, gy) : no_vertex;
+            // Edges bottom, right, top, left: faces −y, +x, +y, −x.
+            constexpr int face[4] = {2, 1, 3, 0};
+            return has_finer_neighbour(tree, c, face[k]) ? table.at(gx, gy) : no_vertex;
         },
         mesh);
     return mesh;

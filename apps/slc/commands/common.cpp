@@ -18,7 +18,7 @@
 #include "slc/geometry/validate_surface.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/surface_files.hpp"
-#include "slc/tree/quadtree.hpp"
+#include "slc/tree/orthtree.hpp"
 
 namespace slc::cli {
 

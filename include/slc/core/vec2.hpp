@@ -29,6 +29,10 @@ struct Vec2 {
         y *= s;
         return *this;
     }
+    /// Component i (0, 1 for x, y), for code written once over the dimension (Space<dim>).
+    constexpr double operator[](int i) const { return i == 0 ? x : y; }
+    /// Component i (0, 1), writable.
+    constexpr double& operator[](int i) { return i == 0 ? x : y; }
     /// Exact equality of both components (no tolerance).
     friend constexpr bool operator==(Vec2, Vec2) = default;
 };

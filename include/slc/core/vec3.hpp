@@ -36,6 +36,8 @@ struct Vec3 {
     }
     /// Component i (0, 1, 2 for x, y, z).
     constexpr double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+    /// Component i (0, 1, 2), writable.
+    constexpr double& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
     /// Exact equality of all components (no tolerance).
     friend constexpr bool operator==(Vec3, Vec3) = default;
 };

@@ -21,7 +21,7 @@
 #include "slc/distance/segment_hierarchy.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/segment.hpp"
-#include "slc/tree/quadtree.hpp"
+#include "slc/tree/orthtree.hpp"
 #include "slc/tree/triangulation.hpp"
 
 namespace slc {

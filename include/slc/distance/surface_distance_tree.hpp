@@ -22,7 +22,7 @@
 #include "slc/core/box3.hpp"
 #include "slc/geometry/surface.hpp"
 #include "slc/geometry/triangle_hierarchy.hpp"
-#include "slc/tree/octree.hpp"
+#include "slc/tree/orthtree.hpp"
 
 namespace slc {
 

@@ -1,6 +1,6 @@
 /// @file
-/// 2:1 balance of a 2^d tree, the part of Quadtree (d = 2) and Octree (d = 3) that does not
-/// depend on the dimension. A tree here offers size(), is_leaf(c), cell(c).level, depth(),
+/// 2:1 balance of a 2^d tree (Orthtree<d>: Quadtree, Octree), written for any tree with the
+/// interface below. A tree here offers size(), is_leaf(c), cell(c).level, depth(),
 /// max_depth() and split(c); `coarser(c, d)` names the leaf bordering cell c across its face d
 /// (0 .. 2d − 1) when that leaf is coarser than c, else Tree::no_cell.
 #pragma once

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "slc/core/vec3.hpp"
-#include "slc/tree/octree.hpp"
+#include "slc/tree/orthtree.hpp"
 
 namespace slc {
 

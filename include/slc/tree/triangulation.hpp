@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "slc/core/vec2.hpp"
-#include "slc/tree/quadtree.hpp"
+#include "slc/tree/orthtree.hpp"
 
 namespace slc {
 
@@ -52,7 +52,7 @@ void fan_leaves(const Quadtree& tree, Vertex vertex, EdgeVertex edge_vertex, Tri
         if (tree.is_leaf(c)) {
             const auto& cell = tree.cell(c);
             const std::uint64_t u = std::uint64_t{1} << (shift - cell.level);
-            const std::uint64_t x0 = cell.ix * u, y0 = cell.iy * u, h = u / 2;
+            const std::uint64_t x0 = cell.coords[0] * u, y0 = cell.coords[1] * u, h = u / 2;
             const std::uint32_t centre = vertex(c, 4, x0 + h, y0 + h);
             std::array<std::uint32_t, 8> ring{};
             std::size_t n = 0;

@@ -2,7 +2,8 @@
 /// Velocity laws (DESIGN §3, paper §3 and §4.3 "Velocity(t, Γ)"): the interface a law implements,
 /// the call that hands it the vertex geometry it asks for and checks what it returns, and adapters
 /// that turn a small callable into a law. Written once for curves (dim = 2: VelocityLaw) and
-/// surfaces (dim = 3: SurfaceVelocityLaw, DESIGN §8); Space<dim> names the types that differ.
+/// surfaces (dim = 3: SurfaceVelocityLaw, DESIGN §8); Space<dim> (slc/core/space.hpp) names the
+/// types that differ.
 #pragma once
 
 #include <concepts>
@@ -17,6 +18,7 @@
 #include "slc/core/box.hpp"
 #include "slc/core/box3.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/space.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/surface.hpp"
@@ -27,27 +29,6 @@
 #include "slc/velocity/invariants.hpp"
 
 namespace slc {
-
-/// The types of dimension dim: the point, the interface (curves or a surface), the domain (a
-/// square or a cube) and the geometry at the interface's vertices.
-template <int dim>
-struct Space;
-/// Curves in the plane.
-template <>
-struct Space<2> {
-    using Point = Vec2;               ///< a point
-    using Shape = Interface;          ///< the interface
-    using Region = Box;               ///< the domain
-    using Geometry = VertexGeometry;  ///< normals and curvature at the vertices
-};
-/// Surfaces in space.
-template <>
-struct Space<3> {
-    using Point = Vec3;                ///< a point
-    using Shape = Surface;             ///< the interface
-    using Region = Box3;               ///< the domain
-    using Geometry = SurfaceGeometry;  ///< normals and mean curvature at the vertices
-};
 
 /// The vertices of curves, in Interface::points() order.
 inline std::span<const Vec2> vertex_points(const Interface& curves) { return curves.points(); }

@@ -1,0 +1,352 @@
+// Topology resolution in space (paper §2.1 with d = 3, DESIGN §8): the octree split by min|G|
+// against γ·edge with γ doubled until it is 2:1 balanced (tree_sampler.hpp, written once with the
+// plane), thin cells split beyond K where G bends, its tetrahedral mesh with G at the vertices,
+// the boundary check, perturbation of vertices where |G| ≤ η, and the tetrahedra where G changes
+// sign.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+#include "surface_stages.hpp"
+#include "tree_sampler.hpp"
+
+namespace slc::contouring {
+namespace {
+
+/// Perturbation: the first displacement is this fraction of the finest cell edge, doubled at each
+/// attempt; after max_perturbations attempts it is 3.2% of that edge, well below the smallest
+/// altitude of the mesh's tetrahedra (an eighth of the finest edge), so the mesh stays valid.
+constexpr double first_perturbation = 1e-3;
+constexpr int max_perturbations = 6;
+/// A cell's G bends (SurfaceSampler::bends) when a body diagonal's centre is nearer zero than its
+/// ends' mean by this fraction of the half-diagonal.
+constexpr double thin_dip = 0.25;
+
+using Evaluator = SpaceEvaluator;
+
+std::string place(Vec3 p) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x, p.y, p.z); }
+
+/// What a cell's samples say of G bending within it (SurfaceSampler::bends).
+enum class Bend { no, yes, unsure };
+
+/// The tree sampler of space (TreeSampler<3>: every cell samples its eight corners and its
+/// centre), and what thin cells and the tetrahedra need of it.
+class SurfaceSampler : public TreeSampler<3> {
+public:
+    /// γ splits cells down to level `limit` (K); the tree may go deeper (thin cells).
+    SurfaceSampler(const Octree& tree, const Evaluator& g, std::optional<double> distance_slack,
+                   double rounding, double eta, int limit)
+        : TreeSampler<3>(tree, g, std::nullopt, distance_slack, rounding, eta, limit) {}
+
+    /// Whether G bends within cell c: along a body diagonal, the ends and the centre of one sign
+    /// and the centre nearer zero than the ends' mean by more than thin_dip of the
+    /// half-diagonal. A distance is linear along a segment on one side of a plane and bends by
+    /// about h²/(2R) near a sheet of radius R: a dip this large means the sheet turns within the
+    /// cell or its other side is there too. Only cells the zero set may meet are tested (the
+    /// centre's |G| at most the half-diagonal). From the samples' bounds: unsure when stand-ins
+    /// leave it open, and then the stand-ins that would settle it are appended to `wanted`.
+    Bend bends(std::uint32_t c, std::vector<std::uint32_t>& wanted) const {
+        const CellSamples& ids = cell_samples_[c];
+        const Sample& m = samples_[ids[8]];
+        const double half_diagonal = 0.5 * std::sqrt(3.0) * tree_.edge(tree_.cell(c).level);
+        if (std::abs(m.value) > half_diagonal) return Bend::no;
+        if (m.upper > half_diagonal) {
+            wanted.push_back(ids[8]);
+            return Bend::unsure;
+        }
+        const double threshold = thin_dip * half_diagonal;
+        bool unsure = false;
+        for (int k = 0; k < 4; ++k) {
+            const Sample& a = samples_[ids[k]];
+            const Sample& b = samples_[ids[7 - k]];
+            if ((a.value > 0.0) != (m.value > 0.0) || (b.value > 0.0) != (m.value > 0.0)) continue;
+            // |G| ≥ |value| and ≤ upper at each point, with the value's sign.
+            const double least = 0.5 * (std::abs(a.value) + std::abs(b.value)) - m.upper;
+            const double most = 0.5 * (a.upper + b.upper) - std::abs(m.value);
+            if (least > threshold) return Bend::yes;
+            if (!(most > threshold)) continue;
+            unsure = true;
+            for (const std::uint32_t id : {ids[k], ids[7 - k], ids[8]})
+                if (!samples_[id].is_exact()) wanted.push_back(id);
+        }
+        return unsure ? Bend::unsure : Bend::no;
+    }
+
+    /// Makes G exact at the given points (from bends), in one batch, and updates the least |G|
+    /// of the given cells.
+    void make_exact(std::vector<std::uint32_t> ids, std::span<const std::uint32_t> cells) {
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        for (std::uint32_t id : ids) samples_[id] = pending;
+        evaluate(ids);
+        for (std::uint32_t c : cells) update_min(c);
+    }
+    /// Tree points with a stand-in rather than G.
+    std::size_t settled() const {
+        return static_cast<std::size_t>(std::count_if(
+            samples_.begin(), samples_.end(), [](const Sample& s) { return !s.is_exact(); }));
+    }
+    /// The sample at a grid point (Tetrahedralization::key), or nullptr.
+    const Sample* at(std::uint64_t key) const {
+        const std::uint32_t* id = index_.find(key);
+        return id ? &samples_[*id] : nullptr;
+    }
+    /// A stand-in for G at x from the samples of leaf c, when they give its sign.
+    std::optional<Sample> stand_in(Vec3 x, std::uint32_t c) const {
+        return from_donors(x, cell_samples_[c]);
+    }
+};
+
+/// Splits the leaves at level `limit` near the zero set (min|G| below γ times their edge) where G
+/// bends within them (SurfaceSampler::bends), and their children where it still does, down to the
+/// tree's deepest level; then balances the tree again, sampling the cells balancing makes.
+/// Returns the cells split.
+std::size_t split_thin(Octree& tree, SurfaceSampler& sampler, double gamma, int limit) {
+    std::vector<std::uint32_t> frontier;
+    for (std::uint32_t c : tree.leaves())
+        if (tree.cell(c).level == limit && gamma * tree.edge(limit) > sampler.min_abs(c))
+            frontier.push_back(c);
+    std::size_t split = 0;
+    while (!frontier.empty() && tree.cell(frontier.front()).level < tree.max_depth()) {
+        // Stand-ins that leave a cell unsure are evaluated, a batch a round, until none does;
+        // the cells that bend split in the frontier's order.
+        std::vector<std::uint32_t> bent, unsure = frontier;
+        while (!unsure.empty()) {
+            std::vector<std::uint32_t> wanted, still;
+            for (std::uint32_t c : unsure) {
+                const Bend b = sampler.bends(c, wanted);
+                if (b == Bend::yes) bent.push_back(c);
+                if (b == Bend::unsure) still.push_back(c);
+            }
+            sampler.make_exact(std::move(wanted), still);
+            unsure = std::move(still);
+        }
+        std::sort(bent.begin(), bent.end());
+        std::vector<std::uint32_t> next;
+        for (std::uint32_t c : bent) {
+            const std::uint32_t first = tree.split(c);
+            for (std::uint32_t k = 0; k < 8; ++k) next.push_back(first + k);
+            ++split;
+        }
+        sampler.sample(next);
+        frontier.clear();
+        for (std::uint32_t c : next)
+            if (gamma * tree.edge(tree.cell(c).level) > sampler.min_abs(c)) frontier.push_back(c);
+    }
+    if (split > 0 && !tree.is_balanced()) {
+        const auto before = static_cast<std::uint32_t>(tree.size());
+        tree.balance();
+        std::vector<std::uint32_t> made(tree.size() - before);
+        std::iota(made.begin(), made.end(), before);
+        sampler.sample(made);
+    }
+    return split;
+}
+
+/// The direction of attempt k, the same for every vertex: golden-ratio sequences on the sphere.
+/// One direction for all makes the perturbed values those of G shifted as a whole, so vertices
+/// on a face or a sharp edge of the zero set all move to the same side of it; directions drawn
+/// vertex by vertex could leave one on the other side from all its neighbours, a speck of zero
+/// set around it.
+Vec3 perturbation_direction(int k) {
+    const double phi = 0.6180339887498949, silver = 0.4142135623730950;
+    const double plastic = 0.7548776662466927, bronze = 0.3027756377319946;
+    auto frac = [](double x) { return x - std::floor(x); };
+    const double z = 2.0 * frac(phi + k * silver) - 1.0;
+    const double angle = 2.0 * std::numbers::pi * frac(plastic + k * bronze);
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    return {r * std::cos(angle), r * std::sin(angle), z};
+}
+
+/// True when grid point p lies on the root box's boundary (at 0 or the grid's extent).
+bool on_boundary(const std::array<std::uint32_t, 3>& p, std::uint32_t extent) {
+    for (std::uint32_t x : p)
+        if (x == 0 || x == extent) return true;
+    return false;
+}
+
+/// G at the given vertices of the mesh, in one batch, made exact; ids is emptied.
+void evaluate_at(SurfaceTopology& topo, const Evaluator& g, std::vector<std::uint32_t>& ids) {
+    std::vector<Vec3> points;
+    for (const std::uint32_t v : ids) points.push_back(topo.mesh.vertices[v]);
+    std::vector<double> got(points.size());
+    g(points, got);
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        topo.values[ids[i]] = got[i];
+        topo.exact[ids[i]] = 1;
+    }
+    ids.clear();
+}
+
+/// G at the mesh's vertices: the tree's samples, stand-ins from a leaf's samples for the face
+/// centres whose sign they give, and one batch for the other face centres.
+void mesh_values(SurfaceTopology& topo, const SurfaceSampler& sampler, const Evaluator& g) {
+    const auto& mesh = topo.mesh;
+    const std::size_t n = mesh.vertices.size();
+    topo.values.assign(n, 0.0);
+    topo.exact.assign(n, 0);
+    // Each vertex's stand-in comes from the leaf whose tetrahedra use it first, on all threads.
+    std::vector<std::uint8_t> guessed(n, 0);
+    const std::vector<std::uint32_t> leaves = topo.tree.leaves();
+    parallel_for(leaves.size(), [&](std::size_t i) {
+        const std::uint32_t c = leaves[i];
+        for (std::uint32_t v = mesh.vertex_offsets[c]; v < mesh.vertex_offsets[c + 1]; ++v) {
+            const auto& q = mesh.grid[v];
+            const Sample* s = sampler.at(Tetrahedralization::key(q[0], q[1], q[2]));
+            const std::optional<Sample> guess =
+                s ? std::optional(*s) : sampler.stand_in(mesh.vertices[v], c);
+            if (!guess) continue;
+            topo.values[v] = guess->value;
+            topo.exact[v] = guess->is_exact() ? 1 : 0;
+            guessed[v] = 1;
+        }
+    });
+    std::vector<std::uint32_t> ids;
+    for (std::uint32_t v = 0; v < n; ++v)
+        if (!guessed[v]) ids.push_back(v);
+    evaluate_at(topo, g, ids);
+}
+
+/// The zero set may not reach the domain's boundary: a boundary vertex within η of zero, or a
+/// sign change along an edge on the boundary, is LeftDomain. (On all threads: parallel_for
+/// throws the first failure in order, as one thread would.)
+void check_boundary(const SurfaceTopology& topo, double eta) {
+    const auto& mesh = topo.mesh;
+    const auto& values = topo.values;
+    const auto extent = static_cast<std::uint32_t>(std::uint64_t{2} << topo.tree.max_depth());
+    parallel_for(mesh.vertices.size(), [&](std::size_t v) {
+        if (on_boundary(mesh.grid[v], extent) && std::abs(values[v]) <= eta) {
+            throw LeftDomain(
+                fmt::format("the contour reaches the domain boundary near {}; enlarge the domain "
+                            "(--domain, --box)",
+                            place(mesh.vertices[v])));
+        }
+    });
+    parallel_for(mesh.tetrahedra.size(), [&](std::size_t k) {
+        const auto& t = mesh.tetrahedra[k];
+        for (int i = 0; i < 4; ++i) {
+            for (int j = i + 1; j < 4; ++j) {
+                const auto& p = mesh.grid[t[i]];
+                const auto& q = mesh.grid[t[j]];
+                bool same_face = false;
+                for (int a = 0; a < 3; ++a)
+                    same_face |= p[a] == q[a] && (p[a] == 0 || p[a] == extent);
+                if (same_face && (values[t[i]] > 0.0) != (values[t[j]] > 0.0)) {
+                    throw LeftDomain(
+                        fmt::format("the contour crosses the domain boundary near {}; enlarge the "
+                                    "domain (--domain, --box)",
+                                    place(0.5 * (mesh.vertices[t[i]] + mesh.vertices[t[j]]))));
+                }
+            }
+        }
+    });
+}
+
+/// Moves inner vertices with |G| ≤ η off zero (§2.1), all of one attempt in one batch. Throws
+/// NumericalFailure when one stays there after max_perturbations attempts. Returns the number of
+/// vertices moved.
+std::size_t perturb(SurfaceTopology& topo, const Evaluator& g, double eta) {
+    auto& mesh = topo.mesh;
+    const double h = topo.tree.edge(topo.tree.depth());
+    std::vector<std::uint32_t> todo;
+    for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v)
+        if (std::abs(topo.values[v]) <= eta) todo.push_back(v);
+    const std::size_t moved = todo.size();
+    std::vector<Vec3> original;
+    for (std::uint32_t v : todo) original.push_back(mesh.vertices[v]);
+    std::vector<std::size_t> slot(todo.size());
+    std::iota(slot.begin(), slot.end(), std::size_t{0});
+    for (int k = 0; !todo.empty(); ++k) {
+        if (k == max_perturbations) {
+            throw NumericalFailure(fmt::format(
+                "G vanishes (|G| <= eta = {}) at and around {} after {} perturbations up to "
+                "{:.3g}: G and its gradient seem to vanish together, so the contour is "
+                "ill-posed there",
+                eta, place(original[slot.front()]), max_perturbations,
+                first_perturbation * std::ldexp(h, max_perturbations - 1)));
+        }
+        std::vector<Vec3> points;
+        for (std::size_t i = 0; i < todo.size(); ++i) {
+            const double step = first_perturbation * std::ldexp(h, k);
+            points.push_back(original[slot[i]] + step * perturbation_direction(k));
+        }
+        std::vector<double> got(points.size());
+        g(points, got);
+        std::vector<std::uint32_t> left;
+        std::vector<std::size_t> left_slot;
+        for (std::size_t i = 0; i < todo.size(); ++i) {
+            mesh.vertices[todo[i]] = points[i];
+            topo.values[todo[i]] = got[i];
+            if (std::abs(got[i]) <= eta) {
+                left.push_back(todo[i]);
+                left_slot.push_back(slot[i]);
+            }
+        }
+        todo = std::move(left);
+        slot = std::move(left_slot);
+    }
+    return moved;
+}
+
+/// The tetrahedra where G changes sign, in order, their corners' signs counted on all threads.
+std::vector<std::uint32_t> crossing_tetrahedra(const SurfaceTopology& topo) {
+    const auto& tetrahedra = topo.mesh.tetrahedra;
+    std::vector<std::uint8_t> changes(tetrahedra.size());
+    parallel_for(tetrahedra.size(), [&](std::size_t k) {
+        int positive = 0;
+        for (const std::uint32_t v : tetrahedra[k]) positive += topo.values[v] > 0.0 ? 1 : 0;
+        changes[k] = positive != 0 && positive != 4 ? 1 : 0;
+    });
+    std::vector<std::uint32_t> list;
+    for (std::size_t k = 0; k < changes.size(); ++k)
+        if (changes[k]) list.push_back(static_cast<std::uint32_t>(k));
+    return list;
+}
+
+/// Stand-ins at the corners of the crossing tetrahedra give way to G, for the roots' brackets;
+/// their signs are G's, so the tetrahedra stay the same.
+void evaluate_crossed_stand_ins(SurfaceTopology& topo, const Evaluator& g) {
+    std::vector<std::uint32_t> ids;
+    for (const std::uint32_t k : topo.crossing) {
+        for (const std::uint32_t v : topo.mesh.tetrahedra[k]) {
+            if (!topo.exact[v]) {
+                topo.exact[v] = 1;  // about to be
+                ids.push_back(v);
+            }
+        }
+    }
+    evaluate_at(topo, g, ids);
+}
+
+}  // namespace
+
+SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& domain,
+                                         const SurfaceContourOptions& options) {
+    const double eta = options.resolved_eta();
+    const int thin_depth = std::min(options.thin_depth, max_tetrahedralized_depth - options.depth);
+    SurfaceTopology topo(Octree(domain, options.depth + thin_depth));
+    // The slack allows for rounding in G too: a few thousand ulps of the domain's coordinates.
+    const double rounding = 1e-12 * std::max(domain.largest_magnitude(), domain.width());
+    SurfaceSampler sampler(topo.tree, g, options.distance_slack, rounding, eta, options.depth);
+    topo.gamma = build_tree(topo.tree, sampler, options.gamma);
+    topo.thin_cells = split_thin(topo.tree, sampler, topo.gamma, options.depth);
+    topo.settled = sampler.settled();
+    topo.mesh = tetrahedralize(topo.tree);
+    mesh_values(topo, sampler, g);
+    check_boundary(topo, eta);
+    topo.perturbed = perturb(topo, g, eta);
+    topo.crossing = crossing_tetrahedra(topo);
+    evaluate_crossed_stand_ins(topo, g);
+    return topo;
+}
+
+}  // namespace slc::contouring

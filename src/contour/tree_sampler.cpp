@@ -1,0 +1,331 @@
+// The topology tree of contouring (paper §2.1) in the plane and in space: G sampled at the
+// cells' corners and centres, stand-ins from donors and bounds, and γ doubled until the tree is
+// 2:1 balanced. Instantiated for dim = 2 and 3.
+#include "tree_sampler.hpp"
+
+#include <algorithm>
+#include <utility>
+
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+
+namespace slc::contouring {
+
+template <int dim>
+TreeSampler<dim>::TreeSampler(const Tree& tree, FunctionRef g, std::optional<BoundsRef> bounds,
+                              std::optional<double> distance_slack, double rounding, double eta,
+                              int limit)
+    : tree_(tree),
+      grid_(tree),
+      g_(g),
+      bounds_(bounds),
+      slack_(distance_slack ? std::optional(*distance_slack + rounding) : std::nullopt),
+      rounding_(rounding),
+      eta_(eta),
+      limit_(limit) {
+    // Room for the samples of a large contour up front: pages are touched only as the samples
+    // come, and the arrays are never copied as they grow.
+    samples_.reserve(reserved_samples);
+    points_.reserve(reserved_samples);
+}
+
+template <int dim>
+void TreeSampler<dim>::sample(std::span<const std::uint32_t> cells) {
+    CellSamples none;
+    none.fill(no_sample);
+    cell_samples_.resize(tree_.size(), none);
+    // Numbers the points in cell order, then works out the new points' stand-ins cell by cell on
+    // all threads: each new point's donors are the samples of the parent of the first cell that
+    // meets it, which the parent has before the call.
+    std::vector<std::uint16_t> fresh(cells.size(), 0);  // per cell, a bit per new sample
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+        const std::uint32_t c = cells[i];
+        const std::uint32_t parent = c == 0 ? Tree::no_cell : tree_.cell(c).parent;
+        SLC_ASSERT(parent == Tree::no_cell || has_samples(parent),
+                   "a cell is sampled after its parent");
+        const Keys keys = sample_keys(c);
+        for (std::size_t j = 0; j < keys.n; ++j) {
+            const auto [id, is_new] =
+                parent == Tree::no_cell ? add_point(keys, j) : child_point(c, keys, j);
+            cell_samples_[c][j] = id;
+            if (is_new) fresh[i] |= static_cast<std::uint16_t>(1u << j);
+        }
+    }
+    parallel_for(
+        cells.size(),
+        [&](std::size_t i) {
+            if (fresh[i] == 0 || cells[i] == 0) return;  // the root has no donors
+            const auto donors = samples_of(tree_.cell(cells[i]).parent);
+            for (std::size_t j = 0; j < cell_points; ++j) {
+                if ((fresh[i] >> j & 1u) == 0) continue;
+                const std::uint32_t id = cell_samples_[cells[i]][j];
+                if (const auto stand_in = from_donors(points_[id], donors))
+                    samples_[id] = *stand_in;
+            }
+        },
+        parallel_grain);
+    std::vector<std::uint32_t> open;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+        for (std::size_t j = 0; j < cell_points; ++j) {
+            const std::uint32_t id = cell_samples_[cells[i]][j];
+            if ((fresh[i] >> j & 1u) != 0 && std::isnan(samples_[id].value)) open.push_back(id);
+        }
+    }
+    evaluate(apply_bounds(open));
+    cell_min_.resize(tree_.size(), infinity);
+    parallel_for(cells.size(), [&](std::size_t i) { update_min(cells[i]); });
+}
+
+template <int dim>
+void TreeSampler<dim>::settle_tests(std::span<const std::uint32_t> cells, double gamma) {
+    if (!slack_ && !bounds_) return;  // no stand-ins: every sample is G
+    std::vector<std::uint32_t> touched;
+    for (std::uint32_t c : cells) {
+        const int level = tree_.cell(c).level;
+        // The cell's least value may also be stale: a neighbour's test resolved a stand-in it
+        // shares.
+        if (level < limit_ && gamma * tree_.edge(level) > cell_min_[c]) touched.push_back(c);
+    }
+    if (bounds_) {
+        std::vector<std::uint32_t> ids;
+        for_needed_stand_ins(touched, gamma, [&](std::uint32_t id, Sample& s) {
+            if (s.source != Source::parents) return;
+            s.source = Source::bounds;  // offered once
+            ids.push_back(id);
+        });
+        apply_bounds(ids);
+    }
+    std::vector<std::uint32_t> ids;
+    for_needed_stand_ins(touched, gamma, [&](std::uint32_t id, Sample& s) {
+        s = pending;
+        ids.push_back(id);
+    });
+    evaluate(ids);
+    for (std::uint32_t c : touched) update_min(c);
+}
+
+template <int dim>
+auto TreeSampler<dim>::sample_keys(std::uint32_t c, bool with_centre) const -> Keys {
+    using Coords = typename SampleGrid<dim>::Coords;
+    const auto& cell = tree_.cell(c);
+    const std::uint64_t u = grid_.units(cell.level);
+    Coords lo, centre;
+    for (int i = 0; i < dim; ++i) {
+        lo[i] = cell.coords[i] * u;
+        centre[i] = lo[i] + u / 2;
+    }
+    Keys keys;
+    for (std::uint32_t j = 0; j < Tree::children; ++j) {
+        keys.at[j] = lo;
+        for (int i = 0; i < dim; ++i) keys.at[j][i] += ((j >> i) & 1u) * u;
+    }
+    keys.at[Tree::children] = centre;
+    for (std::size_t j = 0; j < cell_points; ++j) keys.k[j] = SampleGrid<dim>::key(keys.at[j]);
+    const bool has_centre = with_centre || centres_at_depth_limit || cell.level < tree_.max_depth();
+    keys.n = has_centre ? cell_points : cell_points - 1;
+    return keys;
+}
+
+template <int dim>
+std::uint32_t TreeSampler<dim>::add_pending(const Keys& keys, std::size_t j) {
+    samples_.push_back(pending);
+    points_.push_back(grid_.point(keys.at[j]));
+    return static_cast<std::uint32_t>(samples_.size() - 1);
+}
+
+template <int dim>
+std::pair<std::uint32_t, bool> TreeSampler<dim>::add_point(const Keys& keys, std::size_t j) {
+    const auto [id, is_new] =
+        index_.try_emplace(keys.k[j], static_cast<std::uint32_t>(samples_.size()));
+    if (is_new) add_pending(keys, j);
+    return {*id, is_new};
+}
+
+template <int dim>
+std::pair<std::uint32_t, bool> TreeSampler<dim>::child_point(std::uint32_t c, const Keys& keys,
+                                                             std::size_t j) {
+    if (j == Tree::children) {
+        const std::uint32_t id = add_pending(keys, j);
+        if constexpr (centres_in_table) index_.try_emplace(keys.k[j], id);
+        return {id, true};
+    }
+    const auto& cell = tree_.cell(c);
+    const std::uint32_t k = c - tree_.cell(cell.parent).first_child;
+    // Along axis i the corner is at 0, 1 or 2 half parent edges: at 0 or 2 along every axis it
+    // is the parent's corner, at 1 along every axis its centre; otherwise it is on the parent's
+    // boundary, where a neighbour's children may have added it.
+    int halves = 0;
+    std::uint32_t corner = 0;
+    for (int i = 0; i < dim; ++i) {
+        const std::uint32_t a = ((k >> i) & 1u) + ((j >> i) & 1u);
+        if (a == 1) ++halves;
+        corner |= (a / 2) << i;
+    }
+    const CellSamples& parent = cell_samples_[cell.parent];
+    if (halves == 0) return {parent[corner], false};
+    if (halves == dim) return {parent[Tree::children], false};
+    return add_point(keys, j);
+}
+
+template <int dim>
+template <class F>
+void TreeSampler<dim>::for_needed_stand_ins(std::span<const std::uint32_t> touched, double gamma,
+                                            F f) {
+    for (std::uint32_t c : touched) {
+        const double threshold = gamma * tree_.edge(tree_.cell(c).level);
+        const auto ids = samples_of(c);
+        if (std::any_of(ids.begin(), ids.end(),
+                        [&](std::uint32_t id) { return samples_[id].upper < threshold; })) {
+            continue;  // the cell splits whatever G is at its stand-ins
+        }
+        for (std::uint32_t id : ids) {
+            Sample& s = samples_[id];
+            if (s.source != Source::g && std::abs(s.value) < threshold) f(id, s);
+        }
+    }
+}
+
+template <int dim>
+std::optional<Sample> TreeSampler<dim>::from_donors(Point x,
+                                                    std::span<const std::uint32_t> ids) const {
+    if (!slack_) return std::nullopt;
+    double lower = 0.0, sign = 0.0, upper = infinity;
+    for (const std::uint32_t id : ids) {
+        const Sample& donor = samples_[id];
+        if (std::isnan(donor.value)) continue;  // pending: not known yet
+        // |r| to within an ulp, which the slack covers: √(r·r) in the plane, std::hypot in space.
+        const Point r = x - points_[id];
+        double length;
+        if constexpr (dim == 2) {
+            length = std::sqrt(dot(r, r));
+        } else {
+            length = norm(r);
+        }
+        const double reach = length + *slack_;
+        const double b = std::abs(donor.value) - reach;
+        if (b > lower) {
+            lower = b;
+            sign = donor.value;
+        }
+        upper = std::min(upper, donor.upper + reach);
+    }
+    if (!certain(lower)) return std::nullopt;
+    return Sample{std::copysign(lower, sign), upper, Source::parents};
+}
+
+template <int dim>
+std::vector<std::uint32_t> TreeSampler<dim>::apply_bounds(std::vector<std::uint32_t> ids) {
+    if (!bounds_ || ids.empty()) return ids;
+    const std::vector<Point> points = points_of(ids);
+    std::vector<Interval> bounds(points.size());
+    (*bounds_)(points, bounds);
+    bound_evals_ += points.size();
+    std::vector<std::uint32_t> left;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        Sample& s = samples_[ids[i]];
+        const auto [lo, hi] = bounds[i];
+        // An interval that excludes 0 gives G's sign and |G| at least its end nearer 0; a NaN,
+        // or ends out of order, say nothing.
+        const bool valid = lo <= hi;
+        const double lower = valid ? (lo > 0.0 ? lo : (hi < 0.0 ? -hi : 0.0)) - rounding_ : 0.0;
+        const double upper = valid ? std::max(std::abs(lo), std::abs(hi)) + rounding_ : infinity;
+        if (s.source != Source::g) {
+            // A stand-in already: both are true bounds, so they agree on a certain sign.
+            if (certain(lower) && lower > std::abs(s.value))
+                s.value = std::copysign(lower, s.value);
+            s.upper = std::min(s.upper, upper);
+            s.source = Source::bounds;
+        } else if (certain(lower)) {
+            s = Sample{std::copysign(lower, lo), upper, Source::bounds};
+        } else {
+            left.push_back(ids[i]);
+        }
+    }
+    return left;
+}
+
+template <int dim>
+auto TreeSampler<dim>::points_of(std::span<const std::uint32_t> ids) const -> std::vector<Point> {
+    std::vector<Point> points;
+    points.reserve(ids.size());
+    for (std::uint32_t id : ids) points.push_back(points_[id]);
+    return points;
+}
+
+template <int dim>
+void TreeSampler<dim>::update_min(std::uint32_t c) {
+    double m = infinity;
+    for (std::uint32_t id : samples_of(c)) m = std::min(m, std::abs(samples_[id].value));
+    cell_min_[c] = m;
+}
+
+template <int dim>
+void TreeSampler<dim>::evaluate(std::span<const std::uint32_t> ids) {
+    if (ids.empty()) return;
+    const std::vector<Point> points = points_of(ids);
+    std::vector<double> values(points.size());
+    g_(points, values);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        samples_[ids[i]] = Sample{values[i], std::abs(values[i]), Source::g};
+}
+
+namespace {
+
+/// Splits, level by level from the frontier (sampled cells), every cell above the sampler's
+/// limit whose edge exceeds min|G|/γ, sampling each new level in one batch.
+template <int dim>
+void split_while_coarse(Orthtree<dim>& tree, TreeSampler<dim>& sampler,
+                        std::vector<std::uint32_t> frontier, double gamma) {
+    while (!frontier.empty()) {
+        sampler.settle_tests(frontier, gamma);
+        std::vector<std::uint32_t> children;
+        for (std::uint32_t c : frontier) {
+            const int level = tree.cell(c).level;
+            if (level < sampler.limit() && gamma * tree.edge(level) > sampler.min_abs(c)) {
+                const std::uint32_t first = tree.split(c);
+                for (std::uint32_t k = 0; k < Orthtree<dim>::children; ++k)
+                    children.push_back(first + k);
+            }
+        }
+        sampler.sample(children);
+        frontier = std::move(children);
+    }
+}
+
+}  // namespace
+
+template <int dim>
+double build_tree(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma) {
+    sampler.sample(std::vector<std::uint32_t>{0});
+    std::vector<std::uint32_t> frontier{0};
+    for (int doubling = 0;; ++doubling) {
+        split_while_coarse(tree, sampler, std::move(frontier), gamma);
+        if (tree.is_balanced()) return gamma;
+        if (doubling == max_gamma_doublings) break;
+        gamma *= 2.0;
+        frontier.clear();
+        for (std::uint32_t c : tree.leaves())
+            if (tree.cell(c).level < sampler.limit()) frontier.push_back(c);
+    }
+    std::vector<std::uint32_t> children;
+    tree.balance([&](std::size_t c) {
+        for (std::uint32_t k = 0; k < Orthtree<dim>::children; ++k)
+            children.push_back(tree.cell(c).first_child + k);
+    });
+    // balance() may split a cell it split itself: such children wait for their parent's samples.
+    while (!children.empty()) {
+        std::vector<std::uint32_t> ready, later;
+        for (std::uint32_t c : children)
+            (sampler.has_samples(tree.cell(c).parent) ? ready : later).push_back(c);
+        sampler.sample(ready);
+        children = std::move(later);
+    }
+    return gamma;
+}
+
+template class TreeSampler<2>;
+template class TreeSampler<3>;
+template double build_tree(Orthtree<2>&, TreeSampler<2>&, double);
+template double build_tree(Orthtree<3>&, TreeSampler<3>&, double);
+
+}  // namespace slc::contouring
