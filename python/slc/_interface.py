@@ -10,13 +10,13 @@ import numpy as np
 
 from . import _slc
 
-def _points(a, what: str) -> np.ndarray:
-    """a as a C-contiguous float64 (n, 2) array; TypeError or ValueError naming `what`."""
+def _points(a, what: str, dim: int = 2) -> np.ndarray:
+    """a as a C-contiguous float64 (n, dim) array; TypeError or ValueError naming `what`."""
     arr = np.asarray(a)
     if arr.dtype.kind not in "iuf":
         raise TypeError(f"{what} must hold real numbers, got dtype {arr.dtype}")
-    if arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"{what} must be an (n, 2) array, got shape {arr.shape}")
+    if arr.ndim != 2 or arr.shape[1] != dim:
+        raise ValueError(f"{what} must be an (n, {dim}) array, got shape {arr.shape}")
     return np.ascontiguousarray(arr, dtype=np.float64)
 
 

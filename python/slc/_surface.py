@@ -13,17 +13,14 @@ from typing import Any, Callable, NamedTuple
 import numpy as np
 
 from . import _slc
+from ._interface import _points
 from ._problem import _NamedProblem
 from ._tables import errors_markdown, nan_array as _array
 
 
 def _vertices(a) -> np.ndarray:
-    arr = np.asarray(a)
-    if arr.dtype.kind not in "iuf":
-        raise TypeError(f"vertices must hold real numbers, got dtype {arr.dtype}")
-    if arr.ndim != 2 or arr.shape[1] != 3:
-        raise ValueError(f"vertices must be an (n, 3) array, got shape {arr.shape}")
-    return np.ascontiguousarray(arr, dtype=np.float64)
+    """a as a C-contiguous float64 (n, 3) array; TypeError or ValueError naming the vertices."""
+    return _points(a, "vertices", 3)
 
 
 def _triangles(a) -> np.ndarray:
@@ -90,25 +87,14 @@ class Surface:
     def _measures(self) -> dict[str, Any]:
         return _slc.surface_measures(self._vertices, self._triangles)
 
-    @property
-    def volume(self) -> float:
-        """Enclosed volume (inner components subtract)."""
-        return self._measures()["volume"]
-
-    @property
-    def area(self) -> float:
-        """Total area."""
-        return self._measures()["area"]
-
-    @property
-    def components(self) -> int:
-        """Connected components."""
-        return self._measures()["components"]
-
-    @property
-    def genus(self) -> int:
-        """Total genus: the handles of all components (0 for spheres, 1 for a torus)."""
-        return self._measures()["genus"]
+    volume = property(lambda self: self._measures()["volume"],
+                      doc="Enclosed volume (inner components subtract).")
+    area = property(lambda self: self._measures()["area"], doc="Total area.")
+    components = property(lambda self: self._measures()["components"],
+                          doc="Connected components.")
+    genus = property(lambda self: self._measures()["genus"],
+                     doc="Total genus: the handles of all components (0 for spheres, 1 for a "
+                         "torus).")
 
     def __len__(self) -> int:
         """Number of triangles."""
