@@ -40,8 +40,10 @@ struct Tetrahedralization {
     }
 };
 
-/// The deepest octree tetrahedralize() takes: grid coordinates (half the finest edge) fit 21 bits.
-inline constexpr int max_tetrahedralized_depth = 20;
+/// The deepest octree tetrahedralize() takes: grid coordinates (half the finest edge), which run
+/// from 0 to 2^(depth + 1), fit the 21 bits of Tetrahedralization::key.
+inline constexpr int max_tetrahedralized_depth = 19;
+static_assert(max_tetrahedralized_depth + 1 < 21, "grid coordinates must fit 21 bits");
 
 /// Tetrahedralizes a balanced octree: 24 to 96 tetrahedra a leaf (24 when all six neighbours are
 /// leaves of its size). Cost O(leaves · depth), on all worker threads: each leaf's cones over its

@@ -94,7 +94,7 @@ TEST(ApplyOverrides, RangesAreTheSameForTheToolAndPython) {
     EXPECT_EQ(message_of([] {
                   apply_overrides({.depth = 21}, SurfaceRunOptions{}, 1.0, SettingNames::tool);
               }),
-              "--depth: must be an integer from 1 to 20 for a surface, got 21");
+              "--depth: must be an integer from 1 to 19 for a surface, got 21");
     EXPECT_EQ(message_of([] { apply_overrides({.steps = 0}, RunOptions{}, 1.0); }),
               "steps: must be an integer from 1 to 100000000, got 0");
     EXPECT_EQ(message_of([] { apply_overrides({.refine = 65}, SurfaceRunOptions{}, 1.0); }),

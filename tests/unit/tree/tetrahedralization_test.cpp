@@ -166,5 +166,15 @@ TEST(Tetrahedralization, RefusesAnUnbalancedTree) {
     EXPECT_THROW(tetrahedralize(tree), InvalidInput);
 }
 
+TEST(Tetrahedralization, KeysTellApartEveryGridPointOfTheDeepestTree) {
+    // Grid coordinates run from 0 to 2^(K + 1): at the deepest K they still fit 21 bits, so the
+    // far corner's key is no neighbour's (at K = 20, (0, 0, 2^21) took the key of (0, 1, 0)).
+    const std::uint64_t top = std::uint64_t{1} << (max_tetrahedralized_depth + 1);
+    EXPECT_NE(Tetrahedralization::key(0, 0, top), Tetrahedralization::key(0, 1, 0));
+    EXPECT_NE(Tetrahedralization::key(0, top, 0), Tetrahedralization::key(1, 0, 0));
+    EXPECT_THROW(tetrahedralize(Octree(Box3::centered_cube(1.0), max_tetrahedralized_depth + 1)),
+                 InvalidInput);
+}
+
 }  // namespace
 }  // namespace slc
