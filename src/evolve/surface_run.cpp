@@ -1,108 +1,209 @@
-// The time loop of surfaces: steps, sub-steps the guards ask for, vanishing, failures, clocks.
+// The time loop of surfaces (paper §4.3 with d = 3, DESIGN §8): the hooks of time_loop.hpp for
+// d = 3 (the volume, area, components and genus the guards check, the notes of a run with its
+// guards off, the counters of SurfaceRunResult), the guards of one step
+// (surface_invariant_violation), run() and resume().
 #include "slc/evolve/surface_run.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <numbers>
 
 #include "slc/core/error.hpp"
 #include "slc/tree/tetrahedralization.hpp"
 #include "slc/velocity/surface_laws.hpp"
+#include "time_loop.hpp"
 
 namespace slc {
-namespace {
+namespace detail {
 
-double process_cpu_s() {
-    timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+/// Surfaces: the guards check volume, area, components and genus (surface_invariant_violation),
+/// and with the guards off still check every step, noting the first break (status broken).
+template <>
+class LoopHooks<3> {
+public:
+    using Options = SurfaceRunOptions;
+    using Result = SurfaceRunResult;
+    using StepResult = SurfaceStepResult;
+    using Report = SurfaceStepReport;
+    using Observer = SurfaceObserver;
 
-void check(const SurfaceRunOptions& o) {
-    if (o.steps < 1) throw InvalidInput(fmt::format("steps must be at least 1, got {}", o.steps));
-    if (!std::isfinite(o.t_start) || !std::isfinite(o.t_end) || !(o.t_end > o.t_start)) {
-        throw InvalidInput(fmt::format("t-end must be finite and after the start time {}, got {}",
-                                       o.t_start, o.t_end));
-    }
-    if (o.max_substep_halvings < 0 || o.max_substep_halvings > 10) {
-        throw InvalidInput(
-            fmt::format("max_substep_halvings must be in 0..10, got {}", o.max_substep_halvings));
-    }
-    if (o.max_domain_doublings < 0) {
-        throw InvalidInput(fmt::format("max_domain_doublings must not be negative, got {}",
-                                       o.max_domain_doublings));
-    }
-}
+    static constexpr int max_depth = max_tetrahedralized_depth;
+    static constexpr const char* noun = "the surface";
+    static constexpr const char* possessive = "its";
+    /// The observer does not see the step that vanished (the tool's and Python's observers
+    /// measure the surface they are given).
+    static constexpr bool observes_vanishing = false;
+    /// NOTE: a step that fails ends the run at once (its message names what failed: the flow
+    /// that carries the surface out of a fixed domain), where curves retry it in sub-steps.
+    static constexpr bool retries_failures = false;
+    /// NOTE: a run beyond its budget (volume drift, area growth) ends with the surface of the
+    /// step that took it there, where curves end with the one before.
+    static constexpr bool keeps_step_over_budget = true;
 
-/// When a flow field carries a vertex of s out of the domain within the step (its forward Euler
-/// image, x + k u(t, x), outside): the message of LeftDomain, naming the first such vertex. An
-/// empty contour from such a step is a surface that left the domain, not one that vanished.
-std::optional<std::string> carried_out(const Surface& s, double t, double k,
-                                       const SurfaceVelocityLaw& law, const Box3& domain) {
-    if (!law.is_field()) return std::nullopt;
-    std::vector<Vec3> u(s.vertices.size());
-    law.sample(t, s.vertices, u);
-    for (std::size_t i = 0; i < u.size(); ++i) {
-        const Vec3 x = s.vertices[i], y = x + k * u[i];
-        if (domain.contains(y)) continue;
+    static Surface& shape(SurfaceRunResult& r) { return r.surface; }
+    static const Surface& shape(const SurfaceRunResult& r) { return r.surface; }
+    static Surface& shape(SurfaceStepResult& s) { return s.surface; }
+
+    /// The step's options in the domain doubled j times: K a level deeper, the same finest cell.
+    static SurfaceStepOptions step_options(const SurfaceRunOptions& options, int j) {
+        SurfaceStepOptions o = options.step;
+        o.contour.depth += j;
+        return o;
+    }
+
+    /// NOTE: the sub-steps of a surface's step keep the equal length (t_next − t0)/parts they
+    /// have always had (curves take t_to − t): the two differ in the last bit, and the runs of
+    /// either stay what they were.
+    static double substep_length(double t0, double t_next, int parts, double, double) {
+        return (t_next - t0) / parts;
+    }
+
+    LoopHooks(const SurfaceVelocityLaw& law, const Box3& domain, const SurfaceRunOptions& options)
+        : options_(options),
+          invariants_(law.invariants()),
+          eps_(options.step.contour.resolved_eps()),
+          cell_(finest_cell(domain, options.step.contour)),
+          until_converged_(options.step.contour.refine_passes ==
+                           SurfaceContourOptions::until_converged) {}
+
+    struct Start {};
+    Start start(const Surface&) const { return {}; }
+
+    /// What one split of a step did.
+    struct Attempt {
+        Start start;
+        double corrected = 0.0;
+        bool unconverged = false;
+        double residual = 0.0;
+        double thin_at = std::numeric_limits<double>::quiet_NaN(), thin_thickness = 0.0;
+    };
+
+    /// Counts the sub-step from `before` at t to s (its G evaluations in r whether or not the
+    /// split is kept), and checks it: its break with the guards on, noted in r off.
+    std::optional<std::string> record(Attempt& a, const Surface& before, const SurfaceStepResult& s,
+                                      double t, double k, SurfaceRunResult& r) const;
+
+    /// The volume's drift since the start (a law that keeps it) and the area above the least (a
+    /// law that shrinks it), after the step to t_next ends at `surface`.
+    std::optional<std::string> run_budget(Attempt& a, const Surface& surface, double t_next,
+                                          SurfaceRunResult& r) const;
+
+    /// Adds what the kept split did to r.
+    static void commit(const Attempt& a, SurfaceRunResult& r) {
+        r.volume_corrected += a.corrected;
+        if (a.unconverged) {
+            ++r.unconverged_steps;
+            r.largest_residual = std::max(r.largest_residual, a.residual);
+        }
+        if (std::isnan(r.thin_split_at) && !std::isnan(a.thin_at)) {
+            r.thin_split_at = a.thin_at;
+            r.thin_split_thickness = a.thin_thickness;
+        }
+    }
+
+    /// With the guards off, the first break is kept (a coarse run whose sheet tears, measured
+    /// anyway): it is the message of a run that vanishes, and makes a run that ends broken.
+    static void note_broken(SurfaceRunResult& r, std::string why) {
+        if (r.broken.empty()) r.broken = std::move(why);
+    }
+    static void vanished(SurfaceRunResult& r) { r.message = r.broken; }
+    static void finished(SurfaceRunResult& r) {
+        if (r.broken.empty()) return;
+        r.status = RunStatus::broken;
+        r.message = r.broken;
+    }
+    static void check_start(const SurfaceRunResult& from) {
+        if (from.surface.empty()) throw InvalidInput("the surface to resume has no triangles");
+    }
+
+    static std::string unstable_after_splits(const std::string& violation, int pieces, double t0) {
         return fmt::format(
-            "the flow carries the surface out of the domain [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] "
-            "x [{:.6g}, {:.6g}] within a step, ({:.6g}, {:.6g}, {:.6g}) to near ({:.6g}, {:.6g}, "
-            "{:.6g}): give a domain that holds its whole path (--domain, --box), or take more "
-            "steps (-N)",
-            domain.lo.x, domain.hi.x, domain.lo.y, domain.hi.y, domain.lo.z, domain.hi.z, x.x, x.y,
-            x.z, y.x, y.y, y.z);
+            "at t = {:.6g}: {} (also in {} sub-steps); refine the time step (-N) or the contours "
+            "(-K, --eps)",
+            t0, violation, pieces);
     }
+    static std::string at_step(int, double, const std::string& why) { return why; }
+    static std::string step_failed(int, double t, const char* what) {
+        return fmt::format("at t = {:.6g}: {}", t, what);
+    }
+    static std::string left_extent(const std::string& law, double t, const std::string& region,
+                                   std::size_t, Vec3 p) {
+        return fmt::format(
+            "at t = {} the surface left the region where velocity '{}' is known, {}, at {}: give "
+            "the velocity on a larger grid, or end the run earlier (t-end)",
+            t, law, region, point_text(p));
+    }
+    static std::string initial_outside_extent(const std::string& law, const std::string& region,
+                                              std::size_t i, Vec3 p) {
+        return fmt::format(
+            "the initial surface leaves the region where velocity '{}' is known, {}: vertex {} at "
+            "{}",
+            law, region, i, point_text(p));
+    }
+
+private:
+    const SurfaceRunOptions& options_;
+    Invariants invariants_;
+    double eps_;
+    double cell_;  ///< the finest cell: a new component thinner than it is a thin split
+    bool until_converged_;
+};
+
+std::optional<std::string> LoopHooks<3>::record(Attempt& a, const Surface& before,
+                                                const SurfaceStepResult& s, double t, double k,
+                                                SurfaceRunResult& r) const {
+    r.g_evals += s.stats.g_evals();
+    a.corrected += s.stats.volume_correction;
+    if (until_converged_ && !s.surface.empty() && !s.stats.corrector.converged) {
+        a.unconverged = true;
+        a.residual = std::max(a.residual, s.stats.corrector.residual);
+    }
+    if (const auto thin = thinnest_new_component(before, s.surface);
+        thin && *thin < cell_ && std::isnan(a.thin_at)) {
+        a.thin_at = t + k;
+        a.thin_thickness = *thin;
+    }
+    auto v = surface_invariant_violation(invariants_, before, s.surface, k, eps_);
+    if (!v || options_.guards) return v;
+    // Without guards the step is kept whole: noted, not split.
+    note_broken(r, fmt::format("at t = {:.6g}: {}; refine the time step (-N) or the contours (-K, "
+                               "--eps)",
+                               t, *v));
     return std::nullopt;
 }
 
-/// One step in the domain that holds the surface: doubled the fewest times that keep its
-/// bounding box an eighth of the doubled width from the edge, then once more each time the
-/// contour reaches the edge (SurfaceRunOptions::max_domain_doublings), K a level deeper per
-/// doubling. Records the doublings in `r`.
-SurfaceStepResult advance_in_growing_domain(const Surface& s, double t, double k,
-                                            const SurfaceVelocityLaw& law, const Box3& domain,
-                                            const SurfaceRunOptions& options, SurfaceRunResult& r) {
-    const int most = std::min(options.max_domain_doublings,
-                              max_tetrahedralized_depth - options.step.contour.depth);
-    int j = 0;
-    if (most > 0) {
-        const Box3 b = bounding_box(s);
-        for (; j < most; ++j) {
-            const Box3 d = doubled_domain(domain, j);
-            if (d.inflated(-0.125 * d.width()).contains(b)) break;
+std::optional<std::string> LoopHooks<3>::run_budget(Attempt&, const Surface& surface, double t_next,
+                                                    SurfaceRunResult& r) const {
+    std::optional<std::string> why;
+    if (invariants_.keeps_area && !surface.empty()) {
+        const double drift = volume(surface) / r.volume_initial - 1.0;
+        if (std::abs(drift) > options_.volume_drift) {
+            why = fmt::format(
+                "at t = {:.6g}: the volume drifted by {:.3g}% since the start under a law that "
+                "keeps it (more than {:.3g}%); take more steps (-N), refine the contours (-K, "
+                "--eps) or allow more drift (--volume-drift)",
+                t_next, 100.0 * drift, 100.0 * options_.volume_drift);
+            if (options_.guards) return why;
         }
     }
-    for (;; ++j) {
-        SurfaceStepOptions o = options.step;
-        o.contour.depth += j;
-        try {
-            SurfaceStepResult step = advance(s, t, k, law, doubled_domain(domain, j), o);
-            if (step.surface.empty()) {
-                if (const auto out = carried_out(s, t, k, law, doubled_domain(domain, j)))
-                    throw LeftDomain(*out);
-            }
-            if (j > r.domain_doublings) {
-                if (r.domain_doublings == 0) r.domain_grown_at = t;
-                r.domain_doublings = j;
-            }
-            return step;
-        } catch (const LeftDomain&) {
-            if (j >= most) throw;
+    if (invariants_.shortens && !surface.empty()) {
+        if (const auto growth =
+                growth_above_least(r.least_area, area(surface), t_next, options_.area_growth,
+                                   20.0 * eps_ * std::sqrt(r.least_area.value));
+            growth && !why) {
+            why = fmt::format(
+                "at t = {:.6g}: the area has grown by {:.3g}% since t = {:.6g} under a law that "
+                "shrinks it, more than the run's {:g}%: the steps roughen the surface; take more "
+                "steps (-N) or refine the contours (-K, --eps)",
+                t_next, 100.0 * *growth, r.least_area.t, 100.0 * options_.area_growth);
         }
     }
+    return why;
 }
 
-/// The time after n of the N steps, from the step count so that the last step ends at t_end.
-double time_after(const SurfaceRunOptions& o, int n) {
-    return n == o.steps ? o.t_end : o.t_start + n * ((o.t_end - o.t_start) / o.steps);
-}
-
-}  // namespace
+}  // namespace detail
 
 Surface surface_as_read(const Surface& s, const Box3& domain, const SurfaceRunOptions& options) {
     // A flow field at rest: G(x) = F(x), so the step's contour is the surface's own.
@@ -123,6 +224,16 @@ Surface surface_as_read(const Surface& s, const Box3& domain, const SurfaceRunOp
 Box3 doubled_domain(const Box3& domain, int times) {
     if (times == 0) return domain;
     return Box3::cube(domain.center(), std::ldexp(0.5 * domain.width(), times));
+}
+
+int domain_doublings_for(const Surface& s, const Box3& domain, int max_doublings) {
+    if (s.empty() || max_doublings == 0) return 0;
+    const Box3 b = bounding_box(s);
+    for (int j = 0; j < max_doublings; ++j) {
+        const Box3 d = doubled_domain(domain, j);
+        if (d.inflated(-0.125 * d.width()).contains(b)) return j;
+    }
+    return max_doublings;
 }
 
 std::optional<std::string> surface_invariant_violation(const Invariants& law, const Surface& before,
@@ -247,164 +358,7 @@ SurfaceRunResult run(const Surface& initial, const SurfaceVelocityLaw& law, cons
 SurfaceRunResult resume(const SurfaceRunResult& from, const SurfaceVelocityLaw& law,
                         const Box3& domain, const SurfaceRunOptions& options,
                         const SurfaceObserver& observer) {
-    check(options);
-    if (from.surface.empty()) throw InvalidInput("the surface to resume has no triangles");
-    if (from.steps_done < 0 || from.steps_done >= options.steps) {
-        throw InvalidInput(fmt::format("cannot resume after step {} of a run of {} steps",
-                                       from.steps_done, options.steps));
-    }
-    if (from.t != time_after(options, from.steps_done)) {
-        throw InvalidInput(fmt::format("cannot resume: t = {} is not the time after step {} ({})",
-                                       from.t, from.steps_done,
-                                       time_after(options, from.steps_done)));
-    }
-    SurfaceRunResult r = from;
-    r.status = RunStatus::ok;
-    r.message.clear();
-    // What a step broke: with the guards on, the end of the run; off, noted the first time.
-    const auto stop_or_note = [&](std::string why) {
-        if (options.guards) {
-            r.status = RunStatus::unstable;
-            r.message = std::move(why);
-            return true;
-        }
-        if (r.broken.empty()) r.broken = std::move(why);
-        return false;
-    };
-    const Invariants invariants = law.invariants();
-    const double eps = options.step.contour.resolved_eps();
-    const double cell = finest_cell(domain, options.step.contour);
-    const bool until_converged =
-        options.step.contour.refine_passes == SurfaceContourOptions::until_converged;
-    const double volume0 = from.volume_initial;
-    const double wall_before = from.wall_s, cpu_before = from.cpu_s;
-    const auto wall_start = std::chrono::steady_clock::now();
-    const double cpu_start = process_cpu_s();
-    auto clocks = [&] {
-        r.wall_s =
-            wall_before +
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-        r.cpu_s = cpu_before + process_cpu_s() - cpu_start;
-    };
-    for (int n = from.steps_done + 1; n <= options.steps; ++n) {
-        const double t0 = time_after(options, n - 1), t1 = time_after(options, n);
-        SurfaceStepStats stats;
-        try {
-            // The step, in 1, 2, 4, ... sub-steps until it keeps what the law keeps.
-            for (int halvings = 0;; ++halvings) {
-                const int pieces = 1 << halvings;
-                const double k = (t1 - t0) / pieces;
-                Surface s = r.surface;
-                std::optional<std::string> broken;
-                double corrected = 0.0;
-                bool unconverged = false;
-                double residual = 0.0;
-                double thin_at = std::numeric_limits<double>::quiet_NaN(), thin_thickness = 0.0;
-                for (int j = 0; j < pieces && !s.empty(); ++j) {
-                    SurfaceStepResult step =
-                        advance_in_growing_domain(s, t0 + j * k, k, law, domain, options, r);
-                    r.g_evals += step.stats.g_evals();
-                    corrected += step.stats.volume_correction;
-                    if (until_converged && !step.surface.empty() &&
-                        !step.stats.corrector.converged) {
-                        unconverged = true;
-                        residual = std::max(residual, step.stats.corrector.residual);
-                    }
-                    stats = step.stats;
-                    if (const auto thin = thinnest_new_component(s, step.surface);
-                        thin && *thin < cell && std::isnan(thin_at)) {
-                        thin_at = t0 + (j + 1) * k;
-                        thin_thickness = *thin;
-                    }
-                    if (auto v = surface_invariant_violation(invariants, s, step.surface, k, eps)) {
-                        if (options.guards) {
-                            broken = std::move(v);
-                            break;
-                        }
-                        // Without guards the step is kept whole: noted, not split.
-                        stop_or_note(
-                            fmt::format("at t = {:.6g}: {}; refine the time step (-N) or the "
-                                        "contours (-K, --eps)",
-                                        t0 + j * k, *v));
-                    }
-                    s = std::move(step.surface);
-                }
-                if (!broken) {
-                    if (pieces > 1) {
-                        ++r.split_steps;
-                        r.most_substeps = std::max(r.most_substeps, pieces);
-                    }
-                    r.surface = std::move(s);
-                    r.volume_corrected += corrected;
-                    if (unconverged) {
-                        ++r.unconverged_steps;
-                        r.largest_residual = std::max(r.largest_residual, residual);
-                    }
-                    if (std::isnan(r.thin_split_at) && !std::isnan(thin_at)) {
-                        r.thin_split_at = thin_at;
-                        r.thin_split_thickness = thin_thickness;
-                    }
-                    break;
-                }
-                if (halvings == options.max_substep_halvings) {
-                    r.status = RunStatus::unstable;  // (only the guards split a step)
-                    r.message = fmt::format(
-                        "at t = {:.6g}: {} (also in {} sub-steps); refine the time step (-N) or "
-                        "the contours (-K, --eps)",
-                        t0, *broken, pieces);
-                    clocks();
-                    return r;
-                }
-            }
-        } catch (const NumericalFailure& e) {
-            r.status = RunStatus::error;
-            r.message = fmt::format("at t = {:.6g}: {}", t0, e.what());
-            clocks();
-            return r;
-        }
-        r.t = t1;
-        r.steps_done = n;
-        clocks();
-        if (invariants.keeps_area && !r.surface.empty()) {
-            const double drift = volume(r.surface) / volume0 - 1.0;
-            if (std::abs(drift) > options.volume_drift &&
-                stop_or_note(fmt::format(
-                    "at t = {:.6g}: the volume drifted by {:.3g}% since the start under a law that "
-                    "keeps it (more than {:.3g}%); take more steps (-N), refine the contours "
-                    "(-K, --eps) or allow more drift (--volume-drift)",
-                    t1, 100.0 * drift, 100.0 * options.volume_drift)))
-                return r;
-        }
-        if (invariants.shortens && !r.surface.empty()) {
-            if (const auto growth =
-                    growth_above_least(r.least_area, area(r.surface), t1, options.area_growth,
-                                       20.0 * eps * std::sqrt(r.least_area.value));
-                growth &&
-                stop_or_note(fmt::format(
-                    "at t = {:.6g}: the area has grown by {:.3g}% since t = {:.6g} under a law "
-                    "that shrinks it, more than the run's {:g}%: the steps roughen the surface; "
-                    "take more steps (-N) or refine the contours (-K, --eps)",
-                    t1, 100.0 * *growth, r.least_area.t, 100.0 * options.area_growth)))
-                return r;
-        }
-        if (r.surface.empty()) {
-            r.status = RunStatus::vanished;
-            r.message = r.broken;
-            return r;
-        }
-        if (observer) {
-            const SurfaceStepReport report{n, options.steps, r.t, &r.surface, &stats, &r};
-            if (!observer(report) && n < options.steps) {
-                r.status = RunStatus::interrupted;
-                return r;
-            }
-        }
-    }
-    if (!r.broken.empty()) {
-        r.status = RunStatus::broken;
-        r.message = r.broken;
-    }
-    return r;
+    return detail::time_loop<3>(from, law, domain, options, observer);
 }
 
 }  // namespace slc

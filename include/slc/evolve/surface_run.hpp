@@ -53,7 +53,9 @@ struct SurfaceStepReport {
     double t = 0.0;                           ///< time reached
     const Surface* surface = nullptr;         ///< S(t)
     const SurfaceStepStats* stats = nullptr;  ///< what the step cost (its last sub-step)
-    const SurfaceRunResult* run = nullptr;    ///< the run so far
+    double wall_s = 0.0;                      ///< seconds of the time loop so far
+    double step_cpu_s = 0.0;  ///< process CPU seconds of this step alone (all threads)
+    const SurfaceRunResult* run = nullptr;  ///< the run so far
 };
 
 /// Called after every step; returning false stops the run (status interrupted).
@@ -118,6 +120,11 @@ double finest_cell(const Box3& domain, const SurfaceContourOptions& contour);
 
 /// The cube domain doubled about its centre `times` times.
 Box3 doubled_domain(const Box3& domain, int times);
+
+/// The domain of a step from s: domain doubled about its centre the fewest times (at most
+/// max_doublings) for which s's bounding box keeps an eighth of the doubled width from its edge.
+/// Returns the number of doublings.
+int domain_doublings_for(const Surface& s, const Box3& domain, int max_doublings);
 
 /// Why a step of length k from `before` to `after` breaks what the law keeps, in one line, or
 /// nothing when it keeps it within the budget: a kept volume may move in a step by at most the

@@ -1,0 +1,332 @@
+// The time loop of curves and surfaces, written once over the dimension (internal to evolve; paper
+// §4.3, DESIGN §8): N steps of advance() from t_start to t_end, each in a domain that grows when
+// the interface nears its edge, each split into 2, 4, ... sub-steps when it breaks what the law
+// keeps, the run's statuses, clocks and observer, and resume() from a step. What differs between
+// the dimensions (the invariants each law keeps, area against volume, what a step returns and how
+// the messages read) comes from LoopHooks<dim>, which run.cpp (dim 2) and surface_run.cpp (dim 3)
+// define before they call time_loop<dim>().
+#pragma once
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <ctime>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "slc/core/box.hpp"
+#include "slc/core/box3.hpp"
+#include "slc/core/error.hpp"
+#include "slc/evolve/run.hpp"
+#include "step_common.hpp"
+
+namespace slc::detail {
+
+/// What differs between curves (dim 2) and surfaces (dim 3): the types of a run (Options, Result,
+/// StepResult, Report, Observer, Law, Region, Shape), the step's options in a grown domain, the
+/// guards of one step and of the run, and the wording of messages. Specialised where it is used.
+template <int dim>
+class LoopHooks;
+
+/// The process's CPU time (all threads) in whole nanoseconds: a difference of two readings is
+/// exact, and seconds() of it the nearest double to the measured seconds.
+inline std::int64_t process_cpu_ns() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return std::int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
+}
+
+inline double seconds(std::int64_t ns) { return static_cast<double>(ns) / 1e9; }
+
+/// Throws InvalidInput for options no run can take (the same for curves and surfaces).
+template <class Options>
+void check_run_options(const Options& o) {
+    if (o.steps < 1) throw InvalidInput(fmt::format("steps must be at least 1, got {}", o.steps));
+    if (!std::isfinite(o.t_start) || !std::isfinite(o.t_end) || !(o.t_end > o.t_start)) {
+        throw InvalidInput(fmt::format("t-end must be finite and after the start time {}, got {}",
+                                       o.t_start, o.t_end));
+    }
+    if (o.max_substep_halvings < 0 || o.max_substep_halvings > 10) {
+        throw InvalidInput(
+            fmt::format("max_substep_halvings must be in 0..10, got {}", o.max_substep_halvings));
+    }
+    if (o.max_domain_doublings < 0) {
+        throw InvalidInput(fmt::format("max_domain_doublings must not be negative, got {}",
+                                       o.max_domain_doublings));
+    }
+}
+
+/// The time after n of the N steps: from the step count, not by summing k, so that the last step
+/// ends exactly at t_end and a resumed run takes the same steps.
+template <class Options>
+double time_after(const Options& o, int n) {
+    const double k = (o.t_end - o.t_start) / o.steps;
+    return n == o.steps ? o.t_end : o.t_start + n * k;
+}
+
+/// "[a, b] x [c, d]" (and "x [e, f]" in space), for messages; region_text6 with 6 digits.
+inline std::string region_text(const Box& b) {
+    return fmt::format("[{}, {}] x [{}, {}]", b.lo.x, b.hi.x, b.lo.y, b.hi.y);
+}
+inline std::string region_text(const Box3& b) {
+    return fmt::format("[{}, {}] x [{}, {}] x [{}, {}]", b.lo.x, b.hi.x, b.lo.y, b.hi.y, b.lo.z,
+                       b.hi.z);
+}
+inline std::string region_text6(const Box& b) {
+    return fmt::format("[{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]", b.lo.x, b.hi.x, b.lo.y, b.hi.y);
+}
+inline std::string region_text6(const Box3& b) {
+    return fmt::format("[{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]", b.lo.x, b.hi.x,
+                       b.lo.y, b.hi.y, b.lo.z, b.hi.z);
+}
+
+/// "(x, y)" or "(x, y, z)" with 6 digits, for messages.
+inline std::string point_text6(Vec2 p) { return fmt::format("({:.6g}, {:.6g})", p.x, p.y); }
+inline std::string point_text6(Vec3 p) {
+    return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x, p.y, p.z);
+}
+
+/// When a flow field carries a vertex of `shape` out of the domain within the step (its forward
+/// Euler image, x + k u(t, x), outside): the message of LeftDomain, naming the first such vertex.
+/// An empty contour from such a step is an interface that left the domain, not one that vanished.
+template <int dim>
+std::optional<std::string> carried_out(const typename Space<dim>::Shape& shape, double t, double k,
+                                       const BasicVelocityLaw<dim>& law,
+                                       const typename Space<dim>::Region& domain) {
+    using H = LoopHooks<dim>;
+    if (!law.is_field()) return std::nullopt;
+    const auto points = vertex_points(shape);
+    std::vector<typename Space<dim>::Point> u(points.size());
+    law.sample(t, points, u);
+    for (std::size_t i = 0; i < u.size(); ++i) {
+        const auto x = points[i], y = x + k * u[i];
+        if (domain.contains(y)) continue;
+        return fmt::format(
+            "the flow carries {} out of the domain {} within a step, {} to near {}: give a domain "
+            "that holds {} whole path (--domain, --box), or take more steps (-N)",
+            H::noun, region_text6(domain), point_text6(x), point_text6(y), H::possessive);
+    }
+    return std::nullopt;
+}
+
+/// Throws (as Error) when a vertex of `shape` lies outside the region where the law is known (a
+/// velocity given on a grid), with the message `what(region, index, vertex)`.
+template <class Error, int dim, class What>
+void check_extent(const BasicVelocityLaw<dim>& law, const typename Space<dim>::Shape& shape,
+                  What what) {
+    const auto extent = law.extent();
+    if (!extent) return;
+    const auto points = vertex_points(shape);
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (!extent->contains(points[i])) throw Error(what(region_text(*extent), i, points[i]));
+}
+
+/// The step from `shape` at t to t + k in the domain that holds it: doubled the fewest times that
+/// keep its bounding box an eighth of the doubled width from the edge (domain_doublings_for), then
+/// once more each time the contour reaches the edge (max_domain_doublings), K a level deeper per
+/// doubling. Records the doublings in `counters`.
+template <int dim>
+auto step_in_growing_domain(const typename Space<dim>::Shape& shape, double t, double k,
+                            const BasicVelocityLaw<dim>& law,
+                            const typename Space<dim>::Region& domain,
+                            const typename LoopHooks<dim>::Options& options,
+                            typename LoopHooks<dim>::Result& counters) {
+    using H = LoopHooks<dim>;
+    const int most =
+        std::min(options.max_domain_doublings, H::max_depth - options.step.contour.depth);
+    for (int j = domain_doublings_for(shape, domain, std::max(most, 0));; ++j) {
+        try {
+            typename H::StepResult step =
+                advance(shape, t, k, law, doubled_domain(domain, j), H::step_options(options, j));
+            if (H::shape(step).empty()) {
+                if (const auto out = carried_out<dim>(shape, t, k, law, doubled_domain(domain, j)))
+                    throw LeftDomain(*out);
+            }
+            if (j > counters.domain_doublings) {
+                if (counters.domain_doublings == 0) counters.domain_grown_at = t;
+                counters.domain_doublings = j;
+            }
+            return step;
+        } catch (const LeftDomain&) {
+            if (j >= most) throw;
+        }
+    }
+}
+
+/// A step that broke what the law keeps in every split max_substep_halvings allows, or a run
+/// beyond the law's budget (its message as the run reports it, before LoopHooks::at_step).
+struct Unstable {
+    std::string message;
+};
+
+/// A step kept, and with the guards why the run leaves its budget after it when the hooks keep
+/// such a step (LoopHooks::keeps_step_over_budget).
+template <int dim>
+struct GuardedStep {
+    typename LoopHooks<dim>::StepResult step;
+    std::optional<std::string> over_budget;
+};
+
+/// The step from Γ(t) (r's) to t_next: whole, or when it breaks the law's invariants (guards)
+/// split into 2, 4, ... sub-steps until each keeps them. A split whose step fails
+/// (NumericalFailure: a contour that leaves a fixed domain, say) is retried the same way. The
+/// hooks check each sub-step (LoopHooks::record) and the run's budget after the step
+/// (LoopHooks::run_budget), and add what the kept split did to r (LoopHooks::commit). Throws
+/// Unstable when no split keeps the invariants or the run leaves its budget, and the finest
+/// split's NumericalFailure when every split fails (the first's when the hooks do not retry a
+/// failure: LoopHooks::retries_failures).
+template <int dim>
+GuardedStep<dim> guarded_step(typename LoopHooks<dim>::Result& r, double t_next,
+                              const LoopHooks<dim>& hooks, const BasicVelocityLaw<dim>& law,
+                              const typename Space<dim>::Region& domain,
+                              const typename LoopHooks<dim>::Options& options) {
+    using H = LoopHooks<dim>;
+    const int halvings = options.guards ? options.max_substep_halvings : 0;
+    const typename H::Start start = hooks.start(H::shape(r));
+    std::string violation;
+    for (int j = 0; j <= halvings; ++j) {
+        const int parts = 1 << j;
+        typename H::StepResult out{H::shape(r), {}};
+        typename H::Attempt attempt{start};
+        double t = r.t;
+        bool kept = true;
+        for (int i = 1; i <= parts && !H::shape(out).empty(); ++i) {
+            const double t_to = i == parts ? t_next : r.t + (t_next - r.t) * i / parts;
+            const double k = H::substep_length(r.t, t_next, parts, t, t_to);
+            typename H::StepResult s;
+            try {
+                s = step_in_growing_domain<dim>(H::shape(out), t, k, law, domain, options, r);
+                check_extent<NumericalFailure>(law, H::shape(s), [&](auto... a) {
+                    return H::left_extent(law.name(), t_to, a...);
+                });
+            } catch (const LimitExceeded&) {
+                throw;  // a setting beyond a limit: smaller steps would not help
+            } catch (const NumericalFailure&) {
+                // A step too large for the features may fail where smaller ones do not.
+                if (j == halvings || !H::retries_failures) throw;
+                kept = false;
+                break;
+            }
+            if (auto v = hooks.record(attempt, H::shape(out), s, t, k, r)) {
+                violation = std::move(*v);
+                kept = false;
+                break;
+            }
+            out = std::move(s);
+            t = t_to;
+        }
+        if (!kept) continue;
+        std::optional<std::string> over_budget =
+            hooks.run_budget(attempt, H::shape(out), t_next, r);
+        if (over_budget && !options.guards) {
+            H::note_broken(r, std::move(*over_budget));
+            over_budget.reset();
+        }
+        if (over_budget && !H::keeps_step_over_budget) throw Unstable{std::move(*over_budget)};
+        hooks.commit(attempt, r);
+        if (parts > 1) {
+            ++r.split_steps;
+            r.most_substeps = std::max(r.most_substeps, parts);
+        }
+        return GuardedStep<dim>{std::move(out), std::move(over_budget)};
+    }
+    throw Unstable{H::unstable_after_splits(violation, 1 << halvings, r.t)};
+}
+
+/// Throws InvalidInput unless `from` is a state a run with `options` passes through.
+template <int dim>
+void check_resume(const typename LoopHooks<dim>::Result& from, const BasicVelocityLaw<dim>& law,
+                  const typename LoopHooks<dim>::Options& options) {
+    using H = LoopHooks<dim>;
+    check_run_options(options);
+    H::check_start(from);
+    check_extent<InvalidInput>(law, H::shape(from), [&](auto... a) {
+        return H::initial_outside_extent(law.name(), a...);
+    });
+    if (from.steps_done < 0 || from.steps_done >= options.steps) {
+        throw InvalidInput(fmt::format("cannot resume after step {} of a run of {} steps",
+                                       from.steps_done, options.steps));
+    }
+    if (from.t != time_after(options, from.steps_done)) {
+        throw InvalidInput(fmt::format("cannot resume: t = {} is not the time after step {} ({})",
+                                       from.t, from.steps_done,
+                                       time_after(options, from.steps_done)));
+    }
+}
+
+/// Steps from.steps_done + 1 .. N from `from`, its counters and clocks carried on: resume() of
+/// either dimension. Failures inside a step end the run with status error, a step or a run that
+/// breaks what the law keeps with status unstable, an empty interface with vanished, an observer
+/// that returns false before the last step with interrupted.
+template <int dim>
+typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result& from,
+                                          const BasicVelocityLaw<dim>& law,
+                                          const typename Space<dim>::Region& domain,
+                                          const typename LoopHooks<dim>::Options& options,
+                                          const typename LoopHooks<dim>::Observer& observer) {
+    using H = LoopHooks<dim>;
+    check_resume<dim>(from, law, options);
+    const H hooks(law, domain, options);
+    typename H::Result r = from;
+    r.status = RunStatus::ok;
+    r.message.clear();
+    const double wall_before = from.wall_s, cpu_before = from.cpu_s;
+    const auto wall_start = std::chrono::steady_clock::now();
+    const std::int64_t cpu_start = process_cpu_ns();
+    auto clocks = [&] {
+        r.wall_s =
+            wall_before +
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+        r.cpu_s = cpu_before + seconds(process_cpu_ns() - cpu_start);
+    };
+    for (int n = from.steps_done + 1; n <= options.steps; ++n) {
+        const double t_next = time_after(options, n);
+        GuardedStep<dim> guarded;
+        const std::int64_t step_cpu_start = process_cpu_ns();
+        try {
+            guarded = guarded_step<dim>(r, t_next, hooks, law, domain, options);
+        } catch (const NumericalFailure& e) {
+            r.status = RunStatus::error;
+            r.message = H::step_failed(n, r.t, e.what());
+            break;
+        } catch (const Unstable& e) {
+            r.status = RunStatus::unstable;
+            r.message = H::at_step(n, r.t, e.message);
+            break;
+        }
+        const double step_cpu_s = seconds(process_cpu_ns() - step_cpu_start);
+        typename H::StepResult& step = guarded.step;
+        H::shape(r) = std::move(H::shape(step));
+        r.t = t_next;
+        r.steps_done = n;
+        clocks();
+        if (guarded.over_budget) {
+            r.status = RunStatus::unstable;
+            r.message = H::at_step(n, r.t, *guarded.over_budget);
+            break;
+        }
+        const bool vanished = H::shape(r).empty();
+        const bool go_on = (vanished && !H::observes_vanishing) || !observer ||
+                           observer(typename H::Report{n, options.steps, r.t, &H::shape(r),
+                                                       &step.stats, r.wall_s, step_cpu_s, &r});
+        if (vanished) {
+            r.status = RunStatus::vanished;
+            H::vanished(r);
+            break;
+        }
+        if (!go_on && n < options.steps) {
+            r.status = RunStatus::interrupted;
+            break;
+        }
+        if (n == options.steps) H::finished(r);
+    }
+    clocks();
+    return r;
+}
+
+}  // namespace slc::detail
