@@ -30,9 +30,11 @@ void validate(const ContourOptions& o, const Box& domain) {
         throw InvalidInput(
             fmt::format("max_refine_passes must be >= 0, got {}", o.max_refine_passes));
     }
-    if (!positive(o.eta)) throw InvalidInput(fmt::format("eta must be positive, got {}", o.eta));
-    if (o.eps && (!positive(*o.eps) || *o.eps < o.eta)) {
-        throw InvalidInput(fmt::format("eps must be at least eta = {}, got {}", o.eta, *o.eps));
+    if (o.eta && !positive(*o.eta))
+        throw InvalidInput(fmt::format("eta must be positive, got {}", *o.eta));
+    if (o.eps && (!positive(*o.eps) || *o.eps < o.resolved_eta())) {
+        throw InvalidInput(
+            fmt::format("eps must be at least eta = {}, got {}", o.resolved_eta(), *o.eps));
     }
     if (!(o.rho >= 0.0 && o.rho < 1.0)) {
         throw InvalidInput(fmt::format("rho must be in [0, 1), got {}", o.rho));
@@ -99,8 +101,8 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
     stats.bound_evals = topo.bound_evals;
 
     const contouring::LinearContour linear = contouring::march(topo);
-    const std::vector<Root> roots =
-        find_roots(counted, linear.brackets, {.eta = options.eta, .method = options.root_method});
+    const std::vector<Root> roots = find_roots(
+        counted, linear.brackets, {.eta = options.resolved_eta(), .method = options.root_method});
     stats.g_evals_roots = evaluations - stats.g_evals_tree;
     std::vector<Vec2> points(roots.size());
     for (std::size_t i = 0; i < roots.size(); ++i) {
@@ -123,7 +125,7 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
     stats.max_midpoint_value = refined.max_midpoint_value;
     stats.g_evals = evaluations;
 
-    Interface curves = drop_slivers(chain.to_interface(), options.eta, stats.slivers);
+    Interface curves = drop_slivers(chain.to_interface(), options.resolved_eta(), stats.slivers);
     count_output(curves, stats);
     return {std::move(curves), std::move(topo.tree), stats};
 }

@@ -126,7 +126,9 @@ std::size_t join_necks(Chain& chain, BatchFunctionRef g, const Topology& topo,
     for (std::size_t k = 0; k < candidates.size(); ++k) {
         const Candidate& c = candidates[k];
         const bool counterclockwise = twice_area[c.first] > 0.0;
-        if (!(std::abs(values[k]) > options.eta) || (values[k] < 0.0) != counterclockwise) continue;
+        if (!(std::abs(values[k]) > options.resolved_eta()) ||
+            (values[k] < 0.0) != counterclockwise)
+            continue;
         const std::uint32_t ra = sets.find(c.first), rb = sets.find(c.second);
         if (ra == rb) continue;
         // An earlier join may have used one of these segments or laid a bridge across.

@@ -236,7 +236,7 @@ private:
         for (std::size_t k = 0; k < candidates.size(); ++k) {
             Candidate& c = candidates[k];
             const bool same_sign = (c.g_probe > 0.0) == (c.g_mid > 0.0);
-            if (!same_sign || std::abs(c.g_probe) <= options_.eta) continue;
+            if (!same_sign || std::abs(c.g_probe) <= options_.resolved_eta()) continue;
             const double d = distance(c.mid, c.probe);
             double far = 0.0;
             if (std::abs(c.g_probe) < std::abs(c.g_mid)) {
@@ -293,7 +293,7 @@ private:
         std::vector<std::size_t> owner;
         for (std::size_t k = 0; k < candidates.size(); ++k) {
             Candidate& c = candidates[k];
-            if (std::abs(c.g_probe) <= options_.eta) {
+            if (std::abs(c.g_probe) <= options_.resolved_eta()) {
                 c.has_root = true;
                 c.root = c.probe;
             } else if ((c.g_probe > 0.0) != (c.g_near > 0.0)) {
@@ -302,7 +302,7 @@ private:
             }
         }
         const std::vector<Root> roots = find_roots(g_, brackets,
-                                                   {.eta = options_.eta,
+                                                   {.eta = options_.resolved_eta(),
                                                     .method = options_.root_method,
                                                     .jump_slope = jump_slope_factor * topo_.gamma});
         for (std::size_t k = 0; k < roots.size(); ++k) {

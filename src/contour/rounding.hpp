@@ -24,13 +24,8 @@ Options within_rounding(Options o, const Domain& domain) {
             "coordinates up to {:g}): raise eps",
             *o.eps, floor, domain.largest_magnitude()));
     }
-    if constexpr (requires { o.resolved_eta(); }) {
-        // η's default follows ε: resolved before ε is raised, as the options were given.
-        const double eta = o.resolved_eta();
-        o.eta = std::max(eta, floor);
-    } else {
-        o.eta = std::max(o.eta, floor);
-    }
+    // η's default may follow ε (surfaces): resolved before ε is raised, as the options were given.
+    o.eta = std::max(o.resolved_eta(), floor);
     o.eps = std::max(o.resolved_eps(), floor);
     return o;
 }

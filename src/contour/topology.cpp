@@ -30,7 +30,7 @@ class CurveSampler : public TreeSampler<2> {
 public:
     CurveSampler(BatchFunctionRef g, std::optional<BatchBoundsRef> bounds, const Quadtree& tree,
                  const ContourOptions& options, double rounding)
-        : TreeSampler<2>(tree, g, bounds, options.distance_slack, rounding, options.eta,
+        : TreeSampler<2>(tree, g, bounds, options.distance_slack, rounding, options.resolved_eta(),
                          tree.max_depth()) {}
 
     /// Centres of the leaves at the depth limit, in one batch. A leaf whose corners share one sign
@@ -236,9 +236,9 @@ Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOp
     topo.bound_evals = sampler.bound_evals();
     std::vector<std::uint8_t> on_boundary;
     sampler.triangulate(topo, on_boundary);
-    check_boundary(topo, on_boundary, options.eta);
-    topo.perturbed = perturb(topo, g, options.eta);
-    topo.perturbed += evaluate_crossed_stand_ins(topo, g, options.eta);
+    check_boundary(topo, on_boundary, options.resolved_eta());
+    topo.perturbed = perturb(topo, g, options.resolved_eta());
+    topo.perturbed += evaluate_crossed_stand_ins(topo, g, options.resolved_eta());
     topo.settled = static_cast<std::size_t>(
         std::count(topo.stand_in.begin(), topo.stand_in.end(), std::uint8_t{1}));
     return topo;

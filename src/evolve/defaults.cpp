@@ -65,7 +65,7 @@ Problem curve_problem(std::string name, const Interface& curves, const Box& doma
     p.depth = c.depth;
     p.refine = c.refine_passes;
     p.eps = *c.eps;
-    p.eta = c.eta;
+    p.eta = c.resolved_eta();
     p.length_scale = length_scale(curves);
     p.triangle_safeguard = c.triangle_safeguard;
     p.max_domain_doublings = defaults.max_domain_doublings;

@@ -121,8 +121,8 @@ RunOptions apply_overrides(const RunOverrides& q, RunOptions r, double length_sc
     }
     if (q.eps) c.eps = *q.eps;
     // An η left unset is lowered to ε/10 when ε is below it, so that any K runs with the default.
-    c.eta = q.eta ? *q.eta : std::min(c.eta, 0.1 * *c.eps);
-    check.eps_not_below_eta(*c.eps, c.eta);
+    c.eta = q.eta ? *q.eta : std::min(c.resolved_eta(), 0.1 * *c.eps);
+    check.eps_not_below_eta(*c.eps, *c.eta);
     if (q.rho) c.rho = *q.rho;
     if (q.mesh) r.step.embedded.mesh = *q.mesh;
     if (q.eno_order) r.step.embedded.eno_order = *q.eno_order;

@@ -55,8 +55,8 @@ RunOptions resolution_options(const RunOptions& base, int level) {
     o.steps = steps;
     o.step.contour.depth = depth;
     const double scale = std::ldexp(1.0, level);  // 2^level
-    o.step.contour.eps =
-        std::max(base.step.contour.resolved_eps() / (scale * scale), base.step.contour.eta);
+    o.step.contour.eps = std::max(base.step.contour.resolved_eps() / (scale * scale),
+                                  base.step.contour.resolved_eta());
     o.step.embedded.mesh =
         std::max(8, static_cast<int>(std::lround(base.step.embedded.mesh * scale)));
     if (base.step.tree_depth > 0) o.step.tree_depth = std::max(1, base.step.tree_depth + level);

@@ -56,7 +56,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"P", c.refine_passes == ContourOptions::until_converged ? nlohmann::json("converged")
                                                                  : nlohmann::json(c.refine_passes)},
         {"eps", c.resolved_eps()},
-        {"eta", std::max(c.eta, tolerance::rounding_floor(p.domain))},
+        {"eta", std::max(c.resolved_eta(), tolerance::rounding_floor(p.domain))},
         {"rho", c.rho},
         {"M", o.step.embedded.mesh},
         {"E", o.step.embedded.eno_order},

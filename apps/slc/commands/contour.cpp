@@ -124,7 +124,7 @@ nlohmann::json summary_head(const ContourCommandOptions& o, const LoadedInterfac
              {{"K", o.depth},
               {"P", o.refine},
               {"eps", options.resolved_eps()},
-              {"eta", options.eta},
+              {"eta", options.resolved_eta()},
               {"rho", o.rho},
               {"gamma", options.gamma},
               {"L", tree_depth},

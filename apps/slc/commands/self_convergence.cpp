@@ -168,7 +168,7 @@ nlohmann::json json(const Problem& p, const SelfConvergenceResult& s) {
                                       ? nlohmann::json("converged")
                                       : nlohmann::json(o.step.contour.refine_passes)},
                             {"eps", o.step.contour.resolved_eps()},
-                            {"eta", o.step.contour.eta},
+                            {"eta", o.step.contour.resolved_eta()},
                             {"status", to_string(res.status)},
                             {"t", res.t},
                             {"segments", res.curves.size()},

@@ -42,8 +42,9 @@ struct ContourOptions {
     /// doubles resolve in the domain, two ulps of its largest coordinate (2.2e−16 b in [−b, b]²):
     /// a given ε below it is InvalidInput, the default 10^−K and η are raised to it.
     std::optional<double> eps;
-    /// η > 0: root-finding tolerance, |G| ≤ η at every vertex.
-    double eta = 1e-10;
+    /// η > 0: root-finding tolerance, |G| ≤ η at every vertex. Unset (the default):
+    /// default_eta, as for surfaces' linear contour (SurfaceContourOptions::eta).
+    std::optional<double> eta;
     /// ρ in [0, 1): prune segments shorter than ρ times both neighbours; 0 disables pruning.
     double rho = 0.1;
     /// γ > 0: starting estimate of the gradient bound |∇G| ≤ γ, doubled until the tree balances.
@@ -69,6 +70,10 @@ struct ContourOptions {
     /// exact values give. Unset (the default): every tree point is evaluated.
     std::optional<double> distance_slack;
 
+    /// η when none is given.
+    static constexpr double default_eta = 1e-10;
+    /// η as given, or default_eta.
+    double resolved_eta() const { return eta.value_or(default_eta); }
     /// ε as given, or its default 10^−K.
     double resolved_eps() const;
 };
