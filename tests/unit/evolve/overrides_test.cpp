@@ -66,7 +66,7 @@ TEST(ApplyOverrides, UnsetSettingsKeepTheDefaults) {
     const RunOptions got = apply_overrides({}, c, 1.0);
     EXPECT_EQ(got.steps, 17);
     EXPECT_EQ(*got.step.contour.eps, 3e-4);
-    EXPECT_EQ(got.step.contour.eta, c.step.contour.eta);
+    EXPECT_EQ(got.step.contour.resolved_eta(), c.step.contour.resolved_eta());
     SurfaceRunOptions s;
     s.steps = 9;
     s.step.contour.thin_depth = 2;
