@@ -31,12 +31,6 @@ Extension extension_of(const std::string& name) {
     throw InvalidInput("extension must be one of nearest, whitney, direct, got '" + name + "'");
 }
 
-/// The problem's own options with the caller's over them (apply_overrides, as `slc run` takes
-/// them).
-RunOptions resolve(const Problem& p, const RunOverrides& q) {
-    return apply_overrides(q, problem_run_options(p), p.length_scale);
-}
-
 /// The history of a run of curves: t, area, length, components, segments, cpu_s per row.
 History curve_history() {
     return History(
@@ -63,7 +57,7 @@ py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const
     if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
     const std::unique_ptr<VelocityLaw> law = law_of(p, spec);
     const Interface initial = initial_of(p);
-    const RunOptions options = resolve(p, q);
+    const RunOptions options = run_options(p, q);
     // The run at half resolution, resolved first: one it cannot have is bad input before
     // anything runs.
     if (estimate) require_half_resolution(options.steps, options.step.contour.depth, "estimate");
@@ -141,7 +135,7 @@ py::dict study_problem(const Problem& p, int rows, const RunOverrides& q, int th
     if (!p.exact)
         throw InvalidInput("problem '" + p.name +
                            "' has no exact solution; study a user's curves (self-convergence)");
-    const RunOptions base = resolve(p, q);
+    const RunOptions base = run_options(p, q);
     const StudyObserver observer = [&](const StudyCell& c) {
         py::gil_scoped_acquire hold;
         if (interrupted()) throw py::error_already_set();
@@ -172,7 +166,7 @@ py::dict self_convergence_problem(const Problem& p, const std::optional<LawSpec>
                                   const py::object& on_run) {
     const std::unique_ptr<VelocityLaw> law = law_of(p, spec);
     const Interface initial = initial_of(p);
-    const RunOptions base = resolve(p, q);
+    const RunOptions base = run_options(p, q);
     auto run_dict = [](const ResolutionRun& r) {
         py::dict d;
         d["level"] = r.level;

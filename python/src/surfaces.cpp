@@ -37,15 +37,6 @@ struct SurfaceSubject {
     double t_start = 0.0;
 };
 
-/// The problem's own options with the caller's over them (apply_overrides, as `slc run` on a
-/// surface takes them).
-SurfaceRunOptions resolve(const SurfaceSubject& s, const RunOverrides& q) {
-    const SurfaceProblem& p = s.problem;
-    if (s.named) return apply_overrides(q, named_surface_run_options(p), 1.0);
-    return apply_overrides(q, default_surface_run_options(p.initial, s.t_start, p.t_end),
-                           length_scale(p.initial));
-}
-
 /// The history of a run of a surface: t, volume, area, triangles, components, cpu_s per row.
 History surface_history() {
     return History(
@@ -149,7 +140,8 @@ std::shared_ptr<SurfaceSubject> user_surface_problem(const Array& vertices,
 py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& q, int frames,
                              int threads, const py::object& on_step, bool estimate) {
     if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
-    const SurfaceRunOptions options = resolve(subject, q);
+    const SurfaceRunOptions options =
+        surface_run_options(subject.problem, subject.named, subject.t_start, q);
     if (estimate) require_half_resolution(options.steps, options.step.contour.depth, "estimate");
     const std::optional<SurfaceRunOptions> coarse =
         estimate ? std::optional(surface_resolution_options(options, -1)) : std::nullopt;
@@ -232,7 +224,8 @@ py::dict self_convergence_surface(const SurfaceSubject& subject, int resolutions
             "a self-convergence study takes a Surface under a velocity; a named problem's own "
             "study is slc.study(slc.problem(name))");
     }
-    const SurfaceRunOptions base = resolve(subject, q);
+    const SurfaceRunOptions base =
+        surface_run_options(subject.problem, subject.named, subject.t_start, q);
     auto run_dict = [](const SurfaceResolutionRun& r) {
         const Surface& f = r.result.surface;
         py::dict d;

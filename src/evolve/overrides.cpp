@@ -174,6 +174,17 @@ SurfaceRunOptions named_surface_run_options(const SurfaceProblem& p) {
     return o;
 }
 
+RunOptions run_options(const Problem& p, const RunOverrides& q, SettingNames names) {
+    return apply_overrides(q, problem_run_options(p), p.length_scale, names);
+}
+
+SurfaceRunOptions surface_run_options(const SurfaceProblem& p, bool named, double t_start,
+                                      const RunOverrides& q, SettingNames names) {
+    if (named) return apply_overrides(q, named_surface_run_options(p), 1.0, names);
+    return apply_overrides(q, default_surface_run_options(p.initial, t_start, p.t_end),
+                           length_scale(p.initial), names);
+}
+
 bool sets_contour(const RunOverrides& q) {
     return q.depth || q.refine || q.eps || q.eta || q.thin_depth;
 }

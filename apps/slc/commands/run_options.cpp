@@ -136,8 +136,7 @@ RunOverrides overrides_of(const MethodOptions& m) {
 }
 
 RunOptions resolve_run_options(const MethodOptions& m, const Problem& p) {
-    return apply_overrides(overrides_of(m), problem_run_options(p), p.length_scale,
-                           SettingNames::tool);
+    return run_options(p, overrides_of(m), SettingNames::tool);
 }
 
 std::map<std::string, double> parse_params(const std::vector<std::string>& params) {

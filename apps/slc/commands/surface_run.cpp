@@ -99,8 +99,6 @@ bool is_surface_run(const std::string& problem, const std::string& initial) {
 SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
     const VelocityParams params = parse_params(r.params);
     SurfaceProblem p;
-    SurfaceRunOptions defaults;
-    double scale = 1.0;
     if (!r.problem.empty()) {
         p = make_surface_problem(r.problem, params);
         if (r.t_end) p.t_end = *r.t_end;
@@ -111,7 +109,6 @@ SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
                     throw InvalidInput("the problem's surface leaves the domain given");
             }
         }
-        defaults = named_surface_run_options(p);
     } else {
         one_velocity_law({{"--velocity", !r.velocity.empty()},
                           {"--speed", r.speed.has_value()},
@@ -126,10 +123,10 @@ SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
                 : r.field ? surface_field_expression_law(*r.field, params)
                           : make_surface_velocity(r.velocity, params);
         p.t_end = *r.t_end;
-        defaults = default_surface_run_options(p.initial, 0.0, p.t_end);
-        scale = length_scale(p.initial);
     }
-    return {std::move(p), apply_overrides(r.settings, defaults, scale, SettingNames::tool)};
+    SurfaceRunOptions options =
+        surface_run_options(p, !r.problem.empty(), 0.0, r.settings, SettingNames::tool);
+    return {std::move(p), std::move(options)};
 }
 
 void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {

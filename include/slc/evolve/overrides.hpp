@@ -95,6 +95,18 @@ SurfaceRunOptions apply_overrides(const RunOverrides& overrides, SurfaceRunOptio
 /// converged, its thin depth, and a fixed domain.
 SurfaceRunOptions named_surface_run_options(const SurfaceProblem& problem);
 
+/// A problem of curves' run options: overrides over problem_run_options(problem), ℓ its length
+/// scale. Throws as apply_overrides.
+RunOptions run_options(const Problem& problem, const RunOverrides& overrides,
+                       SettingNames names = SettingNames::python);
+
+/// A problem of surfaces' run options: overrides over named_surface_run_options (a named
+/// problem, ℓ = 1) or over default_surface_run_options from t_start (a user's surface, ℓ its
+/// length_scale). Throws as apply_overrides and default_surface_run_options.
+SurfaceRunOptions surface_run_options(const SurfaceProblem& problem, bool named, double t_start,
+                                      const RunOverrides& overrides,
+                                      SettingNames names = SettingNames::python);
+
 /// True when overrides set any of K, P, ε, η or the thin depth: a named problem's surface is then
 /// contoured again with them (a run at K = 7 starts from the contour at K = 7).
 bool sets_contour(const RunOverrides& overrides);
