@@ -198,21 +198,22 @@ void refine(Surface& s, SpaceFunctionRef g, const SurfaceContourOptions& options
     stats.residual = r.residual;
 }
 
-}  // namespace
-
-SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
-                               const SurfaceContourOptions& given) {
+/// contour_surface() with or without bounds on G.
+SurfaceContour contour_surface_with(SpaceFunctionRef g, const Box3& domain,
+                                    const SurfaceContourOptions& given,
+                                    std::optional<SpaceBoundsRef> bounds) {
     validate(given, domain);
     const SurfaceContourOptions options = contouring::within_rounding(given, domain);
     SurfaceContour out;
     SurfaceContourStats& stats = out.stats;
     const SurfaceTopology topo = contouring::resolve_surface_topology(
-        SpaceEvaluator(g, stats.g_evals_tree), domain, options);
+        SpaceEvaluator(g, stats.g_evals_tree), domain, options, bounds);
     stats.gamma = topo.gamma;
     stats.thin_cells = topo.thin_cells;
     stats.cells = topo.tree.size();
     stats.leaves = topo.tree.leaves().size();
     stats.settled = topo.settled;
+    stats.bound_evals = topo.bound_evals;
     stats.tetrahedra = topo.mesh.tetrahedra.size();
     stats.perturbed = topo.perturbed;
 
@@ -236,6 +237,18 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
                                                    : static_cast<double>(stats.g_evals) /
                                                          static_cast<double>(stats.vertices);
     return out;
+}
+
+}  // namespace
+
+SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
+                               const SurfaceContourOptions& options) {
+    return contour_surface_with(g, domain, options, std::nullopt);
+}
+
+SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
+                               const SurfaceContourOptions& options, SpaceBoundsRef bounds) {
+    return contour_surface_with(g, domain, options, bounds);
 }
 
 double SurfaceContourOptions::resolved_eta() const {

@@ -47,6 +47,7 @@ struct SurfaceTopology {
     double gamma = 0.0;                   ///< the gradient bound at which the tree balanced
     std::size_t thin_cells = 0;           ///< cells split beyond K where G bends
     std::size_t settled = 0;              ///< tree points with a stand-in instead of G
+    std::size_t bound_evals = 0;          ///< evaluations of the bounds
     std::size_t perturbed = 0;            ///< vertices moved off |G| ≤ η
 };
 
@@ -55,9 +56,11 @@ struct SurfaceTopology {
 /// the domain's boundary, perturbs vertices with |G| ≤ η and evaluates G at the stand-ins of the
 /// tetrahedra it changes sign in. Every evaluation through g. Throws LeftDomain naming the place
 /// where the zero set reaches the boundary; NumericalFailure when perturbation keeps failing or G
-/// is not finite. Options validated by the caller.
+/// is not finite. Options validated by the caller. bounds, when given, are the contour's cheap
+/// bounds on G.
 SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& domain,
-                                         const SurfaceContourOptions& options);
+                                         const SurfaceContourOptions& options,
+                                         std::optional<SpaceBoundsRef> bounds);
 
 /// What refinement did.
 struct SurfaceRefinement {

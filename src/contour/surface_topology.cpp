@@ -43,9 +43,9 @@ enum class Bend { no, yes, unsure };
 class SurfaceSampler : public TreeSampler<3> {
 public:
     /// γ splits cells down to level `limit` (K); the tree may go deeper (thin cells).
-    SurfaceSampler(const Octree& tree, const Evaluator& g, std::optional<double> distance_slack,
-                   double rounding, double eta, int limit)
-        : TreeSampler<3>(tree, g, std::nullopt, distance_slack, rounding, eta, limit) {}
+    SurfaceSampler(const Octree& tree, const Evaluator& g, std::optional<SpaceBoundsRef> bounds,
+                   std::optional<double> distance_slack, double rounding, double eta, int limit)
+        : TreeSampler<3>(tree, g, bounds, distance_slack, rounding, eta, limit) {}
 
     /// Whether G bends within cell c: along a body diagonal, the ends and the centre of one sign
     /// and the centre nearer zero than the ends' mean by more than thin_dip of the
@@ -330,16 +330,20 @@ void evaluate_crossed_stand_ins(SurfaceTopology& topo, const Evaluator& g) {
 }  // namespace
 
 SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& domain,
-                                         const SurfaceContourOptions& options) {
+                                         const SurfaceContourOptions& options,
+                                         std::optional<SpaceBoundsRef> bounds) {
     const double eta = options.resolved_eta();
     const int thin_depth = std::min(options.thin_depth, max_tetrahedralized_depth - options.depth);
     SurfaceTopology topo(Octree(domain, options.depth + thin_depth));
-    // The slack allows for rounding in G too: a few thousand ulps of the domain's coordinates.
+    // The slack and the bounds allow for rounding in G too: a few thousand ulps of the domain's
+    // coordinates.
     const double rounding = 1e-12 * std::max(domain.largest_magnitude(), domain.width());
-    SurfaceSampler sampler(topo.tree, g, options.distance_slack, rounding, eta, options.depth);
+    SurfaceSampler sampler(topo.tree, g, bounds, options.distance_slack, rounding, eta,
+                           options.depth);
     topo.gamma = build_tree(topo.tree, sampler, options.gamma);
     topo.thin_cells = split_thin(topo.tree, sampler, topo.gamma, options.depth);
     topo.settled = sampler.settled();
+    topo.bound_evals = sampler.bound_evals();
     topo.mesh = tetrahedralize(topo.tree);
     mesh_values(topo, sampler, g);
     check_boundary(topo, eta);

@@ -83,6 +83,8 @@ using BatchFunctionRef = BatchRef<double>;
 using BatchBoundsRef = BatchRef<Interval>;
 /// A reference to a BatchFunction that evaluates G in space.
 using SpaceFunctionRef = BatchRef<double, Vec3>;
+/// A reference to a BatchFunction that bounds G in space.
+using SpaceBoundsRef = BatchRef<Interval, Vec3>;
 
 /// The BatchFunction that evaluates a pointwise function f(Point) (Vec2 by default; Vec3 for
 /// space) at every point of a batch on all worker threads, for batches of at least min_iterations

@@ -91,8 +91,9 @@ struct SurfaceContourStats {
     std::size_t g_evals_tree = 0;    ///< of which: the tree, the mesh vertices and perturbation
     std::size_t g_evals_roots = 0;   ///< of which: root finding on the tetrahedra's edges
     std::size_t g_evals_refine = 0;  ///< of which: adaptive refinement
-    /// Tree points whose sign distance_slack settled without evaluating G.
+    /// Tree points that distance_slack or the bounds settled without evaluating G.
     std::size_t settled = 0;
+    std::size_t bound_evals = 0;        ///< evaluations of the bounds (not counted in g_evals)
     double g_evals_per_vertex = 0.0;    ///< g_evals / vertices; 0 for an empty result
     double gamma = 0.0;                 ///< the gradient bound at which the tree balanced
     std::size_t perturbed = 0;          ///< mesh vertices moved off |G| ≤ η
@@ -122,5 +123,12 @@ struct SurfaceContour {
 /// or stays within η of zero around a mesh vertex.
 SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
                                const SurfaceContourOptions& options);
+
+/// The same surface, bit for bit, with a cheaper function that bounds G, as contour() takes in
+/// the plane: tree points whose sign no nearby sample gives are offered to bounds, one batch per
+/// level, and G is evaluated only where neither gives what a split test, the thin-cell test or a
+/// tetrahedron where G changes sign needs.
+SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
+                               const SurfaceContourOptions& options, SpaceBoundsRef bounds);
 
 }  // namespace slc

@@ -512,5 +512,52 @@ TEST(SurfaceContour, DistanceSlackSkipsFarPointsAndChangesNothing) {
     }
 }
 
+TEST(SurfaceContour, BoundsSkipEvaluationsAndChangeNothing) {
+    // As in the plane: G(x) = F(x − d(x)) with |d| ≤ D jumping from cell to cell of a fine
+    // checkerboard, so |G(x) − G(y)| ≤ |x − y| + 2D and F ± D bound G. With the slack and with
+    // the bounds too, the surface must be the one every point evaluated gives, bit for bit, the
+    // bounds settling points the parents' values do not.
+    const Surface box = box_surface({-0.5, -0.4, -0.3}, {0.45, 0.35, 0.5}, 4);
+    const Box3 domain = Box3::centered_cube(1.0);
+    const SurfaceDistanceTree tree(box, domain, {.depth = 5});
+    for (double shift : {0.0, 0.01}) {
+        SCOPED_TRACE(::testing::Message() << "shift " << shift);
+        const auto g = pointwise<Vec3>(
+            [&tree, shift](Vec3 x) {
+                const auto cx = static_cast<long>(std::floor(x.x / 0.013));
+                const auto cy = static_cast<long>(std::floor(x.y / 0.017));
+                const auto cz = static_cast<long>(std::floor(x.z / 0.019));
+                const double turn = static_cast<double>((cx * 7 + cy * 3 + cz * 5) % 5);
+                const Vec3 d = shift * Vec3{std::cos(turn), std::sin(turn), 0.0};
+                return tree.closest_point(x - d).distance;
+            },
+            expensive_grain);
+        const auto bounds = pointwise<Vec3>(
+            [&tree, shift](Vec3 x) {
+                const double f = tree.closest_point(x).distance;
+                return Interval{f - shift, f + shift};
+            },
+            expensive_grain);
+        for (int passes : {0, 1}) {
+            SurfaceContourOptions o{.depth = 5, .refine_passes = passes, .eps = 1e-3};
+            const SurfaceContour every = contour_surface(g, domain, o);
+            o.distance_slack = 2.0 * shift;
+            const SurfaceContour bounded = contour_surface(g, domain, o);
+            const SurfaceContour both = contour_surface(g, domain, o, bounds);
+            for (const SurfaceContour* r : {&bounded, &both}) {
+                EXPECT_EQ(r->surface.vertices, every.surface.vertices);
+                EXPECT_EQ(r->surface.triangles, every.surface.triangles);
+                EXPECT_EQ(r->stats.cells, every.stats.cells);
+                EXPECT_EQ(r->stats.g_evals_roots, every.stats.g_evals_roots);
+                EXPECT_EQ(r->stats.g_evals_refine, every.stats.g_evals_refine);
+            }
+            EXPECT_EQ(every.stats.bound_evals, 0u);
+            EXPECT_GT(both.stats.bound_evals, 0u);
+            EXPECT_LT(both.stats.g_evals_tree, bounded.stats.g_evals_tree);
+            EXPECT_GT(both.stats.settled, bounded.stats.settled);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace slc
