@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "predictor_corrector.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/extension.hpp"
@@ -176,6 +177,8 @@ public:
     /// max |W|: both extensions interpolate the vertex velocities (the maximum principle); a
     /// normal law's bound is max_normal_speed().
     double max_speed() const { return max_speed_; }
+    /// A normal law's max|V| over the distance field's normals (max_normal_speed()).
+    std::optional<double> normal_speed_bound() const { return max_speed_; }
 
     /// Adds the normal speed s to every vertex velocity, along the bisectors of the segments'
     /// normals: a move of the mean of a nonlocal law, whose speeds are V − mean.
@@ -301,57 +304,6 @@ private:
     std::optional<WhitneyExtension<Vec2>> whitney_;
 };
 
-/// A foot point's velocity, checked (detail::checked_velocity).
-Vec2 finite(Vec2 w, const VelocityLaw& law, double t, Vec2 x) {
-    return detail::checked_velocity(w, law.name(), t, x);
-}
-
-/// A normal law's step with the distance field's normal N = ∇F (Extension::direct). F is a
-/// distance, so moving x by a along N changes it by a while x stays on its normal line: the
-/// semi-Lagrangian value F(x − k V N) is F(x) − k V. Written so, it also holds where the foot
-/// would cross the medial axis (through a thin part, or a corner's tip when the curve grows):
-/// the level set F = k V is then the exact offset, and the viscosity solution's corners follow.
-/// The trapezoidal rule averages V at the foot at t and at x at t + k, the predicted curve's
-/// normal at x standing in for the normal there.
-StepResult advance_normal(const Interface& curves, double t, double k, const VelocityLaw& law,
-                          const Box& domain, const StepOptions& options) {
-    StepResult result;
-    const Level now(curves, t, k, law, domain, options);
-    // |G(x) − G(y)| ≤ |x − y| + 2k max|V|, and F(x) ± k max|V| bound G at one query; with arcs,
-    // F is the chords' distance plus a bulge of at most b, which adds b to both.
-    ContourOptions contour_options = options.contour;
-    const double predictor_reach = k * now.max_speed() + now.max_bulge();
-    contour_options.distance_slack = 2.0 * predictor_reach;
-    auto bounds = [&now](double reach) {
-        return pointwise(
-            [&now, reach](Vec2 x) {
-                const double f = now.distance(x);
-                return Interval{f - reach, f + reach};
-            },
-            expensive_grain);
-    };
-    // G is evaluated a batch at a time, so that the law is called once per batch (a law written
-    // in Python, say, sees whole arrays).
-    const auto predictor = [&](std::span<const Vec2> xs, std::span<double> g) {
-        detail::normal_predictor(now, k, xs, g);
-    };
-    ContourResult predicted = contour(predictor, domain, contour_options, bounds(predictor_reach));
-    result.stats.predictor = predicted.stats;
-    if (predicted.curves.empty()) return result;
-
-    const Level next(predicted.curves, t + k, k, law, domain, options);
-    const double corrector_reach = 0.5 * k * (now.max_speed() + next.max_speed()) +
-                                   std::max(now.max_bulge(), next.max_bulge());
-    contour_options.distance_slack = 2.0 * corrector_reach;
-    const auto corrector = [&](std::span<const Vec2> xs, std::span<double> g) {
-        detail::normal_corrector(now, next, k, xs, g);
-    };
-    ContourResult corrected = contour(corrector, domain, contour_options, bounds(corrector_reach));
-    result.stats.corrector = corrected.stats;
-    result.curves = std::move(corrected.curves);
-    return result;
-}
-
 StepResult advance_contours(const Interface& curves, double t, double k, const VelocityLaw& law,
                             const Box& domain, const StepOptions& options) {
     if (!(k > 0.0) || !std::isfinite(k)) {
@@ -364,157 +316,58 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
                         "Whitney extension",
                         law.name()));
     }
-    if (extension == Extension::direct && law.is_normal_law())
-        return advance_normal(curves, t, k, law, domain, options);
-    StepResult result;
-    Level now(curves, t, k, law, domain, options);
-
-    if (extension == Extension::direct) {
-        // A flow field is known everywhere, so the foot of each characteristic needs no predicted
-        // curve: G(x) = F(departure point of x; Γ(t)), one contour, the feet traced to a tenth
-        // of ε. G is evaluated a batch at a time, so that the law is sampled once per
-        // Runge–Kutta stage of each batch.
-        const int substeps = detail::departure_substeps(
-            law, t, k, std::span<const Vec2>(curves.points()),
-            detail::departure_tolerance * options.contour.resolved_eps());
-        auto g = [&](std::span<const Vec2> xs, std::span<double> values) {
-            const std::vector<Vec2> feet = detail::runge_kutta_feet(law, t, k, xs, substeps);
-            parallel_for(
-                xs.size(), [&](std::size_t i) { values[i] = now.distance(feet[i]); },
-                expensive_grain);
-        };
-        ContourResult traced = contour(g, domain, options.contour);
-        result.stats.corrector = traced.stats;
-        result.curves = std::move(traced.curves);
-        return result;
-    }
-
-    // Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x); Γ(t)). F is 1-Lipschitz, so
-    // G̃(x) lies within k|W(x)| of F(x), and |G̃(x) − G̃(y)| ≤ |x − y| + 2d with d = k max|W|; and
-    // |G̃(x)| is at most the foot's distance to the point of Γ(t) nearest x. One distance query
-    // bounds G̃ where G̃ itself takes two. With arcs, F is the chords' distance plus a bulge of
-    // at most b, which adds b to the foot's move and to that distance.
-    ContourOptions contour_options = options.contour;
-    const double predictor_reach = k * now.max_speed() + now.max_bulge();
-    contour_options.distance_slack = 2.0 * predictor_reach;
-    const auto predictor_bounds = pointwise(
-        [&](Vec2 x) {
-            const auto [p, w] = now.closest_point_and_velocity(x);
-            const double d = k * norm(w) + now.max_bulge();
-            const double reach = distance(x - k * w, p.point) + now.max_bulge();
-            return Interval{std::max(p.distance - d, -reach), std::min(p.distance + d, reach)};
-        },
-        expensive_grain);
-    auto predictor =
-        pointwise([&](Vec2 x) { return now.distance(x - k * finite(now.velocity(x), law, t, x)); },
-                  expensive_grain);
-    ContourResult predicted = contour(predictor, domain, contour_options, predictor_bounds);
-    result.stats.predictor = predicted.stats;
-    if (predicted.curves.empty()) return result;  // everything vanished within the step
-
-    // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x. Its foot moves
-    // at most d = k/2 (max|W(t)| + max|W(t + k)|) from x; the same bounds, F(x) ± d, need one
-    // query where G needs four.
-    Level next(predicted.curves, t + k, k, law, domain, options);
-    auto corrector = pointwise(
-        [&](Vec2 x) {
-            const Vec2 w = finite(now.velocity(x), law, t, x);
-            const Vec2 foot = x - k * w;
-            const Vec2 w_foot = finite(now.velocity(foot), law, t, foot);
-            const Vec2 w_next = finite(next.velocity(x), law, t + k, x);
-            return now.distance(x - (0.5 * k) * (w_foot + w_next));
-        },
-        expensive_grain);
-    const auto contour_corrector = [&] {
-        const double reach = 0.5 * k * (now.max_speed() + next.max_speed()) + now.max_bulge();
-        contour_options.distance_slack = 2.0 * reach;
-        const auto corrector_bounds = pointwise(
-            [&now, reach](Vec2 x) {
-                const double f = now.chord_distance(x);
-                return Interval{f - reach, f + reach};
-            },
-            expensive_grain);
-        return contour(corrector, domain, contour_options, corrector_bounds);
+    const auto make_level = [&](const Interface& c, double time) {
+        return Level(c, time, k, law, domain, options);
     };
-    ContourResult corrected = contour_corrector();
-    if (law.preserves_area() && !corrected.curves.empty()) {
-        // A nonlocal law's mean is the Lagrange multiplier of its area. Taken over Γ(t), it
-        // makes the speeds integrate to zero there, not over the curve the step produces, which
-        // is off by O(k²) a step where the curvature is resolved and by far more where it is
-        // not (a spiral's arms and corners): the mean is moved by the area the corrector's
-        // curve gained over k times its length, both levels alike, and the corrector contoured
-        // again. The area then moves with the nonlinear rest alone.
-        const auto [produced_area, produced_length] =
-            step_area_and_length(corrected.curves, law, options);
-        const double gained = produced_area - step_area(curves, law, options);
-        const double s = -gained / (k * produced_length);
-        now.add_normal_speed(s);
-        next.add_normal_speed(s);
-        const std::size_t first_evals = corrected.stats.g_evals;
-        corrected = contour_corrector();
-        corrected.stats.g_evals += first_evals;  // both contours' cost
+    if (extension == Extension::direct && law.is_normal_law()) {
+        return detail::advance_normal_law<StepResult>(curves, t, k, domain, options.contour,
+                                                      make_level);
     }
-    result.stats.corrector = corrected.stats;
-    result.curves = std::move(corrected.curves);
-    return result;
-}
-
-/// Γ moved along its vertex normals (the bisectors of its segments' normals) by
-/// δ = (target − A)/L, which makes its area target to O(δ² |C| L), the vertices marked in
-/// `held` staying where they are. A vertex is held once the moved curves cross at one of its
-/// segments (found in O(N log N)): a zigzag of segments far shorter than the shift, left where
-/// the zero set passes a cell corner, folds under any shift. Returns the curves and the area
-/// added, or Γ itself and 0 when no vertex is left to move.
-std::pair<Interface, double> shifted_along_normals(const Interface& curves, double target,
-                                                   std::vector<bool>& held) {
-    const double a = area(curves);
-    const double delta = (target - a) / length(curves);
-    std::vector<Vec2> shift(curves.size());
-    for (std::size_t i = 0; i < curves.size(); ++i) {
-        const Vec2 u = curves.point(i) - curves.point(curves.prev(i));
-        const Vec2 v = curves.point(curves.next(i)) - curves.point(i);
-        const Vec2 n = -perp(u / norm(u) + v / norm(v));  // the outside is on the right
-        const double len = norm(n);
-        // At most a quarter of the shorter neighbouring segment: a sharp turn (len near 0) or a
-        // short segment would otherwise fold the curve; what it holds back, the next shift gives.
-        const double reach = 0.25 * std::min(norm(u), norm(v));
-        if (len > 0.0 && std::isfinite(len)) shift[i] = std::clamp(delta / len, -reach, reach) * n;
-    }
-    for (int attempt = 0; attempt < 16; ++attempt) {
-        std::vector<std::vector<Vec2>> moved = curves.curves();
-        for (std::size_t c = 0, first = 0; c < moved.size(); first += moved[c].size(), ++c) {
-            for (std::size_t j = 0; j < moved[c].size(); ++j)
-                if (!held[first + j]) moved[c][j] += shift[first + j];
-        }
-        Interface out(moved);
-        const auto crossing = find_crossing(out);
-        if (!crossing) return {out, area(out) - a};
-        bool newly_held = false;
-        for (const std::size_t s : {crossing->first, crossing->second}) {
-            for (const std::size_t i : {s, curves.next(s)}) {
-                newly_held = newly_held || !held[i];
-                held[i] = true;
-            }
-        }
-        if (!newly_held) break;
-    }
-    return {curves, 0.0};
+    Level now(curves, t, k, law, domain, options);
+    if (extension == Extension::direct)
+        return detail::advance_flow<StepResult>(curves, t, k, law, domain, options.contour, now);
+    return detail::advance_extended<StepResult>(
+        curves, t, k, law, domain, options.contour, now, make_level,
+        [&](const Interface& c) { return step_area_and_length(c, law, options); });
 }
 
 }  // namespace
 
 AreaRestored restore_area(const Interface& curves, double target) {
-    // Each shift leaves O(δ²) of the area to give back, and more where vertices were held back:
-    // a few more shifts leave rounding.
-    AreaRestored out{curves, 0.0};
-    std::vector<bool> held(curves.size(), false);
-    for (int shift = 0; shift < 8 && !out.curves.empty(); ++shift) {
-        auto [moved, added] = shifted_along_normals(out.curves, target, held);
-        if (added == 0.0) break;
-        out.curves = std::move(moved);
-        out.added += added;
-    }
-    return out;
+    // Each vertex moves along the bisector of its segments' normals, by at most a quarter of the
+    // shorter of them: a sharp turn or a short segment would otherwise fold the curve; what it
+    // holds back, the next shift gives. A zigzag of segments far shorter than the shift, left
+    // where the zero set passes a cell corner, folds under any shift: its vertices are held.
+    const auto shifts = [](const Interface& c, double missing) {
+        const double delta = missing / length(c);
+        std::vector<Vec2> shift(c.size());
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            const Vec2 u = c.point(i) - c.point(c.prev(i));
+            const Vec2 v = c.point(c.next(i)) - c.point(i);
+            const Vec2 n = -perp(u / norm(u) + v / norm(v));  // the outside is on the right
+            const double len = norm(n);
+            const double reach = 0.25 * std::min(norm(u), norm(v));
+            if (len > 0.0 && std::isfinite(len))
+                shift[i] = std::clamp(delta / len, -reach, reach) * n;
+        }
+        return shift;
+    };
+    const auto moved = [](const Interface& c, const std::vector<Vec2>& shift,
+                          const std::vector<bool>& held) {
+        std::vector<std::vector<Vec2>> points = c.curves();
+        for (std::size_t k = 0, first = 0; k < points.size(); first += points[k].size(), ++k) {
+            for (std::size_t j = 0; j < points[k].size(); ++j)
+                if (!held[first + j]) points[k][j] += shift[first + j];
+        }
+        return Interface(points);
+    };
+    const auto ends = [](const Interface& c, std::size_t s) {
+        return std::array<std::size_t, 2>{s, c.next(s)};
+    };
+    auto [out, added] = detail::restored_measure(
+        curves, target, [](const Interface& c) { return area(c); }, shifts, moved,
+        [](const Interface& c) { return find_crossing(c); }, ends);
+    return {std::move(out), added};
 }
 
 StepResult advance(const Interface& curves, double t, double k, const VelocityLaw& law,

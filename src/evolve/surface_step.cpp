@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "predictor_corrector.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
@@ -113,6 +114,8 @@ public:
     /// The largest speed of the vertex velocities (nearest-point extension; 0 without them): the
     /// extension interpolates them, so |W(x)| never exceeds it.
     double max_speed() const { return max_speed_; }
+    /// A normal law's bound on |V|, when it gives one.
+    std::optional<double> normal_speed_bound() const { return law_.speed_bound(); }
     /// Adds the normal speed s to every vertex velocity, along the fitted normals: a move of the
     /// mean of a nonlocal law, whose speeds are V − mean.
     void add_normal_speed(double s) {
@@ -129,9 +132,17 @@ public:
     /// F(x): the signed distance to this level's surface read as curved patches
     /// (SurfaceStepOptions::patches), or to its triangles.
     double distance(Vec3 x) const { return distance(tree_.closest_point(x)); }
+    /// The exact signed distance to this level's triangles, whatever SurfaceStepOptions::patches
+    /// says.
+    double chord_distance(Vec3 x) const { return tree_.closest_point(x).distance; }
     /// W(x): the vertex velocities at the nearest point of the surface (nearest-point extension).
     Vec3 velocity(Vec3 x) const {
         return nearest_point_extension<Vec3>(surface_, u_, tree_.nearest_point(x));
+    }
+    /// The closest point of this level's triangles and W(x), from one closest-point query.
+    std::pair<SurfacePoint, Vec3> closest_point_and_velocity(Vec3 x) const {
+        const SurfacePoint p = tree_.closest_point(x);
+        return {p, nearest_point_extension<Vec3>(surface_, u_, p)};
     }
 
     /// F and the normal a normal law sees (field_normal) at a batch of points, in parallel.
@@ -201,83 +212,6 @@ private:
     double max_bulge_ = 0.0;
 };
 
-/// A normal law's step with the distance field's normal N: F(x − k V N) = F(x) − k V along the
-/// normal line, which also holds where the foot would cross the medial axis, so the level set is
-/// the exact offset. The trapezoidal rule averages V at the foot at t and at x at t + k.
-SurfaceStepResult advance_normal(const Surface& surface, double t, double k,
-                                 const SurfaceVelocityLaw& law, const Box3& domain,
-                                 const SurfaceStepOptions& options) {
-    SurfaceStepResult result;
-    const SurfaceLevel now(surface, t, k, law, domain, options, Extension::direct);
-    // With |V| ≤ S, both G = F − kV and the corrector's F − k/2 (V + V') move at most kS from
-    // F, which is within b of a distance: |G(x) − G(y)| ≤ |x − y| + 2 (kS + b).
-    SurfaceContourOptions contour_options = options.contour;
-    if (const std::optional<double> s = law.speed_bound())
-        contour_options.distance_slack = 2.0 * (k * *s + now.max_bulge());
-    const auto predictor = [&](std::span<const Vec3> xs, std::span<double> g) {
-        detail::normal_predictor(now, k, xs, g);
-    };
-    SurfaceContour predicted = contour_surface(predictor, domain, contour_options);
-    result.stats.predictor = predicted.stats;
-    if (predicted.surface.empty()) return result;
-
-    const SurfaceLevel next(predicted.surface, t + k, k, law, domain, options, Extension::direct);
-    const auto corrector = [&](std::span<const Vec3> xs, std::span<double> g) {
-        detail::normal_corrector(now, next, k, xs, g);
-    };
-    SurfaceContour corrected = contour_surface(corrector, domain, contour_options);
-    result.stats.corrector = corrected.stats;
-    result.surface = std::move(corrected.surface);
-    return result;
-}
-
-/// The surface moved along its vertex normals (angle-weighted) by δ = (target − V)/A, each
-/// vertex by at most a quarter of its shortest edge, which makes its volume target to O(δ²), the
-/// vertices marked in `held` staying where they are. A vertex is held once the moved surface
-/// meets itself at one of its triangles (exact predicates), as a fold of edges far shorter than
-/// the shift would. Returns the surface and the volume added, or the surface itself and 0 when
-/// no vertex is left to move.
-std::pair<Surface, double> corrected_volume(const Surface& s, double target,
-                                            std::vector<bool>& held) {
-    const double v = volume(s);
-    const double delta = (target - v) / area(s);
-    const std::vector<Vec3> n = angle_weighted_normals(s);
-    const VertexRings rings = vertex_rings(s);
-    std::vector<Vec3> shift(s.vertices.size());
-    for (std::size_t i = 0; i < s.vertices.size(); ++i) {
-        double shortest = std::numeric_limits<double>::infinity();
-        for (const std::uint32_t j : rings.of(i))
-            shortest = std::min(shortest, distance(s.vertices[i], s.vertices[j]));
-        if (rings.of(i).empty()) continue;
-        const double reach = 0.25 * shortest;
-        shift[i] = std::clamp(delta, -reach, reach) * n[i];
-    }
-    for (int attempt = 0; attempt < 16; ++attempt) {
-        Surface moved = s;
-        for (std::size_t i = 0; i < s.vertices.size(); ++i)
-            if (!held[i]) moved.vertices[i] += shift[i];
-        const auto contact = find_self_intersection(moved);
-        if (!contact) {
-            const double added = volume(moved) - v;
-            return {std::move(moved), added};
-        }
-        bool newly_held = false;
-        for (const std::uint32_t t : {contact->first, contact->second}) {
-            for (const std::uint32_t i : s.triangles[t]) {
-                newly_held = newly_held || !held[i];
-                held[i] = true;
-            }
-        }
-        if (!newly_held) break;
-    }
-    return {s, 0.0};
-}
-
-/// A foot point's velocity, checked (detail::checked_velocity), as curves' steps check it.
-Vec3 finite(Vec3 w, const SurfaceVelocityLaw& law, double t, Vec3 x) {
-    return detail::checked_velocity(w, law.name(), t, x);
-}
-
 SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
                                    const SurfaceVelocityLaw& law, const Box3& domain,
                                    const SurfaceStepOptions& given) {
@@ -295,82 +229,21 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
                         "extension",
                         law.name()));
     }
-    if (extension == Extension::direct && law.is_normal_law())
-        return advance_normal(surface, t, k, law, domain, options);
-
-    SurfaceStepResult result;
+    const auto make_level = [&](const Surface& s, double time) {
+        return SurfaceLevel(s, time, k, law, domain, options, extension);
+    };
+    if (extension == Extension::direct && law.is_normal_law()) {
+        return detail::advance_normal_law<SurfaceStepResult>(surface, t, k, domain, options.contour,
+                                                             make_level);
+    }
     SurfaceLevel now(surface, t, k, law, domain, options, extension);
     if (extension == Extension::direct) {
-        // A flow field: G(x) = F(foot of the characteristic through x), one contour, the feet
-        // traced to a tenth of ε.
-        const int substeps = detail::departure_substeps(
-            law, t, k, std::span<const Vec3>(surface.vertices),
-            detail::departure_tolerance * options.contour.resolved_eps());
-        const auto g = [&](std::span<const Vec3> xs, std::span<double> values) {
-            const std::vector<Vec3> feet = detail::runge_kutta_feet(law, t, k, xs, substeps);
-            parallel_for(
-                xs.size(), [&](std::size_t i) { values[i] = now.distance(feet[i]); },
-                expensive_grain);
-        };
-        SurfaceContour traced = contour_surface(g, domain, options.contour);
-        result.stats.corrector = traced.stats;
-        result.surface = std::move(traced.surface);
-        return result;
+        return detail::advance_flow<SurfaceStepResult>(surface, t, k, law, domain, options.contour,
+                                                       now);
     }
-
-    // Predictor (Eq. 4): G̃(x) = F(x − k W(x); S(t)). F is within b of an exact distance (the
-    // patches' bulge) and |W| ≤ max|W|, so |G̃(x) − G̃(y)| ≤ |x − y| + 2 (k max|W| + b): points
-    // far from the surface are settled by their neighbours without a query.
-    SurfaceContourOptions contour_options = options.contour;
-    contour_options.distance_slack = 2.0 * (k * now.max_speed() + now.max_bulge());
-    const auto predictor = [&](std::span<const Vec3> xs, std::span<double> values) {
-        parallel_for(
-            xs.size(),
-            [&](std::size_t i) {
-                values[i] = now.distance(xs[i] - k * finite(now.velocity(xs[i]), law, t, xs[i]));
-            },
-            expensive_grain);
-    };
-    SurfaceContour predicted = contour_surface(predictor, domain, contour_options);
-    result.stats.predictor = predicted.stats;
-    if (predicted.surface.empty()) return result;  // everything vanished within the step
-
-    // Corrector (Eq. 5): the trapezoidal rule along the characteristic through x, whose foot
-    // moves at most k/2 (max|W(t)| + max|W(t + k)|) from x.
-    SurfaceLevel next(predicted.surface, t + k, k, law, domain, options, extension);
-    const auto corrector = [&](std::span<const Vec3> xs, std::span<double> values) {
-        parallel_for(
-            xs.size(),
-            [&](std::size_t i) {
-                const Vec3 x = xs[i];
-                const Vec3 foot = x - k * finite(now.velocity(x), law, t, x);
-                const Vec3 w_foot = finite(now.velocity(foot), law, t, foot);
-                const Vec3 w_next = finite(next.velocity(x), law, t + k, x);
-                values[i] = now.distance(x - (0.5 * k) * (w_foot + w_next));
-            },
-            expensive_grain);
-    };
-    const auto contour_corrector = [&] {
-        contour_options.distance_slack =
-            2.0 * (0.5 * k * (now.max_speed() + next.max_speed()) + now.max_bulge());
-        return contour_surface(corrector, domain, contour_options);
-    };
-    SurfaceContour corrected = contour_corrector();
-    if (law.preserves_area() && !corrected.surface.empty()) {
-        // The nonlocal law's mean, fixed on the surface the step produces as for curves
-        // (docs/algorithms/evolve.md): moved by the volume the corrector's surface gained over
-        // k times its area, at both levels, and the corrector contoured again.
-        const double gained = volume(corrected.surface) - volume(surface);
-        const double s = -gained / (k * area(corrected.surface));
-        now.add_normal_speed(s);
-        next.add_normal_speed(s);
-        const std::size_t first_evals = corrected.stats.g_evals;
-        corrected = contour_corrector();
-        corrected.stats.g_evals += first_evals;  // both contours' cost
-    }
-    result.stats.corrector = corrected.stats;
-    result.surface = std::move(corrected.surface);
-    return result;
+    return detail::advance_extended<SurfaceStepResult>(
+        surface, t, k, law, domain, options.contour, now, make_level,
+        [](const Surface& s) { return std::pair(volume(s), area(s)); });
 }
 
 }  // namespace
@@ -379,16 +252,37 @@ SurfaceStepResult advance(const Surface& surface, double t, double k, const Surf
                           const Box3& domain, const SurfaceStepOptions& options) {
     SurfaceStepResult result = advance_contours(surface, t, k, law, domain, options);
     if (options.resolved_volume_correction(law) && !result.surface.empty()) {
-        // Each shift leaves O(δ²) of the volume to give back, more where vertices were held
-        // back: a few more shifts leave rounding.
-        const double target = volume(surface);
-        std::vector<bool> held(result.surface.vertices.size(), false);
-        for (int shift = 0; shift < 8; ++shift) {
-            auto [moved, added] = corrected_volume(result.surface, target, held);
-            if (added == 0.0) break;
-            result.surface = std::move(moved);
-            result.stats.volume_correction += added;
-        }
+        // Each vertex moves along its angle-weighted normal, by at most a quarter of its shortest
+        // edge; a vertex is held once the moved surface meets itself at one of its triangles
+        // (exact predicates), as a fold of edges far shorter than the shift would.
+        const auto shifts = [](const Surface& s, double missing) {
+            const double delta = missing / area(s);
+            const std::vector<Vec3> n = angle_weighted_normals(s);
+            const VertexRings rings = vertex_rings(s);
+            std::vector<Vec3> shift(s.vertices.size());
+            for (std::size_t i = 0; i < s.vertices.size(); ++i) {
+                double shortest = std::numeric_limits<double>::infinity();
+                for (const std::uint32_t j : rings.of(i))
+                    shortest = std::min(shortest, distance(s.vertices[i], s.vertices[j]));
+                if (rings.of(i).empty()) continue;
+                const double reach = 0.25 * shortest;
+                shift[i] = std::clamp(delta, -reach, reach) * n[i];
+            }
+            return shift;
+        };
+        const auto moved = [](const Surface& s, const std::vector<Vec3>& shift,
+                              const std::vector<bool>& held) {
+            Surface out = s;
+            for (std::size_t i = 0; i < s.vertices.size(); ++i)
+                if (!held[i]) out.vertices[i] += shift[i];
+            return out;
+        };
+        auto [out, added] = detail::restored_measure(
+            result.surface, volume(surface), [](const Surface& s) { return volume(s); }, shifts,
+            moved, [](const Surface& s) { return find_self_intersection(s); },
+            [](const Surface& s, std::uint32_t f) { return s.triangles[f]; });
+        result.surface = std::move(out);
+        result.stats.volume_correction = added;
     }
     return result;
 }
