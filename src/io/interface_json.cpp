@@ -10,12 +10,12 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <system_error>
 #include <variant>
 
 #include "slc/core/error.hpp"
+#include "slc/core/input_text.hpp"
 
 namespace slc {
 namespace {
@@ -298,10 +298,6 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
 }
 
 std::string read_text_file(const std::filesystem::path& path) {
-    auto fail = [&](int err) {
-        return InvalidInput(
-            fmt::format("cannot read {}: {}", path.string(), std::generic_category().message(err)));
-    };
     auto too_large = [&](std::uintmax_t bytes, const char* more) {
         return InvalidInput(
             fmt::format("{}: {}{} bytes, above the limit of {} bytes ({} MiB) "
@@ -311,24 +307,15 @@ std::string read_text_file(const std::filesystem::path& path) {
     // Devices (/dev/zero never ends), pipes and folders are refused before they are opened.
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (ec) throw fail(ec.value());
+    if (ec) throw cannot_read(path, ec.value());
     if (!std::filesystem::is_regular_file(status)) {
         throw InvalidInput(fmt::format("cannot read {}: not a regular file", path.string()));
     }
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
     if (!ec && size > max_input_bytes) throw too_large(size, "");
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                         &std::fclose);
-    if (!file) throw fail(errno);
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) {
-        text.append(buffer, n);
-        if (text.size() > max_input_bytes)
-            throw too_large(text.size(), "more than ");  // it grew meanwhile
-    }
-    if (std::ferror(file.get())) throw fail(errno);
+    std::string text = file_bytes(path, max_input_bytes);
+    if (text.size() > max_input_bytes)
+        throw too_large(text.size(), "more than ");  // it grew meanwhile
     return text;
 }
 
