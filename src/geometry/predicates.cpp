@@ -74,6 +74,46 @@ int filtered_orientation(Vec2 a, Vec2 b, Vec2 c, bool& decided) {
     return 0;
 }
 
+/// A nonoverlapping expansion (Shewchuk §2): a sum held without error as at most n doubles of
+/// increasing magnitude (zeros allowed), to which doubles and products of doubles are added
+/// exactly. The caller keeps every term and partial sum clear of overflow and underflow.
+template <std::size_t n>
+class Expansion {
+public:
+    /// Adds q without error (Grow-Expansion): one term more.
+    void add(double q) {
+        for (std::size_t i = 0; i < length_; ++i) two_sum(q, e_[i], q, e_[i]);
+        e_[length_++] = q;
+    }
+    /// Adds x·y without error as two terms (two_product: x·y = p + fma(x, y, −p) exactly).
+    void add_product(double x, double y) {
+        const double p = x * y;
+        add(std::fma(x, y, -p));
+        add(p);
+    }
+    /// Adds x·y·z without error as four terms: x·y = p + pe, then p·z and pe·z each split by fma.
+    void add_product(double x, double y, double z) {
+        const double p = x * y;
+        const double pe = std::fma(x, y, -p);
+        const double p1 = p * z, e1 = pe * z;
+        add(std::fma(p, z, -p1));
+        add(std::fma(pe, z, -e1));
+        add(e1);
+        add(p1);
+    }
+    /// The sign of the sum: the most significant nonzero term carries it.
+    int sign() const {
+        for (std::size_t i = length_; i-- > 0;) {
+            if (e_[i] != 0.0) return slc::sign(e_[i]);
+        }
+        return 0;
+    }
+
+private:
+    std::array<double, n> e_{};
+    std::size_t length_ = 0;
+};
+
 /// Stage 2: the sign of ax·by − ax·cy + bx·cy − bx·ay + cx·ay − cx·by, every product and sum
 /// error-free. Precondition: all nonzero inputs lie in [2^-485, 2^509), so that every product
 /// is below 2^1018 (no overflow in twelve-term sums) and its low part, a multiple of
@@ -81,24 +121,9 @@ int filtered_orientation(Vec2 a, Vec2 b, Vec2 c, bool& decided) {
 int expansion_orientation(Vec2 a, Vec2 b, Vec2 c) {
     const std::array<std::array<double, 2>, 6> factors = {
         {{a.x, b.y}, {-a.x, c.y}, {b.x, c.y}, {-b.x, a.y}, {c.x, a.y}, {-c.x, b.y}}};
-    // Grow-Expansion: keep a nonoverlapping expansion (increasing magnitude, zeros allowed) and add
-    // one double at a time.
-    std::array<double, 12> e{};
-    std::size_t length = 0;
-    auto grow = [&](double q) {
-        for (std::size_t i = 0; i < length; ++i) two_sum(q, e[i], q, e[i]);
-        e[length++] = q;
-    };
-    for (const auto& [x, y] : factors) {
-        const double p = x * y;
-        grow(std::fma(x, y, -p));  // two_product: x·y = p + fma(x, y, −p) exactly
-        grow(p);
-    }
-    // The most significant nonzero component carries the sign of the whole sum.
-    for (std::size_t i = length; i-- > 0;) {
-        if (e[i] != 0.0) return sign(e[i]);
-    }
-    return 0;
+    Expansion<12> sum;
+    for (const auto& [x, y] : factors) sum.add_product(x, y);
+    return sum.sign();
 }
 
 /// Stage 3: a two's-complement fixed-point integer wide enough for any sum of six products of
@@ -211,44 +236,30 @@ int filtered_orientation(Vec3 a, Vec3 b, Vec3 c, Vec3 d, bool& decided) {
     return decided ? sign(det) : 0;
 }
 
+/// Adds s·|p q r| to sum without error, s = ±1: |p q r| = p·(q × r), six signed triple products
+/// of four terms each.
+template <std::size_t n>
+void add_determinant(Expansion<n>& sum, Vec3 p, Vec3 q, Vec3 r, double s) {
+    sum.add_product(s * p.x, q.y, r.z);
+    sum.add_product(-s * p.x, q.z, r.y);
+    sum.add_product(s * p.y, q.z, r.x);
+    sum.add_product(-s * p.y, q.x, r.z);
+    sum.add_product(s * p.z, q.x, r.y);
+    sum.add_product(-s * p.z, q.y, r.x);
+}
+
 /// Stage 2 of the 3D orientation: det[b − a; c − a; d − a] = |b c d| − |a c d| + |a b d| − |a b c|
 /// (multilinearity in the rows, |p q r| the determinant of three points), 24 triple products of
 /// coordinates, each split without error into four doubles (two_product twice) and summed without
 /// error by Grow-Expansion. Precondition: nonzero inputs lie in [2^-300, 2^300], so that no
 /// product overflows and no low part underflows.
 int expansion_orientation(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-    std::array<double, 96> e{};
-    std::size_t length = 0;
-    auto grow = [&](double q) {
-        for (std::size_t i = 0; i < length; ++i) two_sum(q, e[i], q, e[i]);
-        e[length++] = q;
-    };
-    auto add_product = [&](double x, double y, double z) {
-        const double p = x * y;
-        const double pe = std::fma(x, y, -p);
-        const double p1 = p * z, e1 = pe * z;
-        grow(std::fma(p, z, -p1));
-        grow(std::fma(pe, z, -e1));
-        grow(e1);
-        grow(p1);
-    };
-    // |p q r| = p·(q × r), six signed triple products.
-    auto add_det = [&](Vec3 p, Vec3 q, Vec3 r, double s) {
-        add_product(s * p.x, q.y, r.z);
-        add_product(-s * p.x, q.z, r.y);
-        add_product(s * p.y, q.z, r.x);
-        add_product(-s * p.y, q.x, r.z);
-        add_product(s * p.z, q.x, r.y);
-        add_product(-s * p.z, q.y, r.x);
-    };
-    add_det(b, c, d, 1.0);
-    add_det(a, c, d, -1.0);
-    add_det(a, b, d, 1.0);
-    add_det(a, b, c, -1.0);
-    for (std::size_t i = length; i-- > 0;) {
-        if (e[i] != 0.0) return sign(e[i]);
-    }
-    return 0;
+    Expansion<96> sum;
+    add_determinant(sum, b, c, d, 1.0);
+    add_determinant(sum, a, c, d, -1.0);
+    add_determinant(sum, a, b, d, 1.0);
+    add_determinant(sum, a, b, c, -1.0);
+    return sum.sign();
 }
 
 /// Stage 2 for 3D when the differences u = b − a, v = c − a, w = d − a are exact doubles (as
@@ -256,31 +267,9 @@ int expansion_orientation(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
 /// doubles each summed without error, a quarter of expansion_orientation's terms and a
 /// sixteenth of its work. Precondition: nonzero components in [2^-300, 2^301].
 int difference_orientation(Vec3 u, Vec3 v, Vec3 w) {
-    std::array<double, 24> e{};
-    std::size_t length = 0;
-    auto grow = [&](double q) {
-        for (std::size_t i = 0; i < length; ++i) two_sum(q, e[i], q, e[i]);
-        e[length++] = q;
-    };
-    auto add_product = [&](double x, double y, double z) {
-        const double p = x * y;
-        const double pe = std::fma(x, y, -p);
-        const double p1 = p * z, e1 = pe * z;
-        grow(std::fma(p, z, -p1));
-        grow(std::fma(pe, z, -e1));
-        grow(e1);
-        grow(p1);
-    };
-    add_product(u.x, v.y, w.z);
-    add_product(-u.x, v.z, w.y);
-    add_product(u.y, v.z, w.x);
-    add_product(-u.y, v.x, w.z);
-    add_product(u.z, v.x, w.y);
-    add_product(-u.z, v.y, w.x);
-    for (std::size_t i = length; i-- > 0;) {
-        if (e[i] != 0.0) return sign(e[i]);
-    }
-    return 0;
+    Expansion<24> sum;
+    add_determinant(sum, u, v, w, 1.0);
+    return sum.sign();
 }
 
 /// q − p when it is an exact double whose components are zero or at least 2^-300; else

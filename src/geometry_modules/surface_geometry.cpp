@@ -8,6 +8,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "weighted_mean.hpp"
 
 namespace slc {
 namespace {
@@ -168,13 +169,7 @@ std::vector<double> vertex_areas(const Surface& s) {
 
 double area_mean(const Surface& s, std::span<const double> g) {
     SLC_ASSERT(g.size() == s.vertices.size() && !g.empty(), "one value per vertex");
-    const std::vector<double> w = vertex_areas(s);
-    double integral = 0.0, total = 0.0;
-    for (std::size_t i = 0; i < g.size(); ++i) {
-        integral += g[i] * w[i];
-        total += w[i];
-    }
-    return integral / total;
+    return weighted_mean(g, vertex_areas(s));
 }
 
 SurfaceGeometry surface_geometry(const Surface& s, const SurfaceGeometryOptions& options) {

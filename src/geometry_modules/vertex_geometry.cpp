@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "slc/core/error.hpp"
+#include "weighted_mean.hpp"
 
 namespace slc {
 
@@ -32,13 +33,7 @@ std::vector<double> vertex_arc_lengths(const Interface& curves) {
 
 double arc_length_mean(const Interface& curves, std::span<const double> g) {
     SLC_ASSERT(g.size() == curves.size() && !curves.empty(), "one value per vertex");
-    const std::vector<double> w = vertex_arc_lengths(curves);
-    double integral = 0.0, length_sum = 0.0;
-    for (std::size_t i = 0; i < g.size(); ++i) {
-        integral += g[i] * w[i];
-        length_sum += w[i];
-    }
-    return integral / length_sum;
+    return weighted_mean(g, vertex_arc_lengths(curves));
 }
 
 }  // namespace slc

@@ -10,12 +10,12 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <system_error>
 #include <variant>
 
 #include "slc/core/error.hpp"
+#include "slc/core/input_text.hpp"
 
 namespace slc {
 namespace {
@@ -25,25 +25,36 @@ using Json = nlohmann::json;
 /// One step of the path from the root of a JSON document to a value: a key or an array index.
 using PathStep = std::variant<std::string, std::size_t>;
 
+/// The base of SAX handlers that follow only the nesting of a document: every scalar is one
+/// value, every object or array opens a level and closes it. Handler supplies value(),
+/// open(is_array), close(), key() and parse_error().
+template <class Handler>
+class NestingSax : public nlohmann::json_sax<Json> {
+public:
+    bool null() override { return self().value(); }
+    bool boolean(bool) override { return self().value(); }
+    bool number_integer(number_integer_t) override { return self().value(); }
+    bool number_unsigned(number_unsigned_t) override { return self().value(); }
+    bool number_float(number_float_t, const string_t&) override { return self().value(); }
+    bool string(string_t&) override { return self().value(); }
+    bool binary(binary_t&) override { return self().value(); }
+    bool start_object(std::size_t) override { return self().open(false); }
+    bool end_object() override { return self().close(); }
+    bool start_array(std::size_t) override { return self().open(true); }
+    bool end_array() override { return self().close(); }
+
+private:
+    Handler& self() { return static_cast<Handler&>(*this); }
+};
+
 /// A SAX handler that only tracks where the parser is, so that when nlohmann-json stops at a number
 /// too large for a double (error 406) the message can name the curve and point that hold it.
-class PathTracker final : public nlohmann::json_sax<Json> {
+class PathTracker final : public NestingSax<PathTracker> {
 public:
-    bool null() override { return value(); }
-    bool boolean(bool) override { return value(); }
-    bool number_integer(number_integer_t) override { return value(); }
-    bool number_unsigned(number_unsigned_t) override { return value(); }
-    bool number_float(number_float_t, const string_t&) override { return value(); }
-    bool string(string_t&) override { return value(); }
-    bool binary(binary_t&) override { return value(); }
-    bool start_object(std::size_t) override { return open(false); }
     bool key(string_t& k) override {
         frames_.back().key = k;
         return true;
     }
-    bool end_object() override { return close(); }
-    bool start_array(std::size_t) override { return open(true); }
-    bool end_array() override { return close(); }
     bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
         failed_ = true;
         return false;
@@ -68,6 +79,7 @@ public:
     bool failed() const { return failed_; }
 
 private:
+    friend NestingSax<PathTracker>;
     struct Frame {
         bool is_array = false;
         std::size_t count = 0;  ///< elements started so far (arrays)
@@ -117,20 +129,9 @@ std::string overflow_message(const std::string& text, const std::string& source)
 /// as in {"curves": [{"points": [[x, y]]}]}) and all its values, and stops the parse beyond
 /// max_interface_points or max_interface_values, so that an enormous file is refused before its
 /// document is built.
-class PointCounter final : public nlohmann::json_sax<Json> {
+class PointCounter final : public NestingSax<PointCounter> {
 public:
-    bool null() override { return value(); }
-    bool boolean(bool) override { return value(); }
-    bool number_integer(number_integer_t) override { return value(); }
-    bool number_unsigned(number_unsigned_t) override { return value(); }
-    bool number_float(number_float_t, const string_t&) override { return value(); }
-    bool string(string_t&) override { return value(); }
-    bool binary(binary_t&) override { return value(); }
-    bool start_object(std::size_t) override { return open(false); }
     bool key(string_t&) override { return true; }
-    bool end_object() override { return close(); }
-    bool start_array(std::size_t) override { return open(true); }
-    bool end_array() override { return close(); }
     bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
         return false;
     }
@@ -138,6 +139,7 @@ public:
     std::size_t values() const { return values_; }
 
 private:
+    friend NestingSax<PointCounter>;
     bool value() { return ++values_ <= max_interface_values; }
     bool open(bool is_array) {
         if (is_array && depth_ == 4) ++points_;
@@ -296,10 +298,6 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
 }
 
 std::string read_text_file(const std::filesystem::path& path) {
-    auto fail = [&](int err) {
-        return InvalidInput(
-            fmt::format("cannot read {}: {}", path.string(), std::generic_category().message(err)));
-    };
     auto too_large = [&](std::uintmax_t bytes, const char* more) {
         return InvalidInput(
             fmt::format("{}: {}{} bytes, above the limit of {} bytes ({} MiB) "
@@ -309,24 +307,15 @@ std::string read_text_file(const std::filesystem::path& path) {
     // Devices (/dev/zero never ends), pipes and folders are refused before they are opened.
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (ec) throw fail(ec.value());
+    if (ec) throw cannot_read(path, ec.value());
     if (!std::filesystem::is_regular_file(status)) {
         throw InvalidInput(fmt::format("cannot read {}: not a regular file", path.string()));
     }
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
     if (!ec && size > max_input_bytes) throw too_large(size, "");
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                         &std::fclose);
-    if (!file) throw fail(errno);
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) {
-        text.append(buffer, n);
-        if (text.size() > max_input_bytes)
-            throw too_large(text.size(), "more than ");  // it grew meanwhile
-    }
-    if (std::ferror(file.get())) throw fail(errno);
+    std::string text = file_bytes(path, max_input_bytes);
+    if (text.size() > max_input_bytes)
+        throw too_large(text.size(), "more than ");  // it grew meanwhile
     return text;
 }
 

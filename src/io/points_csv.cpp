@@ -14,18 +14,12 @@
 #include <system_error>
 
 #include "slc/core/error.hpp"
+#include "slc/core/input_text.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/io/interface_json.hpp"
 
 namespace slc {
 namespace {
-
-std::string_view trim(std::string_view s) {
-    constexpr std::string_view blanks = " \t\r\f\v";
-    const std::size_t first = s.find_first_not_of(blanks);
-    if (first == std::string_view::npos) return {};
-    return s.substr(first, s.find_last_not_of(blanks) - first + 1);
-}
 
 /// The fields of a line between commas, each trimmed.
 std::vector<std::string_view> split_fields(std::string_view line) {
@@ -48,18 +42,8 @@ bool is_header(const std::vector<std::string_view>& fields, std::size_t columns)
            (columns == 2 || is(fields[2], 'z'));
 }
 
-/// A field as it may appear in a one-line message: control and non-ASCII bytes as '?', at most
-/// 24 characters.
-std::string quoted(std::string_view field) {
-    constexpr std::size_t longest = 24;
-    std::string out;
-    for (const char c : field.substr(0, longest)) {
-        const auto byte = static_cast<unsigned char>(c);
-        out += byte >= 0x20 && byte < 0x7f ? c : '?';
-    }
-    if (field.size() > longest) out += "...";
-    return fmt::format("\"{}\"", out);
-}
+/// A field as it may appear in a one-line message, in double quotes (printable()).
+std::string quoted(std::string_view field) { return fmt::format("\"{}\"", printable(field)); }
 
 /// One coordinate: the whole field must be a finite number (an optional leading '+' allowed)
 /// within ±tolerance::max_coordinate.

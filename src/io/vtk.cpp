@@ -97,6 +97,21 @@ void append_data(std::string& out, const Interface& curves) {
 
 constexpr std::string_view pvd_tail = "  </Collection>\n</VTKFile>\n";
 
+/// The opening of a PolyData file down to its one <Piece>: the time as field data, and the
+/// numbers of points, lines and polygons of the piece.
+void append_piece_head(std::string& out, double time, std::size_t points, std::size_t lines,
+                       std::size_t polys) {
+    out += "<?xml version=\"1.0\"?>\n";
+    out += "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
+    out += "  <PolyData>\n    <FieldData>\n";
+    append_array(out, "Float64", "TimeValue", 1, std::vector<double>{time});
+    out += "    </FieldData>\n";
+    fmt::format_to(std::back_inserter(out),
+                   "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
+                   "NumberOfStrips=\"0\" NumberOfPolys=\"{}\">\n",
+                   points, lines, polys);
+}
+
 /// The collection's line for one frame.
 std::string dataset_line(const VtkFrame& f) {
     check_time(f.time);
@@ -136,15 +151,7 @@ std::string vtp_text(const Interface& curves, double time) {
     check_time(time);
     std::string out;
     out.reserve(70 * curves.size() + 200 * curves.curve_count() + 1200);
-    out += "<?xml version=\"1.0\"?>\n";
-    out += "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
-    out += "  <PolyData>\n    <FieldData>\n";
-    append_array(out, "Float64", "TimeValue", 1, std::vector<double>{time});
-    out += "    </FieldData>\n";
-    fmt::format_to(std::back_inserter(out),
-                   "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
-                   "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
-                   curves.size(), curves.curve_count());
+    append_piece_head(out, time, curves.size(), curves.curve_count(), 0);
     append_points(out, curves);
     append_lines(out, curves);
     append_data(out, curves);
@@ -168,15 +175,7 @@ std::string vtp_text(const Surface& surface, double time) {
         component.push_back(static_cast<std::int32_t>(c));
     std::string out;
     out.reserve(90 * surface.vertices.size() + 1200);
-    out += "<?xml version=\"1.0\"?>\n";
-    out += "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
-    out += "  <PolyData>\n    <FieldData>\n";
-    append_array(out, "Float64", "TimeValue", 1, std::vector<double>{time});
-    out += "    </FieldData>\n";
-    fmt::format_to(std::back_inserter(out),
-                   "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
-                   "NumberOfStrips=\"0\" NumberOfPolys=\"{}\">\n",
-                   surface.vertices.size(), surface.size());
+    append_piece_head(out, time, surface.vertices.size(), 0, surface.size());
     out += "      <Points>\n";
     append_array(out, "Float64", "Points", 3, xyz);
     out += "      </Points>\n      <Polys>\n";

@@ -7,6 +7,7 @@
 #include <limits>
 #include <utility>
 
+#include "finer_neighbour.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
 #include "slc/core/parallel.hpp"
@@ -61,16 +62,8 @@ bool positively_oriented(const GridPoint& a, const GridPoint& b, const GridPoint
     return dot(diff(b), cross(diff(c), diff(d))) > 0.0;
 }
 
-/// The neighbour of leaf c across face d when it is finer than c (a cell of c's level with
-/// children). Throws when the leaf there is coarser than c's parent: the tree is not balanced.
-bool has_finer_neighbour(const Octree& tree, std::size_t c, int d) {
-    const std::uint32_t n = tree.neighbour(c, d);
-    if (n == Octree::no_cell) return false;
-    const int level = tree.cell(c).level;
-    if (tree.cell(n).level < level - 1)
-        throw InvalidInput("tetrahedralize: the octree is not 2:1 balanced");
-    return tree.cell(n).level == level && !tree.is_leaf(n);
-}
+/// What tetrahedralize() throws for an octree that is not 2:1 balanced (has_finer_neighbour).
+constexpr const char* unbalanced = "tetrahedralize: the octree is not 2:1 balanced";
 
 /// The low corner of cell c on the grid of half the finest edge, and its edge there.
 std::pair<GridPoint, std::uint64_t> low_corner(const Octree& tree, std::size_t c) {
@@ -110,7 +103,7 @@ void cones_of_leaf(const Octree& tree, const CornerSet& corners, std::size_t c,
     // two other axes b and e.
     for (int d = 0; d < 6; ++d) {
         const int a = d / 2, b = (a + 1) % 3, e = (a + 2) % 3;
-        const std::uint64_t w = has_finer_neighbour(tree, c, d) ? u / 2 : u;
+        const std::uint64_t w = has_finer_neighbour(tree, c, d, unbalanced) ? u / 2 : u;
         for (std::uint64_t sb = 0; sb < u; sb += w) {
             for (std::uint64_t se = 0; se < u; se += w) {
                 // The square [sb, sb + w] × [se, se + w] of the face, its corners in turn.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "finer_neighbour.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
 
@@ -45,17 +46,8 @@ private:
     KeyMap<std::uint32_t> index_;
 };
 
-/// True when the neighbour of leaf c across edge d (0..3: −x, +x, −y, +y) is finer than c.
-/// Throws when it is a leaf coarser than c's parent: the tree is not 2:1 balanced (checked here,
-/// where every leaf's four neighbours are found anyway, instead of in a pass of its own).
-bool has_finer_neighbour(const Quadtree& tree, std::size_t c, int d) {
-    const std::uint32_t n = tree.neighbour(c, d);
-    if (n == Quadtree::no_cell) return false;
-    const int level = tree.cell(c).level;
-    if (tree.cell(n).level < level - 1)
-        throw InvalidInput("triangulate: the quadtree is not 2:1 balanced");
-    return tree.cell(n).level == level && !tree.is_leaf(n);
-}
+/// What triangulate() throws for a quadtree that is not 2:1 balanced (has_finer_neighbour).
+constexpr const char* unbalanced = "triangulate: the quadtree is not 2:1 balanced";
 
 }  // namespace
 
@@ -68,7 +60,7 @@ Triangulation triangulate(const Quadtree& tree) {
         [&](std::size_t c, int k, std::uint64_t gx, std::uint64_t gy) {
             // Edges bottom, right, top, left: faces −y, +x, +y, −x.
             constexpr int face[4] = {2, 1, 3, 0};
-            return has_finer_neighbour(tree, c, face[k]) ? table.at(gx, gy) : no_vertex;
+            return has_finer_neighbour(tree, c, face[k], unbalanced) ? table.at(gx, gy) : no_vertex;
         },
         mesh);
     return mesh;

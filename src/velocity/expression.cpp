@@ -16,6 +16,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/velocity/laws.hpp"
 
 namespace slc {
 namespace {
@@ -225,116 +226,45 @@ private:
     mutable std::vector<std::unique_ptr<Evaluator>> free_;
 };
 
-/// Variable indices in speed_variables (field_variables are its first three).
-enum Variable : std::size_t { var_x, var_y, var_t, var_c, var_nx, var_ny };
-
-/// v(x, y, t, nx, ny): a normal law, evaluated at any point with any normal.
-class SpeedExpression final : public NormalLaw {
-public:
-    SpeedExpression(std::shared_ptr<const EvaluatorPool> pool, std::optional<GeometryModule> module)
-        : NormalLaw(module), pool_(std::move(pool)) {}
-    std::string name() const override { return "speed = " + shown(pool_->spec().text); }
-    void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
-                       std::span<double> out) const override {
-        pool_->for_each(points.size(), [&](Evaluator& e, std::size_t i) {
-            auto& v = e.variables();
-            v[var_x] = points[i].x;
-            v[var_y] = points[i].y;
-            v[var_t] = t;
-            v[var_nx] = normals[i].x;
-            v[var_ny] = normals[i].y;
-            out[i] = e.value();
-        });
-    }
-
-private:
-    std::shared_ptr<const EvaluatorPool> pool_;
+/// Where an expression's variables stand in dimension dim (speed_variables,
+/// surface_speed_variables; the field variables are their first dim + 1): the point's
+/// coordinates, then t, C and the normal's coordinates.
+template <int dim>
+struct VariableIndex {
+    static constexpr std::size_t t = dim;
+    static constexpr std::size_t c = dim + 1;
+    static constexpr std::size_t normal = dim + 2;
 };
 
-/// v(x, y, t, C, nx, ny) with the curvature: known at the vertices only.
-class CurvatureSpeedExpression final : public VelocityLaw {
-public:
-    CurvatureSpeedExpression(std::shared_ptr<const EvaluatorPool> pool,
-                             std::optional<GeometryModule> module)
-        : pool_(std::move(pool)), module_(module) {}
-    std::string name() const override { return "speed = " + shown(pool_->spec().text); }
-    GeometryNeeds needs() const override {
-        return {.normals = true, .curvature = true, .module = module_};
-    }
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& g) const override {
-        if (g.normals.size() != curves.size() || g.curvature.size() != curves.size()) {
-            throw InvalidInput(
-                fmt::format("velocity '{}' needs the normals and curvature at the vertices "
-                            "(vertex_velocities computes them)",
-                            name()));
-        }
-        std::vector<Vec2> u(curves.size());
-        pool_->for_each(u.size(), [&](Evaluator& e, std::size_t i) {
-            auto& v = e.variables();
-            v[var_x] = curves.point(i).x;
-            v[var_y] = curves.point(i).y;
-            v[var_t] = t;
-            v[var_c] = g.curvature[i];
-            v[var_nx] = g.normals[i].x;
-            v[var_ny] = g.normals[i].y;
-            u[i] = e.value() * g.normals[i];
-        });
-        return u;
-    }
-
-private:
-    std::shared_ptr<const EvaluatorPool> pool_;
-    std::optional<GeometryModule> module_;
-};
-
-/// (u, v)(x, y, t): a flow field.
-class FieldExpression final : public FlowFieldLaw {
-public:
-    explicit FieldExpression(std::shared_ptr<const EvaluatorPool> pool) : pool_(std::move(pool)) {}
-    std::string name() const override { return "field = (" + shown(pool_->spec().text) + ")"; }
-    void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override {
-        pool_->for_each(points.size(), [&](Evaluator& e, std::size_t i) {
-            auto& v = e.variables();
-            v[var_x] = points[i].x;
-            v[var_y] = points[i].y;
-            v[var_t] = t;
-            int count = 0;
-            const double* uv = e.values(count);
-            out[i] = {uv[0], uv[1]};
-        });
-    }
-
-private:
-    std::shared_ptr<const EvaluatorPool> pool_;
-};
-
-/// Variable indices in surface_speed_variables (surface_field_variables are its first four).
-enum SurfaceVariable : std::size_t { sv_x, sv_y, sv_z, sv_t, sv_c, sv_nx, sv_ny, sv_nz };
-
-/// Sets the point and time of a surface expression's variables.
-void set_point(Evaluator& e, Vec3 p, double t) {
+/// Sets the point and the time of an expression's variables.
+template <int dim>
+void set_point(Evaluator& e, typename Space<dim>::Point p, double t) {
     auto& v = e.variables();
-    v[sv_x] = p.x;
-    v[sv_y] = p.y;
-    v[sv_z] = p.z;
-    v[sv_t] = t;
+    for (int k = 0; k < dim; ++k) v[k] = p[k];
+    v[VariableIndex<dim>::t] = t;
 }
 
-/// v(x, y, z, t, nx, ny, nz): a normal law of surfaces, evaluated at any point with any normal.
-class SurfaceSpeedExpression final : public SurfaceNormalLaw {
+/// Sets the normal of a speed expression's variables.
+template <int dim>
+void set_normal(Evaluator& e, typename Space<dim>::Point n) {
+    auto& v = e.variables();
+    for (int k = 0; k < dim; ++k) v[VariableIndex<dim>::normal + k] = n[k];
+}
+
+/// v(x, t, N): a normal law, evaluated at any point with any normal.
+template <int dim>
+class SpeedExpression final : public BasicNormalLaw<dim> {
 public:
-    explicit SurfaceSpeedExpression(std::shared_ptr<const EvaluatorPool> pool)
-        : pool_(std::move(pool)) {}
+    using Point = typename Space<dim>::Point;
+    /// module: where the vertex normals of curves come from; unset for surfaces.
+    SpeedExpression(std::shared_ptr<const EvaluatorPool> pool, std::optional<GeometryModule> module)
+        : BasicNormalLaw<dim>(module), pool_(std::move(pool)) {}
     std::string name() const override { return "speed = " + shown(pool_->spec().text); }
-    void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
+    void normal_speeds(double t, std::span<const Point> points, std::span<const Point> normals,
                        std::span<double> out) const override {
         pool_->for_each(points.size(), [&](Evaluator& e, std::size_t i) {
-            set_point(e, points[i], t);
-            auto& v = e.variables();
-            v[sv_nx] = normals[i].x;
-            v[sv_ny] = normals[i].y;
-            v[sv_nz] = normals[i].z;
+            set_point<dim>(e, points[i], t);
+            set_normal<dim>(e, normals[i]);
             out[i] = e.value();
         });
     }
@@ -343,30 +273,27 @@ private:
     std::shared_ptr<const EvaluatorPool> pool_;
 };
 
-/// v(x, y, z, t, C, nx, ny, nz) with the mean curvature: known at the vertices only.
-class SurfaceCurvatureSpeedExpression final : public SurfaceVelocityLaw {
+/// v(x, t, C, N) with the curvature (the mean curvature of surfaces): known at the vertices only.
+template <int dim>
+class CurvatureSpeedExpression final : public BasicCurvatureLaw<dim> {
 public:
-    explicit SurfaceCurvatureSpeedExpression(std::shared_ptr<const EvaluatorPool> pool)
-        : pool_(std::move(pool)) {}
+    using typename BasicCurvatureLaw<dim>::Point;
+    using typename BasicCurvatureLaw<dim>::Shape;
+    using typename BasicCurvatureLaw<dim>::Geometry;
+    /// module: where the vertex normals and curvature of curves come from; unset for surfaces.
+    CurvatureSpeedExpression(std::shared_ptr<const EvaluatorPool> pool,
+                             std::optional<GeometryModule> module)
+        : BasicCurvatureLaw<dim>(module), pool_(std::move(pool)) {}
     std::string name() const override { return "speed = " + shown(pool_->spec().text); }
-    GeometryNeeds needs() const override { return {.normals = true, .curvature = true}; }
-    std::vector<Vec3> velocities(double t, const Surface& surface,
-                                 const SurfaceGeometry& g) const override {
-        const std::size_t n = surface.vertices.size();
-        if (g.normals.size() != n || g.curvature.size() != n) {
-            throw InvalidInput(
-                fmt::format("velocity '{}' needs the normals and curvature at the vertices "
-                            "(vertex_velocities computes them)",
-                            name()));
-        }
-        std::vector<Vec3> u(n);
-        pool_->for_each(n, [&](Evaluator& e, std::size_t i) {
-            set_point(e, surface.vertices[i], t);
-            auto& v = e.variables();
-            v[sv_c] = g.curvature[i];
-            v[sv_nx] = g.normals[i].x;
-            v[sv_ny] = g.normals[i].y;
-            v[sv_nz] = g.normals[i].z;
+    std::vector<Point> velocities(double t, const Shape& interface,
+                                  const Geometry& g) const override {
+        this->require_geometry(interface, g);
+        const std::span<const Point> x = vertex_points(interface);
+        std::vector<Point> u(x.size());
+        pool_->for_each(u.size(), [&](Evaluator& e, std::size_t i) {
+            set_point<dim>(e, x[i], t);
+            e.variables()[VariableIndex<dim>::c] = g.curvature[i];
+            set_normal<dim>(e, g.normals[i]);
             u[i] = e.value() * g.normals[i];
         });
         return u;
@@ -376,53 +303,61 @@ private:
     std::shared_ptr<const EvaluatorPool> pool_;
 };
 
-/// (u, v, w)(x, y, z, t): a flow field in space.
-class SurfaceFieldExpression final : public SurfaceFlowFieldLaw {
+/// u(x, t): a flow field, the expression giving dim values.
+template <int dim>
+class FieldExpression final : public BasicFlowFieldLaw<dim> {
 public:
-    explicit SurfaceFieldExpression(std::shared_ptr<const EvaluatorPool> pool)
-        : pool_(std::move(pool)) {}
+    using Point = typename Space<dim>::Point;
+    explicit FieldExpression(std::shared_ptr<const EvaluatorPool> pool) : pool_(std::move(pool)) {}
     std::string name() const override { return "field = (" + shown(pool_->spec().text) + ")"; }
-    void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override {
+    void sample(double t, std::span<const Point> points, std::span<Point> out) const override {
         pool_->for_each(points.size(), [&](Evaluator& e, std::size_t i) {
-            set_point(e, points[i], t);
+            set_point<dim>(e, points[i], t);
             int count = 0;
-            const double* uvw = e.values(count);
-            out[i] = {uvw[0], uvw[1], uvw[2]};
+            const double* u = e.values(count);
+            for (int k = 0; k < dim; ++k) out[i][k] = u[k];
         });
     }
 
 private:
     std::shared_ptr<const EvaluatorPool> pool_;
 };
+
+/// The speed law of an expression: a normal law, or a law at the vertices when it reads C.
+template <int dim>
+std::unique_ptr<BasicVelocityLaw<dim>> speed_law(std::shared_ptr<const EvaluatorPool> pool,
+                                                 std::optional<GeometryModule> module) {
+    if (pool->uses("C"))
+        return std::make_unique<CurvatureSpeedExpression<dim>>(std::move(pool), module);
+    return std::make_unique<SpeedExpression<dim>>(std::move(pool), module);
+}
 
 }  // namespace
 
 std::unique_ptr<VelocityLaw> speed_expression_law(const std::string& expression,
                                                   const VelocityParams& constants,
                                                   std::optional<GeometryModule> module) {
-    auto pool = std::make_shared<const EvaluatorPool>(
-        ExpressionSpec{expression, "speed expression", speed_variables, constants, 1});
-    if (pool->uses("C")) return std::make_unique<CurvatureSpeedExpression>(std::move(pool), module);
-    return std::make_unique<SpeedExpression>(std::move(pool), module);
+    return speed_law<2>(std::make_shared<const EvaluatorPool>(ExpressionSpec{
+                            expression, "speed expression", speed_variables, constants, 1}),
+                        module);
 }
 
 std::unique_ptr<VelocityLaw> field_expression_law(const std::string& expression,
                                                   const VelocityParams& constants) {
-    return std::make_unique<FieldExpression>(std::make_shared<const EvaluatorPool>(
+    return std::make_unique<FieldExpression<2>>(std::make_shared<const EvaluatorPool>(
         ExpressionSpec{expression, "field expression", field_variables, constants, 2}));
 }
 
 std::unique_ptr<SurfaceVelocityLaw> surface_speed_expression_law(const std::string& expression,
                                                                  const VelocityParams& constants) {
-    auto pool = std::make_shared<const EvaluatorPool>(
-        ExpressionSpec{expression, "speed expression", surface_speed_variables, constants, 1});
-    if (pool->uses("C")) return std::make_unique<SurfaceCurvatureSpeedExpression>(std::move(pool));
-    return std::make_unique<SurfaceSpeedExpression>(std::move(pool));
+    return speed_law<3>(std::make_shared<const EvaluatorPool>(ExpressionSpec{
+                            expression, "speed expression", surface_speed_variables, constants, 1}),
+                        std::nullopt);
 }
 
 std::unique_ptr<SurfaceVelocityLaw> surface_field_expression_law(const std::string& expression,
                                                                  const VelocityParams& constants) {
-    return std::make_unique<SurfaceFieldExpression>(std::make_shared<const EvaluatorPool>(
+    return std::make_unique<FieldExpression<3>>(std::make_shared<const EvaluatorPool>(
         ExpressionSpec{expression, "field expression", surface_field_variables, constants, 3}));
 }
 

@@ -36,6 +36,11 @@ VelocityParameter param(std::string name, double value, std::string meaning) {
     return {std::move(name), value, fmt::format("{}", value), std::move(meaning), false};
 }
 
+/// A parameter without a default, which the user must give.
+VelocityParameter required(std::string name, std::string meaning) {
+    return {std::move(name), std::nullopt, "required", std::move(meaning), true};
+}
+
 std::unique_ptr<VelocityLaw> make_anisotropic(const Resolved& p,
                                               std::optional<GeometryModule> module) {
     const double m = p["m"];
@@ -61,8 +66,7 @@ const std::vector<Entry<2>>& curve_entries() {
          }},
         {{"translation",
           "constant velocity u = (ux, uy)",
-          {{"ux", std::nullopt, "required", "x velocity", true},
-           {"uy", std::nullopt, "required", "y velocity", true}}},
+          {required("ux", "x velocity"), required("uy", "y velocity")}},
          [](const Resolved& p, M) {
              return std::make_unique<Translation>(Vec2{p["ux"], p["uy"]});
          }},
@@ -104,9 +108,8 @@ const std::vector<Entry<3>>& surface_entries() {
          }},
         {{"translation",
           "constant velocity u = (ux, uy, uz)",
-          {{"ux", std::nullopt, "required", "x velocity", true},
-           {"uy", std::nullopt, "required", "y velocity", true},
-           {"uz", std::nullopt, "required", "z velocity", true}}},
+          {required("ux", "x velocity"), required("uy", "y velocity"),
+           required("uz", "z velocity")}},
          [](const Resolved& p, M) {
              return std::make_unique<SurfaceTranslation>(Vec3{p["ux"], p["uy"], p["uz"]});
          }},

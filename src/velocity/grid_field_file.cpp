@@ -4,15 +4,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <memory>
 #include <optional>
 #include <system_error>
 
 #include "slc/core/error.hpp"
+#include "slc/core/input_text.hpp"
 #include "slc/velocity/grid_field.hpp"
 
 namespace slc {
@@ -23,24 +21,8 @@ namespace {
 /// are not uniform, not against coordinates rounded when printed.
 constexpr double lattice_tolerance = 1e-3;
 
-std::string_view trim(std::string_view s) {
-    constexpr std::string_view blanks = " \t\r\f\v";
-    const std::size_t first = s.find_first_not_of(blanks);
-    if (first == std::string_view::npos) return {};
-    return s.substr(first, s.find_last_not_of(blanks) - first + 1);
-}
-
-/// A field shown in a one-line message: printable ASCII, at most 24 characters.
-std::string quoted(std::string_view field) {
-    constexpr std::size_t longest = 24;
-    std::string out;
-    for (const char c : field.substr(0, longest)) {
-        const auto byte = static_cast<unsigned char>(c);
-        out += byte >= 0x20 && byte < 0x7f ? c : '?';
-    }
-    if (field.size() > longest) out += "...";
-    return "'" + out + "'";
-}
+/// A field shown in a one-line message, in single quotes (printable()).
+std::string quoted(std::string_view field) { return fmt::format("'{}'", printable(field)); }
 
 /// The number the whole of field spells (a leading '+' allowed), if any.
 std::optional<double> number(std::string_view field) {
@@ -338,18 +320,7 @@ GridVelocity parse_grid_vtk(std::string_view text, const std::string& source) {
 }
 
 GridVelocity read_grid_velocity(const std::filesystem::path& path) {
-    auto fail = [&](int err) {
-        return InvalidInput(
-            fmt::format("cannot read {}: {}", path.string(), std::generic_category().message(err)));
-    };
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                         &std::fclose);
-    if (!file) throw fail(errno);
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t got = 0;
-    while ((got = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, got);
-    if (std::ferror(file.get())) throw fail(errno);
+    const std::string text = file_bytes(path);
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -1,6 +1,6 @@
-// The built-in velocity laws: rigid rotation and translation, the single vortex, constant and
-// anisotropic normal speed (paper Eq. 12), curvature flow and its volume-preserving nonlocal form
-// (paper Eq. 13).
+// The built-in velocity laws: rigid rotation, the single vortex, constant and anisotropic normal
+// speed (paper Eq. 12), and curvature flow and its volume-preserving nonlocal form (paper Eq. 13)
+// for curves and surfaces alike.
 #include "slc/velocity/laws.hpp"
 
 #include <fmt/format.h>
@@ -14,24 +14,20 @@
 namespace slc {
 namespace {
 
-/// Throws InvalidInput unless g holds what the law asked for at every vertex.
-void require_geometry(const VelocityLaw& law, const Interface& curves, const VertexGeometry& g) {
-    const bool curvature = law.needs().curvature;
-    if (g.normals.size() != curves.size() || (curvature && g.curvature.size() != curves.size())) {
-        throw InvalidInput(fmt::format(
-            "velocity '{}' needs the {} at the vertices (vertex_velocities computes them)",
-            law.name(), curvature ? "normals and curvature" : "normals"));
-    }
-}
-
 /// u_i = v_i N_i for normal speeds v.
-template <class Speed>
-std::vector<Vec2> normal_velocities(const VelocityLaw& law, const Interface& curves,
-                                    const VertexGeometry& g, Speed&& speed) {
-    require_geometry(law, curves, g);
-    std::vector<Vec2> u(g.normals.size());
+template <class Point, class Geometry, class Speed>
+std::vector<Point> normal_velocities(const Geometry& g, Speed&& speed) {
+    std::vector<Point> u(g.normals.size());
     parallel_for(u.size(), [&](std::size_t i) { u[i] = speed(i) * g.normals[i]; });
     return u;
+}
+
+/// The mean of g over the interface: by arc length along curves, by area over a surface.
+double interface_mean(const Interface& curves, std::span<const double> g) {
+    return arc_length_mean(curves, g);
+}
+double interface_mean(const Surface& surface, std::span<const double> g) {
+    return area_mean(surface, g);
 }
 
 }  // namespace
@@ -41,19 +37,19 @@ void Rotation::sample(double, std::span<const Vec2> points, std::span<Vec2> out)
                        [&](std::size_t i) { out[i] = omega_ * perp(points[i] - centre_); });
 }
 
-void Translation::sample(double, std::span<const Vec2> points, std::span<Vec2> out) const {
-    std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(points.size()), u_);
-}
-
-SingleVortex::SingleVortex(double period) : period_(period) {
+template <int dim>
+BasicReversingFlow<dim>::BasicReversingFlow(const char* law, double period) : period_(period) {
     if (!(period > 0.0) || !std::isfinite(period))
         throw InvalidInput(
-            fmt::format("velocity 'vortex': period must be positive, got {}", period));
+            fmt::format("velocity '{}': period must be positive, got {}", law, period));
 }
+
+template class BasicReversingFlow<2>;
+template class BasicReversingFlow<3>;
 
 void SingleVortex::sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const {
     using std::numbers::pi;
-    const double c = std::cos(pi * t / period_);
+    const double c = reversal(t);
     parallel_for(points.size(), [&](std::size_t i) {
         const Vec2 x = points[i];
         const double sx = std::sin(pi * x.x), sy = std::sin(pi * x.y);
@@ -75,17 +71,39 @@ void AnisotropicNormalSpeed::normal_speeds(double, std::span<const Vec2> points,
     });
 }
 
-std::vector<Vec2> CurvatureFlow::velocities(double, const Interface& curves,
-                                            const VertexGeometry& g) const {
-    return normal_velocities(*this, curves, g, [&](std::size_t i) { return g.curvature[i]; });
+template <int dim>
+void BasicCurvatureLaw<dim>::require_geometry(const Shape& interface,
+                                              const Geometry& geometry) const {
+    const std::size_t n = vertex_points(interface).size();
+    if (geometry.normals.size() != n || geometry.curvature.size() != n) {
+        throw InvalidInput(
+            fmt::format("velocity '{}' needs the normals and curvature at the "
+                        "vertices (vertex_velocities computes them)",
+                        this->name()));
+    }
 }
 
-std::vector<Vec2> VolumePreservingCurvatureFlow::velocities(double, const Interface& curves,
-                                                            const VertexGeometry& g) const {
-    require_geometry(*this, curves, g);
-    const double mean = arc_length_mean(curves, g.curvature);
-    return normal_velocities(*this, curves, g,
-                             [&](std::size_t i) { return g.curvature[i] - mean; });
+template <int dim>
+std::vector<typename BasicCurvatureFlow<dim>::Point> BasicCurvatureFlow<dim>::velocities(
+    double, const Shape& interface, const Geometry& g) const {
+    this->require_geometry(interface, g);
+    return normal_velocities<Point>(g, [&](std::size_t i) { return g.curvature[i]; });
 }
+
+template <int dim>
+std::vector<typename BasicVolumePreservingFlow<dim>::Point>
+BasicVolumePreservingFlow<dim>::velocities(double, const Shape& interface,
+                                           const Geometry& g) const {
+    this->require_geometry(interface, g);
+    const double mean = interface_mean(interface, g.curvature);
+    return normal_velocities<Point>(g, [&](std::size_t i) { return g.curvature[i] - mean; });
+}
+
+template class BasicCurvatureLaw<2>;
+template class BasicCurvatureLaw<3>;
+template class BasicCurvatureFlow<2>;
+template class BasicCurvatureFlow<3>;
+template class BasicVolumePreservingFlow<2>;
+template class BasicVolumePreservingFlow<3>;
 
 }  // namespace slc

@@ -1,4 +1,5 @@
-// The built-in velocity laws of surfaces.
+// The built-in velocity laws of surfaces: rotation about an axis, Enright's deformation field, and
+// constant and anisotropic normal speed (translation and the curvature flows are in laws.cpp).
 #include "slc/velocity/surface_laws.hpp"
 
 #include <fmt/format.h>
@@ -10,19 +11,6 @@
 #include "slc/core/error.hpp"
 
 namespace slc {
-namespace {
-
-/// Throws InvalidInput unless g holds normals and curvature at every vertex.
-void require_curvature(const SurfaceVelocityLaw& law, const Surface& s, const SurfaceGeometry& g) {
-    if (g.normals.size() != s.vertices.size() || g.curvature.size() != s.vertices.size()) {
-        throw InvalidInput(fmt::format(
-            "velocity '{}' needs the normals and curvature at the vertices (vertex_velocities "
-            "computes them)",
-            law.name()));
-    }
-}
-
-}  // namespace
 
 SurfaceRotation::SurfaceRotation(double omega, Vec3 axis, Vec3 centre)
     : omega_(omega), centre_(centre) {
@@ -38,19 +26,9 @@ void SurfaceRotation::sample(double, std::span<const Vec3> points, std::span<Vec
                        [&](std::size_t i) { out[i] = omega_ * cross(axis_, points[i] - centre_); });
 }
 
-void SurfaceTranslation::sample(double, std::span<const Vec3> points, std::span<Vec3> out) const {
-    std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(points.size()), u_);
-}
-
-EnrightField::EnrightField(double period) : period_(period) {
-    if (!(period > 0.0) || !std::isfinite(period))
-        throw InvalidInput(
-            fmt::format("velocity 'enright': period must be positive, got {}", period));
-}
-
 void EnrightField::sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const {
     using std::numbers::pi;
-    const double c = std::cos(pi * t / period_);
+    const double c = reversal(t);
     parallel_for(points.size(), [&](std::size_t i) {
         const Vec3 x = points[i];
         const double sx = std::sin(pi * x.x), sy = std::sin(pi * x.y), sz = std::sin(pi * x.z);
@@ -74,23 +52,6 @@ void SurfaceAnisotropicNormalSpeed::normal_speeds(double, std::span<const Vec3> 
             n.x * n.x * n.x * n.x + n.y * n.y * n.y * n.y + n.z * n.z * n.z * n.z;
         out[i] = r_ + eps_ * (quartic - 0.6);
     });
-}
-
-std::vector<Vec3> SurfaceMeanCurvatureFlow::velocities(double, const Surface& surface,
-                                                       const SurfaceGeometry& g) const {
-    require_curvature(*this, surface, g);
-    std::vector<Vec3> u(g.normals.size());
-    parallel_for(u.size(), [&](std::size_t i) { u[i] = g.curvature[i] * g.normals[i]; });
-    return u;
-}
-
-std::vector<Vec3> SurfaceVolumePreservingFlow::velocities(double, const Surface& surface,
-                                                          const SurfaceGeometry& g) const {
-    require_curvature(*this, surface, g);
-    const double mean = area_mean(surface, g.curvature);
-    std::vector<Vec3> u(g.normals.size());
-    parallel_for(u.size(), [&](std::size_t i) { u[i] = (g.curvature[i] - mean) * g.normals[i]; });
-    return u;
 }
 
 }  // namespace slc

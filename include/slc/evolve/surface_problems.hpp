@@ -1,6 +1,7 @@
 /// @file
-/// The named problems of moving surfaces (`slc run --problem NAME`, DESIGN §8) and the built-in
-/// laws of surfaces by name (`slc run --initial S.obj --velocity NAME`).
+/// The named problems of moving surfaces (`slc run --problem NAME`, DESIGN §8), and what a run of
+/// a user's surface (`slc run --initial S.obj`) takes by default: its domain, its length scale and
+/// its run options. The built-in laws of surfaces by name are in velocity/factory.hpp.
 #pragma once
 
 #include <functional>

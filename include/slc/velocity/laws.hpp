@@ -1,11 +1,15 @@
 /// @file
 /// The built-in velocity laws of the paper's examples (§4.4–4.7 and the single vortex of LeVeque
-/// and Rider–Kothe), each a VelocityLaw. Their names and parameters on the command line are in
-/// factory.hpp.
+/// and Rider–Kothe), each a VelocityLaw; translation and the curvature flows are written once for
+/// curves and surfaces (surface_laws.hpp names their surface forms). Their names and parameters
+/// on the command line are in factory.hpp.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
+#include <optional>
 
 #include "slc/velocity/velocity.hpp"
 
@@ -27,34 +31,55 @@ private:
     Vec2 centre_;
 };
 
-/// `translation`: the constant velocity u = (ux, uy).
-class Translation final : public FlowFieldLaw {
+/// `translation`: the constant velocity u, of curves (Translation) or of surfaces
+/// (SurfaceTranslation).
+template <int dim>
+class BasicTranslation final : public BasicFlowFieldLaw<dim> {
 public:
+    using Point = typename Space<dim>::Point;  ///< Vec2 or Vec3
     /// u: the velocity of every point, length per unit time.
-    explicit Translation(Vec2 u) : u_(u) {}
+    explicit BasicTranslation(Point u) : u_(u) {}
     std::string name() const override { return "translation"; }
     Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
     /// The field at each point, as the base's sample().
-    void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
+    void sample(double, std::span<const Point> points, std::span<Point> out) const override {
+        std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(points.size()), u_);
+    }
 
 private:
-    Vec2 u_;
+    Point u_;
 };
+/// `translation` of curves: u = (ux, uy).
+using Translation = BasicTranslation<2>;
+
+/// The base of LeVeque's time-reversed flows u(t, x) = f(x) cos(πt/T) (SingleVortex,
+/// EnrightField): the flow reverses at t = T/2 and returns every point to its start at t = T.
+template <int dim>
+class BasicReversingFlow : public BasicFlowFieldLaw<dim> {
+protected:
+    /// law: the law's name in messages; period: T. Throws InvalidInput unless period > 0.
+    BasicReversingFlow(const char* law, double period);
+    /// cos(πt/T), the factor of the flow at time t.
+    double reversal(double t) const { return std::cos(std::numbers::pi * t / period_); }
+
+private:
+    double period_;
+};
+
+extern template class BasicReversingFlow<2>;
+extern template class BasicReversingFlow<3>;
 
 /// `vortex`: LeVeque's time-reversed single vortex on [0, 1]², period T:
 /// u = sin²(πx) sin(2πy) cos(πt/T), v = −sin²(πy) sin(2πx) cos(πt/T). Divergence free; the
 /// flow reverses at t = T/2 and returns every point to its start at t = T.
-class SingleVortex final : public FlowFieldLaw {
+class SingleVortex final : public BasicReversingFlow<2> {
 public:
     /// Throws InvalidInput unless period > 0.
-    explicit SingleVortex(double period = 8.0);
+    explicit SingleVortex(double period = 8.0) : BasicReversingFlow<2>("vortex", period) {}
     std::string name() const override { return "vortex"; }
     Invariants invariants() const override { return {.keeps_area = true}; }
     /// The field at each point, as the base's sample().
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
-
-private:
-    double period_;
 };
 
 /// `unit-normal`: constant normal speed, u = s·N (§4.5.1–4.5.2); s > 0 grows the curve.
@@ -101,52 +126,90 @@ private:
     double r_, m_, eps_, tilt_;
 };
 
-/// `curvature`: motion by curvature u = C·N (§4.6), which shrinks a circle as R(t)² = R(0)² − 2t.
-/// Normals and curvature from the arclength module unless told otherwise (stable at any step;
-/// the paper used the embedded module, which its named problems keep).
-class CurvatureFlow final : public VelocityLaw {
+/// The base of the laws that read the curvature at the vertices (the curvature flows, a speed
+/// expression in C): they need the vertex normals and curvature, from the module the law names
+/// for curves (unset: GeometryNeeds::resolved_module(), the arclength module, stable at any step;
+/// the paper used the embedded module, which its named problems keep). Surfaces have one module:
+/// leave it unset.
+template <int dim>
+class BasicCurvatureLaw : public BasicVelocityLaw<dim> {
 public:
-    /// module: where N and C come from; unset: GeometryNeeds::resolved_module().
-    explicit CurvatureFlow(std::optional<GeometryModule> module = std::nullopt) : module_(module) {}
-    std::string name() const override { return "curvature"; }
-    /// dA/dt = −2π per counterclockwise curve, +2π per hole (the turning of each curve).
-    Invariants invariants() const override {
-        return {
-            .cannot_split = true, .shortens = true, .area_rate_per_curve = -2.0 * std::numbers::pi};
-    }
+    using typename BasicVelocityLaw<dim>::Point;
+    using typename BasicVelocityLaw<dim>::Shape;
+    using typename BasicVelocityLaw<dim>::Geometry;
+    /// module: where N and C come from.
+    explicit BasicCurvatureLaw(std::optional<GeometryModule> module = std::nullopt)
+        : module_(module) {}
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = true, .module = module_};
     }
-    /// The vertex velocities, as the base's velocities().
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override;
+
+protected:
+    /// Throws InvalidInput unless geometry holds the normals and the curvature at every vertex
+    /// of interface.
+    void require_geometry(const Shape& interface, const Geometry& geometry) const;
 
 private:
     std::optional<GeometryModule> module_;
 };
 
-/// `volume-preserving-curvature`: the nonlocal law u = (C − C̄)·N, C̄ the arc-length mean of C
-/// over all components of Γ (§4.7, Equation 13). The mean normal speed is zero, so the enclosed
-/// area is conserved; small components give their area to large ones. Arclength module by
-/// default, as for CurvatureFlow.
-class VolumePreservingCurvatureFlow final : public VelocityLaw {
+/// `curvature`: motion by curvature u = C·N (§4.6), C = −∇·N: for curves (CurvatureFlow) it
+/// shrinks a circle as R(t)² = R(0)² − 2t; for surfaces (SurfaceMeanCurvatureFlow) C is the sum
+/// of the principal curvatures, and a sphere shrinks as R(t)² = R(0)² − 4t.
+template <int dim>
+class BasicCurvatureFlow final : public BasicCurvatureLaw<dim> {
 public:
-    /// module: where N and C come from; unset: GeometryNeeds::resolved_module().
-    explicit VolumePreservingCurvatureFlow(std::optional<GeometryModule> module = std::nullopt)
-        : module_(module) {}
+    using typename BasicCurvatureLaw<dim>::Point;
+    using typename BasicCurvatureLaw<dim>::Shape;
+    using typename BasicCurvatureLaw<dim>::Geometry;
+    using BasicCurvatureLaw<dim>::BasicCurvatureLaw;
+    std::string name() const override { return "curvature"; }
+    /// Curves: dA/dt = −2π per counterclockwise curve, +2π per hole (the turning of each curve),
+    /// and an embedded curve never splits. Surfaces: the area only falls (the flow is area's
+    /// gradient flow); surfaces may pinch and split.
+    Invariants invariants() const override {
+        if constexpr (dim == 2) {
+            return {.cannot_split = true,
+                    .shortens = true,
+                    .area_rate_per_curve = -2.0 * std::numbers::pi};
+        } else {
+            return {.shortens = true};
+        }
+    }
+    /// The vertex velocities, as the base's velocities().
+    std::vector<Point> velocities(double t, const Shape& interface,
+                                  const Geometry& geometry) const override;
+};
+/// Motion of curves by curvature.
+using CurvatureFlow = BasicCurvatureFlow<2>;
+
+/// `volume-preserving-curvature`: the nonlocal law u = (C − C̄)·N, C̄ the mean of C over all
+/// components of Γ (§4.7, Equation 13), by arc length for curves and by area for surfaces. The
+/// mean normal speed is zero, so the enclosed area (volume) is conserved; small components give
+/// theirs to large ones. Arclength module for curves by default, as for CurvatureFlow.
+template <int dim>
+class BasicVolumePreservingFlow final : public BasicCurvatureLaw<dim> {
+public:
+    using typename BasicCurvatureLaw<dim>::Point;
+    using typename BasicCurvatureLaw<dim>::Shape;
+    using typename BasicCurvatureLaw<dim>::Geometry;
+    using BasicCurvatureLaw<dim>::BasicCurvatureLaw;
     std::string name() const override { return "volume-preserving-curvature"; }
     bool preserves_area() const override { return true; }
     /// Keeps the area and shortens the curves: the gradient flow of length at fixed area.
     Invariants invariants() const override { return {.keeps_area = true, .shortens = true}; }
-    GeometryNeeds needs() const override {
-        return {.normals = true, .curvature = true, .module = module_};
-    }
     /// The vertex velocities, as the base's velocities().
-    std::vector<Vec2> velocities(double t, const Interface& curves,
-                                 const VertexGeometry& geometry) const override;
-
-private:
-    std::optional<GeometryModule> module_;
+    std::vector<Point> velocities(double t, const Shape& interface,
+                                  const Geometry& geometry) const override;
 };
+/// The volume-preserving curvature flow of curves.
+using VolumePreservingCurvatureFlow = BasicVolumePreservingFlow<2>;
+
+extern template class BasicCurvatureLaw<2>;
+extern template class BasicCurvatureLaw<3>;
+extern template class BasicCurvatureFlow<2>;
+extern template class BasicCurvatureFlow<3>;
+extern template class BasicVolumePreservingFlow<2>;
+extern template class BasicVolumePreservingFlow<3>;
 
 }  // namespace slc

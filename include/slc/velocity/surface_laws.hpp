@@ -2,11 +2,13 @@
 /// The built-in velocity laws of surfaces (DESIGN §8; the 3D counterparts of laws.hpp): rigid
 /// rotation about an axis and translation, Enright's deformation field, constant and anisotropic
 /// normal speed, mean curvature flow and its volume-preserving form (paper Eq. 13 in space).
+/// Translation and the curvature flows are the templates of laws.hpp at dim = 3.
 #pragma once
 
 #include <cmath>
 #include <optional>
 
+#include "slc/velocity/laws.hpp"
 #include "slc/velocity/velocity.hpp"
 
 namespace slc {
@@ -28,37 +30,23 @@ private:
     Vec3 axis_, centre_;
 };
 
-/// `translation`: the constant velocity u.
-class SurfaceTranslation final : public SurfaceFlowFieldLaw {
-public:
-    /// u: the velocity of every point, length per unit time.
-    explicit SurfaceTranslation(Vec3 u) : u_(u) {}
-    std::string name() const override { return "translation"; }
-    Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
-    /// The field at each point, as the base's sample().
-    void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override;
-
-private:
-    Vec3 u_;
-};
+/// `translation` of surfaces: the constant velocity u = (ux, uy, uz).
+using SurfaceTranslation = BasicTranslation<3>;
 
 /// `enright`: LeVeque's deformation field on the unit cube as used by Enright, Fedkiw, Ferziger
 /// and Mitchell (J. Comput. Phys. 183, 2002), period T:
 /// u = 2 sin²(πx) sin(2πy) sin(2πz) c, v = −sin(2πx) sin²(πy) sin(2πz) c,
 /// w = −sin(2πx) sin(2πy) sin²(πz) c, c = cos(πt/T). Divergence free; it reverses at T/2 and
 /// returns every point to its start at T.
-class EnrightField final : public SurfaceFlowFieldLaw {
+class EnrightField final : public BasicReversingFlow<3> {
 public:
     /// Throws InvalidInput unless period > 0.
-    explicit EnrightField(double period = 3.0);
+    explicit EnrightField(double period = 3.0) : BasicReversingFlow<3>("enright", period) {}
     std::string name() const override { return "enright"; }
     /// A smooth divergence-free flow: it keeps the volume and cannot tear the surface.
     Invariants invariants() const override { return {.keeps_area = true, .cannot_split = true}; }
     /// The field at each point, as the base's sample().
     void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override;
-
-private:
-    double period_;
 };
 
 /// `unit-normal`: constant normal speed u = s·N; s > 0 grows the surface.
@@ -105,30 +93,10 @@ private:
     double r_, eps_;
 };
 
-/// `curvature`: motion by mean curvature u = C·N, C = −∇·N the sum of the principal
-/// curvatures, which shrinks a sphere as R(t)² = R(0)² − 4t.
-class SurfaceMeanCurvatureFlow final : public SurfaceVelocityLaw {
-public:
-    std::string name() const override { return "curvature"; }
-    /// The area only falls (the flow is area's gradient flow); surfaces may pinch and split.
-    Invariants invariants() const override { return {.shortens = true}; }
-    GeometryNeeds needs() const override { return {.normals = true, .curvature = true}; }
-    /// The vertex velocities, as the base's velocities().
-    std::vector<Vec3> velocities(double t, const Surface& surface,
-                                 const SurfaceGeometry& geometry) const override;
-};
-
+/// `curvature`: motion by mean curvature u = C·N.
+using SurfaceMeanCurvatureFlow = BasicCurvatureFlow<3>;
 /// `volume-preserving-curvature`: u = (C − C̄)·N, C̄ the area mean of C over the whole surface
 /// (paper Eq. 13 in space): the enclosed volume is kept, the area falls.
-class SurfaceVolumePreservingFlow final : public SurfaceVelocityLaw {
-public:
-    std::string name() const override { return "volume-preserving-curvature"; }
-    bool preserves_area() const override { return true; }
-    Invariants invariants() const override { return {.keeps_area = true, .shortens = true}; }
-    GeometryNeeds needs() const override { return {.normals = true, .curvature = true}; }
-    /// The vertex velocities, as the base's velocities().
-    std::vector<Vec3> velocities(double t, const Surface& surface,
-                                 const SurfaceGeometry& geometry) const override;
-};
+using SurfaceVolumePreservingFlow = BasicVolumePreservingFlow<3>;
 
 }  // namespace slc

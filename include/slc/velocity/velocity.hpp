@@ -317,20 +317,32 @@ private:
     F f_;
 };
 
+/// The base of LocalLaw and CurveLaw: a law with the name and the vertex geometry it was given.
+template <int dim>
+class BasicNamedLaw : public BasicVelocityLaw<dim> {
+public:
+    /// name: the law's name in messages; needs: the vertex geometry the law reads.
+    BasicNamedLaw(std::string name, GeometryNeeds needs) : name_(std::move(name)), needs_(needs) {}
+    std::string name() const override { return name_; }
+    GeometryNeeds needs() const override { return needs_; }
+
+private:
+    std::string name_;
+    GeometryNeeds needs_;
+};
+
 /// A local law u_i = f(t, state_i) at each vertex: f(double t, const BasicVertexState<dim>&) ->
 /// Point, called concurrently.
 template <class F, int dim = local_dimension<F>>
 requires std::regular_invocable < const F&, double, const BasicVertexState<dim>
-& > class LocalLaw final : public BasicVelocityLaw<dim> {
+& > class LocalLaw final : public BasicNamedLaw<dim> {
 public:
     using Point = typename Space<dim>::Point;        ///< Vec2 or Vec3
     using Shape = typename Space<dim>::Shape;        ///< Interface or Surface
     using Geometry = typename Space<dim>::Geometry;  ///< VertexGeometry or SurfaceGeometry
     /// name: the law's name in messages; needs: the vertex geometry f reads; f: the law.
     LocalLaw(std::string name, GeometryNeeds needs, F f)
-        : name_(std::move(name)), needs_(needs), f_(std::move(f)) {}
-    std::string name() const override { return name_; }
-    GeometryNeeds needs() const override { return needs_; }
+        : BasicNamedLaw<dim>(std::move(name), needs), f_(std::move(f)) {}
     /// The vertex velocities, as the base's velocities().
     std::vector<Point> velocities(double t, const Shape& interface,
                                   const Geometry& geometry) const override {
@@ -346,8 +358,6 @@ public:
     }
 
 private:
-    std::string name_;
-    GeometryNeeds needs_;
     F f_;
 };
 
@@ -356,7 +366,7 @@ private:
 template <class F, int dim = curve_dimension<F>>
 requires std::regular_invocable<const F&, double, const typename Space<dim>::Shape&,
                                 const typename Space<dim>::Geometry&> class CurveLaw final
-    : public BasicVelocityLaw<dim> {
+    : public BasicNamedLaw<dim> {
 public:
     using Point = typename Space<dim>::Point;        ///< Vec2 or Vec3
     using Shape = typename Space<dim>::Shape;        ///< Interface or Surface
@@ -364,9 +374,7 @@ public:
     /// name: the law's name in messages; needs: the vertex geometry f reads; f: the law, which
     /// must return one velocity per vertex.
     CurveLaw(std::string name, GeometryNeeds needs, F f)
-        : name_(std::move(name)), needs_(needs), f_(std::move(f)) {}
-    std::string name() const override { return name_; }
-    GeometryNeeds needs() const override { return needs_; }
+        : BasicNamedLaw<dim>(std::move(name), needs), f_(std::move(f)) {}
     /// The vertex velocities, as the base's velocities().
     std::vector<Point> velocities(double t, const Shape& interface,
                                   const Geometry& geometry) const override {
@@ -374,8 +382,6 @@ public:
     }
 
 private:
-    std::string name_;
-    GeometryNeeds needs_;
     F f_;
 };
 
