@@ -13,9 +13,9 @@ import numpy as np
 from . import _slc
 from ._interface import Interface, _interface, _points, _refine
 from ._problem import _NamedProblem
-from ._tables import errors_markdown, nan_array as _array
-from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, run_surface,
-                       study_surface)
+from ._tables import ConvergenceTable, nan_array as _array
+from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, _check_frames,
+                       _run_end, run_surface, study_surface)
 
 
 class FlowField:
@@ -326,8 +326,7 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
         p = _surface_subject(interface, velocity, t_end, params)
         return run_surface(p, options, frames, observer, threads, estimate)
     p, law = _subject(interface, velocity, t_end, params, geometry)
-    if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
-        raise TypeError(f"frames must be an integer, got {frames!r}")
+    _check_frames(frames)
 
     on_step = None
     if observer is not None:
@@ -337,17 +336,13 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     out = _slc.run(p, law, options, int(frames), int(threads), on_step, bool(estimate))
     return RunResult(
         interface=Interface._trusted(out["curves"], out["t"]),
-        status=out["status"],
-        t=out["t"],
-        history=out["history"],
         frames=[(t, Interface._trusted(a, t)) for t, a in out["frames"]],
-        summary=out["summary"],
-        message=out["message"],
+        **_run_end(out),
     )
 
 
 @dataclass
-class Study:
+class Study(ConvergenceTable):
     """The paper's convergence table (§4.2, Tables 5–7) of a problem with an exact solution: row
     r runs N·2^r steps at depth K + r with eps/10^r, columns P = 0..4.
 
@@ -358,17 +353,9 @@ class Study:
     ``column_orders`` (rows-1 x columns): of neighbouring rows, about 2 at P = 4 (second order
     in time)."""
 
-    cells: list[dict[str, Any]]
-    errors: np.ndarray
-    cpu_s_per_step: np.ndarray
-    row_orders: np.ndarray
-    column_orders: np.ndarray
-
     def table(self) -> str:
         """The errors as a Markdown table, a row per N/S/K/eps and a column per P."""
-        columns = self.errors.shape[1]
-        names = [f"{c['N']}/{c['S']}/{c['K']}/{c['eps']:.0e}" for c in self.cells[::columns]]
-        return errors_markdown(names, self.errors)
+        return self._markdown(lambda c: f"{c['N']}/{c['S']}/{c['K']}/{c['eps']:.0e}")
 
 
 @dataclass

@@ -15,7 +15,7 @@ import numpy as np
 from . import _slc
 from ._interface import _points
 from ._problem import _NamedProblem
-from ._tables import errors_markdown, nan_array as _array
+from ._tables import ConvergenceTable, nan_array as _array
 
 
 def _vertices(a) -> np.ndarray:
@@ -185,6 +185,18 @@ class SurfaceRunResult:
         return self.summary.get("e_inf")
 
 
+def _check_frames(frames) -> None:
+    """TypeError unless frames (the frames a run keeps) is an integer."""
+    if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
+        raise TypeError(f"frames must be an integer, got {frames!r}")
+
+
+def _run_end(out: dict) -> dict[str, Any]:
+    """How a run ended, from the module's answer: status, t, history, summary and message, as a
+    RunResult and a SurfaceRunResult take them."""
+    return {k: out[k] for k in ("status", "t", "history", "summary", "message")}
+
+
 def run_surface(p, options, frames: int, observer: Callable[[SurfaceStep], Any] | None,
                 threads: int, estimate: bool = False) -> SurfaceRunResult:
     """Runs the _slc.SurfaceProblem p with the settings `options` (a _slc.RunOverrides: steps,
@@ -192,8 +204,7 @@ def run_surface(p, options, frames: int, observer: Callable[[SurfaceStep], Any] 
     the fraction of the volume a law that keeps it may drift before the run ends "unstable",
     guards: False to go on to the end through steps that break what the law keeps, status
     "broken"); estimate: run it again at half resolution and add summary["error_estimate"]."""
-    if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
-        raise TypeError(f"frames must be an integer, got {frames!r}")
+    _check_frames(frames)
     on_step = None
     if observer is not None:
         def on_step(step, n, t, v, tri, cpu_s):
@@ -206,17 +217,13 @@ def run_surface(p, options, frames: int, observer: Callable[[SurfaceStep], Any] 
         warnings.warn(f"guards=False: {out['message']}", stacklevel=3)
     return SurfaceRunResult(
         surface=Surface._trusted(out["vertices"], out["triangles"], out["t"]),
-        status=out["status"],
-        t=out["t"],
-        history=out["history"],
         frames=[(t, Surface._trusted(v, tri, t)) for t, v, tri in out["frames"]],
-        summary=out["summary"],
-        message=out["message"],
+        **_run_end(out),
     )
 
 
 @dataclass
-class SurfaceStudy:
+class SurfaceStudy(ConvergenceTable):
     """The convergence table of a problem of surfaces: row r runs N·2^r steps at depth K + r
     with eps/4^r, columns P = 0, 1, ... passes of refinement.
 
@@ -225,17 +232,9 @@ class SurfaceStudy:
     run has no error). ``row_orders`` (rows x columns-1) and ``column_orders`` (rows-1 x
     columns): log2 of the error ratios of neighbours."""
 
-    cells: list[dict[str, Any]]
-    errors: np.ndarray
-    cpu_s_per_step: np.ndarray
-    row_orders: np.ndarray
-    column_orders: np.ndarray
-
     def table(self) -> str:
         """The errors as a Markdown table, a row per N/K/eps and a column per P."""
-        columns = self.errors.shape[1]
-        names = [f"{c['N']}/{c['K']}/{c['eps']:.2g}" for c in self.cells[::columns]]
-        return errors_markdown(names, self.errors)
+        return self._markdown(lambda c: f"{c['N']}/{c['K']}/{c['eps']:.2g}")
 
 
 def study_surface(problem: SurfaceProblem, rows: int, columns: int,

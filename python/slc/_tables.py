@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from typing import Any, Callable
 
 import numpy as np
 
@@ -21,3 +23,22 @@ def errors_markdown(names: list[str], errors: np.ndarray) -> str:
 def nan_array(values) -> np.ndarray:
     """values as a float array, None as NaN."""
     return np.array([math.nan if v is None else v for v in values], dtype=float)
+
+
+@dataclass
+class ConvergenceTable:
+    """What a convergence table of curves (Study) and of surfaces (SurfaceStudy) holds: ``cells``
+    (one dict per run, row-major), ``errors`` and ``cpu_s_per_step`` (rows x columns, NaN where a
+    run has no error), ``row_orders`` and ``column_orders`` (log2 of the error ratios of
+    neighbours)."""
+
+    cells: list[dict[str, Any]]
+    errors: np.ndarray
+    cpu_s_per_step: np.ndarray
+    row_orders: np.ndarray
+    column_orders: np.ndarray
+
+    def _markdown(self, row_name: Callable[[dict[str, Any]], str]) -> str:
+        """The errors as a Markdown table, each row named by row_name of its first cell."""
+        columns = self.errors.shape[1]
+        return errors_markdown([row_name(c) for c in self.cells[::columns]], self.errors)

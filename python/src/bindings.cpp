@@ -17,6 +17,7 @@
 #include <cstring>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "arrays.hpp"
@@ -109,14 +110,17 @@ Box square_box(const std::vector<double>& v) {
     return Box::square(b.center(), 0.5 * std::max(b.width(), b.height()));
 }
 
-/// Calls a Python f((m, 2) array) -> (m,) array for a batch, with the GIL held for the call.
-void call_batch(const py::object& f, std::span<const Vec2> points, std::span<double> values) {
+/// Calls a Python f((m, 2) or (m, 3) array) -> (m,) array for a batch of points (Vec2 or Vec3),
+/// with the GIL held for the call.
+template <class Point>
+void call_batch(const py::object& f, std::span<const Point> points, std::span<double> values) {
+    constexpr int columns = std::is_same_v<Point, Vec2> ? 2 : 3;
     py::gil_scoped_acquire hold;
     const Array v = numbers_of(f(array_of(points)), "f");
     if (v.ndim() != 1 || static_cast<std::size_t>(v.shape(0)) != points.size()) {
         throw InvalidInput(fmt::format(
-            "f must return an (m,) array for an (m, 2) array of points, got shape {} for m = {}",
-            shape_text(v), points.size()));
+            "f must return an (m,) array for an (m, {}) array of points, got shape {} for m = {}",
+            columns, shape_text(v), points.size()));
     }
     std::memcpy(values.data(), v.data(), values.size() * sizeof(double));
 }
@@ -149,21 +153,6 @@ py::tuple contour_function(const py::object& f, const std::vector<double>& box, 
     return py::make_tuple(arrays_of(r.curves), stats);
 }
 
-/// Calls a Python f((m, 3) array) -> (m,) array for a batch, with the GIL held for the call.
-void call_batch3(const py::object& f, std::span<const Vec3> points, std::span<double> values) {
-    py::gil_scoped_acquire hold;
-    Array x({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
-    static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed doubles");
-    if (!points.empty()) std::memcpy(x.mutable_data(), points.data(), points.size() * sizeof(Vec3));
-    const Array v = numbers_of(f(x), "f");
-    if (v.ndim() != 1 || static_cast<std::size_t>(v.shape(0)) != points.size()) {
-        throw InvalidInput(fmt::format(
-            "f must return an (m,) array for an (m, 3) array of points, got shape {} for m = {}",
-            shape_text(v), points.size()));
-    }
-    std::memcpy(values.data(), v.data(), values.size() * sizeof(double));
-}
-
 py::tuple contour_surface_function(const py::object& f, const std::vector<double>& box, int depth,
                                    std::optional<double> eps, int refine,
                                    std::optional<double> slack, std::optional<double> eta) {
@@ -171,7 +160,7 @@ py::tuple contour_surface_function(const py::object& f, const std::vector<double
     const SurfaceContourOptions options{
         .depth = depth, .refine_passes = refine, .eps = eps, .eta = eta, .distance_slack = slack};
     auto g = [&f](std::span<const Vec3> points, std::span<double> values) {
-        call_batch3(f, points, values);
+        call_batch(f, points, values);
     };
     std::optional<SurfaceContour> result;
     {

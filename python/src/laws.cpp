@@ -16,11 +16,23 @@ namespace {
 template <int dim>
 constexpr py::ssize_t columns = dim;
 
+/// What every law written in Python holds: the callable f and the name the law goes by.
+template <class Law>
+class PythonLaw : public Law {
+public:
+    PythonLaw(py::object f, std::string name) : f_(std::move(f)), name_(std::move(name)) {}
+    std::string name() const override { return name_; }
+
+protected:
+    py::object f_;
+    std::string name_;
+};
+
 /// f(t, points, normals, curvature) -> (m, dim) vertex velocities or (m,) normal speeds v
 /// (u = v·N), called once per stage with all vertices; f(t, points, normals) when it takes no
 /// curvature (curvature false), which is then not computed.
 template <int dim>
-class PythonCurveLaw final : public BasicVelocityLaw<dim> {
+class PythonCurveLaw final : public PythonLaw<BasicVelocityLaw<dim>> {
 public:
     using Law = BasicVelocityLaw<dim>;
     using typename Law::Geometry;
@@ -28,8 +40,7 @@ public:
     using typename Law::Shape;
     PythonCurveLaw(py::object f, std::string name, std::optional<GeometryModule> module,
                    bool curvature)
-        : f_(std::move(f)), name_(std::move(name)), module_(module), curvature_(curvature) {}
-    std::string name() const override { return name_; }
+        : PythonLaw<Law>(std::move(f), std::move(name)), module_(module), curvature_(curvature) {}
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = curvature_, .module = module_};
     }
@@ -41,9 +52,10 @@ public:
         const py::object x = array_of(points);
         const py::object normals = array_of(std::span<const Point>(geometry.normals));
         const Array v = numbers_of(
-            curvature_ ? f_(t, x, normals, array_of(std::span<const double>(geometry.curvature)))
-                       : f_(t, x, normals),
-            "velocity '" + name_ + "'");
+            curvature_
+                ? this->f_(t, x, normals, array_of(std::span<const double>(geometry.curvature)))
+                : this->f_(t, x, normals),
+            "velocity '" + this->name_ + "'");
         std::vector<Point> u(m);
         const auto n = static_cast<py::ssize_t>(m);
         if (v.ndim() == 1 && v.shape(0) == n) {
@@ -54,14 +66,12 @@ public:
             throw InvalidInput(fmt::format(
                 "velocity '{}' must return (m,) normal speeds or (m, {}) velocities for m = {} "
                 "vertices, got shape {}",
-                name_, dim, m, shape_text(v)));
+                this->name_, dim, m, shape_text(v)));
         }
         return u;
     }
 
 private:
-    py::object f_;
-    std::string name_;
     std::optional<GeometryModule> module_;
     bool curvature_;
 };
@@ -70,56 +80,62 @@ private:
 /// where it needs it, with the normal of the distance field (Extension::direct), so corners and
 /// offsets move exactly. Called once per batch of points.
 template <int dim>
-class PythonNormalLaw final : public BasicNormalLaw<dim> {
+class PythonNormalLaw final : public PythonLaw<BasicNormalLaw<dim>> {
 public:
+    using PythonLaw<BasicNormalLaw<dim>>::PythonLaw;
     using Point = typename BasicNormalLaw<dim>::Point;
-    PythonNormalLaw(py::object f, std::string name) : f_(std::move(f)), name_(std::move(name)) {}
-    std::string name() const override { return name_; }
     void normal_speeds(double t, std::span<const Point> points, std::span<const Point> normals,
                        std::span<double> out) const override {
         py::gil_scoped_acquire hold;
-        const Array v =
-            numbers_of(f_(t, array_of(points), array_of(normals)), "normal speed '" + name_ + "'");
+        const Array v = numbers_of(this->f_(t, array_of(points), array_of(normals)),
+                                   "normal speed '" + this->name_ + "'");
         if (v.ndim() != 1 || static_cast<std::size_t>(v.shape(0)) != points.size()) {
             throw InvalidInput(
                 fmt::format("normal speed '{}' must return (m,) speeds for m = {} points, got "
                             "shape {}",
-                            name_, points.size(), shape_text(v)));
+                            this->name_, points.size(), shape_text(v)));
         }
         std::copy_n(v.data(), out.size(), out.begin());
     }
-
-private:
-    py::object f_;
-    std::string name_;
 };
 
 /// A flow field f(t, points) -> (m, dim) known everywhere: sampled off the interface along the
 /// characteristics, one call per batch and Runge–Kutta stage.
 template <int dim>
-class PythonFieldLaw final : public BasicFlowFieldLaw<dim> {
+class PythonFieldLaw final : public PythonLaw<BasicFlowFieldLaw<dim>> {
 public:
+    using PythonLaw<BasicFlowFieldLaw<dim>>::PythonLaw;
     using Point = typename BasicFlowFieldLaw<dim>::Point;
-    PythonFieldLaw(py::object f, std::string name) : f_(std::move(f)), name_(std::move(name)) {}
-    std::string name() const override { return name_; }
     void sample(double t, std::span<const Point> points, std::span<Point> out) const override {
         py::gil_scoped_acquire hold;
-        const Array v = numbers_of(f_(t, array_of(points)), "flow field '" + name_ + "'");
+        const Array v =
+            numbers_of(this->f_(t, array_of(points)), "flow field '" + this->name_ + "'");
         if (v.ndim() != 2 || v.shape(0) != static_cast<py::ssize_t>(points.size()) ||
             v.shape(1) != columns<dim>) {
             throw InvalidInput(
                 fmt::format("flow field '{}' must return (m, {}) velocities for m = {} points, "
                             "got shape {}",
-                            name_, dim, points.size(), shape_text(v)));
+                            this->name_, dim, points.size(), shape_text(v)));
         }
         const std::vector<Point> u = points_from<Point>(v.data(), out.size());
         std::copy(u.begin(), u.end(), out.begin());
     }
-
-private:
-    py::object f_;
-    std::string name_;
 };
+
+/// The law of a Python callable in dimension dim, by spec.kind: flow-field, normal, or vertex
+/// velocities (vertex, with curvature, or vertex-no-curvature); module for curves' geometry.
+template <int dim>
+std::unique_ptr<BasicVelocityLaw<dim>> python_law(const LawSpec& spec,
+                                                  std::optional<GeometryModule> module) {
+    if (!spec.params.empty())
+        throw InvalidInput("params are for the built-in laws, not for a Python velocity");
+    if (spec.kind == "flow-field")
+        return std::make_unique<PythonFieldLaw<dim>>(spec.velocity, spec.name);
+    if (spec.kind == "normal")
+        return std::make_unique<PythonNormalLaw<dim>>(spec.velocity, spec.name);
+    return std::make_unique<PythonCurveLaw<dim>>(spec.velocity, spec.name, module,
+                                                 spec.kind != "vertex-no-curvature");
+}
 
 }  // namespace
 
@@ -145,14 +161,7 @@ std::unique_ptr<VelocityLaw> make_law(const LawSpec& spec) {
     if (spec.kind == "field")
         return field_expression_law(spec.velocity.cast<std::string>(), spec.params);
     if (spec.kind == "field-file") return grid_field_law(spec.velocity.cast<std::string>());
-    if (!spec.params.empty())
-        throw InvalidInput("params are for the built-in laws, not for a Python velocity");
-    if (spec.kind == "flow-field")
-        return std::make_unique<PythonFieldLaw<2>>(spec.velocity, spec.name);
-    if (spec.kind == "normal")
-        return std::make_unique<PythonNormalLaw<2>>(spec.velocity, spec.name);
-    return std::make_unique<PythonCurveLaw<2>>(spec.velocity, spec.name, module,
-                                               spec.kind != "vertex-no-curvature");
+    return python_law<2>(spec, module);
 }
 
 std::unique_ptr<SurfaceVelocityLaw> make_surface_law(const LawSpec& spec) {
@@ -169,14 +178,7 @@ std::unique_ptr<SurfaceVelocityLaw> make_surface_law(const LawSpec& spec) {
             "field files move curves; for a surface give a law's name, an expression or a "
             "Python callable (FlowField, NormalSpeed)");
     }
-    if (!spec.params.empty())
-        throw InvalidInput("params are for the built-in laws, not for a Python velocity");
-    if (spec.kind == "flow-field")
-        return std::make_unique<PythonFieldLaw<3>>(spec.velocity, spec.name);
-    if (spec.kind == "normal")
-        return std::make_unique<PythonNormalLaw<3>>(spec.velocity, spec.name);
-    return std::make_unique<PythonCurveLaw<3>>(spec.velocity, spec.name, std::nullopt,
-                                               spec.kind != "vertex-no-curvature");
+    return python_law<3>(spec, std::nullopt);
 }
 
 }  // namespace slc::python

@@ -6,12 +6,10 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
-#include <cstdint>
 
 #include "arrays.hpp"
 #include "calls.hpp"
 #include "laws.hpp"
-#include "slc/core/parallel.hpp"
 #include "slc/evolve/defaults.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/evolve/problems.hpp"
@@ -54,7 +52,7 @@ Interface initial_of(const Problem& p) { return prepare_interface(p.initial, p.d
 
 py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const RunOverrides& q,
                      int frames, int threads, const py::object& on_step, bool estimate) {
-    if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
+    check_frames(frames);
     const std::unique_ptr<VelocityLaw> law = law_of(p, spec);
     const Interface initial = initial_of(p);
     const RunOptions options = run_options(p, q);
@@ -71,7 +69,7 @@ py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const
     const Observer observer = [&](const StepReport& s) {
         add_row(history, s.t, *s.curves, s.step_cpu_s);
         py::gil_scoped_acquire hold;
-        if (frames > 0 && (std::int64_t{s.step} * frames) % s.steps < frames)
+        if (is_frame(s.step, s.steps, frames))
             frame_list.append(py::make_tuple(s.t, arrays_of(*s.curves)));
         if (interrupted()) return false;
         if (on_step.is_none()) return true;
@@ -79,33 +77,15 @@ py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const
         return go_on.is_none() || go_on.cast<bool>();
     };
 
-    RunResult r;
-    {
-        const ThreadScope scope(threads);
-        py::gil_scoped_release release;
-        r = run(initial, *law, p.domain, options, observer);
-    }
+    const RunResult r =
+        without_gil(threads, [&] { return run(initial, *law, p.domain, options, observer); });
     py::dict out;
     out["curves"] = arrays_of(r.curves);
-    out["t"] = r.t;
-    out["status"] = to_string(r.status);
-    out["message"] = r.message;
-    out["history"] = history.arrays();
-    out["frames"] = frame_list;
+    put_end(out, r, history, frame_list);
     nlohmann::json summary = run_summary(p, options, r, *law);
     if (coarse) {
-        summary["error_estimate"] = estimate_json(
-            run_name(*coarse), r.status,
-            [&] {
-                const ThreadScope scope(threads);
-                py::gil_scoped_release release;
-                const RunResult c = run(initial, *law, p.domain, *coarse, [](const StepReport&) {
-                    py::gil_scoped_acquire hold;
-                    return !interrupted();
-                });
-                return CoarseRun{c.status, c.t, c.cpu_s, c.curves.empty(), final_distance(r, c)};
-            },
-            "curves");
+        summary["error_estimate"] =
+            error_estimate(initial, *law, p.domain, *coarse, r, threads, "curves");
     }
     out["summary"] = python_of(summary);
     return out;
@@ -136,29 +116,13 @@ py::dict study_problem(const Problem& p, int rows, const RunOverrides& q, int th
         throw InvalidInput("problem '" + p.name +
                            "' has no exact solution; study a user's curves (self-convergence)");
     const RunOptions base = run_options(p, q);
-    const StudyObserver observer = [&](const StudyCell& c) {
-        py::gil_scoped_acquire hold;
-        if (interrupted()) throw py::error_already_set();
-        if (!on_cell.is_none()) on_cell(cell_dict(c));
-    };
-    StudyResult s;
-    {
-        const ThreadScope scope(threads);
-        py::gil_scoped_release release;
-        s = study(p, rows, base, observer);
-    }
-    py::list cells;
-    for (const StudyCell& c : s.cells) cells.append(cell_dict(c));
-    py::dict out;
-    out["rows"] = s.rows;
-    out["columns"] = s.columns;
-    out["cells"] = cells;
-    out["row_orders"] =
-        order_table([&s](int r, int c) { return s.row_order(r, c); }, s.rows, s.columns - 1);
-    out["column_orders"] = order_table(
-        [&s](int r, int c) { return r + 1 < s.rows ? s.column_order(r, c) : std::nullopt; }, s.rows,
-        s.columns);
-    return out;
+    const StudyObserver observer = observer_calling(on_cell, cell_dict);
+    const StudyResult s = without_gil(threads, [&] { return study(p, rows, base, observer); });
+    return study_dict(
+        s, cell_dict,
+        order_table(
+            [&s](int r, int c) { return r + 1 < s.rows ? s.column_order(r, c) : std::nullopt; },
+            s.rows, s.columns));
 }
 
 py::dict self_convergence_problem(const Problem& p, const std::optional<LawSpec>& spec,
@@ -180,17 +144,10 @@ py::dict self_convergence_problem(const Problem& p, const std::optional<LawSpec>
         d["curves"] = arrays_of(r.result.curves);
         return d;
     };
-    const SelfConvergenceObserver observer = [&](const ResolutionRun& r) {
-        py::gil_scoped_acquire hold;
-        if (interrupted()) throw py::error_already_set();
-        if (!on_run.is_none()) on_run(run_dict(r));
-    };
-    SelfConvergenceResult s;
-    {
-        const ThreadScope scope(threads);
-        py::gil_scoped_release release;
-        s = self_convergence(initial, *law, p.domain, base, resolutions, observer);
-    }
+    const SelfConvergenceObserver observer = observer_calling(on_run, run_dict);
+    const SelfConvergenceResult s = without_gil(threads, [&] {
+        return self_convergence(initial, *law, p.domain, base, resolutions, observer);
+    });
     return self_convergence_dict(s, run_dict);
 }
 

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <memory>
 
 #include "arrays.hpp"
@@ -139,7 +138,7 @@ std::shared_ptr<SurfaceSubject> user_surface_problem(const Array& vertices,
 
 py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& q, int frames,
                              int threads, const py::object& on_step, bool estimate) {
-    if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
+    check_frames(frames);
     const SurfaceRunOptions options =
         surface_run_options(subject.problem, subject.named, subject.t_start, q);
     if (estimate) require_half_resolution(options.steps, options.step.contour.depth, "estimate");
@@ -172,7 +171,7 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& 
         cpu_before = s.run->cpu_s;
         add_row(history, s.t, *s.surface, cpu);
         py::gil_scoped_acquire hold;
-        if (frames > 0 && (std::int64_t{s.step} * frames) % s.steps < frames) {
+        if (is_frame(s.step, s.steps, frames)) {
             const py::tuple a = surface_arrays(*s.surface);
             frame_list.append(py::make_tuple(s.t, a[0], a[1]));
         }
@@ -182,36 +181,17 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& 
         const py::object go_on = on_step(s.step, s.steps, s.t, a[0], a[1], cpu);
         return go_on.is_none() || go_on.cast<bool>();
     };
-    SurfaceRunResult r;
-    {
-        const ThreadScope scope(threads);
-        py::gil_scoped_release release;
-        r = run(initial, *p.law, p.domain, options, observer);
-    }
+    const SurfaceRunResult r =
+        without_gil(threads, [&] { return run(initial, *p.law, p.domain, options, observer); });
     const py::tuple a = surface_arrays(r.surface);
     py::dict out;
     out["vertices"] = a[0];
     out["triangles"] = a[1];
-    out["t"] = r.t;
-    out["status"] = to_string(r.status);
-    out["message"] = r.message;
-    out["history"] = history.arrays();
-    out["frames"] = frame_list;
+    put_end(out, r, history, frame_list);
     nlohmann::json summary = surface_run_summary(p, initial, options, r);
     if (coarse) {
-        summary["error_estimate"] = estimate_json(
-            run_name(*coarse), r.status,
-            [&] {
-                const ThreadScope scope(threads);
-                py::gil_scoped_release release;
-                const SurfaceRunResult c =
-                    run(initial, *p.law, p.domain, *coarse, [](const SurfaceStepReport&) {
-                        py::gil_scoped_acquire hold;
-                        return !interrupted();
-                    });
-                return CoarseRun{c.status, c.t, c.cpu_s, c.surface.empty(), final_distance(r, c)};
-            },
-            "surface");
+        summary["error_estimate"] =
+            error_estimate(initial, *p.law, p.domain, *coarse, r, threads, "surface");
     }
     out["summary"] = python_of(summary);
     return out;
@@ -246,18 +226,11 @@ py::dict self_convergence_surface(const SurfaceSubject& subject, int resolutions
         d["triangles"] = a[1];
         return d;
     };
-    const SurfaceSelfConvergenceObserver observer = [&](const SurfaceResolutionRun& r) {
-        py::gil_scoped_acquire hold;
-        if (interrupted()) throw py::error_already_set();
-        if (!on_run.is_none()) on_run(run_dict(r));
-    };
-    SurfaceSelfConvergenceResult s;
-    {
-        const ThreadScope scope(threads);
-        py::gil_scoped_release release;
-        s = surface_self_convergence(subject.problem.initial, *subject.problem.law,
-                                     subject.problem.domain, base, resolutions, observer);
-    }
+    const SurfaceSelfConvergenceObserver observer = observer_calling(on_run, run_dict);
+    const SurfaceSelfConvergenceResult s = without_gil(threads, [&] {
+        return surface_self_convergence(subject.problem.initial, *subject.problem.law,
+                                        subject.problem.domain, base, resolutions, observer);
+    });
     return self_convergence_dict(s, run_dict);
 }
 
@@ -278,28 +251,12 @@ py::dict surface_cell_dict(const SurfaceStudyCell& c) {
 
 py::dict study_surface_problem(const SurfaceSubject& subject, int rows, int columns, int threads,
                                const py::object& on_cell) {
-    const SurfaceStudyObserver observer = [&](const SurfaceStudyCell& c) {
-        py::gil_scoped_acquire hold;
-        if (interrupted()) throw py::error_already_set();
-        if (!on_cell.is_none()) on_cell(surface_cell_dict(c));
-    };
-    SurfaceStudyResult s;
-    {
-        const ThreadScope scope(threads);
-        py::gil_scoped_release release;
-        s = surface_study(subject.problem, rows, columns, observer);
-    }
-    py::list cells;
-    for (const SurfaceStudyCell& c : s.cells) cells.append(surface_cell_dict(c));
-    py::dict out;
-    out["rows"] = s.rows;
-    out["columns"] = s.columns;
-    out["cells"] = cells;
-    out["row_orders"] =
-        order_table([&s](int r, int c) { return s.row_order(r, c); }, s.rows, s.columns - 1);
-    out["column_orders"] =
-        order_table([&s](int r, int c) { return s.column_order(r, c); }, s.rows - 1, s.columns);
-    return out;
+    const SurfaceStudyObserver observer = observer_calling(on_cell, surface_cell_dict);
+    const SurfaceStudyResult s = without_gil(
+        threads, [&] { return surface_study(subject.problem, rows, columns, observer); });
+    return study_dict(
+        s, surface_cell_dict,
+        order_table([&s](int r, int c) { return s.column_order(r, c); }, s.rows - 1, s.columns));
 }
 
 }  // namespace

@@ -38,37 +38,6 @@ void add_domain_options(CLI::App& cmd, DomainOptions& options, std::string_view 
 
 namespace {
 
-Box parse_box(const std::string& text) {
-    std::vector<double> v;
-    std::stringstream in(text);
-    std::string field;
-    while (std::getline(in, field, ',')) {
-        try {
-            std::size_t used = 0;
-            v.push_back(std::stod(field, &used));
-            if (used != field.size()) throw std::invalid_argument(field);
-        } catch (const std::exception&) {
-            throw InvalidInput(
-                fmt::format("--box must be four numbers x0,y0,x1,y1, got '{}'", text));
-        }
-    }
-    if (v.size() != 4)
-        throw InvalidInput(fmt::format("--box must be four numbers x0,y0,x1,y1, got '{}'", text));
-    const Box b{{v[0], v[1]}, {v[2], v[3]}};
-    if (!is_finite(b.lo) || !is_finite(b.hi) || !(b.width() > 0) || !(b.height() > 0)) {
-        throw InvalidInput(
-            fmt::format("--box must have x0 < x1 and y0 < y1, all finite, got '{}'", text));
-    }
-    if (b.largest_magnitude() > tolerance::max_coordinate) {
-        throw InvalidInput(fmt::format("--box corners must lie within ±{:g}, got '{}'",
-                                       tolerance::max_coordinate, text));
-    }
-    // The trees need a square: a rectangle becomes the square around it with the same centre.
-    if (std::abs(b.width() - b.height()) > 1e-12 * std::max(b.width(), b.height()))
-        return Box::square(b.center(), 0.5 * std::max(b.width(), b.height()));
-    return {b.lo, {b.hi.x, b.lo.y + b.width()}};
-}
-
 /// The numbers of a comma-separated list, or nothing if one is not a number.
 std::optional<std::vector<double>> numbers(const std::string& text) {
     std::vector<double> v;
@@ -86,6 +55,34 @@ std::optional<std::vector<double>> numbers(const std::string& text) {
     return v;
 }
 
+Box parse_box(const std::string& text) {
+    const auto v = numbers(text);
+    if (!v || v->size() != 4)
+        throw InvalidInput(fmt::format("--box must be four numbers x0,y0,x1,y1, got '{}'", text));
+    const Box b{{(*v)[0], (*v)[1]}, {(*v)[2], (*v)[3]}};
+    if (!is_finite(b.lo) || !is_finite(b.hi) || !(b.width() > 0) || !(b.height() > 0)) {
+        throw InvalidInput(
+            fmt::format("--box must have x0 < x1 and y0 < y1, all finite, got '{}'", text));
+    }
+    if (b.largest_magnitude() > tolerance::max_coordinate) {
+        throw InvalidInput(fmt::format("--box corners must lie within ±{:g}, got '{}'",
+                                       tolerance::max_coordinate, text));
+    }
+    // The trees need a square: a rectangle becomes the square around it with the same centre.
+    if (std::abs(b.width() - b.height()) > 1e-12 * std::max(b.width(), b.height()))
+        return Box::square(b.center(), 0.5 * std::max(b.width(), b.height()));
+    return {b.lo, {b.hi.x, b.lo.y + b.width()}};
+}
+
+/// The half-width b of --domain, checked: positive and up to the largest coordinate.
+double domain_half_width(double b) {
+    if (!(b > 0.0) || !(b <= tolerance::max_coordinate)) {
+        throw InvalidInput(fmt::format("--domain must be a positive half-width up to {:g}, got {}",
+                                       tolerance::max_coordinate, b));
+    }
+    return b;
+}
+
 Box3 parse_box3(const std::string& text) {
     const auto v = numbers(text);
     if (!v || v->size() != 6) {
@@ -100,15 +97,7 @@ Box3 parse_box3(const std::string& text) {
 std::optional<std::vector<double>> comma_numbers(const std::string& text) { return numbers(text); }
 
 Box3 resolve_domain3(const DomainOptions& options, const Box3& bounds) {
-    if (options.half_width) {
-        const double b = *options.half_width;
-        if (!(b > 0.0) || !(b <= tolerance::max_coordinate)) {
-            throw InvalidInput(
-                fmt::format("--domain must be a positive half-width up to {:g}, got {}",
-                            tolerance::max_coordinate, b));
-        }
-        return Box3::centered_cube(b);
-    }
+    if (options.half_width) return Box3::centered_cube(domain_half_width(*options.half_width));
     if (options.box) return parse_box3(*options.box);
     return default_domain(bounds);
 }
@@ -142,15 +131,7 @@ LoadedSurface load_surface(const std::string& path, const DomainOptions& domain)
 }
 
 Box resolve_domain(const DomainOptions& options, const std::vector<std::vector<Vec2>>& raw) {
-    if (options.half_width) {
-        const double b = *options.half_width;
-        if (!(b > 0.0) || !(b <= tolerance::max_coordinate)) {
-            throw InvalidInput(
-                fmt::format("--domain must be a positive half-width up to {:g}, got {}",
-                            tolerance::max_coordinate, b));
-        }
-        return Box::centered_square(b);
-    }
+    if (options.half_width) return Box::centered_square(domain_half_width(*options.half_width));
     if (options.box) return parse_box(*options.box);
     return default_domain(raw);
 }

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <chrono>
+#include <ctime>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -11,12 +13,15 @@
 #include <utility>
 #include <vector>
 
+#include "commands/output_folder.hpp"
 #include "slc/core/box.hpp"
 #include "slc/core/box3.hpp"
+#include "slc/core/error.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/evolve/run.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/surface.hpp"
+#include "slc/io/interface_json.hpp"
 
 namespace slc::cli {
 
@@ -72,6 +77,32 @@ void apply_threads(int threads);
 /// `missing` when none is, or naming the first two when several are.
 std::string one_velocity_law(const std::vector<std::pair<std::string, bool>>& options,
                              const std::string& missing);
+
+/// The result of contour(), timed: its process CPU seconds and wall seconds go to summary's
+/// "cpu_s" and "wall_s". When it throws NumericalFailure, summary.json in folder records status
+/// "error" and the message (context followed by the failure's), the folder is committed and
+/// NumericalFailure of that message is thrown.
+template <class Contour>
+auto timed_contour(nlohmann::json& summary, OutputFolder& folder, const std::string& context,
+                   Contour contour) {
+    const std::clock_t cpu_start = std::clock();
+    const auto wall_start = std::chrono::steady_clock::now();
+    std::optional<decltype(contour())> result;
+    try {
+        result = contour();
+    } catch (const NumericalFailure& e) {
+        const std::string message = context + e.what();
+        summary["status"] = "error";
+        summary["message"] = message;
+        write_file_atomic(folder.path() / "summary.json", summary.dump(2) + "\n");
+        folder.commit();
+        throw NumericalFailure(message);
+    }
+    summary["cpu_s"] = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    summary["wall_s"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    return std::move(*result);
+}
 
 /// Prints summary.json's "error_estimate" in one line: the estimate, or why there is none.
 void print_estimate(const nlohmann::json& estimate);

@@ -5,9 +5,7 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 
 #include "commands/commands.hpp"
@@ -184,23 +182,9 @@ void run_contour(const ContourCommandOptions& o) {
         std::copy(f.begin(), f.end(), v.begin());
     };
     // cpu_s and wall_s time the contour alone, evaluations of F included.
-    const std::clock_t cpu_start = std::clock();
-    const auto wall_start = std::chrono::steady_clock::now();
-    std::optional<ContourResult> result;
-    try {
-        result = contour(exact, in.domain, options);
-    } catch (const NumericalFailure& e) {
-        const std::string message = fmt::format("at t = {}: {}", in.time, e.what());
-        summary["status"] = "error";
-        summary["message"] = message;
-        write_file_atomic(folder.path() / "summary.json", summary.dump(2) + "\n");
-        folder.commit();
-        throw NumericalFailure(message);
-    }
-    summary["cpu_s"] = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-    summary["wall_s"] =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    write_results(o, in, tree, *result, std::move(summary), folder);
+    const ContourResult result = timed_contour(summary, folder, fmt::format("at t = {}: ", in.time),
+                                               [&] { return contour(exact, in.domain, options); });
+    write_results(o, in, tree, result, std::move(summary), folder);
 }
 
 }  // namespace

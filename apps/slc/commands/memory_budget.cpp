@@ -18,6 +18,24 @@ namespace {
 /// the edge exceeds the distance to Γ) keeps a band a few cells wide on either side of Γ.
 constexpr double cells_per_width = 8.0;
 
+/// InvalidInput, naming the deepest depth that fits, when `what` at `depth` would need more than
+/// the memory this process may use: bytes(d) at depth d for the trees `whose` describes, along
+/// curves of length (or a surface of area) `size` in a domain of `width`.
+template <class Bytes>
+void check_fits(const std::string& what, int depth, double size, double width, Bytes bytes,
+                const std::string& whose) {
+    const double memory = static_cast<double>(physical_memory());
+    if (!(memory > 0.0) || !(size > 0.0) || !(width > 0.0)) return;  // nothing to compare
+    if (bytes(depth) <= memory) return;
+    int fits = depth;
+    while (fits > 0 && bytes(fits) > memory) --fits;
+    constexpr double gib = 1024.0 * 1024.0 * 1024.0;
+    throw InvalidInput(
+        fmt::format("{} would need about {:.3g} GiB for {}, more than the {:.3g} GiB of memory "
+                    "this process may use; depth {} fits",
+                    what, bytes(depth) / gib, whose, memory / gib, fits));
+}
+
 }  // namespace
 
 double tree_cells(int depth, double length, double width) {
@@ -45,17 +63,10 @@ std::uint64_t physical_memory() {
 
 void check_tree_memory(const std::string& what, int depth, double length, double width,
                        double bytes_per_cell) {
-    const double memory = static_cast<double>(physical_memory());
-    if (!(memory > 0.0) || !(length > 0.0) || !(width > 0.0)) return;  // nothing to compare
-    auto bytes = [&](int d) { return tree_cells(d, length, width) * bytes_per_cell; };
-    if (bytes(depth) <= memory) return;
-    int fits = depth;
-    while (fits > 0 && bytes(fits) > memory) --fits;
-    constexpr double gib = 1024.0 * 1024.0 * 1024.0;
-    throw InvalidInput(fmt::format(
-        "{} would need about {:.3g} GiB for its trees along curves of length {:.4g}, more than "
-        "the {:.3g} GiB of memory this process may use; depth {} fits",
-        what, bytes(depth) / gib, length, memory / gib, fits));
+    check_fits(
+        what, depth, length, width,
+        [&](int d) { return tree_cells(d, length, width) * bytes_per_cell; },
+        fmt::format("its trees along curves of length {:.4g}", length));
 }
 
 double octree_cells(int depth, double area, double width) {
@@ -69,17 +80,10 @@ double octree_cells(int depth, double area, double width) {
 
 void check_octree_memory(const std::string& what, int depth, double area, double width,
                          double bytes_per_cell) {
-    const double memory = static_cast<double>(physical_memory());
-    if (!(memory > 0.0) || !(area > 0.0) || !(width > 0.0)) return;  // nothing to compare
-    auto bytes = [&](int d) { return octree_cells(d, area, width) * bytes_per_cell; };
-    if (bytes(depth) <= memory) return;
-    int fits = depth;
-    while (fits > 0 && bytes(fits) > memory) --fits;
-    constexpr double gib = 1024.0 * 1024.0 * 1024.0;
-    throw InvalidInput(fmt::format(
-        "{} would need about {:.3g} GiB for its octree along a surface of area {:.4g}, more "
-        "than the {:.3g} GiB of memory this process may use; depth {} fits",
-        what, bytes(depth) / gib, area, memory / gib, fits));
+    check_fits(
+        what, depth, area, width,
+        [&](int d) { return octree_cells(d, area, width) * bytes_per_cell; },
+        fmt::format("its octree along a surface of area {:.4g}", area));
 }
 
 }  // namespace slc::cli

@@ -85,6 +85,27 @@ nlohmann::json estimate_json(const BasicSelfConvergenceResult<Run>& s) {
             {"order_observed", s.estimate->observed}};
 }
 
+/// table.json: head (the problem and its law) with "resolutions" (run_json of each run),
+/// "pairs", "estimate" and "note".
+template <class Run, class RunJson>
+nlohmann::json table_json(nlohmann::json head, const BasicSelfConvergenceResult<Run>& s,
+                          RunJson run_json, const std::string& note) {
+    nlohmann::json runs = nlohmann::json::array();
+    for (const Run& r : s.runs) runs.push_back(run_json(r));
+    head["resolutions"] = std::move(runs);
+    head["pairs"] = pairs_json(s);
+    head["estimate"] = estimate_json(s);
+    head["note"] = note;
+    return head;
+}
+
+/// A run's P in table.json: its passes of refinement, or "converged".
+nlohmann::json refine_json(int passes) {
+    static_assert(ContourOptions::until_converged == SurfaceContourOptions::until_converged);
+    return passes == ContourOptions::until_converged ? nlohmann::json("converged")
+                                                     : nlohmann::json(passes);
+}
+
 /// The distance column of row r of a table: to the next run, or why there is none.
 template <class Run>
 std::string distance_cell(const BasicSelfConvergenceResult<Run>& s, std::size_t r) {
@@ -102,6 +123,17 @@ std::string csv_tail(const BasicSelfConvergenceResult<Run>& s, std::size_t r) {
     const std::string estimate =
         r + 1 == s.runs.size() && s.estimate ? fmt::format("{:.6g}", s.estimate->error) : "";
     return fmt::format("{},{},{}", d, order, estimate);
+}
+
+/// table.csv: the header, then a line a run: r, row(options, result) (the run's own columns) and
+/// csv_tail.
+template <class Run, class Row>
+std::string csv_table(const BasicSelfConvergenceResult<Run>& s, const char* header, Row row) {
+    std::string out = header;
+    for (std::size_t r = 0; r < s.runs.size(); ++r)
+        out +=
+            fmt::format("{},{},{}\n", r, row(s.runs[r].options, s.runs[r].result), csv_tail(s, r));
+    return out;
 }
 
 std::string markdown(const Problem& p, const SelfConvergenceResult& s) {
@@ -138,25 +170,21 @@ std::string markdown(const Problem& p, const SelfConvergenceResult& s) {
 }
 
 std::string csv(const SelfConvergenceResult& s) {
-    std::string out =
+    return csv_table(
+        s,
         "r,N,S,K,P,eps,status,t,segments,components,area,length,cpu_s,distance_to_next,order,"
-        "error_estimate\n";
-    for (std::size_t r = 0; r < s.runs.size(); ++r) {
-        const RunOptions& o = s.runs[r].options;
-        const RunResult& res = s.runs[r].result;
-        out +=
-            fmt::format("{},{},{},{},{},{:.6g},{},{},{},{},{},{},{:.6g},{}\n", r, o.steps,
-                        o.step.embedded.smoothing, o.step.contour.depth,
-                        refine_name(o.step.contour.refine_passes), o.step.contour.resolved_eps(),
-                        to_string(res.status), res.t, res.curves.size(), res.curves.curve_count(),
-                        area(res.curves), length(res.curves), res.cpu_s, csv_tail(s, r));
-    }
-    return out;
+        "error_estimate\n",
+        [](const RunOptions& o, const RunResult& res) {
+            return fmt::format(
+                "{},{},{},{},{:.6g},{},{},{},{},{},{},{:.6g}", o.steps, o.step.embedded.smoothing,
+                o.step.contour.depth, refine_name(o.step.contour.refine_passes),
+                o.step.contour.resolved_eps(), to_string(res.status), res.t, res.curves.size(),
+                res.curves.curve_count(), area(res.curves), length(res.curves), res.cpu_s);
+        });
 }
 
 nlohmann::json json(const Problem& p, const SelfConvergenceResult& s) {
-    nlohmann::json runs = nlohmann::json::array();
-    for (const ResolutionRun& run_r : s.runs) {
+    const auto run_json = [](const ResolutionRun& run_r) {
         const RunOptions& o = run_r.options;
         const RunResult& res = run_r.result;
         nlohmann::json j = {{"r", run_r.level},
@@ -164,9 +192,7 @@ nlohmann::json json(const Problem& p, const SelfConvergenceResult& s) {
                             {"N", o.steps},
                             {"S", o.step.embedded.smoothing},
                             {"K", o.step.contour.depth},
-                            {"P", o.step.contour.refine_passes == ContourOptions::until_converged
-                                      ? nlohmann::json("converged")
-                                      : nlohmann::json(o.step.contour.refine_passes)},
+                            {"P", refine_json(o.step.contour.refine_passes)},
                             {"eps", o.step.contour.resolved_eps()},
                             {"eta", o.step.contour.resolved_eta()},
                             {"status", to_string(res.status)},
@@ -177,17 +203,14 @@ nlohmann::json json(const Problem& p, const SelfConvergenceResult& s) {
                             {"length", length(res.curves)},
                             {"cpu_s", res.cpu_s}};
         if (res.status == RunStatus::error) j["message"] = res.message;
-        runs.push_back(std::move(j));
-    }
-    nlohmann::json j = {{"problem", p.name},
-                        {"velocity", p.velocity},
-                        {"velocity_params", p.velocity_params},
-                        {"t_start", p.t_start},
-                        {"t_end", p.t_end},
-                        {"resolutions", runs},
-                        {"pairs", pairs_json(s)},
-                        {"estimate", estimate_json(s)},
-                        {"note", estimate_note(s, "curves")}};
+        return j;
+    };
+    nlohmann::json j = table_json({{"problem", p.name},
+                                   {"velocity", p.velocity},
+                                   {"velocity_params", p.velocity_params},
+                                   {"t_start", p.t_start},
+                                   {"t_end", p.t_end}},
+                                  s, run_json, estimate_note(s, "curves"));
     if (!p.velocity_expression.empty()) j["velocity_expression"] = p.velocity_expression;
     if (!p.velocity_file.empty()) j["velocity_file"] = p.velocity_file;
     return j;
@@ -286,62 +309,53 @@ std::string surface_markdown(const SurfaceProblem& p, const SurfaceLawText& law,
 }
 
 std::string surface_csv(const SurfaceSelfConvergenceResult& s) {
-    std::string out =
+    return csv_table(
+        s,
         "r,N,K,P,eps,status,t,unconverged_steps,largest_residual,triangles,components,genus,volume,"
-        "area,cpu_s,distance_to_next,order,error_estimate\n";
-    for (std::size_t r = 0; r < s.runs.size(); ++r) {
-        const SurfaceRunOptions& o = s.runs[r].options;
-        const SurfaceRunResult& res = s.runs[r].result;
-        const Surface& f = res.surface;
-        out +=
-            fmt::format("{},{},{},{},{:.6g},{},{},{},{:.6g},{},{},{},{:.17g},{:.17g},{:.6g},{}\n",
-                        r, o.steps, o.step.contour.depth, refine_name(o.step.contour.refine_passes),
-                        o.step.contour.resolved_eps(), to_string(res.status), res.t,
-                        res.unconverged_steps, res.largest_residual, f.size(), component_count(f),
-                        genus(f), volume(f), area(f), res.cpu_s, csv_tail(s, r));
-    }
-    return out;
+        "area,cpu_s,distance_to_next,order,error_estimate\n",
+        [](const SurfaceRunOptions& o, const SurfaceRunResult& res) {
+            const Surface& f = res.surface;
+            return fmt::format("{},{},{},{:.6g},{},{},{},{:.6g},{},{},{},{:.17g},{:.17g},{:.6g}",
+                               o.steps, o.step.contour.depth,
+                               refine_name(o.step.contour.refine_passes),
+                               o.step.contour.resolved_eps(), to_string(res.status), res.t,
+                               res.unconverged_steps, res.largest_residual, f.size(),
+                               component_count(f), genus(f), volume(f), area(f), res.cpu_s);
+        });
 }
 
 nlohmann::json surface_json(const SurfaceProblem& p, const SurfaceLawText& law,
                             const SurfaceSelfConvergenceResult& s) {
-    nlohmann::json runs = nlohmann::json::array();
-    for (const SurfaceResolutionRun& run_r : s.runs) {
+    const auto run_json = [](const SurfaceResolutionRun& run_r) {
         const SurfaceRunOptions& o = run_r.options;
         const SurfaceRunResult& res = run_r.result;
         const Surface& f = res.surface;
-        nlohmann::json j = {
-            {"r", run_r.level},
-            {"run", run_name(o)},
-            {"N", o.steps},
-            {"K", o.step.contour.depth},
-            {"P", o.step.contour.refine_passes == SurfaceContourOptions::until_converged
-                      ? nlohmann::json("converged")
-                      : nlohmann::json(o.step.contour.refine_passes)},
-            {"eps", o.step.contour.resolved_eps()},
-            {"eta", o.step.resolved_eta()},
-            {"status", to_string(res.status)},
-            {"t", res.t},
-            {"unconverged_steps", res.unconverged_steps},
-            {"largest_residual", res.largest_residual},
-            {"triangles", f.size()},
-            {"components", component_count(f)},
-            {"genus", genus(f)},
-            {"volume", volume(f)},
-            {"area", area(f)},
-            {"cpu_s", res.cpu_s}};
+        nlohmann::json j = {{"r", run_r.level},
+                            {"run", run_name(o)},
+                            {"N", o.steps},
+                            {"K", o.step.contour.depth},
+                            {"P", refine_json(o.step.contour.refine_passes)},
+                            {"eps", o.step.contour.resolved_eps()},
+                            {"eta", o.step.resolved_eta()},
+                            {"status", to_string(res.status)},
+                            {"t", res.t},
+                            {"unconverged_steps", res.unconverged_steps},
+                            {"largest_residual", res.largest_residual},
+                            {"triangles", f.size()},
+                            {"components", component_count(f)},
+                            {"genus", genus(f)},
+                            {"volume", volume(f)},
+                            {"area", area(f)},
+                            {"cpu_s", res.cpu_s}};
         if (!res.message.empty()) j["message"] = res.message;
-        runs.push_back(std::move(j));
-    }
-    nlohmann::json j = {{"problem", p.name},
-                        {"velocity", law.name},
-                        {"velocity_params", law.params},
-                        {"t_start", 0.0},
-                        {"t_end", p.t_end},
-                        {"resolutions", runs},
-                        {"pairs", pairs_json(s)},
-                        {"estimate", estimate_json(s)},
-                        {"note", surface_note(s)}};
+        return j;
+    };
+    nlohmann::json j = table_json({{"problem", p.name},
+                                   {"velocity", law.name},
+                                   {"velocity_params", law.params},
+                                   {"t_start", 0.0},
+                                   {"t_end", p.t_end}},
+                                  s, run_json, surface_note(s));
     if (!law.expression.empty()) j["velocity_expression"] = law.expression;
     return j;
 }

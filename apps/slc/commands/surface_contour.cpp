@@ -5,9 +5,7 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <functional>
 
@@ -121,23 +119,10 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     summary["params"]["eps"] = options.resolved_eps();
     summary["params"]["eta"] = options.resolved_eta();
     // cpu_s and wall_s time the contour alone, evaluations of G included.
-    const std::clock_t cpu_start = std::clock();
-    const auto wall_start = std::chrono::steady_clock::now();
-    std::optional<SurfaceContour> result;
-    try {
-        result = contour_surface(g, source.domain, options);
-    } catch (const NumericalFailure& e) {
-        summary["status"] = "error";
-        summary["message"] = e.what();
-        write_file_atomic(folder.path() / "summary.json", summary.dump(2) + "\n");
-        folder.commit();
-        throw;
-    }
-    summary["cpu_s"] = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-    summary["wall_s"] =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    const Surface& s = result->surface;
-    const SurfaceContourStats& st = result->stats;
+    const SurfaceContour result = timed_contour(
+        summary, folder, "", [&] { return contour_surface(g, source.domain, options); });
+    const Surface& s = result.surface;
+    const SurfaceContourStats& st = result.stats;
     summary["status"] = "ok";
     summary["params"]["gamma"] = st.gamma;
     summary.update({{"cells", st.cells},
