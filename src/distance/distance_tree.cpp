@@ -1,15 +1,16 @@
-// DistanceTree: building the tree and its segment lists, and the climbing closest-point query.
+// DistanceTree: building the tree and its segment lists, its start grid, and its part of the
+// climbing query (climbing_query_impl.hpp), instantiated here.
 #include "slc/distance/distance_tree.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <new>
 #include <numeric>
 
+#include "climbing_query_impl.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 
@@ -224,58 +225,18 @@ std::uint32_t DistanceTree::leaf_at(Vec2 x) const {
     return c;
 }
 
-NearestSegment DistanceTree::nearest_segment(Vec2 x) const {
-    std::uint32_t c = leaf_at(x);
-    NearestSegment best;
-    for (;;) {
-        const auto list = cell_segments(c);
-        if (list.size() > longest_scanned_list) {
-            hierarchy_.nearest(segment_ends_, x, best);
-            break;
-        }
-        for (std::uint32_t s : list) best.offer(s, slc::closest_point(segment_ends_[s], x));
-        if (best.distance2 < std::numeric_limits<double>::infinity()) {
-            const double m = std::sqrt(best.distance2);
-            const Box reach{{x.x - m, x.y - m}, {x.x + m, x.y + m}};
-            if (tree_.triple(c).contains(reach)) break;
-        }
-        if (c == 0) break;  // the root lists every segment
-        c = tree_.cell(c).parent;
-    }
-    return best;
+bool DistanceTree::is_listed(std::size_t c) const {
+    return offsets_[c + 1] - offsets_[c] <= longest_scanned_list;
 }
 
-ClosestPoint DistanceTree::closest_point(Vec2 x) const {
-    const NearestSegment best = nearest_segment(x);
+ClosestPoint DistanceTree::signed_point(const NearestSegment& best, Vec2 x) const {
     const double d = std::sqrt(best.distance2);
     ClosestPoint result{0.0, best.point, best.segment, best.t};
     result.distance = d == 0.0 ? 0.0 : side_of(*curves_, best.segment, best.t, x) * d;
     return result;
 }
 
-ClosestPoint DistanceTree::nearest_point(Vec2 x) const {
-    const NearestSegment best = nearest_segment(x);
-    return {std::sqrt(best.distance2), best.point, best.segment, best.t};
-}
-
-void DistanceTree::closest_points(std::span<const Vec2> xs, std::span<ClosestPoint> out) const {
-    SLC_ASSERT(xs.size() == out.size(), "one answer per query point");
-    parallel_for(
-        xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]); }, expensive_grain);
-}
-
-std::vector<ClosestPoint> DistanceTree::closest_points(std::span<const Vec2> xs) const {
-    std::vector<ClosestPoint> out(xs.size());
-    closest_points(xs, out);
-    return out;
-}
-
-std::vector<double> DistanceTree::signed_distances(std::span<const Vec2> xs) const {
-    std::vector<double> out(xs.size());
-    parallel_for(
-        xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]).distance; }, expensive_grain);
-    return out;
-}
+template class ClimbingQuery<DistanceTree, SegmentKernel>;
 
 int DistanceTree::default_depth(const Interface& curves, const Box& domain) {
     const double mean = length(curves) / static_cast<double>(curves.size());

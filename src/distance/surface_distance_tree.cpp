@@ -1,13 +1,14 @@
-// SurfaceDistanceTree: building the octree and its triangle lists, and the climbing query.
+// SurfaceDistanceTree: building the octree and its triangle lists; its part of the climbing query
+// (climbing_query_impl.hpp) is instantiated here.
 #include "slc/distance/surface_distance_tree.hpp"
 
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
-#include <limits>
 #include <numeric>
 
+#include "climbing_query_impl.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 
@@ -325,54 +326,7 @@ void SurfaceDistanceTree::bin_lists(std::size_t begin, std::size_t end) {
     });
 }
 
-NearestFacet SurfaceDistanceTree::nearest_facet(Vec3 x) const {
-    std::uint32_t c = tree_.leaf_at(x);
-    NearestFacet best;
-    for (;;) {
-        if (!listed_[c]) {
-            hierarchy_.nearest(corners_, x, best);
-            break;
-        }
-        for (std::uint32_t t : cell_triangles(c)) best.offer(t, slc::closest_point(corners_[t], x));
-        if (best.distance2 < std::numeric_limits<double>::infinity()) {
-            const double m = std::sqrt(best.distance2);
-            if (tree_.triple(c).contains(Box3::cube(x, m))) break;
-        }
-        if (c == 0) break;  // the root lists every triangle
-        c = tree_.cell(c).parent;
-    }
-    return best;
-}
-
-SurfacePoint SurfaceDistanceTree::closest_point(Vec3 x) const {
-    return signed_closest_point(*surface_, normals_, nearest_facet(x), x);
-}
-
-SurfacePoint SurfaceDistanceTree::nearest_point(Vec3 x) const {
-    const NearestFacet best = nearest_facet(x);
-    const FacetPoint& p = best.nearest;
-    return {std::sqrt(best.distance2), p.point, best.triangle, p.weights, p.feature, p.index};
-}
-
-void SurfaceDistanceTree::closest_points(std::span<const Vec3> xs,
-                                         std::span<SurfacePoint> out) const {
-    SLC_ASSERT(xs.size() == out.size(), "one answer per query point");
-    parallel_for(
-        xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]); }, expensive_grain);
-}
-
-std::vector<SurfacePoint> SurfaceDistanceTree::closest_points(std::span<const Vec3> xs) const {
-    std::vector<SurfacePoint> out(xs.size());
-    closest_points(xs, out);
-    return out;
-}
-
-std::vector<double> SurfaceDistanceTree::signed_distances(std::span<const Vec3> xs) const {
-    std::vector<double> out(xs.size());
-    parallel_for(
-        xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]).distance; }, expensive_grain);
-    return out;
-}
+template class ClimbingQuery<SurfaceDistanceTree, TriangleKernel>;
 
 int SurfaceDistanceTree::default_depth(const Surface& surface, const Box3& domain) {
     double total = 0.0;

@@ -3,14 +3,16 @@
 ///
 /// A quadtree over the domain in which a cell is split (to depth L) while its edge exceeds its
 /// distance to Γ, then 2:1 balanced. Every cell lists the segments that meet its concentric triple
-/// (the 3×3 block of same-size cells around it). A query starts in the leaf holding x and climbs
-/// ancestors, keeping the nearest segment of their lists, until the box of half-width m (the best
-/// distance so far) around x lies inside the cell's triple: every segment nearer than m meets that
-/// box and so is on the list, which makes the answer exact. Far from Γ, where cells are large
-/// and their lists long, a SegmentHierarchy over all segments finishes the search instead.
+/// (the 3×3 block of same-size cells around it). The query is ClimbingQuery's (climbing_query.hpp,
+/// written once for curves and surfaces): it starts in the leaf holding x, found from a grid of
+/// start cells, and climbs ancestors until the box of half-width m (the best distance so far)
+/// around x lies inside the cell's triple. Far from Γ, where cells are large and their lists
+/// long (more than 48 segments), a SegmentHierarchy over all segments finishes the search
+/// instead. This file holds the curves' part: the segment kernel, the tree and its lists.
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <span>
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include "slc/core/box.hpp"
+#include "slc/distance/climbing_query.hpp"
 #include "slc/distance/segment_hierarchy.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/segment.hpp"
@@ -26,10 +29,31 @@
 
 namespace slc {
 
+/// The segments of curves as the elements of the climbing query (ClimbingQuery).
+struct SegmentKernel {
+    static constexpr int dim = 2;
+    using Point = Vec2;
+    using Element = Segment;
+    using Nearest = NearestSegment;  ///< the least (distance², segment) pair so far
+    using Hierarchy = SegmentHierarchy;
+    using Answer = ClosestPoint;
+
+    /// The exact closest point of segment s to x.
+    static SegmentPoint closest_point(const Segment& s, Vec2 x) { return slc::closest_point(s, x); }
+    /// The square x ± m (as rounded) that a cell's triple must hold to end the climb.
+    static Box reach(Vec2 x, double m) { return {{x.x - m, x.y - m}, {x.x + m, x.y + m}}; }
+    /// The nearest point without its sign: distance |F(x)|.
+    static ClosestPoint unsigned_point(const NearestSegment& best) {
+        return {std::sqrt(best.distance2), best.point, best.segment, best.t};
+    }
+};
+
 /// Exact signed distance F and a nearest point of an interface Γ at any point, in O(log N) per
-/// query near Γ (paper §1.3; the construction is described at the top of this file). The tree
-/// refers to the curves it was built on and never copies them.
-class DistanceTree {
+/// query near Γ (paper §1.3; the construction is described at the top of this file). The queries
+/// (closest_point, nearest_point, closest_points, signed_distances) are ClimbingQuery's; the
+/// sign is right at corners (pseudo-normal at vertices). The tree refers to the curves it was
+/// built on and never copies them.
+class DistanceTree : public ClimbingQuery<DistanceTree, SegmentKernel> {
 public:
     /// The tree's parameters (paper Table 4: L).
     struct Options {
@@ -48,22 +72,6 @@ public:
     /// Only the cost of a query depends on it. Precondition: curves is not empty.
     static int default_depth(const Interface& curves, const Box& domain);
 
-    /// Signed closest point of Γ to x (any x, also outside the domain): distance exact to
-    /// rounding; sign right at corners (pseudo-normal at vertices); 0 on Γ. O(log N) near Γ.
-    ClosestPoint closest_point(Vec2 x) const;
-    /// closest_point(x) without the sign: the same nearest point, segment and t, with distance
-    /// |F(x)|. For callers that need only where the nearest point lies (the nearest-point
-    /// extension): it skips the side test, which at a vertex takes two normals. O(log N) near Γ.
-    ClosestPoint nearest_point(Vec2 x) const;
-
-    /// closest_point for a batch, on all worker threads; out.size() == xs.size(). The answer for
-    /// each point does not depend on the thread count.
-    void closest_points(std::span<const Vec2> xs, std::span<ClosestPoint> out) const;
-    /// The same, returning a new vector.
-    std::vector<ClosestPoint> closest_points(std::span<const Vec2> xs) const;
-    /// Signed distances F for a batch, on all worker threads.
-    std::vector<double> signed_distances(std::span<const Vec2> xs) const;
-
     /// The curves the tree was built on.
     const Interface& curves() const { return *curves_; }
     /// The balanced quadtree: cells split to depth L near Γ.
@@ -77,16 +85,22 @@ public:
     std::span<const std::uint32_t> cell_segments(std::size_t c) const {
         return {segments_.data() + offsets_[c], segments_.data() + offsets_[c + 1]};
     }
+    /// True when cell c's list is short enough to scan (at most 48 segments): a query reaching
+    /// a cell with a longer one finishes in the segment hierarchy.
+    bool is_listed(std::size_t c) const;
 
 private:
+    friend class ClimbingQuery<DistanceTree, SegmentKernel>;
     void build_lists();
     void build_start_grid();
     /// The leaf holding x (clamped to the domain): Quadtree::leaf_at, but starting from the
     /// start grid instead of the root, which saves most of the descent.
     std::uint32_t leaf_at(Vec2 x) const;
-    /// The least (distance², segment) pair over Γ at x: the query both closest_point and
-    /// nearest_point answer.
-    NearestSegment nearest_segment(Vec2 x) const;
+    /// The query's view of the tree (ClimbingQuery): lists, segments, hierarchy and sign rule.
+    std::span<const std::uint32_t> cell_list(std::size_t c) const { return cell_segments(c); }
+    std::span<const Segment> elements() const { return segment_ends_; }
+    const SegmentHierarchy& hierarchy() const { return hierarchy_; }
+    ClosestPoint signed_point(const NearestSegment& best, Vec2 x) const;
 
     const Interface* curves_;
     std::vector<Segment> segment_ends_;  ///< the segments' endpoints, contiguous for the queries
@@ -141,5 +155,7 @@ private:
     Triangulation mesh_;
     std::vector<ClosestPoint> vertex_nearest_;
 };
+
+extern template class ClimbingQuery<DistanceTree, SegmentKernel>;
 
 }  // namespace slc

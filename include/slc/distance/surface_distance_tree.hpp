@@ -4,32 +4,56 @@
 ///
 /// An octree over the domain in which a cell is split (to depth L) while its edge exceeds its
 /// distance to the surface. A cell lists the triangles that meet its concentric triple (the
-/// 3×3×3 block of same-size cells around it) when they are few (at most 48). A query starts in
-/// the leaf holding x and climbs ancestors, keeping the nearest triangle of their lists, until
-/// the cube of half-width m (the best distance so far) around x lies inside the cell's triple:
-/// every triangle nearer than m meets that cube and so is on the list, which makes the answer
-/// exact. At a cell with no list (far from the surface, where cells are large and their lists
-/// would be long), a TriangleHierarchy finishes the search instead. The build needs the long
-/// lists only of the few finest levels, and for one level at a time (see build_lists).
-/// The sign comes from the angle-weighted pseudo-normal of the face, edge or vertex holding the
-/// nearest point, which is right at edges and corners (Bærentzen and Aanæs 2005).
+/// 3×3×3 block of same-size cells around it) when they are few (at most 48). The query is
+/// ClimbingQuery's (climbing_query.hpp, written once for curves and surfaces): it starts in the
+/// leaf holding x and climbs ancestors until the cube of half-width m (the best distance so far)
+/// around x lies inside the cell's triple. At a cell with no list (far from the surface, where
+/// cells are large and their lists would be long), a TriangleHierarchy finishes the search
+/// instead. The build needs the long lists only of the few finest levels, and for one level at
+/// a time (see build_lists). The sign comes from the angle-weighted pseudo-normal of the face,
+/// edge or vertex holding the nearest point, which is right at edges and corners (Bærentzen and
+/// Aanæs 2005). This file holds the surfaces' part: the triangle kernel, the tree and its lists.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "slc/core/box3.hpp"
+#include "slc/distance/climbing_query.hpp"
 #include "slc/geometry/surface.hpp"
 #include "slc/geometry/triangle_hierarchy.hpp"
 #include "slc/tree/orthtree.hpp"
 
 namespace slc {
 
+/// The triangles of a surface as the elements of the climbing query (ClimbingQuery).
+struct TriangleKernel {
+    static constexpr int dim = 3;
+    using Point = Vec3;
+    using Element = Triangle3;
+    using Nearest = NearestFacet;  ///< the least (distance², triangle) pair so far
+    using Hierarchy = TriangleHierarchy;
+    using Answer = SurfacePoint;
+
+    /// The exact closest point of triangle t to x.
+    static FacetPoint closest_point(const Triangle3& t, Vec3 x) { return slc::closest_point(t, x); }
+    /// The cube of half-width m around x, exactly a cube (Box3::cube), that a cell's triple must
+    /// hold to end the climb.
+    static Box3 reach(Vec3 x, double m) { return Box3::cube(x, m); }
+    /// The nearest point without its sign: distance |F(x)|.
+    static SurfacePoint unsigned_point(const NearestFacet& best) {
+        const FacetPoint& p = best.nearest;
+        return {std::sqrt(best.distance2), p.point, best.triangle, p.weights, p.feature, p.index};
+    }
+};
+
 /// Exact signed distance and nearest point of a valid surface (prepare_surface) at any point, in
-/// O(log N) per query near the surface. The tree refers to the surface it was built on and never
-/// copies it.
-class SurfaceDistanceTree {
+/// O(log N) per query near the surface. The queries (closest_point, nearest_point,
+/// closest_points, signed_distances) are ClimbingQuery's; the sign is by pseudo-normals. The
+/// tree refers to the surface it was built on and never copies it.
+class SurfaceDistanceTree : public ClimbingQuery<SurfaceDistanceTree, TriangleKernel> {
 public:
     /// The tree's parameters (paper Table 4: L).
     struct Options {
@@ -48,19 +72,6 @@ public:
     /// Only the cost of a query depends on it. Precondition: surface is not empty.
     static int default_depth(const Surface& surface, const Box3& domain);
 
-    /// Signed closest point of the surface to x (any x, also outside the domain): distance
-    /// exact to rounding; sign by pseudo-normals; 0 on the surface. O(log N) near the surface.
-    SurfacePoint closest_point(Vec3 x) const;
-    /// closest_point(x) without the sign (distance |F(x)|): for the nearest-point extension.
-    SurfacePoint nearest_point(Vec3 x) const;
-
-    /// closest_point for a batch, on all worker threads; out.size() == xs.size().
-    void closest_points(std::span<const Vec3> xs, std::span<SurfacePoint> out) const;
-    /// The same, returning a new vector.
-    std::vector<SurfacePoint> closest_points(std::span<const Vec3> xs) const;
-    /// Signed distances F for a batch, on all worker threads.
-    std::vector<double> signed_distances(std::span<const Vec3> xs) const;
-
     /// The surface the tree was built on.
     const Surface& surface() const { return *surface_; }
     /// Its pseudo-normals.
@@ -78,6 +89,8 @@ public:
     }
 
 private:
+    friend class ClimbingQuery<SurfaceDistanceTree, TriangleKernel>;
+
     /// Splits the cells level by level and lists them.
     void build_lists();
     /// Stores the lists of the cells [begin, end) (the last ones) that are short enough, from
@@ -89,8 +102,15 @@ private:
     /// Stores the short lists of the deepest level's cells [begin, end) (the last ones) by
     /// binning every triangle into the triples its box meets.
     void bin_lists(std::size_t begin, std::size_t end);
-    /// The least (distance², triangle) pair over the surface at x.
-    NearestFacet nearest_facet(Vec3 x) const;
+    /// The query's view of the tree (ClimbingQuery): leaves, lists, triangles, hierarchy and
+    /// sign rule.
+    std::uint32_t leaf_at(Vec3 x) const { return tree_.leaf_at(x); }
+    std::span<const std::uint32_t> cell_list(std::size_t c) const { return cell_triangles(c); }
+    std::span<const Triangle3> elements() const { return corners_; }
+    const TriangleHierarchy& hierarchy() const { return hierarchy_; }
+    SurfacePoint signed_point(const NearestFacet& best, Vec3 x) const {
+        return signed_closest_point(*surface_, normals_, best, x);
+    }
 
     const Surface* surface_;
     std::vector<Triangle3> corners_;  ///< the triangles' corners, contiguous for the queries
@@ -102,5 +122,7 @@ private:
     std::vector<std::uint32_t> triangles_;  ///< the cells' lists, one after another
     std::vector<std::uint8_t> listed_;      ///< 1 when cell c keeps a list
 };
+
+extern template class ClimbingQuery<SurfaceDistanceTree, TriangleKernel>;
 
 }  // namespace slc

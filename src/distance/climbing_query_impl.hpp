@@ -1,0 +1,74 @@
+// The members of ClimbingQuery (slc/distance/climbing_query.hpp; paper §1.3), internal to the
+// distance module: distance_tree.cpp and surface_distance_tree.cpp include this file after
+// defining their trees' parts and instantiate the query there, so that the climb inlines the
+// tree's leaf lookup, lists and kernel.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+#include "slc/distance/climbing_query.hpp"
+
+namespace slc {
+
+template <class Tree, class Kernel>
+typename Kernel::Nearest ClimbingQuery<Tree, Kernel>::nearest(Point x) const {
+    const Tree& t = self();
+    const std::span<const typename Kernel::Element> elements = t.elements();
+    std::uint32_t c = t.leaf_at(x);
+    typename Kernel::Nearest best;
+    for (;;) {
+        if (!t.is_listed(c)) {
+            t.hierarchy().nearest(elements, x, best);
+            break;
+        }
+        for (std::uint32_t e : t.cell_list(c)) best.offer(e, Kernel::closest_point(elements[e], x));
+        // Exact once the box of half-width m around x lies in the triple: every element nearer
+        // than m meets the box, hence the triple, and so is on this list (§1.3).
+        if (best.distance2 < std::numeric_limits<double>::infinity()) {
+            const double m = std::sqrt(best.distance2);
+            if (t.tree().triple(c).contains(Kernel::reach(x, m))) break;
+        }
+        if (c == 0) break;  // the root lists every element
+        c = t.tree().cell(c).parent;
+    }
+    return best;
+}
+
+template <class Tree, class Kernel>
+auto ClimbingQuery<Tree, Kernel>::closest_point(Point x) const -> Answer {
+    return self().signed_point(nearest(x), x);
+}
+
+template <class Tree, class Kernel>
+auto ClimbingQuery<Tree, Kernel>::nearest_point(Point x) const -> Answer {
+    return Kernel::unsigned_point(nearest(x));
+}
+
+template <class Tree, class Kernel>
+void ClimbingQuery<Tree, Kernel>::closest_points(std::span<const Point> xs,
+                                                 std::span<Answer> out) const {
+    SLC_ASSERT(xs.size() == out.size(), "one answer per query point");
+    parallel_for(
+        xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]); }, expensive_grain);
+}
+
+template <class Tree, class Kernel>
+auto ClimbingQuery<Tree, Kernel>::closest_points(std::span<const Point> xs) const
+    -> std::vector<Answer> {
+    std::vector<Answer> out(xs.size());
+    closest_points(xs, out);
+    return out;
+}
+
+template <class Tree, class Kernel>
+std::vector<double> ClimbingQuery<Tree, Kernel>::signed_distances(std::span<const Point> xs) const {
+    std::vector<double> out(xs.size());
+    parallel_for(
+        xs.size(), [&](std::size_t i) { out[i] = closest_point(xs[i]).distance; }, expensive_grain);
+    return out;
+}
+
+}  // namespace slc
