@@ -46,10 +46,10 @@ public:
 
     static constexpr int max_depth = Quadtree::max_supported_depth;
     static constexpr const char* noun = "the curves";
+    static constexpr const char* shape_name = "curves";
+    static constexpr const char* leave = "leave";  ///< the verb with the noun
     static constexpr const char* possessive = "their";
     static constexpr bool observes_vanishing = true;  ///< the observer sees the step that vanished
-    /// A step that fails is retried in sub-steps, as one that breaks the invariants is.
-    static constexpr bool retries_failures = true;
     /// A run beyond its budget ends with the curves before the step that took it there.
     static constexpr bool keeps_step_over_budget = false;
 
@@ -140,20 +140,6 @@ public:
     }
     static std::string step_failed(int n, double t, const char* what) {
         return at_step(n, t, what);
-    }
-    static std::string left_extent(const std::string& law, double t, const std::string& region,
-                                   std::size_t, Vec2 p) {
-        return fmt::format(
-            "at t = {} the curves left the region where velocity '{}' is known, {}, at {}: give "
-            "the velocity on a larger grid, or end the run earlier (t-end)",
-            t, law, region, point_text(p));
-    }
-    static std::string initial_outside_extent(const std::string& law, const std::string& region,
-                                              std::size_t i, Vec2 p) {
-        return fmt::format(
-            "the initial curves leave the region where velocity '{}' is known, {}: vertex {} at "
-            "{}",
-            law, region, i, point_text(p));
     }
 
 private:

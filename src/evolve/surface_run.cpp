@@ -31,13 +31,12 @@ public:
 
     static constexpr int max_depth = max_tetrahedralized_depth;
     static constexpr const char* noun = "the surface";
+    static constexpr const char* shape_name = "surface";
+    static constexpr const char* leave = "leaves";  ///< the verb with the noun
     static constexpr const char* possessive = "its";
     /// The observer does not see the step that vanished (the tool's and Python's observers
     /// measure the surface they are given).
     static constexpr bool observes_vanishing = false;
-    /// NOTE: a step that fails ends the run at once (its message names what failed: the flow
-    /// that carries the surface out of a fixed domain), where curves retry it in sub-steps.
-    static constexpr bool retries_failures = false;
     /// NOTE: a run beyond its budget (volume drift, area growth) ends with the surface of the
     /// step that took it there, where curves end with the one before.
     static constexpr bool keeps_step_over_budget = true;
@@ -127,20 +126,6 @@ public:
     static std::string at_step(int, double, const std::string& why) { return why; }
     static std::string step_failed(int, double t, const char* what) {
         return fmt::format("at t = {:.6g}: {}", t, what);
-    }
-    static std::string left_extent(const std::string& law, double t, const std::string& region,
-                                   std::size_t, Vec3 p) {
-        return fmt::format(
-            "at t = {} the surface left the region where velocity '{}' is known, {}, at {}: give "
-            "the velocity on a larger grid, or end the run earlier (t-end)",
-            t, law, region, point_text(p));
-    }
-    static std::string initial_outside_extent(const std::string& law, const std::string& region,
-                                              std::size_t i, Vec3 p) {
-        return fmt::format(
-            "the initial surface leaves the region where velocity '{}' is known, {}: vertex {} at "
-            "{}",
-            law, region, i, point_text(p));
     }
 
 private:

@@ -178,8 +178,7 @@ struct GuardedStep {
 /// hooks check each sub-step (LoopHooks::record) and the run's budget after the step
 /// (LoopHooks::run_budget), and add what the kept split did to r (LoopHooks::commit). Throws
 /// Unstable when no split keeps the invariants or the run leaves its budget, and the finest
-/// split's NumericalFailure when every split fails (the first's when the hooks do not retry a
-/// failure: LoopHooks::retries_failures).
+/// split's NumericalFailure when every split fails.
 template <int dim>
 GuardedStep<dim> guarded_step(typename LoopHooks<dim>::Result& r, double t_next,
                               const LoopHooks<dim>& hooks, const BasicVelocityLaw<dim>& law,
@@ -201,14 +200,19 @@ GuardedStep<dim> guarded_step(typename LoopHooks<dim>::Result& r, double t_next,
             typename H::StepResult s;
             try {
                 s = step_in_growing_domain<dim>(H::shape(out), t, k, law, domain, options, r);
-                check_extent<NumericalFailure>(law, H::shape(s), [&](auto... a) {
-                    return H::left_extent(law.name(), t_to, a...);
-                });
+                check_extent<NumericalFailure>(
+                    law, H::shape(s), [&](const std::string& region, std::size_t, const auto& p) {
+                        return fmt::format(
+                            "at t = {} {} left the region where velocity '{}' is known, {}, at "
+                            "{}: give the velocity on a larger grid, or end the run earlier "
+                            "(t-end)",
+                            t_to, H::noun, law.name(), region, point_text(p));
+                    });
             } catch (const LimitExceeded&) {
                 throw;  // a setting beyond a limit: smaller steps would not help
             } catch (const NumericalFailure&) {
                 // A step too large for the features may fail where smaller ones do not.
-                if (j == halvings || !H::retries_failures) throw;
+                if (j == halvings) throw;
                 kept = false;
                 break;
             }
@@ -245,9 +249,12 @@ void check_resume(const typename LoopHooks<dim>::Result& from, const BasicVeloci
     using H = LoopHooks<dim>;
     check_run_options(options);
     H::check_start(from);
-    check_extent<InvalidInput>(law, H::shape(from), [&](auto... a) {
-        return H::initial_outside_extent(law.name(), a...);
-    });
+    check_extent<InvalidInput>(
+        law, H::shape(from), [&](const std::string& region, std::size_t i, const auto& p) {
+            return fmt::format(
+                "the initial {} {} the region where velocity '{}' is known, {}: vertex {} at {}",
+                H::shape_name, H::leave, law.name(), region, i, point_text(p));
+        });
     if (from.steps_done < 0 || from.steps_done >= options.steps) {
         throw InvalidInput(fmt::format("cannot resume after step {} of a run of {} steps",
                                        from.steps_done, options.steps));

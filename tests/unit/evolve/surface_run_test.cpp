@@ -133,14 +133,23 @@ TEST(SurfaceRun, FailureInsideAStepEndsWithError) {
 }
 
 TEST(SurfaceRun, ASurfaceCarriedOutOfTheDomainWithinAStepIsAnErrorNotAVanishing) {
-    // The sphere moves 5 in the one step: the contour in the domain is empty, but the surface
-    // left it; it did not vanish under a law that keeps its volume.
+    // The sphere moves 5 in the one step (none split): the contour in the domain is empty, but
+    // the surface left it; it did not vanish under a law that keeps its volume.
+    SurfaceRunOptions whole = coarse(1.0, 1);
+    whole.max_substep_halvings = 0;
     const SurfaceRunResult r =
-        run(sphere({}, 0.3, 2), SurfaceTranslation({5.0, 0.0, 0.0}), domain, coarse(1.0, 1));
+        run(sphere({}, 0.3, 2), SurfaceTranslation({5.0, 0.0, 0.0}), domain, whole);
     EXPECT_EQ(r.status, RunStatus::error);
     EXPECT_NE(r.message.find("the flow carries the surface out of the domain"), std::string::npos)
         << r.message;
     EXPECT_EQ(r.steps_done, 0);
+    // Split into sub-steps, as a failing step is in both dimensions, the finest split's contour
+    // reaches the domain's edge: an error still, naming the domain.
+    const SurfaceRunResult split =
+        run(sphere({}, 0.3, 2), SurfaceTranslation({5.0, 0.0, 0.0}), domain, coarse(1.0, 1));
+    EXPECT_EQ(split.status, RunStatus::error);
+    EXPECT_EQ(split.steps_done, 0);
+    EXPECT_NE(split.message.find("enlarge the domain"), std::string::npos) << split.message;
     // A surface the contours cannot see is bad input, not an empty start.
     SurfaceRunOptions o = coarse(1.0, 1);
     // (A sphere of radius 10⁻³ between the mesh vertices of K = 4.)
