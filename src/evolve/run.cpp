@@ -49,7 +49,6 @@ public:
     static constexpr const char* shape_name = "curves";
     static constexpr const char* leave = "leave";  ///< the verb with the noun
     static constexpr const char* possessive = "their";
-    static constexpr bool observes_vanishing = true;  ///< the observer sees the step that vanished
     /// A run beyond its budget ends with the curves before the step that took it there.
     static constexpr bool keeps_step_over_budget = false;
 

@@ -318,9 +318,9 @@ typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result&
             break;
         }
         const bool vanished = H::shape(r).empty();
-        const bool go_on = (vanished && !H::observes_vanishing) || !observer ||
-                           observer(typename H::Report{n, options.steps, r.t, &H::shape(r),
-                                                       &step.stats, r.wall_s, step_cpu_s, &r});
+        const bool go_on =
+            !observer || observer(typename H::Report{n, options.steps, r.t, &H::shape(r),
+                                                     &step.stats, r.wall_s, step_cpu_s, &r});
         if (vanished) {
             r.status = RunStatus::vanished;
             H::vanished(r);

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "slc/core/error.hpp"
 #include "slc/evolve/surface_problems.hpp"
@@ -104,13 +106,21 @@ TEST(SurfaceRun, ResumeContinuesBitForBit) {
 }
 
 TEST(SurfaceRun, SphereVanishesUnderMeanCurvature) {
-    // R0 = 0.3 vanishes at t = 0.09/4 = 0.0225.
-    const SurfaceRunResult r =
-        run(sphere({}, 0.3, 3), SurfaceMeanCurvatureFlow(), domain, coarse(0.03, 6));
+    // R0 = 0.3 vanishes at t = 0.09/4 = 0.0225. The observer sees every step, the one that
+    // vanished too (as for curves): its history ends with the empty surface.
+    std::vector<std::pair<int, std::size_t>> seen;  // step, triangles
+    const SurfaceRunResult r = run(sphere({}, 0.3, 3), SurfaceMeanCurvatureFlow(), domain,
+                                   coarse(0.03, 6), [&seen](const SurfaceStepReport& s) {
+                                       seen.emplace_back(s.step, s.surface->size());
+                                       return true;
+                                   });
     EXPECT_EQ(r.status, RunStatus::vanished);
     EXPECT_TRUE(r.surface.empty());
     EXPECT_GE(r.t, 0.0225 - 0.005);
     EXPECT_LE(r.t, 0.0225 + 0.005 + 1e-12);
+    ASSERT_EQ(seen.size(), static_cast<std::size_t>(r.steps_done));
+    EXPECT_EQ(seen.back().second, 0u);
+    for (std::size_t i = 0; i + 1 < seen.size(); ++i) EXPECT_GT(seen[i].second, 0u);
 }
 
 TEST(SurfaceRun, ObserverStops) {
