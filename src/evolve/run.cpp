@@ -49,8 +49,6 @@ public:
     static constexpr const char* shape_name = "curves";
     static constexpr const char* leave = "leave";  ///< the verb with the noun
     static constexpr const char* possessive = "their";
-    /// A run beyond its budget ends with the curves before the step that took it there.
-    static constexpr bool keeps_step_over_budget = false;
 
     static Interface& shape(RunResult& r) { return r.curves; }
     static const Interface& shape(const RunResult& r) { return r.curves; }

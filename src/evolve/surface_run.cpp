@@ -34,9 +34,6 @@ public:
     static constexpr const char* shape_name = "surface";
     static constexpr const char* leave = "leaves";  ///< the verb with the noun
     static constexpr const char* possessive = "its";
-    /// NOTE: a run beyond its budget (volume drift, area growth) ends with the surface of the
-    /// step that took it there, where curves end with the one before.
-    static constexpr bool keeps_step_over_budget = true;
 
     static Surface& shape(SurfaceRunResult& r) { return r.surface; }
     static const Surface& shape(const SurfaceRunResult& r) { return r.surface; }

@@ -164,14 +164,6 @@ struct Unstable {
     std::string message;
 };
 
-/// A step kept, and with the guards why the run leaves its budget after it when the hooks keep
-/// such a step (LoopHooks::keeps_step_over_budget).
-template <int dim>
-struct GuardedStep {
-    typename LoopHooks<dim>::StepResult step;
-    std::optional<std::string> over_budget;
-};
-
 /// The step from Γ(t) (r's) to t_next: whole, or when it breaks the law's invariants (guards)
 /// split into 2, 4, ... sub-steps until each keeps them. A split whose step fails
 /// (NumericalFailure: a contour that leaves a fixed domain, say) is retried the same way. The
@@ -180,10 +172,11 @@ struct GuardedStep {
 /// Unstable when no split keeps the invariants or the run leaves its budget, and the finest
 /// split's NumericalFailure when every split fails.
 template <int dim>
-GuardedStep<dim> guarded_step(typename LoopHooks<dim>::Result& r, double t_next,
-                              const LoopHooks<dim>& hooks, const BasicVelocityLaw<dim>& law,
-                              const typename Space<dim>::Region& domain,
-                              const typename LoopHooks<dim>::Options& options) {
+typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result& r, double t_next,
+                                                 const LoopHooks<dim>& hooks,
+                                                 const BasicVelocityLaw<dim>& law,
+                                                 const typename Space<dim>::Region& domain,
+                                                 const typename LoopHooks<dim>::Options& options) {
     using H = LoopHooks<dim>;
     const int halvings = options.guards ? options.max_substep_halvings : 0;
     const typename H::Start start = hooks.start(H::shape(r));
@@ -231,13 +224,15 @@ GuardedStep<dim> guarded_step(typename LoopHooks<dim>::Result& r, double t_next,
             H::note_broken(r, std::move(*over_budget));
             over_budget.reset();
         }
-        if (over_budget && !H::keeps_step_over_budget) throw Unstable{std::move(*over_budget)};
+        // A run beyond its budget ends with the interface before the step that took it there,
+        // which its history holds last.
+        if (over_budget) throw Unstable{std::move(*over_budget)};
         hooks.commit(attempt, r);
         if (parts > 1) {
             ++r.split_steps;
             r.most_substeps = std::max(r.most_substeps, parts);
         }
-        return GuardedStep<dim>{std::move(out), std::move(over_budget)};
+        return out;
     }
     throw Unstable{H::unstable_after_splits(violation, 1 << halvings, r.t)};
 }
@@ -293,10 +288,10 @@ typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result&
     };
     for (int n = from.steps_done + 1; n <= options.steps; ++n) {
         const double t_next = time_after(options, n);
-        GuardedStep<dim> guarded;
+        typename H::StepResult step;
         const std::int64_t step_cpu_start = process_cpu_ns();
         try {
-            guarded = guarded_step<dim>(r, t_next, hooks, law, domain, options);
+            step = guarded_step<dim>(r, t_next, hooks, law, domain, options);
         } catch (const NumericalFailure& e) {
             r.status = RunStatus::error;
             r.message = H::step_failed(n, r.t, e.what());
@@ -307,16 +302,10 @@ typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result&
             break;
         }
         const double step_cpu_s = seconds(process_cpu_ns() - step_cpu_start);
-        typename H::StepResult& step = guarded.step;
         H::shape(r) = std::move(H::shape(step));
         r.t = t_next;
         r.steps_done = n;
         clocks();
-        if (guarded.over_budget) {
-            r.status = RunStatus::unstable;
-            r.message = H::at_step(n, r.t, *guarded.over_budget);
-            break;
-        }
         const bool vanished = H::shape(r).empty();
         const bool go_on =
             !observer || observer(typename H::Report{n, options.steps, r.t, &H::shape(r),

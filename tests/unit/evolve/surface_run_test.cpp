@@ -341,11 +341,15 @@ TEST(SurfaceRun, ThinnestNewComponentIsThreeVolumesOverArea) {
 TEST(SurfaceRun, VolumeDriftOverTheRunIsUnstable) {
     // A slow contraction loses 0.75% of the volume a step, within a step's budget; after two
     // steps the run has lost more than 1% of it. (A fine start: a coarse icosphere's own
-    // deficit would hide a step's loss.)
+    // deficit would hide a step's loss.) The run ends with the surface before the step that
+    // took it beyond its budget, as a run of curves does: the last its history holds.
     const ClaimingField squeeze({.keeps_area = true}, [](Vec3 x) { return -0.05 * x; });
-    const SurfaceRunResult r = run(sphere({}, 0.5, 5), squeeze, domain, coarse(0.2, 4));
+    const Surface start = sphere({}, 0.5, 5);
+    const SurfaceRunResult r = run(start, squeeze, domain, coarse(0.2, 4));
     EXPECT_EQ(r.status, RunStatus::unstable);
-    EXPECT_EQ(r.steps_done, 2) << r.message;
+    EXPECT_EQ(r.steps_done, 1) << r.message;
+    EXPECT_EQ(r.t, 0.05);
+    EXPECT_GT(volume(r.surface), 0.99 * volume(start));
     EXPECT_NE(r.message.find("the volume drifted by -1."), std::string::npos) << r.message;
     // Without guards: to the end, broken where the drift first passed 1%.
     SurfaceRunOptions o = coarse(0.2, 4);
