@@ -56,7 +56,8 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"P", c.refine_passes == ContourOptions::until_converged ? nlohmann::json("converged")
                                                                  : nlohmann::json(c.refine_passes)},
         {"eps", c.resolved_eps()},
-        {"eta", std::max(c.resolved_eta(), tolerance::rounding_floor(p.domain))},
+        {"eta", std::max(c.resolved_eta(),
+                         tolerance::rounding_floor(doubled_domain(p.domain, r.domain_doublings)))},
         {"rho", c.rho},
         {"M", o.step.embedded.mesh},
         {"E", o.step.embedded.eno_order},
@@ -131,7 +132,8 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
           {"P", c.refine_passes < 0 ? nlohmann::json("until converged")
                                     : nlohmann::json(c.refine_passes)},
           {"eps", c.resolved_eps()},
-          {"eta", std::max(options.step.resolved_eta(), tolerance::rounding_floor(p.domain))},
+          {"eta", std::max(options.step.resolved_eta(), tolerance::rounding_floor(doubled_domain(
+                                                            p.domain, r.domain_doublings)))},
           {"thin_depth", c.thin_depth},
           {"volume_drift", options.volume_drift},
           {"guards", options.guards},

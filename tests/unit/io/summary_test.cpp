@@ -1,0 +1,43 @@
+// Tests of summary.json: η as the run held it, raised to what doubles resolve in the domain the
+// run reached, for curves and for surfaces.
+#include "slc/io/summary.hpp"
+
+#include <gtest/gtest.h>
+
+#include "slc/core/tolerances.hpp"
+#include "slc/evolve/problems.hpp"
+#include "slc/evolve/surface_problems.hpp"
+#include "slc/velocity/factory.hpp"
+
+namespace slc {
+namespace {
+
+TEST(Summary, EtaIsRaisedToTheRoundingFloorOfTheDomainTheRunReached) {
+    // η = 1e−300 is below rounding anywhere: the contours held the floor of the domain each step
+    // ran in, the largest once the domain had doubled three times.
+    const Problem p = make_problem("circle-curvature");
+    RunOptions o;
+    o.step.contour.eta = 1e-300;
+    RunResult r;
+    r.curves = Interface(p.initial);
+    r.domain_doublings = 3;
+    const auto law = make_velocity(p.velocity, p.velocity_params, p.module);
+    const double grown = tolerance::rounding_floor(doubled_domain(p.domain, 3));
+    EXPECT_GT(grown, tolerance::rounding_floor(p.domain));
+    EXPECT_EQ(run_summary(p, o, r, *law)["params"]["eta"].get<double>(), grown);
+    r.domain_doublings = 0;
+    EXPECT_EQ(run_summary(p, o, r, *law)["params"]["eta"].get<double>(),
+              tolerance::rounding_floor(p.domain));
+
+    const SurfaceProblem s = make_surface_problem("sphere-rotation");
+    SurfaceRunOptions so;
+    so.step.contour.eta = 1e-300;
+    SurfaceRunResult sr;
+    sr.surface = s.initial;
+    sr.domain_doublings = 2;
+    EXPECT_EQ(surface_run_summary(s, s.initial, so, sr)["params"]["eta"].get<double>(),
+              tolerance::rounding_floor(doubled_domain(s.domain, 2)));
+}
+
+}  // namespace
+}  // namespace slc
