@@ -76,7 +76,7 @@ auto distance_bounds(Distance distance, double reach) {
 /// make_level(shape, t) makes a Level at time t.
 template <class Result, class Shape, class Region, class ContourOptions, class MakeLevel>
 Result advance_normal_law(const Shape& shape, double t, double k, const Region& domain,
-                          ContourOptions contour_options, MakeLevel make_level) {
+                          const ContourOptions& contour_options, MakeLevel make_level) {
     using Point = typename std::remove_cvref_t<decltype(vertices_of(shape))>::value_type;
     Result result;
     const auto now = make_level(shape, t);
@@ -84,8 +84,9 @@ Result advance_normal_law(const Shape& shape, double t, double k, const Region& 
     const auto contour_within = [&](auto g, std::optional<double> reach) {
         const auto f = [&now](Point x) { return now.distance(x); };
         if (!reach) return contour_of(g, domain, contour_options, std::nullopt);
-        contour_options.distance_slack = 2.0 * *reach;
-        return contour_of(g, domain, contour_options, distance_bounds<Point>(f, *reach));
+        ContourOptions within = contour_options;
+        within.distance_slack = 2.0 * *reach;
+        return contour_of(g, domain, within, distance_bounds<Point>(f, *reach));
     };
     const std::optional<double> s_now = now.normal_speed_bound();
     const auto predictor = [&](std::span<const Point> xs, std::span<double> g) {

@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
-#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
