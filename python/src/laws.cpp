@@ -35,17 +35,15 @@ template <int dim>
 class PythonCurveLaw final : public PythonLaw<BasicVelocityLaw<dim>> {
 public:
     using Law = BasicVelocityLaw<dim>;
-    using typename Law::Geometry;
-    using typename Law::Point;
-    using typename Law::Shape;
+    using Point = PointOf<dim>;
     PythonCurveLaw(py::object f, std::string name, std::optional<GeometryModule> module,
                    bool curvature)
         : PythonLaw<Law>(std::move(f), std::move(name)), module_(module), curvature_(curvature) {}
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = curvature_, .module = module_};
     }
-    std::vector<Point> velocities(double t, const Shape& shape,
-                                  const Geometry& geometry) const override {
+    std::vector<Point> velocities(double t, const ShapeOf<dim>& shape,
+                                  const GeometryOf<dim>& geometry) const override {
         py::gil_scoped_acquire hold;
         const std::span<const Point> points = vertex_points(shape);
         const std::size_t m = points.size();
@@ -83,7 +81,7 @@ template <int dim>
 class PythonNormalLaw final : public PythonLaw<BasicNormalLaw<dim>> {
 public:
     using PythonLaw<BasicNormalLaw<dim>>::PythonLaw;
-    using Point = typename BasicNormalLaw<dim>::Point;
+    using Point = PointOf<dim>;
     void normal_speeds(double t, std::span<const Point> points, std::span<const Point> normals,
                        std::span<double> out) const override {
         py::gil_scoped_acquire hold;
@@ -105,7 +103,7 @@ template <int dim>
 class PythonFieldLaw final : public PythonLaw<BasicFlowFieldLaw<dim>> {
 public:
     using PythonLaw<BasicFlowFieldLaw<dim>>::PythonLaw;
-    using Point = typename BasicFlowFieldLaw<dim>::Point;
+    using Point = PointOf<dim>;
     void sample(double t, std::span<const Point> points, std::span<Point> out) const override {
         py::gil_scoped_acquire hold;
         const Array v =

@@ -32,7 +32,7 @@ inline constexpr int max_gamma_doublings = 24;
 template <int dim>
 class SampleGrid {
 public:
-    using Point = typename Space<dim>::Point;       ///< Vec2 or Vec3
+    using Point = PointOf<dim>;                     ///< Vec2 or Vec3
     using Coords = std::array<std::uint64_t, dim>;  ///< a grid point
     static constexpr int key_bits = 64 / dim;       ///< bits of each coordinate in a key
 
@@ -110,7 +110,7 @@ inline constexpr Sample pending{std::numeric_limits<double>::quiet_NaN(),
 template <int dim>
 class TreeSampler {
 public:
-    using Point = typename Space<dim>::Point;  ///< Vec2 or Vec3
+    using Point = PointOf<dim>;  ///< Vec2 or Vec3
     using Tree = Orthtree<dim>;
     using FunctionRef = BatchRef<double, Point>;  ///< G
     using BoundsRef = BatchRef<Interval, Point>;  ///< bounds on G

@@ -114,8 +114,8 @@ SelfConvergenceResult self_convergence(const Interface& initial, const VelocityL
 
     SelfConvergenceResult out;
     for (int r = 0; r < resolutions; ++r) {
-        ResolutionRun run_r{r, options[static_cast<std::size_t>(r)], {}};
-        run_r.result = run(initial, law, domain, run_r.options);
+        const RunOptions& o = options[static_cast<std::size_t>(r)];
+        ResolutionRun run_r{r, o, run(initial, law, domain, o)};
         if (observer) observer(run_r);
         out.runs.push_back(std::move(run_r));
     }

@@ -20,12 +20,11 @@ namespace slc::detail {
 /// at t + k to t in `substeps` equal steps, each stage one batch (a law written in Python, say,
 /// sees whole arrays).
 template <int dim>
-std::vector<typename Space<dim>::Point> runge_kutta_feet(
-    const BasicVelocityLaw<dim>& law, double t, double k,
-    std::span<const typename Space<dim>::Point> xs, int substeps) {
+std::vector<PointOf<dim>> runge_kutta_feet(const BasicVelocityLaw<dim>& law, double t, double k,
+                                           std::span<const PointOf<dim>> xs, int substeps) {
     const std::size_t m = xs.size();
     const double h = k / substeps, half = 0.5 * h;
-    using Point = typename Space<dim>::Point;
+    using Point = PointOf<dim>;
     // v the latest stage's velocities, sum the stages' velocities k1 + 2 k2 + 2 k3 + k4 added in
     // that order.
     std::vector<Point> x(xs.begin(), xs.end()), y(m), v(m), sum(m);
@@ -68,7 +67,7 @@ constexpr int max_departure_substeps = 64;
 /// that G stays continuous (a count chosen point by point would make G jump where it changes).
 template <int dim>
 int departure_substeps(const BasicVelocityLaw<dim>& law, double t, double k,
-                       std::span<const typename Space<dim>::Point> sample, double tolerance) {
+                       std::span<const PointOf<dim>> sample, double tolerance) {
     if (sample.empty()) return 1;
     auto feet = runge_kutta_feet(law, t, k, sample, 1);
     int substeps = 1;
@@ -103,8 +102,8 @@ Point checked_velocity(Point w, const std::string& law, double t, Point x) {
 /// are finite.
 template <int dim>
 void checked_normal_speeds(const BasicVelocityLaw<dim>& law, double t,
-                           std::span<const typename Space<dim>::Point> xs,
-                           std::span<const typename Space<dim>::Point> n, std::span<double> v) {
+                           std::span<const PointOf<dim>> xs, std::span<const PointOf<dim>> n,
+                           std::span<double> v) {
     law.normal_speeds(t, xs, n, v);
     for (std::size_t i = 0; i < v.size(); ++i) {
         if (!std::isfinite(v[i])) {

@@ -141,9 +141,8 @@ SurfaceSelfConvergenceResult surface_self_convergence(
 
     SurfaceSelfConvergenceResult out;
     for (int r = 0; r < resolutions; ++r) {
-        SurfaceResolutionRun run_r{r, options[static_cast<std::size_t>(r)], {}};
-        const Surface start = surface_as_read(initial, domain, run_r.options);
-        run_r.result = run(start, law, domain, run_r.options);
+        const SurfaceRunOptions& o = options[static_cast<std::size_t>(r)];
+        SurfaceResolutionRun run_r{r, o, run(surface_as_read(initial, domain, o), law, domain, o)};
         if (observer) observer(run_r);
         out.runs.push_back(std::move(run_r));
     }

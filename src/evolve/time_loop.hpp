@@ -95,13 +95,13 @@ inline std::string point_text6(Vec3 p) {
 /// Euler image, x + k u(t, x), outside): the message of LeftDomain, naming the first such vertex.
 /// An empty contour from such a step is an interface that left the domain, not one that vanished.
 template <int dim>
-std::optional<std::string> carried_out(const typename Space<dim>::Shape& shape, double t, double k,
+std::optional<std::string> carried_out(const ShapeOf<dim>& shape, double t, double k,
                                        const BasicVelocityLaw<dim>& law,
-                                       const typename Space<dim>::Region& domain) {
+                                       const RegionOf<dim>& domain) {
     using H = LoopHooks<dim>;
     if (!law.is_field()) return std::nullopt;
     const auto points = vertex_points(shape);
-    std::vector<typename Space<dim>::Point> u(points.size());
+    std::vector<PointOf<dim>> u(points.size());
     law.sample(t, points, u);
     for (std::size_t i = 0; i < u.size(); ++i) {
         const auto x = points[i], y = x + k * u[i];
@@ -117,8 +117,7 @@ std::optional<std::string> carried_out(const typename Space<dim>::Shape& shape, 
 /// Throws (as Error) when a vertex of `shape` lies outside the region where the law is known (a
 /// velocity given on a grid), with the message `what(region, index, vertex)`.
 template <class Error, int dim, class What>
-void check_extent(const BasicVelocityLaw<dim>& law, const typename Space<dim>::Shape& shape,
-                  What what) {
+void check_extent(const BasicVelocityLaw<dim>& law, const ShapeOf<dim>& shape, What what) {
     const auto extent = law.extent();
     if (!extent) return;
     const auto points = vertex_points(shape);
@@ -131,9 +130,8 @@ void check_extent(const BasicVelocityLaw<dim>& law, const typename Space<dim>::S
 /// once more each time the contour reaches the edge (max_domain_doublings), K a level deeper per
 /// doubling. Records the doublings in `counters`.
 template <int dim>
-auto step_in_growing_domain(const typename Space<dim>::Shape& shape, double t, double k,
-                            const BasicVelocityLaw<dim>& law,
-                            const typename Space<dim>::Region& domain,
+auto step_in_growing_domain(const ShapeOf<dim>& shape, double t, double k,
+                            const BasicVelocityLaw<dim>& law, const RegionOf<dim>& domain,
                             const typename LoopHooks<dim>::Options& options,
                             typename LoopHooks<dim>::Result& counters) {
     using H = LoopHooks<dim>;
@@ -175,7 +173,7 @@ template <int dim>
 typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result& r, double t_next,
                                                  const LoopHooks<dim>& hooks,
                                                  const BasicVelocityLaw<dim>& law,
-                                                 const typename Space<dim>::Region& domain,
+                                                 const RegionOf<dim>& domain,
                                                  const typename LoopHooks<dim>::Options& options) {
     using H = LoopHooks<dim>;
     const int halvings = options.guards ? options.max_substep_halvings : 0;
@@ -268,7 +266,7 @@ void check_resume(const typename LoopHooks<dim>::Result& from, const BasicVeloci
 template <int dim>
 typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result& from,
                                           const BasicVelocityLaw<dim>& law,
-                                          const typename Space<dim>::Region& domain,
+                                          const RegionOf<dim>& domain,
                                           const typename LoopHooks<dim>::Options& options,
                                           const typename LoopHooks<dim>::Observer& observer) {
     using H = LoopHooks<dim>;

@@ -238,7 +238,7 @@ struct VariableIndex {
 
 /// Sets the point and the time of an expression's variables.
 template <int dim>
-void set_point(Evaluator& e, typename Space<dim>::Point p, double t) {
+void set_point(Evaluator& e, PointOf<dim> p, double t) {
     auto& v = e.variables();
     for (int k = 0; k < dim; ++k) v[k] = p[k];
     v[VariableIndex<dim>::t] = t;
@@ -246,7 +246,7 @@ void set_point(Evaluator& e, typename Space<dim>::Point p, double t) {
 
 /// Sets the normal of a speed expression's variables.
 template <int dim>
-void set_normal(Evaluator& e, typename Space<dim>::Point n) {
+void set_normal(Evaluator& e, PointOf<dim> n) {
     auto& v = e.variables();
     for (int k = 0; k < dim; ++k) v[VariableIndex<dim>::normal + k] = n[k];
 }
@@ -255,7 +255,7 @@ void set_normal(Evaluator& e, typename Space<dim>::Point n) {
 template <int dim>
 class SpeedExpression final : public BasicNormalLaw<dim> {
 public:
-    using Point = typename Space<dim>::Point;
+    using Point = PointOf<dim>;
     /// module: where the vertex normals of curves come from; unset for surfaces.
     SpeedExpression(std::shared_ptr<const EvaluatorPool> pool, std::optional<GeometryModule> module)
         : BasicNormalLaw<dim>(module), pool_(std::move(pool)) {}
@@ -277,19 +277,16 @@ private:
 template <int dim>
 class CurvatureSpeedExpression final : public BasicCurvatureLaw<dim> {
 public:
-    using typename BasicCurvatureLaw<dim>::Point;
-    using typename BasicCurvatureLaw<dim>::Shape;
-    using typename BasicCurvatureLaw<dim>::Geometry;
     /// module: where the vertex normals and curvature of curves come from; unset for surfaces.
     CurvatureSpeedExpression(std::shared_ptr<const EvaluatorPool> pool,
                              std::optional<GeometryModule> module)
         : BasicCurvatureLaw<dim>(module), pool_(std::move(pool)) {}
     std::string name() const override { return "speed = " + shown(pool_->spec().text); }
-    std::vector<Point> velocities(double t, const Shape& interface,
-                                  const Geometry& g) const override {
+    std::vector<PointOf<dim>> velocities(double t, const ShapeOf<dim>& interface,
+                                         const GeometryOf<dim>& g) const override {
         this->require_geometry(interface, g);
-        const std::span<const Point> x = vertex_points(interface);
-        std::vector<Point> u(x.size());
+        const std::span<const PointOf<dim>> x = vertex_points(interface);
+        std::vector<PointOf<dim>> u(x.size());
         pool_->for_each(u.size(), [&](Evaluator& e, std::size_t i) {
             set_point<dim>(e, x[i], t);
             e.variables()[VariableIndex<dim>::c] = g.curvature[i];
@@ -307,7 +304,7 @@ private:
 template <int dim>
 class FieldExpression final : public BasicFlowFieldLaw<dim> {
 public:
-    using Point = typename Space<dim>::Point;
+    using Point = PointOf<dim>;
     explicit FieldExpression(std::shared_ptr<const EvaluatorPool> pool) : pool_(std::move(pool)) {}
     std::string name() const override { return "field = (" + shown(pool_->spec().text) + ")"; }
     void sample(double t, std::span<const Point> points, std::span<Point> out) const override {

@@ -72,8 +72,8 @@ void AnisotropicNormalSpeed::normal_speeds(double, std::span<const Vec2> points,
 }
 
 template <int dim>
-void BasicCurvatureLaw<dim>::require_geometry(const Shape& interface,
-                                              const Geometry& geometry) const {
+void BasicCurvatureLaw<dim>::require_geometry(const ShapeOf<dim>& interface,
+                                              const GeometryOf<dim>& geometry) const {
     const std::size_t n = vertex_points(interface).size();
     if (geometry.normals.size() != n || geometry.curvature.size() != n) {
         throw InvalidInput(
@@ -84,19 +84,18 @@ void BasicCurvatureLaw<dim>::require_geometry(const Shape& interface,
 }
 
 template <int dim>
-std::vector<typename BasicCurvatureFlow<dim>::Point> BasicCurvatureFlow<dim>::velocities(
-    double, const Shape& interface, const Geometry& g) const {
+std::vector<PointOf<dim>> BasicCurvatureFlow<dim>::velocities(double, const ShapeOf<dim>& interface,
+                                                              const GeometryOf<dim>& g) const {
     this->require_geometry(interface, g);
-    return normal_velocities<Point>(g, [&](std::size_t i) { return g.curvature[i]; });
+    return normal_velocities<PointOf<dim>>(g, [&](std::size_t i) { return g.curvature[i]; });
 }
 
 template <int dim>
-std::vector<typename BasicVolumePreservingFlow<dim>::Point>
-BasicVolumePreservingFlow<dim>::velocities(double, const Shape& interface,
-                                           const Geometry& g) const {
+std::vector<PointOf<dim>> BasicVolumePreservingFlow<dim>::velocities(
+    double, const ShapeOf<dim>& interface, const GeometryOf<dim>& g) const {
     this->require_geometry(interface, g);
     const double mean = interface_mean(interface, g.curvature);
-    return normal_velocities<Point>(g, [&](std::size_t i) { return g.curvature[i] - mean; });
+    return normal_velocities<PointOf<dim>>(g, [&](std::size_t i) { return g.curvature[i] - mean; });
 }
 
 template class BasicCurvatureLaw<2>;

@@ -19,9 +19,8 @@ std::string point_text(Vec3 p) { return fmt::format("({}, {}, {})", p.x, p.y, p.
 
 /// Throws NumericalFailure at the first non-finite velocity, naming `what` (vertex or point).
 template <int dim>
-void check_finite(const BasicVelocityLaw<dim>& law, double t,
-                  std::span<const typename Space<dim>::Point> at,
-                  std::span<const typename Space<dim>::Point> u, const char* what) {
+void check_finite(const BasicVelocityLaw<dim>& law, double t, std::span<const PointOf<dim>> at,
+                  std::span<const PointOf<dim>> u, const char* what) {
     // On all threads: parallel_for_cheap throws what the least failing i threw.
     parallel_for_cheap(u.size(), [&](std::size_t i) {
         if (!is_finite(u[i])) {
@@ -34,9 +33,9 @@ void check_finite(const BasicVelocityLaw<dim>& law, double t,
 
 /// The vertex velocities of law on interface with geometry, checked.
 template <int dim>
-std::vector<typename Space<dim>::Point> checked_velocities(
-    const BasicVelocityLaw<dim>& law, double t, const typename Space<dim>::Shape& interface,
-    const typename Space<dim>::Geometry& geometry) {
+std::vector<PointOf<dim>> checked_velocities(const BasicVelocityLaw<dim>& law, double t,
+                                             const ShapeOf<dim>& interface,
+                                             const GeometryOf<dim>& geometry) {
     auto u = law.velocities(t, interface, geometry);
     const auto x = vertex_points(interface);
     if (u.size() != x.size()) {
@@ -50,9 +49,8 @@ std::vector<typename Space<dim>::Point> checked_velocities(
 
 /// A flow field at points into out, checked.
 template <int dim>
-void checked_field(const BasicVelocityLaw<dim>& law, double t,
-                   std::span<const typename Space<dim>::Point> points,
-                   std::span<typename Space<dim>::Point> out) {
+void checked_field(const BasicVelocityLaw<dim>& law, double t, std::span<const PointOf<dim>> points,
+                   std::span<PointOf<dim>> out) {
     SLC_ASSERT(out.size() == points.size(), "one velocity a point");
     law.sample(t, points, out);
     check_finite<dim>(law, t, points, out, "point");
@@ -60,10 +58,9 @@ void checked_field(const BasicVelocityLaw<dim>& law, double t,
 
 /// A flow field at points, checked.
 template <int dim>
-std::vector<typename Space<dim>::Point> checked_field(
-    const BasicVelocityLaw<dim>& law, double t,
-    std::span<const typename Space<dim>::Point> points) {
-    std::vector<typename Space<dim>::Point> u(points.size());
+std::vector<PointOf<dim>> checked_field(const BasicVelocityLaw<dim>& law, double t,
+                                        std::span<const PointOf<dim>> points) {
+    std::vector<PointOf<dim>> u(points.size());
     checked_field<dim>(law, t, points, u);
     return u;
 }
@@ -86,9 +83,9 @@ template class BasicVelocityLaw<2>;
 template class BasicVelocityLaw<3>;
 
 template <int dim>
-std::vector<typename BasicNormalLaw<dim>::Point> BasicNormalLaw<dim>::velocities(
-    double t, const Shape& interface, const Geometry& geometry) const {
-    const std::span<const Point> x = vertex_points(interface);
+std::vector<PointOf<dim>> BasicNormalLaw<dim>::velocities(double t, const ShapeOf<dim>& interface,
+                                                          const GeometryOf<dim>& geometry) const {
+    const std::span<const PointOf<dim>> x = vertex_points(interface);
     if (geometry.normals.size() != x.size()) {
         throw InvalidInput(fmt::format(
             "velocity '{}' needs the normals at the vertices (vertex_velocities computes them)",
@@ -96,7 +93,7 @@ std::vector<typename BasicNormalLaw<dim>::Point> BasicNormalLaw<dim>::velocities
     }
     std::vector<double> v(x.size());
     this->normal_speeds(t, x, geometry.normals, v);
-    std::vector<Point> u(v.size());
+    std::vector<PointOf<dim>> u(v.size());
     for (std::size_t i = 0; i < u.size(); ++i) u[i] = v[i] * geometry.normals[i];
     return u;
 }

@@ -101,6 +101,33 @@ Interface curves_from(const Json& json) {
     return Interface(curves);
 }
 
+/// The fields of a run's state both dimensions share.
+void put_totals(Json& json, const RunTotals& s) {
+    json["steps_done"] = s.steps_done;
+    json["t"] = s.t;
+    json["g_evals"] = s.g_evals;
+    json["wall_s"] = s.wall_s;
+    json["cpu_s"] = s.cpu_s;
+    json["split_steps"] = s.split_steps;
+    json["most_substeps"] = s.most_substeps;
+    json["domain_doublings"] = s.domain_doublings;
+    if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
+}
+
+/// Reads what put_totals() wrote; the run it describes was interrupted.
+void get_totals(const Json& json, RunTotals& s) {
+    s.steps_done = json.at("steps_done").get<int>();
+    s.t = json.at("t").get<double>();
+    s.g_evals = json.at("g_evals").get<std::size_t>();
+    s.wall_s = json.at("wall_s").get<double>();
+    s.cpu_s = json.at("cpu_s").get<double>();
+    s.split_steps = json.value("split_steps", 0);
+    s.most_substeps = json.value("most_substeps", 1);
+    s.domain_doublings = json.value("domain_doublings", 0);
+    if (s.domain_doublings > 0) s.domain_grown_at = json.at("domain_grown_at").get<double>();
+    s.status = RunStatus::interrupted;
+}
+
 }  // namespace
 
 std::filesystem::path checkpoint_path(const std::filesystem::path& dir) {
@@ -117,19 +144,11 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     if (c.surface) {
         const SurfaceRunResult& s = *c.surface;
         json["dimension"] = 3;
-        json["steps_done"] = s.steps_done;
-        json["t"] = s.t;
-        json["g_evals"] = s.g_evals;
-        json["wall_s"] = s.wall_s;
-        json["cpu_s"] = s.cpu_s;
-        json["split_steps"] = s.split_steps;
-        json["most_substeps"] = s.most_substeps;
+        put_totals(json, s);
         json["volume_initial"] = s.volume_initial;
         json["volume_corrected"] = s.volume_corrected;
         json["unconverged_steps"] = s.unconverged_steps;
         json["largest_residual"] = s.largest_residual;
-        json["domain_doublings"] = s.domain_doublings;
-        if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
         if (!std::isnan(s.thin_split_at)) {
             json["thin_split_at"] = s.thin_split_at;
             json["thin_split_thickness"] = s.thin_split_thickness;
@@ -144,22 +163,14 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
         return;
     }
     const RunResult& s = c.state;
-    json["steps_done"] = s.steps_done;
-    json["t"] = s.t;
-    json["g_evals"] = s.g_evals;
+    put_totals(json, s);
     json["vertices_produced"] = s.vertices_produced;
-    json["wall_s"] = s.wall_s;
-    json["cpu_s"] = s.cpu_s;
-    json["domain_doublings"] = s.domain_doublings;
     json["area_corrected"] = s.area_corrected;
-    json["split_steps"] = s.split_steps;
-    json["most_substeps"] = s.most_substeps;
     json["start_area"] = s.start_area;
     json["area_lag"] = s.area_lag;
     json["rigid_segments"] = s.rigid_segments;
     json["least_length"] = s.least_length.value;
     json["least_length_t"] = s.least_length.t;
-    if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
     json["frames_kept"] = c.frames_kept;
     json["curves"] = curves_json(s.curves);
     write_file_atomic(checkpoint_path(dir), json.dump() + "\n");
@@ -179,49 +190,30 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
         c.run_id = json.at("run_id").get<std::string>();
         if (json.value("dimension", 2) == 3) {
             SurfaceRunResult& s = c.surface.emplace();
-            s.steps_done = json.at("steps_done").get<int>();
-            s.t = json.at("t").get<double>();
-            s.g_evals = json.at("g_evals").get<std::size_t>();
-            s.wall_s = json.at("wall_s").get<double>();
-            s.cpu_s = json.at("cpu_s").get<double>();
-            s.split_steps = json.at("split_steps").get<int>();
-            s.most_substeps = json.at("most_substeps").get<int>();
+            get_totals(json, s);
             s.volume_initial = json.at("volume_initial").get<double>();
             s.volume_corrected = json.value("volume_corrected", 0.0);
             s.unconverged_steps = json.value("unconverged_steps", 0);
             s.largest_residual = json.value("largest_residual", 0.0);
-            s.domain_doublings = json.value("domain_doublings", 0);
-            if (s.domain_doublings > 0)
-                s.domain_grown_at = json.at("domain_grown_at").get<double>();
             s.least_area = {json.value("least_area", 0.0), json.value("least_area_t", 0.0)};
             if (json.contains("thin_split_at")) {
                 s.thin_split_at = json.at("thin_split_at").get<double>();
                 s.thin_split_thickness = json.at("thin_split_thickness").get<double>();
             }
             s.broken = json.value("broken", std::string());
-            s.status = RunStatus::interrupted;
             c.frames_kept = json.at("frames_kept").get<int>();
             c.frame_times = json.at("frame_times").get<std::vector<double>>();
             s.surface = surface_from(json);
             return c;
         }
         RunResult& s = c.state;
-        s.steps_done = json.at("steps_done").get<int>();
-        s.t = json.at("t").get<double>();
-        s.g_evals = json.at("g_evals").get<std::size_t>();
+        get_totals(json, s);
         s.vertices_produced = json.at("vertices_produced").get<std::size_t>();
-        s.wall_s = json.at("wall_s").get<double>();
-        s.cpu_s = json.at("cpu_s").get<double>();
-        s.domain_doublings = json.value("domain_doublings", 0);
         s.area_corrected = json.value("area_corrected", 0.0);
-        s.split_steps = json.value("split_steps", 0);
-        s.most_substeps = json.value("most_substeps", 1);
         s.start_area = json.value("start_area", 0.0);
         s.area_lag = json.value("area_lag", 0.0);
         s.rigid_segments = json.value("rigid_segments", std::size_t{0});
         s.least_length = {json.value("least_length", 0.0), json.value("least_length_t", 0.0)};
-        if (s.domain_doublings > 0) s.domain_grown_at = json.at("domain_grown_at").get<double>();
-        s.status = RunStatus::interrupted;
         c.frames_kept = json.at("frames_kept").get<int>();
         s.curves = curves_from(json.at("curves"));
         return c;

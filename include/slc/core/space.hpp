@@ -48,4 +48,15 @@ struct Space<3> {
     static constexpr int max_tree_depth = 21;
 };
 
+/// The names of Space<dim> as templates of dim, so that templates over dim read
+/// `PointOf<dim>` where they would write `typename Space<dim>::Point`.
+template <int dim>
+using PointOf = typename Space<dim>::Point;
+template <int dim>
+using RegionOf = typename Space<dim>::Region;  ///< (see PointOf)
+template <int dim>
+using ShapeOf = typename Space<dim>::Shape;  ///< (see PointOf)
+template <int dim>
+using GeometryOf = typename Space<dim>::Geometry;  ///< (see PointOf)
+
 }  // namespace slc

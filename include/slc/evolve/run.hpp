@@ -29,6 +29,25 @@ enum class RunStatus {
 /// The summary.json spelling of a status.
 const char* to_string(RunStatus status);
 
+/// What every run reports, of curves or of surfaces: how and where it ended, and what it cost.
+struct RunTotals {
+    double t = 0.0;                    ///< the time reached
+    int steps_done = 0;                ///< steps completed, N when status is ok
+    RunStatus status = RunStatus::ok;  ///< how the run ended
+    std::string message;               ///< why, when status is error or unstable
+    std::size_t g_evals = 0;           ///< every G evaluation of the run
+    double wall_s = 0.0;               ///< the time loop alone
+    double cpu_s = 0.0;                ///< process CPU seconds of the time loop (all threads)
+    /// Steps the guards split into sub-steps (the options' guards), and the most sub-steps one
+    /// step took (1 when none was split).
+    int split_steps = 0;
+    int most_substeps = 1;  ///< (see split_steps)
+    /// The most times a step's domain was doubled (the options' max_domain_doublings), and the
+    /// time at the start of the first step that doubled it (NaN if none did).
+    int domain_doublings = 0;
+    double domain_grown_at = std::numeric_limits<double>::quiet_NaN();  ///< (see domain_doublings)
+};
+
 /// The time interval, the number of steps and the parameters of every step.
 struct RunOptions {
     double t_start = 0.0;  ///< the initial curves' time
@@ -66,26 +85,11 @@ struct StepReport {
 using Observer = std::function<bool(const StepReport&)>;
 
 /// How a run ended and what it cost.
-struct RunResult {
+struct RunResult : RunTotals {
     Interface curves;                   ///< Γ at the end (empty when vanished)
-    double t = 0.0;                     ///< the time reached
-    int steps_done = 0;                 ///< steps completed, N when status is ok
-    RunStatus status = RunStatus::ok;   ///< how the run ended
-    std::string message;                ///< why, when status is error or unstable
-    std::size_t g_evals = 0;            ///< every G evaluation of the run
     std::size_t vertices_produced = 0;  ///< every vertex every contour of the run produced
-    double wall_s = 0.0;                ///< the time loop alone
-    double cpu_s = 0.0;                 ///< process CPU seconds of the time loop (all threads)
-    /// The most times a step's domain was doubled (RunOptions::max_domain_doublings), and the
-    /// time at the start of the first step that doubled it (NaN if none did).
-    int domain_doublings = 0;
     /// The area StepOptions::area_correction gave back over the run, summed with signs.
     double area_corrected = 0.0;
-    double domain_grown_at = std::numeric_limits<double>::quiet_NaN();  ///< (see domain_doublings)
-    /// Steps the guards split into sub-steps (RunOptions::guards), and the most sub-steps one
-    /// step took (1 when none was split).
-    int split_steps = 0;
-    int most_substeps = 1;  ///< (see split_steps)
     /// For a law with an area rate (curvature flow) or a rigid motion: the area at the start of
     /// the run (GuardBudget::start_area), and, with a rate, the sum over its steps of the area
     /// change minus the law's (area_change_expected), which the guards keep within

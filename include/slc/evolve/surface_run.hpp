@@ -61,19 +61,9 @@ struct SurfaceStepReport {
 /// Called after every step; returning false stops the run (status interrupted).
 using SurfaceObserver = std::function<bool(const SurfaceStepReport&)>;
 
-/// How a run ended and what it cost.
-struct SurfaceRunResult {
-    Surface surface;                   ///< S at the end (empty when vanished)
-    double t = 0.0;                    ///< the time reached
-    int steps_done = 0;                ///< steps completed, N when status is ok
-    RunStatus status = RunStatus::ok;  ///< how the run ended
-    std::string message;               ///< why, when status is error or unstable
-    std::size_t g_evals = 0;           ///< every G evaluation of the run
-    double wall_s = 0.0;               ///< the time loop alone
-    double cpu_s = 0.0;                ///< process CPU seconds of the time loop (all threads)
-    /// Steps the guards split into sub-steps, and the most sub-steps one step took.
-    int split_steps = 0;
-    int most_substeps = 1;  ///< (see split_steps)
+/// How a run of a surface ended and what it cost.
+struct SurfaceRunResult : RunTotals {
+    Surface surface;  ///< S at the end (empty when vanished)
     /// The volume the run started with, which the guard of volume drift compares with.
     double volume_initial = 0.0;
     /// The volume given back by the steps' volume correction (SurfaceStepOptions::
@@ -87,10 +77,6 @@ struct SurfaceRunResult {
     /// and the largest |G| such a contour left (SurfaceContourStats::residual).
     int unconverged_steps = 0;
     double largest_residual = 0.0;  ///< (see unconverged_steps)
-    /// The most times a step's domain was doubled (SurfaceRunOptions::max_domain_doublings), and
-    /// the time of the first step that needed it (NaN when none did).
-    int domain_doublings = 0;
-    double domain_grown_at = std::numeric_limits<double>::quiet_NaN();  ///< (see domain_doublings)
     /// The time of the first step that split off a component thinner than a finest cell (its
     /// thickness 3V/A, a sphere's radius, below the cell's width, thin cells included: the
     /// contours may tear such a part), and that thickness; NaN and 0 when no step did.

@@ -27,8 +27,8 @@ class Orthtree {
     static_assert(dim == 2 || dim == 3, "an orthtree is a quadtree or an octree");
 
 public:
-    using Point = typename Space<dim>::Point;    ///< Vec2 or Vec3
-    using Region = typename Space<dim>::Region;  ///< Box or Box3: the root and the cells
+    using Point = PointOf<dim>;    ///< Vec2 or Vec3
+    using Region = RegionOf<dim>;  ///< Box or Box3: the root and the cells
 
     /// The index that names no cell: a leaf's first_child, the root's parent, a failed search.
     static constexpr std::uint32_t no_cell = 0xffffffffu;

@@ -36,18 +36,18 @@ private:
 template <int dim>
 class BasicTranslation final : public BasicFlowFieldLaw<dim> {
 public:
-    using Point = typename Space<dim>::Point;  ///< Vec2 or Vec3
     /// u: the velocity of every point, length per unit time.
-    explicit BasicTranslation(Point u) : u_(u) {}
+    explicit BasicTranslation(PointOf<dim> u) : u_(u) {}
     std::string name() const override { return "translation"; }
     Invariants invariants() const override { return {.keeps_area = true, .rigid = true}; }
     /// The field at each point, as the base's sample().
-    void sample(double, std::span<const Point> points, std::span<Point> out) const override {
+    void sample(double, std::span<const PointOf<dim>> points,
+                std::span<PointOf<dim>> out) const override {
         std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(points.size()), u_);
     }
 
 private:
-    Point u_;
+    PointOf<dim> u_;
 };
 /// `translation` of curves: u = (ux, uy).
 using Translation = BasicTranslation<2>;
@@ -134,9 +134,6 @@ private:
 template <int dim>
 class BasicCurvatureLaw : public BasicVelocityLaw<dim> {
 public:
-    using typename BasicVelocityLaw<dim>::Point;
-    using typename BasicVelocityLaw<dim>::Shape;
-    using typename BasicVelocityLaw<dim>::Geometry;
     /// module: where N and C come from.
     explicit BasicCurvatureLaw(std::optional<GeometryModule> module = std::nullopt)
         : module_(module) {}
@@ -147,7 +144,7 @@ public:
 protected:
     /// Throws InvalidInput unless geometry holds the normals and the curvature at every vertex
     /// of interface.
-    void require_geometry(const Shape& interface, const Geometry& geometry) const;
+    void require_geometry(const ShapeOf<dim>& interface, const GeometryOf<dim>& geometry) const;
 
 private:
     std::optional<GeometryModule> module_;
@@ -159,9 +156,6 @@ private:
 template <int dim>
 class BasicCurvatureFlow final : public BasicCurvatureLaw<dim> {
 public:
-    using typename BasicCurvatureLaw<dim>::Point;
-    using typename BasicCurvatureLaw<dim>::Shape;
-    using typename BasicCurvatureLaw<dim>::Geometry;
     using BasicCurvatureLaw<dim>::BasicCurvatureLaw;
     std::string name() const override { return "curvature"; }
     /// Curves: dA/dt = −2π per counterclockwise curve, +2π per hole (the turning of each curve),
@@ -177,8 +171,8 @@ public:
         }
     }
     /// The vertex velocities, as the base's velocities().
-    std::vector<Point> velocities(double t, const Shape& interface,
-                                  const Geometry& geometry) const override;
+    std::vector<PointOf<dim>> velocities(double t, const ShapeOf<dim>& interface,
+                                         const GeometryOf<dim>& geometry) const override;
 };
 /// Motion of curves by curvature.
 using CurvatureFlow = BasicCurvatureFlow<2>;
@@ -190,17 +184,14 @@ using CurvatureFlow = BasicCurvatureFlow<2>;
 template <int dim>
 class BasicVolumePreservingFlow final : public BasicCurvatureLaw<dim> {
 public:
-    using typename BasicCurvatureLaw<dim>::Point;
-    using typename BasicCurvatureLaw<dim>::Shape;
-    using typename BasicCurvatureLaw<dim>::Geometry;
     using BasicCurvatureLaw<dim>::BasicCurvatureLaw;
     std::string name() const override { return "volume-preserving-curvature"; }
     bool preserves_area() const override { return true; }
     /// Keeps the area and shortens the curves: the gradient flow of length at fixed area.
     Invariants invariants() const override { return {.keeps_area = true, .shortens = true}; }
     /// The vertex velocities, as the base's velocities().
-    std::vector<Point> velocities(double t, const Shape& interface,
-                                  const Geometry& geometry) const override;
+    std::vector<PointOf<dim>> velocities(double t, const ShapeOf<dim>& interface,
+                                         const GeometryOf<dim>& geometry) const override;
 };
 /// The volume-preserving curvature flow of curves.
 using VolumePreservingCurvatureFlow = BasicVolumePreservingFlow<2>;

@@ -64,10 +64,10 @@ struct GeometryNeeds {
 template <int dim>
 class BasicVelocityLaw {
 public:
-    using Point = typename Space<dim>::Point;        ///< Vec2 or Vec3
-    using Shape = typename Space<dim>::Shape;        ///< Interface or Surface
-    using Region = typename Space<dim>::Region;      ///< Box or Box3
-    using Geometry = typename Space<dim>::Geometry;  ///< VertexGeometry or SurfaceGeometry
+    using Point = PointOf<dim>;        ///< Vec2 or Vec3
+    using Shape = ShapeOf<dim>;        ///< Interface or Surface
+    using Region = RegionOf<dim>;      ///< Box or Box3
+    using Geometry = GeometryOf<dim>;  ///< VertexGeometry or SurfaceGeometry
 
     virtual ~BasicVelocityLaw() = default;
 
@@ -78,15 +78,16 @@ public:
     /// u at every vertex of the interface at time t. geometry holds normals and curvature (one
     /// per vertex) from the module needs() names when needs().any(), and is empty otherwise.
     /// Must return one vector per vertex.
-    virtual std::vector<Point> velocities(double t, const Shape& interface,
-                                          const Geometry& geometry) const = 0;
+    virtual std::vector<PointOf<dim>> velocities(double t, const ShapeOf<dim>& interface,
+                                                 const GeometryOf<dim>& geometry) const = 0;
 
     /// True for a law defined everywhere (a flow field such as rotation), which can then be
     /// sampled at any points instead of extended from the vertices.
     virtual bool is_field() const { return false; }
     /// The flow field at time t at every point; out.size() == points.size(). Throws InvalidInput
     /// unless is_field(). field_velocities() calls it and checks the answer.
-    virtual void sample(double t, std::span<const Point> points, std::span<Point> out) const;
+    virtual void sample(double t, std::span<const PointOf<dim>> points,
+                        std::span<PointOf<dim>> out) const;
 
     /// True for a law whose exact flow keeps the enclosed area (volume, for surfaces): the step
     /// then restores what each contour loses (StepOptions::area_correction).
@@ -102,8 +103,8 @@ public:
     virtual bool is_normal_law() const { return false; }
     /// V(t, points[i], normals[i]) for every i; out.size() == points.size() == normals.size(),
     /// normals of unit length. Throws InvalidInput unless is_normal_law().
-    virtual void normal_speeds(double t, std::span<const Point> points,
-                               std::span<const Point> normals, std::span<double> out) const;
+    virtual void normal_speeds(double t, std::span<const PointOf<dim>> points,
+                               std::span<const PointOf<dim>> normals, std::span<double> out) const;
     /// A bound on |V| over every time, point and unit normal, for a normal law that knows one
     /// (a constant speed: |s|), or nothing. The step of surfaces then settles points far from
     /// the surface without evaluating V or the distance there (SurfaceContourOptions::
@@ -139,13 +140,11 @@ void require_inside_extent(const VelocityLaw& law, const Interface& curves);
 template <int dim>
 class BasicFlowFieldLaw : public BasicVelocityLaw<dim> {
 public:
-    using typename BasicVelocityLaw<dim>::Point;
-    using typename BasicVelocityLaw<dim>::Shape;
-    using typename BasicVelocityLaw<dim>::Geometry;
     /// The vertex velocities, as the base's velocities().
-    std::vector<Point> velocities(double t, const Shape& interface, const Geometry&) const final {
-        const std::span<const Point> x = vertex_points(interface);
-        std::vector<Point> u(x.size());
+    std::vector<PointOf<dim>> velocities(double t, const ShapeOf<dim>& interface,
+                                         const GeometryOf<dim>&) const final {
+        const std::span<const PointOf<dim>> x = vertex_points(interface);
+        std::vector<PointOf<dim>> u(x.size());
         this->sample(t, x, u);
         return u;
     }
@@ -163,9 +162,6 @@ using SurfaceFlowFieldLaw = BasicFlowFieldLaw<3>;
 template <int dim>
 class BasicNormalLaw : public BasicVelocityLaw<dim> {
 public:
-    using typename BasicVelocityLaw<dim>::Point;
-    using typename BasicVelocityLaw<dim>::Shape;
-    using typename BasicVelocityLaw<dim>::Geometry;
     /// module: where the vertex normals of curves come from; unset:
     /// GeometryNeeds::resolved_module(). Surfaces have one module: leave it unset.
     explicit BasicNormalLaw(std::optional<GeometryModule> module = std::nullopt)
@@ -173,8 +169,8 @@ public:
     /// The vertex normals.
     GeometryNeeds needs() const override { return {.normals = true, .module = module_}; }
     /// The vertex velocities, as the base's velocities().
-    std::vector<Point> velocities(double t, const Shape& interface,
-                                  const Geometry& geometry) const override;
+    std::vector<PointOf<dim>> velocities(double t, const ShapeOf<dim>& interface,
+                                         const GeometryOf<dim>& geometry) const override;
     /// True: a normal law.
     bool is_normal_law() const override { return true; }
 
@@ -242,10 +238,9 @@ void field_velocities(const SurfaceVelocityLaw& law, double t, std::span<const V
 /// What a local law sees at one vertex. normal and curvature are set when the law asked for them.
 template <int dim>
 struct BasicVertexState {
-    using Point = typename Space<dim>::Point;  ///< Vec2 or Vec3
-    std::size_t index = 0;                     ///< vertex number
-    Point point;                               ///< its position
-    Point normal;                              ///< outward unit normal N, or 0 when not asked for
+    std::size_t index = 0;  ///< vertex number
+    PointOf<dim> point;     ///< its position
+    PointOf<dim> normal;    ///< outward unit normal N, or 0 when not asked for
     /// C = −∇·N (−1/R on a circle, −2/R on a sphere), or 0 when not asked for
     double curvature = 0.0;
 };
@@ -273,16 +268,16 @@ inline constexpr int curve_dimension =
 
 /// A law u = f(t, x) defined everywhere: f(double t, Point x) -> Point, called concurrently.
 template <class F, int dim = field_dimension<F>>
-requires std::regular_invocable<const F&, double, typename Space<dim>::Point> &&
-    std::convertible_to < std::invoke_result_t<const F&, double, typename Space<dim>::Point>,
-typename Space<dim>::Point > class FieldLaw final : public BasicFlowFieldLaw<dim> {
+requires std::regular_invocable<const F&, double, PointOf<dim>> &&
+    std::convertible_to<std::invoke_result_t<const F&, double, PointOf<dim>>, PointOf<dim>>
+class FieldLaw final : public BasicFlowFieldLaw<dim> {
 public:
-    using Point = typename Space<dim>::Point;  ///< Vec2 or Vec3
     /// name: the law's name in messages; f: the velocity field.
     FieldLaw(std::string name, F f) : name_(std::move(name)), f_(std::move(f)) {}
     std::string name() const override { return name_; }
     /// The field at each point, as the base's sample().
-    void sample(double t, std::span<const Point> points, std::span<Point> out) const override {
+    void sample(double t, std::span<const PointOf<dim>> points,
+                std::span<PointOf<dim>> out) const override {
         parallel_for(points.size(), [&](std::size_t i) { out[i] = f_(t, points[i]); });
     }
 
@@ -294,20 +289,18 @@ private:
 /// A normal law u = V(t, x, N)·N from a callable f(double t, Point x, Point N) -> double, called
 /// concurrently.
 template <class F, int dim = normal_speed_dimension<F>>
-requires std::regular_invocable < const F&, double, typename Space<dim>::Point,
-typename Space<dim>::Point >
-    &&std::convertible_to<std::invoke_result_t<const F&, double, typename Space<dim>::Point,
-                                               typename Space<dim>::Point>,
-                          double> class NormalSpeedLaw final : public BasicNormalLaw<dim> {
+requires std::regular_invocable<const F&, double, PointOf<dim>, PointOf<dim>> &&
+    std::convertible_to < std::invoke_result_t<const F&, double, PointOf<dim>, PointOf<dim>>,
+double > class NormalSpeedLaw final : public BasicNormalLaw<dim> {
 public:
-    using Point = typename Space<dim>::Point;  ///< Vec2 or Vec3
     /// name: the law's name in messages; f: the normal speed; module: where vertex normals of
     /// curves come from.
     NormalSpeedLaw(std::string name, F f, std::optional<GeometryModule> module = std::nullopt)
         : BasicNormalLaw<dim>(module), name_(std::move(name)), f_(std::move(f)) {}
     std::string name() const override { return name_; }
     /// The normal speed at each point with its normal, as the base's normal_speeds().
-    void normal_speeds(double t, std::span<const Point> points, std::span<const Point> normals,
+    void normal_speeds(double t, std::span<const PointOf<dim>> points,
+                       std::span<const PointOf<dim>> normals,
                        std::span<double> out) const override {
         parallel_for(points.size(), [&](std::size_t i) { out[i] = f_(t, points[i], normals[i]); });
     }
@@ -337,17 +330,14 @@ template <class F, int dim = local_dimension<F>>
 requires std::regular_invocable < const F&, double, const BasicVertexState<dim>
 & > class LocalLaw final : public BasicNamedLaw<dim> {
 public:
-    using Point = typename Space<dim>::Point;        ///< Vec2 or Vec3
-    using Shape = typename Space<dim>::Shape;        ///< Interface or Surface
-    using Geometry = typename Space<dim>::Geometry;  ///< VertexGeometry or SurfaceGeometry
     /// name: the law's name in messages; needs: the vertex geometry f reads; f: the law.
     LocalLaw(std::string name, GeometryNeeds needs, F f)
         : BasicNamedLaw<dim>(std::move(name), needs), f_(std::move(f)) {}
     /// The vertex velocities, as the base's velocities().
-    std::vector<Point> velocities(double t, const Shape& interface,
-                                  const Geometry& geometry) const override {
-        const std::span<const Point> x = vertex_points(interface);
-        std::vector<Point> u(x.size());
+    std::vector<PointOf<dim>> velocities(double t, const ShapeOf<dim>& interface,
+                                         const GeometryOf<dim>& geometry) const override {
+        const std::span<const PointOf<dim>> x = vertex_points(interface);
+        std::vector<PointOf<dim>> u(x.size());
         parallel_for(u.size(), [&](std::size_t i) {
             BasicVertexState<dim> s{i, x[i], {}, 0.0};
             if (!geometry.normals.empty()) s.normal = geometry.normals[i];
@@ -364,20 +354,16 @@ private:
 /// A law that sees the whole interface (nonlocal): f(double t, const Shape&, const Geometry&) ->
 /// std::vector<Point>.
 template <class F, int dim = curve_dimension<F>>
-requires std::regular_invocable<const F&, double, const typename Space<dim>::Shape&,
-                                const typename Space<dim>::Geometry&> class CurveLaw final
-    : public BasicNamedLaw<dim> {
+requires std::regular_invocable < const F&, double, const ShapeOf<dim>
+&, const GeometryOf<dim>& > class CurveLaw final : public BasicNamedLaw<dim> {
 public:
-    using Point = typename Space<dim>::Point;        ///< Vec2 or Vec3
-    using Shape = typename Space<dim>::Shape;        ///< Interface or Surface
-    using Geometry = typename Space<dim>::Geometry;  ///< VertexGeometry or SurfaceGeometry
     /// name: the law's name in messages; needs: the vertex geometry f reads; f: the law, which
     /// must return one velocity per vertex.
     CurveLaw(std::string name, GeometryNeeds needs, F f)
         : BasicNamedLaw<dim>(std::move(name), needs), f_(std::move(f)) {}
     /// The vertex velocities, as the base's velocities().
-    std::vector<Point> velocities(double t, const Shape& interface,
-                                  const Geometry& geometry) const override {
+    std::vector<PointOf<dim>> velocities(double t, const ShapeOf<dim>& interface,
+                                         const GeometryOf<dim>& geometry) const override {
         return f_(t, interface, geometry);
     }
 
