@@ -347,4 +347,42 @@ bool segments_intersect(Segment s, Segment t) {
            (o3 == 0 && in_box(t, s.a)) || (o4 == 0 && in_box(t, s.b));
 }
 
+int exact_volume_sign(std::span<const Vec3> vertices,
+                      std::span<const std::array<std::uint32_t, 3>> triangles) {
+    int hi = std::numeric_limits<int>::min();
+    for (const auto& t : triangles) {
+        for (std::uint32_t v : t) {
+            for (int k = 0; k < 3; ++k)
+                if (vertices[v][k] != 0.0) hi = std::max(hi, std::ilogb(vertices[v][k]));
+        }
+    }
+    if (hi == std::numeric_limits<int>::min()) return 0;  // every corner at the origin
+    // Scaled by 2^k, every triple product is below 2^903, and its parts are exact unless they
+    // fall below 2^-1074.
+    const int k = 300 - hi;
+    WideInteger sum;
+    // x·y·z = p·z + pe·z, x·y = p + pe exactly; each of p·z and pe·z split again by fma.
+    auto add_triple = [&sum](double x, double y, double z) {
+        const double p = x * y, pe = std::fma(x, y, -p);
+        const double p1 = p * z, e1 = pe * z;
+        for (double part : {std::fma(p, z, -p1), std::fma(pe, z, -e1), e1, p1})
+            sum.add_product(part, 1.0);
+    };
+    for (const auto& t : triangles) {
+        Vec3 q[3];
+        for (int i = 0; i < 3; ++i) {
+            const Vec3 v = vertices[t[static_cast<std::size_t>(i)]];
+            q[i] = {std::ldexp(v.x, k), std::ldexp(v.y, k), std::ldexp(v.z, k)};
+        }
+        const Vec3 a = q[0], b = q[1], c = q[2];
+        add_triple(a.x, b.y, c.z);
+        add_triple(-a.x, b.z, c.y);
+        add_triple(a.y, b.z, c.x);
+        add_triple(-a.y, b.x, c.z);
+        add_triple(a.z, b.x, c.y);
+        add_triple(-a.z, b.y, c.x);
+    }
+    return sum.sign();
+}
+
 }  // namespace slc

@@ -8,6 +8,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/geometry/predicates.hpp"
 
 namespace slc {
 
@@ -27,6 +28,29 @@ double volume(const Surface& s) {
         sum += dot(tri.a - o, cross(tri.b - o, tri.c - o));
     }
     return sum / 6.0;
+}
+
+int volume_sign(const Surface& s) {
+    // Σ (a − o) · ((b − o) × (c − o)) is the exact sum for any o on a closed surface. Each term's
+    // error (the differences' roundings, then the determinant's) is within 10 ε times its
+    // permanent, and the sum's within (N − 1) ε times the sum of the permanents.
+    const Vec3 o = bounding_box(s).center();
+    double sum = 0.0, permanents = 0.0;
+    for (std::size_t t = 0; t < s.size(); ++t) {
+        const Triangle3 tri = s.triangle(t);
+        const Vec3 u = tri.a - o, v = tri.b - o, w = tri.c - o;
+        sum += dot(u, cross(v, w));
+        permanents += std::abs(u.x) * (std::abs(v.y * w.z) + std::abs(v.z * w.y)) +
+                      std::abs(u.y) * (std::abs(v.z * w.x) + std::abs(v.x * w.z)) +
+                      std::abs(u.z) * (std::abs(v.x * w.y) + std::abs(v.y * w.x));
+    }
+    constexpr double epsilon = 0x1p-53;
+    // Below 2^-800 the products may have lost bits to underflow; beyond the largest double, the
+    // sum is meaningless.
+    const bool in_range = permanents >= 0x1p-800 && permanents <= 0x1p1000;
+    const double bound = (16.0 + static_cast<double>(s.size())) * epsilon * permanents;
+    if (in_range && std::abs(sum) > bound) return sum > 0.0 ? 1 : -1;
+    return exact_volume_sign(s.vertices, s.triangles);
 }
 
 Box3 bounding_box(const Surface& s) {

@@ -51,12 +51,20 @@ bool enters_at_corner(const Triangle3& t, Vec3 w) {
     return orientation(v, p, ww) * pr.sign >= 0 && orientation(v, ww, q) * pr.sign >= 0;
 }
 
-}  // namespace
+/// The largest |coordinate| of v.
+double largest_component(Vec3 v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
-FacetPoint closest_point(const Triangle3& t, Vec3 x) {
-    // Ericson §5.1.5: the Voronoi regions of the corners, then of the edges, then the face,
-    // decided by the signs of the scalar products d1..d6 and of the barycentric numerators.
-    const Vec3 ab = t.b - t.a, ac = t.c - t.a, ap = x - t.a;
+/// The range of the largest component m of ab, ac and ap in which closest_point's arithmetic
+/// neither overflows nor underflows: each scalar product d1..d6 is within 6 m² and the
+/// barycentric numerators and their sum within 216 m⁴, below the largest double for m ≤ 2^253,
+/// and m⁴ keeps 2^200 above the least normal double for m ≥ 2^−200.
+constexpr double largest_unscaled = 0x1p250;
+constexpr double smallest_unscaled = 0x1p-200;  ///< (see largest_unscaled)
+
+/// Ericson §5.1.5: the Voronoi regions of the corners, then of the edges, then the face,
+/// decided by the signs of the scalar products d1..d6 and of the barycentric numerators.
+/// ab = b − a, ac = c − a, ap = x − a.
+FacetPoint ericson_closest_point(const Triangle3& t, Vec3 x, Vec3 ab, Vec3 ac, Vec3 ap) {
     const double d1 = dot(ab, ap), d2 = dot(ac, ap);
     if (d1 <= 0.0 && d2 <= 0.0) return {t.a, {1.0, 0.0, 0.0}, norm2(ap), Feature::vertex, 0};
     const Vec3 bp = x - t.b;
@@ -87,6 +95,28 @@ FacetPoint closest_point(const Triangle3& t, Vec3 x) {
     const double v = vb * denom, w = vc * denom;
     const Vec3 p = t.a + v * ab + w * ac;
     return {p, {1.0 - v - w, v, w}, norm2(x - p), Feature::face, 0};
+}
+
+}  // namespace
+
+FacetPoint closest_point(const Triangle3& t, Vec3 x) {
+    const Vec3 ab = t.b - t.a, ac = t.c - t.a, ap = x - t.a;
+    const double m =
+        std::max({largest_component(ab), largest_component(ac), largest_component(ap)});
+    if (!(m > largest_unscaled || (m < smallest_unscaled && m > 0.0)))
+        return ericson_closest_point(t, x, ab, ac, ap);
+    // Farther apart (coordinates beyond about 1e75), the products of the scalar products would
+    // overflow, and closer (below about 1e−60) underflow: the same arithmetic on everything
+    // scaled by a power of two, which is exact and keeps every rounding, and the answer scaled
+    // back.
+    const int e = std::ilogb(m);
+    const double s = std::ldexp(1.0, -e), back = std::ldexp(1.0, e);
+    const Triangle3 ts{s * t.a, s * t.b, s * t.c};
+    const Vec3 xs = s * x;
+    FacetPoint f = ericson_closest_point(ts, xs, ts.b - ts.a, ts.c - ts.a, xs - ts.a);
+    f.point = back * f.point;
+    f.distance2 *= back * back;
+    return f;
 }
 
 Vec3 unit_normal(const Triangle3& t) {

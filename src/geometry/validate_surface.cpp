@@ -155,11 +155,11 @@ std::vector<std::string> orient_components(Surface& s) {
     for (std::uint32_t t = 0; t < s.size(); ++t) parts[label[t]].push_back(s.triangles[t]);
     std::vector<TriangleIndices> all = std::move(s.triangles);
     std::vector<Box3> boxes(count);
-    std::vector<double> volumes(count);
+    std::vector<int> volume_signs(count);
     for (std::size_t c = 0; c < count; ++c) {
         s.triangles = std::move(parts[c]);
         boxes[c] = bounding_box(s);
-        volumes[c] = volume(s);
+        volume_signs[c] = volume_sign(s);
         parts[c] = std::move(s.triangles);
     }
     std::vector<int> depth(count, 0);
@@ -178,7 +178,7 @@ std::vector<std::string> orient_components(Surface& s) {
     std::vector<std::string> notes;
     std::vector<std::uint8_t> reverse(count, 0);
     for (std::size_t c = 0; c < count; ++c) {
-        const bool outward = volumes[c] > 0.0;
+        const bool outward = volume_signs[c] > 0;
         if (outward == (depth[c] % 2 == 0)) continue;
         reverse[c] = 1;
         const auto first = static_cast<std::size_t>(

@@ -69,6 +69,32 @@ check "binary STL gives the same answers" diff -u want.csv out.txt
 expect_ok "PLY" -- distance --initial cube.ply --points points.csv --domain 4
 check "PLY gives the same answers" diff -u want.csv out.txt
 
+# The cube scaled by 2^-250 (6e-76), 2^250 and 2^330 (2e99, near the coordinate limit): the
+# answers of the unit cube scaled, exactly (a power of two scales every rounding with them).
+for e in -250 250 330; do
+    python3 - "$e" <<'PY'
+import sys
+s = 2.0 ** int(sys.argv[1])
+with open("cube.obj") as src, open("scaled.obj", "w") as out:
+    for line in src:
+        w = line.split()
+        out.write("v %r %r %r\n" % tuple(s * float(c) for c in w[1:]) if w and w[0] == "v" else line)
+with open("points.csv") as src, open("scaled.csv", "w") as out:
+    out.write(next(src))
+    for line in src: out.write(",".join(repr(s * float(c)) for c in line.split(",")) + "\n")
+PY
+    expect_ok "a cube scaled by 2^$e" -- distance --initial scaled.obj --points scaled.csv
+    check "a cube scaled by 2^$e gives the unit cube's answers scaled" python3 - "$e" <<'PY'
+import csv, sys
+s = 2.0 ** int(sys.argv[1])
+want = list(csv.reader(open("want.csv")))[1:]
+got = list(csv.reader(open("out.txt")))[1:]
+assert len(got) == len(want), got
+for w, g in zip(want, got):
+    assert [s * float(c) for c in w] == [float(c) for c in g], (w, g)
+PY
+done
+
 # Inward orientation is reversed with a note on stderr, and gives the same distances.
 sed 's/^f \([^ ]*\) \([^ ]*\) \([^ ]*\) \([^ ]*\)$/f \4 \3 \2 \1/' cube.obj >inward.obj
 expect_ok "inward surface accepted" -- distance --initial inward.obj --points points.csv --domain 4

@@ -4,6 +4,10 @@
 /// topology decisions (crossings, orientation) never depend on rounding.
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <span>
+
 #include "slc/core/vec2.hpp"
 #include "slc/core/vec3.hpp"
 #include "slc/geometry/interface.hpp"
@@ -25,5 +29,15 @@ bool segments_intersect(Segment s, Segment t);
 /// 1e100). NOTE: beyond that span, which no mesh has in practice, the lowest bits of the exact
 /// tier may underflow.
 int orientation(Vec3 a, Vec3 b, Vec3 c, Vec3 d);
+
+/// Sign of Σ_t a_t · (b_t × c_t) over the triangles (a_t, b_t, c_t) of vertices indexed by
+/// `triangles`: six times the volume a closed surface encloses, positive when it faces outward.
+/// Computed exactly: every triple product split without error into four doubles, summed in a
+/// fixed-point integer, after scaling by a power of two that puts the largest coordinate near
+/// 2^300. O(N), about 100 times the cost of a floating-point sum: volume_sign() calls it only
+/// when rounding could have decided the sign. NOTE: coordinates more than 2^600 below the
+/// largest may lose low bits to underflow, as in orientation().
+int exact_volume_sign(std::span<const Vec3> vertices,
+                      std::span<const std::array<std::uint32_t, 3>> triangles);
 
 }  // namespace slc

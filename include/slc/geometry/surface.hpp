@@ -44,6 +44,11 @@ struct Surface {
 double area(const Surface& s);
 /// Enclosed volume by the divergence theorem: positive for outward orientation. O(N).
 double volume(const Surface& s);
+/// The sign of the volume a closed surface encloses, decided exactly: +1 facing outward, −1
+/// inward, 0 only when the exact sum is zero (no valid surface). A floating-point sum with an
+/// error bound decides almost always; a shell thinner than rounding (1e−17 of its size), or
+/// coordinates small enough for the products to underflow, take exact_volume_sign. O(N).
+int volume_sign(const Surface& s);
 /// The smallest box holding every vertex used by a triangle.
 Box3 bounding_box(const Surface& s);
 

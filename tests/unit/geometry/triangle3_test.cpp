@@ -123,6 +123,30 @@ TEST(Triangle3, ClosestPointAgreesWithProjectionAndNamesItsFeature) {
     }
 }
 
+// Scaling by a power of two is exact, so the nearest point of a triangle scaled up to the
+// coordinate limit, or down to 1e-90, is the unit one's scaled, bit for bit, where the products
+// of the scalar products (the fourth power of the coordinates) would overflow or underflow
+// without care.
+TEST(Triangle3, ClosestPointIsExactlyScaleInvariantUpToTheCoordinateLimit) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-2.0, 2.0);
+    for (const int e : {-300, -250, -100, 0, 100, 250, 260, 300, 330}) {
+        const double s = std::ldexp(1.0, e);
+        for (int trial = 0; trial < 2000; ++trial) {
+            const Triangle3 t{
+                {u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
+            const Vec3 x{u(rng), u(rng), u(rng)};
+            const FacetPoint p = closest_point(t, x);
+            const FacetPoint q = closest_point({s * t.a, s * t.b, s * t.c}, s * x);
+            ASSERT_EQ(q.point, s * p.point) << "2^" << e << ", trial " << trial;
+            ASSERT_EQ(q.distance2, s * s * p.distance2) << "2^" << e;
+            ASSERT_EQ(q.weights, p.weights);
+            ASSERT_EQ(q.feature, p.feature);
+            ASSERT_EQ(q.index, p.index);
+        }
+    }
+}
+
 TEST(Triangle3, DegeneracyIsDecidedExactly) {
     EXPECT_TRUE(is_degenerate({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}));
     EXPECT_TRUE(is_degenerate({{0.1, 0.2, 0.3}, {0.1, 0.2, 0.3}, {1, 0, 0}}));

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "slc/core/error.hpp"
+#include "slc/geometry/predicates.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 
 namespace slc {
@@ -170,6 +171,27 @@ TEST(PrepareSurface, OrientsNestedComponentsOutwardAndCavitiesInward) {
     const double shell = 4.0 / 3.0 * 3.141592653589793 * (8 - 1);
     EXPECT_NEAR(volume(p.surface), shell, 0.1 * shell);
     EXPECT_TRUE(prepare_surface(p.surface).notes.empty());
+}
+
+// Slabs 1e-17 and 1e-30 thick, and a tetrahedron 1e-120 wide whose triple products underflow
+// (its floating-point volume is 0): the orientation is decided exactly, the same by the filter
+// and by the exact sum, and an inward copy is reversed back.
+TEST(PrepareSurface, DecidesTheOrientationOfThinAndTinySurfacesExactly) {
+    Surface tiny = tetrahedron({0, 0, 0});
+    for (Vec3& p : tiny.vertices) p = 1e-120 * p;
+    EXPECT_EQ(volume(tiny), 0.0);  // underflowed
+    for (Surface s : {box_surface({-0.3, -0.7, 0.0}, {0.9, 0.4, 1e-17}, 2),
+                      box_surface({0.1, 0.2, 0.0}, {1.3, 1.1, 1e-30}, 3), tiny}) {
+        EXPECT_EQ(volume_sign(s), 1);
+        EXPECT_EQ(exact_volume_sign(s.vertices, s.triangles), 1);
+        EXPECT_TRUE(prepare_surface(s).notes.empty());
+        for (TriangleIndices& t : s.triangles) std::swap(t[1], t[2]);
+        EXPECT_EQ(volume_sign(s), -1);
+        EXPECT_EQ(exact_volume_sign(s.vertices, s.triangles), -1);
+        const PreparedSurface p = prepare_surface(s);
+        ASSERT_EQ(p.notes.size(), 1u);
+        EXPECT_EQ(volume_sign(p.surface), 1);
+    }
 }
 
 }  // namespace
