@@ -59,7 +59,7 @@ class _Expression:
 class SpeedExpression(_Expression):
     """A normal speed typed as text, as ``slc run --speed``: v(x, y, t, C, nx, ny) with
     muparser's operators and functions and the named constants given
-    (``SpeedExpression("a - C", a=0.5)``); v > 0 moves outward, C = -1/R on a circle. Without C
+    (``SpeedExpression("a + C", a=0.5)``); v > 0 moves outward, C = -1/R on a circle. Without C
     it is evaluated off the curve as a NormalSpeed is; with C it takes curvature defaults.
     Moving a surface it reads z and nz too, and C is the mean curvature (-2/R on a sphere)."""
 

@@ -44,9 +44,9 @@ check "speed C: the curvature defaults (P = 2, arcs)" grep -qE '"P": 2,' speedC/
 check "speed C: arcs" grep -q '"arcs": true' speedC/summary.json
 
 # A constant from --param, and the same run on 1 and 2 threads: identical.
-expect_ok "speed with a constant" -- run --initial circle.json --speed "a - C + 0.1*x*ny" --param a=0.5 \
+expect_ok "speed with a constant" -- run --initial circle.json --speed "a + C + 0.1*x*ny" --param a=0.5 \
     --t-end 0.1 -N 10 --threads 1 --out const1 --quiet
-expect_ok "speed on two threads" -- run --initial circle.json --speed "a - C + 0.1*x*ny" --param a=0.5 \
+expect_ok "speed on two threads" -- run --initial circle.json --speed "a + C + 0.1*x*ny" --param a=0.5 \
     --t-end 0.1 -N 10 --threads 2 --out const2 --quiet
 check "thread count changes nothing" cmp -s const1/final.json const2/final.json
 check "summary: the constants" grep -qE '"a": 0.5' const1/summary.json
@@ -125,7 +125,10 @@ expect_ok "lattice run checkpointed" -- "${ck_args[@]}" --checkpoint-every 4 --o
 rm moved.csv ck_part/final.json ck_part/summary.json  # results newer than the checkpoint are not resumed
 expect_ok "lattice run resumed without its file" -- run --resume ck_part --quiet
 check "lattice run resumed: the same final curves" cmp -s ck_full/final.json ck_part/final.json
-sp_args=(run --initial circle.json --speed "a - C" --param a=0.25 --t-end 0.1 -N 10 --quiet)
+# Backward in curvature (the sign of C the wrong way round) is ill-posed: refused, not run.
+expect_error "speed falling as C grows" "speed 'a - C' falls as the curvature C grows" -- \
+    run --initial circle.json --speed "a - C" --param a=0.25 --t-end 0.1 -N 10 --out backward
+sp_args=(run --initial circle.json --speed "a + C" --param a=0.25 --t-end 0.1 -N 10 --quiet)
 expect_ok "speed run" -- "${sp_args[@]}" --out sp_full
 expect_ok "speed run checkpointed" -- "${sp_args[@]}" --checkpoint-every 4 --out sp_part
 rm sp_part/final.json sp_part/summary.json

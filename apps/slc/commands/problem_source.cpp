@@ -18,7 +18,7 @@ void add_problem_source_options(CLI::App& cmd, ProblemSource& o) {
     cmd.add_option("--speed", o.speed,
                    "Normal speed v as an expression of x, y, t, C (curvature, -1/R on a circle), "
                    "nx, ny (outward unit normal) and --param constants: u = v N, v > 0 moves "
-                   "outward (\"1\" grows circles, \"C\" is curvature flow, \"a - C\" with "
+                   "outward (\"1\" grows circles, \"C\" is curvature flow, \"a + C\" with "
                    "--param a=0.5). For surfaces also z and nz, C the mean curvature (-2/R on a "
                    "sphere). Instead of --velocity")
         ->excludes(problem);

@@ -85,13 +85,43 @@ TEST(SpeedExpression, WithCurvatureAsksForItAndIsCurvatureFlow) {
     const CurvatureFlow builtin;
     const Interface curves({shapes::circle({}, 0.5, 200)});
     EXPECT_EQ(vertex_velocities(*law, 0.0, curves), vertex_velocities(builtin, 0.0, curves));
-    // With a constant: a − C, the geometry module passed on.
-    const auto shifted = speed_expression_law("a - C", {{"a", 0.5}}, GeometryModule::intrinsic);
+    // With a constant: a + C, the geometry module passed on.
+    const auto shifted = speed_expression_law("a + C", {{"a", 0.5}}, GeometryModule::intrinsic);
     EXPECT_EQ(shifted->needs().module, GeometryModule::intrinsic);
     const auto u = vertex_velocities(*shifted, 0.0, curves);
     const VertexGeometry g = intrinsic_geometry(curves);
     for (std::size_t i = 0; i < u.size(); ++i)
-        EXPECT_NEAR(norm(u[i] - (0.5 - g.curvature[i]) * g.normals[i]), 0.0, rounding_tolerance);
+        EXPECT_NEAR(norm(u[i] - (0.5 + g.curvature[i]) * g.normals[i]), 0.0, rounding_tolerance);
+}
+
+// A speed that falls as C grows moves backward in curvature, which is ill-posed: refused where
+// it is evaluated, naming the slope and the place, for curves and surfaces alike. C^2 falls as
+// C grows wherever C < 0, on every convex part.
+TEST(SpeedExpression, BackwardInCurvatureIsRefused) {
+    const Interface circle({shapes::circle({}, 0.5, 200)});
+    const Surface ball = sphere({}, 0.5, 3);
+    for (const char* text : {"a - C", "-C", "C^2", "a - 0.5 * C"}) {
+        try {
+            vertex_velocities(*speed_expression_law(text, {{"a", 0.5}}), 0.0, circle);
+            ADD_FAILURE() << text << " was not refused";
+        } catch (const InvalidInput& e) {
+            EXPECT_NE(std::string(e.what()).find("falls as the curvature C grows"),
+                      std::string::npos)
+                << e.what();
+        }
+        EXPECT_THROW(
+            vertex_velocities(*surface_speed_expression_law(text, {{"a", 0.5}}), 0.0, ball),
+            InvalidInput)
+            << text;
+    }
+    // Forward in C: accepted. C^3 has dv/dC = 3C^2 >= 0 everywhere.
+    for (const char* text : {"a + C", "C", "C^3", "2 * C + x"}) {
+        EXPECT_NO_THROW(vertex_velocities(*speed_expression_law(text, {{"a", 0.5}}), 0.0, circle))
+            << text;
+        EXPECT_NO_THROW(
+            vertex_velocities(*surface_speed_expression_law(text, {{"a", 0.5}}), 0.0, ball))
+            << text;
+    }
 }
 
 TEST(FieldExpression, MinusYXIsTheRotation) {
@@ -231,13 +261,13 @@ TEST(SurfaceExpression, WithCurvatureIsMeanCurvatureFlow) {
     const SurfaceMeanCurvatureFlow builtin;
     const Surface ball = sphere({}, 0.5, 3);
     EXPECT_EQ(vertex_velocities(*law, 0.0, ball), vertex_velocities(builtin, 0.0, ball));
-    // A constant with the curvature: a − C.
-    const auto shifted = surface_speed_expression_law("a - C", {{"a", 0.5}});
+    // A constant with the curvature: a + C.
+    const auto shifted = surface_speed_expression_law("a + C", {{"a", 0.5}});
     const auto u = vertex_velocities(*shifted, 0.0, ball);
     const auto c = vertex_velocities(builtin, 0.0, ball);
     const SurfaceGeometry g = surface_geometry(ball, {});
     for (std::size_t i = 0; i < u.size(); ++i)
-        EXPECT_NEAR(norm(u[i] - (0.5 * g.normals[i] - c[i])), 0.0, rounding_tolerance);
+        EXPECT_NEAR(norm(u[i] - (0.5 * g.normals[i] + c[i])), 0.0, rounding_tolerance);
 }
 
 TEST(SurfaceExpression, FieldMinusYXZeroIsTheRotation) {
