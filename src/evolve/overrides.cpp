@@ -95,6 +95,20 @@ double eps_for_depth(int dim, int depth, double length_scale) {
     return 1e-3 * std::pow(4.0, 5 - depth) * length_scale;
 }
 
+ContourTolerances contour_tolerances(int dim, int depth, int refine_passes, double length_scale,
+                                     std::optional<double> eps, std::optional<double> eta) {
+    ContourTolerances t;
+    t.eps = eps.value_or(eps_for_depth(dim, depth, length_scale));
+    const double linear = SurfaceContourOptions::default_eta * length_scale;
+    if (eta)
+        t.eta = *eta;
+    else if (dim == 2)
+        t.eta = std::min(linear, 0.1 * t.eps);
+    else
+        t.eta = refine_passes == 0 ? linear : std::max(linear, 0.01 * t.eps);
+    return t;
+}
+
 RunOptions apply_overrides(const RunOverrides& q, RunOptions r, double length_scale,
                            SettingNames names) {
     const Checker check(names);

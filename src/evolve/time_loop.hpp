@@ -22,6 +22,7 @@
 #include "slc/core/box.hpp"
 #include "slc/core/box3.hpp"
 #include "slc/core/error.hpp"
+#include "slc/core/tolerances.hpp"
 #include "slc/evolve/run.hpp"
 #include "step_common.hpp"
 
@@ -248,6 +249,19 @@ void check_resume(const typename LoopHooks<dim>::Result& from, const BasicVeloci
                 "the initial {} {} the region where velocity '{}' is known, {}: vertex {} at {}",
                 H::shape_name, H::leave, law.name(), region, i, point_text(p));
         });
+    // A bounded speed over the run's time gives how far the interface may move: beyond the
+    // coordinate limit, its arithmetic would overflow (and the interface vanish from sight).
+    if (const std::optional<double> s = law.speed_bound()) {
+        const double reach = *s * (options.t_end - options.t_start);
+        if (!(reach <= tolerance::max_coordinate)) {
+            throw InvalidInput(fmt::format(
+                "velocity '{}' at speed up to {:g} moves the {} by up to {:g} from t = {} to {}, "
+                "beyond the coordinate limit ±{:g}, where the arithmetic overflows: lower the "
+                "speed or t-end",
+                law.name(), *s, H::shape_name, reach, options.t_start, options.t_end,
+                tolerance::max_coordinate));
+        }
+    }
     if (from.steps_done < 0 || from.steps_done >= options.steps) {
         throw InvalidInput(fmt::format("cannot resume after step {} of a run of {} steps",
                                        from.steps_done, options.steps));

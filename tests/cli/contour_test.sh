@@ -22,6 +22,24 @@ check "eps alone refines until converged" python3 -c "import json, sys; s = json
 expect_ok "refine 0 with eps" -- contour --initial circle.json -K 4 --eps 1e-4 --refine 0 --domain 2 --out eps_linear
 check "refine 0 is the linear contour" python3 -c "import json, sys; s = json.load(open('eps_linear/summary.json')); sys.exit(not (s['params']['P'] == 0 and s['passes'] == 0 and s['error'] > 1e-4))"
 expect_error "negative eps" "eps" -- contour --initial square.json -K 4 --eps -1 --domain 2 --out x
-expect_error "depth missing" "depth|-K" -- contour --initial square.json --domain 2 --out x
+expect_ok "depth by default" -- contour --initial square.json --domain 2 --out default_depth
+check "the default depth is a run's, K = 5" python3 -c "import json, sys; s = json.load(open('default_depth/summary.json')); sys.exit(s['params']['K'] != 5)"
+
+# A shape of any size contours alike: eps and eta scale with it (1e-10 absolute would exceed
+# every |G| of a circle of radius 5e-9). The same cells, segments and relative error at 5e-9 and
+# 1e-60 as at 1.
+for r in 1 5e-9 1e-60; do
+    python3 -c "import json, math; json.dump({'time': 0, 'curves': [{'points': [[$r * math.cos(2 * math.pi * i / 64), $r * math.sin(2 * math.pi * i / 64)] for i in range(64)]}]}, open('circle_$r.json', 'w'))"
+    expect_ok "a circle of radius $r" -- contour --initial "circle_$r.json" --refine 3 --out "scaled_$r"
+done
+check "circles of radius 5e-9 and 1e-60 contour as the unit one" python3 - <<'PY'
+import json
+s = {r: json.load(open(f"scaled_{r}/summary.json")) for r in ("1", "5e-9", "1e-60")}
+for r in ("5e-9", "1e-60"):
+    for key in ("cells", "segments", "passes"):
+        assert s[r][key] == s["1"][key], (r, key, s[r][key], s["1"][key])
+    assert abs(s[r]["error"] / float(r) - s["1"]["error"]) <= 1e-6 * s["1"]["error"], r
+    assert abs(s[r]["params"]["eta"] / float(r) - s["1"]["params"]["eta"]) <= 1e-12, r
+PY
 expect_error "missing file" "nope.json" -- contour --initial nope.json -K 4 --out x
 finish

@@ -64,4 +64,41 @@ expect_status "a domain too small" 3 -- contour --function torus -K 4 --domain 0
 check "enlarge the domain" grep -q "enlarge the domain" err.txt
 check "summary records the error" test "$(json small/summary.json 's["status"]')" = error
 expect_error "depth beyond memory" "would need about .* GiB .* depth [0-9]+ fits" -- contour --function sphere -K 20 --out x
+# A surface of any size contours alike: eps and eta scale with it. A sphere of radius 5e-9 and
+# one of 5e-91: the same cells and triangles, and the same error relative to the radius, as at
+# radius 0.5.
+for r in 0.5 5e-9 5e-91; do
+    python3 - "$r" <<'PY'
+import math, sys
+r = float(sys.argv[1])
+nu, nv = 24, 12
+v = [(0.0, 0.0, r)]
+for j in range(1, nv):
+    th = math.pi * j / nv
+    for i in range(nu):
+        ph = 2 * math.pi * i / nu
+        v.append((r * math.sin(th) * math.cos(ph), r * math.sin(th) * math.sin(ph), r * math.cos(th)))
+v.append((0.0, 0.0, -r))
+at = lambda j, i: 1 + (j - 1) * nu + i % nu
+f = [(0, at(1, i), at(1, i + 1)) for i in range(nu)]
+for j in range(1, nv - 1):
+    for i in range(nu):
+        f += [(at(j, i), at(j + 1, i), at(j + 1, i + 1)), (at(j, i), at(j + 1, i + 1), at(j, i + 1))]
+f += [(len(v) - 1, at(nv - 1, i + 1), at(nv - 1, i)) for i in range(nu)]
+with open(f"sphere_{sys.argv[1]}.obj", "w") as out:
+    out.writelines("v %r %r %r\n" % p for p in v)
+    out.writelines("f %d %d %d\n" % (a + 1, b + 1, c + 1) for a, b, c in f)
+PY
+    expect_ok "a sphere of radius $r" -- contour --initial "sphere_$r.obj" -K 4 --out "scaled_$r"
+done
+check "spheres of radius 5e-9 and 5e-91 contour as one of 0.5" python3 - <<'PY'
+import json
+s = {r: json.load(open(f"scaled_{r}/summary.json")) for r in ("0.5", "5e-9", "5e-91")}
+for r in ("5e-9", "5e-91"):
+    for key in ("cells", "triangles"):
+        assert s[r][key] == s["0.5"][key], (r, key, s[r][key], s["0.5"][key])
+    relative = s[r]["error"] / float(r)
+    assert abs(relative - s["0.5"]["error"] / 0.5) <= 1e-6 * relative, r
+PY
+
 finish

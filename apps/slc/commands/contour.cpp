@@ -16,6 +16,8 @@
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/distance_tree.hpp"
+#include "slc/evolve/defaults.hpp"
+#include "slc/evolve/overrides.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
 #include "slc/io/surface_files.hpp"
@@ -31,7 +33,7 @@ constexpr int converged_passes = 1000;
 struct ContourCommandOptions {
     std::string initial;
     std::string function;
-    int depth = 0;
+    int depth = 5;
     std::optional<double> eps;
     int refine = 0;
     std::optional<double> eta;
@@ -100,12 +102,16 @@ void draw(const ContourResult& r, const Interface& input, const Box& domain,
     figure.save(dir / "final.png");
 }
 
-ContourOptions library_options(const ContourCommandOptions& o) {
+/// The contour's options: ε and η as given, or by the rule of a run of the curves, ℓ their
+/// length scale.
+ContourOptions library_options(const ContourCommandOptions& o, double length_scale) {
+    const ContourTolerances tolerances =
+        contour_tolerances(2, o.depth, o.refine, length_scale, o.eps, o.eta);
     ContourOptions options;
     options.depth = o.depth;
     options.refine_passes = o.refine;
-    options.eps = o.eps;
-    if (o.eta) options.eta = *o.eta;
+    options.eps = tolerances.eps;
+    options.eta = tolerances.eta;
     options.rho = o.rho;
     options.distance_slack = 0.0;  // G is the exact signed distance, 1-Lipschitz
     return options;
@@ -129,20 +135,20 @@ nlohmann::json summary_head(const ContourCommandOptions& o, const LoadedInterfac
               {"threads", thread_count()}}}};
 }
 
-std::string picture_title(const ContourCommandOptions& o, const ContourResult& r, double error) {
+std::string picture_title(const ContourCommandOptions& o, const ContourOptions& options,
+                          const ContourResult& r, double error) {
     if (o.refine == 0) {
         return fmt::format("Linear contour, K = {}: {} segments, error {:.2e}", o.depth,
                            r.stats.segments, error);
     }
     return fmt::format("Contour K = {}, eps = {:.0e}, {} passes: {} segments, error {:.2e}",
-                       o.depth, library_options(o).resolved_eps(), r.stats.passes, r.stats.segments,
-                       error);
+                       o.depth, options.resolved_eps(), r.stats.passes, r.stats.segments, error);
 }
 
 /// final.json, the pictures, then summary.json (last, so that it marks a complete run).
-void write_results(const ContourCommandOptions& o, const LoadedInterface& in,
-                   const DistanceTree& tree, const ContourResult& r, nlohmann::json summary,
-                   OutputFolder& folder) {
+void write_results(const ContourCommandOptions& o, const ContourOptions& options,
+                   const LoadedInterface& in, const DistanceTree& tree, const ContourResult& r,
+                   nlohmann::json summary, OutputFolder& folder) {
     const std::filesystem::path dir = folder.path();
     const ContourError e = measure_error(tree, r.curves);
     const double error = std::max(e.vertices, e.midpoints);
@@ -154,7 +160,7 @@ void write_results(const ContourCommandOptions& o, const LoadedInterface& in,
     summary["area"] = area(r.curves);
     summary["length"] = length(r.curves);
     write_file_atomic(dir / "final.json", interface_json(r.curves, in.time));
-    draw(r, in.curves, in.domain, picture_title(o, r, error), dir);
+    draw(r, in.curves, in.domain, picture_title(o, options, r, error), dir);
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     folder.commit();
     fmt::print(
@@ -168,7 +174,7 @@ void run_contour(const ContourCommandOptions& o) {
     apply_threads(o.threads);
     const LoadedInterface in = load_interface(o.initial, o.domain);
     const int tree_depth = o.tree_depth.value_or(DistanceTree::default_depth(in.curves, in.domain));
-    const ContourOptions options = library_options(o);
+    const ContourOptions options = library_options(o, length_scale(in.curves));
     check_tree_memory(fmt::format("--tree-depth {}", tree_depth), tree_depth, length(in.curves),
                       in.domain.width(), distance_bytes_per_cell);
     check_tree_memory(fmt::format("--depth {}", o.depth), o.depth, length(in.curves),
@@ -184,7 +190,7 @@ void run_contour(const ContourCommandOptions& o) {
     // cpu_s and wall_s time the contour alone, evaluations of F included.
     const ContourResult result = timed_contour(summary, folder, fmt::format("at t = {}: ", in.time),
                                                [&] { return contour(exact, in.domain, options); });
-    write_results(o, in, tree, result, std::move(summary), folder);
+    write_results(o, options, in, tree, result, std::move(summary), folder);
 }
 
 }  // namespace
@@ -204,13 +210,15 @@ void add_contour_command(CLI::App& app) {
         "--function", o->function,
         "Instead of --initial, a built-in implicit surface in [-1, 1]^3: sphere, torus, cassini");
     initial->excludes(function);
-    cmd->add_option("-K,--depth", o->depth, "Depth K of the contouring tree")
-        ->required()
+    cmd->add_option("-K,--depth", o->depth,
+                    "Depth K of the contouring tree (default 5, as slc run takes for a shape of "
+                    "your own)")
         ->check(integer_in(0, 20));
     cmd->add_option("--eps", o->eps,
                     "Tolerance eps of refinement on |G| at segment midpoints (for a surface: "
-                    "edge midpoints and triangle centroids); default 10^-K, at least two ulps "
-                    "of the domain's largest coordinate")
+                    "edge midpoints and triangle centroids); default the rule of slc run: the "
+                    "shape's half-width (1 for --function) times 10^-K for curves, 1e-3 4^(5-K) "
+                    "for surfaces; at least two ulps of the domain's largest coordinate")
         ->check(positive_number());
     auto* refine =
         cmd->add_option("--refine", o->refine,
@@ -221,8 +229,9 @@ void add_contour_command(CLI::App& app) {
                         "exit status 3")
             ->check(integer_in(0, 1000000));
     cmd->add_option("--eta", o->eta,
-                    "Root-finding tolerance eta: |G| <= eta at every vertex (default 1e-10; for "
-                    "a surface refined to eps, the larger of 1e-10 and eps/100)")
+                    "Root-finding tolerance eta: |G| <= eta at every vertex (default 1e-10 times "
+                    "the shape's half-width; for curves at most eps/10, for a surface refined to "
+                    "eps at least eps/100)")
         ->check(positive_number());
     cmd->add_option("--thin-depth", o->thin_depth,
                     "For a surface: levels beyond K for cells where the zero set's two sides, or a "

@@ -16,6 +16,8 @@
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
+#include "slc/evolve/overrides.hpp"
+#include "slc/evolve/surface_problems.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/surface_files.hpp"
 #include "slc/io/surface_picture.hpp"
@@ -109,11 +111,14 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     }
     const auto g = pointwise<Vec3>([&](Vec3 x) { return source.g(x); }, expensive_grain);
     // A signed distance is 1-Lipschitz: points far from its surface need no value.
+    // ε and η as given, or by the rule of a run of the surface.
+    const ContourTolerances tolerances = contour_tolerances(
+        3, r.depth, r.refine, source.surface ? length_scale(*source.surface) : 1.0, r.eps, r.eta);
     const SurfaceContourOptions options{
         .depth = r.depth,
         .refine_passes = r.refine,
-        .eps = r.eps,
-        .eta = r.eta,
+        .eps = tolerances.eps,
+        .eta = tolerances.eta,
         .thin_depth = r.thin_depth,
         .distance_slack = source.lipschitz ? std::optional(0.0) : std::nullopt};
     summary["params"]["eps"] = options.resolved_eps();

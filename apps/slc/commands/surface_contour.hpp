@@ -16,7 +16,7 @@ struct SurfaceContourRequest {
     int depth = 0;
     int refine = 0;
     std::optional<double> eps;
-    std::optional<double> eta;  ///< unset: SurfaceContourOptions::resolved_eta
+    std::optional<double> eta;  ///< unset: contour_tolerances
     int thin_depth = 0;
     DomainOptions domain;
     std::optional<int> tree_depth;

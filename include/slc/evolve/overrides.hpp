@@ -46,6 +46,20 @@ constexpr IntRange depth(int dim) { return dim == 2 ? curve_depth : surface_dept
 /// about 1/ε triangles where a curve takes 1/√ε segments. dim is 2 or 3.
 double eps_for_depth(int dim, int depth, double length_scale);
 
+/// ε and η of one contour.
+struct ContourTolerances {
+    double eps = 0.0;  ///< ε
+    double eta = 0.0;  ///< η
+};
+
+/// ε and η for contouring a user's shape of length scale ℓ (1 for a built-in function) at depth
+/// K with P passes, each as given or, unset, by the rule its runs follow, so that a shape scaled
+/// by any factor contours alike: ε = eps_for_depth(dim, K, ℓ); η = 1e−10 ℓ, for curves lowered
+/// to ε/10 when ε is below it, for surfaces refined (P ≠ 0) raised to ε/100 (the rule of
+/// SurfaceContourOptions::resolved_eta, scaled).
+ContourTolerances contour_tolerances(int dim, int depth, int refine_passes, double length_scale,
+                                     std::optional<double> eps, std::optional<double> eta);
+
 /// The settings a user gave of a run; unset ones keep the problem's or the law's defaults. Names
 /// are those of the Python keywords; `name_of` below gives the tool's flags.
 struct RunOverrides {

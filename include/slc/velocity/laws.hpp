@@ -100,6 +100,7 @@ public:
     /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
                        std::span<double> out) const override;
+    std::optional<double> speed_bound() const override { return std::abs(speed_); }
 
 private:
     double speed_;
@@ -121,6 +122,8 @@ public:
     /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
                        std::span<double> out) const override;
+    /// |V| ≤ |R| + |ε|.
+    std::optional<double> speed_bound() const override { return std::abs(r_) + std::abs(eps_); }
 
 private:
     double r_, m_, eps_, tilt_;

@@ -108,7 +108,8 @@ public:
     /// A bound on |V| over every time, point and unit normal, for a normal law that knows one
     /// (a constant speed: |s|), or nothing. The step of surfaces then settles points far from
     /// the surface without evaluating V or the distance there (SurfaceContourOptions::
-    /// distance_slack); the surfaces are the same.
+    /// distance_slack); the surfaces are the same. A run refuses a bound times its time span
+    /// beyond the coordinate limit (the arithmetic would overflow).
     virtual std::optional<double> speed_bound() const { return std::nullopt; }
 
     /// The closed box outside which the law is not known (a velocity given on a grid), or
