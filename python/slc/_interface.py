@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import numbers
 import warnings
 from typing import Any, Callable
@@ -18,6 +19,15 @@ def _points(a, what: str, dim: int = 2) -> np.ndarray:
     if arr.ndim != 2 or arr.shape[1] != dim:
         raise ValueError(f"{what} must be an (n, {dim}) array, got shape {arr.shape}")
     return np.ascontiguousarray(arr, dtype=np.float64)
+
+
+def _time(value) -> float:
+    """value as the time of an Interface or a Surface: ValueError unless a finite number (the
+    tool's files refuse any other)."""
+    t = float(value)
+    if not math.isfinite(t):
+        raise ValueError(f"time must be finite, got {t}")
+    return t
 
 
 def _frozen(arrays) -> list[np.ndarray]:
@@ -39,23 +49,23 @@ class Interface:
     other way round is reversed, with a warning. A single (n, 2) array is one curve.
     """
 
-    __slots__ = ("_curves", "time")
+    __slots__ = ("_curves", "_time")
 
     def __init__(self, curves, time: float | None = None):
         if isinstance(curves, Interface):
             self._curves = curves._curves
-            self.time = curves.time if time is None else float(time)
+            self.time = curves.time if time is None else time
             return
         if isinstance(curves, np.ndarray) and curves.ndim == 2:
             curves = [curves]
         if isinstance(curves, (str, bytes)) or not hasattr(curves, "__iter__"):
             raise TypeError(f"curves must be a list of (n, 2) arrays, got {type(curves).__name__}")
+        self.time = 0.0 if time is None else time
         arrays = [_points(c, f"curve {i}") for i, c in enumerate(curves)]
         prepared, notes = _slc.prepare(arrays)
         for note in notes:
             warnings.warn(note, stacklevel=2)
         self._curves = _frozen(prepared)
-        self.time = 0.0 if time is None else float(time)
 
     def __reduce__(self):
         """Pickled (for dask workers, multiprocessing) as the trusted arrays and the time."""
@@ -66,8 +76,18 @@ class Interface:
         """Curves the library produced, valid already (or none: a run whose curves vanished)."""
         out = cls.__new__(cls)
         out._curves = _frozen(arrays)
-        out.time = float(time)
+        out.time = time
         return out
+
+    @property
+    def time(self) -> float:
+        """The time the curves are at, where a run starts; setting it (or giving it to the
+        constructor) to NaN or ±inf raises ValueError."""
+        return self._time
+
+    @time.setter
+    def time(self, value) -> None:
+        self._time = _time(value)
 
     @property
     def curves(self) -> list[np.ndarray]:
@@ -119,7 +139,9 @@ def _interface(x) -> Interface:
 
 def distance(interface, points) -> tuple[np.ndarray, np.ndarray]:
     """Signed distance (negative inside) and a nearest point of the curves for each of the (m, 2)
-    points: ``(distance (m,), nearest (m, 2))``, exact to rounding, as ``slc distance``."""
+    points: ``(distance (m,), nearest (m, 2))``, exact to rounding, as ``slc distance``. A point
+    not finite or beyond the coordinate limit (±1e100) raises ValueError naming it, as the tool
+    refuses it."""
     curves = _interface(interface)
     return _slc.distance(curves._curves, _points(points, "points"))
 
@@ -136,6 +158,12 @@ def _refine(refine) -> int:
     return int(refine)
 
 
+def _warn_no_zero(domain: str, depth: int) -> None:
+    """The UserWarning of a contour that found nothing, for contour's caller."""
+    warnings.warn(f"G = f has no zero in the domain {domain} (none found at depth {depth}): "
+                  "the contour is empty", UserWarning, stacklevel=3)
+
+
 def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None = None,
             refine=None) -> Interface:
     """The zero set of f, a vectorised function f((m, 2) array) -> (m,) array, in box, by the
@@ -146,6 +174,9 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
     depth: K, the deepest level of the topology tree. eps: ε, the midpoint tolerance of
     refinement (default 10^-K). refine: P passes, or "converged"; by default converged when eps
     is given, none otherwise. f is called once per batch of points, on the calling thread.
+
+    Where f has no zero in the box (none the tree of depth K finds: f keeps one sign at every
+    point sampled), the result is an empty Interface, with a UserWarning saying so.
     """
     if isinstance(box, numbers.Real):
         box = (-box, -box, box, box)
@@ -154,8 +185,11 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
         refine = "converged" if eps is not None else 0
     if isinstance(depth, bool) or not isinstance(depth, numbers.Integral):
         raise TypeError(f"depth must be an integer, got {depth!r}")
-    arrays, _ = _slc.contour(f, box, int(depth), None if eps is None else float(eps),
-                             _refine(refine))
+    arrays, stats = _slc.contour(f, box, int(depth), None if eps is None else float(eps),
+                                 _refine(refine))
+    if not arrays:
+        x0, y0, x1, y1 = stats["domain"]
+        _warn_no_zero(f"[{x0:g}, {x1:g}]x[{y0:g}, {y1:g}]", depth)
     return Interface._trusted(arrays)
 
 
@@ -171,7 +205,8 @@ def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float 
     |f(x) - f(y)| <= |x - y| + δ everywhere (0 for a signed distance): points far from the
     surface are then not evaluated, and the surface is the same. eta: η, |f| <= η at every
     vertex (default 1e-10, or eps/100 when refining). Returns (vertices (n, 3) float array,
-    triangles (m, 3) int array of vertex indices, stats dict).
+    triangles (m, 3) int array of vertex indices, stats dict). Where f has no zero in the box
+    (none the octree of depth K finds), both arrays are empty, with a UserWarning saying so.
     """
     if isinstance(box, numbers.Real):
         box = (-box, -box, -box, box, box, box)
@@ -180,6 +215,10 @@ def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float 
         refine = "converged" if eps is not None else 0
     if isinstance(depth, bool) or not isinstance(depth, numbers.Integral):
         raise TypeError(f"depth must be an integer, got {depth!r}")
-    return _slc.contour_surface(f, box, int(depth), None if eps is None else float(eps),
-                                _refine(refine), None if slack is None else float(slack),
-                                None if eta is None else float(eta))
+    vertices, triangles, stats = _slc.contour_surface(
+        f, box, int(depth), None if eps is None else float(eps), _refine(refine),
+        None if slack is None else float(slack), None if eta is None else float(eta))
+    if len(triangles) == 0:
+        x0, y0, z0, x1, y1, z1 = stats["domain"]
+        _warn_no_zero(f"[{x0:g}, {x1:g}]x[{y0:g}, {y1:g}]x[{z0:g}, {z1:g}]", depth)
+    return vertices, triangles, stats

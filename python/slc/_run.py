@@ -21,7 +21,8 @@ from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, 
 class FlowField:
     """A velocity field f(t, points (m, 2)) -> (m, 2) known everywhere, so that the step samples
     it along each characteristic (fourth-order Runge–Kutta to ε/10, one contour per step) instead of
-    extending vertex velocities. f is called once per batch and stage."""
+    extending vertex velocities. f is called once per batch and stage. A callable of two
+    arguments given as a velocity is taken as one (FlowField(f, name) gives it a name)."""
 
     def __init__(self, f: Callable[[float, np.ndarray], Any], name: str | None = None):
         if not callable(f):
@@ -141,7 +142,8 @@ class Problem(_NamedProblem):
 
     def exact(self, points, t: float) -> np.ndarray | None:
         """The exact signed distance to the curves at time t at each of the (m, 2) points, or
-        None where the exact solution is not known."""
+        None where the exact solution is not known; points are checked as distance() checks
+        them."""
         return self._p.exact(_points(points, "points"), float(t))
 
     def error(self, interface) -> float | None:
@@ -175,19 +177,41 @@ def velocities(dimension: int = 2) -> list[str]:
     return list(_slc.velocity_names())
 
 
-def _positional_parameters(f) -> int | None:
-    """How many positional arguments f takes, None when it takes any number or cannot say."""
+def _positional_parameters(f) -> tuple[int, int | None] | None:
+    """(required, most): how many positional arguments f needs and takes at most (None: any
+    number), or None when its signature cannot be read."""
     try:
         signature = inspect.signature(f)
     except (TypeError, ValueError):
         return None
-    count = 0
+    required, most = 0, 0
     for p in signature.parameters.values():
         if p.kind == p.VAR_POSITIONAL:
-            return None
-        if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) and p.default is p.empty:
-            count += 1
-    return count
+            most = None
+        elif p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD):
+            required += p.default is p.empty
+            if most is not None:
+                most += 1
+    return required, most
+
+
+def _callable_kind(f) -> str:
+    """The kind of law a callable velocity is, by the arguments it takes: f(t, points) a flow
+    field, f(t, points, normals) a law of vertices without the curvature, otherwise (four, or a
+    signature that cannot be read) f(t, points, normals, curvature)."""
+    arguments = _positional_parameters(f)
+    if arguments is None:
+        return "curve"
+    required, most = arguments
+    if required > 4 or (most is not None and most < 2):
+        raise TypeError(
+            f"a velocity callable takes (t, points), (t, points, normals) or (t, points, normals, "
+            f"curvature), got {getattr(f, '__name__', type(f).__name__)}{inspect.signature(f)}")
+    if most == 2:
+        return "flow-field"  # it cannot take normals: a field known everywhere
+    if required == 3 or most == 3:
+        return "vertex-no-curvature"
+    return "curve"
 
 
 def _law(velocity, params, geometry):
@@ -208,13 +232,14 @@ def _law(velocity, params, geometry):
     if isinstance(velocity, str):
         return _slc.LawSpec(velocity, "builtin", velocity, params, geometry)
     if callable(velocity):
-        # f(t, points, normals) takes no curvature, which is then not computed (for a surface,
-        # a Gaussian mean over the vertices within a few sqrt(k)).
-        kind = "vertex-no-curvature" if _positional_parameters(velocity) == 3 else "curve"
-        return _slc.LawSpec(velocity, kind, getattr(velocity, "__name__", "python"), params,
-                            geometry)
+        # f(t, points) is sampled as a FlowField is; f(t, points, normals) takes no curvature,
+        # which is then not computed for a surface (a Gaussian mean over the vertices within a
+        # few sqrt(k)).
+        return _slc.LawSpec(velocity, _callable_kind(velocity),
+                            getattr(velocity, "__name__", "python"), params, geometry)
     raise TypeError("velocity must be a law's name, a FlowField, a NormalSpeed or a callable "
-                    f"f(t, points, normals, curvature), got {type(velocity).__name__}")
+                    "f(t, points), f(t, points, normals) or f(t, points, normals, curvature), got "
+                    f"{type(velocity).__name__}")
 
 
 def _integer(name: str, value) -> int | None:
@@ -305,18 +330,25 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     then "broken" and its message names the first break.
 
     velocity: a built-in law's name (``velocities()``; its parameters in params), a FlowField, a
-    NormalSpeed, or a callable f(t, points (N, 2), normals (N, 2), curvature (N,)) returning
-    (N, 2) vertex velocities or (N,) normal speeds v (u = v N, v > 0 outward), called once per
-    stage with all vertices. Unset options take the tool's defaults (docs/defaults.md), or the
-    problem's: steps N, depth K (eps follows as 10^-K times the curves' half-width unless given),
-    refine P (passes or "converged"), eps, eta, smoothing S; geometry "intrinsic", "embedded" or
-    "arclength"; extension "nearest", "whitney" or "direct"; arcs; area_correction. frames: keep
-    this many frames besides the initial one. observer(step) after each step; returning False
-    stops the run (status "interrupted"), as Ctrl-C does between steps. threads: worker threads
-    (0: all cores); results do not depend on it. estimate: as ``slc run --estimate``, run again at
-    half resolution (N/2 steps, K − 1, 4 eps) and put the distance between the two final
-    interfaces in ``summary["error_estimate"]`` (an estimate of this run's error when it
-    converges at first order or faster; a note says why there is none).
+    NormalSpeed, or a callable. A callable f(t, points (m, 2)) -> (m, 2) is a flow field, sampled
+    everywhere as a FlowField is; f(t, points (N, 2), normals (N, 2), curvature (N,)) (or
+    f(t, points, normals), without the curvature) returns (N, 2) vertex velocities or (N,) normal
+    speeds v (u = v N, v > 0 outward), called once per stage with all vertices and extended off
+    the curve from the nearest point, as a curvature law is. Vertex velocities that do not depend
+    on the normals belong in f(t, points): a rotation so written comes back to 1.2e-4 after a
+    full turn of an ellipse 1 x 0.6, written with normals to 2.3e-2.
+
+    Unset options take the tool's defaults (docs/defaults.md), or the problem's: steps N, depth K
+    (eps follows as 10^-K times the curves' half-width unless given), refine P (passes or
+    "converged"), eps, eta, smoothing S; geometry "intrinsic", "embedded" or "arclength";
+    extension "nearest", "whitney" or "direct"; arcs; area_correction. frames: keep this many
+    frames besides the initial one. observer(step) after each step returns True or None to go
+    on, False to stop the run (status "interrupted"), as Ctrl-C does between steps; anything else
+    is a TypeError. threads: worker threads (0: all cores); results do not depend on it.
+    estimate: as ``slc run --estimate``, run again at half resolution (N/2 steps, K − 1, 4 eps)
+    and put the distance between the two final interfaces in ``summary["error_estimate"]`` (an
+    estimate of this run's error when it converges at first order or faster; a note says why
+    there is none).
     """
     options = _overrides(steps, depth, refine, eps, eta, smoothing, extension, arcs,
                          area_correction, thin_depth, volume_drift, guards)

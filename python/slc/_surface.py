@@ -13,7 +13,7 @@ from typing import Any, Callable, NamedTuple
 import numpy as np
 
 from . import _slc
-from ._interface import _points
+from ._interface import _points, _time
 from ._problem import _NamedProblem
 from ._tables import ConvergenceTable, nan_array as _array
 
@@ -48,23 +48,23 @@ class Surface:
     a warning. Vertices no triangle uses are kept and ignored. ``Surface(slc.contour_surface(...))`` takes the contour's result.
     """
 
-    __slots__ = ("_vertices", "_triangles", "time")
+    __slots__ = ("_vertices", "_triangles", "_time")
 
     def __init__(self, vertices, triangles=None, time: float | None = None):
         if isinstance(vertices, Surface):
             self._vertices, self._triangles = vertices._vertices, vertices._triangles
-            self.time = vertices.time if time is None else float(time)
+            self.time = vertices.time if time is None else time
             return
         if triangles is None and isinstance(vertices, tuple) and len(vertices) >= 2:
             vertices, triangles = vertices[0], vertices[1]  # contour_surface's result
         if triangles is None:
             raise TypeError("Surface needs vertices and triangles")
+        self.time = 0.0 if time is None else time
         v, t, notes = _slc.prepare_surface(_vertices(vertices), _triangles(triangles))
         for note in notes:
             warnings.warn(note, stacklevel=2)
         self._vertices = _frozen(v, np.float64)
         self._triangles = _frozen(t, np.int64)
-        self.time = 0.0 if time is None else float(time)
 
     @classmethod
     def _trusted(cls, vertices, triangles, time: float = 0.0) -> "Surface":
@@ -73,8 +73,18 @@ class Surface:
         out = cls.__new__(cls)
         out._vertices = _frozen(vertices, np.float64)
         out._triangles = _frozen(triangles, np.int64)
-        out.time = float(time)
+        out.time = time
         return out
+
+    @property
+    def time(self) -> float:
+        """The time the surface is at, where a run starts; setting it (or giving it to the
+        constructor) to NaN or ±inf raises ValueError."""
+        return self._time
+
+    @time.setter
+    def time(self, value) -> None:
+        self._time = _time(value)
 
     def __reduce__(self):
         return (Surface._trusted, (np.array(self._vertices), np.array(self._triangles),
@@ -143,7 +153,8 @@ class SurfaceProblem(_NamedProblem):
 
     def exact(self, points, t: float) -> np.ndarray | None:
         """A signed function of the (m, 3) points whose zero set is the exact surface at time t
-        (the exact signed distance where it is simple), or None where it is not known."""
+        (the exact signed distance where it is simple), or None where it is not known; a point
+        not finite or beyond the coordinate limit (±1e100) raises ValueError naming it."""
         return self._p.exact(_vertices(points), float(t))
 
     def error(self, surface) -> float | None:

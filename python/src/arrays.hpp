@@ -6,6 +6,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <initializer_list>
@@ -16,6 +18,7 @@
 #include <vector>
 
 #include "slc/core/error.hpp"
+#include "slc/core/tolerances.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/surface.hpp"
 
@@ -57,6 +60,48 @@ inline std::vector<Vec2> points_of(const Array& a) {
     if (a.ndim() != 2 || a.shape(1) != 2)
         throw InvalidInput("points must be an (n, 2) array of numbers");
     return vectors_of(a.data(), static_cast<std::size_t>(a.shape(0)));
+}
+
+/// The point as Python prints a row: "(1, nan)", "(0, 1e+200, 2)".
+inline std::string point_text(Vec2 p) { return fmt::format("({}, {})", p.x, p.y); }
+inline std::string point_text(Vec3 p) { return fmt::format("({}, {}, {})", p.x, p.y, p.z); }
+
+/// The largest magnitude of the point's coordinates.
+inline double largest_magnitude(Vec2 p) { return std::max(std::abs(p.x), std::abs(p.y)); }
+inline double largest_magnitude(Vec3 p) {
+    return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+}
+
+/// Query points (of a distance, an exact solution) as the tool reads them from a file
+/// (read_points_csv): InvalidInput naming the first point that is not finite or lies beyond the
+/// coordinate limit, where the library's kernels would fail (a NaN point climbs out of the tree).
+template <class Point>
+void check_query_points(std::span<const Point> points) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const Point p = points[i];
+        if (!is_finite(p))
+            throw InvalidInput(fmt::format("point {}: {} is not finite", i, point_text(p)));
+        if (largest_magnitude(p) > tolerance::max_coordinate) {
+            throw InvalidInput(fmt::format("point {}: {} is beyond the coordinate limit ±{:g}", i,
+                                           point_text(p), tolerance::max_coordinate));
+        }
+    }
+}
+
+/// The query points of an (n, 2) array, checked by check_query_points.
+inline std::vector<Vec2> query_points_of(const Array& a) {
+    std::vector<Vec2> points = points_of(a);
+    check_query_points(std::span<const Vec2>(points));
+    return points;
+}
+
+/// The query points of an (n, 3) array, checked by check_query_points.
+inline std::vector<Vec3> query_points3_of(const Array& a) {
+    if (a.ndim() != 2 || a.shape(1) != 3)
+        throw InvalidInput("points must be an (n, 3) array of numbers");
+    std::vector<Vec3> points = vectors3_of(a.data(), static_cast<std::size_t>(a.shape(0)));
+    check_query_points(std::span<const Vec3>(points));
+    return points;
 }
 
 inline Curves curves_of(const std::vector<Array>& arrays) {

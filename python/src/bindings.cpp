@@ -69,12 +69,13 @@ py::tuple load(const std::string& path) {
 }
 
 void save(const std::string& path, const std::vector<Array>& arrays, double time) {
+    if (!std::isfinite(time)) throw InvalidInput(fmt::format("time must be finite, got {}", time));
     write_file_atomic(path, interface_json(Interface(curves_of(arrays)), time));
 }
 
 py::tuple distance(const std::vector<Array>& arrays, const Array& xs_array) {
     const Curves raw = curves_of(arrays);
-    const std::vector<Vec2> xs = points_of(xs_array);
+    const std::vector<Vec2> xs = query_points_of(xs_array);
     std::vector<double> d(xs.size());
     std::vector<Vec2> nearest(xs.size());
     {

@@ -53,6 +53,20 @@ inline bool interrupted() {
     return true;
 }
 
+/// Whether a run goes on after its observer returned `answer`: None and True go on, False stops
+/// (numpy's booleans alike); TypeError for anything else, which would otherwise fail to convert
+/// with a message that names no observer. Call with the GIL held.
+inline bool observer_goes_on(const pybind11::object& answer) {
+    if (answer.is_none()) return true;
+    pybind11::detail::make_caster<bool> caster;
+    if (caster.load(answer, /*convert=*/false)) return static_cast<bool>(caster);
+    std::string value = pybind11::repr(answer).cast<std::string>();
+    if (value.size() > 40) value = value.substr(0, 37) + "...";
+    throw pybind11::type_error(
+        fmt::format("the observer must return True, False (to stop the run) or None, got {} {}",
+                    Py_TYPE(answer.ptr())->tp_name, value));
+}
+
 /// An observer of a study's cells or runs: hands each to on_each (unless None) as dict_of makes
 /// it, with the GIL held, and stops the study at Ctrl-C.
 template <class DictOf>

@@ -74,7 +74,7 @@ py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const
         if (interrupted()) return false;
         if (on_step.is_none()) return true;
         const py::object go_on = on_step(s.step, s.steps, s.t, arrays_of(*s.curves), s.step_cpu_s);
-        return go_on.is_none() || go_on.cast<bool>();
+        return observer_goes_on(go_on);
     };
 
     const RunResult r =
@@ -240,7 +240,7 @@ void add_run_functions(py::module_& m) {
             "exact",
             [](const Problem& p, const Array& xs, double t) -> py::object {
                 if (!p.exact) return py::none();
-                const std::vector<Vec2> points = points_of(xs);
+                const std::vector<Vec2> points = query_points_of(xs);
                 const auto d = p.exact(points, t);
                 if (!d) return py::none();
                 return array_of(std::span<const double>(*d));

@@ -80,6 +80,7 @@ py::tuple load_surface_file(const std::string& path) {
 /// Writes a surface as .obj or .vtp (by the extension), atomically.
 void save_surface_file(const std::string& path, const Array& vertices, const IndexArray& triangles,
                        double time) {
+    if (!std::isfinite(time)) throw InvalidInput(fmt::format("time must be finite, got {}", time));
     const Surface s = surface_of(vertices, triangles);
     const std::filesystem::path file(path);
     if (file.extension() == ".obj") {
@@ -179,7 +180,7 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& 
         if (on_step.is_none()) return true;
         const py::tuple a = surface_arrays(*s.surface);
         const py::object go_on = on_step(s.step, s.steps, s.t, a[0], a[1], cpu);
-        return go_on.is_none() || go_on.cast<bool>();
+        return observer_goes_on(go_on);
     };
     const SurfaceRunResult r =
         without_gil(threads, [&] { return run(initial, *p.law, p.domain, options, observer); });
@@ -297,10 +298,8 @@ void add_surface_functions(py::module_& m) {
             "exact",
             [](const SurfaceSubject& s, const Array& xs, double t) -> py::object {
                 if (!s.problem.exact) return py::none();
-                if (xs.ndim() != 2 || xs.shape(1) != 3)
-                    throw InvalidInput("points must be an (n, 3) array of numbers");
-                const auto n = static_cast<std::size_t>(xs.shape(0));
-                const std::vector<Vec3> points = vectors3_of(xs.data(), n);
+                const std::vector<Vec3> points = query_points3_of(xs);
+                const std::size_t n = points.size();
                 std::vector<double> d(n);
                 for (std::size_t i = 0; i < n; ++i) d[i] = s.problem.exact(t, points[i]);
                 if (n > 0 && std::isnan(d[0])) return py::none();

@@ -51,6 +51,30 @@ def test_a_surface_is_validated_measured_and_saved(tmp_path):
         slc.Surface(s.vertices[:, :2], s.triangles)
 
 
+def test_a_surface_time_that_is_not_finite_is_refused(tmp_path):
+    s = sphere(depth=3, eps=3e-3)
+    for t in (np.inf, np.nan):
+        with pytest.raises(ValueError, match="time must be finite"):
+            slc.Surface(s.vertices, s.triangles, time=t)
+        with pytest.raises(ValueError, match="time must be finite"):
+            slc.Surface(s, time=t)
+    with pytest.raises(ValueError, match="time must be finite, got -inf"):
+        s.time = -np.inf
+    assert s.time == 0.0
+    s.time = 1.5
+    s.save(tmp_path / "s.vtp")
+
+
+def test_a_surface_problems_exact_solution_refuses_points_not_finite():
+    p = slc.problem("sphere-rotation")
+    with pytest.raises(ValueError, match=r"point 1: \(nan, 0, 0\) is not finite"):
+        p.exact(np.array([[0.0, 0.0, 0.0], [np.nan, 0.0, 0.0]]), 0.0)
+    with pytest.raises(ValueError, match=r"point 0: \(0, 0, -1e\+200\) is beyond the coordinate "
+                                         r"limit ±1e\+100"):
+        p.exact(np.array([[0.0, 0.0, -1e200]]), 0.0)
+    assert p.exact(np.array([[0.0, 0.0, 0.0]]), 0.0).shape == (1,)
+
+
 # ---- runs --------------------------------------------------------------------------------------
 
 
@@ -211,6 +235,13 @@ def test_an_observer_stops_a_run_of_a_surface():
     assert r.status == "interrupted" and r.t == pytest.approx(0.5) and len(seen) == 2
 
 
+def test_an_observer_of_a_surface_returns_true_false_or_none():
+    with pytest.raises(TypeError, match=r"the observer must return True, False .* or None, got "
+                                        r"list \[1\]"):
+        slc.run(sphere(depth=3, eps=3e-3), "rotation", 1.0, steps=2, depth=3, threads=1,
+                observer=lambda s: [1])
+
+
 def test_a_study_of_surfaces_gives_its_table():
     st = slc.study(slc.problem("sphere-rotation"), rows=1, columns=1)
     assert st.errors.shape == (1, 1) and st.cells[0]["N"] == 16 and st.cells[0]["K"] == 5
@@ -278,5 +309,20 @@ def test_a_callable_of_three_arguments_is_called_without_the_curvature():
     a = slc.run(s, three, 0.2, steps=2, depth=3)
     b = slc.run(s, four, 0.2, steps=2, depth=3)
     assert a.status == b.status == "ok" and seen and all(shape[1] == 3 for shape in seen)
+    assert np.array_equal(a.surface.vertices, b.surface.vertices)
+    assert np.array_equal(a.surface.triangles, b.surface.triangles)
+
+
+def test_a_callable_of_two_arguments_moves_a_surface_as_a_flow_field():
+    # f(t, points) -> (m, 3) is a FlowField, sampled everywhere: the same surface to the last bit
+    # (it used to be called with four arguments, a TypeError).
+    s = sphere(r=0.3, depth=3, eps=1e-3)
+
+    def spin(t, x):
+        return np.stack([-x[:, 1], x[:, 0], 0 * x[:, 2]], axis=1)
+
+    a = slc.run(s, spin, 0.2, steps=2, depth=3, threads=1)
+    b = slc.run(s, slc.FlowField(spin), 0.2, steps=2, depth=3, threads=1)
+    assert a.status == b.status == "ok"
     assert np.array_equal(a.surface.vertices, b.surface.vertices)
     assert np.array_equal(a.surface.triangles, b.surface.triangles)
