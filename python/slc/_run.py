@@ -344,7 +344,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     extension "nearest", "whitney" or "direct"; arcs; area_correction. frames: keep this many
     frames besides the initial one. observer(step) after each step returns True or None to go
     on, False to stop the run (status "interrupted"), as Ctrl-C does between steps; anything else
-    is a TypeError. threads: worker threads (0: all cores); results do not depend on it.
+    is a TypeError. threads: worker threads (0: OMP_NUM_THREADS when set, else every
+    available core; never more than the cores); results do not depend on it.
     estimate: as ``slc run --estimate``, run again at half resolution (N/2 steps, K − 1, 4 eps)
     and put the distance between the two final interfaces in ``summary["error_estimate"]`` (an
     estimate of this run's error when it converges at first order or faster; a note says why

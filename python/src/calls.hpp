@@ -21,7 +21,8 @@
 
 namespace slc::python {
 
-/// Sets the worker threads for the life of the object (0: all cores), and restores them.
+/// Sets the worker threads for the life of the object (0: OMP_NUM_THREADS when set, else all
+/// available cores), and restores them.
 class ThreadScope {
 public:
     explicit ThreadScope(int threads) : before_(thread_count()) {
@@ -37,7 +38,8 @@ private:
     int before_;
 };
 
-/// f() on `threads` worker threads (0: all cores), with the GIL released while it runs.
+/// f() on `threads` worker threads (0: OMP_NUM_THREADS when set, else all available cores), with
+/// the GIL released while it runs.
 template <class F>
 auto without_gil(int threads, F f) {
     const ThreadScope scope(threads);

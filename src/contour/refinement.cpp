@@ -15,6 +15,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/stop.hpp"
 #include "stages.hpp"
 
 namespace slc::contouring {
@@ -103,6 +104,7 @@ public:
                                ? options_.max_refine_passes
                                : options_.refine_passes;
         for (int p = 0; p < passes; ++p) {
+            check_stop();
             evaluate_midpoints();
             std::vector<Candidate> candidates = select();
             if (candidates.empty()) break;

@@ -14,6 +14,7 @@
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/stop.hpp"
 #include "slc/geometry/validate_surface.hpp"
 #include "surface_stages.hpp"
 
@@ -688,6 +689,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
     std::vector<std::uint8_t> dirty(s.size(), 0);
     const int limit = passes < 0 ? max_passes : std::min(passes, max_passes);
     for (int pass = 0; pass < limit; ++pass) {
+        check_stop();
         // Needles come from the linear contour, where a root falls near a mesh vertex; splits
         // make none, and collapsing what splits made could undo them pass after pass.
         improve(s, centroid_value, dirty, pass == 0, result);

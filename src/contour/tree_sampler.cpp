@@ -8,6 +8,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/stop.hpp"
 
 namespace slc::contouring {
 
@@ -299,6 +300,7 @@ double build_tree(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma) 
     sampler.sample(std::vector<std::uint32_t>{0});
     std::vector<std::uint32_t> frontier{0};
     for (int doubling = 0;; ++doubling) {
+        check_stop();
         split_while_coarse(tree, sampler, std::move(frontier), gamma);
         if (tree.is_balanced()) return gamma;
         if (doubling == max_gamma_doublings) break;

@@ -19,12 +19,14 @@ typename Kernel::Nearest ClimbingQuery<Tree, Kernel>::nearest(Point x) const {
     const std::span<const typename Kernel::Element> elements = t.elements();
     std::uint32_t c = t.leaf_at(x);
     typename Kernel::Nearest best;
+    const bool plain = t.in_plain_range(x);
     for (;;) {
         if (!t.is_listed(c)) {
             t.hierarchy().nearest(elements, x, best);
             break;
         }
-        for (std::uint32_t e : t.cell_list(c)) best.offer(e, Kernel::closest_point(elements[e], x));
+        for (std::uint32_t e : t.cell_list(c))
+            best.offer(e, Kernel::closest_point(elements[e], x, plain));
         // Exact once the box of half-width m around x lies in the triple: every element nearer
         // than m meets the box, hence the triple, and so is on this list (§1.3).
         if (best.distance2 < std::numeric_limits<double>::infinity()) {

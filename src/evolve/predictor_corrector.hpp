@@ -23,6 +23,7 @@
 #include "slc/contour/contour.hpp"
 #include "slc/contour/surface_contour.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/stop.hpp"
 #include "slc/evolve/step.hpp"
 #include "slc/evolve/surface_step.hpp"
 #include "step_common.hpp"
@@ -33,11 +34,13 @@ namespace slc::detail {
 /// contour_surface() in space.
 inline ContourResult contour_of(BatchFunctionRef g, const Box& domain, const ContourOptions& o,
                                 std::optional<BatchBoundsRef> bounds) {
+    check_stop();
     return bounds ? contour(g, domain, o, *bounds) : contour(g, domain, o);
 }
 inline SurfaceContour contour_of(SpaceFunctionRef g, const Box3& domain,
                                  const SurfaceContourOptions& o,
                                  std::optional<SpaceBoundsRef> bounds) {
+    check_stop();
     return bounds ? contour_surface(g, domain, o, *bounds) : contour_surface(g, domain, o);
 }
 

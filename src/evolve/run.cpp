@@ -68,10 +68,11 @@ public:
 
     LoopHooks(const VelocityLaw& law, const Box& domain, const RunOptions& options)
         : law_(law),
+          domain_(domain),
           options_(options),
           invariants_(law.invariants()),
           eps_(options.step.contour.resolved_eps()) {
-        const double h = std::ldexp(domain.width(), -options.step.contour.depth);
+        const double h = finest_cell(domain, options.step.contour);
         budget_ = GuardBudget{.run_length = options.t_end - options.t_start,
                               .resolved_area = std::numbers::pi * h * h};
     }
@@ -141,7 +142,7 @@ public:
 
 private:
     CurveMeasures measures(const Interface& curves) const {
-        const auto [a, l] = step_area_and_length(curves, law_, options_.step);
+        const auto [a, l] = step_area_and_length(curves, law_, options_.step, domain_);
         return CurveMeasures{a, l};
     }
     /// The budget, with a rigid motion's area at the start of the run.
@@ -152,6 +153,7 @@ private:
     }
 
     const VelocityLaw& law_;
+    Box domain_;  ///< the run's domain, whose finest cell sets where arcs read Γ as smooth
     const RunOptions& options_;
     Invariants invariants_;
     double eps_;
@@ -222,7 +224,7 @@ RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domai
     start.curves = initial;
     start.t = options.t_start;
     if (options.guards && (law.invariants().area_rate_per_curve || law.invariants().rigid))
-        start.start_area = step_area(initial, law, options.step);
+        start.start_area = step_area(initial, law, options.step, domain);
     return resume(start, law, domain, options, observer);
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <span>
 #include <vector>
@@ -47,23 +48,41 @@ bool StepOptions::resolved_arcs(const VelocityLaw& law) const {
 
 namespace {
 
+/// The longest segment a step of law reads as part of a smooth curve: under a rigid motion,
+/// StepOptions::arc_longest finest cells (the contours' own segments; a user's coarser polygon
+/// is moved as the polygon it is), under every other law any.
+double longest_smooth_segment(const VelocityLaw& law, const Box& domain, const StepOptions& o) {
+    if (!law.invariants().rigid) return std::numeric_limits<double>::infinity();
+    return StepOptions::arc_longest * finest_cell(domain, o.contour);
+}
+
+/// True where the polygon is read as a smooth curve: at a vertex whose segments u, v turn by at
+/// most StepOptions::arc_corner and are each at most `longest`.
+bool reads_smooth(Vec2 u, Vec2 v, double longest) {
+    return std::abs(std::atan2(cross(u, v), dot(u, v))) <= StepOptions::arc_corner &&
+           norm2(u) <= longest * longest && norm2(v) <= longest * longest;
+}
+
 /// The signed curvature of the circle through each vertex and its two neighbours (−1/R on a
-/// circle), or 0 where the curve turns by more than StepOptions::arc_corner.
-std::vector<double> arc_curvatures(const Interface& curves) {
+/// circle), or 0 where the curve is not read as smooth there (reads_smooth).
+std::vector<double> arc_curvatures(const Interface& curves, double longest) {
     std::vector<double> kappa(curves.size());
     parallel_for(curves.size(), [&](std::size_t i) {
         const Vec2 u = curves.point(i) - curves.point(curves.prev(i));
         const Vec2 v = curves.point(curves.next(i)) - curves.point(i);
-        const double turn = std::atan2(cross(u, v), dot(u, v));
-        if (std::abs(turn) <= StepOptions::arc_corner) kappa[i] = circle_curvature(u, v);
+        if (reads_smooth(u, v, longest)) kappa[i] = circle_curvature(u, v);
     });
     return kappa;
 }
 
 }  // namespace
 
+double finest_cell(const Box& domain, const ContourOptions& contour) {
+    return std::ldexp(domain.width(), -contour.depth);
+}
+
 std::pair<double, double> step_area_and_length(const Interface& curves, const VelocityLaw& law,
-                                               const StepOptions& options) {
+                                               const StepOptions& options, const Box& domain) {
     if (curves.empty() || !options.resolved_arcs(law)) return {area(curves), length(curves)};
     // Level::distance's arc lies y(s) = ½ c² s (1 − s) κ(s) beyond the chord, κ(s) = κa (1 − s)
     // + κb s: it takes c³ (κa + κb) / 24 from the area, and its length is ∫ sqrt(c² + y'(s)²) ds,
@@ -71,7 +90,8 @@ std::pair<double, double> step_area_and_length(const Interface& curves, const Ve
     constexpr double node = 0.3872983346207417;  // sqrt(0.6) / 2
     constexpr std::array<std::pair<double, double>, 3> gauss{
         {{0.5 - node, 5.0 / 18.0}, {0.5, 8.0 / 18.0}, {0.5 + node, 5.0 / 18.0}}};
-    const std::vector<double> kappa = arc_curvatures(curves);
+    const std::vector<double> kappa =
+        arc_curvatures(curves, longest_smooth_segment(law, domain, options));
     double a = area(curves), l = 0.0;
     for (std::size_t i = 0; i < curves.size(); ++i) {
         const std::size_t b = curves.next(i);
@@ -87,12 +107,14 @@ std::pair<double, double> step_area_and_length(const Interface& curves, const Ve
     return {a, l};
 }
 
-double step_area(const Interface& curves, const VelocityLaw& law, const StepOptions& options) {
-    return step_area_and_length(curves, law, options).first;
+double step_area(const Interface& curves, const VelocityLaw& law, const StepOptions& options,
+                 const Box& domain) {
+    return step_area_and_length(curves, law, options, domain).first;
 }
 
-double step_length(const Interface& curves, const VelocityLaw& law, const StepOptions& options) {
-    return step_area_and_length(curves, law, options).second;
+double step_length(const Interface& curves, const VelocityLaw& law, const StepOptions& options,
+                   const Box& domain) {
+    return step_area_and_length(curves, law, options, domain).second;
 }
 
 namespace {
@@ -107,6 +129,7 @@ public:
           const StepOptions& options)
         : law_(law),
           t_(t),
+          longest_smooth_(longest_smooth_segment(law, domain, options)),
           extension_(options.resolved_extension(law)),
           tree_(curves, domain,
                 {.depth = options.resolved_tree_depth(),
@@ -124,7 +147,7 @@ public:
             max_speed_ = max_normal_speed();
         }
         if (options.resolved_arcs(law)) {
-            kappa_ = arc_curvatures(curves);
+            kappa_ = arc_curvatures(curves, longest_smooth_);
             for (std::size_t i = 0; i < curves.size(); ++i) {
                 const double c2 = norm2(curves.point(curves.next(i)) - curves.point(i));
                 const double kappa =
@@ -219,15 +242,17 @@ private:
     }
 
     /// The normal a normal law sees at x, given its closest point p: ∇F, except that the
-    /// polygon's vertices where it turns by at most StepOptions::arc_corner are read as points of
-    /// a smooth curve. Inside a segment, the normal interpolated linearly between its ends' and
-    /// normalized, where an end's normal is its vertex's pseudo-normal (the normalized sum of its
-    /// two segments' normals) at a smooth vertex and the segment's own at a corner; nearest a
-    /// smooth vertex, its pseudo-normal; nearest a corner, the direction from it,
-    /// sign F (x − y)/|x − y| (its pseudo-normal within a relative 1e−9 of it). The field is then
-    /// continuous across the bisectors inside a smooth curve, where ∇F jumps by the turning angle
-    /// at every vertex (a jump a direction-dependent speed would turn into a jump of G), while
-    /// corners keep the exact field: the fan of normals in their wedge, the shock on the bisector.
+    /// polygon's vertices where it reads as smooth (reads_smooth: turning by at most
+    /// StepOptions::arc_corner, and under a rigid motion segments at most
+    /// StepOptions::arc_longest cells) are read as points of a smooth curve. Inside a segment, the
+    /// normal interpolated linearly between its ends' and normalized, where an end's normal is its
+    /// vertex's pseudo-normal (the normalized sum of its two segments' normals) at a smooth vertex
+    /// and the segment's own at a corner; nearest a smooth vertex, its pseudo-normal; nearest a
+    /// corner, the direction from it, sign F (x − y)/|x − y| (its pseudo-normal within a relative
+    /// 1e−9 of it). The field is then continuous across the bisectors inside a smooth curve, where
+    /// ∇F jumps by the turning angle at every vertex (a jump a direction-dependent speed would turn
+    /// into a jump of G), while corners keep the exact field: the fan of normals in their wedge,
+    /// the shock on the bisector.
     Vec2 field_normal(Vec2 x, const ClosestPoint& p) const {
         const Interface& curves = tree_.curves();
         if (p.t > 0.0 && p.t < 1.0) {
@@ -249,8 +274,8 @@ private:
         return vertex_normals_[v];
     }
 
-    /// Each vertex's pseudo-normal, and whether the polygon turns there by at most
-    /// StepOptions::arc_corner (field_normal).
+    /// Each vertex's pseudo-normal, and whether the polygon reads as smooth there (reads_smooth,
+    /// field_normal).
     void set_vertex_normals() {
         const Interface& curves = tree_.curves();
         vertex_normals_.resize(curves.size());
@@ -260,7 +285,9 @@ private:
             const Vec2 sum = a + b;
             const double s = norm(sum);
             vertex_normals_[v] = s > 0.0 ? sum / s : b;
-            smooth_[v] = std::abs(std::atan2(cross(a, b), dot(a, b))) <= StepOptions::arc_corner;
+            smooth_[v] =
+                reads_smooth(curves.point(v) - curves.point(curves.prev(v)),
+                             curves.point(curves.next(v)) - curves.point(v), longest_smooth_);
         }
     }
 
@@ -291,6 +318,7 @@ private:
 
     const VelocityLaw& law_;
     double t_;
+    double longest_smooth_;  ///< the longest segment read as smooth (longest_smooth_segment)
     Extension extension_;
     DistanceTree tree_;
     std::vector<Vec2> u_;
@@ -326,7 +354,7 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
         return detail::advance_flow<StepResult>(curves, t, k, law, domain, options.contour, now);
     return detail::advance_extended<StepResult>(
         curves, t, k, law, domain, options.contour, now, make_level,
-        [&](const Interface& c) { return step_area_and_length(c, law, options); });
+        [&](const Interface& c) { return step_area_and_length(c, law, options, domain); });
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 #include "slc/core/box.hpp"
 #include "slc/core/box3.hpp"
 #include "slc/core/error.hpp"
+#include "slc/core/stop.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/evolve/run.hpp"
 #include "step_common.hpp"
@@ -311,6 +312,10 @@ typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result&
         } catch (const Unstable& e) {
             r.status = RunStatus::unstable;
             r.message = H::at_step(n, r.t, e.message);
+            break;
+        } catch (const StopRequested&) {
+            // Stopped within the step (slc/core/stop.hpp): the run holds the last whole one.
+            r.status = RunStatus::interrupted;
             break;
         }
         const double step_cpu_s = seconds(process_cpu_ns() - step_cpu_start);

@@ -51,25 +51,30 @@ bool enters_at_corner(const Triangle3& t, Vec3 w) {
     return orientation(v, p, ww) * pr.sign >= 0 && orientation(v, ww, q) * pr.sign >= 0;
 }
 
-/// The largest |coordinate| of v.
-double largest_component(Vec3 v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+/// True when the products of scalar products within m = max |d| neither overflow nor lose
+/// their precision to underflow: m in [2^−400, 2^500], or 0.
+inline bool products_in_range(double m) { return m <= 0x1p500 && (m >= 0x1p-400 || m == 0.0); }
 
-/// The range of the largest component m of ab, ac and ap in which closest_point's arithmetic
-/// neither overflows nor underflows: each scalar product d1..d6 is within 6 m² and the
-/// barycentric numerators and their sum within 216 m⁴, below the largest double for m ≤ 2^253,
-/// and m⁴ keeps 2^200 above the least normal double for m ≥ 2^−200.
-constexpr double largest_unscaled = 0x1p250;
-constexpr double smallest_unscaled = 0x1p-200;  ///< (see largest_unscaled)
+FacetPoint scaled_closest_point(const Triangle3& t, Vec3 x);
 
 /// Ericson §5.1.5: the Voronoi regions of the corners, then of the edges, then the face,
-/// decided by the signs of the scalar products d1..d6 and of the barycentric numerators.
-/// ab = b − a, ac = c − a, ap = x − a.
-FacetPoint ericson_closest_point(const Triangle3& t, Vec3 x, Vec3 ab, Vec3 ac, Vec3 ap) {
+/// decided by the signs of the scalar products d1..d6 and of the barycentric numerators, their
+/// products. checked: before the first product of each pair of d's, hand over to
+/// scaled_closest_point where the products could overflow or underflow (coordinates beyond
+/// about 1e75, or below 1e−60 in a small triangle).
+template <bool checked>
+FacetPoint ericson_closest_point(const Triangle3& t, Vec3 x) {
+    const Vec3 ab = t.b - t.a, ac = t.c - t.a, ap = x - t.a;
     const double d1 = dot(ab, ap), d2 = dot(ac, ap);
     if (d1 <= 0.0 && d2 <= 0.0) return {t.a, {1.0, 0.0, 0.0}, norm2(ap), Feature::vertex, 0};
     const Vec3 bp = x - t.b;
     const double d3 = dot(ab, bp), d4 = dot(ac, bp);
     if (d3 >= 0.0 && d4 <= d3) return {t.b, {0.0, 1.0, 0.0}, norm2(bp), Feature::vertex, 1};
+    if constexpr (checked) {
+        const double m =
+            std::max(std::max(std::abs(d1), std::abs(d2)), std::max(std::abs(d3), std::abs(d4)));
+        if (!products_in_range(m)) return scaled_closest_point(t, x);
+    }
     const double vc = d1 * d4 - d3 * d2;
     if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
         const double v = d1 / (d1 - d3);
@@ -79,6 +84,10 @@ FacetPoint ericson_closest_point(const Triangle3& t, Vec3 x, Vec3 ab, Vec3 ac, V
     const Vec3 cp = x - t.c;
     const double d5 = dot(ab, cp), d6 = dot(ac, cp);
     if (d6 >= 0.0 && d5 <= d6) return {t.c, {0.0, 0.0, 1.0}, norm2(cp), Feature::vertex, 2};
+    // d1..d4 set the scale: d5 and d6 may only overflow.
+    if constexpr (checked) {
+        if (!(std::max(std::abs(d5), std::abs(d6)) <= 0x1p500)) return scaled_closest_point(t, x);
+    }
     const double vb = d5 * d2 - d1 * d6;
     if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
         const double w = d2 / (d2 - d6);
@@ -97,26 +106,33 @@ FacetPoint ericson_closest_point(const Triangle3& t, Vec3 x, Vec3 ab, Vec3 ac, V
     return {p, {1.0 - v - w, v, w}, norm2(x - p), Feature::face, 0};
 }
 
-}  // namespace
-
-FacetPoint closest_point(const Triangle3& t, Vec3 x) {
-    const Vec3 ab = t.b - t.a, ac = t.c - t.a, ap = x - t.a;
-    const double m =
-        std::max({largest_component(ab), largest_component(ac), largest_component(ap)});
-    if (!(m > largest_unscaled || (m < smallest_unscaled && m > 0.0)))
-        return ericson_closest_point(t, x, ab, ac, ap);
-    // Farther apart (coordinates beyond about 1e75), the products of the scalar products would
-    // overflow, and closer (below about 1e−60) underflow: the same arithmetic on everything
-    // scaled by a power of two, which is exact and keeps every rounding, and the answer scaled
-    // back.
+/// The same arithmetic on t and x scaled by a power of two that brings the largest coordinate
+/// difference near 1, which is exact and keeps every rounding, and the answer scaled back.
+FacetPoint scaled_closest_point(const Triangle3& t, Vec3 x) {
+    auto largest = [](Vec3 v) {
+        return std::max(std::max(std::abs(v.x), std::abs(v.y)), std::abs(v.z));
+    };
+    const double m = std::max(std::max(largest(t.b - t.a), largest(t.c - t.a)), largest(x - t.a));
     const int e = std::ilogb(m);
     const double s = std::ldexp(1.0, -e), back = std::ldexp(1.0, e);
-    const Triangle3 ts{s * t.a, s * t.b, s * t.c};
-    const Vec3 xs = s * x;
-    FacetPoint f = ericson_closest_point(ts, xs, ts.b - ts.a, ts.c - ts.a, xs - ts.a);
+    FacetPoint f = ericson_closest_point<false>({s * t.a, s * t.b, s * t.c}, s * x);
     f.point = back * f.point;
     f.distance2 *= back * back;
     return f;
+}
+
+}  // namespace
+
+FacetPoint closest_point(const Triangle3& t, Vec3 x) { return ericson_closest_point<true>(t, x); }
+
+FacetPoint closest_point_in_range(const Triangle3& t, Vec3 x) {
+    return ericson_closest_point<false>(t, x);
+}
+
+bool in_plain_range(const Triangle3& t) {
+    const Vec3 ab = t.b - t.a;
+    return in_plain_range(t.a) && in_plain_range(t.b) && in_plain_range(t.c) &&
+           norm2(ab) >= plain_edge * plain_edge;
 }
 
 Vec3 unit_normal(const Triangle3& t) {

@@ -46,6 +46,8 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles, Bound
     if (n == 0) return;
     boxes_.resize(n);
     parallel_for(n, [&](std::size_t t) { boxes_[t] = bounding_box(triangles[t]); });
+    plain_ = std::all_of(triangles.begin(), triangles.end(),
+                         [](const Triangle3& t) { return in_plain_range(t); });
     // The box of the centres, from the boxes of parts of them on all threads (exact: the same
     // box for any number of parts).
     const auto parts = static_cast<std::size_t>(std::max(1, thread_count()));
@@ -185,6 +187,7 @@ void TriangleHierarchy::nearest(std::span<const Triangle3> triangles, Vec3 x,
                                 NearestFacet& best) const {
     if (nodes_.empty()) return;
     const double slack = rounding * std::max({std::abs(x.x), std::abs(x.y), std::abs(x.z)});
+    const bool plain = plain_ && in_plain_range(x);
     std::uint32_t stack[64];
     int top = 0;
     stack[top++] = 0;
@@ -204,7 +207,8 @@ void TriangleHierarchy::nearest(std::span<const Triangle3> triangles, Vec3 x,
             for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
                 const std::uint32_t t = order_[i];
                 if (distance2(boxes_[t], x) <= best.distance2 * prune_slack)
-                    best.offer(t, closest_point(triangles[t], x));
+                    best.offer(t, plain ? closest_point_in_range(triangles[t], x)
+                                        : closest_point(triangles[t], x));
             }
             continue;
         }

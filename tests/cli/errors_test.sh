@@ -210,6 +210,7 @@ reject "--columns for curves" "--columns is for the study of a surface" -- \
 section "output folders, input sizes and memory"
 echo 'not a folder' >afile
 reject "--out at a file" "--out afile: a file exists and is not a folder" -- run --problem vortex -N 1 -K 3 --out afile
+reject "--out where nothing can be written" "--out /proc/forbidden: cannot write in /proc: " -- run --problem vortex -N 1 --out /proc/forbidden
 reject "--out at /dev/null" "--out /dev/null: it exists and is not a folder" -- contour --initial square.json -K 3 --out /dev/null
 mkdir -p notes && echo 'my notes' >notes/notes.txt
 reject "--out at a folder of other files" "--out notes: the folder holds files that are not results of slc" -- \

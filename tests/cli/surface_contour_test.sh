@@ -39,6 +39,7 @@ OBJ
 expect_ok "a surface file contours its exact distance" -- contour --initial box.obj -K 5 --out box
 check "box volume within 2%" test "$(json box/summary.json 'abs(s["volume"] / (0.95 * 0.75 * 0.8) - 1) < 0.02')" = True
 check "box vertices on the box" test "$(json box/summary.json 's["error_vertices"] < 1e-9')" = True
+check "a linear contour says nothing of converging" test "$(json box/summary.json '"converged" in s')" = False
 
 expect_ok "refined until converged" -- contour --function torus -K 4 --refine 100 --eps 1e-4 --out refined
 check "refinement converged" test "$(json refined/summary.json 's["converged"]')" = True

@@ -157,6 +157,14 @@ nlohmann::json box_json(const Box& b) { return {b.lo.x, b.lo.y, b.hi.x, b.hi.y};
 
 void apply_threads(int threads) { set_thread_count(threads); }
 
+void add_threads_option(CLI::App& cmd, int& threads) {
+    cmd.add_option("--threads", threads,
+                   "Worker threads: 0, the default, takes OMP_NUM_THREADS when it is set, else "
+                   "every core this process may use; a larger count runs on those cores; "
+                   "results do not depend on it")
+        ->check(integer_in(0, 1024));
+}
+
 namespace {
 
 /// The whole of text as a number, or nothing.

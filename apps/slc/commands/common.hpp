@@ -70,8 +70,11 @@ nlohmann::json box_json(const Box& b);
 /// The numbers of a comma-separated list ("35,25"), or nothing when a field is not a number.
 std::optional<std::vector<double>> comma_numbers(const std::string& text);
 
-/// Applies --threads (0 = all cores).
+/// Applies --threads (set_thread_count).
 void apply_threads(int threads);
+
+/// The option --threads of a command, into `threads`.
+void add_threads_option(CLI::App& cmd, int& threads);
 
 /// The one velocity law given among options (name, given), in their order: InvalidInput with
 /// `missing` when none is, or naming the first two when several are.

@@ -246,8 +246,7 @@ void add_contour_command(CLI::App& app) {
                     "not the error)")
         ->check(integer_in(0, 30));
     cmd->add_option("--out", o->out, "Output folder")->required();
-    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
-        ->check(integer_in(0, 1024));
+    add_threads_option(*cmd, o->threads);
     cmd->callback([o, initial, function, refine] {
         if (initial->count() == 0 && function->count() == 0)
             throw InvalidInput("give --initial FILE or --function NAME");

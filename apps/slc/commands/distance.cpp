@@ -78,8 +78,7 @@ void add_distance_command(CLI::App& app) {
     cmd->add_option("-L,--tree-depth", o->depth,
                     "Depth L of the distance tree (default: cells about one mean segment wide)")
         ->check(integer_in(0, 30));
-    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
-        ->check(integer_in(0, 1024));
+    add_threads_option(*cmd, o->threads);
     cmd->callback([o] { run_distance(*o); });
 }
 

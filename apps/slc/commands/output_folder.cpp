@@ -116,7 +116,13 @@ OutputFolder::OutputFolder(const fs::path& dir, bool keep_results) : dir_(dir) {
     lock_ += ".lock";
     while (true) {
         lock_fd_ = ::open(lock_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-        if (lock_fd_ < 0) throw cannot("create", lock_, errno);
+        if (lock_fd_ < 0) {
+            // The lock is slc's own: a user needs the folder named, and why it cannot be
+            // written there.
+            const int err = errno;
+            throw InvalidInput(fmt::format("--out {}: cannot write in {}: {}", dir.string(),
+                                           parent.string(), std::generic_category().message(err)));
+        }
         if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
             const int err = errno;
             ::close(lock_fd_);

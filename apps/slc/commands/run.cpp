@@ -22,6 +22,7 @@
 #include "commands/surface_run.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/stop.hpp"
 #include "slc/evolve/self_convergence.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
@@ -33,12 +34,13 @@ namespace {
 
 std::atomic<bool> stop_requested{false};
 std::atomic<int> stop_signal{0};
-/// The first SIGINT or SIGTERM stops the run after the current step, which then writes its results
-/// whole (status interrupted); a second one ends the process at once (the output folder keeps
-/// the results it held before).
-extern "C" void request_stop(int signal) {
+/// The first SIGINT or SIGTERM stops the run at the next stage of its step (slc/core/stop.hpp),
+/// which then writes its results whole (status interrupted, the last whole step); a second one
+/// ends the process at once (the output folder keeps the results it held before).
+extern "C" void on_stop_signal(int signal) {
     stop_requested = true;
     stop_signal = signal;
+    slc::request_stop();
     std::signal(signal, SIG_DFL);
 }
 
@@ -48,8 +50,9 @@ public:
     StopSignals() {
         stop_requested = false;
         stop_signal = 0;
-        std::signal(SIGINT, request_stop);
-        std::signal(SIGTERM, request_stop);
+        clear_stop();
+        std::signal(SIGINT, on_stop_signal);
+        std::signal(SIGTERM, on_stop_signal);
     }
     ~StopSignals() {
         std::signal(SIGINT, SIG_DFL);
@@ -245,6 +248,12 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
     };
     const RunResult r = from ? resume(from->state, *law, p.domain, options, observer)
                              : run(initial, *law, p.domain, options, observer);
+    // Stopped within a step: the checkpoint of the last whole one, as the observer writes.
+    if (r.status == RunStatus::interrupted && o.checkpoint_every > 0 && !r.curves.empty()) {
+        history.save_csv();
+        write_checkpoint(dir, {given, id, r, overlay.count(), std::nullopt, {}});
+        folder.publish();
+    }
     if (progress) fmt::print(stderr, "\n");
     if (r.domain_doublings > 0) {
         const Box d = doubled_domain(p.domain, r.domain_doublings);

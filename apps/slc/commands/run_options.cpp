@@ -119,9 +119,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                    "sigma: arc length over which the arclength geometry module averages the "
                    "curvature (default sqrt(k); curvature flow is stable from 0.76 sqrt(k))")
         ->check(nonnegative_number());
-    cmd.add_option("--threads", o.threads,
-                   "Worker threads (0 = all cores); results do not depend on it")
-        ->check(integer_in(0, 1024));
+    add_threads_option(cmd, o.threads);
 }
 
 std::optional<GeometryModule> geometry_module(const MethodOptions& method) {

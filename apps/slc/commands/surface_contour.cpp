@@ -149,12 +149,13 @@ void run_surface_contour(const SurfaceContourRequest& r) {
                     {"rejected", st.rejected},
                     {"collapses", st.collapses},
                     {"flips", st.flips},
-                    {"converged", st.converged},
                     {"g_evals_per_vertex", st.g_evals_per_vertex},
                     {"perturbed", st.perturbed},
                     {"thin_cells", st.thin_cells},
                     {"specks", st.specks},
                     {"unconverged_roots", st.unconverged_roots}});
+    // Whether refinement met ε, when refinement was asked for.
+    if (r.refine != 0) summary["converged"] = st.converged;
     std::optional<double> error;
     if (source.exact && !s.triangles.empty()) {
         const SurfaceError e = measure_error(s, source.exact);

@@ -233,6 +233,13 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     const SurfaceRunResult result =
         from ? resume(*from->surface, *p.law, p.domain, options, observer)
              : run(p.initial, *p.law, p.domain, options, observer);
+    // Stopped within a step: the checkpoint of the last whole one, as the observer writes.
+    if (result.status == RunStatus::interrupted && r.checkpoint_every > 0 &&
+        !result.surface.empty()) {
+        write_file_atomic(dir / "history.csv", history_text);
+        write_checkpoint(dir, {r.given, r.run_id, {}, frames_written, result, frame_times});
+        folder.publish();
+    }
 
     const Surface& s = result.surface;
     nlohmann::json summary = surface_run_summary(p, p.initial, options, result);

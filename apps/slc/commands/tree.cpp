@@ -271,8 +271,7 @@ void add_tree_command(CLI::App& app) {
                     "Output folder: summary.json, interface.json, tree/distance/extension/whitney "
                     ".svg and .png")
         ->required();
-    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
-        ->check(integer_in(0, 1024));
+    add_threads_option(*cmd, o->threads);
     cmd->callback([o, initial, shape] {
         if (initial->count() == 0 && shape->count() == 0)
             throw InvalidInput("give --initial FILE or --shape NAME");

@@ -16,8 +16,14 @@
 
 namespace slc {
 
-/// Sets the number of worker threads for later parallel loops (0 = all cores).
-/// Throws InvalidInput for a negative count.
+/// The cores this process may run on: its CPU affinity (taskset, a container's cpuset), or the
+/// machine's when that is unknown.
+int available_cores();
+
+/// Sets the number of worker threads for later parallel loops: 0, the default, takes
+/// OMP_NUM_THREADS when the environment sets it, else every available core; a count beyond the
+/// available cores takes those (more threads than cores only wait on each other). The results
+/// are the same for any count. Throws InvalidInput for a negative count.
 void set_thread_count(int threads);
 
 /// The number of worker threads parallel loops use.

@@ -38,8 +38,10 @@ struct SegmentKernel {
     using Hierarchy = SegmentHierarchy;
     using Answer = ClosestPoint;
 
-    /// The exact closest point of segment s to x.
-    static SegmentPoint closest_point(const Segment& s, Vec2 x) { return slc::closest_point(s, x); }
+    /// The exact closest point of segment s to x (at any coordinates: plain is for triangles).
+    static SegmentPoint closest_point(const Segment& s, Vec2 x, bool /*plain*/) {
+        return slc::closest_point(s, x);
+    }
     /// The square x ± m (as rounded) that a cell's triple must hold to end the climb.
     static Box reach(Vec2 x, double m) { return {{x.x - m, x.y - m}, {x.x + m, x.y + m}}; }
     /// The nearest point without its sign: distance |F(x)|.
@@ -100,6 +102,8 @@ private:
     std::span<const std::uint32_t> cell_list(std::size_t c) const { return cell_segments(c); }
     std::span<const Segment> elements() const { return segment_ends_; }
     const SegmentHierarchy& hierarchy() const { return hierarchy_; }
+    /// Segments need no range checks.
+    bool in_plain_range(Vec2) const { return true; }
     ClosestPoint signed_point(const NearestSegment& best, Vec2 x) const;
 
     const Interface* curves_;

@@ -37,8 +37,10 @@ struct TriangleKernel {
     using Hierarchy = TriangleHierarchy;
     using Answer = SurfacePoint;
 
-    /// The exact closest point of triangle t to x.
-    static FacetPoint closest_point(const Triangle3& t, Vec3 x) { return slc::closest_point(t, x); }
+    /// The exact closest point of triangle t to x; plain: t and x are in_plain_range.
+    static FacetPoint closest_point(const Triangle3& t, Vec3 x, bool plain) {
+        return plain ? closest_point_in_range(t, x) : slc::closest_point(t, x);
+    }
     /// The cube of half-width m around x, exactly a cube (Box3::cube), that a cell's triple must
     /// hold to end the climb.
     static Box3 reach(Vec3 x, double m) { return Box3::cube(x, m); }
@@ -108,6 +110,8 @@ private:
     std::span<const std::uint32_t> cell_list(std::size_t c) const { return cell_triangles(c); }
     std::span<const Triangle3> elements() const { return corners_; }
     const TriangleHierarchy& hierarchy() const { return hierarchy_; }
+    /// True when a query at x may skip the kernel's range checks (TriangleKernel::closest_point).
+    bool in_plain_range(Vec3 x) const { return hierarchy_.plain() && slc::in_plain_range(x); }
     SurfacePoint signed_point(const NearestFacet& best, Vec3 x) const {
         return signed_closest_point(*surface_, normals_, best, x);
     }

@@ -49,7 +49,10 @@ struct StepOptions {
     /// F(y) + ½ c² t (1 − t) C(t) at a point y whose nearest point is at parameter t of a segment
     /// of length c, C the signed curvature (−1/R on a counterclockwise circle) of the circles
     /// through each end and its two neighbours, interpolated linearly in t; C = 0 at a corner,
-    /// where the curve turns by more than arc_corner. The chords of a polygon inscribed in a
+    /// where the curve turns by more than arc_corner, and under a rigid motion (which keeps any
+    /// shape) also where a segment is longer than arc_longest finest cells: there only the
+    /// contours' chords (at most a cell's diagonal) need the arcs, and a user's coarser polygon
+    /// is moved as the polygon it is, its sides straight. The chords of a polygon inscribed in a
     /// smooth curve cut inside its convex parts by up to c²|C|/8, and each step's new vertices
     /// land on them: a loss that adds up over the steps. The arcs remove it to O(c³); corners stay
     /// sharp (docs/algorithms/evolve.md). Unset: resolved_arcs().
@@ -59,6 +62,9 @@ struct StepOptions {
     std::optional<bool> area_correction = std::nullopt;
     /// Turning angle at a vertex (radians) above which arcs treats it as a corner.
     static constexpr double arc_corner = 0.5;
+    /// Length of a segment, in finest cells of the contours (finest_cell), above which arcs treats
+    /// its ends as corners under a rigid motion.
+    static constexpr double arc_longest = 2.0;
 
     /// σ of the arclength module for a step of size k: arc_width as given, or √k.
     double resolved_arc_width(double k) const { return arc_width.value_or(std::sqrt(k)); }
@@ -113,16 +119,22 @@ struct AreaRestored {
 /// curves as given when no vertex can move. StepOptions::area_correction after every step.
 AreaRestored restore_area(const Interface& curves, double target);
 
-/// The area enclosed by curves as a step reads them: the polygon's, plus the bulges of its arcs
-/// when the step reads it as arcs (StepOptions::resolved_arcs).
-double step_area(const Interface& curves, const VelocityLaw& law, const StepOptions& options);
+/// The edge of the finest cell of contours at depth `contour.depth` in domain (the same in the
+/// domain doubled, K a level deeper each time).
+double finest_cell(const Box& domain, const ContourOptions& contour);
 
-/// The length of curves as a step reads them: the polygon's, or its arcs' when the step reads it
-/// as arcs.
-double step_length(const Interface& curves, const VelocityLaw& law, const StepOptions& options);
+/// The area enclosed by curves as a step in domain reads them: the polygon's, plus the bulges of
+/// its arcs when the step reads it as arcs (StepOptions::resolved_arcs).
+double step_area(const Interface& curves, const VelocityLaw& law, const StepOptions& options,
+                 const Box& domain);
+
+/// The length of curves as a step in domain reads them: the polygon's, or its arcs' when the step
+/// reads it as arcs.
+double step_length(const Interface& curves, const VelocityLaw& law, const StepOptions& options,
+                   const Box& domain);
 /// step_area and step_length at once, the arcs' curvatures computed once.
 std::pair<double, double> step_area_and_length(const Interface& curves, const VelocityLaw& law,
-                                               const StepOptions& options);
+                                               const StepOptions& options, const Box& domain);
 
 /// Advances curves (inside domain, a square) from t to t + k under law. Components may vanish;
 /// an empty result means nothing is left. Throws InvalidInput for k ≤ 0 or a direct extension of

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "slc/core/box3.hpp"
@@ -45,8 +46,29 @@ struct FacetPoint {
 /// Nearest point of the closed triangle t to x, by the Voronoi regions of its corners, edges and
 /// face (Ericson, Real-Time Collision Detection, §5.1.5). A corner is returned exactly (weights
 /// 1, 0, 0), so that a nearest vertex is recognised by its feature. Distance exact to rounding.
-/// Precondition: t is not degenerate. O(1).
+/// Precondition: t is not degenerate. O(1). At any coordinates: where products of its scalar
+/// products would overflow or underflow (coordinates beyond about 1e75, or a triangle and a
+/// distance below about 1e−60), the same arithmetic on everything scaled by a power of two,
+/// which keeps every rounding.
 FacetPoint closest_point(const Triangle3& t, Vec3 x);
+
+/// closest_point without the range checks, the same answer when in_plain_range(t) and every
+/// coordinate of x is within ±plain_coordinate (the trees check that once per query).
+FacetPoint closest_point_in_range(const Triangle3& t, Vec3 x);
+
+/// The coordinates, and the least length of a triangle's first edge, within which
+/// closest_point_in_range needs no checks: its scalar products d then lie within 2^404 and
+/// max|d| is at least 2^−301 (d1 − d3 = |b − a|²), so their products neither overflow nor
+/// underflow.
+inline constexpr double plain_coordinate = 0x1p200;
+inline constexpr double plain_edge = 0x1p-150;  ///< (see plain_coordinate)
+/// True when every corner of t is within ±plain_coordinate and |b − a| ≥ plain_edge.
+bool in_plain_range(const Triangle3& t);
+/// True when every coordinate of x is within ±plain_coordinate.
+inline bool in_plain_range(Vec3 x) {
+    return std::abs(x.x) <= plain_coordinate && std::abs(x.y) <= plain_coordinate &&
+           std::abs(x.z) <= plain_coordinate;
+}
 
 /// The unit normal of t, (b − a) × (c − a) normalised. Precondition: t is not degenerate.
 Vec3 unit_normal(const Triangle3& t);

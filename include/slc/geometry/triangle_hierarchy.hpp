@@ -96,6 +96,9 @@ public:
     /// (Bounds::boxes_and_slabs), by a factor of 10 to 15 for points deep inside a sphere
     /// (docs/tables/table1_3d.md).
     void nearest(std::span<const Triangle3> triangles, Vec3 x, NearestFacet& best) const;
+    /// True when every triangle is in_plain_range: a query point within it too may take
+    /// closest_point_in_range.
+    bool plain() const { return plain_; }
 
 private:
     /// A leaf (count > 0) holds order_[first, first + count); an inner node has children
@@ -114,6 +117,7 @@ private:
     bool slabs_ = false;                ///< whether the nodes' slabs are set
     std::vector<std::uint32_t> order_;  ///< triangle indices, grouped by leaf
     std::vector<Box3> boxes_;           ///< each triangle's bounding box
+    bool plain_ = true;  ///< every triangle in_plain_range: queries may skip the range checks
 };
 
 }  // namespace slc
