@@ -13,6 +13,7 @@
 #include "commands/commands.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/memory.hpp"
+#include "slc/core/stop.hpp"
 
 namespace {
 
@@ -42,6 +43,10 @@ int main(int argc, char** argv) {
     } catch (const slc::cli::Interrupted& e) {
         fmt::print(stderr, "slc: {}\n", e.what());
         return e.status();
+    } catch (const slc::StopRequested&) {
+        // A stop that no command turned into its own message (none should): as Ctrl-C.
+        fmt::print(stderr, "slc: interrupted\n");
+        return 130;
     } catch (const slc::InvalidInput& e) {
         fmt::print(stderr, "slc: {}\n", e.what());
         return 2;

@@ -96,6 +96,24 @@ if grep -q '"status": "ok"' long_part/summary.json; then rm long_part/summary.js
 expect_ok "resume after SIGTERM" -- run --resume long_part --quiet
 same_run "resumed after SIGTERM" long_full long_part
 
+# SIGTERM within a long step of a surface (here the contour at K = 7 that reads the surface, some
+# 20 s and more): the run stops at the next stage of the step, not at its end, and says so in
+# one line with status 143 (before, a 60 s step ran to its end first).
+"$SLC" run --initial ball.obj --velocity unit-normal --t-end 0.01 -N 1 -K 7 --out slow --quiet 2>err.txt &
+pid=$!
+for _ in $(seq 200); do ls -d slow.slc-* >/dev/null 2>&1 && break; sleep 0.05; done
+sleep 1
+kill -TERM "$pid"
+stopped=0
+for _ in $(seq 600); do kill -0 "$pid" 2>/dev/null || { stopped=1; break; }; sleep 0.05; done
+check "SIGTERM within a step: the process ends within 30 s" test "$stopped" -eq 1
+[ "$stopped" -eq 1 ] || kill -KILL "$pid"
+wait "$pid"
+status=$?
+check "SIGTERM within a step: exit status 143" test "$status" -eq 143
+check "SIGTERM within a step: one line naming it" \
+    sh -c 'test "$(wc -l <err.txt)" -eq 1 && grep -q "interrupted by SIGTERM" err.txt'
+
 # SIGTERM during the final writes (here during --estimate's second run, which follows
 # final.json): the writes are finished, then exit 143. (Should the run finish before the
 # signal, it exits 0 with the same files.)

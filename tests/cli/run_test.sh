@@ -167,4 +167,12 @@ check "spiral without it: the area kept to 1e-3" awk -F, 'NR == 2 { a0 = $2 }
 check "spiral without it: no correction reported" test -z "$(grep area_corrected spiral_free/summary.json)"
 expect_ok "help documents --estimate" -- run --help
 check "help names --estimate" grep -q -- "--estimate" out.txt
+# Threads: OMP_NUM_THREADS sets the default, and a count beyond the cores this process may use
+# runs on those cores (more threads would only wait on each other).
+cores=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)
+OMP_NUM_THREADS=1 expect_ok "OMP_NUM_THREADS=1" -- run --problem circle-curvature -N 4 -K 4 --out omp1 --quiet
+check "OMP_NUM_THREADS=1: one thread" test "$(json omp1/summary.json 's["threads"]')" = 1
+expect_ok "--threads 1024" -- run --problem circle-curvature -N 4 -K 4 --threads 1024 --out t1024 --quiet
+check "--threads 1024: the $cores cores there are" test "$(json t1024/summary.json 's["threads"]')" = "$cores"
+check "--threads 1024: the same result" cmp -s omp1/final.json t1024/final.json
 finish

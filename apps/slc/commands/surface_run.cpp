@@ -16,6 +16,7 @@
 #include "commands/run_options.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/stop.hpp"
 #include "slc/evolve/surface_problems.hpp"
 #include "slc/evolve/surface_study.hpp"
 #include "slc/io/interface_json.hpp"
@@ -134,11 +135,20 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     SurfaceProblem& p = setup.problem;
     const SurfaceRunOptions& options = setup.options;
     const SurfaceContourOptions& c = options.step.contour;
-    // A named problem's surface at the run's own K, P, ε and η when they are given: a run at
-    // K = 7 starts from the contour at K = 7, not from the problem's coarser one.
-    if (!r.problem.empty() && sets_contour(r.settings)) p.initial = initial_surface(p, c);
-    // A user's surface as the steps read it (surface_as_read), contoured at the run's K and ε.
-    if (r.problem.empty()) p.initial = surface_as_read(p.initial, p.domain, options);
+    try {
+        // A named problem's surface at the run's own K, P, ε and η when they are given: a run at
+        // K = 7 starts from the contour at K = 7, not from the problem's coarser one.
+        if (!r.problem.empty() && sets_contour(r.settings)) p.initial = initial_surface(p, c);
+        // A user's surface as the steps read it (surface_as_read), contoured at the run's K and
+        // ε.
+        if (r.problem.empty()) p.initial = surface_as_read(p.initial, p.domain, options);
+    } catch (const StopRequested&) {
+        const int signal = r.stop_signal != nullptr ? r.stop_signal->load() : SIGINT;
+        throw Interrupted(signal,
+                          fmt::format("{}: interrupted by {} while contouring the initial surface, "
+                                      "before the first step; nothing was written",
+                                      p.name, signal == SIGTERM ? "SIGTERM" : "SIGINT"));
+    }
     SurfaceView view;
     view.azimuth = p.azimuth;
     view.elevation = p.elevation;

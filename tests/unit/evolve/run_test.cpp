@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "slc/core/error.hpp"
+#include "slc/core/stop.hpp"
 #include "slc/geometry/shapes.hpp"
 #include "slc/velocity/grid_field.hpp"
 #include "slc/velocity/laws.hpp"
@@ -62,6 +63,33 @@ TEST(Run, ResumedFromAnyStepEndsBitForBitAsTheUninterruptedRun) {
         EXPECT_EQ(rest.g_evals, whole.g_evals);
         EXPECT_EQ(rest.vertices_produced, whole.vertices_produced);
     }
+}
+
+// A stop requested within a step (as Ctrl-C does, slc/core/stop.hpp) ends the run at the next
+// stage of that step: status interrupted, with the interface and time of the last whole step,
+// from which resume() goes on as if nothing had happened. Here the law asks for the stop while
+// the third step evaluates it.
+TEST(Run, AStopWithinAStepKeepsTheLastWholeStep) {
+    const Interface square({{{-1, -1}, {0.5, -1}, {0.5, 0.5}, {-1, 0.5}}});
+    const Box domain = Box::centered_square(2.0);
+    const RunOptions options = six_steps();  // steps of 0.125 from t = 0.25
+    const LocalLaw stopping("stopping", {}, [](double t, const VertexState& s) {
+        if (t > 0.55) request_stop();
+        return Vec2{-s.point.y, s.point.x};
+    });
+    std::vector<RunResult> seen;
+    clear_stop();
+    const RunResult stopped = run(square, stopping, domain, options, [&](const StepReport& s) {
+        seen.push_back(*s.run);
+        return true;
+    });
+    ASSERT_TRUE(stop_requested());
+    clear_stop();
+    EXPECT_EQ(stopped.status, RunStatus::interrupted);
+    ASSERT_EQ(stopped.steps_done, 2);
+    ASSERT_EQ(seen.size(), 2u);
+    EXPECT_EQ(stopped.t, 0.5);
+    EXPECT_TRUE(same_bits(stopped.curves, seen[1].curves));
 }
 
 TEST(Run, ResumeRejectsAStateThatIsNotOfThisRun) {
