@@ -45,6 +45,9 @@ RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, 
     c.refine_passes = curvature ? 2 : ContourOptions::until_converged;
     c.triangle_safeguard = false;
     o.step.embedded.mesh = default_mesh_size(c.depth);
+    // A user's run holds its law's area rate to 1% of the start's area, splitting the steps
+    // that would take it further (a thin ellipse's tips at 40 steps miss it by 2.4%).
+    o.area_drift = 0.01;
     return o;
 }
 
@@ -69,6 +72,7 @@ Problem curve_problem(std::string name, const Interface& curves, const Box& doma
     p.length_scale = length_scale(curves);
     p.triangle_safeguard = c.triangle_safeguard;
     p.max_domain_doublings = defaults.max_domain_doublings;
+    p.area_drift = defaults.area_drift;
     return p;
 }
 

@@ -72,8 +72,13 @@ public:
           options_(options),
           invariants_(law.invariants()),
           eps_(options.step.contour.resolved_eps()) {
+        if (!(options.area_drift > 0.0) || !std::isfinite(options.area_drift)) {
+            throw InvalidInput(
+                fmt::format("area_drift must be a positive fraction, got {}", options.area_drift));
+        }
         const double h = finest_cell(domain, options.step.contour);
-        budget_ = GuardBudget{.run_length = options.t_end - options.t_start,
+        budget_ = GuardBudget{.run_lag_fraction = options.area_drift,
+                              .run_length = options.t_end - options.t_start,
                               .resolved_area = std::numbers::pi * h * h};
     }
 
@@ -113,8 +118,8 @@ public:
 
     /// With the guards: the run's area lag, its length above the least (a law that shortens the
     /// curves) and its segments (a rigid motion), after the step to t_next ends at `curves`.
-    std::optional<std::string> run_budget(Attempt& a, const Interface& curves, double t_next,
-                                          RunResult& r) const;
+    std::optional<BudgetBreach> run_budget(Attempt& a, const Interface& curves, double t_next,
+                                           RunResult& r) const;
 
     /// Adds what the kept split did to r.
     static void commit(const Attempt& a, RunResult& r) {
@@ -160,27 +165,30 @@ private:
     GuardBudget budget_;
 };
 
-std::optional<std::string> LoopHooks<2>::run_budget(Attempt& a, const Interface& curves,
-                                                    double t_next, RunResult& r) const {
+std::optional<BudgetBreach> LoopHooks<2>::run_budget(Attempt& a, const Interface& curves,
+                                                     double t_next, RunResult& r) const {
     a.run_lag = r.area_lag + a.lag;
     if (!options_.guards) return std::nullopt;
     const GuardBudget b = budget(r);
     if (r.start_area != 0.0 && std::abs(a.run_lag) > b.run_lag_fraction * std::abs(r.start_area)) {
-        return fmt::format(
-            "by t = {}: the area has changed by {:.3g} more than the law's rate gives, {:.3g}% "
-            "of the {:.3g} at the start: raise the steps N or the depth K",
-            t_next, a.run_lag, 100.0 * a.run_lag / std::abs(r.start_area), r.start_area);
+        return BudgetBreach{
+            fmt::format("by t = {}: the area has changed by {:.3g} more than the law's rate "
+                        "gives, {:.3g}% of the {:.3g} at the start: raise the steps N or the "
+                        "depth K",
+                        t_next, a.run_lag, 100.0 * a.run_lag / std::abs(r.start_area),
+                        r.start_area),
+            true};
     }
     if (invariants_.shortens && !curves.empty()) {
         // a.m0: the last sub-step's measures.
         if (const auto growth = growth_above_least(r.least_length, a.m0.length, t_next,
                                                    b.run_length_growth, b.eps_lengths * eps_)) {
-            return fmt::format(
+            return BudgetBreach{fmt::format(
                 "by t = {:.6g}: the length has grown by {:.3g}% since t = {:.6g} under a law "
                 "that shortens the curves, more than the run's {:g}%: the steps roughen the "
                 "curves; raise the steps N (or the smoothing S of the embedded module), or "
                 "use --geometry arclength",
-                t_next, 100.0 * *growth, r.least_length.t, 100.0 * b.run_length_growth);
+                t_next, 100.0 * *growth, r.least_length.t, 100.0 * b.run_length_growth)};
         }
     }
     if (invariants_.rigid && !curves.empty()) {
@@ -188,11 +196,11 @@ std::optional<std::string> LoopHooks<2>::run_budget(Attempt& a, const Interface&
             r.rigid_segments = curves.size();
         } else if (static_cast<double>(curves.size()) >
                    b.rigid_segments_growth * static_cast<double>(r.rigid_segments)) {
-            return fmt::format(
+            return BudgetBreach{fmt::format(
                 "by t = {}: the contour needs {} segments where the run's first needed {}, but a "
                 "rigid motion keeps the shape: the steps roughen the curves; use --extension "
                 "direct or raise --eps",
-                t_next, curves.size(), r.rigid_segments);
+                t_next, curves.size(), r.rigid_segments)};
         }
     }
     return std::nullopt;

@@ -80,8 +80,8 @@ public:
 
     /// The volume's drift since the start (a law that keeps it) and the area above the least (a
     /// law that shrinks it), after the step to t_next ends at `surface`.
-    std::optional<std::string> run_budget(Attempt& a, const Surface& surface, double t_next,
-                                          SurfaceRunResult& r) const;
+    std::optional<BudgetBreach> run_budget(Attempt& a, const Surface& surface, double t_next,
+                                           SurfaceRunResult& r) const;
 
     /// Adds what the kept split did to r.
     static void commit(const Attempt& a, SurfaceRunResult& r) {
@@ -153,8 +153,8 @@ std::optional<std::string> LoopHooks<3>::record(Attempt& a, const Surface& befor
     return std::nullopt;
 }
 
-std::optional<std::string> LoopHooks<3>::run_budget(Attempt&, const Surface& surface, double t_next,
-                                                    SurfaceRunResult& r) const {
+std::optional<BudgetBreach> LoopHooks<3>::run_budget(Attempt&, const Surface& surface,
+                                                     double t_next, SurfaceRunResult& r) const {
     std::optional<std::string> why;
     if (invariants_.keeps_area && !surface.empty()) {
         const double drift = volume(surface) / r.volume_initial - 1.0;
@@ -164,7 +164,7 @@ std::optional<std::string> LoopHooks<3>::run_budget(Attempt&, const Surface& sur
                 "keeps it (more than {:.3g}%); take more steps (-N), refine the contours (-K, "
                 "--eps) or allow more drift (--volume-drift)",
                 t_next, 100.0 * drift, 100.0 * options_.volume_drift);
-            if (options_.guards) return why;
+            if (options_.guards) return BudgetBreach{*why};
         }
     }
     if (invariants_.shortens && !surface.empty()) {
@@ -179,7 +179,10 @@ std::optional<std::string> LoopHooks<3>::run_budget(Attempt&, const Surface& sur
                 t_next, 100.0 * *growth, r.least_area.t, 100.0 * options_.area_growth);
         }
     }
-    return why;
+    // Surfaces' drifts end the run rather than split the step, each of whose sub-steps costs a
+    // whole contour.
+    if (why) return BudgetBreach{*why};
+    return std::nullopt;
 }
 
 }  // namespace detail

@@ -35,6 +35,14 @@ namespace slc::detail {
 template <int dim>
 class LoopHooks;
 
+/// A run beyond one of its budgets (LoopHooks::run_budget): why, and whether the step is split
+/// into sub-steps to keep it (a drift that smaller steps make smaller, as a law's area rate
+/// missed) or the run ends there (steps that roughen the interface).
+struct BudgetBreach {
+    std::string message;
+    bool split = false;
+};
+
 /// The process's CPU time (all threads) in whole nanoseconds: a difference of two readings is
 /// exact, and seconds() of it the nearest double to the measured seconds.
 inline std::int64_t process_cpu_ns() {
@@ -218,15 +226,22 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
             t = t_to;
         }
         if (!kept) continue;
-        std::optional<std::string> over_budget =
+        std::optional<BudgetBreach> over_budget =
             hooks.run_budget(attempt, H::shape(out), t_next, r);
         if (over_budget && !options.guards) {
-            H::note_broken(r, std::move(*over_budget));
+            H::note_broken(r, std::move(over_budget->message));
             over_budget.reset();
         }
         // A run beyond its budget ends with the interface before the step that took it there,
-        // which its history holds last.
-        if (over_budget) throw Unstable{std::move(*over_budget)};
+        // which its history holds last; where smaller steps may keep it, the step is split first
+        // as one that breaks an invariant.
+        if (over_budget) {
+            if (over_budget->split && j < halvings) {
+                violation = std::move(over_budget->message);
+                continue;
+            }
+            throw Unstable{std::move(over_budget->message)};
+        }
         hooks.commit(attempt, r);
         if (parts > 1) {
             ++r.split_steps;

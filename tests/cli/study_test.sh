@@ -37,7 +37,7 @@ check "the finest row holds the estimate" awk -F, 'END { exit !($16 > 0) }' self
 check "the table states the estimate" grep -q "Estimated error of the finest run" self/table.md
 
 # Runs that cannot be compared (all vanish before t-end) are reported, not a failure.
-echo '{"time": 0, "curves": [{"points": [[0.3, 0], [0, 0.3], [-0.3, 0], [0, -0.3]]}]}' >small.json
+python3 -c "import json, math; json.dump({'time': 0, 'curves': [{'points': [[0.3 * math.cos(2 * math.pi * i / 64), 0.3 * math.sin(2 * math.pi * i / 64)] for i in range(64)]}]}, open('small.json', 'w'))"
 expect_ok "self-convergence of vanishing curves" -- study --initial small.json --velocity curvature \
     --t-end 0.1 -N 4 -K 3 --threads 1 --out vanish --quiet
 check "vanished runs: distance infinite in the csv" awk -F, 'NR == 2 { exit !($14 == "inf") }' vanish/table.csv

@@ -66,6 +66,8 @@ struct Problem {
     std::optional<Extension> extension;
     std::optional<bool> arcs;             ///< see extension
     std::optional<bool> area_correction;  ///< see extension (StepOptions::area_correction)
+    /// RunOptions::area_drift: 0.05 for a named problem, 0.01 for a user's curves.
+    double area_drift = 0.05;
     /// ContourOptions::triangle_safeguard: the paper's for a named problem, off for a user's
     /// curve (whose corners it would cut).
     bool triangle_safeguard = true;

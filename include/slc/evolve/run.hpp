@@ -64,6 +64,12 @@ struct RunOptions {
     /// stay N), and a run that still breaks them ends with status unstable.
     bool guards = true;
     int max_substep_halvings = 4;  ///< see guards
+    /// With guards, under a law with an area rate (curvature flow): the steps' area changes,
+    /// summed, may miss the law's by at most this fraction of the area at the start
+    /// (RunResult::area_lag); a step that takes the run beyond it is split into sub-steps like
+    /// one that breaks an invariant, and the run ends unstable when no split keeps it within.
+    /// 0.05 for the paper's problems; a user's curves take 0.01 (default_run_options).
+    double area_drift = 0.05;
 };
 
 struct RunResult;
