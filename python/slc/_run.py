@@ -343,7 +343,7 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     "converged"), eps, eta, smoothing S; geometry "intrinsic", "embedded" or "arclength";
     extension "nearest", "whitney" or "direct"; arcs; area_correction. frames: keep this many
     frames besides the initial one. observer(step) after each step returns True or None to go
-    on, False to stop the run (status "interrupted"), as Ctrl-C does between steps; anything else
+    on, False to stop the run (status "interrupted"), as Ctrl-C does in the tool; anything else
     is a TypeError. threads: worker threads (0: OMP_NUM_THREADS when set, else every
     available core; never more than the cores); results do not depend on it.
     estimate: as ``slc run --estimate``, run again at half resolution (N/2 steps, K − 1, 4 eps)
