@@ -63,7 +63,7 @@ FacetPoint scaled_closest_point(const Triangle3& t, Vec3 x);
 /// scaled_closest_point where the products could overflow or underflow (coordinates beyond
 /// about 1e75, or below 1e−60 in a small triangle).
 template <bool checked>
-FacetPoint ericson_closest_point(const Triangle3& t, Vec3 x) {
+[[gnu::always_inline]] inline FacetPoint ericson_closest_point(const Triangle3& t, Vec3 x) {
     const Vec3 ab = t.b - t.a, ac = t.c - t.a, ap = x - t.a;
     const double d1 = dot(ab, ap), d2 = dot(ac, ap);
     if (d1 <= 0.0 && d2 <= 0.0) return {t.a, {1.0, 0.0, 0.0}, norm2(ap), Feature::vertex, 0};
