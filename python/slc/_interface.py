@@ -39,7 +39,21 @@ def _frozen(arrays) -> list[np.ndarray]:
     return out
 
 
-class Interface:
+class _AtTime:
+    """A shape at a time: the time property both Interface and Surface have."""
+
+    @property
+    def time(self) -> float:
+        """The time the shape is at, where a run starts; setting it (or giving it to the
+        constructor) to NaN or ±inf raises ValueError."""
+        return self._time
+
+    @time.setter
+    def time(self, value) -> None:
+        self._time = _time(value)
+
+
+class Interface(_AtTime):
     """Closed curves in the plane, each an (n, 2) array of its vertices (the closing segment
     implicit), counterclockwise around their inside, holes clockwise.
 
@@ -78,16 +92,6 @@ class Interface:
         out._curves = _frozen(arrays)
         out.time = time
         return out
-
-    @property
-    def time(self) -> float:
-        """The time the curves are at, where a run starts; setting it (or giving it to the
-        constructor) to NaN or ±inf raises ValueError."""
-        return self._time
-
-    @time.setter
-    def time(self, value) -> None:
-        self._time = _time(value)
 
     @property
     def curves(self) -> list[np.ndarray]:

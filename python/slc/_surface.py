@@ -13,7 +13,7 @@ from typing import Any, Callable, NamedTuple
 import numpy as np
 
 from . import _slc
-from ._interface import _points, _time
+from ._interface import _AtTime, _points
 from ._problem import _NamedProblem
 from ._tables import ConvergenceTable, nan_array as _array
 
@@ -38,7 +38,7 @@ def _frozen(a, dtype) -> np.ndarray:
     return a
 
 
-class Surface:
+class Surface(_AtTime):
     """A closed triangle surface in space: ``vertices`` (n, 3) and ``triangles`` (m, 3) vertex
     indices, each triangle counterclockwise seen from outside.
 
@@ -75,16 +75,6 @@ class Surface:
         out._triangles = _frozen(triangles, np.int64)
         out.time = time
         return out
-
-    @property
-    def time(self) -> float:
-        """The time the surface is at, where a run starts; setting it (or giving it to the
-        constructor) to NaN or ±inf raises ValueError."""
-        return self._time
-
-    @time.setter
-    def time(self, value) -> None:
-        self._time = _time(value)
 
     def __reduce__(self):
         return (Surface._trusted, (np.array(self._vertices), np.array(self._triangles),
