@@ -144,8 +144,14 @@ Vec3 normal_around(const Surface& s, const Edges& edges, std::uint32_t t) {
 /// True when triangle `now` has area and turns less than the angle of `cosine` from n.
 bool along(const Surface& s, Vec3 n, const TriangleIndices& now, double cosine) {
     const Vec3 m = area_normal(s, now);
-    const double mm = norm(m);
-    return mm > 0.0 && dot(n, m) > cosine * norm(n) * mm;
+    const double mm = norm(m), nn = norm(n);
+    if (!(mm > 0.0)) return false;
+    // Area normals are squares of lengths, their products fourth powers: beyond 2^±900 (a
+    // surface below 1e−68 or above 1e68) the unit normals' product, which neither underflows
+    // nor overflows.
+    const double scale = nn * mm;
+    if (scale >= 0x1p-900 && scale <= 0x1p900) return dot(n, m) > cosine * scale;
+    return dot(n / nn, m / mm) > cosine;
 }
 
 /// True when every child keeps area and turns less than 60° from the surface around its parent.

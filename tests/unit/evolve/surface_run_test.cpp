@@ -123,6 +123,31 @@ TEST(SurfaceRun, SphereVanishesUnderMeanCurvature) {
     for (std::size_t i = 0; i + 1 < seen.size(); ++i) EXPECT_GT(seen[i].second, 0u);
 }
 
+// A user's sphere of radius 4.9e-91 grows at unit speed as one of radius 0.5 does: every length
+// of the defaults (ε, η) scales with the surface, and the nearest points on its triangles scale
+// their arithmetic (whose fourth powers underflow there). Before, it "vanished under a law that
+// only grows it".
+TEST(SurfaceRun, ATinySphereGrowsAsALargeOne) {
+    double ratio[2] = {0.0, 0.0};
+    int i = 0;
+    for (const double r : {0.5, 0x1p-300}) {  // 2^-300: 4.9e-91
+        const Surface ball = prepare_surface(sphere({}, r, 1)).surface;
+        const Box3 box = default_domain(bounding_box(ball));
+        SurfaceRunOptions o = default_surface_run_options(ball, 0.0, 0.1 * r);
+        o.steps = 2;
+        o.step.contour.depth = 3;
+        o.step.contour.eps = 4e-2 * r;
+        const SurfaceRunResult run_r =
+            run(surface_as_read(ball, box, o), SurfaceNormalSpeed(), box, o);
+        ASSERT_EQ(run_r.status, RunStatus::ok) << r << ": " << run_r.message;
+        ratio[i++] = volume(run_r.surface) / volume(ball);
+    }
+    // (1.1)^3 = 1.331 for the exact sphere; the coarse contours' own error is the same at both
+    // sizes.
+    EXPECT_NEAR(ratio[0], 1.331, 0.05);
+    EXPECT_NEAR(ratio[1], ratio[0], 1e-9);
+}
+
 TEST(SurfaceRun, ObserverStops) {
     const SurfaceRunResult r =
         run(sphere({}, 0.3, 2), SurfaceNormalSpeed(0.5), domain, coarse(0.1, 5),
