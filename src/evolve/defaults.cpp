@@ -38,11 +38,14 @@ RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, 
     RunOptions o =
         detail::user_run_options<2, RunOptions>(t_start, t_end, length_scale(curves), 40);
     ContourOptions& c = o.step.contour;
-    // Curvature is noisier where refinement leaves the vertices unevenly spaced: such laws take
-    // the paper's two passes. Elsewhere a pass splits only the segments whose midpoint misses ε,
-    // so refining to convergence puts the cost where the curve needs it.
-    const bool curvature = law.needs().curvature;
-    c.refine_passes = curvature ? 2 : ContourOptions::until_converged;
+    // A law known only at the vertices (the curvature laws, a law of their velocities) is
+    // extended off the curve from its nearest point, whose kinks refinement to convergence would
+    // chase without end, and curvature is noisier where refinement leaves the vertices unevenly
+    // spaced: such laws take the paper's two passes. A law known everywhere (flow fields, normal
+    // laws) is evaluated directly, where a pass splits only the segments whose midpoint misses
+    // ε, so refining to convergence puts the cost where the curve needs it.
+    const bool at_vertices = o.step.resolved_extension(law) != Extension::direct;
+    c.refine_passes = at_vertices ? 2 : ContourOptions::until_converged;
     c.triangle_safeguard = false;
     o.step.embedded.mesh = default_mesh_size(c.depth);
     // A user's run holds its law's area rate to 1% of the start's area, splitting the steps

@@ -27,9 +27,10 @@ double length_scale(const Interface& curves);
 ///   up to 6 times when the curves near its edge: RunOptions::max_domain_doublings);
 /// - lengths relative to the curves' half-width ℓ: ε = 1e−5 ℓ (eps_for_depth, the rule -K
 ///   follows), η = 1e−10 ℓ, so that a curve scaled by any factor runs alike;
-/// - a law that needs curvature: its module's default (arclength) with arcs, P = 2 passes;
-///   every other law: refinement until converged without the triangle safeguard, so that
-///   corners the tree cuts are found again (ContourOptions::triangle_safeguard);
+/// - a law known only at the vertices (the curvature laws, with their module's default,
+///   arclength, and arcs; a law of vertex velocities): P = 2 passes; a law evaluated directly:
+///   refinement until converged; both without the triangle safeguard, so that corners the tree
+///   cuts are found again (ContourOptions::triangle_safeguard);
 /// - the extension: the law itself where it is known off the curve (flow fields, normal laws),
 ///   the nearest-point extension otherwise (StepOptions::resolved_extension); arcs for the
 ///   curvature laws and the laws evaluated directly (StepOptions::resolved_arcs).
