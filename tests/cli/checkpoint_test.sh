@@ -11,7 +11,7 @@ same_run() {  # same_run NAME A B: final.json identical, the history and the sum
 
 # Uninterrupted, then the same run checkpointed every 6 steps and resumed from its last checkpoint
 # (step 18 of 20): steps 19 and 20 again, with the frames written before (and their VTK series).
-run_args=(run --problem vortex -N 20 -K 6 -P 1 --frames 4 --vtk --quiet)
+run_args=(run --problem zalesak -N 20 -K 6 -P 1 --frames 4 --vtk --quiet)
 expect_ok "uninterrupted" -- "${run_args[@]}" --out full
 expect_ok "checkpointed" -- "${run_args[@]}" --checkpoint-every 6 --out part
 check "checkpoint written" test -s part/checkpoint.json
@@ -79,7 +79,7 @@ expect_error "resume refuses a finished surface run" "after the checkpoint's ste
 # Stopped by SIGTERM while running: status interrupted, a checkpoint at the step it stopped after,
 # and the resumed run ends as the uninterrupted one. (Should the run finish before the signal,
 # the last regular checkpoint is resumed: the comparison holds either way.)
-long_args=(run --problem vortex -N 100 -K 6 -P 0 --quiet)
+long_args=(run --problem zalesak -N 100 -K 6 -P 1 --quiet)
 expect_ok "long run" -- "${long_args[@]}" --out long_full
 "$SLC" "${long_args[@]}" --checkpoint-every 1 --out long_part 2>err.txt &
 pid=$!
@@ -117,7 +117,7 @@ check "SIGTERM within a step: one line naming it" \
 # SIGTERM during the final writes (here during --estimate's second run, which follows
 # final.json): the writes are finished, then exit 143. (Should the run finish before the
 # signal, it exits 0 with the same files.)
-"$SLC" run --problem vortex -N 20 -K 6 --estimate --out late --quiet 2>err.txt &
+"$SLC" run --problem zalesak -N 20 -K 6 --estimate --out late --quiet 2>err.txt &
 pid=$!
 seen=0
 for _ in $(seq 3000); do ls late.slc-*/final.json >/dev/null 2>&1 && { seen=1; break; }; sleep 0.02; done
@@ -149,7 +149,7 @@ check "SIGINT: no working folder left" test -z "$(ls -d int_part.slc-* int_part.
 
 # Output folders are replaced whole: a run without checkpoints into the folder of a run with
 # them leaves no frame, checkpoint or history of the first.
-expect_ok "run A, checkpointed, 4 frames" -- run --problem vortex -N 8 -K 6 -P 1 --frames 4 --checkpoint-every 2 --quiet --out mixed
+expect_ok "run A, checkpointed, 4 frames" -- run --problem zalesak -N 8 -K 6 -P 1 --frames 4 --checkpoint-every 2 --quiet --out mixed
 expect_ok "run B into the same folder" -- run --problem circle-curvature -N 2 -K 3 -P 0 --quiet --out mixed
 check "run B left no frame of A" test ! -e mixed/frames
 check "run B left no checkpoint of A" test ! -e mixed/checkpoint.json

@@ -77,7 +77,9 @@ public:
     /// Throws InvalidInput unless period > 0.
     explicit SingleVortex(double period = 8.0) : BasicReversingFlow<2>("vortex", period) {}
     std::string name() const override { return "vortex"; }
-    Invariants invariants() const override { return {.keeps_area = true}; }
+    /// A smooth divergence-free flow: it keeps the area, and (a diffeomorphism) never splits a
+    /// curve; a contour that parts a filament thinner than its cells breaks the law.
+    Invariants invariants() const override { return {.keeps_area = true, .cannot_split = true}; }
     /// The field at each point, as the base's sample().
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
 };
