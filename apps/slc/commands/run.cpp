@@ -232,9 +232,9 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
             keep_frame(s.t, *s.curves);
             vtk_step = s.step;
         }
-        // Every n steps, and when stopped early, so that --resume loses nothing.
+        // Every n steps (and, below, when stopped early), so that --resume loses nothing.
         if (o.checkpoint_every > 0 && s.step < s.steps && !s.curves->empty() &&
-            (s.step % o.checkpoint_every == 0 || stop_requested)) {
+            s.step % o.checkpoint_every == 0) {
             history.save_csv();  // first: a checkpoint's history is never shorter than its run
             write_checkpoint(dir, {given, id, *s.run, overlay.count(), std::nullopt, {}});
             folder.publish();
@@ -248,7 +248,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
     };
     const RunResult r = from ? resume(from->state, *law, p.domain, options, observer)
                              : run(initial, *law, p.domain, options, observer);
-    // Stopped within a step: the checkpoint of the last whole one, as the observer writes.
+    // Stopped, between steps or within one: the checkpoint of the last whole step.
     if (r.status == RunStatus::interrupted && o.checkpoint_every > 0 && !r.curves.empty()) {
         history.save_csv();
         write_checkpoint(dir, {given, id, r, overlay.count(), std::nullopt, {}});

@@ -224,10 +224,9 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
             if (j >= frames_written && first_step_of_j == report.step)
                 write_frame(report.t, *report.surface);
         }
-        const bool stopping = r.stop_signal != nullptr && *r.stop_signal != 0;
-        // Every n steps, and when stopped early, so that --resume loses nothing.
+        // Every n steps (and, below, when stopped early), so that --resume loses nothing.
         if (r.checkpoint_every > 0 && report.step < report.steps && !report.surface->empty() &&
-            (report.step % r.checkpoint_every == 0 || stopping)) {
+            report.step % r.checkpoint_every == 0) {
             write_file_atomic(dir / "history.csv", history_text);  // never shorter than the run
             write_checkpoint(dir,
                              {r.given, r.run_id, {}, frames_written, *report.run, frame_times});
@@ -243,7 +242,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     const SurfaceRunResult result =
         from ? resume(*from->surface, *p.law, p.domain, options, observer)
              : run(p.initial, *p.law, p.domain, options, observer);
-    // Stopped within a step: the checkpoint of the last whole one, as the observer writes.
+    // Stopped, between steps or within one: the checkpoint of the last whole step.
     if (result.status == RunStatus::interrupted && r.checkpoint_every > 0 &&
         !result.surface.empty()) {
         write_file_atomic(dir / "history.csv", history_text);
