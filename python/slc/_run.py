@@ -321,8 +321,9 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     problem (``run(slc.problem("zalesak"))``, t_end optional) as ``slc run --problem`` does. A
     Surface (or a SurfaceProblem) moves the same way and gives a SurfaceRunResult; its velocity
     takes (m, 3) arrays, the options of curves alone (smoothing, geometry, extension, arcs) are
-    refused, area_correction turns the volume correction on or off, and thin_depth (surfaces only,
-    as ``--thin-depth``) splits cells up to that many levels beyond K where a part thinner than a
+    refused, area_correction turns the volume correction on or off, and thin_depth (as
+    ``--thin-depth``; a named problem's own, for a user's shape 6 for curves and 2 for a surface)
+    splits cells up to that many levels beyond K where a part thinner than a
     cell lies; volume_drift (surfaces only, as ``--volume-drift``) is the fraction of its volume a
     surface under a law that keeps it may drift before the run ends "unstable" (0.01 unless set);
     guards=False (surfaces only, as ``--no-guards``) takes every step whole and goes on to the end

@@ -167,19 +167,28 @@ def test_contours_left_beyond_eps_at_sharp_edges_are_reported():
     assert r.summary["unconverged_steps"] == 2 and r.summary["largest_residual"] > 2e-3
 
 
-def test_thin_depth_splits_cells_beyond_the_depth_for_surfaces_only():
+def test_thin_depth_splits_cells_beyond_the_depth_in_both_dimensions():
     corners = [(x, y, z) for z in (-0.35, 0.35) for y in (-0.3, 0.3) for x in (-0.4, 0.4)]
     faces = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4), (2, 6, 7),
              (2, 7, 3), (0, 4, 6), (0, 6, 2), (1, 3, 7), (1, 7, 5)]
     box = slc.Surface(np.array(corners), np.array(faces))
     with pytest.warns(UserWarning):
-        plain = slc.run(box, "rotation", 0.5, steps=1, depth=4, eps=1e-3)
-        thin = slc.run(box, "rotation", 0.5, steps=1, depth=4, eps=1e-3, thin_depth=2)
+        plain = slc.run(box, "rotation", 0.5, steps=1, depth=4, eps=1e-3, thin_depth=0)
+        thin = slc.run(box, "rotation", 0.5, steps=1, depth=4, eps=1e-3)
     assert plain.summary["params"]["thin_depth"] == 0
-    assert thin.summary["params"]["thin_depth"] == 2
+    assert thin.summary["params"]["thin_depth"] == 2  # a user's surface's default
     assert len(thin.surface) > len(plain.surface)  # finer along the sharp edges
-    with pytest.raises(ValueError, match="thin_depth is for surfaces, not curves"):
-        slc.run(slc.problem("vortex"), thin_depth=2)
+    # A square annulus whose wall is a fifth of a cell at the default K: kept at the default
+    # thin depth; without thin cells the contours lose it, and the run is refused at the start.
+    outer = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+    inner = [(-0.99, -0.99), (-0.99, 0.99), (0.99, 0.99), (0.99, -0.99)]
+    annulus = slc.Interface([np.array(outer), np.array(inner)])
+    kept = slc.run(annulus, "translation", 0.1, params={"ux": 0.3, "uy": 0.1})
+    assert kept.summary["params"]["thin_depth"] == 6 and len(kept.interface) == 2
+    assert abs(kept.interface.area - annulus.area) < 0.02 * annulus.area
+    with pytest.raises(RuntimeError, match="do not keep the curves as given: 2 components with "
+                       "1 hole became"):
+        slc.run(annulus, "translation", 0.1, params={"ux": 0.3, "uy": 0.1}, thin_depth=0)
     with pytest.raises(ValueError, match="thin_depth: must be an integer from 0 to 8, got 9"):
         slc.run(box, "rotation", 0.5, steps=1, depth=4, eps=1e-3, thin_depth=9)
 

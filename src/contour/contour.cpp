@@ -22,6 +22,10 @@ void validate(const ContourOptions& o, const Box& domain) {
         throw InvalidInput(fmt::format("contour depth K must be between 0 and {}, got {}",
                                        Quadtree::max_supported_depth, o.depth));
     }
+    if (o.thin_depth < 0) {
+        throw InvalidInput(
+            fmt::format("thin cells' extra depth must be >= 0, got {}", o.thin_depth));
+    }
     if (o.refine_passes < 0 && o.refine_passes != ContourOptions::until_converged) {
         throw InvalidInput(
             fmt::format("refinement passes P must be >= 0, got {}", o.refine_passes));
@@ -96,6 +100,7 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
     stats.leaves = topo.tree.leaves().size();
     stats.triangles = topo.mesh.triangles.size();
     stats.gamma = topo.gamma;
+    stats.thin_cells = topo.thin_cells;
     stats.perturbed = topo.perturbed;
     stats.settled = topo.settled;
     stats.bound_evals = topo.bound_evals;

@@ -27,19 +27,13 @@ namespace {
 /// altitude of the mesh's tetrahedra (an eighth of the finest edge), so the mesh stays valid.
 constexpr double first_perturbation = 1e-3;
 constexpr int max_perturbations = 6;
-/// A cell's G bends (SurfaceSampler::bends) when a body diagonal's centre is nearer zero than its
-/// ends' mean by this fraction of the half-diagonal.
-constexpr double thin_dip = 0.25;
 
 using Evaluator = SpaceEvaluator;
 
 std::string place(Vec3 p) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x, p.y, p.z); }
 
-/// What a cell's samples say of G bending within it (SurfaceSampler::bends).
-enum class Bend { no, yes, unsure };
-
 /// The tree sampler of space (TreeSampler<3>: every cell samples its eight corners and its
-/// centre), and what thin cells and the tetrahedra need of it.
+/// centre), and what the tetrahedra need of it.
 class SurfaceSampler : public TreeSampler<3> {
 public:
     /// γ splits cells down to level `limit` (K); the tree may go deeper (thin cells).
@@ -47,54 +41,6 @@ public:
                    std::optional<double> distance_slack, double rounding, double eta, int limit)
         : TreeSampler<3>(tree, g, bounds, distance_slack, rounding, eta, limit) {}
 
-    /// Whether G bends within cell c: along a body diagonal, the ends and the centre of one sign
-    /// and the centre nearer zero than the ends' mean by more than thin_dip of the
-    /// half-diagonal. A distance is linear along a segment on one side of a plane and bends by
-    /// about h²/(2R) near a sheet of radius R: a dip this large means the sheet turns within the
-    /// cell or its other side is there too. Only cells the zero set may meet are tested (the
-    /// centre's |G| at most the half-diagonal). From the samples' bounds: unsure when stand-ins
-    /// leave it open, and then the stand-ins that would settle it are appended to `wanted`.
-    Bend bends(std::uint32_t c, std::vector<std::uint32_t>& wanted) const {
-        const CellSamples& ids = cell_samples_[c];
-        const Sample& m = samples_[ids[8]];
-        const double half_diagonal = 0.5 * std::sqrt(3.0) * tree_.edge(tree_.cell(c).level);
-        if (std::abs(m.value) > half_diagonal) return Bend::no;
-        if (m.upper > half_diagonal) {
-            wanted.push_back(ids[8]);
-            return Bend::unsure;
-        }
-        const double threshold = thin_dip * half_diagonal;
-        bool unsure = false;
-        for (int k = 0; k < 4; ++k) {
-            const Sample& a = samples_[ids[k]];
-            const Sample& b = samples_[ids[7 - k]];
-            if ((a.value > 0.0) != (m.value > 0.0) || (b.value > 0.0) != (m.value > 0.0)) continue;
-            // |G| ≥ |value| and ≤ upper at each point, with the value's sign.
-            const double least = 0.5 * (std::abs(a.value) + std::abs(b.value)) - m.upper;
-            const double most = 0.5 * (a.upper + b.upper) - std::abs(m.value);
-            if (least > threshold) return Bend::yes;
-            if (!(most > threshold)) continue;
-            unsure = true;
-            for (const std::uint32_t id : {ids[k], ids[7 - k], ids[8]})
-                if (!samples_[id].is_exact()) wanted.push_back(id);
-        }
-        return unsure ? Bend::unsure : Bend::no;
-    }
-
-    /// Makes G exact at the given points (from bends), in one batch, and updates the least |G|
-    /// of the given cells.
-    void make_exact(std::vector<std::uint32_t> ids, std::span<const std::uint32_t> cells) {
-        std::sort(ids.begin(), ids.end());
-        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-        for (std::uint32_t id : ids) samples_[id] = pending;
-        evaluate(ids);
-        for (std::uint32_t c : cells) update_min(c);
-    }
-    /// Tree points with a stand-in rather than G.
-    std::size_t settled() const {
-        return static_cast<std::size_t>(std::count_if(
-            samples_.begin(), samples_.end(), [](const Sample& s) { return !s.is_exact(); }));
-    }
     /// The sample at a grid point (Tetrahedralization::key), or nullptr.
     const Sample* at(std::uint64_t key) const {
         const std::uint32_t* id = index_.find(key);
@@ -105,52 +51,6 @@ public:
         return from_donors(x, cell_samples_[c]);
     }
 };
-
-/// Splits the leaves at level `limit` near the zero set (min|G| below γ times their edge) where G
-/// bends within them (SurfaceSampler::bends), and their children where it still does, down to the
-/// tree's deepest level; then balances the tree again, sampling the cells balancing makes.
-/// Returns the cells split.
-std::size_t split_thin(Octree& tree, SurfaceSampler& sampler, double gamma, int limit) {
-    std::vector<std::uint32_t> frontier;
-    for (std::uint32_t c : tree.leaves())
-        if (tree.cell(c).level == limit && gamma * tree.edge(limit) > sampler.min_abs(c))
-            frontier.push_back(c);
-    std::size_t split = 0;
-    while (!frontier.empty() && tree.cell(frontier.front()).level < tree.max_depth()) {
-        // Stand-ins that leave a cell unsure are evaluated, a batch a round, until none does;
-        // the cells that bend split in the frontier's order.
-        std::vector<std::uint32_t> bent, unsure = frontier;
-        while (!unsure.empty()) {
-            std::vector<std::uint32_t> wanted, still;
-            for (std::uint32_t c : unsure) {
-                const Bend b = sampler.bends(c, wanted);
-                if (b == Bend::yes) bent.push_back(c);
-                if (b == Bend::unsure) still.push_back(c);
-            }
-            sampler.make_exact(std::move(wanted), still);
-            unsure = std::move(still);
-        }
-        std::sort(bent.begin(), bent.end());
-        std::vector<std::uint32_t> next;
-        for (std::uint32_t c : bent) {
-            const std::uint32_t first = tree.split(c);
-            for (std::uint32_t k = 0; k < 8; ++k) next.push_back(first + k);
-            ++split;
-        }
-        sampler.sample(next);
-        frontier.clear();
-        for (std::uint32_t c : next)
-            if (gamma * tree.edge(tree.cell(c).level) > sampler.min_abs(c)) frontier.push_back(c);
-    }
-    if (split > 0 && !tree.is_balanced()) {
-        const auto before = static_cast<std::uint32_t>(tree.size());
-        tree.balance();
-        std::vector<std::uint32_t> made(tree.size() - before);
-        std::iota(made.begin(), made.end(), before);
-        sampler.sample(made);
-    }
-    return split;
-}
 
 /// The direction of attempt k, the same for every vertex: golden-ratio sequences on the sphere.
 /// One direction for all makes the perturbed values those of G shifted as a whole, so vertices
@@ -333,7 +233,8 @@ SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& do
                                          const SurfaceContourOptions& options,
                                          std::optional<SpaceBoundsRef> bounds) {
     const double eta = options.resolved_eta();
-    const int thin_depth = std::min(options.thin_depth, max_tetrahedralized_depth - options.depth);
+    const int thin_depth =
+        thin_levels<3>(domain, options.depth, options.thin_depth, max_tetrahedralized_depth);
     SurfaceTopology topo(Octree(domain, options.depth + thin_depth));
     // The slack and the bounds allow for rounding in G too: a few thousand ulps of the domain's
     // coordinates.
@@ -341,7 +242,7 @@ SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& do
     SurfaceSampler sampler(topo.tree, g, bounds, options.distance_slack, rounding, eta,
                            options.depth);
     topo.gamma = build_tree(topo.tree, sampler, options.gamma);
-    topo.thin_cells = split_thin(topo.tree, sampler, topo.gamma, options.depth);
+    topo.thin_cells = split_thin(topo.tree, sampler, topo.gamma);
     topo.settled = sampler.settled();
     topo.bound_evals = sampler.bound_evals();
     topo.mesh = tetrahedralize(topo.tree);

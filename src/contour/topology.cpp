@@ -31,7 +31,7 @@ public:
     CurveSampler(BatchFunctionRef g, std::optional<BatchBoundsRef> bounds, const Quadtree& tree,
                  const ContourOptions& options, double rounding)
         : TreeSampler<2>(tree, g, bounds, options.distance_slack, rounding, options.resolved_eta(),
-                         tree.max_depth()) {}
+                         options.depth) {}
 
     /// Centres of the leaves at the depth limit, in one batch. A leaf whose corners share one sign
     /// with |G| > γ h/√2 holds no zero if |∇G| ≤ γ (every point is within h/√2 of a corner), and
@@ -226,12 +226,16 @@ std::size_t evaluate_crossed_stand_ins(Topology& topo, BatchFunctionRef g, doubl
 
 Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOptions& options,
                           std::optional<BatchBoundsRef> bounds) {
-    Topology topo{Quadtree(domain, options.depth), {}, {}, {}, {}, options.gamma, 0, 0, 0};
+    const int thin_depth =
+        thin_levels<2>(domain, options.depth, options.thin_depth, Quadtree::max_supported_depth);
+    Topology topo{
+        Quadtree(domain, options.depth + thin_depth), {}, {}, {}, {}, options.gamma, 0, 0, 0, 0};
     // Both bounds allow for rounding in G and in the bound: a few thousand ulps of the
     // coordinates.
     const double rounding = 1e-12 * std::max(domain.largest_magnitude(), domain.width());
     CurveSampler sampler(g, bounds, topo.tree, options, rounding);
     topo.gamma = build_tree(topo.tree, sampler, options.gamma);
+    topo.thin_cells = split_thin(topo.tree, sampler, topo.gamma);
     sampler.complete_centres(topo.gamma);
     topo.bound_evals = sampler.bound_evals();
     std::vector<std::uint8_t> on_boundary;

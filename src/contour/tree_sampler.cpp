@@ -4,6 +4,7 @@
 #include "tree_sampler.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <utility>
 
 #include "slc/core/error.hpp"
@@ -325,9 +326,131 @@ double build_tree(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma) 
     return gamma;
 }
 
+template <int dim>
+typename TreeSampler<dim>::Bend TreeSampler<dim>::bends(std::uint32_t c,
+                                                        std::vector<std::uint32_t>& wanted) const {
+    constexpr std::size_t corners = cell_points - 1;
+    const CellSamples& ids = cell_samples_[c];
+    const int level = tree_.cell(c).level;
+    const double edge = tree_.edge(level);
+    const double half_diagonal = 0.5 * std::sqrt(static_cast<double>(dim)) * edge;
+    const Sample& m = samples_[ids[corners]];
+    if (std::abs(m.value) > half_diagonal) return Bend::no;
+    if (m.upper > half_diagonal) {
+        wanted.push_back(ids[corners]);
+        return Bend::unsure;
+    }
+    bool unsure = false;
+    // Whether G at the middle one of three equally spaced samples on a line, the ends of one
+    // sign and the middle of theirs or within η of zero, is nearer zero than the ends' mean by
+    // more than thin_dip of half the span; unsure is set, and the stand-ins that would settle it
+    // wanted, when the bounds leave it open.
+    auto dips = [&](std::uint32_t a, std::uint32_t mid, std::uint32_t b, double half_span) {
+        const Sample &sa = samples_[a], &sm = samples_[mid], &sb = samples_[b];
+        const bool positive = sa.value > 0.0;
+        if ((sb.value > 0.0) != positive) return false;
+        if ((sm.value > 0.0) != positive && !(std::abs(sm.value) <= eta_)) return false;
+        // |G| ≥ |value| and ≤ upper at each point, with the value's sign.
+        const double threshold = thin_dip * half_span;
+        const double least = 0.5 * (std::abs(sa.value) + std::abs(sb.value)) - sm.upper;
+        const double most = 0.5 * (sa.upper + sb.upper) - std::abs(sm.value);
+        if (least > threshold) return true;
+        if (most > threshold) {
+            unsure = true;
+            for (const std::uint32_t id : {a, mid, b})
+                if (!samples_[id].is_exact()) wanted.push_back(id);
+        }
+        return false;
+    };
+    // The diagonals through the centre.
+    for (std::size_t k = 0; k < corners / 2; ++k)
+        if (dips(ids[k], ids[corners], ids[corners - 1 - k], half_diagonal)) return Bend::yes;
+    // The grid lines through the corners, with the corners an edge away on both sides (this
+    // cell's and a neighbour's at its level): a part thinner than a cell that crosses the line
+    // beside a corner bends G there, where no diagonal need see it.
+    const Keys keys = sample_keys(c);
+    const std::uint64_t u = grid_.units(level);
+    for (std::size_t j = 0; j < corners; ++j) {
+        for (int i = 0; i < dim; ++i) {
+            if (keys.at[j][i] < u || keys.at[j][i] + u > grid_.extent()) continue;
+            auto lo = keys.at[j], hi = keys.at[j];
+            lo[i] -= u;
+            hi[i] += u;
+            const std::uint32_t* a = index_.find(SampleGrid<dim>::key(lo));
+            const std::uint32_t* b = index_.find(SampleGrid<dim>::key(hi));
+            if (a != nullptr && b != nullptr && dips(*a, ids[j], *b, edge)) return Bend::yes;
+        }
+    }
+    return unsure ? Bend::unsure : Bend::no;
+}
+
+template <int dim>
+void TreeSampler<dim>::make_exact(std::vector<std::uint32_t> ids,
+                                  std::span<const std::uint32_t> cells) {
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    for (std::uint32_t id : ids) samples_[id] = pending;
+    evaluate(ids);
+    for (std::uint32_t c : cells) update_min(c);
+}
+
+template <int dim>
+std::size_t TreeSampler<dim>::settled() const {
+    return static_cast<std::size_t>(std::count_if(samples_.begin(), samples_.end(),
+                                                  [](const Sample& s) { return !s.is_exact(); }));
+}
+
+template <int dim>
+std::size_t split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma) {
+    using Bend = typename TreeSampler<dim>::Bend;
+    const int limit = sampler.limit();
+    std::vector<std::uint32_t> frontier;
+    for (std::uint32_t c : tree.leaves())
+        if (tree.cell(c).level == limit && gamma * tree.edge(limit) > sampler.min_abs(c))
+            frontier.push_back(c);
+    std::size_t split = 0;
+    while (!frontier.empty() && tree.cell(frontier.front()).level < tree.max_depth()) {
+        check_stop();
+        // Stand-ins that leave a cell unsure are evaluated, a batch a round, until none does;
+        // the cells that bend split in the frontier's order.
+        std::vector<std::uint32_t> bent, unsure = frontier;
+        while (!unsure.empty()) {
+            std::vector<std::uint32_t> wanted, still;
+            for (std::uint32_t c : unsure) {
+                const Bend b = sampler.bends(c, wanted);
+                if (b == Bend::yes) bent.push_back(c);
+                if (b == Bend::unsure) still.push_back(c);
+            }
+            sampler.make_exact(std::move(wanted), still);
+            unsure = std::move(still);
+        }
+        std::sort(bent.begin(), bent.end());
+        std::vector<std::uint32_t> next;
+        for (std::uint32_t c : bent) {
+            const std::uint32_t first = tree.split(c);
+            for (std::uint32_t k = 0; k < Orthtree<dim>::children; ++k) next.push_back(first + k);
+            ++split;
+        }
+        sampler.sample(next);
+        frontier.clear();
+        for (std::uint32_t c : next)
+            if (gamma * tree.edge(tree.cell(c).level) > sampler.min_abs(c)) frontier.push_back(c);
+    }
+    if (split > 0 && !tree.is_balanced()) {
+        const auto before = static_cast<std::uint32_t>(tree.size());
+        tree.balance();
+        std::vector<std::uint32_t> made(tree.size() - before);
+        std::iota(made.begin(), made.end(), before);
+        sampler.sample(made);
+    }
+    return split;
+}
+
 template class TreeSampler<2>;
 template class TreeSampler<3>;
 template double build_tree(Orthtree<2>&, TreeSampler<2>&, double);
 template double build_tree(Orthtree<3>&, TreeSampler<3>&, double);
+template std::size_t split_thin(Orthtree<2>&, TreeSampler<2>&, double);
+template std::size_t split_thin(Orthtree<3>&, TreeSampler<3>&, double);
 
 }  // namespace slc::contouring

@@ -5,6 +5,7 @@
 // surface_contour.cpp (tetrahedra) add what their simplices need.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -24,6 +25,9 @@ namespace slc::contouring {
 /// After this many doublings of γ (a factor of about 10^7) the tree is balanced by brute force
 /// instead: G has a gradient far beyond any estimate, or no useful one.
 inline constexpr int max_gamma_doublings = 24;
+/// G bends within a cell (TreeSampler::bends) when a diagonal's centre is nearer zero than its
+/// ends' mean by this fraction of the half-diagonal.
+inline constexpr double thin_dip = 0.25;
 
 /// Integer coordinates on the grid of half the finest cell edge, from the root box's low corner
 /// (the triangulation and the tetrahedralization name their vertices by them), and the points
@@ -150,6 +154,23 @@ public:
     double min_abs(std::uint32_t c) const { return cell_min_[c]; }
     /// The level below which γ tests cells.
     int limit() const { return limit_; }
+
+    /// What a cell's samples say of G bending within it.
+    enum class Bend { no, yes, unsure };
+    /// Whether G bends within cell c (which samples its centre): along a diagonal, the ends and
+    /// the centre of one sign and the centre nearer zero than the ends' mean by more than
+    /// thin_dip of the half-diagonal. A distance is linear along a segment on one side of a line
+    /// or plane and bends by about h²/(2R) near a curve or sheet of radius R: a dip this large
+    /// means the zero set turns within the cell or its other side is there too. Only cells the
+    /// zero set may meet are tested (the centre's |G| at most the half-diagonal). From the
+    /// samples' bounds: unsure when stand-ins leave it open, and then the stand-ins that would
+    /// settle it are appended to `wanted`.
+    Bend bends(std::uint32_t c, std::vector<std::uint32_t>& wanted) const;
+    /// Makes G exact at the given sample ids (from bends), in one batch, and updates the least
+    /// |G| of the given cells.
+    void make_exact(std::vector<std::uint32_t> ids, std::span<const std::uint32_t> cells);
+    /// Tree points with a stand-in rather than G.
+    std::size_t settled() const;
     /// Evaluations of the bounds so far.
     std::size_t bound_evals() const { return bound_evals_; }
 
@@ -233,5 +254,21 @@ private:
 /// root, which the sampler has not sampled.
 template <int dim>
 double build_tree(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma);
+
+/// Splits the leaves at level sampler.limit() (K) near the zero set (min|G| below γ times their
+/// edge) where G bends within them (TreeSampler::bends), and their children where it still does,
+/// down to the tree's depth limit; then balances the tree again, sampling the cells balancing
+/// makes. Thin parts, near contacts, sharp corners and tight turns of the zero set so get cells
+/// fine enough for the linear contour to have both their sides. Returns the cells split.
+template <int dim>
+std::size_t split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma);
+
+/// The levels thin cells may take beyond depth K: thin_depth, short of level `deepest` and of
+/// the finest cells that doubles resolve in domain.
+template <int dim>
+int thin_levels(const RegionOf<dim>& domain, int depth, int thin_depth, int deepest) {
+    const int finest = std::min(deepest, Orthtree<dim>::max_resolvable_depth(domain));
+    return std::max(0, std::min(thin_depth, finest - depth));
+}
 
 }  // namespace slc::contouring

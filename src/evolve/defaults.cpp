@@ -51,6 +51,7 @@ RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, 
     // A user's run holds its law's area rate to 1% of the start's area, splitting the steps
     // that would take it further (a thin ellipse's tips at 40 steps miss it by 2.4%).
     o.area_drift = 0.01;
+    o.check_start = true;
     return o;
 }
 
@@ -74,6 +75,8 @@ Problem curve_problem(std::string name, const Interface& curves, const Box& doma
     p.eta = c.resolved_eta();
     p.length_scale = length_scale(curves);
     p.triangle_safeguard = c.triangle_safeguard;
+    p.thin_depth = c.thin_depth;
+    p.check_start = defaults.check_start;
     p.max_domain_doublings = defaults.max_domain_doublings;
     p.area_drift = defaults.area_drift;
     return p;

@@ -81,11 +81,13 @@ void apply_shared(const RunOverrides& q, const Checker& check, int dim, Options&
                 dim == 2 ? " for curves" : " for a surface");
     check.range(q.refine, setting_range::refine, refine_name, "", true);
     check.range(q.tree_depth, setting_range::tree_depth, tree_depth_name);
+    check.range(q.thin_depth, setting_range::thin_depth, {"thin_depth", "--thin-depth"});
     check.positive(q.eps, eps_name);
     check.positive(q.eta, eta_name);
     if (q.steps) o.steps = *q.steps;
     if (q.refine) o.step.contour.refine_passes = *q.refine;
     if (q.tree_depth) o.step.tree_depth = *q.tree_depth;
+    if (q.thin_depth) o.step.contour.thin_depth = *q.thin_depth;
 }
 
 }  // namespace
@@ -112,8 +114,7 @@ ContourTolerances contour_tolerances(int dim, int depth, int refine_passes, doub
 RunOptions apply_overrides(const RunOverrides& q, RunOptions r, double length_scale,
                            SettingNames names) {
     const Checker check(names);
-    check.none_of({{q.thin_depth.has_value(), {"thin_depth", "--thin-depth"}},
-                   {q.volume_drift.has_value(), {"volume_drift", "--volume-drift"}},
+    check.none_of({{q.volume_drift.has_value(), {"volume_drift", "--volume-drift"}},
                    {q.guards.has_value(), {"guards", "--no-guards"}}},
                   "surfaces", "curves");
     apply_shared(q, check, 2, r);
@@ -160,7 +161,6 @@ SurfaceRunOptions apply_overrides(const RunOverrides& q, SurfaceRunOptions o, do
                    {q.arc_width.has_value(), {"arc_width", "--arc-width"}}},
                   "curves", "surfaces");
     apply_shared(q, check, 3, o);
-    check.range(q.thin_depth, setting_range::thin_depth, {"thin_depth", "--thin-depth"});
     check.positive(q.volume_drift, {"volume_drift", "--volume-drift"});
     SurfaceContourOptions& c = o.step.contour;
     if (q.depth) {
@@ -169,7 +169,6 @@ SurfaceRunOptions apply_overrides(const RunOverrides& q, SurfaceRunOptions o, do
     }
     if (q.eps) c.eps = *q.eps;
     if (q.eta) c.eta = *q.eta;
-    if (q.thin_depth) c.thin_depth = *q.thin_depth;
     if (q.area_correction) o.step.volume_correction = q.area_correction;
     if (q.volume_drift) o.volume_drift = *q.volume_drift;
     if (q.guards) o.guards = *q.guards;

@@ -384,6 +384,8 @@ RunOptions problem_run_options(const Problem& p) {
     c.eps = p.eps;
     c.eta = p.eta;
     c.triangle_safeguard = p.triangle_safeguard;
+    c.thin_depth = p.thin_depth;
+    r.check_start = p.check_start;
     r.step.extension = p.extension;
     r.step.arcs = p.arcs;
     r.step.area_correction = p.area_correction;

@@ -10,6 +10,8 @@
 #include "slc/core/error.hpp"
 #include "slc/evolve/guards.hpp"
 #include "slc/tree/orthtree.hpp"
+#include "slc/velocity/laws.hpp"
+#include "start_check.hpp"
 #include "time_loop.hpp"
 
 namespace slc {
@@ -228,6 +230,15 @@ int domain_doublings_for(const Interface& curves, const Box& domain, int max_dou
 
 RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domain,
               const RunOptions& options, const Observer& observer) {
+    if (options.check_start && !initial.empty()) {
+        // A flow field at rest: G(x) = F(x), so the step's contour is the curves' own.
+        const Interface read =
+            advance(initial, options.t_start, 1.0, Translation({0.0, 0.0}), domain, options.step)
+                .curves;
+        const ContourOptions& c = options.step.contour;
+        detail::check_start<2>(initial, read, domain, c.depth, c.thin_depth,
+                               finest_cell(domain, c));
+    }
     RunResult start;  // resume() checks the options
     start.curves = initial;
     start.t = options.t_start;

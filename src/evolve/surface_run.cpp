@@ -13,6 +13,7 @@
 #include "slc/core/error.hpp"
 #include "slc/tree/tetrahedralization.hpp"
 #include "slc/velocity/surface_laws.hpp"
+#include "start_check.hpp"
 #include "time_loop.hpp"
 
 namespace slc {
@@ -200,6 +201,9 @@ Surface surface_as_read(const Surface& s, const Box3& domain, const SurfaceRunOp
             std::max({b.extent(0), b.extent(1), b.extent(2)}), options.step.contour.depth,
             domain.width(), std::ldexp(domain.width(), -options.step.contour.depth)));
     }
+    const SurfaceContourOptions& c = options.step.contour;
+    detail::check_start<3>(s, read, domain, c.depth, c.thin_depth,
+                           std::ldexp(domain.width(), -c.depth));
     return read;
 }
 

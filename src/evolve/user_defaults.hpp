@@ -1,6 +1,7 @@
 // What the defaults of a user's own curves and of a user's own surface share (internal to
 // evolve): the time interval checked, the depth K = 5 with ε by eps_for_depth and η = 1e−10 ℓ at
-// the shape's length scale ℓ, and a domain that may double as the shape grows. The rest (steps,
+// the shape's length scale ℓ, thin cells down to default_thin_depth levels beyond K, and a domain
+// that may double as the shape grows. The rest (steps,
 // refinement, extension) is each dimension's own (default_run_options,
 // default_surface_run_options).
 #pragma once
@@ -32,6 +33,7 @@ Options user_run_options(double t_start, double t_end, double length_scale, int 
     o.step.contour.depth = 5;
     o.step.contour.eps = eps_for_depth(dim, o.step.contour.depth, length_scale);
     o.step.contour.eta = 1e-10 * length_scale;
+    o.step.contour.thin_depth = default_thin_depth(dim);
     return o;
 }
 

@@ -59,6 +59,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"eta", std::max(c.resolved_eta(),
                          tolerance::rounding_floor(doubled_domain(p.domain, r.domain_doublings)))},
         {"rho", c.rho},
+        {"thin_depth", c.thin_depth},
         {"M", o.step.embedded.mesh},
         {"E", o.step.embedded.eno_order},
         {"S", o.step.embedded.smoothing},

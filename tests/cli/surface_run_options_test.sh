@@ -66,7 +66,7 @@ expect_error "a field of two values" "field expression '-y, x': gives 2 values; 
 expect_error "two laws" "give one velocity law of --velocity, --speed and --field, got --velocity and --speed" -- run --initial ball.obj --velocity curvature --speed 1 --t-end 1 --out x
 expect_error "a view of one number" "--view must be two finite numbers AZ,EL in degrees, got '30'" -- run --initial ball.obj --velocity curvature --t-end 1 --view 30 --out x
 expect_error "a view for curves" "--view is for surfaces, not curves" -- run --problem vortex --view 30,20 --out x
-expect_error "thin cells for curves" "--thin-depth is for surfaces, not curves" -- run --problem vortex --thin-depth 2 --out x
+expect_error "thin cells beyond their range" "--thin-depth: must be an integer from 0 to 8, got '9'" -- run --problem vortex --thin-depth 9 --out x
 
 # Errors.
 expect_error "unknown law" "unknown velocity 'spin' for a surface; known: rotation" -- run --initial ball.obj --velocity spin --t-end 1 --out x
@@ -108,13 +108,13 @@ expect_error "no guards for curves" "--no-guards is for surfaces, not curves" --
 expect_error "drift for curves" "--volume-drift is for surfaces, not curves" -- run --problem vortex --volume-drift 0.1 --out x
 expect_error "drift not positive" "--volume-drift: must be a positive finite number, got '0'" -- run --problem enright --volume-drift 0 --out x
 # A part thinner than the cells, torn by the contours, is noted: the torus of tube radius 0.2
-# shrunk at unit speed to 0.04 in one step at K = 4 (cells 0.14) ends in pieces (measured: 4,
-# 0.055 thick, 29% of the volume lost), with a note naming thin_split; with --thin-depth 2 it
-# stays one torus (1.7% below the exact volume).
+# shrunk at unit speed to 0.04 in one step at K = 4 (cells 0.14) with no thin cells ends in
+# pieces (measured: 4, 0.055 thick, 29% of the volume lost), with a note naming thin_split; at
+# the default --thin-depth, 2, it stays one torus (1.7% below the exact volume).
 expect_ok "a torus" -- contour --function torus -K 4 --eps 1e-3 --out tor
 cp tor/final.obj tor.obj
 expect_ok "the torus shrunk to a thin tube" -- run --initial tor.obj --velocity unit-normal \
-    --param speed=-1 --t-end 0.16 -N 1 -K 4 --eps 2e-3 --out thin --quiet
+    --param speed=-1 --t-end 0.16 -N 1 -K 4 --eps 2e-3 --thin-depth 0 --out thin --quiet
 check "thin tube: pieces, thin_split beside the cell" python3 -c "
 import json, sys
 s = json.load(open('thin/summary.json'))
@@ -123,7 +123,7 @@ sys.exit(not (s['status'] == 'ok' and s['components'] > 1 and t['at_t'] == 0.16 
               t['thickness'] < t['cell'] and 'thin_split' in s['note']))"
 check "thin tube: the note on stderr" grep -q "slc: note: .*split off a component .* thick" err.txt
 expect_ok "the torus shrunk with thin cells" -- run --initial tor.obj --velocity unit-normal \
-    --param speed=-1 --t-end 0.16 -N 1 -K 4 --eps 2e-3 --thin-depth 2 --out thick --quiet
+    --param speed=-1 --t-end 0.16 -N 1 -K 4 --eps 2e-3 --out thick --quiet
 check "thin cells: one torus, no thin_split" python3 -c "
 import json, sys
 s = json.load(open('thick/summary.json'))

@@ -32,10 +32,10 @@ expect_ok "a box turned" -- run --initial box.obj --velocity rotation --t-end 0.
 check "its steps left beyond eps are counted" test "$(json boxturn/summary.json 's["unconverged_steps"], s["largest_residual"] > 2e-3')" = "2 True"
 check "and a note says so" grep -q "in 2 of 2 steps refinement left" err.txt
 check "a smooth surface's contours stay within 1.5 eps" test "$(json turn/summary.json 's.get("largest_residual", 0) < 1.5 * s["params"]["eps"]')" = True
-# Two levels more where G bends, as along its sharp edges: recorded in the summary.
-expect_ok "thin cells" -- run --initial box.obj --velocity rotation --t-end 0.5 -N 2 -K 4 --eps 1e-3 --thin-depth 2 --out boxthin --quiet
-check "--thin-depth recorded" test "$(json boxthin/summary.json 's["params"]["thin_depth"]')" = 2
-check "0 for --initial by default" test "$(json boxturn/summary.json 's["params"]["thin_depth"]')" = 0
+# One level more where G bends, as along its sharp edges: recorded in the summary.
+expect_ok "thin cells" -- run --initial box.obj --velocity rotation --t-end 0.5 -N 2 -K 4 --eps 1e-3 --thin-depth 1 --out boxthin --quiet
+check "--thin-depth recorded" test "$(json boxthin/summary.json 's["params"]["thin_depth"]')" = 1
+check "2 for --initial by default" test "$(json boxturn/summary.json 's["params"]["thin_depth"]')" = 2
 
 # Mean curvature flow: R^2 = 0.36 - 4t, so t = 0.05 leaves R = 0.4.
 expect_ok "mean curvature" -- run --initial ball.obj --velocity curvature --t-end 0.05 -N 10 -K 4 --out shrink --quiet

@@ -37,7 +37,7 @@ struct ContourCommandOptions {
     std::optional<double> eps;
     int refine = 0;
     std::optional<double> eta;
-    int thin_depth = 0;
+    std::optional<int> thin_depth;  ///< unset: default_thin_depth for a file, 0 for a function
     double rho = 0.1;
     DomainOptions domain;
     std::optional<int> tree_depth;
@@ -65,6 +65,7 @@ nlohmann::json stats_json(const ContourStats& s) {
     return {{"cells", s.cells},
             {"leaves", s.leaves},
             {"triangles", s.triangles},
+            {"thin_cells", s.thin_cells},
             {"curves", s.curves},
             {"segments", s.segments},
             {"vertices", s.vertices},
@@ -113,6 +114,7 @@ ContourOptions library_options(const ContourCommandOptions& o, double length_sca
     options.eps = tolerances.eps;
     options.eta = tolerances.eta;
     options.rho = o.rho;
+    options.thin_depth = o.thin_depth.value_or(default_thin_depth(2));
     options.distance_slack = 0.0;  // G is the exact signed distance, 1-Lipschitz
     return options;
 }
@@ -130,6 +132,7 @@ nlohmann::json summary_head(const ContourCommandOptions& o, const LoadedInterfac
               {"eps", options.resolved_eps()},
               {"eta", options.resolved_eta()},
               {"rho", o.rho},
+              {"thin_depth", options.thin_depth},
               {"gamma", options.gamma},
               {"L", tree_depth},
               {"threads", thread_count()}}}};
@@ -234,9 +237,9 @@ void add_contour_command(CLI::App& app) {
                     "eps at least eps/100)")
         ->check(positive_number());
     cmd->add_option("--thin-depth", o->thin_depth,
-                    "For a surface: levels beyond K for cells where the zero set's two sides, or a "
-                    "sharp turn, lie within one cell (default 0)")
-        ->check(integer_in(0, 8));
+                    "Levels beyond K for cells where the zero set's two sides, or a sharp turn, "
+                    "lie within one cell (default 6 for curves, 2 for a surface; 0 for --function)")
+        ->check(integer_in(setting_range::thin_depth));
     cmd->add_option("--rho", o->rho, "Pruning ratio rho in [0, 1) (default 0.1)")
         ->check(fraction_below_one());
     add_domain_options(*cmd, o->domain);
@@ -254,8 +257,10 @@ void add_contour_command(CLI::App& app) {
         if (refine->count() == 0 && o->eps) o->refine = converged_passes;
         if (!o->function.empty() || is_surface_file(o->initial)) {
             apply_threads(o->threads);
-            run_surface_contour({o->initial, o->function, o->depth, o->refine, o->eps, o->eta,
-                                 o->thin_depth, o->domain, o->tree_depth, o->out});
+            const int thin =
+                o->thin_depth.value_or(o->function.empty() ? default_thin_depth(3) : 0);
+            run_surface_contour({o->initial, o->function, o->depth, o->refine, o->eps, o->eta, thin,
+                                 o->domain, o->tree_depth, o->out});
             return;
         }
         run_contour(*o);

@@ -41,10 +41,19 @@ struct ContourOptions {
     /// ε: midpoint tolerance of refinement, ε ≥ η; default 10^−K. Neither can go below what
     /// doubles resolve in the domain, two ulps of its largest coordinate (2.2e−16 b in [−b, b]²):
     /// a given ε below it is InvalidInput, the default 10^−K and η are raised to it.
-    std::optional<double> eps;
+    std::optional<double> eps = std::nullopt;
     /// η > 0: root-finding tolerance, |G| ≤ η at every vertex. Unset (the default):
     /// default_eta, as for surfaces' linear contour (SurfaceContourOptions::eta).
-    std::optional<double> eta;
+    std::optional<double> eta = std::nullopt;
+    /// Levels beyond K, 0..(Quadtree::max_supported_depth − K), for cells at depth K near the
+    /// zero set where G bends within the cell — its centre nearer zero than the mean of the ends
+    /// of a diagonal by more than a quarter of the half-diagonal, all three of one sign, which a
+    /// distance does not do on one side of a curve turning less than about two cells: a thin
+    /// part, two curves in near contact, a corner or a tight turn. Such cells split again, up to
+    /// K + thin_depth, so that the linear contour has both sides of what it would otherwise miss
+    /// or cut across (as SurfaceContourOptions::thin_depth). 0 (the default) keeps every leaf at
+    /// depth K or above.
+    int thin_depth = 0;
     /// ρ in [0, 1): prune segments shorter than ρ times both neighbours; 0 disables pruning.
     double rho = 0.1;
     /// γ > 0: starting estimate of the gradient bound |∇G| ≤ γ, doubled until the tree balances.
@@ -68,7 +77,7 @@ struct ContourOptions {
     /// nearby sample's value already bounds |G| above the split threshold are then not evaluated
     /// (the bound, with its certain sign, stands in). The tree and the contour are those that
     /// exact values give. Unset (the default): every tree point is evaluated.
-    std::optional<double> distance_slack;
+    std::optional<double> distance_slack = std::nullopt;
 
     /// η when none is given.
     static constexpr double default_eta = 1e-10;
@@ -99,6 +108,7 @@ struct ContourStats {
     std::size_t settled = 0;
     std::size_t bound_evals = 0;    ///< evaluations of the bounds (not counted in g_evals)
     double gamma = 0.0;             ///< the gradient bound γ at which the tree was balanced
+    std::size_t thin_cells = 0;     ///< cells split beyond K where G bends (thin_depth)
     std::size_t perturbed = 0;      ///< triangulation vertices moved because |G| ≤ η there
     std::size_t stalled_roots = 0;  ///< roots left with |G| > η: G jumps across zero there
     int passes = 0;                 ///< refinement passes done (passes that found candidates)

@@ -30,7 +30,7 @@ inline constexpr IntRange curve_depth{1, 24};     ///< K of curves (memory: 4^K 
 /// K of surfaces: as deep as tetrahedralization keys allow.
 inline constexpr IntRange surface_depth{1, max_tetrahedralized_depth};
 inline constexpr IntRange refine{0, 64};      ///< P, or until_converged
-inline constexpr IntRange thin_depth{0, 8};   ///< levels beyond K for thin cells (surfaces)
+inline constexpr IntRange thin_depth{0, 8};   ///< levels beyond K for thin cells
 inline constexpr IntRange tree_depth{1, 30};  ///< L
 inline constexpr IntRange mesh{8, 1 << 22};   ///< M (curves)
 inline constexpr IntRange eno_order{1, 5};    ///< E (curves)
@@ -38,6 +38,13 @@ inline constexpr IntRange smoothing{0, 64};   ///< S (curves)
 /// K of the given dimension (2: curves, 3: surfaces).
 constexpr IntRange depth(int dim) { return dim == 2 ? curve_depth : surface_depth; }
 }  // namespace setting_range
+
+/// The levels beyond K that a user's own shape's contours may split cells where the zero set is
+/// not resolved at K (thin parts, near contacts, corners): cells down to 1/64 of a K-level cell
+/// for curves, 1/4 for surfaces, whose thin cells cost about 4 times more a level (a wall a
+/// third of a cell thick takes two). Named problems keep the paper's uniform K (theirs is 0,
+/// Enright's 2).
+constexpr int default_thin_depth(int dim) { return dim == 2 ? 6 : 2; }
 
 /// ε that K sets when ε is not given, in both dimensions the rule a user's own shape defaults to
 /// (ℓ its length scale, 1 for a named problem): 10^−K ℓ for curves, as the paper's runs
@@ -78,8 +85,11 @@ struct RunOverrides {
     std::optional<Extension> extension = std::nullopt;  ///< how W leaves the curve
     std::optional<bool> arcs = std::nullopt;            ///< StepOptions::arcs
     std::optional<double> arc_width = std::nullopt;     ///< σ of the arclength module
+    /// Levels beyond K for cells where the zero set is not resolved (ContourOptions::thin_depth,
+    /// SurfaceContourOptions::thin_depth); unset: the problem's, or default_thin_depth for a
+    /// user's shape.
+    std::optional<int> thin_depth = std::nullopt;
     // Surfaces only.
-    std::optional<int> thin_depth = std::nullopt;       ///< SurfaceContourOptions::thin_depth
     std::optional<double> volume_drift = std::nullopt;  ///< SurfaceRunOptions::volume_drift
     std::optional<bool> guards = std::nullopt;          ///< SurfaceRunOptions::guards
     /// Curves: StepOptions::area_correction; surfaces: SurfaceStepOptions::volume_correction.

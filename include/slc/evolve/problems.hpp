@@ -71,6 +71,11 @@ struct Problem {
     /// ContourOptions::triangle_safeguard: the paper's for a named problem, off for a user's
     /// curve (whose corners it would cut).
     bool triangle_safeguard = true;
+    /// ContourOptions::thin_depth: 0 (the paper's uniform K) for a named problem,
+    /// default_thin_depth(2) for a user's curves.
+    int thin_depth = 0;
+    /// RunOptions::check_start: off for a named problem, on for a user's curves.
+    bool check_start = false;
     /// RunOptions::max_domain_doublings: 0 (the paper's fixed box) for a named problem.
     int max_domain_doublings = 0;
     std::vector<ProblemParameter> parameters;  ///< the problem's own parameters, in use

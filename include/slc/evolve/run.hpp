@@ -59,6 +59,11 @@ struct RunOptions {
     /// the domain fixed, as the paper's experiments do: a contour reaching its edge ends the run
     /// with an error. `slc run --initial` allows 6 (a domain up to 64 times as wide).
     int max_domain_doublings = 0;
+    /// Before the first step, contour the curves at rest and refuse (NumericalFailure, naming the
+    /// place) a start whose contour has other components or holes than the curves, or leaves a
+    /// vertex farther than a finest cell from it: a part thinner than the contours resolve.
+    /// `slc run --initial` (default_run_options) checks; a named problem does not.
+    bool check_start = false;
     /// Check every step against the law's invariants (evolve/guards.hpp): a step that breaks them
     /// is retried in 2, 4, ... 2^max_substep_halvings sub-steps (the N steps the observer sees
     /// stay N), and a run that still breaks them ends with status unstable.

@@ -3,6 +3,8 @@
 // and seeded random interfaces with holes, corners and several components.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -261,6 +263,51 @@ TEST(ContourDistance, SameContourForOneAndTwoThreads) {
     set_thread_count(0);
     EXPECT_EQ(one.curves.curves(), two.curves.curves());
     EXPECT_EQ(one.stats.g_evals, two.stats.g_evals);
+}
+
+TEST(ContourDistance, ThinPartsSplitBeyondTheDepth) {
+    // A square annulus whose wall is 0.02 wide, a third of a cell at K = 5 in [−1, 1]² (edge
+    // 1/16), as an exact signed distance: at depth K the triangles miss most of the wall; with
+    // cells split four levels further where G bends it is the two curves that bound the wall,
+    // within η of it. Once in general position, once with the inner sides on grid lines of the
+    // tree (G zero at vertices of the tree), and with the outer sides there. A circle, which bends
+    // far less, is left as it was.
+    const double w = 0.02;
+    const Box domain = Box::centered_square(1.0);
+    for (const auto [x0, x1, y0, y1] :
+         {std::array{-0.8013, 0.8109, -0.7731, 0.8293}, std::array{-0.77, 0.77, -0.77, 0.77},
+          std::array{-0.75, 0.75, -0.75, 0.75}}) {
+        const Interface annulus{std::vector<std::vector<Vec2>>{
+            {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}},
+            {{x0 + w, y0 + w}, {x0 + w, y1 - w}, {x1 - w, y1 - w}, {x1 - w, y0 + w}}}};
+        const DistanceTree tree{annulus, domain, {.depth = 8, .triangulate = false}};
+        const double exact = area(annulus);
+        ContourOptions options{.depth = 5, .distance_slack = 0.0};
+        const ContourResult coarse = contour(exact_distance(tree), domain, options);
+        EXPECT_EQ(coarse.stats.thin_cells, 0u);
+        EXPECT_NE(coarse.curves.curve_count(), 2u);
+        options.thin_depth = 4;
+        const ContourResult fine = contour(exact_distance(tree), domain, options);
+        EXPECT_GT(fine.stats.thin_cells, 0u);
+        expect_simple(fine.curves);
+        EXPECT_EQ(fine.curves.curve_count(), 2u) << x0;
+        EXPECT_NEAR(area(fine.curves), exact, 0.05 * exact) << x0;
+        EXPECT_LE(residuals(fine.curves, exact_distance(tree)).vertices, eta);
+        std::printf(
+            "annulus at x0 = %g: %zu curves, area %.4g at K; %zu curves, area %.4g with "
+            "four levels more (%zu thin cells); exact %.4g\n",
+            x0, coarse.curves.curve_count(), area(coarse.curves), fine.curves.curve_count(),
+            area(fine.curves), fine.stats.thin_cells, exact);
+    }
+
+    const Interface circle{
+        std::vector<std::vector<Vec2>>{shapes::circle({0.013, -0.021}, 0.55, 512)}};
+    const DistanceTree round{circle, domain, {.depth = 10, .triangulate = false}};
+    const ContourResult plain = contour(exact_distance(round), domain, {.depth = 5});
+    const ContourResult thin =
+        contour(exact_distance(round), domain, {.depth = 5, .thin_depth = 4});
+    EXPECT_EQ(thin.stats.thin_cells, 0u);
+    EXPECT_TRUE(std::ranges::equal(plain.curves.points(), thin.curves.points()));
 }
 
 }  // namespace

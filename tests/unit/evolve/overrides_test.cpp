@@ -112,8 +112,8 @@ TEST(ApplyOverrides, RangesAreTheSameForTheToolAndPython) {
 }
 
 TEST(ApplyOverrides, SettingsOfTheOtherDimensionAreRefusedByName) {
-    EXPECT_EQ(message_of([] { apply_overrides({.thin_depth = 1}, RunOptions{}, 1.0); }),
-              "thin_depth is for surfaces, not curves");
+    EXPECT_EQ(message_of([] { apply_overrides({.volume_drift = 0.1}, RunOptions{}, 1.0); }),
+              "volume_drift is for surfaces, not curves");
     EXPECT_EQ(message_of([] {
                   apply_overrides({.mesh = 64}, SurfaceRunOptions{}, 1.0, SettingNames::tool);
               }),

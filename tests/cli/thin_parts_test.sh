@@ -1,0 +1,57 @@
+# Thin parts at default settings: a wall thinner than a cell is kept by the thin cells of a
+# user's curves, within 2e-3 of the exact offset, and a start the contours cannot resolve is
+# refused with its place instead of a run that loses it.
+source "$(dirname "$0")/lib.sh" "$1"
+
+python3 - <<'PY'
+import json
+def dense(poly, n):
+    out = []
+    for i, a in enumerate(poly):
+        b = poly[(i + 1) % len(poly)]
+        out += [[a[0] + (b[0] - a[0]) * k / n, a[1] + (b[1] - a[1]) * k / n] for k in range(n)]
+    return out
+# An L-shaped region with a square hole 0.25 from two of its sides: shrunk by 0.1, a wall 0.05.
+ell = [(-1, -1), (1, -1), (1, 0), (0, 0), (0, 1), (-1, 1)]
+hole = [(-0.75, -0.75), (-0.75, -0.25), (-0.25, -0.25), (-0.25, -0.75)]
+json.dump({"curves": [{"points": dense(ell, 20)}, {"points": dense(hole, 20)}]}, open("ell.json", "w"))
+# A square annulus whose wall is 0.05 wide: shrunk by 0.02, a wall 0.01.
+out = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
+inn = [(-0.95, -0.95), (-0.95, 0.95), (0.95, 0.95), (0.95, -0.95)]
+json.dump({"curves": [{"points": dense(out, 40)}, {"points": dense(inn, 40)}]}, open("ring.json", "w"))
+PY
+
+# offset_error NAME INITIAL T: the largest |F0 + t| over the final vertices and segment midpoints
+# of run NAME, F0 the signed distance to the initial curves (exact: slc distance).
+offset_error() {
+    python3 - "$1" >"$1.csv" <<'PY'
+import json, sys
+f = json.load(open(sys.argv[1] + "/final.json"))
+for c in f["curves"]:
+    p = c["points"]
+    for i, a in enumerate(p):
+        b = p[(i + 1) % len(p)]
+        print(f"{a[0]!r},{a[1]!r}")
+        print(f"{(a[0] + b[0]) / 2!r},{(a[1] + b[1]) / 2!r}")
+PY
+    "$SLC" distance --initial "$2" --points "$1.csv" | python3 -c "
+import sys
+print(max(abs(float(l.split(',')[2]) + $3) for l in sys.stdin if l[0] not in 'xX'))"
+}
+curves() { python3 -c "import json; print(len(json.load(open('$1/final.json'))['curves']))"; }
+small() { python3 -c "import sys; sys.exit(not float('$1') <= $2)"; }
+
+for case in "ell 0.1" "ring 0.02"; do
+    set -- $case
+    expect_ok "$1 shrunk at unit speed" -- run --initial "$1.json" --velocity unit-normal \
+        --param speed=-1 --t-end "$2" --out "$1" --quiet
+    check "$1: two curves, the wall kept" test "$(curves "$1")" = 2
+    e=$(offset_error "$1" "$1.json" "$2")
+    check "$1: within 2e-3 of the exact offset (measured $e)" small "$e" 2e-3
+done
+
+# Without thin cells the contours lose the ring's wall at the start: refused, naming the setting.
+expect_status "the ring without thin cells" 3 -- run --initial ring.json --velocity unit-normal \
+    --param speed=-1 --t-end 0.02 --thin-depth 0 --out x --quiet
+check "the start refused" grep -q "do not keep the curves as given: 2 components with 1 hole became .*raise --thin-depth (now 0) or -K" err.txt
+finish
