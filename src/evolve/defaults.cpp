@@ -69,7 +69,7 @@ Problem curve_problem(std::string name, const Interface& curves, const Box& doma
     p.velocity = std::move(velocity);
     p.velocity_params = std::move(params);
     p.steps = defaults.steps;
-    p.depth = c.depth;
+    p.depth = depth_for_domain(2, domain.width(), default_domain(curves.curves()).width());
     p.refine = c.refine_passes;
     p.eps = *c.eps;
     p.eta = c.resolved_eta();

@@ -194,8 +194,19 @@ RunOptions run_options(const Problem& p, const RunOverrides& q, SettingNames nam
 SurfaceRunOptions surface_run_options(const SurfaceProblem& p, bool named, double t_start,
                                       const RunOverrides& q, SettingNames names) {
     if (named) return apply_overrides(q, named_surface_run_options(p), 1.0, names);
-    return apply_overrides(q, default_surface_run_options(p.initial, t_start, p.t_end),
-                           length_scale(p.initial), names);
+    SurfaceRunOptions o = default_surface_run_options(p.initial, t_start, p.t_end);
+    o.step.contour.depth =
+        depth_for_domain(3, p.domain.width(), default_domain(bounding_box(p.initial)).width());
+    return apply_overrides(q, o, length_scale(p.initial), names);
+}
+
+int depth_for_domain(int dim, double domain_width, double default_width) {
+    constexpr int base = 5;
+    if (!(domain_width > default_width) || !std::isfinite(domain_width / default_width))
+        return base;
+    // A domain a rounding error wider than the default is the default.
+    const int more = static_cast<int>(std::ceil(std::log2(domain_width / default_width) - 1e-9));
+    return std::min(base + more, setting_range::depth(dim).hi);
 }
 
 bool sets_contour(const RunOverrides& q) {

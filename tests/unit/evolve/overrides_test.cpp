@@ -156,5 +156,16 @@ TEST(NamedSurfaceRunOptions, AreTheProblemsOwn) {
     EXPECT_TRUE(sets_contour({.thin_depth = 1}));
 }
 
+TEST(DepthForDomain, OneLevelMoreForEachDoublingOfTheDefaultDomain) {
+    EXPECT_EQ(depth_for_domain(2, 3.0, 3.0), 5);
+    EXPECT_EQ(depth_for_domain(2, 3.0 * (1.0 + 1e-12), 3.0), 5);  // the default, rounded
+    EXPECT_EQ(depth_for_domain(2, 1.0, 3.0), 5);                  // smaller: the default K
+    EXPECT_EQ(depth_for_domain(2, 6.0, 3.0), 6);
+    EXPECT_EQ(depth_for_domain(3, 6.1, 3.0), 7);
+    EXPECT_EQ(depth_for_domain(2, 300.0, 3.0), 12);  // --domain 150 around a unit circle
+    EXPECT_EQ(depth_for_domain(2, 3e30, 3.0), setting_range::curve_depth.hi);
+    EXPECT_EQ(depth_for_domain(3, 3e30, 3.0), setting_range::surface_depth.hi);
+}
+
 }  // namespace
 }  // namespace slc
