@@ -475,9 +475,8 @@ void run_study(const StudyCommand& o) {
 }  // namespace
 
 void add_study_command(CLI::App& app) {
-    auto o = std::make_shared<StudyCommand>();
-    auto* cmd = app.add_subcommand(
-        "study",
+    const auto [cmd, o] = add_command<StudyCommand>(
+        app, "study",
         "Convergence. --problem NAME: the paper's 5x5 table for a problem with an exact solution "
         "(table.md, table.csv, table.json, error_vs_time.svg/.png); for a problem of surfaces "
         "(sphere-rotation, sphere-curvature, merging-spheres) --rows x --columns of it. --initial "
