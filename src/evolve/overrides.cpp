@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
-#include <vector>
 
 #include "slc/core/error.hpp"
 #include "slc/evolve/surface_problems.hpp"
@@ -60,12 +58,31 @@ public:
                                            eps, (*this)(eta_name), eta));
         }
     }
-    /// InvalidInput naming the first given setting that belongs to the other dimension.
-    void none_of(const std::vector<std::pair<bool, Name>>& given, const char* other,
-                 const char* these) const {
-        for (const auto& [is_given, n] : given) {
-            if (is_given)
-                throw InvalidInput(fmt::format("{} is for {}, not {}", (*this)(n), other, these));
+    /// InvalidInput naming the first setting q gives that is for the other dimension than dim
+    /// (2: curves, 3: surfaces).
+    void only_for(const RunOverrides& q, int dim) const {
+        struct OneDimension {
+            bool given;
+            Name name;
+            int dim;  ///< the dimension it is for
+        };
+        const OneDimension settings[] = {
+            {q.rho.has_value(), {"rho", "--rho"}, 2},
+            {q.mesh.has_value(), {"mesh", "--mesh"}, 2},
+            {q.eno_order.has_value(), {"eno_order", "--eno-order"}, 2},
+            {q.smoothing.has_value(), {"smoothing", "-S/--smooth"}, 2},
+            {q.extension.has_value(), {"extension", "--extension"}, 2},
+            {q.arcs.has_value(), {"arcs", "--arcs"}, 2},
+            {q.arc_width.has_value(), {"arc_width", "--arc-width"}, 2},
+            {q.volume_drift.has_value(), {"volume_drift", "--volume-drift"}, 3},
+            {q.guards.has_value(), {"guards", "--no-guards"}, 3},
+        };
+        const auto shapes = [](int d) { return d == 2 ? "curves" : "surfaces"; };
+        for (const OneDimension& s : settings) {
+            if (s.given && s.dim != dim) {
+                throw InvalidInput(fmt::format("{} is for {}, not {}", (*this)(s.name),
+                                               shapes(s.dim), shapes(dim)));
+            }
         }
     }
 
@@ -73,9 +90,13 @@ private:
     SettingNames names_;
 };
 
-/// The settings both dimensions share: N, K, P, their ranges, and ε and η checked positive.
+/// The settings both dimensions share: N, K, P, their ranges, and ε and η checked positive,
+/// after checking that q sets none of the other dimension's. Returns the checker of `names`, for
+/// the dimension's own settings.
 template <class Options>
-void apply_shared(const RunOverrides& q, const Checker& check, int dim, Options& o) {
+Checker apply_shared(const RunOverrides& q, SettingNames names, int dim, Options& o) {
+    const Checker check(names);
+    check.only_for(q, dim);
     check.range(q.steps, setting_range::steps, steps_name);
     check.range(q.depth, setting_range::depth(dim), depth_name,
                 dim == 2 ? " for curves" : " for a surface");
@@ -88,6 +109,7 @@ void apply_shared(const RunOverrides& q, const Checker& check, int dim, Options&
     if (q.refine) o.step.contour.refine_passes = *q.refine;
     if (q.tree_depth) o.step.tree_depth = *q.tree_depth;
     if (q.thin_depth) o.step.contour.thin_depth = *q.thin_depth;
+    return check;
 }
 
 }  // namespace
@@ -113,11 +135,7 @@ ContourTolerances contour_tolerances(int dim, int depth, int refine_passes, doub
 
 RunOptions apply_overrides(const RunOverrides& q, RunOptions r, double length_scale,
                            SettingNames names) {
-    const Checker check(names);
-    check.none_of({{q.volume_drift.has_value(), {"volume_drift", "--volume-drift"}},
-                   {q.guards.has_value(), {"guards", "--no-guards"}}},
-                  "surfaces", "curves");
-    apply_shared(q, check, 2, r);
+    const Checker check = apply_shared(q, names, 2, r);
     check.range(q.mesh, setting_range::mesh, {"mesh", "--mesh"});
     check.range(q.eno_order, setting_range::eno_order, {"eno_order", "--eno-order"});
     check.range(q.smoothing, setting_range::smoothing, {"smoothing", "--smooth"});
@@ -151,16 +169,7 @@ RunOptions apply_overrides(const RunOverrides& q, RunOptions r, double length_sc
 
 SurfaceRunOptions apply_overrides(const RunOverrides& q, SurfaceRunOptions o, double length_scale,
                                   SettingNames names) {
-    const Checker check(names);
-    check.none_of({{q.rho.has_value(), {"rho", "--rho"}},
-                   {q.mesh.has_value(), {"mesh", "--mesh"}},
-                   {q.eno_order.has_value(), {"eno_order", "--eno-order"}},
-                   {q.smoothing.has_value(), {"smoothing", "-S/--smooth"}},
-                   {q.extension.has_value(), {"extension", "--extension"}},
-                   {q.arcs.has_value(), {"arcs", "--arcs"}},
-                   {q.arc_width.has_value(), {"arc_width", "--arc-width"}}},
-                  "curves", "surfaces");
-    apply_shared(q, check, 3, o);
+    const Checker check = apply_shared(q, names, 3, o);
     check.positive(q.volume_drift, {"volume_drift", "--volume-drift"});
     SurfaceContourOptions& c = o.step.contour;
     if (q.depth) {

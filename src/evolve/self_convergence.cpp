@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "resolution_study.hpp"
 #include "slc/core/error.hpp"
 #include "slc/distance/distance_tree.hpp"
 
@@ -107,24 +108,9 @@ void observe_orders(std::span<const double> distances, std::vector<std::optional
 SelfConvergenceResult self_convergence(const Interface& initial, const VelocityLaw& law,
                                        const Box& domain, const RunOptions& base, int resolutions,
                                        const SelfConvergenceObserver& observer) {
-    check_resolutions(resolutions);
-    // Every level's options first, so that a level out of range fails before any run.
-    std::vector<RunOptions> options;
-    for (int r = 0; r < resolutions; ++r) options.push_back(resolution_options(base, r));
-
-    SelfConvergenceResult out;
-    for (int r = 0; r < resolutions; ++r) {
-        const RunOptions& o = options[static_cast<std::size_t>(r)];
-        ResolutionRun run_r{r, o, run(initial, law, domain, o)};
-        if (observer) observer(run_r);
-        out.runs.push_back(std::move(run_r));
-    }
-    for (int r = 0; r + 1 < resolutions; ++r) {
-        out.distances.push_back(final_distance(out.runs[static_cast<std::size_t>(r)].result,
-                                               out.runs[static_cast<std::size_t>(r) + 1].result));
-    }
-    observe_orders(out.distances, out.orders, out.estimate);
-    return out;
+    return detail::resolution_study(
+        resolutions, [&](int r) { return resolution_options(base, r); },
+        [&](const RunOptions& o) { return run(initial, law, domain, o); }, observer);
 }
 
 }  // namespace slc

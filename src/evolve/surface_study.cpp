@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "resolution_study.hpp"
 #include "slc/contour/surface_contour.hpp"
 #include "slc/core/error.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
@@ -134,22 +135,12 @@ SurfaceSelfConvergenceResult surface_self_convergence(
     const Surface& initial, const SurfaceVelocityLaw& law, const Box3& domain,
     const SurfaceRunOptions& base, int resolutions,
     const SurfaceSelfConvergenceObserver& observer) {
-    check_resolutions(resolutions);
-    // Every level's options first, so that a level out of range fails before any run.
-    std::vector<SurfaceRunOptions> options;
-    for (int r = 0; r < resolutions; ++r) options.push_back(surface_resolution_options(base, r));
-
-    SurfaceSelfConvergenceResult out;
-    for (int r = 0; r < resolutions; ++r) {
-        const SurfaceRunOptions& o = options[static_cast<std::size_t>(r)];
-        SurfaceResolutionRun run_r{r, o, run(surface_as_read(initial, domain, o), law, domain, o)};
-        if (observer) observer(run_r);
-        out.runs.push_back(std::move(run_r));
-    }
-    for (std::size_t r = 0; r + 1 < out.runs.size(); ++r)
-        out.distances.push_back(final_distance(out.runs[r].result, out.runs[r + 1].result));
-    observe_orders(out.distances, out.orders, out.estimate);
-    return out;
+    return detail::resolution_study(
+        resolutions, [&](int r) { return surface_resolution_options(base, r); },
+        [&](const SurfaceRunOptions& o) {
+            return run(surface_as_read(initial, domain, o), law, domain, o);
+        },
+        observer);
 }
 
 }  // namespace slc

@@ -36,6 +36,19 @@ void add_domain_options(CLI::App& cmd, DomainOptions& options, std::string_view 
     domain->excludes(box);
 }
 
+std::function<void()> add_initial_or_builtin(CLI::App& cmd, std::string& initial,
+                                             const std::string& initial_help,
+                                             const std::string& builtin, std::string& name,
+                                             const std::string& builtin_help) {
+    auto* file = cmd.add_option("--initial", initial, initial_help);
+    auto* shape = cmd.add_option(builtin, name, builtin_help);
+    file->excludes(shape);
+    return [file, shape, builtin] {
+        if (file->count() == 0 && shape->count() == 0)
+            throw InvalidInput(fmt::format("give --initial FILE or {} NAME", builtin));
+    };
+}
+
 namespace {
 
 /// The numbers of a comma-separated list, or nothing if one is not a number.

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <ctime>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -34,6 +35,23 @@ struct DomainOptions {
 /// Adds --domain and --box (mutually exclusive) to a subcommand; `more` ends the help of
 /// --domain.
 void add_domain_options(CLI::App& cmd, DomainOptions& options, std::string_view more = {});
+
+/// Adds the subcommand `name` to app and makes the options its flags fill: shared, so that its
+/// callback, which runs after parsing, can hold them. Returns both.
+template <class Options>
+std::pair<CLI::App*, std::shared_ptr<Options>> add_command(CLI::App& app, std::string name,
+                                                           std::string description) {
+    return {app.add_subcommand(std::move(name), std::move(description)),
+            std::make_shared<Options>()};
+}
+
+/// Adds --initial FILE (an interface file, `initial_help`) and, instead of it, `builtin` NAME (a
+/// built-in shape: "--shape" or "--function", `builtin_help`), each excluding the other. Returns
+/// what the command's callback calls first: it throws InvalidInput unless one of them was given.
+std::function<void()> add_initial_or_builtin(CLI::App& cmd, std::string& initial,
+                                             const std::string& initial_help,
+                                             const std::string& builtin, std::string& name,
+                                             const std::string& builtin_help);
 
 /// The square domain: from --domain or --box, else the square centred on the curves' bounding
 /// box with half-width 1.5 times its larger half-side (room for the curves to move). Throws

@@ -199,20 +199,17 @@ void run_contour(const ContourCommandOptions& o) {
 }  // namespace
 
 void add_contour_command(CLI::App& app) {
-    auto o = std::make_shared<ContourCommandOptions>();
-    auto* cmd = app.add_subcommand(
-        "contour",
+    const auto [cmd, o] = add_command<ContourCommandOptions>(
+        app, "contour",
         "Contours the exact signed distance of an interface (paper Tables 2 and 3): writes "
         "final.json, summary.json (cells, segments, mean segment length, error = max |F| over "
         "vertices and segment midpoints, cpu_s, g_evals, g_evals_per_vertex) and final.svg/.png "
         "(tree and contour)");
-    auto* initial = cmd->add_option(
-        "--initial", o->initial,
-        "Interface file (JSON), or a closed surface (.obj, .stl, .ply) contoured in space");
-    auto* function = cmd->add_option(
+    const auto require_source = add_initial_or_builtin(
+        *cmd, o->initial,
+        "Interface file (JSON), or a closed surface (.obj, .stl, .ply) contoured in space",
         "--function", o->function,
         "Instead of --initial, a built-in implicit surface in [-1, 1]^3: sphere, torus, cassini");
-    initial->excludes(function);
     cmd->add_option("-K,--depth", o->depth,
                     "Depth K of the contouring tree (default 5, as slc run takes for a shape of "
                     "your own)")
@@ -250,9 +247,8 @@ void add_contour_command(CLI::App& app) {
         ->check(integer_in(0, 30));
     cmd->add_option("--out", o->out, "Output folder")->required();
     add_threads_option(*cmd, o->threads);
-    cmd->callback([o, initial, function, refine] {
-        if (initial->count() == 0 && function->count() == 0)
-            throw InvalidInput("give --initial FILE or --function NAME");
+    cmd->callback([o, require_source, refine] {
+        require_source();
         // A tolerance given asks for it to be met: refinement until converged.
         if (refine->count() == 0 && o->eps) o->refine = converged_passes;
         if (!o->function.empty() || is_surface_file(o->initial)) {

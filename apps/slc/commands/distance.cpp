@@ -61,9 +61,8 @@ void run_distance(const DistanceOptions& o) {
 }  // namespace
 
 void add_distance_command(CLI::App& app) {
-    auto o = std::make_shared<DistanceOptions>();
-    auto* cmd = app.add_subcommand(
-        "distance",
+    const auto [cmd, o] = add_command<DistanceOptions>(
+        app, "distance",
         "Signed distance (negative inside) and nearest point of the interface for each x,y line of "
         "a CSV file; prints x,y,distance,nearest_x,nearest_y with 17 significant digits. For a "
         "surface (.obj, .stl, .ply), x,y,z lines and x,y,z,distance,nearest_x,nearest_y,"

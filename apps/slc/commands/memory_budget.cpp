@@ -19,13 +19,15 @@ namespace {
 constexpr double cells_per_width = 8.0;
 
 /// InvalidInput, naming the deepest depth that fits, when `what` at `depth` would need more than
-/// the memory this process may use: bytes(d) at depth d for the trees `whose` describes, along
-/// curves of length (or a surface of area) `size` in a domain of `width`.
-template <class Bytes>
-void check_fits(const std::string& what, int depth, double size, double width, Bytes bytes,
+/// the memory this process may use: cells(d, size, width) × bytes_per_cell at depth d for the
+/// trees `whose` describes, along curves of length (or a surface of area) `size` in a domain of
+/// `width`.
+void check_fits(const std::string& what, int depth, double size, double width,
+                double bytes_per_cell, double (*cells)(int, double, double),
                 const std::string& whose) {
     const double memory = static_cast<double>(physical_memory());
     if (!(memory > 0.0) || !(size > 0.0) || !(width > 0.0)) return;  // nothing to compare
+    const auto bytes = [&](int d) { return cells(d, size, width) * bytes_per_cell; };
     if (bytes(depth) <= memory) return;
     int fits = depth;
     while (fits > 0 && bytes(fits) > memory) --fits;
@@ -63,10 +65,8 @@ std::uint64_t physical_memory() {
 
 void check_tree_memory(const std::string& what, int depth, double length, double width,
                        double bytes_per_cell) {
-    check_fits(
-        what, depth, length, width,
-        [&](int d) { return tree_cells(d, length, width) * bytes_per_cell; },
-        fmt::format("its trees along curves of length {:.4g}", length));
+    check_fits(what, depth, length, width, bytes_per_cell, tree_cells,
+               fmt::format("its trees along curves of length {:.4g}", length));
 }
 
 double octree_cells(int depth, double area, double width) {
@@ -80,10 +80,8 @@ double octree_cells(int depth, double area, double width) {
 
 void check_octree_memory(const std::string& what, int depth, double area, double width,
                          double bytes_per_cell) {
-    check_fits(
-        what, depth, area, width,
-        [&](int d) { return octree_cells(d, area, width) * bytes_per_cell; },
-        fmt::format("its octree along a surface of area {:.4g}", area));
+    check_fits(what, depth, area, width, bytes_per_cell, octree_cells,
+               fmt::format("its octree along a surface of area {:.4g}", area));
 }
 
 }  // namespace slc::cli

@@ -94,9 +94,8 @@ void run_render(const RenderOptions& o) {
 }  // namespace
 
 void add_render_command(CLI::App& app) {
-    auto o = std::make_shared<RenderOptions>();
-    auto* cmd = app.add_subcommand(
-        "render",
+    const auto [cmd, o] = add_command<RenderOptions>(
+        app, "render",
         "Draws interface files as SVG or PNG (by the extension of --out), or the frames of a run "
         "as an animated SVG (--frames)");
     auto* files = cmd->add_option("files", o->files, "Interface files (JSON)");

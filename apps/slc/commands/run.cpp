@@ -461,10 +461,10 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
 }  // namespace
 
 void add_run_command(CLI::App& app) {
-    auto o = std::make_shared<RunCommand>();
-    auto* cmd = app.add_subcommand("run",
-                                   "Moves an interface: a named problem (--problem) or your curve "
-                                   "(--initial) under a velocity law");
+    const auto [cmd, o] =
+        add_command<RunCommand>(app, "run",
+                                "Moves an interface: a named problem (--problem) or your curve "
+                                "(--initial) under a velocity law");
     add_run_options(cmd, o.get());
     cmd->callback([o, cmd] {
         if (!o->resume.empty()) return resume_command(*cmd, *o);

@@ -136,6 +136,19 @@ std::string csv_table(const BasicSelfConvergenceResult<Run>& s, const char* head
     return out;
 }
 
+/// The rows of table.md's table, a line a run: r, row(options, result) (the run's own cells,
+/// separated by " | "), the distance to the next run and the order observed.
+template <class Run, class Row>
+std::string markdown_rows(const BasicSelfConvergenceResult<Run>& s, Row row) {
+    std::string out;
+    for (std::size_t r = 0; r < s.runs.size(); ++r) {
+        const std::string order = r < s.orders.size() ? number(s.orders[r], "{:.2f}") : "";
+        out += fmt::format("| {} | {} | {} | {} |\n", r, row(s.runs[r].options, s.runs[r].result),
+                           distance_cell(s, r), order);
+    }
+    return out;
+}
+
 std::string markdown(const Problem& p, const SelfConvergenceResult& s) {
     const int threads = thread_count();
     // The law as given: its name, or the expression or file after the option's name.
@@ -156,15 +169,11 @@ std::string markdown(const Problem& p, const SelfConvergenceResult& s) {
     md +=
         "| r | N/S/K/P/ε | status | segments | components | area | length | CPU s | d(r, r+1) | "
         "order |\n|---|---|---|---|---|---|---|---|---|---|\n";
-    for (std::size_t r = 0; r < s.runs.size(); ++r) {
-        const RunResult& res = s.runs[r].result;
-        const std::string d = distance_cell(s, r);
-        const std::string order = r < s.orders.size() ? number(s.orders[r], "{:.2f}") : "";
-        md += fmt::format("| {} | {} | {} | {} | {} | {:.6g} | {:.6g} | {:.3g} | {} | {} |\n", r,
-                          run_name(s.runs[r].options), to_string(res.status), res.curves.size(),
-                          res.curves.curve_count(), area(res.curves), length(res.curves), res.cpu_s,
-                          d, order);
-    }
+    md += markdown_rows(s, [](const RunOptions& o, const RunResult& res) {
+        return fmt::format("{} | {} | {} | {} | {:.6g} | {:.6g} | {:.3g}", run_name(o),
+                           to_string(res.status), res.curves.size(), res.curves.curve_count(),
+                           area(res.curves), length(res.curves), res.cpu_s);
+    });
     md += "\n" + estimate_note(s, "curves") + "\n";
     return md;
 }
@@ -290,20 +299,16 @@ std::string surface_markdown(const SurfaceProblem& p, const SurfaceLawText& law,
     md +=
         "| r | run | status | beyond ε | triangles | components | genus | volume | area | CPU s | "
         "d(r, r+1) | order |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    for (std::size_t r = 0; r < s.runs.size(); ++r) {
-        const SurfaceRunResult& res = s.runs[r].result;
+    md += markdown_rows(s, [](const SurfaceRunOptions& o, const SurfaceRunResult& res) {
         const Surface& f = res.surface;
-        const std::string order = r < s.orders.size() ? number(s.orders[r], "{:.2f}") : "";
         const std::string beyond = res.unconverged_steps == 0
                                        ? std::string("0")
                                        : fmt::format("{} of {} ({:.3g})", res.unconverged_steps,
                                                      res.steps_done, res.largest_residual);
-        md += fmt::format(
-            "| {} | {} | {} | {} | {} | {} | {} | {:.6g} | {:.6g} | {:.3g} | {} | {} |\n", r,
-            run_name(s.runs[r].options), to_string(res.status), beyond, f.size(),
-            component_count(f), genus(f), volume(f), area(f), res.cpu_s, distance_cell(s, r),
-            order);
-    }
+        return fmt::format("{} | {} | {} | {} | {} | {} | {:.6g} | {:.6g} | {:.3g}", run_name(o),
+                           to_string(res.status), beyond, f.size(), component_count(f), genus(f),
+                           volume(f), area(f), res.cpu_s);
+    });
     md += "\n" + surface_note(s) + "\n";
     return md;
 }

@@ -136,6 +136,23 @@ std::string markdown(const Problem& p, const StudyResult& s, const Paper& paper)
     return md;
 }
 
+/// The cells of table.json, an object each: the keys of both dimensions (row, from 1, P, status,
+/// e_inf, cpu_s_per_step) added to own(c), the dimension's own.
+template <class Cell, class Own>
+nlohmann::json cells_json(const std::vector<Cell>& cells, Own own) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const Cell& c : cells) {
+        nlohmann::json j = own(c);
+        j["row"] = c.row + 1;
+        j["P"] = c.refine;
+        j["status"] = to_string(c.status);
+        j["e_inf"] = c.e_inf ? nlohmann::json(*c.e_inf) : nlohmann::json(nullptr);
+        j["cpu_s_per_step"] = c.cpu_s_per_step;
+        out.push_back(std::move(j));
+    }
+    return out;
+}
+
 std::string csv(const StudyResult& s) {
     std::string out = "row,N,S,K,eps,P,status,E_inf,T_cpu_s_per_step,g_evals_per_vertex,segments\n";
     for (const StudyCell& c : s.cells) {
@@ -307,19 +324,13 @@ void run_surface_study(const StudyCommand& o) {
     const std::filesystem::path dir = folder.path();
     write_file_atomic(dir / "table.md", surface_markdown(p, s));
     write_file_atomic(dir / "table.csv", surface_csv(s));
-    nlohmann::json cells = nlohmann::json::array();
-    for (const SurfaceStudyCell& c : s.cells) {
-        cells.push_back({{"row", c.row + 1},
-                         {"N", c.options.steps},
-                         {"K", c.options.step.contour.depth},
-                         {"eps", c.options.step.contour.resolved_eps()},
-                         {"P", c.refine},
-                         {"status", to_string(c.status)},
-                         {"e_inf", c.e_inf ? nlohmann::json(*c.e_inf) : nlohmann::json(nullptr)},
-                         {"cpu_s_per_step", c.cpu_s_per_step},
-                         {"wall_s", c.wall_s},
-                         {"triangles", c.triangles}});
-    }
+    const nlohmann::json cells = cells_json(s.cells, [](const SurfaceStudyCell& c) {
+        return nlohmann::json{{"N", c.options.steps},
+                              {"K", c.options.step.contour.depth},
+                              {"eps", c.options.step.contour.resolved_eps()},
+                              {"wall_s", c.wall_s},
+                              {"triangles", c.triangles}};
+    });
     nlohmann::json orders = nlohmann::json::object();
     auto json_orders = [&](auto order, int rows, int columns) {
         nlohmann::json out = nlohmann::json::array();
@@ -454,17 +465,11 @@ void run_study(const StudyCommand& o) {
     const std::filesystem::path dir = folder.path();
     write_file_atomic(dir / "table.md", markdown(p, s, paper));
     write_file_atomic(dir / "table.csv", csv(s));
-    nlohmann::json cells = nlohmann::json::array();
-    for (const StudyCell& c : s.cells) {
-        cells.push_back({{"row", c.row + 1},
-                         {"run", run_name(c.options)},
-                         {"P", c.refine},
-                         {"status", to_string(c.status)},
-                         {"e_inf", c.e_inf ? nlohmann::json(*c.e_inf) : nlohmann::json(nullptr)},
-                         {"cpu_s_per_step", c.cpu_s_per_step},
-                         {"g_evals_per_vertex", c.g_evals_per_vertex},
-                         {"segments", c.segments}});
-    }
+    const nlohmann::json cells = cells_json(s.cells, [](const StudyCell& c) {
+        return nlohmann::json{{"run", run_name(c.options)},
+                              {"g_evals_per_vertex", c.g_evals_per_vertex},
+                              {"segments", c.segments}};
+    });
     write_file_atomic(
         dir / "table.json",
         nlohmann::json{{"problem", p.name}, {"rows", s.rows}, {"cells", cells}}.dump(2) + "\n");
@@ -475,9 +480,8 @@ void run_study(const StudyCommand& o) {
 }  // namespace
 
 void add_study_command(CLI::App& app) {
-    auto o = std::make_shared<StudyCommand>();
-    auto* cmd = app.add_subcommand(
-        "study",
+    const auto [cmd, o] = add_command<StudyCommand>(
+        app, "study",
         "Convergence. --problem NAME: the paper's 5x5 table for a problem with an exact solution "
         "(table.md, table.csv, table.json, error_vs_time.svg/.png); for a problem of surfaces "
         "(sphere-rotation, sphere-curvature, merging-spheres) --rows x --columns of it. --initial "

@@ -247,18 +247,15 @@ void run_tree(const TreeOptions& o) {
 }  // namespace
 
 void add_tree_command(CLI::App& app) {
-    auto o = std::make_shared<TreeOptions>();
-    auto* cmd = app.add_subcommand(
-        "tree",
+    const auto [cmd, o] = add_command<TreeOptions>(
+        app, "tree",
         "Builds the distance tree of an interface, checks it against brute force and draws it: "
         "tree, signed distance, nearest-point and Whitney extensions of u = (-y, x)");
-    auto* initial = cmd->add_option(
-        "--initial", o->initial,
+    const auto require_source = add_initial_or_builtin(
+        *cmd, o->initial,
         "Interface file (JSON), or a closed surface (.obj, .stl, .ply): the octree is drawn in "
-        "a slice z = const");
-    auto* shape = cmd->add_option("--shape", o->shape,
-                                  "A built-in shape in [-1, 1]^2: propeller, circle, two-circles");
-    initial->excludes(shape);
+        "a slice z = const",
+        "--shape", o->shape, "A built-in shape in [-1, 1]^2: propeller, circle, two-circles");
     add_domain_options(*cmd, o->domain);
     cmd->add_option("-L,--tree-depth", o->depth,
                     "Depth L of the distance tree (default 6; for a surface, cells about one mean "
@@ -272,9 +269,8 @@ void add_tree_command(CLI::App& app) {
                     ".svg and .png")
         ->required();
     add_threads_option(*cmd, o->threads);
-    cmd->callback([o, initial, shape] {
-        if (initial->count() == 0 && shape->count() == 0)
-            throw InvalidInput("give --initial FILE or --shape NAME");
+    cmd->callback([o, require_source] {
+        require_source();
         run_tree(*o);
     });
 }
