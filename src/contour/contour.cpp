@@ -12,6 +12,7 @@
 #include "rounding.hpp"
 #include "slc/core/error.hpp"
 #include "stages.hpp"
+#include "tree_sampler.hpp"
 
 namespace slc {
 namespace {
@@ -101,6 +102,9 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
     stats.triangles = topo.mesh.triangles.size();
     stats.gamma = topo.gamma;
     stats.thin_cells = topo.thin_cells;
+    stats.thin_budget_reached = topo.thin_budget_reached;
+    stats.finest_cell = topo.tree.edge(topo.tree.depth());
+    stats.finest_at = contouring::deepest_place(topo.tree);
     stats.perturbed = topo.perturbed;
     stats.settled = topo.settled;
     stats.bound_evals = topo.bound_evals;

@@ -43,6 +43,7 @@ struct Topology {
     std::vector<std::uint8_t> crossed;  ///< per triangle: G changes sign at its vertices
     double gamma = 1.0;                 ///< the gradient bound at which the tree balanced
     std::size_t thin_cells = 0;         ///< cells split beyond K where G bends
+    bool thin_budget_reached = false;   ///< cells that bend left whole (thin_cell_budget)
     std::size_t perturbed = 0;          ///< vertices perturbed
     std::size_t settled = 0;            ///< tree points given stand-ins instead of evaluations of G
     std::size_t bound_evals = 0;        ///< evaluations of the bounds

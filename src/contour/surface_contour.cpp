@@ -17,6 +17,7 @@
 #include "slc/geometry/triangle3.hpp"
 #include "slc/tree/tetrahedralization.hpp"
 #include "surface_stages.hpp"
+#include "tree_sampler.hpp"
 
 namespace slc {
 namespace {
@@ -210,6 +211,9 @@ SurfaceContour contour_surface_with(SpaceFunctionRef g, const Box3& domain,
         SpaceEvaluator(g, stats.g_evals_tree), domain, options, bounds);
     stats.gamma = topo.gamma;
     stats.thin_cells = topo.thin_cells;
+    stats.thin_budget_reached = topo.thin_budget_reached;
+    stats.finest_cell = topo.tree.edge(topo.tree.depth());
+    stats.finest_at = contouring::deepest_place(topo.tree);
     stats.cells = topo.tree.size();
     stats.leaves = topo.tree.leaves().size();
     stats.settled = topo.settled;

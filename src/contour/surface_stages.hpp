@@ -46,6 +46,7 @@ struct SurfaceTopology {
     std::vector<std::uint32_t> crossing;  ///< the tetrahedra where G changes sign, in order
     double gamma = 0.0;                   ///< the gradient bound at which the tree balanced
     std::size_t thin_cells = 0;           ///< cells split beyond K where G bends
+    bool thin_budget_reached = false;     ///< cells that bend left whole (thin_cell_budget)
     std::size_t settled = 0;              ///< tree points with a stand-in instead of G
     std::size_t bound_evals = 0;          ///< evaluations of the bounds
     std::size_t perturbed = 0;            ///< vertices moved off |G| ≤ η

@@ -242,7 +242,9 @@ SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& do
     SurfaceSampler sampler(topo.tree, g, bounds, options.distance_slack, rounding, eta,
                            options.depth);
     topo.gamma = build_tree(topo.tree, sampler, options.gamma);
-    topo.thin_cells = split_thin(topo.tree, sampler, topo.gamma);
+    const ThinSplit thin = split_thin(topo.tree, sampler, topo.gamma);
+    topo.thin_cells = thin.cells;
+    topo.thin_budget_reached = thin.budget_reached;
     topo.settled = sampler.settled();
     topo.bound_evals = sampler.bound_evals();
     topo.mesh = tetrahedralize(topo.tree);

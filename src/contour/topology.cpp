@@ -228,14 +228,16 @@ Topology resolve_topology(BatchFunctionRef g, const Box& domain, const ContourOp
                           std::optional<BatchBoundsRef> bounds) {
     const int thin_depth =
         thin_levels<2>(domain, options.depth, options.thin_depth, Quadtree::max_supported_depth);
-    Topology topo{
-        Quadtree(domain, options.depth + thin_depth), {}, {}, {}, {}, options.gamma, 0, 0, 0, 0};
+    Topology topo{Quadtree(domain, options.depth + thin_depth), {}, {}, {}, {}};
+    topo.gamma = options.gamma;
     // Both bounds allow for rounding in G and in the bound: a few thousand ulps of the
     // coordinates.
     const double rounding = 1e-12 * std::max(domain.largest_magnitude(), domain.width());
     CurveSampler sampler(g, bounds, topo.tree, options, rounding);
     topo.gamma = build_tree(topo.tree, sampler, options.gamma);
-    topo.thin_cells = split_thin(topo.tree, sampler, topo.gamma);
+    const ThinSplit thin = split_thin(topo.tree, sampler, topo.gamma);
+    topo.thin_cells = thin.cells;
+    topo.thin_budget_reached = thin.budget_reached;
     sampler.complete_centres(topo.gamma);
     topo.bound_evals = sampler.bound_evals();
     std::vector<std::uint8_t> on_boundary;

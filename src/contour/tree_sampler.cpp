@@ -401,14 +401,16 @@ std::size_t TreeSampler<dim>::settled() const {
 }
 
 template <int dim>
-std::size_t split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma) {
+ThinSplit split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma) {
     using Bend = typename TreeSampler<dim>::Bend;
     const int limit = sampler.limit();
+    const std::size_t budget = thin_cell_budget(dim) * tree.size();
+    ThinSplit out;
     std::vector<std::uint32_t> frontier;
     for (std::uint32_t c : tree.leaves())
         if (tree.cell(c).level == limit && gamma * tree.edge(limit) > sampler.min_abs(c))
             frontier.push_back(c);
-    std::size_t split = 0;
+    std::size_t& split = out.cells;
     while (!frontier.empty() && tree.cell(frontier.front()).level < tree.max_depth()) {
         check_stop();
         // Stand-ins that leave a cell unsure are evaluated, a batch a round, until none does;
@@ -425,6 +427,10 @@ std::size_t split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double ga
             unsure = std::move(still);
         }
         std::sort(bent.begin(), bent.end());
+        if (bent.size() > budget - split) {
+            bent.resize(budget - split);
+            out.budget_reached = true;
+        }
         std::vector<std::uint32_t> next;
         for (std::uint32_t c : bent) {
             const std::uint32_t first = tree.split(c);
@@ -443,14 +449,14 @@ std::size_t split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double ga
         std::iota(made.begin(), made.end(), before);
         sampler.sample(made);
     }
-    return split;
+    return out;
 }
 
 template class TreeSampler<2>;
 template class TreeSampler<3>;
 template double build_tree(Orthtree<2>&, TreeSampler<2>&, double);
 template double build_tree(Orthtree<3>&, TreeSampler<3>&, double);
-template std::size_t split_thin(Orthtree<2>&, TreeSampler<2>&, double);
-template std::size_t split_thin(Orthtree<3>&, TreeSampler<3>&, double);
+template ThinSplit split_thin(Orthtree<2>&, TreeSampler<2>&, double);
+template ThinSplit split_thin(Orthtree<3>&, TreeSampler<3>&, double);
 
 }  // namespace slc::contouring

@@ -255,13 +255,35 @@ private:
 template <int dim>
 double build_tree(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma);
 
+/// What split_thin did.
+struct ThinSplit {
+    std::size_t cells = 0;        ///< cells split beyond K
+    bool budget_reached = false;  ///< some cells that bend were left whole (thin_cell_budget)
+};
+
+/// Thin cells split at most this many times the cells of the tree at depth K: a G that bends
+/// almost everywhere (a coarse step of a curvature law) costs at most a few times a contour at K.
+/// A curve's thin part is a line of cells, each level twice the last: a wall along a whole curve
+/// six levels deep takes about 8 times the cells at K; a surface's is a sheet of them, each level
+/// four times the last.
+constexpr std::size_t thin_cell_budget(int dim) { return dim == 2 ? 16 : 2; }
+
 /// Splits the leaves at level sampler.limit() (K) near the zero set (min|G| below γ times their
 /// edge) where G bends within them (TreeSampler::bends), and their children where it still does,
-/// down to the tree's depth limit; then balances the tree again, sampling the cells balancing
-/// makes. Thin parts, near contacts, sharp corners and tight turns of the zero set so get cells
-/// fine enough for the linear contour to have both their sides. Returns the cells split.
+/// down to the tree's depth limit, level by level in cell order, until thin_cell_budget times the
+/// tree's cells have split; then balances the tree again, sampling the cells balancing makes.
+/// Thin parts, near contacts, sharp corners and tight turns of the zero set so get cells fine
+/// enough for the linear contour to have both their sides.
 template <int dim>
-std::size_t split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma);
+ThinSplit split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma);
+
+/// The centre of the first of the tree's deepest leaves: where its finest cells are.
+template <int dim>
+PointOf<dim> deepest_place(const Orthtree<dim>& tree) {
+    for (const std::uint32_t c : tree.leaves())
+        if (tree.cell(c).level == tree.depth()) return tree.box(c).center();
+    return tree.root_box().center();
+}
 
 /// The levels thin cells may take beyond depth K: thin_depth, short of level `deepest` and of
 /// the finest cells that doubles resolve in domain.

@@ -112,6 +112,8 @@ public:
                 a.lag += (m1.area - a.m0.area) - *expected;
             a.m0 = m1;
         }
+        note_cells(r, s.stats.predictor, t + k);
+        note_cells(r, s.stats.corrector, t + k);
         a.g_evals += s.stats.g_evals();
         a.vertices += s.stats.vertices();
         a.corrected += s.stats.area_correction;

@@ -135,6 +135,8 @@ std::optional<std::string> LoopHooks<3>::record(Attempt& a, const Surface& befor
                                                 const SurfaceStepResult& s, double t, double k,
                                                 SurfaceRunResult& r) const {
     r.g_evals += s.stats.g_evals();
+    note_cells(r, s.stats.predictor, t + k);
+    note_cells(r, s.stats.corrector, t + k);
     a.corrected += s.stats.volume_correction;
     if (until_converged_ && !s.surface.empty() && !s.stats.corrector.converged) {
         a.unconverged = true;

@@ -16,6 +16,7 @@
 #include <ctime>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -28,6 +29,21 @@
 #include "step_common.hpp"
 
 namespace slc::detail {
+
+/// Notes in r the finest cell of a contour of the step that ends at t, and whether its thin cells
+/// reached their budget (RunTotals::finest_cell, thin_budget_at); c is ContourStats or
+/// SurfaceContourStats.
+template <class ContourStatsT>
+void note_cells(RunTotals& r, const ContourStatsT& c, double t) {
+    if (c.finest_cell > 0.0 && (r.finest_cell == 0.0 || c.finest_cell < r.finest_cell)) {
+        r.finest_cell = c.finest_cell;
+        r.finest_t = t;
+        r.finest_at.clear();
+        constexpr int dim = std::is_same_v<decltype(c.finest_at), Vec2> ? 2 : 3;
+        for (int i = 0; i < dim; ++i) r.finest_at.push_back(c.finest_at[i]);
+    }
+    if (c.thin_budget_reached && std::isnan(r.thin_budget_at)) r.thin_budget_at = t;
+}
 
 /// What differs between curves (dim 2) and surfaces (dim 3): the types of a run (Options, Result,
 /// StepResult, Report, Observer, Law, Region, Shape), the step's options in a grown domain, the

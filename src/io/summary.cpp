@@ -46,6 +46,14 @@ std::string refine_name(int passes) {
     return passes == ContourOptions::until_converged ? "converged" : std::to_string(passes);
 }
 
+/// The finest cell the run's contours used, when and where (RunTotals::finest_cell), and when
+/// thin cells first reached their budget: both dimensions' summaries.
+void put_resolution(nlohmann::json& s, const RunTotals& r) {
+    if (r.finest_cell > 0.0)
+        s["finest_cell"] = {{"width", r.finest_cell}, {"at_t", r.finest_t}, {"at", r.finest_at}};
+    if (!std::isnan(r.thin_budget_at)) s["thin_budget_reached_at_t"] = r.thin_budget_at;
+}
+
 nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResult& r,
                            const VelocityLaw& law) {
     const auto e_inf = max_error(p, r.curves, r.t);
@@ -109,6 +117,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
                              {"domain", {d.lo.x, d.lo.y, d.hi.x, d.hi.y}},
                              {"K", c.depth + r.domain_doublings}};
     }
+    put_resolution(s, r);
     return s;
 }
 
@@ -197,6 +206,7 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
                                    {"domain", {d.lo.x, d.lo.y, d.lo.z, d.hi.x, d.hi.y, d.hi.z}},
                                    {"K", c.depth + r.domain_doublings}};
     }
+    put_resolution(summary, r);
     return summary;
 }
 

@@ -50,6 +50,16 @@ for case in "ell 0.1" "ring 0.02"; do
     check "$1: within 2e-3 of the exact offset (measured $e)" small "$e" 2e-3
 done
 
+# The finest cell the L's contours used, 1/64 of a cell at K = 5 in its domain [-1.5, 1.5]^2,
+# with when and where, in summary.json and the closing line.
+check "the L's finest cell in summary.json" python3 -c "
+import json, sys
+f = json.load(open('ell/summary.json'))['finest_cell']
+sys.exit(not (f['width'] == 3 * 2 ** -11 and 0 < f['at_t'] <= 0.1 and len(f['at']) == 2))"
+expect_ok "the L's closing line" -- run --initial ell.json --velocity unit-normal --param speed=-1 \
+    --t-end 0.1 -N 4 --out ell4
+check "the closing line names the finest cell" grep -q "s cpu, finest cell 0.00146 at (" out.txt
+
 # Without thin cells the contours lose the ring's wall at the start: refused, naming the setting.
 expect_status "the ring without thin cells" 3 -- run --initial ring.json --velocity unit-normal \
     --param speed=-1 --t-end 0.02 --thin-depth 0 --out x --quiet

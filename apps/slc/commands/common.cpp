@@ -250,6 +250,15 @@ std::string one_velocity_law(const std::vector<std::pair<std::string, bool>>& op
     return given[0];
 }
 
+std::string finest_cell_text(const nlohmann::json& summary) {
+    if (!summary.contains("finest_cell")) return {};
+    const nlohmann::json& f = summary["finest_cell"];
+    std::string at;
+    for (const auto& x : f["at"])
+        at += fmt::format("{}{:.4g}", at.empty() ? "" : ", ", x.get<double>());
+    return fmt::format(", finest cell {:.3g} at ({})", f["width"].get<double>(), at);
+}
+
 void print_estimate(const nlohmann::json& estimate) {
     if (estimate["estimate"].is_null()) {
         fmt::print("{}\n", estimate["note"].get<std::string>());

@@ -128,6 +128,10 @@ auto timed_contour(nlohmann::json& summary, OutputFolder& folder, const std::str
 /// Prints summary.json's "error_estimate" in one line: the estimate, or why there is none.
 void print_estimate(const nlohmann::json& estimate);
 
+/// ", finest cell W at (x, y[, z])" from a run's summary.json (finest_cell), or nothing: for the
+/// closing line of slc run.
+std::string finest_cell_text(const nlohmann::json& summary);
+
 /// CLI11 checks with one-line messages naming the value: a positive finite number; a finite
 /// number >= 0; an integer in [lo, hi]; a number in [0, 1).
 CLI::Validator positive_number();

@@ -287,9 +287,9 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
     }
     folder.commit();
     if (!o.quiet) {
-        fmt::print("{}: {} at t = {:.6g} after {} steps, e_inf = {}, {:.3g} s cpu; wrote {}\n",
+        fmt::print("{}: {} at t = {:.6g} after {} steps, e_inf = {}, {:.3g} s cpu{}; wrote {}\n",
                    p.name, to_string(r.status), r.t, r.steps_done, summary["e_inf"].dump(), r.cpu_s,
-                   folder.target().string());
+                   finest_cell_text(summary), folder.target().string());
         if (coarse) print_estimate(summary["error_estimate"]);
     }
     if (r.status == RunStatus::error || r.status == RunStatus::unstable)

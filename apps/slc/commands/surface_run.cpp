@@ -319,12 +319,12 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     }
     if (!r.quiet) {
         fmt::print(
-            "{} steps to t = {:.6g}: {}, {} triangles, volume change {:.3g}{}, {:.3g} s; "
+            "{} steps to t = {:.6g}: {}, {} triangles, volume change {:.3g}{}, {:.3g} s{}; "
             "wrote {}\n",
             result.steps_done, result.t, to_string(result.status), s.size(),
             summary["volume_change"].get<double>(),
             std::isfinite(e) ? fmt::format(", e_inf {:.3g}", e) : std::string(), result.cpu_s,
-            (folder.target() / "summary.json").string());
+            finest_cell_text(summary), (folder.target() / "summary.json").string());
         if (coarse) print_estimate(summary["error_estimate"]);
     }
 }

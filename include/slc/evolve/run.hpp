@@ -46,6 +46,15 @@ struct RunTotals {
     /// time at the start of the first step that doubled it (NaN if none did).
     int domain_doublings = 0;
     double domain_grown_at = std::numeric_limits<double>::quiet_NaN();  ///< (see domain_doublings)
+    /// The edge of the finest cell the steps' contours used, thin cells included (0 before a
+    /// step), the time at the end of the first step that used it, and the centre of one such
+    /// cell there (x, y or x, y, z): where the shape needed the most resolution.
+    double finest_cell = 0.0;
+    double finest_t = std::numeric_limits<double>::quiet_NaN();  ///< (see finest_cell)
+    std::vector<double> finest_at;                               ///< (see finest_cell)
+    /// The time at the end of the first step whose contours left cells that bend whole, thin
+    /// cells having reached their budget (contouring::thin_cell_budget); NaN if none.
+    double thin_budget_at = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The time interval, the number of steps and the parameters of every step.

@@ -310,5 +310,28 @@ TEST(ContourDistance, ThinPartsSplitBeyondTheDepth) {
     EXPECT_TRUE(std::ranges::equal(plain.curves.points(), thin.curves.points()));
 }
 
+TEST(ContourDistance, ThinCellsStopAtTheirBudget) {
+    // Walls 1e-4 wide every 0.09 (1.4 cells at K = 5), each thinner than a cell along its whole
+    // length: following them eight levels deep would split over a hundred thousand cells.
+    // Thin cells stop at 16 times the cells at K, and say so; the result is still simple.
+    const double s = 0.09, w = 1e-4;
+    const auto g = [&](std::span<const Vec2> x, std::span<double> v) {
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            const double u = std::fmod(x[i].x + 10.0, s);
+            v[i] = std::max(
+                {std::min(u, s - u) - 0.5 * w, std::abs(x[i].x) - 0.8, std::abs(x[i].y) - 0.8});
+        }
+    };
+    const ContourResult r = contour(g, Box::centered_square(1.0), {.depth = 5, .thin_depth = 8});
+    EXPECT_TRUE(r.stats.thin_budget_reached);
+    EXPECT_GT(r.stats.thin_cells, 0u);
+    // At most 16 times the cells at K split, each split adding four cells (balancing more).
+    EXPECT_LE(65 * r.stats.thin_cells, 16 * r.stats.cells);
+    expect_simple(r.curves);
+    const ContourResult few = contour(g, Box::centered_square(1.0), {.depth = 5, .thin_depth = 1});
+    EXPECT_FALSE(few.stats.thin_budget_reached);
+    EXPECT_EQ(few.stats.finest_cell, std::ldexp(2.0, -6));
+}
+
 }  // namespace
 }  // namespace slc
