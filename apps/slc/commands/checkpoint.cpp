@@ -112,6 +112,9 @@ void put_totals(Json& json, const RunTotals& s) {
     json["most_substeps"] = s.most_substeps;
     json["domain_doublings"] = s.domain_doublings;
     if (s.domain_doublings > 0) json["domain_grown_at"] = s.domain_grown_at;
+    if (s.finest_cell > 0.0)
+        json["finest_cell"] = {{"width", s.finest_cell}, {"at_t", s.finest_t}, {"at", s.finest_at}};
+    if (!std::isnan(s.thin_budget_at)) json["thin_budget_at"] = s.thin_budget_at;
 }
 
 /// Reads what put_totals() wrote; the run it describes was interrupted.
@@ -125,6 +128,13 @@ void get_totals(const Json& json, RunTotals& s) {
     s.most_substeps = json.value("most_substeps", 1);
     s.domain_doublings = json.value("domain_doublings", 0);
     if (s.domain_doublings > 0) s.domain_grown_at = json.at("domain_grown_at").get<double>();
+    if (json.contains("finest_cell")) {
+        const Json& f = json.at("finest_cell");
+        s.finest_cell = f.at("width").get<double>();
+        s.finest_t = f.at("at_t").get<double>();
+        s.finest_at = f.at("at").get<std::vector<double>>();
+    }
+    if (json.contains("thin_budget_at")) s.thin_budget_at = json.at("thin_budget_at").get<double>();
     s.status = RunStatus::interrupted;
 }
 
