@@ -168,8 +168,16 @@ def _warn_no_zero(domain: str, depth: int) -> None:
                   "the contour is empty", UserWarning, stacklevel=3)
 
 
+def _integer(name: str, value) -> int | None:
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name} must be an integer, got {value!r}")
+    return int(value)
+
+
 def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None = None,
-            refine=None) -> Interface:
+            refine=None, thin_depth: int = 0) -> Interface:
     """The zero set of f, a vectorised function f((m, 2) array) -> (m,) array, in box, by the
     adaptive contouring (paper §2): curves with f > 0 on their right (counterclockwise around
     regions where f < 0).
@@ -177,7 +185,10 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
     box: (x0, y0, x1, y1), a rectangle taken as the square around it, or b for [-b, b]².
     depth: K, the deepest level of the topology tree. eps: ε, the midpoint tolerance of
     refinement (default 10^-K). refine: P passes, or "converged"; by default converged when eps
-    is given, none otherwise. f is called once per batch of points, on the calling thread.
+    is given, none otherwise. thin_depth: levels beyond K, 0 to 8, that cells split where f bends
+    as a distance does beside a part thinner than a cell, a near contact or a corner (as ``slc
+    contour --thin-depth``; 0 by default, since f need not be a distance). f is called once per
+    batch of points, on the calling thread.
 
     Where f has no zero in the box (none the tree of depth K finds: f keeps one sign at every
     point sampled), the result is an empty Interface, with a UserWarning saying so.
@@ -190,7 +201,7 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
     if isinstance(depth, bool) or not isinstance(depth, numbers.Integral):
         raise TypeError(f"depth must be an integer, got {depth!r}")
     arrays, stats = _slc.contour(f, box, int(depth), None if eps is None else float(eps),
-                                 _refine(refine))
+                                 _refine(refine), _integer("thin_depth", thin_depth))
     if not arrays:
         x0, y0, x1, y1 = stats["domain"]
         _warn_no_zero(f"[{x0:g}, {x1:g}]x[{y0:g}, {y1:g}]", depth)
@@ -198,7 +209,8 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
 
 
 def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None = None,
-                    refine=None, slack: float | None = None, eta: float | None = None):
+                    refine=None, slack: float | None = None, eta: float | None = None,
+                    thin_depth: int = 0):
     """The zero set of f, a vectorised function f((m, 3) array) -> (m,) array, in box, by the
     contouring of space (paper §2 with d = 3): a closed, oriented triangle surface facing f > 0.
 
@@ -208,7 +220,8 @@ def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float 
     converged when eps is given, none otherwise. slack: δ >= 0 when
     |f(x) - f(y)| <= |x - y| + δ everywhere (0 for a signed distance): points far from the
     surface are then not evaluated, and the surface is the same. eta: η, |f| <= η at every
-    vertex (default 1e-10, or eps/100 when refining). Returns (vertices (n, 3) float array,
+    vertex (default 1e-10, or eps/100 when refining). thin_depth: as for contour(). Returns
+    (vertices (n, 3) float array,
     triangles (m, 3) int array of vertex indices, stats dict). Where f has no zero in the box
     (none the octree of depth K finds), both arrays are empty, with a UserWarning saying so.
     """
@@ -221,7 +234,8 @@ def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float 
         raise TypeError(f"depth must be an integer, got {depth!r}")
     vertices, triangles, stats = _slc.contour_surface(
         f, box, int(depth), None if eps is None else float(eps), _refine(refine),
-        None if slack is None else float(slack), None if eta is None else float(eta))
+        None if slack is None else float(slack), None if eta is None else float(eta),
+        _integer("thin_depth", thin_depth))
     if len(triangles) == 0:
         x0, y0, z0, x1, y1, z1 = stats["domain"]
         _warn_no_zero(f"[{x0:g}, {x1:g}]x[{y0:g}, {y1:g}]x[{z0:g}, {z1:g}]", depth)

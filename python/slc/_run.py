@@ -4,14 +4,13 @@ studies, on top of the module _slc (the library's run loop, with the GIL release
 from __future__ import annotations
 
 import inspect
-import numbers
 from dataclasses import dataclass, field
 from typing import Any, Callable, NamedTuple
 
 import numpy as np
 
 from . import _slc
-from ._interface import Interface, _interface, _points, _refine
+from ._interface import Interface, _integer, _interface, _points, _refine
 from ._problem import _NamedProblem
 from ._tables import ConvergenceTable, nan_array as _array
 from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, _check_frames,
@@ -240,14 +239,6 @@ def _law(velocity, params, geometry):
     raise TypeError("velocity must be a law's name, a FlowField, a NormalSpeed or a callable "
                     "f(t, points), f(t, points, normals) or f(t, points, normals, curvature), got "
                     f"{type(velocity).__name__}")
-
-
-def _integer(name: str, value) -> int | None:
-    if value is None:
-        return None
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"{name} must be an integer, got {value!r}")
-    return int(value)
 
 
 def _overrides(steps=None, depth=None, refine=None, eps=None, eta=None, smoothing=None,

@@ -28,6 +28,7 @@
 #include "slc/core/tolerances.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/evolve/defaults.hpp"
+#include "slc/evolve/overrides.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
@@ -126,13 +127,24 @@ void call_batch(const py::object& f, std::span<const Point> points, std::span<do
     std::memcpy(values.data(), v.data(), values.size() * sizeof(double));
 }
 
+/// thin_depth within setting_range::thin_depth, as the tool's --thin-depth; InvalidInput else.
+int checked_thin_depth(int thin_depth) {
+    const IntRange r = setting_range::thin_depth;
+    if (thin_depth < r.lo || thin_depth > r.hi) {
+        throw InvalidInput(fmt::format("thin_depth: must be an integer from {} to {}, got {}", r.lo,
+                                       r.hi, thin_depth));
+    }
+    return thin_depth;
+}
+
 py::tuple contour_function(const py::object& f, const std::vector<double>& box, int depth,
-                           std::optional<double> eps, int refine) {
+                           std::optional<double> eps, int refine, int thin_depth) {
     const Box domain = square_box(box);
     ContourOptions options;
     options.depth = depth;
     options.eps = eps;
     options.refine_passes = refine;
+    options.thin_depth = checked_thin_depth(thin_depth);
     auto g = [&f](std::span<const Vec2> points, std::span<double> values) {
         call_batch(f, points, values);
     };
@@ -147,6 +159,8 @@ py::tuple contour_function(const py::object& f, const std::vector<double>& box, 
     stats["segments"] = r.stats.segments;
     stats["g_evals"] = r.stats.g_evals;
     stats["passes"] = r.stats.passes;
+    stats["thin_cells"] = r.stats.thin_cells;
+    stats["finest_cell"] = r.stats.finest_cell;
     stats["eps"] = options.resolved_eps();
     stats["domain"] = py::make_tuple(domain.lo.x, domain.lo.y, domain.hi.x, domain.hi.y);
     stats["max_midpoint_value"] =
@@ -156,10 +170,15 @@ py::tuple contour_function(const py::object& f, const std::vector<double>& box, 
 
 py::tuple contour_surface_function(const py::object& f, const std::vector<double>& box, int depth,
                                    std::optional<double> eps, int refine,
-                                   std::optional<double> slack, std::optional<double> eta) {
+                                   std::optional<double> slack, std::optional<double> eta,
+                                   int thin_depth) {
     const Box3 domain = cube_around_corners(box, "box");
-    const SurfaceContourOptions options{
-        .depth = depth, .refine_passes = refine, .eps = eps, .eta = eta, .distance_slack = slack};
+    const SurfaceContourOptions options{.depth = depth,
+                                        .refine_passes = refine,
+                                        .eps = eps,
+                                        .eta = eta,
+                                        .thin_depth = checked_thin_depth(thin_depth),
+                                        .distance_slack = slack};
     auto g = [&f](std::span<const Vec3> points, std::span<double> values) {
         call_batch(f, points, values);
     };
@@ -178,6 +197,8 @@ py::tuple contour_surface_function(const py::object& f, const std::vector<double
     stats["g_evals_per_vertex"] = st.g_evals_per_vertex;
     stats["settled"] = st.settled;
     stats["passes"] = st.passes;
+    stats["thin_cells"] = st.thin_cells;
+    stats["finest_cell"] = st.finest_cell;
     stats["converged"] = st.converged;
     stats["eps"] = options.resolved_eps();
     stats["eta"] = options.resolved_eta();
@@ -222,9 +243,10 @@ PYBIND11_MODULE(_slc, m) {
           [](const std::vector<Array>& c) { return slc::length(slc::Interface(curves_of(c))); });
     m.def("distance", &distance, py::arg("curves"), py::arg("points"));
     m.def("contour", &contour_function, py::arg("f"), py::arg("box"), py::arg("depth"),
-          py::arg("eps"), py::arg("refine"));
+          py::arg("eps"), py::arg("refine"), py::arg("thin_depth"));
     m.def("contour_surface", &contour_surface_function, py::arg("f"), py::arg("box"),
-          py::arg("depth"), py::arg("eps"), py::arg("refine"), py::arg("slack"), py::arg("eta"));
+          py::arg("depth"), py::arg("eps"), py::arg("refine"), py::arg("slack"), py::arg("eta"),
+          py::arg("thin_depth"));
     add_run_functions(m);
     add_surface_functions(m);
     m.def("velocity_names", &velocity_names);

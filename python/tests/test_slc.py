@@ -160,6 +160,35 @@ def test_contour_of_a_circle_is_within_eps():
     assert max(s[0] for s in calls) > 100  # batches, not points
 
 
+def test_contour_splits_thin_cells_where_asked_in_both_dimensions():
+    # Rings whose walls are 0.005 to 0.04 wide, a twelfth to two thirds of a cell at K = 5 in
+    # [-1, 1]^2: torn at K, their two curves with four levels of thin cells (60 of 60 such rings;
+    # 42 before thin cells followed the wall into the neighbours of the cells where G bends).
+    rng = np.random.default_rng(7)
+    for _ in range(20):
+        cx, cy = rng.uniform(-0.05, 0.05, 2)
+        radius, width = rng.uniform(0.3, 0.7), rng.uniform(0.005, 0.04)
+
+        def ring(p):
+            return np.abs(np.hypot(p[:, 0] - cx, p[:, 1] - cy) - radius) - width / 2
+
+        assert len(slc.contour(ring, 1, 5)) != 2
+        curves = slc.contour(ring, 1, 5, thin_depth=4)
+        assert len(curves) == 2
+        exact = np.pi * ((radius + width / 2) ** 2 - (radius - width / 2) ** 2)
+        assert abs(curves.area - exact) < 0.05 * exact
+    # A shell as thin, in space, with two levels.
+    def shell(p):
+        return np.abs(np.linalg.norm(p - [0.013, -0.021, 0.007], axis=1) - 0.61) - 0.01
+
+    _, triangles, stats = slc.contour_surface(shell, 1, 5, slack=0.0, thin_depth=2)
+    assert stats["thin_cells"] > 0 and stats["finest_cell"] == 2.0 / 2 ** 7
+    with pytest.raises(ValueError, match="thin_depth: must be an integer from 0 to 8, got 9"):
+        slc.contour(ring, 1, 5, thin_depth=9)
+    with pytest.raises(TypeError, match="thin_depth must be an integer"):
+        slc.contour_surface(shell, 1, 5, thin_depth=1.5)
+
+
 def test_contour_checks_what_f_returns_and_passes_its_errors_on():
     with pytest.raises(ValueError, match=r"f must return an \(m,\) array"):
         slc.contour(lambda p: np.zeros((len(p), 2)), 1.0, 4)

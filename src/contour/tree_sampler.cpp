@@ -426,7 +426,22 @@ ThinSplit split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamm
             sampler.make_exact(std::move(wanted), still);
             unsure = std::move(still);
         }
+        // The zero set runs on from a cell where G bends into its neighbours: those of the
+        // frontier where G changes sign split too, so that a thin part is followed where it
+        // crosses a cell between two corners of one sign, beside a corner inside it.
+        std::sort(frontier.begin(), frontier.end());
+        const std::size_t bending = bent.size();
+        for (std::size_t i = 0; i < bending; ++i) {
+            for (int d = 0; d < 2 * dim; ++d) {
+                const std::uint32_t n = tree.neighbour(bent[i], d);
+                if (n != Orthtree<dim>::no_cell &&
+                    std::binary_search(frontier.begin(), frontier.end(), n) &&
+                    sampler.changes_sign(n))
+                    bent.push_back(n);
+            }
+        }
         std::sort(bent.begin(), bent.end());
+        bent.erase(std::unique(bent.begin(), bent.end()), bent.end());
         if (bent.size() > budget - split) {
             bent.resize(budget - split);
             out.budget_reached = true;

@@ -171,6 +171,13 @@ public:
     void make_exact(std::vector<std::uint32_t> ids, std::span<const std::uint32_t> cells);
     /// Tree points with a stand-in rather than G.
     std::size_t settled() const;
+    /// Whether G (or its stand-ins, which carry its sign) takes both signs at c's samples.
+    bool changes_sign(std::uint32_t c) const {
+        bool negative = false, positive = false;
+        for (const std::uint32_t id : samples_of(c))
+            (samples_[id].value > 0.0 ? positive : negative) = true;
+        return negative && positive;
+    }
     /// Evaluations of the bounds so far.
     std::size_t bound_evals() const { return bound_evals_; }
 
