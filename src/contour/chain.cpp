@@ -14,18 +14,6 @@
 
 namespace slc::contouring {
 
-void CountingFunction::operator()(std::span<const Vec2> points, std::span<double> values) const {
-    SLC_ASSERT(points.size() == values.size(), "one value per point");
-    g_(points, values);
-    *count_ += points.size();
-    for (std::size_t i = 0; i < values.size(); ++i) {
-        if (!std::isfinite(values[i])) {
-            throw NumericalFailure(fmt::format("G is not finite at ({:.6g}, {:.6g}): got {}",
-                                               points[i].x, points[i].y, values[i]));
-        }
-    }
-}
-
 Chain::Chain(std::vector<Vec2> vertices, std::span<const std::uint32_t> successor,
              std::span<const std::uint32_t> triangle)
     : points(std::move(vertices)),

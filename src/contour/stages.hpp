@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "checked_function.hpp"
 #include "slc/contour/contour.hpp"
 #include "slc/contour/root_finding.hpp"
 #include "slc/core/box.hpp"
@@ -17,18 +18,6 @@
 #include "slc/tree/triangulation.hpp"
 
 namespace slc::contouring {
-
-/// Wraps G: counts evaluations and turns a non-finite value into NumericalFailure naming the
-/// point, so that no NaN ever reaches a sign test.
-class CountingFunction {
-public:
-    CountingFunction(BatchFunctionRef g, std::size_t& count) : g_(g), count_(&count) {}
-    void operator()(std::span<const Vec2> points, std::span<double> values) const;
-
-private:
-    BatchFunctionRef g_;
-    std::size_t* count_;
-};
 
 /// The topology of the zero set (§2.1): the tree, its triangulation with G at every vertex
 /// (|G| > η everywhere after perturbation), and which triangles G changes sign in.

@@ -560,20 +560,6 @@ void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::u
 
 }  // namespace
 
-void SpaceEvaluator::operator()(std::span<const Vec3> points, std::span<double> values) const {
-    if (points.empty()) return;
-    g_(points, values);
-    *count_ += points.size();
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        if (!std::isfinite(values[i])) {
-            throw NumericalFailure(
-                fmt::format("the contoured function is {} at ({:.6g}, {:.6g}, "
-                            "{:.6g})",
-                            values[i], points[i].x, points[i].y, points[i].z));
-        }
-    }
-}
-
 namespace {
 
 /// The root of G for one edge's split, found or not.

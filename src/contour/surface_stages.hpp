@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "checked_function.hpp"
 #include "slc/contour/implicit_function.hpp"
 #include "slc/contour/root_finding.hpp"
 #include "slc/contour/surface_contour.hpp"
@@ -19,18 +20,6 @@
 #include "slc/tree/tetrahedralization.hpp"
 
 namespace slc::contouring {
-
-/// G evaluated in batches, counted, and checked finite: a non-finite value is NumericalFailure
-/// naming the point, so that no NaN reaches a sign test.
-class SpaceEvaluator {
-public:
-    SpaceEvaluator(SpaceFunctionRef g, std::size_t& count) : g_(g), count_(&count) {}
-    void operator()(std::span<const Vec3> points, std::span<double> values) const;
-
-private:
-    SpaceFunctionRef g_;
-    std::size_t* count_;
-};
 
 /// The topology of the zero set in space (§2.1): the octree, its tetrahedra with G at every
 /// vertex (|G| > η everywhere after perturbation), and the tetrahedra G changes sign in.
