@@ -404,7 +404,7 @@ template <int dim>
 ThinSplit split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma) {
     using Bend = typename TreeSampler<dim>::Bend;
     const int limit = sampler.limit();
-    const std::size_t budget = thin_cell_budget(dim) * tree.size();
+    const std::size_t budget = thin_cell_budget * tree.size();
     ThinSplit out;
     std::vector<std::uint32_t> frontier;
     for (std::uint32_t c : tree.leaves())

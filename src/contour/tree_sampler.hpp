@@ -269,11 +269,10 @@ struct ThinSplit {
 };
 
 /// Thin cells split at most this many times the cells of the tree at depth K: a G that bends
-/// almost everywhere (a coarse step of a curvature law) costs at most a few times a contour at K.
-/// A curve's thin part is a line of cells, each level twice the last: a wall along a whole curve
-/// six levels deep takes about 8 times the cells at K; a surface's is a sheet of them, each level
-/// four times the last.
-constexpr std::size_t thin_cell_budget(int dim) { return dim == 2 ? 16 : 2; }
+/// almost everywhere (a coarse step of a curvature law, or a law extended from the nearest
+/// point of a polygon, whose W jumps at the corners' normals) costs at most a few times a contour
+/// at K.
+inline constexpr std::size_t thin_cell_budget = 2;
 
 /// Splits the leaves at level sampler.limit() (K) near the zero set (min|G| below γ times their
 /// edge) where G bends within them (TreeSampler::bends), and their children where it still does,

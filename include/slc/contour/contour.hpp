@@ -109,8 +109,7 @@ struct ContourStats {
     std::size_t bound_evals = 0;  ///< evaluations of the bounds (not counted in g_evals)
     double gamma = 0.0;           ///< the gradient bound γ at which the tree was balanced
     std::size_t thin_cells = 0;   ///< cells split beyond K where G bends (thin_depth)
-    /// Cells that bend were left whole: thin cells are at most 16 (curves) or 2 (surfaces)
-    /// times as many as the cells at K.
+    /// Cells that bend were left whole: thin cells are at most twice as many as the cells at K.
     bool thin_budget_reached = false;
     double finest_cell = 0.0;       ///< the edge of the tree's finest cells, thin cells included
     Vec2 finest_at{};               ///< the centre of the first of them

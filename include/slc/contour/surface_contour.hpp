@@ -81,8 +81,7 @@ struct SurfaceContourStats {
     std::size_t cells = 0;       ///< cells of the topology octree, all levels
     std::size_t leaves = 0;      ///< leaves of the octree
     std::size_t thin_cells = 0;  ///< cells split beyond K where G bends (thin_depth)
-    /// Cells that bend were left whole: thin cells are at most 16 (curves) or 2 (surfaces)
-    /// times as many as the cells at K.
+    /// Cells that bend were left whole: thin cells are at most twice as many as the cells at K.
     bool thin_budget_reached = false;
     double finest_cell = 0.0;  ///< the edge of the tree's finest cells, thin cells included
     Vec3 finest_at{};          ///< the centre of the first of them

@@ -313,7 +313,7 @@ TEST(ContourDistance, ThinPartsSplitBeyondTheDepth) {
 TEST(ContourDistance, ThinCellsStopAtTheirBudget) {
     // Walls 1e-4 wide every 0.09 (1.4 cells at K = 5), each thinner than a cell along its whole
     // length: following them eight levels deep would split over a hundred thousand cells.
-    // Thin cells stop at 16 times the cells at K, and say so; the result is still simple.
+    // Thin cells stop at twice the cells at K, and say so; the result is still simple.
     const double s = 0.09, w = 1e-4;
     const auto g = [&](std::span<const Vec2> x, std::span<double> v) {
         for (std::size_t i = 0; i < x.size(); ++i) {
@@ -325,8 +325,8 @@ TEST(ContourDistance, ThinCellsStopAtTheirBudget) {
     const ContourResult r = contour(g, Box::centered_square(1.0), {.depth = 5, .thin_depth = 8});
     EXPECT_TRUE(r.stats.thin_budget_reached);
     EXPECT_GT(r.stats.thin_cells, 0u);
-    // At most 16 times the cells at K split, each split adding four cells (balancing more).
-    EXPECT_LE(65 * r.stats.thin_cells, 16 * r.stats.cells);
+    // At most twice the cells at K split, each split adding four cells (balancing more).
+    EXPECT_LE(9 * r.stats.thin_cells, 2 * r.stats.cells);
     expect_simple(r.curves);
     const ContourResult few = contour(g, Box::centered_square(1.0), {.depth = 5, .thin_depth = 1});
     EXPECT_FALSE(few.stats.thin_budget_reached);
