@@ -25,8 +25,8 @@ namespace slc::contouring {
 /// After this many doublings of γ (a factor of about 10^7) the tree is balanced by brute force
 /// instead: G has a gradient far beyond any estimate, or no useful one.
 inline constexpr int max_gamma_doublings = 24;
-/// G bends within a cell (TreeSampler::bends) when a diagonal's centre is nearer zero than its
-/// ends' mean by this fraction of the half-diagonal.
+/// G bends within a cell (TreeSampler::bends) when the middle of three equally spaced samples on
+/// a line is nearer zero than the ends' mean by this fraction of half their span.
 inline constexpr double thin_dip = 0.25;
 
 /// Integer coordinates on the grid of half the finest cell edge, from the root box's low corner
@@ -157,13 +157,14 @@ public:
 
     /// What a cell's samples say of G bending within it.
     enum class Bend { no, yes, unsure };
-    /// Whether G bends within cell c (which samples its centre): along a diagonal, the ends and
-    /// the centre of one sign and the centre nearer zero than the ends' mean by more than
-    /// thin_dip of the half-diagonal. A distance is linear along a segment on one side of a line
-    /// or plane and bends by about h²/(2R) near a curve or sheet of radius R: a dip this large
-    /// means the zero set turns within the cell or its other side is there too. Only cells the
-    /// zero set may meet are tested (the centre's |G| at most the half-diagonal). From the
-    /// samples' bounds: unsure when stand-ins leave it open, and then the stand-ins that would
+    /// Whether G bends within cell c (which samples its centre): on a diagonal through the centre,
+    /// or on a grid line through a corner with the corners an edge away on both sides, the ends
+    /// of one sign, the middle of theirs (or within η of zero) and nearer zero than the ends'
+    /// mean by more than thin_dip of half the span. A distance is linear along a segment on one
+    /// side of a line or plane and bends by about h²/(2R) near a curve or sheet of radius R: a
+    /// dip this large means the zero set turns within the cell or its other side is there too. Only
+    /// cells the zero set may meet are tested (the centre's |G| at most the half-diagonal). From
+    /// the samples' bounds: unsure when stand-ins leave it open, and then the stand-ins that would
     /// settle it are appended to `wanted`.
     Bend bends(std::uint32_t c, std::vector<std::uint32_t>& wanted) const;
     /// Makes G exact at the given sample ids (from bends), in one batch, and updates the least
@@ -286,7 +287,7 @@ ThinSplit split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamm
 /// The centre of the first of the tree's deepest leaves: where its finest cells are.
 template <int dim>
 PointOf<dim> deepest_place(const Orthtree<dim>& tree) {
-    for (const std::uint32_t c : tree.leaves())
+    for (std::size_t c = 0; c < tree.size(); ++c)
         if (tree.cell(c).level == tree.depth()) return tree.box(c).center();
     return tree.root_box().center();
 }

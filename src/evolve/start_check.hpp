@@ -19,6 +19,7 @@
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/surface.hpp"
+#include "step_common.hpp"
 
 namespace slc::detail {
 
@@ -45,9 +46,6 @@ inline std::string describe(const ShapeTopology& t, int dim) {
         "{} {} with {} {}", t.components, t.components == 1 ? "component" : "components", t.holes,
         dim == 2 ? (t.holes == 1 ? "hole" : "holes") : (t.holes == 1 ? "handle" : "handles"));
 }
-
-inline std::string place(Vec2 p) { return fmt::format("({:.6g}, {:.6g})", p.x, p.y); }
-inline std::string place(Vec3 p) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x, p.y, p.z); }
 
 /// Throws NumericalFailure when `read`, the contour a step at rest makes of `given` at depth K
 /// with thin_depth levels of thin cells (finest cell `cell` at K), has other components or holes
@@ -82,7 +80,7 @@ void check_start(const ShapeOf<dim>& given, const ShapeOf<dim>& read, const Regi
                                   : fmt::format("cells {:.3g}, no thin cells", cell);
     const std::string where = farthest > 0.01 * cell
                                   ? fmt::format(", and the part near {} lies {:.3g} from them",
-                                                place(points[far]), farthest)
+                                                point_text6(points[far]), farthest)
                                   : std::string();
     throw NumericalFailure(fmt::format(
         "the contours at K = {} ({}) do not keep the {} as given: {} became {}{}; a part is "

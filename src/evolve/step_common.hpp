@@ -86,6 +86,11 @@ int departure_substeps(const BasicVelocityLaw<dim>& law, double t, double k,
 /// "(x, y)" or "(x, y, z)", for messages.
 inline std::string point_text(Vec2 p) { return fmt::format("({}, {})", p.x, p.y); }
 inline std::string point_text(Vec3 p) { return fmt::format("({}, {}, {})", p.x, p.y, p.z); }
+/// "(x, y)" or "(x, y, z)" with 6 digits, for messages.
+inline std::string point_text6(Vec2 p) { return fmt::format("({:.6g}, {:.6g})", p.x, p.y); }
+inline std::string point_text6(Vec3 p) {
+    return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x, p.y, p.z);
+}
 
 /// W(x) at a point where the step evaluates it (an extension or a law may give it anywhere),
 /// checked: NumericalFailure naming the law, the time and the point unless finite.

@@ -111,12 +111,6 @@ inline std::string region_text6(const Box3& b) {
                        b.lo.y, b.hi.y, b.lo.z, b.hi.z);
 }
 
-/// "(x, y)" or "(x, y, z)" with 6 digits, for messages.
-inline std::string point_text6(Vec2 p) { return fmt::format("({:.6g}, {:.6g})", p.x, p.y); }
-inline std::string point_text6(Vec3 p) {
-    return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x, p.y, p.z);
-}
-
 /// When a flow field carries a vertex of `shape` out of the domain within the step (its forward
 /// Euler image, x + k u(t, x), outside): the message of LeftDomain, naming the first such vertex.
 /// An empty contour from such a step is an interface that left the domain, not one that vanished.

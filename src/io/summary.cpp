@@ -46,6 +46,8 @@ std::string refine_name(int passes) {
     return passes == ContourOptions::until_converged ? "converged" : std::to_string(passes);
 }
 
+namespace {
+
 /// The finest cell the run's contours used, when and where (RunTotals::finest_cell), and when
 /// thin cells first reached their budget: both dimensions' summaries.
 void put_resolution(nlohmann::json& s, const RunTotals& r) {
@@ -53,6 +55,8 @@ void put_resolution(nlohmann::json& s, const RunTotals& r) {
         s["finest_cell"] = {{"width", r.finest_cell}, {"at_t", r.finest_t}, {"at", r.finest_at}};
     if (!std::isnan(r.thin_budget_at)) s["thin_budget_reached_at_t"] = r.thin_budget_at;
 }
+
+}  // namespace
 
 nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResult& r,
                            const VelocityLaw& law) {
