@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace slc {
 namespace {
@@ -19,6 +20,44 @@ int signed_curve_count(const Interface& curves) {
 }
 
 }  // namespace
+
+RegionParts region_parts(const Interface& curves) {
+    RegionParts r;
+    for (std::size_t c = 0; c < curves.curve_count(); ++c)
+        ++(signed_area(curves.curve(c)) >= 0.0 ? r.parts : r.holes);
+    return r;
+}
+
+RegionParts region_parts(const Surface& surface) {
+    const auto label = component_labels(surface);
+    std::vector<double> six_volume;
+    for (std::size_t t = 0; t < surface.size(); ++t) {
+        if (label[t] >= six_volume.size()) six_volume.resize(label[t] + 1, 0.0);
+        const auto& [a, b, c] = surface.triangles[t];
+        six_volume[label[t]] +=
+            dot(surface.vertices[a], cross(surface.vertices[b], surface.vertices[c]));
+    }
+    RegionParts r;
+    for (double v : six_volume) ++(v >= 0.0 ? r.parts : r.holes);
+    return r;
+}
+
+std::optional<std::string> region_parts_violation(const Invariants& law, RegionParts before,
+                                                  RegionParts after) {
+    if (law.cannot_vanish && after.parts > before.parts) {
+        return fmt::format(
+            "the region's parts rose from {} to {} under a law that only grows it (growing parts "
+            "merge, never split)",
+            before.parts, after.parts);
+    }
+    if (law.cannot_grow && after.holes > before.holes) {
+        return fmt::format(
+            "the region's holes rose from {} to {} under a law that only shrinks it (its holes "
+            "merge, never split or appear)",
+            before.holes, after.holes);
+    }
+    return std::nullopt;
+}
 
 std::optional<double> growth_above_least(RunLeast& least, double x, double t, double fraction,
                                          double slack) {
@@ -73,6 +112,7 @@ std::optional<std::string> invariant_violation(const Invariants& law, const Inte
             "them",
             before.curve_count(), after.curve_count());
     }
+    if (auto v = region_parts_violation(law, region_parts(before), region_parts(after))) return v;
     if (law.rigid && after.curve_count() != before.curve_count()) {
         return fmt::format("a rigid motion changed the number of curves from {} to {}",
                            before.curve_count(), after.curve_count());

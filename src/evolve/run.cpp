@@ -138,9 +138,15 @@ public:
     static void finished(RunResult&) {}
     static void check_start(const RunResult&) {}
 
-    static std::string unstable_after_splits(const std::string& violation, int pieces, double) {
-        return fmt::format("{}, also in {} sub-steps: raise the steps N or the depth K", violation,
-                           pieces);
+    /// A step that broke the law in every split: the settings that may keep it. The extensions
+    /// from the nearest point carry a vertex's velocity to every point nearest it, so their W
+    /// jumps across the normals at the polygon's corners, where the direct extension's is the
+    /// law's own.
+    std::string unstable_after_splits(const std::string& violation, int pieces, double) const {
+        const bool extended = options_.step.resolved_extension(law_) != Extension::direct &&
+                              (law_.is_normal_law() || law_.is_field());
+        return fmt::format("{}, also in {} sub-steps: raise the steps N or the depth K{}",
+                           violation, pieces, extended ? ", or use --extension direct" : "");
     }
     static std::string at_step(int n, double t, const std::string& why) {
         return fmt::format("step {} from t = {}: {}", n, t, why);

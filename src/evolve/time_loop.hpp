@@ -259,7 +259,7 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
         }
         return out;
     }
-    throw Unstable{H::unstable_after_splits(violation, 1 << halvings, r.t)};
+    throw Unstable{hooks.unstable_after_splits(violation, 1 << halvings, r.t)};
 }
 
 /// Throws InvalidInput unless `from` is a state a run with `options` passes through.

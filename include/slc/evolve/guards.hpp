@@ -9,6 +9,7 @@
 #include <string>
 
 #include "slc/geometry/interface.hpp"
+#include "slc/geometry/surface.hpp"
 #include "slc/velocity/invariants.hpp"
 
 namespace slc {
@@ -75,6 +76,24 @@ std::optional<double> growth_above_least(RunLeast& least, double x, double t, do
 std::optional<double> area_change_expected(const Invariants& law, const Interface& before,
                                            double area_before, const Interface& after, double k,
                                            const GuardBudget& budget = {});
+
+/// The parts of an enclosed region: its components, each bounded outside by a counterclockwise
+/// curve or an outward shell, and its holes, clockwise curves or inward shells (cavities).
+struct RegionParts {
+    std::size_t parts = 0;  ///< components of the region
+    std::size_t holes = 0;  ///< holes or cavities
+};
+/// The region enclosed by curves (each curve's orientation from its signed area).
+RegionParts region_parts(const Interface& curves);
+/// The region enclosed by a valid surface (each component's orientation from its volume).
+RegionParts region_parts(const Surface& surface);
+
+/// Why a step from a region with parts `before` to one with `after` cannot be the law's, in one
+/// line, or nothing. A region that only grows (Invariants::cannot_vanish) keeps its parts apart
+/// or merges them: more parts after a step means a part tore. One that only shrinks
+/// (Invariants::cannot_grow) does the same to its holes. The same rule for curves and surfaces.
+std::optional<std::string> region_parts_violation(const Invariants& law, RegionParts before,
+                                                  RegionParts after);
 
 /// Curves' area and length as a step reads them (step_area, step_length).
 struct CurveMeasures {

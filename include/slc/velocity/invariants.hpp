@@ -18,8 +18,13 @@ struct Invariants {
     /// No curve can split into several (curvature flow of embedded curves, rigid motions).
     bool cannot_split = false;
     /// The enclosed region only grows, so its area cannot fall and the curves cannot vanish: a
-    /// normal speed positive for every point and direction.
+    /// normal speed positive for every point and direction. Its parts can merge, but none can
+    /// split off.
     bool cannot_vanish = false;
+    /// The enclosed region only shrinks: a normal speed negative for every point and direction.
+    /// Its holes (cavities) can merge with each other or open to the outside, but none can
+    /// appear or split.
+    bool cannot_grow = false;
     /// The total length cannot grow: curvature flow and the area-preserving curvature flow,
     /// gradient flows of length. Noise that roughens the curves breaks it first.
     bool shortens = false;

@@ -94,10 +94,10 @@ public:
     explicit NormalSpeed(double speed = 1.0, std::optional<GeometryModule> module = std::nullopt)
         : NormalLaw(module), speed_(speed) {}
     std::string name() const override { return "unit-normal"; }
-    /// No motion at speed 0; a growing curve at speed > 0.
+    /// No motion at speed 0; a growing curve at speed > 0, a shrinking one below.
     Invariants invariants() const override {
         if (speed_ == 0.0) return {.keeps_area = true, .rigid = true};
-        return {.cannot_vanish = speed_ > 0.0};
+        return {.cannot_vanish = speed_ > 0.0, .cannot_grow = speed_ < 0.0};
     }
     /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
@@ -119,8 +119,10 @@ public:
                            std::optional<GeometryModule> module = std::nullopt)
         : NormalLaw(module), r_(r), m_(m), eps_(eps), tilt_(tilt) {}
     std::string name() const override { return "anisotropic"; }
-    /// Growing in every direction when R > |ε|.
-    Invariants invariants() const override { return {.cannot_vanish = r_ > std::abs(eps_)}; }
+    /// Growing in every direction when R > |ε|, shrinking when R < −|ε|.
+    Invariants invariants() const override {
+        return {.cannot_vanish = r_ > std::abs(eps_), .cannot_grow = r_ < -std::abs(eps_)};
+    }
     /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
                        std::span<double> out) const override;

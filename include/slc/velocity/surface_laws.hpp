@@ -58,7 +58,9 @@ public:
     /// No motion at speed 0; a growing surface at speed > 0; the volume changing at s·A.
     Invariants invariants() const override {
         if (speed_ == 0.0) return {.keeps_area = true, .rigid = true};
-        return {.cannot_vanish = speed_ > 0.0, .volume_rate_per_area = speed_};
+        return {.cannot_vanish = speed_ > 0.0,
+                .cannot_grow = speed_ < 0.0,
+                .volume_rate_per_area = speed_};
     }
     /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
@@ -76,10 +78,11 @@ public:
     /// r: R, the isotropic part; eps: ε, the amplitude of the cubic part.
     SurfaceAnisotropicNormalSpeed(double r, double eps) : r_(r), eps_(eps) {}
     std::string name() const override { return "anisotropic"; }
-    /// Growing in every direction when R exceeds the anisotropy's range.
+    /// Growing in every direction when R exceeds the anisotropy's range, shrinking when −R
+    /// does: the cubic part lies in [−4/15, 2/5].
     Invariants invariants() const override {
-        return {.cannot_vanish =
-                    r_ - 0.4 * std::abs(eps_) > 0.0};  // the cubic part lies in [−4/15, 2/5]
+        return {.cannot_vanish = r_ - 0.4 * std::abs(eps_) > 0.0,
+                .cannot_grow = r_ + 0.4 * std::abs(eps_) < 0.0};
     }
     /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,

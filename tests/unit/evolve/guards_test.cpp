@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "slc/geometry/shapes.hpp"
+#include "slc/geometry/surface_shapes.hpp"
 
 namespace slc {
 namespace {
@@ -101,6 +103,52 @@ TEST(Guards, AGrowingRegionCannotLoseAreaOrVanish) {
     ASSERT_TRUE(v);
     EXPECT_NE(v->find("only grows it"), std::string::npos) << *v;
     EXPECT_TRUE(check(grows, disk(1.0), Interface{}));
+}
+
+// A growing region's parts merge and never split; a shrinking one's holes merge and never split
+// or appear. The rule is one for curves and surfaces: region_parts reads both.
+TEST(Guards, AGrowingRegionsPartsAndAShrinkingRegionsHolesCannotMultiply) {
+    const Invariants grows{.cannot_vanish = true}, shrinks{.cannot_grow = true};
+    // A disk with a hole (a clockwise circle inside), and the disk alone.
+    std::vector<Vec2> hole = shapes::circle({}, 0.5, 256);
+    std::reverse(hole.begin(), hole.end());
+    const Interface ring(std::vector<std::vector<Vec2>>{shapes::circle({}, 2.0, 256), hole});
+    const Interface solid = disk(2.0);
+    EXPECT_EQ(region_parts(ring).parts, 1U);
+    EXPECT_EQ(region_parts(ring).holes, 1U);
+    // Growing: two disks may become one, not one two; a hole may close or appear.
+    EXPECT_FALSE(check(grows, two_disks(1.0), disk(3.0)));
+    const auto torn = check(grows, disk(1.0), two_disks(1.0));
+    ASSERT_TRUE(torn);
+    EXPECT_NE(torn->find("the region's parts rose from 1 to 2 under a law that only grows it"),
+              std::string::npos)
+        << *torn;
+    EXPECT_FALSE(region_parts_violation(grows, region_parts(solid), region_parts(ring)));
+    // Shrinking: a hole may open to the outside or vanish, not appear; parts may split.
+    EXPECT_FALSE(region_parts_violation(shrinks, region_parts(ring), region_parts(solid)));
+    EXPECT_FALSE(
+        region_parts_violation(shrinks, region_parts(disk(3.0)), region_parts(two_disks(1.0))));
+    const auto pierced = region_parts_violation(shrinks, region_parts(solid), region_parts(ring));
+    ASSERT_TRUE(pierced);
+    EXPECT_NE(pierced->find("the region's holes rose from 0 to 1 under a law that only shrinks it"),
+              std::string::npos)
+        << *pierced;
+    // The same counts for surfaces: a sphere with a cavity (an inward sphere inside it).
+    Surface cavity = sphere({}, 0.2, 2);
+    for (auto& t : cavity.triangles) std::swap(t[1], t[2]);
+    const Surface ball = sphere({}, 0.5, 2);
+    const Surface hollow = join({ball, cavity});
+    const Surface pair = join({sphere({-0.6, 0, 0}, 0.3, 2), sphere({0.6, 0, 0}, 0.3, 2)});
+    EXPECT_EQ(region_parts(hollow).parts, 1U);
+    EXPECT_EQ(region_parts(hollow).holes, 1U);
+    EXPECT_EQ(region_parts(pair).parts, 2U);
+    EXPECT_TRUE(region_parts_violation(grows, region_parts(ball), region_parts(pair)));
+    EXPECT_FALSE(region_parts_violation(grows, region_parts(pair), region_parts(ball)));
+    EXPECT_FALSE(region_parts_violation(grows, region_parts(ball), region_parts(hollow)));
+    EXPECT_TRUE(region_parts_violation(shrinks, region_parts(ball), region_parts(hollow)));
+    EXPECT_FALSE(region_parts_violation(shrinks, region_parts(hollow), region_parts(ball)));
+    // A law that claims neither is not checked.
+    EXPECT_FALSE(region_parts_violation({}, region_parts(ball), region_parts(pair)));
 }
 
 TEST(Guards, CurvatureFlowLosesTwoPiPerCurve) {
