@@ -45,22 +45,45 @@ public:
     GeometryNeeds needs() const override {
         return {.normals = true, .curvature = curvature_ || dim == 2, .module = module_};
     }
+    /// u, and where f reads the curvature, its normal part's slope in C checked (two calls more,
+    /// at C ± h), as a speed expression's is: a law that moves the most convex parts out the
+    /// fastest is ill-posed.
     std::vector<Point> velocities(double t, const ShapeOf<dim>& shape,
                                   const GeometryOf<dim>& geometry) const override {
         py::gil_scoped_acquire hold;
         const std::span<const Point> points = vertex_points(shape);
-        const std::size_t m = points.size();
         const py::object x = array_of(points);
         const py::object normals = array_of(std::span<const Point>(geometry.normals));
-        const Array v = numbers_of(
-            curvature_
-                ? this->f_(t, x, normals, array_of(std::span<const double>(geometry.curvature)))
-                : this->f_(t, x, normals),
-            "velocity '" + this->name_ + "'");
-        std::vector<Point> u(m);
+        if (!curvature_) return velocities_of(this->f_(t, x, normals), geometry.normals);
+        const std::span<const double> c(geometry.curvature);
+        std::vector<Point> u =
+            velocities_of(this->f_(t, x, normals, array_of(c)), geometry.normals);
+        std::vector<double> h(c.size()), shifted(c.size());
+        for (std::size_t i = 0; i < c.size(); ++i) h[i] = 0x1p-20 * std::max(1.0, std::abs(c[i]));
+        const auto at = [&](double sign) {
+            for (std::size_t i = 0; i < c.size(); ++i) shifted[i] = c[i] + sign * h[i];
+            return velocities_of(
+                this->f_(t, x, normals, array_of(std::span<const double>(shifted))),
+                geometry.normals);
+        };
+        const std::vector<Point> above = at(1.0), below = at(-1.0);
+        std::vector<double> slope(c.size());
+        for (std::size_t i = 0; i < c.size(); ++i)
+            slope[i] = dot(above[i] - below[i], geometry.normals[i]) / (2.0 * h[i]);
+        require_forward_in_curvature("velocity '" + this->name_ + "'", points, slope);
+        return u;
+    }
+
+private:
+    /// f's answer as vertex velocities: (m,) normal speeds times the normals, or (m, dim).
+    std::vector<Point> velocities_of(const py::object& answer,
+                                     std::span<const Point> normals) const {
+        const Array v = numbers_of(answer, "velocity '" + this->name_ + "'");
+        const std::size_t m = normals.size();
         const auto n = static_cast<py::ssize_t>(m);
+        std::vector<Point> u(m);
         if (v.ndim() == 1 && v.shape(0) == n) {
-            for (std::size_t i = 0; i < m; ++i) u[i] = v.data()[i] * geometry.normals[i];
+            for (std::size_t i = 0; i < m; ++i) u[i] = v.data()[i] * normals[i];
         } else if (v.ndim() == 2 && v.shape(0) == n && v.shape(1) == columns<dim>) {
             u = points_from<Point>(v.data(), m);
         } else {

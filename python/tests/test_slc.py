@@ -307,8 +307,28 @@ def test_python_normal_speed_gives_huygens_offset():
     assert r.status == "ok"
     d, _ = slc.distance(initial, r.interface.points)
     assert np.abs(d - 0.3).max() < 3e-3
-    assert len(calls) == 2 * 20  # predictor and corrector of each step
+    # Predictor and corrector of each step, each with the curvature and at C +- h (the check that
+    # the speed does not fall as C grows).
+    assert len(calls) == 3 * 2 * 20
     assert min(calls) >= len(initial.curves[0])
+
+
+def test_a_python_law_backward_in_curvature_is_refused():
+    # v = 1 - C moves the most convex parts out the fastest: ill-posed, as the speed expression
+    # 'a - C' is, and refused the same way (test_surfaces.py: on surfaces); v = 1 + C is curvature flow
+    # with a drift, and runs.
+    message = r"velocity 'backward' falls as the curvature C grows \(dv/dC = -1 at \("
+
+    def backward(t, p, n, c):
+        return 1.0 - c
+
+    backward.__name__ = "backward"
+    with pytest.raises(ValueError, match=message):
+        slc.run(slc.Interface(ellipse()), backward, 0.01, steps=2)
+    assert slc.run(slc.Interface(ellipse()), lambda t, p, n, c: 1.0 + c, 0.01, steps=2).status == "ok"
+    # Vertex velocities: the normal part's slope is the one checked.
+    with pytest.raises(ValueError, match="falls as the curvature C grows"):
+        slc.run(slc.Interface(ellipse()), lambda t, p, n, c: -c[:, None] * n, 0.01, steps=2)
 
 
 def test_python_vertex_velocity_and_flow_field_turn_a_full_circle():

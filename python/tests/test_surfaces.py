@@ -111,6 +111,12 @@ def test_a_python_curvature_law_shrinks_a_sphere_as_R2_falls_at_4():
     assert len(r.history["t"]) == 3 and r.history["volume"][-1] < r.history["volume"][0]
 
 
+def test_a_python_law_backward_in_curvature_is_refused_on_surfaces():
+    # As on curves (test_slc.py): v = -C moves the most convex parts out the fastest.
+    with pytest.raises(ValueError, match=r"velocity '<lambda>' falls as the curvature C grows"):
+        slc.run(sphere(depth=3, eps=3e-3), lambda t, p, n, c: -c, 0.01, steps=1, depth=4, eps=1e-3)
+
+
 def test_an_estimate_of_a_surface_runs_again_at_half_resolution():
     # A sphere growing at unit speed, as tests/cli/surface_run_test.sh runs it with --estimate;
     # depth 4 sets eps to 1e-3 4^(5-4) = 4e-3 times the half-width 0.5.

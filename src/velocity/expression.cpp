@@ -302,29 +302,11 @@ public:
             c = g.curvature[i];
             u[i] = e.value() * g.normals[i];
         });
-        require_forward_in_curvature(x, slope);
+        require_forward_in_curvature("speed '" + shown(pool_->spec().text) + "'", x, slope);
         return u;
     }
 
 private:
-    /// Throws InvalidInput where v falls as C grows: motion backward in curvature (a − C moves
-    /// the most convex parts out the fastest), which is ill-posed (the heat equation backward in
-    /// time): wiggles at every scale grow without bound, and the contours resolve only some.
-    void require_forward_in_curvature(std::span<const PointOf<dim>> x,
-                                      std::span<const double> slope) const {
-        constexpr double least_slope = -1e-6;
-        for (std::size_t i = 0; i < slope.size(); ++i) {
-            if (!(slope[i] < least_slope)) continue;
-            std::string at;
-            for (int k = 0; k < dim; ++k) at += fmt::format("{}{:.6g}", k ? ", " : "", x[i][k]);
-            throw InvalidInput(fmt::format(
-                "speed '{}' falls as the curvature C grows (dv/dC = {:.3g} at ({})): motion "
-                "backward in curvature is ill-posed, its wiggles growing without bound; C = "
-                "-1/R on a circle, so curvature flow is '+C' (as in 'a + C')",
-                shown(pool_->spec().text), slope[i], at));
-        }
-    }
-
     std::shared_ptr<const EvaluatorPool> pool_;
 };
 

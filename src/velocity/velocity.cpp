@@ -109,6 +109,36 @@ std::optional<std::size_t> vertex_outside_extent(const VelocityLaw& law, const I
     return std::nullopt;
 }
 
+namespace {
+
+template <int dim>
+void require_forward(const std::string& what, std::span<const PointOf<dim>> x,
+                     std::span<const double> slope) {
+    constexpr double least_slope = -1e-6;
+    for (std::size_t i = 0; i < slope.size(); ++i) {
+        if (!(slope[i] < least_slope)) continue;
+        std::string at;
+        for (int k = 0; k < dim; ++k) at += fmt::format("{}{:.6g}", k ? ", " : "", x[i][k]);
+        throw InvalidInput(fmt::format(
+            "{} falls as the curvature C grows (dv/dC = {:.3g} at ({})): motion backward in "
+            "curvature is ill-posed, its wiggles growing without bound; C = -1/R on a circle, so "
+            "curvature flow is '+C' (as in 'a + C')",
+            what, slope[i], at));
+    }
+}
+
+}  // namespace
+
+void require_forward_in_curvature(const std::string& what, std::span<const Vec2> x,
+                                  std::span<const double> slope) {
+    require_forward<2>(what, x, slope);
+}
+
+void require_forward_in_curvature(const std::string& what, std::span<const Vec3> x,
+                                  std::span<const double> slope) {
+    require_forward<3>(what, x, slope);
+}
+
 void require_inside_extent(const VelocityLaw& law, const Interface& curves) {
     const std::optional<std::size_t> i = vertex_outside_extent(law, curves);
     if (!i) return;

@@ -135,6 +135,17 @@ std::optional<std::size_t> vertex_outside_extent(const VelocityLaw& law, const I
 /// outside law.extent().
 void require_inside_extent(const VelocityLaw& law, const Interface& curves);
 
+/// Throws InvalidInput, naming the law (`what`, as "speed 'a - C'") and the first vertex x[i]
+/// where slope[i] = dv/dC, the normal speed's derivative in the curvature C, is below −1e−6:
+/// motion backward in curvature (a − C moves the most convex parts out the fastest) is
+/// ill-posed, the heat equation backward in time, its wiggles growing at every scale. The speed
+/// expressions and the Python laws that read C both check their slopes here.
+void require_forward_in_curvature(const std::string& what, std::span<const Vec2> x,
+                                  std::span<const double> slope);
+/// As above, at a surface's vertices.
+void require_forward_in_curvature(const std::string& what, std::span<const Vec3> x,
+                                  std::span<const double> slope);
+
 /// The base of flow fields u = f(t, x) known everywhere (rotation, a lattice, an expression):
 /// is_field() is true and the vertex velocities are the field sampled at the vertices. A law
 /// implements sample().
