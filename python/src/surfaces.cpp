@@ -140,7 +140,8 @@ std::shared_ptr<SurfaceSubject> user_surface_problem(const Array& vertices,
 py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& q, int frames,
                              int threads, const py::object& on_step, bool estimate) {
     check_frames(frames);
-    const SurfaceRunOptions options =
+    // (Not const: surface_as_read may deepen its thin cells.)
+    SurfaceRunOptions options =
         surface_run_options(subject.problem, subject.named, subject.t_start, q);
     if (estimate) require_half_resolution(options.steps, options.step.contour.depth, "estimate");
     const std::optional<SurfaceRunOptions> coarse =

@@ -238,18 +238,23 @@ int domain_doublings_for(const Interface& curves, const Box& domain, int max_dou
 
 RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domain,
               const RunOptions& options, const Observer& observer) {
-    if (options.check_start && !initial.empty()) {
-        // A flow field at rest: G(x) = F(x), so the step's contour is the curves' own.
-        const Interface read =
-            advance(initial, options.t_start, 1.0, Translation({0.0, 0.0}), domain, options.step)
-                .curves;
-        const ContourOptions& c = options.step.contour;
-        detail::check_start<2>(initial, read, domain, c.depth, c.thin_depth,
-                               finest_cell(domain, c));
-    }
     RunResult start;  // resume() checks the options
     start.curves = initial;
     start.t = options.t_start;
+    start.start_thin_depth = options.step.contour.thin_depth;
+    if (options.check_start && !initial.empty()) {
+        // A flow field at rest: G(x) = F(x), so the step's contour is the curves' own.
+        const auto read = [&](int thin) {
+            StepOptions o = options.step;
+            o.contour.thin_depth = thin;
+            return advance(initial, options.t_start, 1.0, Translation({0.0, 0.0}), domain, o)
+                .curves;
+        };
+        const ContourOptions& c = options.step.contour;
+        start.start_thin_depth = detail::start_as_given<2>(initial, domain, c.depth, c.thin_depth,
+                                                           finest_cell(domain, c), read)
+                                     .first;
+    }
     if (options.guards && (law.invariants().area_rate_per_curve || law.invariants().rigid))
         start.start_area = step_area(initial, law, options.step, domain);
     return resume(start, law, domain, options, observer);

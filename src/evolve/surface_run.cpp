@@ -190,23 +190,29 @@ std::optional<BudgetBreach> LoopHooks<3>::run_budget(Attempt&, const Surface& su
 
 }  // namespace detail
 
-Surface surface_as_read(const Surface& s, const Box3& domain, const SurfaceRunOptions& options) {
+Surface surface_as_read(const Surface& s, const Box3& domain, SurfaceRunOptions& options) {
     // A flow field at rest: G(x) = F(x), so the step's contour is the surface's own.
     const SurfaceTranslation rest({0.0, 0.0, 0.0});
-    Surface read = advance(s, options.t_start, 1.0, rest, domain, options.step).surface;
-    if (read.empty() && !s.empty()) {
-        const Box3 b = bounding_box(s);
-        throw InvalidInput(fmt::format(
-            "the surface, {:.3g} across, is too small for the contours to see: the finest cell "
-            "at K = {} in the domain {:.3g} wide is {:.3g}; raise K (-K) or give a smaller "
-            "domain",
-            std::max({b.extent(0), b.extent(1), b.extent(2)}), options.step.contour.depth,
-            domain.width(), std::ldexp(domain.width(), -options.step.contour.depth)));
-    }
+    const auto read = [&](int thin) {
+        SurfaceStepOptions o = options.step;
+        o.contour.thin_depth = thin;
+        Surface contour = advance(s, options.t_start, 1.0, rest, domain, o).surface;
+        if (contour.empty() && !s.empty()) {
+            const Box3 b = bounding_box(s);
+            throw InvalidInput(fmt::format(
+                "the surface, {:.3g} across, is too small for the contours to see: the finest "
+                "cell at K = {} in the domain {:.3g} wide is {:.3g}; raise K (-K) or give a "
+                "smaller domain",
+                std::max({b.extent(0), b.extent(1), b.extent(2)}), options.step.contour.depth,
+                domain.width(), std::ldexp(domain.width(), -options.step.contour.depth)));
+        }
+        return contour;
+    };
     const SurfaceContourOptions& c = options.step.contour;
-    detail::check_start<3>(s, read, domain, c.depth, c.thin_depth,
-                           std::ldexp(domain.width(), -c.depth));
-    return read;
+    auto [thin, contour] = detail::start_as_given<3>(s, domain, c.depth, c.thin_depth,
+                                                     std::ldexp(domain.width(), -c.depth), read);
+    options.step.contour.thin_depth = thin;
+    return std::move(contour);
 }
 
 Box3 doubled_domain(const Box3& domain, int times) {

@@ -138,7 +138,9 @@ SurfaceSelfConvergenceResult surface_self_convergence(
     return detail::resolution_study(
         resolutions, [&](int r) { return surface_resolution_options(base, r); },
         [&](const SurfaceRunOptions& o) {
-            return run(surface_as_read(initial, domain, o), law, domain, o);
+            SurfaceRunOptions used = o;  // with the thin depth the start needs
+            const Surface start = surface_as_read(initial, domain, used);
+            return run(start, law, domain, used);
         },
         observer);
 }

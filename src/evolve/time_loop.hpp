@@ -299,7 +299,8 @@ void check_resume(const typename LoopHooks<dim>::Result& from, const BasicVeloci
     }
 }
 
-/// Steps from.steps_done + 1 .. N from `from`, its counters and clocks carried on: resume() of
+/// Steps from.steps_done + 1 .. N from `from`, with the options `given` (their thin cells at
+/// least from.start_thin_depth), its counters and clocks carried on: resume() of
 /// either dimension. Failures inside a step end the run with status error, a step or a run that
 /// breaks what the law keeps with status unstable, an empty interface with vanished, an observer
 /// that returns false before the last step with interrupted.
@@ -307,12 +308,17 @@ template <int dim>
 typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result& from,
                                           const BasicVelocityLaw<dim>& law,
                                           const RegionOf<dim>& domain,
-                                          const typename LoopHooks<dim>::Options& options,
+                                          const typename LoopHooks<dim>::Options& given,
                                           const typename LoopHooks<dim>::Observer& observer) {
     using H = LoopHooks<dim>;
-    check_resume<dim>(from, law, options);
+    check_resume<dim>(from, law, given);
+    // The thin cells the start needed (RunTotals::start_thin_depth), also on a resume.
+    typename H::Options options = given;
+    int& thin = options.step.contour.thin_depth;
+    thin = std::max(thin, from.start_thin_depth);
     const H hooks(law, domain, options);
     typename H::Result r = from;
+    r.start_thin_depth = thin;
     r.status = RunStatus::ok;
     r.message.clear();
     const double wall_before = from.wall_s, cpu_before = from.cpu_s;

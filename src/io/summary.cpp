@@ -71,7 +71,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"eta", std::max(c.resolved_eta(),
                          tolerance::rounding_floor(doubled_domain(p.domain, r.domain_doublings)))},
         {"rho", c.rho},
-        {"thin_depth", c.thin_depth},
+        {"thin_depth", std::max(c.thin_depth, r.start_thin_depth)},
         {"M", o.step.embedded.mesh},
         {"E", o.step.embedded.eno_order},
         {"S", o.step.embedded.smoothing},
@@ -148,7 +148,7 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
           {"eps", c.resolved_eps()},
           {"eta", std::max(options.step.resolved_eta(), tolerance::rounding_floor(doubled_domain(
                                                             p.domain, r.domain_doublings)))},
-          {"thin_depth", c.thin_depth},
+          {"thin_depth", std::max(c.thin_depth, r.start_thin_depth)},
           {"volume_drift", options.volume_drift},
           {"guards", options.guards},
           {"threads", thread_count()}}},

@@ -65,6 +65,20 @@ expect_status "the ring without thin cells" 3 -- run --initial ring.json --veloc
     --param speed=-1 --t-end 0.02 --thin-depth 0 --out x --quiet
 check "the start refused" grep -q "do not keep the curves as given: 2 components with 1 hole became .*raise --thin-depth (now 0) or -K" err.txt
 
+# A circle of radius 0.0005 beside a unit one (cells of 0.19 at K = 5): the default 6 levels of
+# thin cells (down to 0.003) lose it at the start, so the start takes 8 (0.0007), says so on
+# stderr and in summary.json, and the run keeps both.
+awk 'BEGIN { printf "{\"curves\": [{\"points\": ["; for (i = 0; i < 64; i++)
+    printf "%s[%.17g, %.17g]", (i ? ", " : ""), cos(2 * 3.141592653589793 * i / 64), sin(2 * 3.141592653589793 * i / 64)
+    printf "]}, {\"points\": ["; for (i = 0; i < 16; i++)
+    printf "%s[%.17g, %.17g]", (i ? ", " : ""), 3 + 0.0005 * cos(2 * 3.141592653589793 * i / 16), 0.0005 * sin(2 * 3.141592653589793 * i / 16)
+    print "]}]}" }' >speck.json
+expect_ok "a speck beside a circle, at rest" -- run --initial speck.json --velocity unit-normal \
+    --param speed=0 --t-end 1 -N 1 --out speck --quiet
+check "the speck: the start's note" grep -q "a part of the curves is thinner than the contours resolve at --thin-depth 6; the thin cells went 8 levels deep to keep it" err.txt
+check "the speck: thin_depth 8 in summary.json" grep -q '"thin_depth": 8' speck/summary.json
+check "the speck: both curves kept" test "$(curves speck)" = 2
+
 # --domain 150 around a unit circle: K = 12, the default's finest cell (it kept K = 5, cells of
 # 9.4, and failed); the offset as accurate as in the default domain (1.2e-3 both, the 64-gon's
 # corners rounded off).

@@ -115,6 +115,7 @@ void put_totals(Json& json, const RunTotals& s) {
     if (s.finest_cell > 0.0)
         json["finest_cell"] = {{"width", s.finest_cell}, {"at_t", s.finest_t}, {"at", s.finest_at}};
     if (!std::isnan(s.thin_budget_at)) json["thin_budget_at"] = s.thin_budget_at;
+    json["start_thin_depth"] = s.start_thin_depth;
 }
 
 /// Reads what put_totals() wrote; the run it describes was interrupted.
@@ -136,6 +137,7 @@ void get_totals(const Json& json, RunTotals& s) {
     }
     if (json.contains("thin_budget_at")) s.thin_budget_at = json.at("thin_budget_at").get<double>();
     s.status = RunStatus::interrupted;
+    s.start_thin_depth = json.value("start_thin_depth", -1);
 }
 
 }  // namespace

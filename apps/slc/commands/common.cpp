@@ -259,6 +259,14 @@ std::string finest_cell_text(const nlohmann::json& summary) {
     return fmt::format(", finest cell {:.3g} at ({})", f["width"].get<double>(), at);
 }
 
+void note_deeper_start(std::string_view what, int asked, int used) {
+    if (used <= asked) return;
+    fmt::print(stderr,
+               "slc: note: a part of the {} is thinner than the contours resolve at --thin-depth "
+               "{}; the thin cells went {} levels deep to keep it (summary.json: thin_depth)\n",
+               what, asked, used);
+}
+
 void print_estimate(const nlohmann::json& estimate) {
     if (estimate["estimate"].is_null()) {
         fmt::print("{}\n", estimate["note"].get<std::string>());

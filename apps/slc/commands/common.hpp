@@ -132,6 +132,10 @@ void print_estimate(const nlohmann::json& estimate);
 /// closing line of slc run.
 std::string finest_cell_text(const nlohmann::json& summary);
 
+/// Prints to stderr the note of a start that needed thin cells deeper than asked (RunTotals::
+/// start_thin_depth), when used > asked; `what`: "curves" or "surface".
+void note_deeper_start(std::string_view what, int asked, int used);
+
 /// CLI11 checks with one-line messages naming the value: a positive finite number; a finite
 /// number >= 0; an integer in [lo, hi]; a number in [0, 1).
 CLI::Validator positive_number();

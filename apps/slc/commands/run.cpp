@@ -255,7 +255,11 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
         folder.publish();
     }
     if (progress) fmt::print(stderr, "\n");
-    if (r.domain_doublings > 0) {
+    // A run that fails says one line, its error; its notes stay in summary.json.
+    const bool finished = r.status == RunStatus::ok || r.status == RunStatus::vanished ||
+                          r.status == RunStatus::interrupted;
+    if (finished) note_deeper_start("curves", options.step.contour.thin_depth, r.start_thin_depth);
+    if (finished && r.domain_doublings > 0) {
         const Box d = doubled_domain(p.domain, r.domain_doublings);
         fmt::print(
             stderr,

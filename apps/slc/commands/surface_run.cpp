@@ -133,7 +133,8 @@ SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
 void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     SurfaceRunSetup setup = resolve_surface_run(r);
     SurfaceProblem& p = setup.problem;
-    const SurfaceRunOptions& options = setup.options;
+    SurfaceRunOptions& options = setup.options;  // surface_as_read may deepen its thin cells
+    const int thin_asked = options.step.contour.thin_depth;
     const SurfaceContourOptions& c = options.step.contour;
     try {
         // A named problem's surface at the run's own K, P, ε and η when they are given: a run at
@@ -260,6 +261,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         fmt::print(stderr, "slc: warning: --no-guards: {}\n", result.broken);
     if (finished && summary.contains("note"))
         fmt::print(stderr, "slc: note: {}\n", summary["note"].get<std::string>());
+    if (finished) note_deeper_start("surface", thin_asked, options.step.contour.thin_depth);
     if (finished && result.domain_doublings > 0) {
         const Box3 d = doubled_domain(p.domain, result.domain_doublings);
         fmt::print(stderr,

@@ -92,9 +92,13 @@ struct SurfaceRunResult : RunTotals {
 /// motion at rest returns. Runs of users' surfaces start from it, as a named problem's start from
 /// its own contour: the first step from a coarse polyhedron would otherwise jump to the smooth
 /// surface its vertex normals describe (an icosphere of 320 triangles gains 3.4% of its volume),
-/// which the guards would take for a broken law. Throws as advance() does, and InvalidInput when
-/// the contour misses a surface that is not empty (smaller than the contours resolve).
-Surface surface_as_read(const Surface& s, const Box3& domain, const SurfaceRunOptions& options);
+/// which the guards would take for a broken law. Where the contour does not keep the surface as
+/// given (its components, handles, and every vertex within a cell at K), the thin cells go two
+/// levels deeper at a time, up to setting_range::thin_depth's most, and options' thin_depth is
+/// set to the depth that keeps it, for the run to go on with. Throws as advance() does,
+/// NumericalFailure naming the part when the deepest does not keep it, and InvalidInput when the
+/// contour misses a surface that is not empty (smaller than the contours resolve).
+Surface surface_as_read(const Surface& s, const Box3& domain, SurfaceRunOptions& options);
 
 /// The least thickness 3V/A (V the volume, A the area; a sphere's radius) of the components of
 /// `after` beyond those of `before`, when `after` has more components; nullopt otherwise.

@@ -137,8 +137,8 @@ TEST(SurfaceRun, ATinySphereGrowsAsALargeOne) {
         o.steps = 2;
         o.step.contour.depth = 3;
         o.step.contour.eps = 4e-2 * r;
-        const SurfaceRunResult run_r =
-            run(surface_as_read(ball, box, o), SurfaceNormalSpeed(), box, o);
+        const Surface start = surface_as_read(ball, box, o);
+        const SurfaceRunResult run_r = run(start, SurfaceNormalSpeed(), box, o);
         ASSERT_EQ(run_r.status, RunStatus::ok) << r << ": " << run_r.message;
         ratio[i++] = volume(run_r.surface) / volume(ball);
     }
@@ -215,7 +215,7 @@ TEST(SurfaceRun, ACoarseSurfaceIsReadAsTheStepsReadIt) {
     const Surface coarse_sphere = sphere({}, 0.3, 2);
     const double exact = 4.0 / 3.0 * std::numbers::pi * 0.027;
     EXPECT_LT(volume(coarse_sphere), 0.97 * exact);
-    const SurfaceRunOptions o = coarse(0.5, 2);
+    SurfaceRunOptions o = coarse(0.5, 2);
     const SurfaceTranslation along_x({0.2, 0.0, 0.0});
     EXPECT_EQ(run(coarse_sphere, along_x, domain, o).status, RunStatus::unstable);
     const Surface read = surface_as_read(coarse_sphere, domain, o);
