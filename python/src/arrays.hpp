@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "slc/core/error.hpp"
+#include "slc/core/point_text.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/surface.hpp"
@@ -61,10 +62,6 @@ inline std::vector<Vec2> points_of(const Array& a) {
         throw InvalidInput("points must be an (n, 2) array of numbers");
     return vectors_of(a.data(), static_cast<std::size_t>(a.shape(0)));
 }
-
-/// The point as Python prints a row: "(1, nan)", "(0, 1e+200, 2)".
-inline std::string point_text(Vec2 p) { return fmt::format("({}, {})", p.x, p.y); }
-inline std::string point_text(Vec3 p) { return fmt::format("({}, {}, {})", p.x, p.y, p.z); }
 
 /// The largest magnitude of the point's coordinates.
 inline double largest_magnitude(Vec2 p) { return std::max(std::abs(p.x), std::abs(p.y)); }

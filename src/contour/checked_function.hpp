@@ -12,6 +12,7 @@
 
 #include "slc/contour/implicit_function.hpp"
 #include "slc/core/error.hpp"
+#include "slc/core/point_text.hpp"
 #include "slc/core/space.hpp"
 
 namespace slc::contouring {
@@ -31,11 +32,8 @@ public:
         *count_ += points.size();
         for (std::size_t i = 0; i < values.size(); ++i) {
             if (!std::isfinite(values[i])) {
-                std::string at;
-                for (int k = 0; k < dim; ++k)
-                    at += fmt::format("{}{:.6g}", k == 0 ? "" : ", ", points[i][k]);
-                throw NumericalFailure(
-                    fmt::format("G is not finite at ({}): got {}", at, values[i]));
+                throw NumericalFailure(fmt::format("G is not finite at {}: got {}",
+                                                   point_text(points[i], 6), values[i]));
             }
         }
     }

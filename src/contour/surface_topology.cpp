@@ -16,6 +16,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/point_text.hpp"
 #include "surface_stages.hpp"
 #include "tree_sampler.hpp"
 
@@ -30,7 +31,7 @@ constexpr int max_perturbations = 6;
 
 using Evaluator = SpaceEvaluator;
 
-std::string place(Vec3 p) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x, p.y, p.z); }
+std::string place(Vec3 p) { return point_text(p, 6); }
 
 /// The tree sampler of space (TreeSampler<3>: every cell samples its eight corners and its
 /// centre), and what the tetrahedra need of it.

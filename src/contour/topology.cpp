@@ -12,6 +12,7 @@
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/point_text.hpp"
 #include "stages.hpp"
 #include "tree_sampler.hpp"
 
@@ -111,7 +112,7 @@ public:
     }
 };
 
-std::string place(Vec2 p) { return fmt::format("({:.6g}, {:.6g})", p.x, p.y); }
+std::string place(Vec2 p) { return point_text(p, 6); }
 
 /// The zero set of the interpolant stays inside the domain iff G has one strict sign at every
 /// boundary vertex: a boundary edge with a sign change or a zero would carry a contour vertex.

@@ -12,6 +12,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/point_text.hpp"
 #include "slc/velocity/velocity.hpp"
 
 namespace slc::detail {
@@ -83,13 +84,10 @@ int departure_substeps(const BasicVelocityLaw<dim>& law, double t, double k,
     return substeps;
 }
 
-/// "(x, y)" or "(x, y, z)", for messages.
-inline std::string point_text(Vec2 p) { return fmt::format("({}, {})", p.x, p.y); }
-inline std::string point_text(Vec3 p) { return fmt::format("({}, {}, {})", p.x, p.y, p.z); }
-/// "(x, y)" or "(x, y, z)" with 6 digits, for messages.
-inline std::string point_text6(Vec2 p) { return fmt::format("({:.6g}, {:.6g})", p.x, p.y); }
-inline std::string point_text6(Vec3 p) {
-    return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x, p.y, p.z);
+/// "(x, y)" or "(x, y, z)" with 6 digits, for messages (point_text, slc/core/point_text.hpp).
+template <class Point>
+std::string point_text6(Point p) {
+    return point_text(p, 6);
 }
 
 /// W(x) at a point where the step evaluates it (an extension or a law may give it anywhere),

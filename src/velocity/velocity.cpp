@@ -8,14 +8,11 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/point_text.hpp"
 #include "slc/geometry_modules/intrinsic.hpp"
 
 namespace slc {
 namespace {
-
-/// "(x, y)" or "(x, y, z)".
-std::string point_text(Vec2 p) { return fmt::format("({}, {})", p.x, p.y); }
-std::string point_text(Vec3 p) { return fmt::format("({}, {}, {})", p.x, p.y, p.z); }
 
 /// Throws NumericalFailure at the first non-finite velocity, naming `what` (vertex or point).
 template <int dim>
@@ -117,13 +114,11 @@ void require_forward(const std::string& what, std::span<const PointOf<dim>> x,
     constexpr double least_slope = -1e-6;
     for (std::size_t i = 0; i < slope.size(); ++i) {
         if (!(slope[i] < least_slope)) continue;
-        std::string at;
-        for (int k = 0; k < dim; ++k) at += fmt::format("{}{:.6g}", k ? ", " : "", x[i][k]);
         throw InvalidInput(fmt::format(
-            "{} falls as the curvature C grows (dv/dC = {:.3g} at ({})): motion backward in "
+            "{} falls as the curvature C grows (dv/dC = {:.3g} at {}): motion backward in "
             "curvature is ill-posed, its wiggles growing without bound; C = -1/R on a circle, so "
             "curvature flow is '+C' (as in 'a + C')",
-            what, slope[i], at));
+            what, slope[i], point_text(x[i], 6)));
     }
 }
 
