@@ -75,7 +75,6 @@ public:
             {q.arcs.has_value(), {"arcs", "--arcs"}, 2},
             {q.arc_width.has_value(), {"arc_width", "--arc-width"}, 2},
             {q.volume_drift.has_value(), {"volume_drift", "--volume-drift"}, 3},
-            {q.guards.has_value(), {"guards", "--no-guards"}, 3},
         };
         const auto shapes = [](int d) { return d == 2 ? "curves" : "surfaces"; };
         for (const OneDimension& s : settings) {
@@ -109,6 +108,7 @@ Checker apply_shared(const RunOverrides& q, SettingNames names, int dim, Options
     if (q.refine) o.step.contour.refine_passes = *q.refine;
     if (q.tree_depth) o.step.tree_depth = *q.tree_depth;
     if (q.thin_depth) o.step.contour.thin_depth = *q.thin_depth;
+    if (q.guards) o.guards = *q.guards;
     return check;
 }
 
@@ -180,7 +180,6 @@ SurfaceRunOptions apply_overrides(const RunOverrides& q, SurfaceRunOptions o, do
     if (q.eta) c.eta = *q.eta;
     if (q.area_correction) o.step.volume_correction = q.area_correction;
     if (q.volume_drift) o.volume_drift = *q.volume_drift;
-    if (q.guards) o.guards = *q.guards;
     check.eps_not_below_eta(c.resolved_eps(), o.step.resolved_eta());
     return o;
 }

@@ -35,8 +35,8 @@ const char* to_string(RunStatus status) {
 
 namespace detail {
 
-/// Curves: the guards measure the area and length as the step reads them (guards.hpp), and check
-/// nothing with the guards off.
+/// Curves: the guards measure the area and length as the step reads them (guards.hpp), and with
+/// the guards off still check every step, noting the first break (status broken).
 template <>
 class LoopHooks<2> {
 public:
@@ -88,9 +88,7 @@ public:
 
     /// Γ(t)'s area and length as the step reads them, once: each sub-step's are the one before's
     /// after.
-    CurveMeasures start(const Interface& curves) const {
-        return options_.guards ? measures(curves) : CurveMeasures{};
-    }
+    CurveMeasures start(const Interface& curves) const { return measures(curves); }
 
     /// What one split of a step did.
     struct Attempt {
@@ -99,19 +97,22 @@ public:
         double corrected = 0.0, lag = 0.0, run_lag = 0.0;
     };
 
-    /// Checks the sub-step from `before` at t to s (with the guards), and counts it in a.
+    /// Checks the sub-step from `before` at t to s, and counts it in a: its break with the guards
+    /// on, noted in r off.
     std::optional<std::string> record(Attempt& a, const Interface& before, const StepResult& s,
                                       double t, double k, RunResult& r) const {
-        if (options_.guards) {
-            const CurveMeasures m1 = measures(s.curves);
-            if (auto v = invariant_violation(invariants_, before, a.m0, s.curves, m1, k, eps_,
-                                             budget(r)))
-                return fmt::format("at t = {}: {}", t, *v);
-            if (const auto expected =
-                    area_change_expected(invariants_, before, a.m0.area, s.curves, k, budget(r)))
-                a.lag += (m1.area - a.m0.area) - *expected;
-            a.m0 = m1;
+        // Checked with the guards on or off: off, the step is kept whole and its break noted.
+        const CurveMeasures m1 = measures(s.curves);
+        if (auto v =
+                invariant_violation(invariants_, before, a.m0, s.curves, m1, k, eps_, budget(r))) {
+            std::string why = fmt::format("at t = {}: {}", t, *v);
+            if (options_.guards) return why;
+            note_broken(r, why + ": raise the steps N or the depth K");
         }
+        if (const auto expected =
+                area_change_expected(invariants_, before, a.m0.area, s.curves, k, budget(r)))
+            a.lag += (m1.area - a.m0.area) - *expected;
+        a.m0 = m1;
         note_cells(r, s.stats.predictor, t + k);
         note_cells(r, s.stats.corrector, t + k);
         a.g_evals += s.stats.g_evals();
@@ -120,7 +121,7 @@ public:
         return std::nullopt;
     }
 
-    /// With the guards: the run's area lag, its length above the least (a law that shortens the
+    /// The run's area lag, its length above the least (a law that shortens the
     /// curves) and its segments (a rigid motion), after the step to t_next ends at `curves`.
     std::optional<BudgetBreach> run_budget(Attempt& a, const Interface& curves, double t_next,
                                            RunResult& r) const;
@@ -133,9 +134,6 @@ public:
         r.area_corrected += a.corrected;
     }
 
-    static void note_broken(RunResult&, std::string) {}  // (checked only with the guards)
-    static void vanished(RunResult&) {}
-    static void finished(RunResult&) {}
     static void check_start(const RunResult&) {}
 
     /// A step that broke the law in every split: the settings that may keep it. The extensions
@@ -178,7 +176,6 @@ private:
 std::optional<BudgetBreach> LoopHooks<2>::run_budget(Attempt& a, const Interface& curves,
                                                      double t_next, RunResult& r) const {
     a.run_lag = r.area_lag + a.lag;
-    if (!options_.guards) return std::nullopt;
     const GuardBudget b = budget(r);
     if (r.start_area != 0.0 && std::abs(a.run_lag) > b.run_lag_fraction * std::abs(r.start_area)) {
         return BudgetBreach{
@@ -255,7 +252,7 @@ RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domai
                                                            finest_cell(domain, c), read)
                                      .first;
     }
-    if (options.guards && (law.invariants().area_rate_per_curve || law.invariants().rigid))
+    if (law.invariants().area_rate_per_curve || law.invariants().rigid)
         start.start_area = step_area(initial, law, options.step, domain);
     return resume(start, law, domain, options, observer);
 }

@@ -97,17 +97,6 @@ public:
         }
     }
 
-    /// With the guards off, the first break is kept (a coarse run whose sheet tears, measured
-    /// anyway): it is the message of a run that vanishes, and makes a run that ends broken.
-    static void note_broken(SurfaceRunResult& r, std::string why) {
-        if (r.broken.empty()) r.broken = std::move(why);
-    }
-    static void vanished(SurfaceRunResult& r) { r.message = r.broken; }
-    static void finished(SurfaceRunResult& r) {
-        if (r.broken.empty()) return;
-        r.status = RunStatus::broken;
-        r.message = r.broken;
-    }
     static void check_start(const SurfaceRunResult& from) {
         if (from.surface.empty()) throw InvalidInput("the surface to resume has no triangles");
     }

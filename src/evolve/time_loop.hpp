@@ -45,6 +45,12 @@ void note_cells(RunTotals& r, const ContourStatsT& c, double t) {
     if (c.thin_budget_reached && std::isnan(r.thin_budget_at)) r.thin_budget_at = t;
 }
 
+/// With the guards off, the first break is kept (a coarse run whose interface tears, measured
+/// anyway): it is the message of a run that vanishes, and makes a run that ends broken.
+inline void note_broken(RunTotals& r, std::string why) {
+    if (r.broken.empty()) r.broken = std::move(why);
+}
+
 /// What differs between curves (dim 2) and surfaces (dim 3): the types of a run (Options, Result,
 /// StepResult, Report, Observer, Law, Region, Shape), the step's options in a grown domain, the
 /// guards of one step and of the run, and the wording of messages. Specialised where it is used.
@@ -239,7 +245,7 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
         std::optional<BudgetBreach> over_budget =
             hooks.run_budget(attempt, H::shape(out), t_next, r);
         if (over_budget && !options.guards) {
-            H::note_broken(r, std::move(over_budget->message));
+            note_broken(r, std::move(over_budget->message));
             over_budget.reset();
         }
         // A run beyond its budget ends with the interface before the step that took it there,
@@ -360,14 +366,17 @@ typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result&
                                                      &step.stats, r.wall_s, step_cpu_s, &r});
         if (vanished) {
             r.status = RunStatus::vanished;
-            H::vanished(r);
+            r.message = r.broken;
             break;
         }
         if (!go_on && n < options.steps) {
             r.status = RunStatus::interrupted;
             break;
         }
-        if (n == options.steps) H::finished(r);
+        if (n == options.steps && !r.broken.empty()) {
+            r.status = RunStatus::broken;
+            r.message = r.broken;
+        }
     }
     clocks();
     return r;

@@ -72,6 +72,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
                          tolerance::rounding_floor(doubled_domain(p.domain, r.domain_doublings)))},
         {"rho", c.rho},
         {"thin_depth", std::max(c.thin_depth, r.start_thin_depth)},
+        {"guards", o.guards},
         {"M", o.step.embedded.mesh},
         {"E", o.step.embedded.eno_order},
         {"S", o.step.embedded.smoothing},
@@ -110,7 +111,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"peak_rss_mib", peak_rss_mib()},
         {"g_evals_per_vertex",
          r.vertices_produced > 0 ? static_cast<double>(r.g_evals) / r.vertices_produced : 0.0}};
-    if (r.status == RunStatus::error || r.status == RunStatus::unstable) s["message"] = r.message;
+    if (!r.message.empty()) s["message"] = r.message;
     if (r.split_steps > 0)
         s["substeps"] = {{"split_steps", r.split_steps}, {"most", r.most_substeps}};
     if (o.step.resolved_area_correction(law)) s["area_corrected"] = r.area_corrected;

@@ -84,6 +84,17 @@ expect_ok "a circle under Eq. 13, arclength" -- run --initial c.json \
     --velocity volume-preserving-curvature --t-end 2 --out round --quiet
 expect_status "spiral in 10 steps" 3 -- run --problem spiral-nonlocal -N 10 --out s10 --quiet
 check "spiral in 10 steps: not vanished" grep -q '"status": "unstable"' s10/summary.json
+# Table 5's propeller at N = 40, K = 3, P = 0 drifts past the run's 5% of area at t = 2.2: with
+# the guards it ends there, unstable; with --no-guards (as for surfaces) it goes on to the end,
+# exit 0, status broken, the first break named in summary.json and in one warning.
+expect_ok "propeller, no guards" -- run --problem propeller-rotation -N 40 -K 3 -P 0 --no-guards \
+    --out p40 --quiet
+check "propeller, no guards: broken at the end" python3 -c "
+import json, math, sys
+s = json.load(open('p40/summary.json'))
+sys.exit(not (s['status'] == 'broken' and math.isclose(s['t'], 4 * math.pi) and s['params']['guards'] is False
+              and 'the area has drifted by' in s['message']))"
+check "propeller, no guards: one warning" grep -q "^slc: warning: --no-guards: at t = 2.199.*the area has drifted by" err.txt
 # One step of the paper's embedded curvature at K = 11: no contradictory defaults of eps and eta,
 # and no "vanished". A step of k = 0.01 (the whole k = 2 splits the curve in thousands, in 45 s)
 # loses area at 1.6 times the law's rate, also in sub-steps: unstable, naming the area.

@@ -104,7 +104,6 @@ check "a warning names it" grep -q "^slc: warning: --no-guards: at t = 3.9: the 
 check "the same surface as the guarded run's" cmp -s unguarded/final.obj drift5/final.obj
 # A surface smaller than the contours see: named, not a run of nothing.
 expect_error "too small to see" "the surface, 1.2 across, is too small for the contours to see: the finest cell at K = 3 in the domain 2e\+03 wide is 250; raise K \(-K\) or give a smaller domain" -- run --initial ball.obj --velocity rotation --t-end 1 --box -700,-700,-700,1300,1300,1300 -K 3 --out x
-expect_error "no guards for curves" "--no-guards is for surfaces, not curves" -- run --problem vortex --no-guards --out x
 expect_error "drift for curves" "--volume-drift is for surfaces, not curves" -- run --problem vortex --volume-drift 0.1 --out x
 expect_error "drift not positive" "--volume-drift: must be a positive finite number, got '0'" -- run --problem enright --volume-drift 0 --out x
 # A part thinner than the cells, torn by the contours, is noted: the torus of tube radius 0.2

@@ -116,6 +116,7 @@ void put_totals(Json& json, const RunTotals& s) {
         json["finest_cell"] = {{"width", s.finest_cell}, {"at_t", s.finest_t}, {"at", s.finest_at}};
     if (!std::isnan(s.thin_budget_at)) json["thin_budget_at"] = s.thin_budget_at;
     json["start_thin_depth"] = s.start_thin_depth;
+    if (!s.broken.empty()) json["broken"] = s.broken;
 }
 
 /// Reads what put_totals() wrote; the run it describes was interrupted.
@@ -138,6 +139,7 @@ void get_totals(const Json& json, RunTotals& s) {
     if (json.contains("thin_budget_at")) s.thin_budget_at = json.at("thin_budget_at").get<double>();
     s.status = RunStatus::interrupted;
     s.start_thin_depth = json.value("start_thin_depth", -1);
+    s.broken = json.value("broken", std::string());
 }
 
 }  // namespace
@@ -167,7 +169,6 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
         }
         json["least_area"] = s.least_area.value;
         json["least_area_t"] = s.least_area.t;
-        if (!s.broken.empty()) json["broken"] = s.broken;
         json["frames_kept"] = c.frames_kept;
         json["frame_times"] = c.frame_times;
         put_surface(json, s.surface);
@@ -212,7 +213,6 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
                 s.thin_split_at = json.at("thin_split_at").get<double>();
                 s.thin_split_thickness = json.at("thin_split_thickness").get<double>();
             }
-            s.broken = json.value("broken", std::string());
             c.frames_kept = json.at("frames_kept").get<int>();
             c.frame_times = json.at("frame_times").get<std::vector<double>>();
             s.surface = surface_from(json);

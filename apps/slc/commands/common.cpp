@@ -259,6 +259,10 @@ std::string finest_cell_text(const nlohmann::json& summary) {
     return fmt::format(", finest cell {:.3g} at ({})", f["width"].get<double>(), at);
 }
 
+void warn_broken(const RunTotals& r) {
+    if (!r.broken.empty()) fmt::print(stderr, "slc: warning: --no-guards: {}\n", r.broken);
+}
+
 void note_deeper_start(std::string_view what, int asked, int used) {
     if (used <= asked) return;
     fmt::print(stderr,

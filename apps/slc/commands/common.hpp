@@ -136,6 +136,10 @@ std::string finest_cell_text(const nlohmann::json& summary);
 /// start_thin_depth), when used > asked; `what`: "curves" or "surface".
 void note_deeper_start(std::string_view what, int asked, int used);
 
+/// Prints to stderr the warning of a run with its guards off that broke what its law keeps
+/// (RunTotals::broken), when it did.
+void warn_broken(const RunTotals& r);
+
 /// CLI11 checks with one-line messages naming the value: a positive finite number; a finite
 /// number >= 0; an integer in [lo, hi]; a number in [0, 1).
 CLI::Validator positive_number();

@@ -175,13 +175,21 @@ void check_run_memory(const RunOptions& options, const Interface& initial, const
                       distance_bytes_per_cell);
 }
 
+/// The settings of a run: the method options, the guards and (a surface's) the volume drift.
+RunOverrides run_settings(const RunCommand& o) {
+    RunOverrides q = overrides_of(o.method);
+    q.volume_drift = o.volume_drift;
+    if (o.no_guards) q.guards = false;
+    return q;
+}
+
 /// Runs o from the start, or from a checkpoint, writing into folder; `given` are the options to
 /// store in checkpoints, `id` the run's identity (run_id).
 void run_command(const RunCommand& o, const std::vector<GivenOption>& given, const std::string& id,
                  const Checkpoint* from, OutputFolder& folder) {
     apply_threads(o.method.threads);
     const Problem p = resolve_problem(o.source);
-    const RunOptions options = resolve_run_options(o.method, p);
+    const RunOptions options = run_options(p, run_settings(o), SettingNames::tool);
     // --estimate's run at half resolution, resolved first so that one it cannot have (N or K
     // of 1) is an input error before anything runs.
     if (o.estimate) require_half_resolution(options.steps, options.step.contour.depth);
@@ -257,7 +265,8 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
     if (progress) fmt::print(stderr, "\n");
     // A run that fails says one line, its error; its notes stay in summary.json.
     const bool finished = r.status == RunStatus::ok || r.status == RunStatus::vanished ||
-                          r.status == RunStatus::interrupted;
+                          r.status == RunStatus::interrupted || r.status == RunStatus::broken;
+    warn_broken(r);
     if (finished) note_deeper_start("curves", options.step.contour.thin_depth, r.start_thin_depth);
     if (finished && r.domain_doublings > 0) {
         const Box d = doubled_domain(p.domain, r.domain_doublings);
@@ -341,10 +350,10 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
                     "0.01). A larger one lets a coarse run finish and report how far it drifted")
         ->check(positive_number());
     cmd->add_flag("--no-guards", o->no_guards,
-                  "For a surface: take every step whole and go on to the end even when one "
-                  "breaks what the law keeps (a sheet thinner than the contours tears, the volume "
-                  "drifts), to see what a coarse run gives; the run then ends with status "
-                  "broken, exit status 0, and the first break in summary.json's message");
+                  "Take every step whole and go on to the end even when one breaks what the law "
+                  "keeps (a part thinner than the contours tears, the area or volume drifts), to "
+                  "see what a coarse run gives; the run then ends with status broken, exit "
+                  "status 0, and the first break in summary.json's message");
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
                     "Output folder (required, except with --resume): summary.json, final.json, "
@@ -421,14 +430,6 @@ void resume_command(const CLI::App& cmd, const RunCommand& o) {
     run_command(resumed, c.options, c.run_id, &c, out);
 }
 
-/// The settings of a surface run: the method options, the volume drift and the guards.
-RunOverrides surface_settings(const RunCommand& o) {
-    RunOverrides q = overrides_of(o.method);
-    q.volume_drift = o.volume_drift;
-    if (o.no_guards) q.guards = false;
-    return q;
-}
-
 /// slc run on a surface: the options that apply to surfaces, the others refused by name; from
 /// the checkpoint `from` when given. The caller installs the StopSignals.
 void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
@@ -449,7 +450,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  .params = o.source.params,
                  .t_end = o.source.t_end,
                  .domain = o.source.domain,
-                 .settings = surface_settings(o),
+                 .settings = run_settings(o),
                  .frames = o.frames,
                  .estimate = o.estimate,
                  .view = o.view,
@@ -479,7 +480,6 @@ void add_run_command(CLI::App& app) {
         if (!surface && o->view) throw InvalidInput("--view is for surfaces, not curves");
         if (!surface && o->volume_drift)
             throw InvalidInput("--volume-drift is for surfaces, not curves");
-        if (!surface && o->no_guards) throw InvalidInput("--no-guards is for surfaces, not curves");
         const StopSignals signals;
         const std::vector<GivenOption> all = given_options(*cmd, {});
         const std::string id =

@@ -257,8 +257,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     const bool finished = result.status == RunStatus::ok ||
                           result.status == RunStatus::interrupted ||
                           result.status == RunStatus::broken;
-    if (!result.broken.empty())
-        fmt::print(stderr, "slc: warning: --no-guards: {}\n", result.broken);
+    warn_broken(result);
     if (finished && summary.contains("note"))
         fmt::print(stderr, "slc: note: {}\n", summary["note"].get<std::string>());
     if (finished) note_deeper_start("surface", thin_asked, options.step.contour.thin_depth);

@@ -97,7 +97,7 @@ struct RunOverrides {
     std::optional<int> thin_depth = std::nullopt;
     // Surfaces only.
     std::optional<double> volume_drift = std::nullopt;  ///< SurfaceRunOptions::volume_drift
-    std::optional<bool> guards = std::nullopt;          ///< SurfaceRunOptions::guards
+    std::optional<bool> guards = std::nullopt;  ///< RunOptions::guards, SurfaceRunOptions::guards
     /// Curves: StepOptions::area_correction; surfaces: SurfaceStepOptions::volume_correction.
     std::optional<bool> area_correction = std::nullopt;
 };

@@ -59,6 +59,10 @@ struct RunTotals {
     /// start of a user's shape needed them to keep it (RunOptions::check_start,
     /// surface_as_read); −1 when the run did not say (a resume takes the options').
     int start_thin_depth = -1;
+    /// With the guards off (RunOptions::guards, SurfaceRunOptions::guards): where and how the
+    /// run first broke what its law keeps, as in the message of an unstable run; empty while it
+    /// has not.
+    std::string broken;
 };
 
 /// The time interval, the number of steps and the parameters of every step.

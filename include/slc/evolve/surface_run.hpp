@@ -82,9 +82,6 @@ struct SurfaceRunResult : RunTotals {
     /// contours may tear such a part), and that thickness; NaN and 0 when no step did.
     double thin_split_at = std::numeric_limits<double>::quiet_NaN();
     double thin_split_thickness = 0.0;  ///< (see thin_split_at)
-    /// With the guards off: where and how the run first broke what its law keeps, as in the
-    /// message of an unstable run; empty while it has not.
-    std::string broken;
 };
 
 /// A user's surface as the steps of a run read it: the contour, at the run's K, P, ε and η, of
