@@ -3,6 +3,9 @@ rotation), the contour of an analytic function, bad input, callbacks and their e
 
 import math
 import os
+import re
+import subprocess
+import sys
 import signal
 import threading
 
@@ -85,8 +88,26 @@ def test_shapes_and_dtypes_are_checked():
     with pytest.raises(TypeError):
         slc.Interface(3.0)
     curves = slc.Interface(circle())
-    with pytest.raises(ValueError, match="points must be an"):
-        slc.distance(curves, np.zeros(2))
+    for shape in [(3,), (4, 3), (2, 2, 1), ()]:
+        words = f"points must be one point (2,) or an array (..., 2) of points, got shape {shape}"
+        with pytest.raises(ValueError, match=re.escape(words)):
+            slc.distance(curves, np.zeros(shape))
+
+
+def test_one_list_of_points_is_one_curve_and_a_list_of_them_many():
+    # A 2D array-like of numbers with last dimension 2 is one curve; it used to be read as three
+    # curves of one point each, and refused.
+    triangle = [[0, 0], [1, 0], [0, 1]]
+    for one in (triangle, np.array(triangle), [np.array(p) for p in triangle]):
+        curves = slc.Interface(one)
+        assert len(curves) == 1 and curves.area == pytest.approx(0.5)
+    square = [[2, 2], [3, 2], [3, 3], [2, 3]]
+    for many, area in [([triangle, square], 1.5), ([np.array(triangle), np.array(square)], 1.5),
+                       ([triangle, [[2, 2], [3, 2], [2, 3]]], 1.0)]:  # of equal lengths
+        curves = slc.Interface(many)
+        assert len(curves) == 2 and curves.area == pytest.approx(area)
+    d, _ = slc.distance(triangle, [0.25, 0.25])
+    assert d == pytest.approx(-0.25)
 
 
 # ---- distance ----------------------------------------------------------------------------------
@@ -98,6 +119,27 @@ def test_distance_is_signed_with_nearest_points():
     np.testing.assert_allclose(d, [-1, 2, math.sqrt(2), -0.5], atol=1e-15)
     np.testing.assert_allclose(nearest, [[nearest[0][0], nearest[0][1]], [1, 0], [1, 1], [0.5, -1]])
     assert d.shape == (4,) and nearest.shape == (4, 2)
+
+
+def test_distance_of_one_point_is_a_number_and_of_a_grid_keeps_its_shape():
+    # As scikit-fmm and scipy answer: one point (2,) gives a float and a (2,) point, a grid
+    # (..., 2) distances (...) and nearest points (..., 2), each the same as the rows alone.
+    square = slc.Interface([[-1, -1], [1, -1], [1, 1], [-1, 1]])
+    d, nearest = slc.distance(square, [3, 0])
+    assert np.ndim(d) == 0 and d == pytest.approx(2.0) and nearest.shape == (2,)
+    np.testing.assert_allclose(nearest, [1, 0])
+    x, y = np.meshgrid(np.linspace(-2, 2, 5), np.linspace(-2, 2, 3))
+    grid = np.stack([x, y], axis=-1)
+    d, nearest = slc.distance(square, grid)
+    assert d.shape == (3, 5) and nearest.shape == (3, 5, 2)
+    rows_d, rows_nearest = slc.distance(square, grid.reshape(-1, 2))
+    np.testing.assert_array_equal(d, rows_d.reshape(3, 5))
+    np.testing.assert_array_equal(nearest, rows_nearest.reshape(3, 5, 2))
+    assert d[1, 2] == pytest.approx(-1.0) and d[0, 0] == pytest.approx(math.sqrt(2))
+    with pytest.raises(ValueError, match=r"point 0: \(nan, 0\) is not finite"):
+        slc.distance(square, [np.nan, 0.0])
+    with pytest.raises(ValueError, match=r"point 3: \(inf, 0\) is not finite"):
+        slc.distance(square, [[[0, 0], [1, 0]], [[0, 1], [np.inf, 0]]])
 
 
 @pytest.mark.parametrize("point, words", [

@@ -75,6 +75,36 @@ def test_a_surface_problems_exact_solution_refuses_points_not_finite():
     assert p.exact(np.array([[0.0, 0.0, 0.0]]), 0.0).shape == (1,)
 
 
+def cube():
+    """The cube [-1, 1]³, each face two triangles counterclockwise seen from outside."""
+    v = [[x, y, z] for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)]
+    v = [v[0], v[1], v[3], v[2], v[4], v[5], v[7], v[6]]  # counterclockwise around each z face
+    t = [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [2, 3, 7], [2, 7, 6],
+         [0, 4, 7], [0, 7, 3], [1, 2, 6], [1, 6, 5]]
+    return slc.Surface(v, t)
+
+
+def test_distance_to_a_surface_is_exact_signed_and_keeps_the_shape_of_the_points():
+    # As `slc distance --initial cube.obj`: it used to be a TypeError naming the Surface. One
+    # point gives a float and a (3,) point, a grid (..., 3) distances (...) and nearest (..., 3).
+    s = cube()
+    d, nearest = slc.distance(s, [[0, 0, 0], [3, 0, 0], [2, 2, 2], [0.5, -0.2, 0.1]])
+    np.testing.assert_allclose(d, [-1, 2, math.sqrt(3), -0.5], atol=1e-15)
+    np.testing.assert_allclose(nearest[1:], [[1, 0, 0], [1, 1, 1], [1, -0.2, 0.1]], atol=1e-15)
+    assert abs(np.abs(nearest[0]).max() - 1) < 1e-15  # on a face: every one is as near
+    d, nearest = slc.distance(s, [0, 0, 3])
+    assert np.ndim(d) == 0 and d == pytest.approx(2.0) and nearest.shape == (3,)
+    grid = np.stack(np.meshgrid(*3 * [np.linspace(-2, 2, 3)], indexing="ij"), axis=-1)
+    d, nearest = slc.distance(s, grid)
+    assert d.shape == (3, 3, 3) and nearest.shape == (3, 3, 3, 3)
+    assert d[1, 1, 1] == pytest.approx(-1.0) and d[0, 1, 1] == pytest.approx(1.0)
+    with pytest.raises(ValueError, match=r"points must be one point \(3,\) or an array "
+                                         r"\(\.\.\., 3\) of points, got shape \(4, 2\)"):
+        slc.distance(s, np.zeros((4, 2)))
+    with pytest.raises(ValueError, match=r"point 1: \(0, nan, 0\) is not finite"):
+        slc.distance(s, [[0, 0, 0], [0, np.nan, 0]])
+
+
 # ---- runs --------------------------------------------------------------------------------------
 
 
