@@ -15,7 +15,8 @@ from ._run import Problem, run
 RESULT_COLUMNS = ["status", "t", "area", "area_change", "length", "components", "segments",
                   "e_inf", "cpu_s", "wall_s", "message"]
 
-_RUN_PARAMETERS = set(inspect.signature(run).parameters) - {"observer", "frames"}
+_RUN_PARAMETERS = {name for name, p in inspect.signature(run).parameters.items()
+                   if p.kind != p.VAR_KEYWORD} - {"observer", "frames"}
 
 
 def grid(**axes: Iterable[Any]) -> list[dict[str, Any]]:
@@ -32,7 +33,7 @@ def _check(case: dict[str, Any], index: int) -> None:
     unknown = sorted(set(case) - _RUN_PARAMETERS - {"name"})
     if unknown:
         raise ValueError(f"case {index} has {', '.join(map(repr, unknown))}, not an argument of "
-                         "slc.run (nor 'name', a label)")
+                         "slc.run (nor 'name', a label; a law's parameters go in 'params')")
     if "interface" not in case:
         raise ValueError(f"case {index} has no 'interface' (curves, or an slc.Problem)")
 

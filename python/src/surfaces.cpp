@@ -164,6 +164,9 @@ std::shared_ptr<SurfaceSubject> user_surface_problem(const Array& vertices,
 py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& q, int frames,
                              int threads, const py::object& on_step, bool estimate) {
     check_frames(frames);
+    // Held to the end: the start as the steps read it and the summary (which reports
+    // thread_count()) have the run's threads.
+    const ThreadScope thread_scope(threads);
     // (Not const: surface_as_read may deepen its thin cells.)
     SurfaceRunOptions options =
         surface_run_options(subject.problem, subject.named, subject.t_start, q);

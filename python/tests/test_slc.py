@@ -394,6 +394,67 @@ def test_python_vertex_velocity_and_flow_field_turn_a_full_circle():
     assert r.summary["params"]["extension"] == "nearest"
 
 
+def test_a_built_in_laws_parameters_are_keywords_of_run():
+    # run(I, "rotation", t, omega=2) is run(I, "rotation", t, params={"omega": 2}); a keyword that
+    # is neither an option nor the law's parameter is refused naming it and the law's
+    # parameters (it used to be a TypeError of Python's, and params= the only way).
+    initial = slc.Interface(ellipse())
+    a = slc.run(initial, "rotation", 0.1, steps=2, omega=2)
+    b = slc.run(initial, "rotation", 0.1, steps=2, params={"omega": 2})
+    assert a.summary["params"]["velocity_params"]["omega"] == 2.0
+    for x, y in zip(a.interface.curves, b.interface.curves):
+        np.testing.assert_array_equal(x, y)
+    c = slc.run(initial, "rotation", 0.1, steps=2, omega=2, params={"cx": 0.0})
+    np.testing.assert_array_equal(c.interface.points, a.interface.points)
+    with pytest.raises(ValueError, match="velocity 'rotation' has no parameter 'omga'; its "
+                                         "parameters: omega, cx, cy"):
+        slc.run(initial, "rotation", 0.1, omga=2)
+    with pytest.raises(ValueError, match="'omega' is given twice, in params and as a keyword"):
+        slc.run(initial, "rotation", 0.1, params={"omega": 1}, omega=2)
+    with pytest.raises(ValueError, match="run\\(\\) has no option 'omega'"):
+        slc.run(initial, lambda t, p: p, 0.1, omega=2)
+    with pytest.raises(ValueError, match="study\\(\\) has no option 'omega'"):
+        slc.study(initial, slc.FieldExpression("-y, x"), 0.1, omega=2)
+    with pytest.raises(ValueError, match="a named problem runs its own law"):
+        slc.run(slc.problem("zalesak"), omega=2)
+
+
+def _expected_threads(cores: int) -> int:
+    """The tool's --threads 0: OMP_NUM_THREADS when set to a positive count, else the cores,
+    never more than the cores."""
+    n = os.environ.get("OMP_NUM_THREADS", "")
+    return min(int(n), cores) if n.isdigit() and int(n) > 0 else cores
+
+
+def test_threads_are_the_tools_threads_and_the_summary_reports_them():
+    # It used to report the process's default, set again when the run was over.
+    cores = len(os.sched_getaffinity(0))
+    initial = slc.Interface(ellipse())
+    for threads, expected in [(1, 1), (None, _expected_threads(cores)),
+                              (0, _expected_threads(cores)), (10**6, cores)]:
+        r = slc.run(initial, "rotation", 0.1, steps=2, threads=threads)
+        assert r.summary["threads"] == expected, threads
+    with pytest.raises(ValueError, match="threads must be 0 or more, got -1"):
+        slc.run(initial, "rotation", 0.1, steps=2, threads=-1)
+    with pytest.raises(TypeError, match="threads must be an integer or None"):
+        slc.run(initial, "rotation", 0.1, steps=2, threads=True)
+
+
+def test_omp_num_threads_sets_the_threads_as_for_the_tool():
+    script = (
+        "import numpy as np, slc\n"
+        "th = np.linspace(0, 2 * np.pi, 64, endpoint=False)\n"
+        "r = slc.run(slc.Interface(np.c_[np.cos(th), 0.6 * np.sin(th)]), 'rotation', 0.1,\n"
+        "            steps=2)\n"
+        "s = slc.Surface(slc.contour_surface(lambda p: np.linalg.norm(p, axis=1) - 0.5, 1.0, 3))\n"
+        "q = slc.run(s, 'rotation', 0.1, steps=1, depth=3)\n"
+        "print(r.summary['threads'], q.summary['params']['threads'])\n")
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         env=dict(os.environ, OMP_NUM_THREADS="1"), timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["1", "1"]
+
+
 def test_a_callable_of_two_arguments_is_a_flow_field():
     # f(t, points) -> (m, 2) is known everywhere: sampled along the characteristics as a
     # FlowField is, to the last bit, and back to 2.4e-4 of the start after a full turn
