@@ -3,7 +3,8 @@
 The C++ library on numpy arrays (docs/python.md), with the defaults of ``slc run --initial``:
 
 - ``Interface(curves)``: closed curves, each an (n, 2) array, validated like the tool's files;
-- ``distance(interface, points)``: signed distances (negative inside) and nearest points;
+- ``distance(shape, points)``: signed distances (negative inside) and nearest points of curves
+  or of a Surface;
 - ``contour(f, box, depth)``: the zero set of a vectorised function f((m, 2)) -> (m,);
 - ``contour_surface(f, box, depth)``: the same in space, f((m, 3)) -> (m,): a closed triangle
   surface as (vertices, triangles, stats);

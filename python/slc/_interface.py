@@ -39,6 +39,19 @@ def _frozen(arrays) -> list[np.ndarray]:
     return out
 
 
+def _is_one_curve(curves) -> bool:
+    """Whether curves is one curve rather than a list of them: a 2D array-like of numbers whose
+    last dimension is 2 (an (n, 2) array, or a list of [x, y] points). A list of curves makes a
+    3D array, or none at all when their lengths differ."""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # numpy's warning of a ragged list of curves
+            arr = np.asarray(curves)
+    except (ValueError, TypeError):
+        return False
+    return arr.ndim == 2 and arr.shape[1] == 2 and arr.dtype.kind in "iuf"
+
+
 class _AtTime:
     """A shape at a time: the time property both Interface and Surface have."""
 
@@ -60,7 +73,8 @@ class Interface(_AtTime):
     ``Interface(curves)`` validates as the tool does its files: an open or self-crossing curve,
     curves that cross, fewer than 3 distinct points, a non-finite coordinate raise ValueError with
     one line naming the curve and vertex; consecutive duplicate points are dropped; a curve the
-    other way round is reversed, with a warning. A single (n, 2) array is one curve.
+    other way round is reversed, with a warning. One (n, 2) array, or one list of [x, y] points
+    (``Interface([[0, 0], [1, 0], [0, 1]])``), is one curve; a list of them is many.
     """
 
     __slots__ = ("_curves", "_time")
@@ -70,10 +84,10 @@ class Interface(_AtTime):
             self._curves = curves._curves
             self.time = curves.time if time is None else time
             return
-        if isinstance(curves, np.ndarray) and curves.ndim == 2:
-            curves = [curves]
         if isinstance(curves, (str, bytes)) or not hasattr(curves, "__iter__"):
             raise TypeError(f"curves must be a list of (n, 2) arrays, got {type(curves).__name__}")
+        if _is_one_curve(curves):
+            curves = [curves]
         self.time = 0.0 if time is None else time
         arrays = [_points(c, f"curve {i}") for i, c in enumerate(curves)]
         prepared, notes = _slc.prepare(arrays)
@@ -141,13 +155,51 @@ def _interface(x) -> Interface:
     return x if isinstance(x, Interface) else Interface(x)
 
 
-def distance(interface, points) -> tuple[np.ndarray, np.ndarray]:
-    """Signed distance (negative inside) and a nearest point of the curves for each of the (m, 2)
-    points: ``(distance (m,), nearest (m, 2))``, exact to rounding, as ``slc distance``. A point
-    not finite or beyond the coordinate limit (±1e100) raises ValueError naming it, as the tool
-    refuses it."""
-    curves = _interface(interface)
-    return _slc.distance(curves._curves, _points(points, "points"))
+def _query_points(points, dim: int) -> tuple[np.ndarray, tuple[int, ...]]:
+    """points, one point (dim,) or any array (..., dim) of them, as a float64 (m, dim) array and
+    the shape the answers take (points.shape without its last dimension); ValueError naming the
+    shape otherwise."""
+    arr = np.asarray(points)
+    if arr.dtype.kind not in "iuf":
+        raise TypeError(f"points must hold real numbers, got dtype {arr.dtype}")
+    if arr.ndim == 0 or arr.shape[-1] != dim:
+        raise ValueError(f"points must be one point ({dim},) or an array (..., {dim}) of points, "
+                         f"got shape {arr.shape}")
+    flat = np.ascontiguousarray(arr.reshape(-1, dim), dtype=np.float64)
+    return flat, arr.shape[:-1]
+
+
+def _threads(threads) -> int:
+    """threads as the library takes it: None and 0 ask for OMP_NUM_THREADS when it is set, else
+    the available cores (set_thread_count, as the tool's --threads)."""
+    if threads is None:
+        return 0
+    if isinstance(threads, bool) or not isinstance(threads, numbers.Integral):
+        raise TypeError(f"threads must be an integer or None, got {threads!r}")
+    return int(threads)
+
+
+def distance(shape, points, *, threads: int | None = None):
+    """Signed distance (negative inside) and a nearest point of curves (an Interface, or what
+    Interface() takes) or of a Surface, exact to rounding, as ``slc distance`` for a file of each.
+
+    points: (m, d) points give ``(distance (m,), nearest (m, d))``; a grid (..., d) gives
+    distances (...) and nearest points (..., d); one point (d,) a float and a (d,) point; d is 2
+    for curves and 3 for a surface. A point not finite or beyond the coordinate limit (±1e100)
+    raises ValueError naming it (by its index in the points taken row after row), as the tool
+    refuses it. threads: as run()'s."""
+    from ._surface import Surface  # (the module of surfaces builds on this one)
+
+    if isinstance(shape, Surface):
+        xs, answer_shape = _query_points(points, 3)
+        d, nearest = _slc.surface_distance(shape.vertices, shape.triangles, xs, _threads(threads))
+    else:
+        curves = _interface(shape)
+        xs, answer_shape = _query_points(points, 2)
+        d, nearest = _slc.distance(curves._curves, xs, _threads(threads))
+    if answer_shape == ():
+        return d[0], nearest[0]
+    return d.reshape(answer_shape), nearest.reshape(answer_shape + (xs.shape[1],))
 
 
 def _refine(refine) -> int:

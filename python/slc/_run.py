@@ -10,7 +10,7 @@ from typing import Any, Callable, NamedTuple
 import numpy as np
 
 from . import _slc
-from ._interface import Interface, _integer, _interface, _points, _refine
+from ._interface import Interface, _integer, _interface, _points, _refine, _threads
 from ._problem import _NamedProblem
 from ._tables import ConvergenceTable, nan_array as _array
 from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, _check_frames,
@@ -266,6 +266,23 @@ def _overrides(steps=None, depth=None, refine=None, eps=None, eta=None, smoothin
     return o
 
 
+def _law_params(velocity, params, keywords, caller: str = "run") -> dict | None:
+    """params with a built-in law's parameters given as keywords to run() (``omega=2``), as one
+    dict for the library to check against the law's parameters (ValueError naming the one it
+    lacks, and those it has). A keyword for any other velocity, or one also in params, is
+    ValueError naming it."""
+    if not keywords:
+        return params
+    k = sorted(keywords)[0]
+    if velocity is not None and not isinstance(velocity, str):
+        raise ValueError(f"{caller}() has no option '{k}': its other keywords are a built-in law's "
+                         f"parameters, and the velocity {type(velocity).__name__} is not one")
+    twice = sorted(set(keywords) & set(params or {}))
+    if twice:
+        raise ValueError(f"parameter '{twice[0]}' is given twice, in params and as a keyword")
+    return {**(params or {}), **keywords}
+
+
 def _subject(subject, velocity, t_end, params, geometry):
     """(_slc.Problem, LawSpec or None) for a Problem or for curves under a velocity."""
     if isinstance(subject, Problem):
@@ -299,6 +316,11 @@ def _surface_subject(subject, velocity, t_end, params):
                                      float(t_end), _law(velocity, params, None))
 
 
+# The settings of a run that run() and study() take by name: the rest of study's keywords are a
+# law's parameters.
+_SETTINGS = set(inspect.signature(_overrides).parameters)
+
+
 def run(interface, velocity=None, t_end: float | None = None, *, steps: int | None = None,
         depth: int | None = None, refine=None, eps: float | None = None,
         eta: float | None = None, smoothing: int | None = None,
@@ -306,8 +328,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
         extension: str | None = None, arcs: bool | None = None,
         area_correction: bool | None = None, thin_depth: int | None = None,
         volume_drift: float | None = None, guards: bool | None = None, frames: int = 0,
-        observer: Callable[[Step], Any] | None = None, threads: int = 0,
-        estimate: bool = False) -> RunResult:
+        observer: Callable[[Step], Any] | None = None, threads: int | None = None,
+        estimate: bool = False, **law_params: float) -> RunResult:
     """Moves curves from interface.time to t_end, as ``slc run --initial`` does, or runs a named
     problem (``run(slc.problem("zalesak"))``, t_end optional) as ``slc run --problem`` does. A
     Surface (or a SurfaceProblem) moves the same way and gives a SurfaceRunResult; its velocity
@@ -321,7 +343,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     even when one breaks what the law keeps, to see what a coarse run gives: the result's status is
     then "broken" and its message names the first break.
 
-    velocity: a built-in law's name (``velocities()``; its parameters in params), a FlowField, a
+    velocity: a built-in law's name (``velocities()``; its parameters as keywords,
+    ``run(I, "rotation", 1.0, omega=2)``, or in params), a FlowField, a
     NormalSpeed, or a callable. A callable f(t, points (m, 2)) -> (m, 2) is a flow field, sampled
     everywhere as a FlowField is; f(t, points (N, 2), normals (N, 2), curvature (N,)) (or
     f(t, points, normals), without the curvature) returns (N, 2) vertex velocities or (N,) normal
@@ -336,8 +359,9 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     extension "nearest", "whitney" or "direct"; arcs; area_correction. frames: keep this many
     frames besides the initial one. observer(step) after each step returns True or None to go
     on, False to stop the run (status "interrupted"), as Ctrl-C does in the tool; anything else
-    is a TypeError. threads: worker threads (0: OMP_NUM_THREADS when set, else every
-    available core; never more than the cores); results do not depend on it.
+    is a TypeError. threads: worker threads (None or 0: OMP_NUM_THREADS when set, else every
+    available core; never more than the cores), as the tool's --threads; results do not depend
+    on it, and ``summary`` reports it.
     estimate: as ``slc run --estimate``, run again at half resolution (N/2 steps, K − 1, 4 eps)
     and put the distance between the two final interfaces in ``summary["error_estimate"]`` (an
     estimate of this run's error when it converges at first order or faster; a note says why
@@ -345,6 +369,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     """
     options = _overrides(steps, depth, refine, eps, eta, smoothing, extension, arcs,
                          area_correction, thin_depth, volume_drift, guards)
+    params = _law_params(velocity, params, law_params)
+    threads = _threads(threads)
     if isinstance(interface, (Surface, SurfaceProblem)):
         if geometry is not None:
             raise ValueError("geometry is for curves, not surfaces")
@@ -358,7 +384,7 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
         def on_step(step, n, t, arrays, cpu_s):
             return observer(Step(step, n, t, Interface._trusted(arrays, t), cpu_s))
 
-    out = _slc.run(p, law, options, int(frames), int(threads), on_step, bool(estimate))
+    out = _slc.run(p, law, options, int(frames), threads, on_step, bool(estimate))
     return RunResult(
         interface=Interface._trusted(out["curves"], out["t"]),
         frames=[(t, Interface._trusted(a, t)) for t, a in out["frames"]],
@@ -401,7 +427,7 @@ class SelfConvergence:
 
 
 def study(subject, velocity=None, t_end: float | None = None, *, rows: int | None = None,
-          observer: Callable[[dict], Any] | None = None, threads: int = 0,
+          observer: Callable[[dict], Any] | None = None, threads: int | None = None,
           params: dict[str, float] | None = None, geometry: str | None = None,
           **options) -> Study | SelfConvergence | SurfaceStudy:
     """A convergence study, as ``slc study`` does.
@@ -413,9 +439,10 @@ def study(subject, velocity=None, t_end: float | None = None, *, rows: int | Non
     velocity to t_end: a self-convergence study (``SelfConvergence``) at ``rows`` resolutions
     (3..5, default 3), as ``slc study --initial``. options are run()'s (steps, depth, refine,
     eps, eta, smoothing, extension, arcs, area_correction; for a surface steps, depth, refine,
-    eps, eta, thin_depth, area_correction, volume_drift, guards) and set the coarsest run.
-    observer(dict) after each run.
+    eps, eta, thin_depth, area_correction, volume_drift, guards) and set the coarsest run; other
+    keywords are a built-in law's parameters, as for run(). observer(dict) after each run.
     """
+    threads = _threads(threads)
     if isinstance(subject, SurfaceProblem):
         if velocity is not None or t_end is not None or params or geometry is not None or (
                 set(options) - {"columns"}):
@@ -423,6 +450,9 @@ def study(subject, velocity=None, t_end: float | None = None, *, rows: int | Non
                              "columns, observer and threads only")
         return study_surface(subject, 3 if rows is None else _integer("rows", rows),
                              _integer("columns", options.get("columns", 4)), observer, threads)
+    params = _law_params(velocity, params,
+                         {k: v for k, v in options.items() if k not in _SETTINGS}, "study")
+    options = {k: v for k, v in options.items() if k in _SETTINGS}
     if isinstance(subject, Surface):
         if geometry is not None:
             raise ValueError("geometry is for curves, not surfaces")
@@ -432,7 +462,7 @@ def study(subject, velocity=None, t_end: float | None = None, *, rows: int | Non
             def on_surface_run(r):
                 return observer(_surface_run_dict(r))
         s = _slc.self_convergence_surface(p, 3 if rows is None else _integer("rows", rows),
-                                          _overrides(**options), int(threads),
+                                          _overrides(**options), threads,
                                           on_surface_run)
         return SelfConvergence(
             runs=[_surface_run_dict(r) for r in s["runs"]],
@@ -443,7 +473,7 @@ def study(subject, velocity=None, t_end: float | None = None, *, rows: int | Non
     p, law = _subject(subject, velocity, t_end, params, geometry)
     o = _overrides(**options)
     if isinstance(subject, Problem):
-        s = _slc.study(p, 5 if rows is None else _integer("rows", rows), o, int(threads),
+        s = _slc.study(p, 5 if rows is None else _integer("rows", rows), o, threads,
                        observer)
         shape = (s["rows"], s["columns"])
         cells = s["cells"]
@@ -460,7 +490,7 @@ def study(subject, velocity=None, t_end: float | None = None, *, rows: int | Non
         def on_run(r):
             return observer(_run_dict(r))
     s = _slc.self_convergence(p, law, 3 if rows is None else _integer("rows", rows), o,
-                              int(threads), on_run)
+                              threads, on_run)
     return SelfConvergence(
         runs=[_run_dict(r) for r in s["runs"]],
         distances=np.array(s["distances"], dtype=float),

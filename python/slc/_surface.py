@@ -210,7 +210,7 @@ def run_surface(p, options, frames: int, observer: Callable[[SurfaceStep], Any] 
     if observer is not None:
         def on_step(step, n, t, v, tri, cpu_s):
             return observer(SurfaceStep(step, n, t, Surface._trusted(v, tri, t), cpu_s))
-    out = _slc.run_surface(p, options, int(frames), int(threads), on_step,
+    out = _slc.run_surface(p, options, int(frames), threads, on_step,
                            bool(estimate))
     if "note" in out["summary"]:  # contours left beyond eps (summary's unconverged_steps)
         warnings.warn(out["summary"]["note"], stacklevel=3)
@@ -240,7 +240,7 @@ class SurfaceStudy(ConvergenceTable):
 
 def study_surface(problem: SurfaceProblem, rows: int, columns: int,
                   observer: Callable[[dict], Any] | None, threads: int) -> SurfaceStudy:
-    s = _slc.study_surface(problem._p, rows, columns, int(threads), observer)
+    s = _slc.study_surface(problem._p, rows, columns, threads, observer)
     shape = (s["rows"], s["columns"])
     cells = s["cells"]
     return SurfaceStudy(

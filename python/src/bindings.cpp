@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "arrays.hpp"
+#include "calls.hpp"
 #include "run.hpp"
 #include "slc/contour/contour.hpp"
 #include "slc/contour/surface_contour.hpp"
@@ -74,23 +75,24 @@ void save(const std::string& path, const std::vector<Array>& arrays, double time
     write_file_atomic(path, interface_json(Interface(curves_of(arrays)), time));
 }
 
-py::tuple distance(const std::vector<Array>& arrays, const Array& xs_array) {
+/// (distances (m,), nearest points (m, 2)) of the curves at the (m, 2) points, as `slc distance`,
+/// on `threads` threads (0: as --threads 0).
+py::tuple distance(const std::vector<Array>& arrays, const Array& xs_array, int threads) {
     const Curves raw = curves_of(arrays);
     const std::vector<Vec2> xs = query_points_of(xs_array);
-    std::vector<double> d(xs.size());
-    std::vector<Vec2> nearest(xs.size());
-    {
-        py::gil_scoped_release release;
+    const std::vector<ClosestPoint> answers = without_gil(threads, [&] {
         const Interface curves(raw);
         const Box domain = default_domain(raw);
         const DistanceTree tree(
             curves, domain,
             {.depth = DistanceTree::default_depth(curves, domain), .triangulate = false});
-        const std::vector<ClosestPoint> answers = tree.closest_points(xs);
-        for (std::size_t i = 0; i < xs.size(); ++i) {
-            d[i] = answers[i].distance;
-            nearest[i] = answers[i].point;
-        }
+        return tree.closest_points(xs);
+    });
+    std::vector<double> d(xs.size());
+    std::vector<Vec2> nearest(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+        d[i] = answers[i].distance;
+        nearest[i] = answers[i].point;
     }
     return py::make_tuple(array_of(std::span<const double>(d)),
                           array_of(std::span<const Vec2>(nearest)));
@@ -241,7 +243,7 @@ PYBIND11_MODULE(_slc, m) {
           [](const std::vector<Array>& c) { return slc::area(slc::Interface(curves_of(c))); });
     m.def("length",
           [](const std::vector<Array>& c) { return slc::length(slc::Interface(curves_of(c))); });
-    m.def("distance", &distance, py::arg("curves"), py::arg("points"));
+    m.def("distance", &distance, py::arg("curves"), py::arg("points"), py::arg("threads"));
     m.def("contour", &contour_function, py::arg("f"), py::arg("box"), py::arg("depth"),
           py::arg("eps"), py::arg("refine"), py::arg("thin_depth"));
     m.def("contour_surface", &contour_surface_function, py::arg("f"), py::arg("box"),

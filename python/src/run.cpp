@@ -53,6 +53,8 @@ Interface initial_of(const Problem& p) { return prepare_interface(p.initial, p.d
 py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const RunOverrides& q,
                      int frames, int threads, const py::object& on_step, bool estimate) {
     check_frames(frames);
+    // Held to the end: the summary reports the threads the run had (thread_count()).
+    const ThreadScope thread_scope(threads);
     const std::unique_ptr<VelocityLaw> law = law_of(p, spec);
     const Interface initial = initial_of(p);
     const RunOptions options = run_options(p, q);

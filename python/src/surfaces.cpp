@@ -15,6 +15,7 @@
 #include "laws.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/core/tolerances.hpp"
+#include "slc/distance/surface_distance_tree.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/evolve/surface_problems.hpp"
 #include "slc/evolve/surface_study.hpp"
@@ -107,6 +108,29 @@ py::dict surface_measures(const Array& vertices, const IndexArray& triangles) {
     return d;
 }
 
+/// (distances (m,), nearest points (m, 3)) of a valid surface at the (m, 3) points, as `slc
+/// distance` with a surface file: the domain and tree depth it takes, on `threads` threads.
+py::tuple surface_distance(const Array& vertices, const IndexArray& triangles,
+                           const Array& xs_array, int threads) {
+    const Surface surface = surface_of(vertices, triangles);
+    if (surface.empty()) throw InvalidInput("the surface has no triangles");
+    const std::vector<Vec3> xs = query_points3_of(xs_array);
+    const std::vector<SurfacePoint> answers = without_gil(threads, [&] {
+        const Box3 domain = default_domain(bounding_box(surface));
+        const SurfaceDistanceTree tree(
+            surface, domain, {.depth = SurfaceDistanceTree::default_depth(surface, domain)});
+        return tree.closest_points(xs);
+    });
+    std::vector<double> d(xs.size());
+    std::vector<Vec3> nearest(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+        d[i] = answers[i].distance;
+        nearest[i] = answers[i].point;
+    }
+    return py::make_tuple(array_of(std::span<const double>(d)),
+                          array_of(std::span<const Vec3>(nearest)));
+}
+
 std::shared_ptr<SurfaceSubject> named_surface_problem(const std::string& name,
                                                       const VelocityParams& params) {
     auto s = std::make_shared<SurfaceSubject>();
@@ -140,6 +164,9 @@ std::shared_ptr<SurfaceSubject> user_surface_problem(const Array& vertices,
 py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& q, int frames,
                              int threads, const py::object& on_step, bool estimate) {
     check_frames(frames);
+    // Held to the end: the start as the steps read it and the summary (which reports
+    // thread_count()) have the run's threads.
+    const ThreadScope thread_scope(threads);
     // (Not const: surface_as_read may deepen its thin cells.)
     SurfaceRunOptions options =
         surface_run_options(subject.problem, subject.named, subject.t_start, q);
@@ -334,6 +361,8 @@ void add_surface_functions(py::module_& m) {
     m.def("load_surface", &load_surface_file, py::arg("path"));
     m.def("save_surface", &save_surface_file, py::arg("path"), py::arg("vertices"),
           py::arg("triangles"), py::arg("time"));
+    m.def("surface_distance", &surface_distance, py::arg("vertices"), py::arg("triangles"),
+          py::arg("points"), py::arg("threads"));
     m.def("surface_measures", &surface_measures, py::arg("vertices"), py::arg("triangles"));
 }
 

@@ -2,6 +2,8 @@
 each against an exact solution, the built-in law it must equal, or the serial run it must equal."""
 
 import math
+import subprocess
+import sys
 
 import matplotlib
 
@@ -199,6 +201,41 @@ def test_a_sweep_on_a_local_cluster_gathers_one_table_equal_to_serial_runs():
         assert loss == pytest.approx(2 * math.pi * 0.05, rel=2e-3)
         serial = slc.sweep.__globals__["run_case"](case)
         assert serial["area"] == row["area"] and serial["segments"] == row["segments"]
+
+
+def test_a_sweep_in_a_script_without_the_main_guard_stops_at_once(tmp_path):
+    # The worker processes of a LocalCluster import the script again: without the guard each
+    # started its own cluster, in hundreds of lines of dask's tracebacks. Now one line says what
+    # to add, before any worker starts.
+    pytest.importorskip("distributed")
+    script = tmp_path / "unguarded.py"
+    script.write_text(
+        "import numpy as np\n"
+        "import slc\n"
+        "th = np.linspace(0, 2 * np.pi, 32, endpoint=False)\n"
+        "case = dict(interface=np.c_[np.cos(th), np.sin(th)], velocity='curvature', t_end=0.01)\n"
+        "table = slc.sweep([case])\n"
+        "print('ran')\n")
+    out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                         cwd=tmp_path, timeout=120)
+    assert out.returncode == 1 and out.stdout == ""
+    assert out.stderr.strip().splitlines()[-1] == (
+        "RuntimeError: slc.sweep starts worker processes that import the script again: put the "
+        f"script's work under 'if __name__ == \"__main__\":' ({script}, line 5 calls it outside "
+        "one)")
+    assert "distributed" not in out.stderr
+    # Called from a function, under the guard or not: the line of the script's own code counts.
+    script.write_text(
+        "import sys\n"
+        "import slc\n"
+        "def where():\n"
+        "    return sys.modules['slc.sweep']._unguarded_call()\n"
+        "print(where())\n"
+        "if __name__ == '__main__':\n"
+        "    print(where())\n")
+    out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                         cwd=tmp_path, timeout=120)
+    assert out.stdout.splitlines() == [f"{script}, line 5", "None"], out.stderr
 
 
 def test_a_sweep_refuses_a_case_it_cannot_run():

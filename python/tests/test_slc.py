@@ -3,6 +3,9 @@ rotation), the contour of an analytic function, bad input, callbacks and their e
 
 import math
 import os
+import re
+import subprocess
+import sys
 import signal
 import threading
 
@@ -85,8 +88,26 @@ def test_shapes_and_dtypes_are_checked():
     with pytest.raises(TypeError):
         slc.Interface(3.0)
     curves = slc.Interface(circle())
-    with pytest.raises(ValueError, match="points must be an"):
-        slc.distance(curves, np.zeros(2))
+    for shape in [(3,), (4, 3), (2, 2, 1), ()]:
+        words = f"points must be one point (2,) or an array (..., 2) of points, got shape {shape}"
+        with pytest.raises(ValueError, match=re.escape(words)):
+            slc.distance(curves, np.zeros(shape))
+
+
+def test_one_list_of_points_is_one_curve_and_a_list_of_them_many():
+    # A 2D array-like of numbers with last dimension 2 is one curve; it used to be read as three
+    # curves of one point each, and refused.
+    triangle = [[0, 0], [1, 0], [0, 1]]
+    for one in (triangle, np.array(triangle), [np.array(p) for p in triangle]):
+        curves = slc.Interface(one)
+        assert len(curves) == 1 and curves.area == pytest.approx(0.5)
+    square = [[2, 2], [3, 2], [3, 3], [2, 3]]
+    for many, area in [([triangle, square], 1.5), ([np.array(triangle), np.array(square)], 1.5),
+                       ([triangle, [[2, 2], [3, 2], [2, 3]]], 1.0)]:  # of equal lengths
+        curves = slc.Interface(many)
+        assert len(curves) == 2 and curves.area == pytest.approx(area)
+    d, _ = slc.distance(triangle, [0.25, 0.25])
+    assert d == pytest.approx(-0.25)
 
 
 # ---- distance ----------------------------------------------------------------------------------
@@ -98,6 +119,27 @@ def test_distance_is_signed_with_nearest_points():
     np.testing.assert_allclose(d, [-1, 2, math.sqrt(2), -0.5], atol=1e-15)
     np.testing.assert_allclose(nearest, [[nearest[0][0], nearest[0][1]], [1, 0], [1, 1], [0.5, -1]])
     assert d.shape == (4,) and nearest.shape == (4, 2)
+
+
+def test_distance_of_one_point_is_a_number_and_of_a_grid_keeps_its_shape():
+    # As scikit-fmm and scipy answer: one point (2,) gives a float and a (2,) point, a grid
+    # (..., 2) distances (...) and nearest points (..., 2), each the same as the rows alone.
+    square = slc.Interface([[-1, -1], [1, -1], [1, 1], [-1, 1]])
+    d, nearest = slc.distance(square, [3, 0])
+    assert np.ndim(d) == 0 and d == pytest.approx(2.0) and nearest.shape == (2,)
+    np.testing.assert_allclose(nearest, [1, 0])
+    x, y = np.meshgrid(np.linspace(-2, 2, 5), np.linspace(-2, 2, 3))
+    grid = np.stack([x, y], axis=-1)
+    d, nearest = slc.distance(square, grid)
+    assert d.shape == (3, 5) and nearest.shape == (3, 5, 2)
+    rows_d, rows_nearest = slc.distance(square, grid.reshape(-1, 2))
+    np.testing.assert_array_equal(d, rows_d.reshape(3, 5))
+    np.testing.assert_array_equal(nearest, rows_nearest.reshape(3, 5, 2))
+    assert d[1, 2] == pytest.approx(-1.0) and d[0, 0] == pytest.approx(math.sqrt(2))
+    with pytest.raises(ValueError, match=r"point 0: \(nan, 0\) is not finite"):
+        slc.distance(square, [np.nan, 0.0])
+    with pytest.raises(ValueError, match=r"point 3: \(inf, 0\) is not finite"):
+        slc.distance(square, [[[0, 0], [1, 0]], [[0, 1], [np.inf, 0]]])
 
 
 @pytest.mark.parametrize("point, words", [
@@ -350,6 +392,67 @@ def test_python_vertex_velocity_and_flow_field_turn_a_full_circle():
         assert [t for t, _ in r.frames] == pytest.approx(np.linspace(0, 2 * math.pi, 5))
         assert r.interface.area == pytest.approx(initial.area, rel=1e-2)
     assert r.summary["params"]["extension"] == "nearest"
+
+
+def test_a_built_in_laws_parameters_are_keywords_of_run():
+    # run(I, "rotation", t, omega=2) is run(I, "rotation", t, params={"omega": 2}); a keyword that
+    # is neither an option nor the law's parameter is refused naming it and the law's
+    # parameters (it used to be a TypeError of Python's, and params= the only way).
+    initial = slc.Interface(ellipse())
+    a = slc.run(initial, "rotation", 0.1, steps=2, omega=2)
+    b = slc.run(initial, "rotation", 0.1, steps=2, params={"omega": 2})
+    assert a.summary["params"]["velocity_params"]["omega"] == 2.0
+    for x, y in zip(a.interface.curves, b.interface.curves):
+        np.testing.assert_array_equal(x, y)
+    c = slc.run(initial, "rotation", 0.1, steps=2, omega=2, params={"cx": 0.0})
+    np.testing.assert_array_equal(c.interface.points, a.interface.points)
+    with pytest.raises(ValueError, match="velocity 'rotation' has no parameter 'omga'; its "
+                                         "parameters: omega, cx, cy"):
+        slc.run(initial, "rotation", 0.1, omga=2)
+    with pytest.raises(ValueError, match="'omega' is given twice, in params and as a keyword"):
+        slc.run(initial, "rotation", 0.1, params={"omega": 1}, omega=2)
+    with pytest.raises(ValueError, match="run\\(\\) has no option 'omega'"):
+        slc.run(initial, lambda t, p: p, 0.1, omega=2)
+    with pytest.raises(ValueError, match="study\\(\\) has no option 'omega'"):
+        slc.study(initial, slc.FieldExpression("-y, x"), 0.1, omega=2)
+    with pytest.raises(ValueError, match="a named problem runs its own law"):
+        slc.run(slc.problem("zalesak"), omega=2)
+
+
+def _expected_threads(cores: int) -> int:
+    """The tool's --threads 0: OMP_NUM_THREADS when set to a positive count, else the cores,
+    never more than the cores."""
+    n = os.environ.get("OMP_NUM_THREADS", "")
+    return min(int(n), cores) if n.isdigit() and int(n) > 0 else cores
+
+
+def test_threads_are_the_tools_threads_and_the_summary_reports_them():
+    # It used to report the process's default, set again when the run was over.
+    cores = len(os.sched_getaffinity(0))
+    initial = slc.Interface(ellipse())
+    for threads, expected in [(1, 1), (None, _expected_threads(cores)),
+                              (0, _expected_threads(cores)), (10**6, cores)]:
+        r = slc.run(initial, "rotation", 0.1, steps=2, threads=threads)
+        assert r.summary["threads"] == expected, threads
+    with pytest.raises(ValueError, match="threads must be 0 or more, got -1"):
+        slc.run(initial, "rotation", 0.1, steps=2, threads=-1)
+    with pytest.raises(TypeError, match="threads must be an integer or None"):
+        slc.run(initial, "rotation", 0.1, steps=2, threads=True)
+
+
+def test_omp_num_threads_sets_the_threads_as_for_the_tool():
+    script = (
+        "import numpy as np, slc\n"
+        "th = np.linspace(0, 2 * np.pi, 64, endpoint=False)\n"
+        "r = slc.run(slc.Interface(np.c_[np.cos(th), 0.6 * np.sin(th)]), 'rotation', 0.1,\n"
+        "            steps=2)\n"
+        "s = slc.Surface(slc.contour_surface(lambda p: np.linalg.norm(p, axis=1) - 0.5, 1.0, 3))\n"
+        "q = slc.run(s, 'rotation', 0.1, steps=1, depth=3)\n"
+        "print(r.summary['threads'], q.summary['params']['threads'])\n")
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         env=dict(os.environ, OMP_NUM_THREADS="1"), timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["1", "1"]
 
 
 def test_a_callable_of_two_arguments_is_a_flow_field():

@@ -75,6 +75,36 @@ def test_a_surface_problems_exact_solution_refuses_points_not_finite():
     assert p.exact(np.array([[0.0, 0.0, 0.0]]), 0.0).shape == (1,)
 
 
+def cube():
+    """The cube [-1, 1]³, each face two triangles counterclockwise seen from outside."""
+    v = [[x, y, z] for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)]
+    v = [v[0], v[1], v[3], v[2], v[4], v[5], v[7], v[6]]  # counterclockwise around each z face
+    t = [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [2, 3, 7], [2, 7, 6],
+         [0, 4, 7], [0, 7, 3], [1, 2, 6], [1, 6, 5]]
+    return slc.Surface(v, t)
+
+
+def test_distance_to_a_surface_is_exact_signed_and_keeps_the_shape_of_the_points():
+    # As `slc distance --initial cube.obj`: it used to be a TypeError naming the Surface. One
+    # point gives a float and a (3,) point, a grid (..., 3) distances (...) and nearest (..., 3).
+    s = cube()
+    d, nearest = slc.distance(s, [[0, 0, 0], [3, 0, 0], [2, 2, 2], [0.5, -0.2, 0.1]])
+    np.testing.assert_allclose(d, [-1, 2, math.sqrt(3), -0.5], atol=1e-15)
+    np.testing.assert_allclose(nearest[1:], [[1, 0, 0], [1, 1, 1], [1, -0.2, 0.1]], atol=1e-15)
+    assert abs(np.abs(nearest[0]).max() - 1) < 1e-15  # on a face: every one is as near
+    d, nearest = slc.distance(s, [0, 0, 3])
+    assert np.ndim(d) == 0 and d == pytest.approx(2.0) and nearest.shape == (3,)
+    grid = np.stack(np.meshgrid(*3 * [np.linspace(-2, 2, 3)], indexing="ij"), axis=-1)
+    d, nearest = slc.distance(s, grid)
+    assert d.shape == (3, 3, 3) and nearest.shape == (3, 3, 3, 3)
+    assert d[1, 1, 1] == pytest.approx(-1.0) and d[0, 1, 1] == pytest.approx(1.0)
+    with pytest.raises(ValueError, match=r"points must be one point \(3,\) or an array "
+                                         r"\(\.\.\., 3\) of points, got shape \(4, 2\)"):
+        slc.distance(s, np.zeros((4, 2)))
+    with pytest.raises(ValueError, match=r"point 1: \(0, nan, 0\) is not finite"):
+        slc.distance(s, [[0, 0, 0], [0, np.nan, 0]])
+
+
 # ---- runs --------------------------------------------------------------------------------------
 
 
@@ -97,6 +127,30 @@ def test_python_laws_equal_the_built_in_ones_bit_for_bit():
     assert np.array_equal(grow.surface.vertices, typed.surface.vertices)
     # Unit speed: the sphere of radius 0.55, to the contour's tolerance (measured 1.4e-4).
     assert np.abs(np.linalg.norm(grow.surface.vertices, axis=1) - 0.55).max() < 3e-3
+
+
+def test_a_built_in_laws_parameters_are_keywords_of_run_for_surfaces_too():
+    # The same path as for curves: omega=2 is params={"omega": 2}, to the last bit, and differs
+    # from the default omega = 1; an unknown keyword names itself and the law's parameters.
+    s = sphere(depth=3, eps=3e-3)
+    s = slc.Surface(s.vertices + [0.2, 0, 0], s.triangles)  # off the axis: a rotation moves it
+    a = slc.run(s, "rotation", 0.1, steps=1, depth=3, threads=1, omega=2)
+    b = slc.run(s, "rotation", 0.1, steps=1, depth=3, threads=1, params={"omega": 2})
+    c = slc.run(s, "rotation", 0.1, steps=1, depth=3, threads=1)
+    np.testing.assert_array_equal(a.surface.vertices, b.surface.vertices)
+    # The centre (0.2, 0, 0) turns about z by omega t: the area centroid's y is 0.2 sin(omega t)
+    # to 2.6e-4 (measured) on this coarse sphere; the two omegas are 2e-2 apart.
+    for r, omega in [(a, 2), (c, 1)]:
+        v, t = r.surface.vertices, r.surface.triangles
+        centroids = v[t].mean(axis=1)
+        areas = np.linalg.norm(np.cross(v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]]), axis=1)
+        y = (centroids[:, 1] * areas).sum() / areas.sum()
+        assert y == pytest.approx(0.2 * math.sin(0.1 * omega), abs=1e-3), omega
+    with pytest.raises(ValueError, match="velocity 'rotation' has no parameter 'omga'; its "
+                                         "parameters: omega, ax, ay, az, cx, cy, cz"):
+        slc.run(s, "rotation", 0.1, omga=2)
+    with pytest.raises(ValueError, match="run\\(\\) has no option 'omega'"):
+        slc.run(s, slc.FieldExpression("-y, x, 0"), 0.1, omega=2)
 
 
 def test_a_python_curvature_law_shrinks_a_sphere_as_R2_falls_at_4():
