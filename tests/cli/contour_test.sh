@@ -22,8 +22,17 @@ check "eps alone refines until converged" python3 -c "import json, sys; s = json
 expect_ok "refine 0 with eps" -- contour --initial circle.json -K 4 --eps 1e-4 --refine 0 --domain 2 --out eps_linear
 check "refine 0 is the linear contour" python3 -c "import json, sys; s = json.load(open('eps_linear/summary.json')); sys.exit(not (s['params']['P'] == 0 and s['passes'] == 0 and s['error'] > 1e-4))"
 expect_error "negative eps" "eps" -- contour --initial square.json -K 4 --eps -1 --domain 2 --out x
-expect_ok "depth by default" -- contour --initial square.json --domain 2 --out default_depth
-check "the default depth is a run's, K = 5" python3 -c "import json, sys; s = json.load(open('default_depth/summary.json')); sys.exit(s['params']['K'] != 5)"
+# Without -K, K is the one slc run takes for a user's curves (depth_for_domain): 5 in the default
+# domain, a level deeper for each doubling beyond it ([-2, 2]^2 is 4/3 of the square's default
+# [-1.5, 1.5]^2: K = 6; [-20, 20]^2, 13.3 times: K = 9).
+expect_ok "depth by default" -- contour --initial square.json --out default_depth
+check "the default depth is a run's, K = 5" test "$(json default_depth/summary.json 's["params"]["K"]')" = 5
+for b in 2 20; do
+    expect_ok "depth by default in [-$b, $b]^2" -- contour --initial square.json --domain $b --out default_depth_$b
+    expect_ok "a run in [-$b, $b]^2" -- run --initial square.json --domain $b --velocity rotation --t-end 0.1 -N 1 --quiet --out run_depth_$b
+    check "contour and run take the same K in [-$b, $b]^2" test "$(json default_depth_$b/summary.json 's["params"]["K"]')" = "$(json run_depth_$b/summary.json 's["params"]["K"]')"
+done
+check "K = 6 and 9" test "$(json default_depth_2/summary.json 's["params"]["K"]') $(json default_depth_20/summary.json 's["params"]["K"]')" = "6 9"
 
 # A shape of any size contours alike: eps and eta scale with it (1e-10 absolute would exceed
 # every |G| of a circle of radius 5e-9). The same cells, segments and relative error at 5e-9 and

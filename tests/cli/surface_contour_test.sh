@@ -38,6 +38,15 @@ f 4 1 5 8
 OBJ
 expect_ok "a surface file contours its exact distance" -- contour --initial box.obj -K 5 --out box
 check "box volume within 2%" test "$(json box/summary.json 'abs(s["volume"] / (0.95 * 0.75 * 0.8) - 1) < 0.02')" = True
+# Without -K, K is the one slc run takes for a user's surface (depth_for_domain): 5 in the default
+# cube (1.5 times the box's half-side 0.475), 6 in [-1.4, 1.4]^3 (1.96 times as wide), as
+# `slc run --initial box.obj --domain 1.4` takes; a function's default cube is [-1, 1]^3.
+expect_ok "a surface's depth by default" -- contour --initial box.obj --thin-depth 0 --out box_k
+check "K = 5 by default" test "$(json box_k/summary.json 's["params"]["K"]')" = 5
+expect_ok "a wider domain" -- contour --initial box.obj --thin-depth 0 --domain 1.4 --out box_k6
+check "K = 6 in a domain 1.96 times as wide" test "$(json box_k6/summary.json 's["params"]["K"]')" = 6
+expect_ok "a function's depth by default" -- contour --function sphere --domain 2 --out sphere_k6
+check "K = 6 for a function in [-2, 2]^3" test "$(json sphere_k6/summary.json 's["params"]["K"]')" = 6
 check "box vertices on the box" test "$(json box/summary.json 's["error_vertices"] < 1e-9')" = True
 check "a linear contour says nothing of converging" test "$(json box/summary.json '"converged" in s')" = False
 

@@ -33,7 +33,7 @@ constexpr int converged_passes = 1000;
 struct ContourCommandOptions {
     std::string initial;
     std::string function;
-    int depth = 5;
+    std::optional<int> depth;  ///< unset: depth_for_domain, as slc run takes for a user's shape
     std::optional<double> eps;
     int refine = 0;
     std::optional<double> eta;
@@ -105,11 +105,11 @@ void draw(const ContourResult& r, const Interface& input, const Box& domain,
 
 /// The contour's options: ε and η as given, or by the rule of a run of the curves, ℓ their
 /// length scale.
-ContourOptions library_options(const ContourCommandOptions& o, double length_scale) {
+ContourOptions library_options(const ContourCommandOptions& o, int depth, double length_scale) {
     const ContourTolerances tolerances =
-        contour_tolerances(2, o.depth, o.refine, length_scale, o.eps, o.eta);
+        contour_tolerances(2, depth, o.refine, length_scale, o.eps, o.eta);
     ContourOptions options;
-    options.depth = o.depth;
+    options.depth = depth;
     options.refine_passes = o.refine;
     options.eps = tolerances.eps;
     options.eta = tolerances.eta;
@@ -127,7 +127,7 @@ nlohmann::json summary_head(const ContourCommandOptions& o, const LoadedInterfac
             {"time", in.time},
             {"domain", box_json(in.domain)},
             {"params",
-             {{"K", o.depth},
+             {{"K", options.depth},
               {"P", o.refine},
               {"eps", options.resolved_eps()},
               {"eta", options.resolved_eta()},
@@ -141,11 +141,12 @@ nlohmann::json summary_head(const ContourCommandOptions& o, const LoadedInterfac
 std::string picture_title(const ContourCommandOptions& o, const ContourOptions& options,
                           const ContourResult& r, double error) {
     if (o.refine == 0) {
-        return fmt::format("Linear contour, K = {}: {} segments, error {:.2e}", o.depth,
+        return fmt::format("Linear contour, K = {}: {} segments, error {:.2e}", options.depth,
                            r.stats.segments, error);
     }
     return fmt::format("Contour K = {}, eps = {:.0e}, {} passes: {} segments, error {:.2e}",
-                       o.depth, options.resolved_eps(), r.stats.passes, r.stats.segments, error);
+                       options.depth, options.resolved_eps(), r.stats.passes, r.stats.segments,
+                       error);
 }
 
 /// final.json, the pictures, then summary.json (last, so that it marks a complete run).
@@ -177,11 +178,14 @@ void run_contour(const ContourCommandOptions& o) {
     apply_threads(o.threads);
     const LoadedInterface in = load_interface(o.initial, o.domain);
     const int tree_depth = o.tree_depth.value_or(DistanceTree::default_depth(in.curves, in.domain));
-    const ContourOptions options = library_options(o, length_scale(in.curves));
+    // K as slc run resolves it for a user's curves: 5, deeper for a domain wider than the default.
+    const int depth = o.depth.value_or(
+        depth_for_domain(2, in.domain.width(), default_domain(in.curves.curves()).width()));
+    const ContourOptions options = library_options(o, depth, length_scale(in.curves));
     check_tree_memory(fmt::format("--tree-depth {}", tree_depth), tree_depth, length(in.curves),
                       in.domain.width(), distance_bytes_per_cell);
-    check_tree_memory(fmt::format("--depth {}", o.depth), o.depth, length(in.curves),
-                      in.domain.width(), contour_bytes_per_cell);
+    check_tree_memory(fmt::format("--depth {}", depth), depth, length(in.curves), in.domain.width(),
+                      contour_bytes_per_cell);
     nlohmann::json summary = summary_head(o, in, options, tree_depth);
     OutputFolder folder(o.out, false);
 
@@ -204,15 +208,18 @@ void add_contour_command(CLI::App& app) {
         "Contours the exact signed distance of an interface (paper Tables 2 and 3): writes "
         "final.json, summary.json (cells, segments, mean segment length, error = max |F| over "
         "vertices and segment midpoints, cpu_s, g_evals, g_evals_per_vertex) and final.svg/.png "
-        "(tree and contour)");
+        "(tree and contour); for a surface (.obj, .stl, .ply) or --function, final.obj, "
+        "final.vtp, final.png and summary.json (triangles, error over vertices, edge midpoints "
+        "and centroids)");
     const auto require_source = add_initial_or_builtin(
         *cmd, o->initial,
         "Interface file (JSON), or a closed surface (.obj, .stl, .ply) contoured in space",
         "--function", o->function,
         "Instead of --initial, a built-in implicit surface in [-1, 1]^3: sphere, torus, cassini");
     cmd->add_option("-K,--depth", o->depth,
-                    "Depth K of the contouring tree (default 5, as slc run takes for a shape of "
-                    "your own)")
+                    "Depth K of the contouring tree (default as slc run takes for a shape of your "
+                    "own: 5, one level deeper for each doubling of --domain or --box beyond the "
+                    "default domain; for --function, beyond [-1, 1]^3)")
         ->check(integer_in(0, 20));
     cmd->add_option("--eps", o->eps,
                     "Tolerance eps of refinement on |G| at segment midpoints (for a surface: "

@@ -11,8 +11,10 @@ namespace slc::cli {
 
 void add_problem_source_options(CLI::App& cmd, ProblemSource& o) {
     auto* problem = cmd.add_option("--problem", o.problem, problem_help());
-    auto* initial = cmd.add_option("--initial", o.initial,
-                                   "Interface file (JSON) to move instead of a problem");
+    auto* initial = cmd.add_option(
+        "--initial", o.initial,
+        "Curves (an interface file, .json) or a closed triangle surface (.obj, .stl, "
+        ".ply) to move instead of a problem");
     problem->excludes(initial);
     cmd.add_option("--velocity", o.velocity, velocity_help())->excludes(problem);
     cmd.add_option("--speed", o.speed,

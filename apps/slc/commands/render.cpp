@@ -98,7 +98,9 @@ void add_render_command(CLI::App& app) {
         app, "render",
         "Draws interface files as SVG or PNG (by the extension of --out), or the frames of a run "
         "as an animated SVG (--frames)");
-    auto* files = cmd->add_option("files", o->files, "Interface files (JSON)");
+    auto* files = cmd->add_option("files", o->files,
+                                  "Interface files of curves (JSON); a surface's "
+                                  "pictures are drawn by slc run and slc contour (final.png)");
     cmd->add_option("--frames", o->frames,
                     "Instead of files: the frames of a run (DIR/frames/frame_*.json, from slc run "
                     "--out DIR --frames n) as an animated SVG, each frame in turn over a trail of "

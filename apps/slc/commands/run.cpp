@@ -357,7 +357,9 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
                     "Output folder (required, except with --resume): summary.json, final.json, "
-                    "final.svg/.png, history.csv/.png, frames");
+                    "final.svg/.png, history.csv/.png, frames; for a surface final.obj, "
+                    "final.vtp and final.png instead of final.json and final.svg, and "
+                    "initial.obj");
     cmd->add_option(
            "--checkpoint-every", o->checkpoint_every,
            "Write DIR/checkpoint.json every n steps, and when stopped by Ctrl-C or SIGTERM")
@@ -468,8 +470,9 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
 void add_run_command(CLI::App& app) {
     const auto [cmd, o] =
         add_command<RunCommand>(app, "run",
-                                "Moves an interface: a named problem (--problem) or your curve "
-                                "(--initial) under a velocity law");
+                                "Moves an interface: a named problem (--problem), or your curves "
+                                "(.json) or surface (.obj, .stl, .ply) given by --initial, under a "
+                                "velocity law");
     add_run_options(cmd, o.get());
     cmd->callback([o, cmd] {
         if (!o->resume.empty()) return resume_command(*cmd, *o);

@@ -32,11 +32,13 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                    "N: time steps on [0, a] (a problem's own; for --initial 40 for curves and 20 "
                    "for a surface, under every law)")
         ->check(integer_in(setting_range::steps));
-    cmd.add_option("-K,--depth", o.settings.depth,
-                   fmt::format("K: depth of the contouring tree (a problem's own; 5 for --initial; "
-                               "{} to {} for curves, {} to {} for surfaces)",
-                               setting_range::curve_depth.lo, setting_range::curve_depth.hi,
-                               setting_range::surface_depth.lo, setting_range::surface_depth.hi))
+    cmd.add_option(
+           "-K,--depth", o.settings.depth,
+           fmt::format("K: depth of the contouring tree (a problem's own; 5 for --initial, a "
+                       "level deeper for each doubling of --domain or --box beyond the "
+                       "default; {} to {} for curves, {} to {} for surfaces)",
+                       setting_range::curve_depth.lo, setting_range::curve_depth.hi,
+                       setting_range::surface_depth.lo, setting_range::surface_depth.hi))
         ->check(
             integer_in(setting_range::curve_depth.lo,
                        std::max(setting_range::curve_depth.hi, setting_range::surface_depth.hi)));

@@ -85,10 +85,16 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         source.lipschitz = true;
     }
     const double width = source.domain.width();
+    // K as slc run resolves it for a user's surface: 5, deeper for a domain wider than the
+    // default (the cube around the surface, or [-1, 1]^3 around a built-in function).
+    const double default_width = source.surface
+                                     ? default_domain(bounding_box(*source.surface)).width()
+                                     : Box3::centered_cube(1.0).width();
+    const int depth = r.depth.value_or(depth_for_domain(3, width, default_width));
     // The octree hugs the surface: about area / h² cells at the finest level. A function's area
     // is not known before it is contoured; six faces of the domain bound any reasonable one.
     const double surface_area = source.surface ? area(*source.surface) : 6.0 * width * width;
-    check_octree_memory(fmt::format("--depth {}", r.depth), r.depth, surface_area, width,
+    check_octree_memory(fmt::format("--depth {}", depth), depth, surface_area, width,
                         surface_contour_bytes_per_cell);
     nlohmann::json summary = {{"command", "contour"},
                               {r.function.empty() ? "input" : "function", source.name},
@@ -96,16 +102,17 @@ void run_surface_contour(const SurfaceContourRequest& r) {
                                {source.domain.lo.x, source.domain.lo.y, source.domain.lo.z,
                                 source.domain.hi.x, source.domain.hi.y, source.domain.hi.z}},
                               {"params",
-                               {{"K", r.depth},
+                               {{"K", depth},
                                 {"P", r.refine},
                                 {"thin_depth", r.thin_depth},
                                 {"threads", thread_count()}}}};
     OutputFolder folder(r.out, false);
     if (source.surface) {
-        const int depth = r.tree_depth.value_or(
+        const int tree_depth = r.tree_depth.value_or(
             SurfaceDistanceTree::default_depth(*source.surface, source.domain));
-        summary["params"]["L"] = depth;
-        tree.emplace(*source.surface, source.domain, SurfaceDistanceTree::Options{.depth = depth});
+        summary["params"]["L"] = tree_depth;
+        tree.emplace(*source.surface, source.domain,
+                     SurfaceDistanceTree::Options{.depth = tree_depth});
         source.g = [&tree](Vec3 x) { return tree->closest_point(x).distance; };
         source.exact = source.g;
     }
@@ -113,9 +120,9 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     // A signed distance is 1-Lipschitz: points far from its surface need no value.
     // ε and η as given, or by the rule of a run of the surface.
     const ContourTolerances tolerances = contour_tolerances(
-        3, r.depth, r.refine, source.surface ? length_scale(*source.surface) : 1.0, r.eps, r.eta);
+        3, depth, r.refine, source.surface ? length_scale(*source.surface) : 1.0, r.eps, r.eta);
     const SurfaceContourOptions options{
-        .depth = r.depth,
+        .depth = depth,
         .refine_passes = r.refine,
         .eps = tolerances.eps,
         .eta = tolerances.eta,
@@ -172,10 +179,9 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     write_file_atomic(dir / "final.vtp", vtp_text(s, 0.0));
     if (!s.triangles.empty()) {
         std::string title =
-            r.refine == 0
-                ? fmt::format("Linear contour, K = {}: {} triangles", r.depth, st.triangles)
-                : fmt::format("Contour K = {}, eps = {:.0e}, {} passes: {} triangles", r.depth,
-                              options.resolved_eps(), st.passes, st.triangles);
+            r.refine == 0 ? fmt::format("Linear contour, K = {}: {} triangles", depth, st.triangles)
+                          : fmt::format("Contour K = {}, eps = {:.0e}, {} passes: {} triangles",
+                                        depth, options.resolved_eps(), st.passes, st.triangles);
         if (error) title += fmt::format(", error {:.2e}", *error);
         save_surface_picture(s, dir / "final.png", {.title = title});
     }

@@ -11,9 +11,9 @@ namespace slc::cli {
 
 /// What `slc contour` was given, for a surface file or a built-in function.
 struct SurfaceContourRequest {
-    std::string initial;   ///< a surface file, or empty
-    std::string function;  ///< a built-in implicit surface, or empty
-    int depth = 0;
+    std::string initial;       ///< a surface file, or empty
+    std::string function;      ///< a built-in implicit surface, or empty
+    std::optional<int> depth;  ///< K; unset: depth_for_domain, as slc run takes for a surface
     int refine = 0;
     std::optional<double> eps;
     std::optional<double> eta;  ///< unset: contour_tolerances
