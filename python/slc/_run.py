@@ -4,6 +4,7 @@ studies, on top of the module _slc (the library's run loop, with the GIL release
 from __future__ import annotations
 
 import inspect
+import warnings
 from dataclasses import dataclass, field
 from typing import Any, Callable, NamedTuple
 
@@ -339,9 +340,9 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     splits cells up to that many levels beyond K where a part thinner than a
     cell lies; volume_drift (surfaces only, as ``--volume-drift``) is the fraction of its volume a
     surface under a law that keeps it may drift before the run ends "unstable" (0.01 unless set);
-    guards=False (surfaces only, as ``--no-guards``) takes every step whole and goes on to the end
-    even when one breaks what the law keeps, to see what a coarse run gives: the result's status is
-    then "broken" and its message names the first break.
+    guards=False (as ``--no-guards``, curves and surfaces) takes every step whole and goes on to the
+    end even when one breaks what the law keeps, to see what a coarse run gives: the result's
+    status is then "broken", its message names the first break, and a UserWarning says so.
 
     velocity: a built-in law's name (``velocities()``; its parameters as keywords,
     ``run(I, "rotation", 1.0, omega=2)``, or in params), a FlowField, a
@@ -385,6 +386,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
             return observer(Step(step, n, t, Interface._trusted(arrays, t), cpu_s))
 
     out = _slc.run(p, law, options, int(frames), threads, on_step, bool(estimate))
+    if out["status"] == "broken":
+        warnings.warn(f"guards=False: {out['message']}", stacklevel=3)
     return RunResult(
         interface=Interface._trusted(out["curves"], out["t"]),
         frames=[(t, Interface._trusted(a, t)) for t, a in out["frames"]],
