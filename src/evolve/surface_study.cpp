@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "resolution_study.hpp"
@@ -67,25 +68,37 @@ SurfaceRunOptions surface_resolution_options(const SurfaceRunOptions& base, int 
 
 namespace {
 
-/// The largest exact distance from a vertex or centroid of a to b (not empty).
-double one_way_distance(const Surface& a, const Surface& b) {
-    const Box3 box = unite(bounding_box(a), bounding_box(b));
+/// The signed distances from points to b (not empty), b's tree built in the cube around both.
+std::vector<double> signed_distances_to(std::span<const Vec3> points, const Surface& b) {
+    Box3 box = bounding_box(b);
+    for (const Vec3& p : points) box = unite(box, Box3{p, p});
     const double half =
         0.5 * std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z, 1e-300});
     const Box3 domain = Box3::cube(box.center(), 1.1 * half);
     const SurfaceDistanceTree tree(b, domain,
                                    {.depth = SurfaceDistanceTree::default_depth(b, domain)});
+    return tree.signed_distances(points);
+}
+
+/// The largest exact distance from a vertex or centroid of a to b (not empty).
+double one_way_distance(const Surface& a, const Surface& b) {
     std::vector<Vec3> points = a.vertices;
     for (std::size_t i = 0; i < a.size(); ++i) {
         const Triangle3 t = a.triangle(i);
         points.push_back((t.a + t.b + t.c) / 3.0);
     }
     double d = 0.0;
-    for (const double f : tree.signed_distances(points)) d = std::max(d, std::abs(f));
+    for (const double f : signed_distances_to(points, b)) d = std::max(d, std::abs(f));
     return d;
 }
 
 }  // namespace
+
+std::vector<double> vertex_distances(const Surface& a, const Surface& b) {
+    if (a.vertices.empty()) return {};
+    if (b.empty()) throw InvalidInput("vertex_distances: the surface to measure to is empty");
+    return signed_distances_to(a.vertices, b);
+}
 
 double surface_distance(const Surface& a, const Surface& b) {
     if (a.empty() && b.empty()) return 0.0;

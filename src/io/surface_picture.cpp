@@ -1,7 +1,8 @@
 // Shaded pictures of closed triangle surfaces drawn with cairo: an orthographic camera from an
 // azimuth and an elevation, back faces culled, the front faces painted far to near by the depth
 // of their centroids (the painter's algorithm) in flat Lambert shading, written atomically as
-// PNG or SVG through render.cpp's output.
+// PNG or SVG through render.cpp's output; below the surface, a band with an axis triad, a colour
+// bar when the surface is coloured by a quantity, and a scale bar.
 #include "slc/io/surface_picture.hpp"
 
 #include <cairo.h>
@@ -45,6 +46,20 @@ constexpr double edge_width = 0.6;
 constexpr double edge_brightness = 0.55;
 /// Surfaces with more triangles than this are drawn without edges: the edges would cover them.
 constexpr std::size_t max_edged_triangles = 20000;
+/// The band of guides below the surface (triad, colour bar, scale bar), its font size and the
+/// triad's arm, as fractions of the picture's shorter side; the font's least size.
+constexpr double guide_band_fraction = 0.11;
+constexpr double guide_font_fraction = 0.022;
+constexpr double min_guide_font = 8.0;
+constexpr double triad_arm_fraction = 0.045;
+/// The scale bar is the longest 1, 2 or 5 × 10^n at most this fraction of the width.
+constexpr double scale_bar_fraction = 0.2;
+/// The colour bar spans this part of the width, and is this fraction of the shorter side tall.
+constexpr double colorbar_lo = 0.3;
+constexpr double colorbar_hi = 0.66;
+constexpr double colorbar_thickness = 0.018;
+/// Up axes whose extents differ by less than this ratio count as alike (up_axis).
+constexpr double alike_extent = 0.9;
 
 /// The camera's orthonormal frame: the picture's right and up, and the direction toward the
 /// viewer (right × up = toward); and the unit direction toward the light.
@@ -57,13 +72,31 @@ struct Camera {
 
 Vec3 unit(Vec3 v) { return v / norm(v); }
 
+/// The unit vectors e1, e2, e3 of a right-handed frame whose third is the up axis: (x, y, z),
+/// (z, x, y) or (y, z, x), the axes in cyclic order.
+std::array<Vec3, 3> up_frame(UpAxis up) {
+    const Vec3 x{1.0, 0.0, 0.0};
+    const Vec3 y{0.0, 1.0, 0.0};
+    const Vec3 z{0.0, 0.0, 1.0};
+    switch (up) {
+        case UpAxis::x:
+            return {y, z, x};
+        case UpAxis::y:
+            return {z, x, y};
+        case UpAxis::z:
+            break;
+    }
+    return {x, y, z};
+}
+
 Camera camera(const SurfaceView& view) {
     const double a = view.azimuth * std::numbers::pi / 180.0;
     const double e = view.elevation * std::numbers::pi / 180.0;
+    const auto [e1, e2, e3] = up_frame(view.up);
     Camera c;
-    c.toward = {std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)};
-    c.right = {-std::sin(a), std::cos(a), 0.0};
-    c.up = cross(c.toward, c.right);  // +z up unless seen from straight above or below
+    c.toward = std::cos(e) * std::cos(a) * e1 + std::cos(e) * std::sin(a) * e2 + std::sin(e) * e3;
+    c.right = -std::sin(a) * e1 + std::cos(a) * e2;
+    c.up = cross(c.toward, c.right);  // e3 up unless seen from straight above or below
     // Near the viewer, a little above and to the left: the lit and the shaded sides both show.
     c.light = unit(c.toward + 0.6 * c.up - 0.4 * c.right);
     return c;
@@ -91,6 +124,13 @@ double margin_size(const SurfaceView& view) {
     return margin_fraction * std::min(view.width, view.height);
 }
 
+/// The empty band below the surface: the margin, or the band of guides.
+double bottom_size(const SurfaceView& view) {
+    const double margin = margin_size(view);
+    return view.guides ? std::max(margin, guide_band_fraction * std::min(view.width, view.height))
+                       : margin;
+}
+
 PageMap page_map(const Box3& box, const SurfaceView& view) {
     PageMap map{camera(view), {}, {}, 1.0};
     Vec2 lo{INFINITY, INFINITY};
@@ -105,7 +145,7 @@ PageMap page_map(const Box3& box, const SurfaceView& view) {
     const double margin = margin_size(view);
     const double top = view.title.empty() ? margin : std::max(margin, 2.0 * title_size(view));
     const double room_x = std::max(view.width - 2.0 * margin, 1.0);
-    const double room_y = std::max(view.height - top - margin, 1.0);
+    const double room_y = std::max(view.height - top - bottom_size(view), 1.0);
     const double scale = std::min(hi.x > lo.x ? room_x / (hi.x - lo.x) : INFINITY,
                                   hi.y > lo.y ? room_y / (hi.y - lo.y) : INFINITY);
     map.center = {0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y)};
@@ -155,16 +195,37 @@ void set_rgb(cairo_t* cr, Color c, double brightness) {
 }
 
 /// What painting needs of the scene: the surfaces with their vertices on the page, colours and
-/// whether their edges are drawn.
+/// whether their edges are drawn; and the quantity the first surface is coloured by, if any.
 struct Scene {
     std::span<const Surface> surfaces;
     std::vector<std::vector<Vec2>> page;  // per surface, per vertex
     std::vector<Color> colors;
     std::vector<bool> edged;
+    const SurfaceColoring* coloring = nullptr;
+    FieldRange range;
+
+    /// The colour of triangle t of surface i: its quantity's at the mean of its corners, or the
+    /// surface's.
+    Color color(std::uint32_t i, std::uint32_t t) const {
+        if (coloring == nullptr || i != 0) return colors[i];
+        const TriangleIndices& tri = surfaces[i].triangles[t];
+        const double v =
+            (coloring->values[tri[0]] + coloring->values[tri[1]] + coloring->values[tri[2]]) / 3.0;
+        return map_color(color_map(true), range.t(v));
+    }
 };
 
-Scene scene(std::span<const Surface> surfaces, const PageMap& map, const SurfaceView& view) {
-    Scene sc{surfaces, {}, {}, {}};
+/// ±max|v| over the values, or ±1 when they are all zero.
+FieldRange symmetric_range(std::span<const double> values) {
+    double m = 0.0;
+    for (const double v : values) m = std::max(m, std::abs(v));
+    return m > 0.0 ? FieldRange{-m, m} : FieldRange{-1.0, 1.0};
+}
+
+Scene scene(std::span<const Surface> surfaces, const PageMap& map, const SurfaceView& view,
+            const SurfaceColoring* coloring) {
+    Scene sc{surfaces, {}, {}, {}, coloring, {}};
+    if (coloring != nullptr) sc.range = symmetric_range(coloring->values);
     for (std::size_t i = 0; i < surfaces.size(); ++i) {
         std::vector<Vec2> page(surfaces[i].vertices.size());
         std::transform(surfaces[i].vertices.begin(), surfaces[i].vertices.end(), page.begin(),
@@ -198,20 +259,122 @@ void paint(cairo_t* cr, const Scene& sc, std::span<const Facet> facets, const Ca
         const double width = edged ? edge_width : seam_width;
         const double twice_area = std::abs(cross(p[1] - p[0], p[2] - p[0]));
         const double perimeter = norm(p[1] - p[0]) + norm(p[2] - p[1]) + norm(p[0] - p[2]);
-        set_rgb(cr, sc.colors[f.surface], shade);
+        const Color color = sc.color(f.surface, f.triangle);
+        set_rgb(cr, color, shade);
         if (2.0 * twice_area >= width * perimeter) cairo_fill_preserve(cr);
-        if (edged) set_rgb(cr, sc.colors[f.surface], edge_brightness * shade);
+        if (edged) set_rgb(cr, color, edge_brightness * shade);
         cairo_set_line_width(cr, width);
         cairo_stroke(cr);
     }
 }
 
+double guide_font(const SurfaceView& view) {
+    return std::max(min_guide_font, guide_font_fraction * std::min(view.width, view.height));
+}
+
+/// The axis triad at the bottom left: the axes' unit vectors as seen, far ones first, each in
+/// its colour (x red, y green, z blue) and labelled at its tip.
+void draw_triad(cairo_t* cr, const PageMap& map, const SurfaceView& view) {
+    const double arm = triad_arm_fraction * std::min(view.width, view.height);
+    const double band = bottom_size(view);
+    const Vec2 origin{margin_size(view) + 1.4 * arm, view.height - 0.5 * band};
+    const std::array<Vec3, 3> axes = {Vec3{1.0, 0.0, 0.0}, Vec3{0.0, 1.0, 0.0},
+                                      Vec3{0.0, 0.0, 1.0}};
+    constexpr std::array<int, 3> hex = {0xd62728, 0x2ca02c, 0x1f77b4};
+    constexpr std::array<const char*, 3> names = {"x", "y", "z"};
+    std::array<int, 3> order = {0, 1, 2};
+    const Camera& c = map.camera;
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return dot(axes[a], c.toward) < dot(axes[b], c.toward); });
+    set_font(cr, guide_font(view), true);
+    cairo_set_line_width(cr, std::max(1.0, 0.15 * guide_font(view)));
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+    for (const int k : order) {
+        const Vec2 d{dot(axes[k], c.right), -dot(axes[k], c.up)};
+        set_color(cr, rgb(hex[k]));
+        cairo_move_to(cr, origin.x, origin.y);
+        cairo_line_to(cr, origin.x + arm * d.x, origin.y + arm * d.y);
+        cairo_stroke(cr);
+        draw_text(cr, names[k], origin.x + 1.35 * arm * d.x, origin.y + 1.35 * arm * d.y, 0.5, 0.5);
+    }
+}
+
+/// The longest length 1, 2 or 5 × 10^n at most `room`.
+double round_length(double room) {
+    const double p = std::pow(10.0, std::floor(std::log10(room)));
+    for (const double m : {5.0, 2.0}) {
+        if (m * p <= room) return m * p;
+    }
+    return p;
+}
+
+/// The scale bar at the bottom right: a round length, with end ticks, labelled above.
+void draw_scale_bar(cairo_t* cr, const PageMap& map, const SurfaceView& view) {
+    if (!(map.scale > 0.0) || !std::isfinite(map.scale)) return;
+    const double length = round_length(scale_bar_fraction * view.width / map.scale);
+    if (!(length > 0.0) || !std::isfinite(length)) return;
+    const double font = guide_font(view);
+    const double right = view.width - margin_size(view);
+    const double left = right - length * map.scale;
+    const double y = view.height - 0.5 * bottom_size(view) + 0.5 * font;
+    cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+    cairo_set_line_width(cr, std::max(1.0, 0.12 * font));
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+    cairo_move_to(cr, left, y - 0.4 * font);
+    cairo_line_to(cr, left, y);
+    cairo_line_to(cr, right, y);
+    cairo_line_to(cr, right, y - 0.4 * font);
+    cairo_stroke(cr);
+    set_font(cr, font);
+    draw_text(cr, typeset(fmt::format("{:g}", length)), 0.5 * (left + right), y - 0.6 * font, 0.5,
+              1.0);
+}
+
+/// The colour bar in the middle of the band: the map from −max|v| to max|v| left to right,
+/// the label above, the ends (and 0) below.
+void draw_colorbar(cairo_t* cr, const Scene& sc, const SurfaceView& view) {
+    const double font = guide_font(view);
+    const double x0 = colorbar_lo * view.width;
+    const double x1 = colorbar_hi * view.width;
+    const double h = colorbar_thickness * std::min(view.width, view.height);
+    const double y = view.height - 0.5 * bottom_size(view) - 0.5 * h;
+    cairo_pattern_t* gradient = cairo_pattern_create_linear(x0, 0.0, x1, 0.0);
+    const std::span<const Color> map = color_map(true);
+    for (std::size_t i = 0; i < map.size(); ++i) {
+        cairo_pattern_add_color_stop_rgb(
+            gradient, static_cast<double>(i) / static_cast<double>(map.size() - 1), map[i].r,
+            map[i].g, map[i].b);
+    }
+    cairo_rectangle(cr, x0, y, x1 - x0, h);
+    cairo_set_source(cr, gradient);
+    cairo_fill_preserve(cr);
+    cairo_pattern_destroy(gradient);
+    cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
+    cairo_set_line_width(cr, 0.5);
+    cairo_stroke(cr);
+    set_font(cr, font);
+    draw_text(cr, sc.coloring->label, 0.5 * (x0 + x1), y - 0.3 * font, 0.5, 1.0);
+    for (const auto& [v, text] : colorbar_labels(sc.range)) {
+        const double x = x0 + sc.range.t(v) * (x1 - x0);
+        cairo_move_to(cr, x, y + h);
+        cairo_line_to(cr, x, y + h + 0.3 * font);
+        cairo_stroke(cr);
+        draw_text(cr, text, x, y + h + 0.4 * font, 0.5, 0.0);
+    }
+}
+
 void draw(cairo_t* cr, std::span<const Surface> surfaces, const PageMap& map,
-          const SurfaceView& view) {
+          const SurfaceView& view, const SurfaceColoring* coloring) {
     cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
     cairo_paint(cr);
     const std::vector<Facet> facets = front_facets(surfaces, map.camera);
-    paint(cr, scene(surfaces, map, view), facets, map.camera);
+    const Scene sc = scene(surfaces, map, view, coloring);
+    paint(cr, sc, facets, map.camera);
+    if (view.guides) {
+        draw_triad(cr, map, view);
+        draw_scale_bar(cr, map, view);
+    }
+    if (coloring != nullptr) draw_colorbar(cr, sc, view);
     if (!view.title.empty()) {
         // A title wider than the picture less its margins is set smaller, to fit.
         const double size = title_size(view);
@@ -262,10 +425,21 @@ Box3 checked_bounding_box(std::span<const Surface> surfaces) {
     return box;
 }
 
-}  // namespace
+void check_coloring(const Surface& surface, const SurfaceColoring& coloring) {
+    if (coloring.values.size() != surface.vertices.size()) {
+        throw InvalidInput(fmt::format("surface picture: {} values to colour by, for {} vertices",
+                                       coloring.values.size(), surface.vertices.size()));
+    }
+    for (std::size_t i = 0; i < coloring.values.size(); ++i) {
+        if (!std::isfinite(coloring.values[i])) {
+            throw InvalidInput(
+                fmt::format("surface picture: the value at vertex {} is not finite", i));
+        }
+    }
+}
 
-void save_surface_picture(std::span<const Surface> surfaces, const std::filesystem::path& path,
-                          const SurfaceView& view) {
+void save(std::span<const Surface> surfaces, const SurfaceColoring* coloring,
+          const std::filesystem::path& path, const SurfaceView& view) {
     const PictureFormat format = picture_format(path);
     check_view(view);
     const PageMap map = page_map(checked_bounding_box(surfaces), view);
@@ -274,13 +448,37 @@ void save_surface_picture(std::span<const Surface> surfaces, const std::filesyst
     const double unit = format == PictureFormat::png ? 1.0 / png_scale : 1.0;
     write_picture(path, format, unit * view.width, unit * view.height, [&](cairo_t* cr) {
         cairo_scale(cr, unit, unit);
-        draw(cr, surfaces, map, view);
+        draw(cr, surfaces, map, view, coloring);
     });
+}
+
+}  // namespace
+
+UpAxis up_axis(const Box3& box) {
+    const Vec3 e = box.hi - box.lo;
+    const double shorter = std::min(e.y, e.z);
+    const double longer = std::max(e.y, e.z);
+    // A sphere, a cube, or y and z nearly alike: z, the default (also for an empty box or NaN).
+    if (!(shorter < alike_extent * longer)) return UpAxis::z;
+    // Standing: the longer of y and z is the height, x the width between it and the depth.
+    const bool standing = alike_extent * longer > e.x && e.x >= alike_extent * shorter;
+    return standing == (e.y > e.z) ? UpAxis::y : UpAxis::z;
+}
+
+void save_surface_picture(std::span<const Surface> surfaces, const std::filesystem::path& path,
+                          const SurfaceView& view) {
+    save(surfaces, nullptr, path, view);
 }
 
 void save_surface_picture(const Surface& surface, const std::filesystem::path& path,
                           const SurfaceView& view) {
     save_surface_picture(std::span<const Surface>(&surface, 1), path, view);
+}
+
+void save_surface_picture(const Surface& surface, const SurfaceColoring& coloring,
+                          const std::filesystem::path& path, const SurfaceView& view) {
+    check_coloring(surface, coloring);
+    save(std::span<const Surface>(&surface, 1), &coloring, path, view);
 }
 
 }  // namespace slc

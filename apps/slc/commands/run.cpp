@@ -332,7 +332,9 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
         ->check(integer_in(0, 100000));
     cmd->add_option("--view", o->view,
                     "For a surface: the direction its pictures look from, AZ,EL in degrees (about "
-                    "the z axis from +x, and above the xy plane; default the problem's, or 35,25)");
+                    "the z axis from +x, and above the xy plane), or AZ,EL,UP with the up axis x, "
+                    "y or z (angles about it, docs/surfaces.md); default the problem's, or 35,25 "
+                    "about the up axis the surface's extents suggest");
     cmd->add_flag("--vtk", o->vtk,
                   "Also write the initial interface, the frames and the final one as VTK PolyData "
                   "(DIR/frames/*.vtp) and DIR/frames.pvd, a time series ParaView opens. For "

@@ -183,7 +183,10 @@ void run_surface_contour(const SurfaceContourRequest& r) {
                           : fmt::format("Contour K = {}, eps = {:.0e}, {} passes: {} triangles",
                                         depth, options.resolved_eps(), st.passes, st.triangles);
         if (error) title += fmt::format(", error {:.2e}", *error);
-        save_surface_picture(s, dir / "final.png", {.title = title});
+        // A surface of the user's is drawn with the up axis its shape suggests (a y-up scan
+        // stands up); a built-in function's with z up.
+        const UpAxis up = source.surface ? up_axis(bounding_box(*source.surface)) : UpAxis::z;
+        save_surface_picture(s, dir / "final.png", {.title = title, .up = up});
     }
     // A refinement that stops with midpoints or centroids beyond ε (its splits refused, or P
     // spent) says so: the files are written, and the status and the exit status tell.

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "commands/commands.hpp"
 #include "commands/output_folder.hpp"
@@ -154,7 +155,16 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     view.azimuth = p.azimuth;
     view.elevation = p.elevation;
     if (r.view) {
-        const auto angles = comma_numbers(*r.view);
+        // AZ,EL and optionally the up axis: "30,20" or "30,20,y".
+        std::string angles_text = *r.view;
+        const std::size_t last = angles_text.rfind(',');
+        if (last != std::string::npos && last + 2 == angles_text.size() &&
+            std::string_view("xyz").find(angles_text.back()) != std::string_view::npos) {
+            const char axis = angles_text.back();
+            view.up = axis == 'x' ? UpAxis::x : axis == 'y' ? UpAxis::y : UpAxis::z;
+            angles_text.resize(last);
+        }
+        const auto angles = comma_numbers(angles_text);
         if (!angles || angles->size() != 2 || !std::isfinite((*angles)[0]) ||
             !std::isfinite((*angles)[1])) {
             throw InvalidInput(fmt::format(
@@ -162,6 +172,8 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         }
         view.azimuth = (*angles)[0];
         view.elevation = (*angles)[1];
+    } else if (r.problem.empty()) {
+        view.up = up_axis(bounding_box(p.initial));  // a y-up scan stands up
     }
     auto titled = [&view](std::string title) {
         SurfaceView v = view;
@@ -280,7 +292,10 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         "{}: t = {:.4g} ({}), {} triangles{}", p.name, result.t, to_string(result.status), s.size(),
         std::isfinite(e) ? fmt::format(", e_inf {:.2e}", e) : std::string());
     if (!s.empty()) {
-        save_surface_picture(s, dir / "final.png", titled(title));
+        // Coloured by how far each point moved from the start, outward positive.
+        const SurfaceColoring moved{vertex_distances(s, p.initial),
+                                    "distance from the initial surface (+ outside it)"};
+        save_surface_picture(s, moved, dir / "final.png", titled(title));
     } else {
         save_surface_picture(
             p.initial, dir / "final.png",

@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "slc/evolve/self_convergence.hpp"
 #include "slc/evolve/study.hpp"
@@ -49,6 +50,12 @@ SurfaceRunOptions surface_resolution_options(const SurfaceRunOptions& base, int 
 /// triangle centroid of either one to the other (a SurfaceDistanceTree of each). 0 when both are
 /// empty, +inf when only one is. Cost O((n_a + n_b) log(n_a + n_b)) for n_a and n_b triangles.
 double surface_distance(const Surface& a, const Surface& b);
+
+/// The exact signed distance from each vertex of a to b, > 0 outside b (what a run's final.png
+/// is coloured by: how far each point of the final surface lies from the initial one, outward
+/// positive). b must be a valid surface (prepare_surface). Empty for a without vertices; throws
+/// InvalidInput when b is empty. Cost O((N + M) log M) for N vertices and M triangles of b.
+std::vector<double> vertex_distances(const Surface& a, const Surface& b);
 
 /// surface_distance between the final surfaces of two runs of the same problem, or +inf when
 /// they cannot be compared: they ended with different statuses or at different times, or either
