@@ -1,12 +1,15 @@
 // Tests of surface pictures: a sphere fills the middle of the PNG and leaves its margin white, and
 // is brighter on the lit side; a torus seen from above shows the background in its hole; +z is up
-// and the nearer of two surfaces hides the farther; SVG is written too; the same input gives the
-// same bytes; bad input is InvalidInput and writes nothing.
+// (or the up axis asked for) and the nearer of two surfaces hides the farther; the guides (axis
+// triad, scale bar) and a colour bar sit in the band below; the up axis chosen from extents; a
+// quantity colours the surface; SVG is written too; the same input gives the same bytes; bad
+// input is InvalidInput and writes nothing.
 #include "slc/io/surface_picture.hpp"
 
 #include <cairo.h>
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,9 +27,23 @@ using test_support::TempDir;
 
 using ImagePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 
-// The default picture: 800 × 800 pixels with a margin of 5 % of its side (40 pixels).
+// The default picture: 800 × 800 pixels with a margin of 5 % of its side (40 pixels), and a band
+// of guides 11 % of its side tall (88 pixels) at the bottom. The tests of where things go turn
+// the guides off (the layout of a margin all round).
 constexpr int side = 800;
 constexpr int margin = 40;
+
+SurfaceView without_guides() {
+    SurfaceView view;
+    view.guides = false;
+    return view;
+}
+
+SurfaceView from_azimuth(double azimuth) {
+    SurfaceView view;
+    view.azimuth = azimuth;
+    return view;
+}
 
 ImagePtr read_png(const fs::path& path) {
     ImagePtr image(cairo_image_surface_create_from_png(path.c_str()), &cairo_surface_destroy);
@@ -73,7 +90,8 @@ bool border_is_background(cairo_surface_t* image, int width) {
 
 TEST(SurfacePicture, SphereFillsTheMiddleAndLeavesTheMarginWhite) {
     const TempDir dir;
-    save_surface_picture(sphere({1.0, 2.0, 3.0}, 0.5, 4), dir.path() / "sphere.png");
+    save_surface_picture(sphere({1.0, 2.0, 3.0}, 0.5, 4), dir.path() / "sphere.png",
+                         without_guides());
     const ImagePtr image = read_png(dir.path() / "sphere.png");
     ASSERT_EQ(cairo_image_surface_get_width(image.get()), side);
     ASSERT_EQ(cairo_image_surface_get_height(image.get()), side);
@@ -87,7 +105,8 @@ TEST(SurfacePicture, SphereFillsTheMiddleAndLeavesTheMarginWhite) {
 
 TEST(SurfacePicture, LitSideOfASphereIsBrighterThanTheSideAwayFromTheLight) {
     const TempDir dir;
-    save_surface_picture(sphere({0.0, 0.0, 0.0}, 1.0, 5), dir.path() / "sphere.png");
+    save_surface_picture(sphere({0.0, 0.0, 0.0}, 1.0, 5), dir.path() / "sphere.png",
+                         without_guides());
     const ImagePtr image = read_png(dir.path() / "sphere.png");
     // The light comes from above left of the viewer. The sphere's disc has a radius of about 240
     // pixels; patches 100 pixels up-left and down-right of its centre lie well inside it, where
@@ -106,6 +125,7 @@ TEST(SurfacePicture, TorusSeenFromAboveShowsTheBackgroundInItsHole) {
     const TempDir dir;
     SurfaceView view;
     view.elevation = 90.0;
+    view.guides = false;
     const double major = 1.0;
     save_surface_picture(torus({0.0, 0.0, 0.0}, major, 0.35, 64, 24), dir.path() / "torus.png",
                          view);
@@ -131,6 +151,7 @@ TEST(SurfacePicture, ZIsUpAndEachSurfaceHasItsPaletteColour) {
     view.azimuth = 0.0;
     view.elevation = 0.0;
     view.edges = false;
+    view.guides = false;
     save_surface_picture(stacked, dir.path() / "stacked.png", view);
     const ImagePtr image = read_png(dir.path() / "stacked.png");
     // The box spans 5 units of height over 720 pixels: the centres are 216 pixels from the
@@ -141,11 +162,107 @@ TEST(SurfacePicture, ZIsUpAndEachSurfaceHasItsPaletteColour) {
     EXPECT_TRUE(is_orange(lower)) << lower.r << " " << lower.g << " " << lower.b;
 }
 
+TEST(SurfacePicture, UpYTurnsTheViewAboutY) {
+    // Seen from azimuth 0 about y (from +z), elevation 0: y is up, x to the right.
+    const TempDir dir;
+    const std::vector<Surface> stacked = {sphere({0.0, 1.5, 0.0}, 1.0, 3),
+                                          sphere({0.0, -1.5, 0.0}, 1.0, 3)};
+    SurfaceView view;
+    view.azimuth = 0.0;
+    view.elevation = 0.0;
+    view.edges = false;
+    view.guides = false;
+    view.up = UpAxis::y;
+    save_surface_picture(stacked, dir.path() / "stacked.png", view);
+    const ImagePtr image = read_png(dir.path() / "stacked.png");
+    const Rgb upper = pixel(image.get(), side / 2, side / 2 - 216);
+    const Rgb lower = pixel(image.get(), side / 2, side / 2 + 216);
+    EXPECT_TRUE(is_blue(upper)) << upper.r << " " << upper.g << " " << upper.b;
+    EXPECT_TRUE(is_orange(lower)) << lower.r << " " << lower.g << " " << lower.b;
+}
+
+TEST(SurfacePicture, UpAxisIsZUnlessTheExtentsSayY) {
+    auto up = [](double x, double y, double z) { return up_axis({{0.0, 0.0, 0.0}, {x, y, z}}); };
+    EXPECT_EQ(up(1.0, 1.0, 1.0), UpAxis::z);  // a sphere
+    EXPECT_EQ(up(2.4, 2.4, 0.7), UpAxis::z);  // a torus about z, lying flat
+    EXPECT_EQ(up(2.4, 0.7, 2.4), UpAxis::y);  // a torus about y
+    EXPECT_EQ(up(0.7, 2.4, 2.4), UpAxis::z);  // a torus about x: y and z alike
+    EXPECT_EQ(up(0.6, 1.4, 0.6), UpAxis::y);  // an ellipsoid long along y
+    EXPECT_EQ(up(0.6, 0.6, 1.4), UpAxis::z);  // ... along z
+    EXPECT_EQ(up(0.6, 1.8, 0.3), UpAxis::y);  // a figure, y up
+    EXPECT_EQ(up(0.6, 0.3, 1.8), UpAxis::z);  // a figure, z up
+    EXPECT_EQ(up(0.5, 1.6, 2.0), UpAxis::y);  // an animal, y up, its length along z
+    EXPECT_EQ(up(0.5, 2.0, 1.6), UpAxis::z);  // an animal, z up, its length along y
+    EXPECT_EQ(up(0.0, 0.0, 0.0), UpAxis::z);  // a point
+}
+
+/// True when some pixel of the rectangle [x0, x1) × [y0, y1) satisfies the condition.
+template <class Condition>
+bool any_pixel(cairo_surface_t* image, int x0, int x1, int y0, int y1, Condition condition) {
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
+            if (condition(pixel(image, x, y))) return true;
+    return false;
+}
+
+TEST(SurfacePicture, GuidesAreDrawnInTheBandBelowTheSurface) {
+    // The triad's red, green and blue arms at the bottom left, the scale bar's black at the
+    // bottom right; nothing there without guides.
+    const TempDir dir;
+    const Surface ball = sphere({0.0, 0.0, 0.0}, 1.0, 3);
+    save_surface_picture(ball, dir.path() / "guides.png");
+    save_surface_picture(ball, dir.path() / "none.png", without_guides());
+    const ImagePtr with = read_png(dir.path() / "guides.png");
+    const ImagePtr without = read_png(dir.path() / "none.png");
+    constexpr int band_top = side - 88;
+    auto red = [](Rgb c) { return c.r > c.g + 60 && c.r > c.b + 60; };
+    auto green = [](Rgb c) { return c.g > c.r + 40 && c.g > c.b + 40; };
+    auto blue = [](Rgb c) { return c.b > c.r + 60 && c.b > c.g + 20; };
+    auto black = [](Rgb c) { return c.brightness() < 40; };
+    for (const auto& condition : {std::function<bool(Rgb)>(red), {green}, {blue}}) {
+        EXPECT_TRUE(any_pixel(with.get(), 0, side / 4, band_top, side, condition));
+        EXPECT_FALSE(any_pixel(without.get(), 0, side / 4, band_top, side, condition));
+    }
+    EXPECT_TRUE(any_pixel(with.get(), 3 * side / 4, side, band_top, side, black));
+    EXPECT_FALSE(any_pixel(without.get(), 3 * side / 4, side, band_top, side, black));
+}
+
+TEST(SurfacePicture, ColoringPaintsByTheValuesWithAColourBar) {
+    // Coloured by x: seen from +x the sphere's middle is red, from −x blue; the colour bar's two
+    // ends in the band below.
+    const TempDir dir;
+    const Surface ball = sphere({0.0, 0.0, 0.0}, 1.0, 4);
+    SurfaceColoring by_x{{}, "x"};
+    for (const Vec3& v : ball.vertices) by_x.values.push_back(v.x);
+    save_surface_picture(ball, by_x, dir.path() / "front.png", from_azimuth(0.0));
+    save_surface_picture(ball, by_x, dir.path() / "back.png", from_azimuth(180.0));
+    const ImagePtr front = read_png(dir.path() / "front.png");
+    const ImagePtr back = read_png(dir.path() / "back.png");
+    const Rgb f = pixel(front.get(), side / 2, side / 2);
+    const Rgb b = pixel(back.get(), side / 2, side / 2);
+    EXPECT_GT(f.r, f.b + 40) << f.r << " " << f.g << " " << f.b;
+    EXPECT_GT(b.b, b.r + 40) << b.r << " " << b.g << " " << b.b;
+    const int bar_y = side - 44;  // the middle of the band
+    const Rgb left = pixel(front.get(), static_cast<int>(0.31 * side), bar_y);
+    const Rgb right = pixel(front.get(), static_cast<int>(0.65 * side), bar_y);
+    EXPECT_GT(left.b, left.r + 60) << left.r << " " << left.g << " " << left.b;
+    EXPECT_GT(right.r, right.b + 60) << right.r << " " << right.g << " " << right.b;
+
+    EXPECT_THROW(
+        save_surface_picture(ball, SurfaceColoring{{1.0, 2.0}, "two"}, dir.path() / "short.png"),
+        InvalidInput);
+    SurfaceColoring not_finite = by_x;
+    not_finite.values[7] = NAN;
+    EXPECT_THROW(save_surface_picture(ball, not_finite, dir.path() / "nan.png"), InvalidInput);
+    EXPECT_FALSE(fs::exists(dir.path() / "short.png") || fs::exists(dir.path() / "nan.png"));
+}
+
 TEST(SurfacePicture, NearerSurfaceHidesTheFartherWhateverTheirOrder) {
     const TempDir dir;
     SurfaceView view;
     view.azimuth = 0.0;  // looking along −x: the sphere at x = 2 is the nearer
     view.elevation = 0.0;
+    view.guides = false;
     const Surface near = sphere({2.0, 0.0, 0.0}, 1.0, 3);
     const Surface far = sphere({-2.0, 0.0, 0.0}, 1.0, 3);
     const std::vector<Surface> near_first = {near, far};
