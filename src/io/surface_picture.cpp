@@ -52,6 +52,9 @@ constexpr double guide_band_fraction = 0.11;
 constexpr double guide_font_fraction = 0.022;
 constexpr double min_guide_font = 8.0;
 constexpr double triad_arm_fraction = 0.045;
+/// An axis whose arm is seen shorter than this fraction of its length (within 30° of the line of
+/// sight) is drawn end on: its short arm would lie along another's, their labels crossed.
+constexpr double min_seen_arm = 0.5;
 /// The scale bar is the longest 1, 2 or 5 × 10^n at most this fraction of the width.
 constexpr double scale_bar_fraction = 0.2;
 /// The colour bar spans this part of the width, and is this fraction of the shorter side tall.
@@ -292,10 +295,21 @@ void draw_triad(cairo_t* cr, const PageMap& map, const SurfaceView& view) {
     for (const int k : order) {
         const Vec2 d{dot(axes[k], c.right), -dot(axes[k], c.up)};
         set_color(cr, rgb(hex[k]));
-        cairo_move_to(cr, origin.x, origin.y);
-        cairo_line_to(cr, origin.x + arm * d.x, origin.y + arm * d.y);
-        cairo_stroke(cr);
-        draw_text(cr, names[k], origin.x + 1.35 * arm * d.x, origin.y + 1.35 * arm * d.y, 0.5, 0.5);
+        if (norm(d) >= min_seen_arm) {
+            cairo_move_to(cr, origin.x, origin.y);
+            cairo_line_to(cr, origin.x + arm * d.x, origin.y + arm * d.y);
+            cairo_stroke(cr);
+            draw_text(cr, names[k], origin.x + 1.35 * arm * d.x, origin.y + 1.35 * arm * d.y, 0.5,
+                      0.5);
+        } else {
+            // Seen nearly end on: a dot at the origin when the axis points at the viewer, a ring
+            // when away, and its label below left, clear of the others'.
+            cairo_new_path(cr);
+            cairo_arc(cr, origin.x, origin.y, 0.25 * guide_font(view), 0.0, 2.0 * std::numbers::pi);
+            if (dot(axes[k], c.toward) > 0.0) cairo_fill_preserve(cr);
+            cairo_stroke(cr);
+            draw_text(cr, names[k], origin.x - 0.5 * arm, origin.y + 0.5 * arm, 0.5, 0.5);
+        }
     }
 }
 
