@@ -9,17 +9,6 @@
 #include <vector>
 
 namespace slc {
-namespace {
-
-/// Counterclockwise curves (positive area) minus clockwise ones (holes).
-int signed_curve_count(const Interface& curves) {
-    int n = 0;
-    for (std::size_t c = 0; c < curves.curve_count(); ++c)
-        n += signed_area(curves.curve(c)) >= 0.0 ? 1 : -1;
-    return n;
-}
-
-}  // namespace
 
 RegionParts region_parts(const Interface& curves) {
     RegionParts r;
@@ -27,6 +16,16 @@ RegionParts region_parts(const Interface& curves) {
         ++(signed_area(curves.curve(c)) >= 0.0 ? r.parts : r.holes);
     return r;
 }
+
+namespace {
+
+/// Counterclockwise curves (positive area) minus clockwise ones (holes).
+int signed_curve_count(const Interface& curves) {
+    const RegionParts p = region_parts(curves);
+    return static_cast<int>(p.parts) - static_cast<int>(p.holes);
+}
+
+}  // namespace
 
 RegionParts region_parts(const Surface& surface) {
     const auto label = component_labels(surface);
@@ -112,7 +111,7 @@ std::optional<std::string> invariant_violation(const Invariants& law, const Inte
             "them",
             before.curve_count(), after.curve_count());
     }
-    if (auto v = region_parts_violation(law, region_parts(before), region_parts(after))) return v;
+    if (auto v = shape_parts_violation(law, before, after)) return v;
     if (law.rigid && after.curve_count() != before.curve_count()) {
         return fmt::format("a rigid motion changed the number of curves from {} to {}",
                            before.curve_count(), after.curve_count());

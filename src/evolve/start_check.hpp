@@ -20,6 +20,7 @@
 #include "slc/core/space.hpp"
 #include "slc/distance/distance_tree.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
+#include "slc/evolve/guards.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/surface.hpp"
@@ -35,10 +36,7 @@ struct ShapeTopology {
 };
 
 inline ShapeTopology shape_topology(const Interface& curves) {
-    ShapeTopology t{curves.curve_count(), 0};
-    for (std::size_t c = 0; c < curves.curve_count(); ++c)
-        if (signed_area(curves.curve(c)) < 0.0) ++t.holes;
-    return t;
+    return {curves.curve_count(), static_cast<long long>(region_parts(curves).holes)};
 }
 inline ShapeTopology shape_topology(const Surface& s) { return {component_count(s), genus(s)}; }
 

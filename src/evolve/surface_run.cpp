@@ -239,7 +239,7 @@ std::optional<std::string> surface_invariant_violation(const Invariants& law, co
         const long long g0 = genus(before), g1 = genus(after);
         if (g0 != g1) return fmt::format("a rigid motion changed the genus from {} to {}", g0, g1);
     }
-    if (auto v = region_parts_violation(law, region_parts(before), region_parts(after))) return v;
+    if (auto v = shape_parts_violation(law, before, after)) return v;
     if (law.cannot_split && !law.rigid) {
         const std::size_t c0 = component_count(before), c1 = component_count(after);
         if (c1 > c0) {

@@ -94,6 +94,14 @@ RegionParts region_parts(const Surface& surface);
 /// (Invariants::cannot_grow) does the same to its holes. The same rule for curves and surfaces.
 std::optional<std::string> region_parts_violation(const Invariants& law, RegionParts before,
                                                   RegionParts after);
+/// region_parts_violation of a step from `before` to `after` (curves or a surface), whose parts
+/// are read only under a law that claims to grow or to shrink the region.
+template <class Shape>
+std::optional<std::string> shape_parts_violation(const Invariants& law, const Shape& before,
+                                                 const Shape& after) {
+    if (!law.cannot_vanish && !law.cannot_grow) return std::nullopt;
+    return region_parts_violation(law, region_parts(before), region_parts(after));
+}
 
 /// Curves' area and length as a step reads them (step_area, step_length).
 struct CurveMeasures {
