@@ -33,6 +33,7 @@
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
+#include "slc/io/summary.hpp"
 #include "slc/tree/orthtree.hpp"
 #include "slc/velocity/factory.hpp"
 #include "surfaces.hpp"
@@ -156,18 +157,10 @@ py::tuple contour_function(const py::object& f, const std::vector<double>& box, 
         result.emplace(contour(g, domain, options));
     }
     const ContourResult& r = *result;
-    py::dict stats;
-    stats["cells"] = r.stats.cells;
-    stats["segments"] = r.stats.segments;
-    stats["g_evals"] = r.stats.g_evals;
-    stats["passes"] = r.stats.passes;
-    stats["thin_cells"] = r.stats.thin_cells;
-    stats["finest_cell"] = r.stats.finest_cell;
+    nlohmann::json stats = contour_stats_json(r.stats);
     stats["eps"] = options.resolved_eps();
-    stats["domain"] = py::make_tuple(domain.lo.x, domain.lo.y, domain.hi.x, domain.hi.y);
-    stats["max_midpoint_value"] =
-        r.stats.max_midpoint_value ? py::cast(*r.stats.max_midpoint_value) : py::object(py::none());
-    return py::make_tuple(arrays_of(r.curves), stats);
+    stats["domain"] = {domain.lo.x, domain.lo.y, domain.hi.x, domain.hi.y};
+    return py::make_tuple(arrays_of(r.curves), python_of(stats));
 }
 
 py::tuple contour_surface_function(const py::object& f, const std::vector<double>& box, int depth,
@@ -190,23 +183,13 @@ py::tuple contour_surface_function(const py::object& f, const std::vector<double
         result.emplace(contour_surface(g, domain, options));
     }
     const py::tuple arrays = surface_arrays(result->surface);
-    const SurfaceContourStats& st = result->stats;
-    py::dict stats;
-    stats["cells"] = st.cells;
-    stats["tetrahedra"] = st.tetrahedra;
-    stats["triangles"] = st.triangles;
-    stats["g_evals"] = st.g_evals;
-    stats["g_evals_per_vertex"] = st.g_evals_per_vertex;
-    stats["settled"] = st.settled;
-    stats["passes"] = st.passes;
-    stats["thin_cells"] = st.thin_cells;
-    stats["finest_cell"] = st.finest_cell;
-    stats["converged"] = st.converged;
+    nlohmann::json stats = contour_stats_json(result->stats);
+    stats["converged"] = result->stats.converged;
     stats["eps"] = options.resolved_eps();
     stats["eta"] = options.resolved_eta();
-    stats["domain"] = py::make_tuple(domain.lo.x, domain.lo.y, domain.lo.z, domain.hi.x,
-                                     domain.hi.y, domain.hi.z);
-    return py::make_tuple(arrays[0], arrays[1], stats);
+    stats["domain"] = {domain.lo.x, domain.lo.y, domain.lo.z,
+                       domain.hi.x, domain.hi.y, domain.hi.z};
+    return py::make_tuple(arrays[0], arrays[1], python_of(stats));
 }
 
 py::list velocity_names() {

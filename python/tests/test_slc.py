@@ -268,6 +268,10 @@ def test_contour_surface_of_a_torus_is_closed_and_within_eps():
     vertices, triangles, stats = slc.contour_surface(g, 1.0, 4, eps=eps)
     assert vertices.shape[1] == 3 and triangles.shape[1] == 3
     assert stats["converged"] and stats["triangles"] == len(triangles)
+    # The statistics under the keys of `slc contour`'s summary.json.
+    assert stats["vertices"] == len(vertices) and len(stats["finest_at"]) == 3
+    assert stats["unconverged_roots"] == 0 and 0 < stats["residual"] <= eps
+    assert stats["g_evals_tree"] + stats["g_evals_roots"] + stats["g_evals_refine"] == stats["g_evals"]
     # Vertices: roots to eta, by default eps/100 when refining; an eta given is kept.
     assert stats["eta"] == pytest.approx(eps / 100)
     assert np.abs(g(vertices)).max() <= stats["eta"]

@@ -116,7 +116,7 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
     std::vector<Vec2> points(roots.size());
     for (std::size_t i = 0; i < roots.size(); ++i) {
         points[i] = roots[i].point;
-        if (!roots[i].converged) ++stats.stalled_roots;
+        if (!roots[i].converged) ++stats.unconverged_roots;
     }
 
     contouring::Chain chain(std::move(points), linear.next, linear.triangle);

@@ -56,6 +56,33 @@ void put_resolution(nlohmann::json& s, const RunTotals& r) {
     if (!std::isnan(r.thin_budget_at)) s["thin_budget_reached_at_t"] = r.thin_budget_at;
 }
 
+/// The fields that both dimensions' contour statistics share.
+template <int dim>
+nlohmann::json basic_stats_json(const BasicContourStats<dim>& s) {
+    std::vector<double> at;
+    for (int i = 0; i < dim; ++i) at.push_back(s.finest_at[i]);
+    return {{"cells", s.cells},
+            {"leaves", s.leaves},
+            {"thin_cells", s.thin_cells},
+            {"thin_budget_reached", s.thin_budget_reached},
+            {"finest_cell", s.finest_cell},
+            {"finest_at", at},
+            {"vertices", s.vertices},
+            {"g_evals", s.g_evals},
+            {"g_evals_tree", s.g_evals_tree},
+            {"g_evals_roots", s.g_evals_roots},
+            {"g_evals_refine", s.g_evals_refine},
+            {"g_evals_per_vertex", s.g_evals_per_vertex},
+            {"settled", s.settled},
+            {"bound_evals", s.bound_evals},
+            {"gamma", s.gamma},
+            {"perturbed", s.perturbed},
+            {"unconverged_roots", s.unconverged_roots},
+            {"passes", s.passes},
+            {"splits", s.splits},
+            {"rejected", s.rejected}};
+}
+
 }  // namespace
 
 nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResult& r,
@@ -251,6 +278,31 @@ nlohmann::json estimate_json(const std::string& coarse, RunStatus status,
         "first order or faster (at second order the error is about a third of it), not a bound",
         what == "surface" ? "surfaces" : what);
     return e;
+}
+
+nlohmann::json contour_stats_json(const ContourStats& s) {
+    nlohmann::json j = basic_stats_json(s);
+    j.update({{"triangles", s.triangles},
+              {"curves", s.curves},
+              {"segments", s.segments},
+              {"mean_segment_length", s.mean_segment_length},
+              {"pruned", s.pruned},
+              {"joined", s.joined},
+              {"slivers", s.slivers},
+              {"max_midpoint_value", s.max_midpoint_value ? nlohmann::json(*s.max_midpoint_value)
+                                                          : nlohmann::json(nullptr)}});
+    return j;
+}
+
+nlohmann::json contour_stats_json(const SurfaceContourStats& s) {
+    nlohmann::json j = basic_stats_json(s);
+    j.update({{"specks", s.specks},
+              {"tetrahedra", s.tetrahedra},
+              {"triangles", s.triangles},
+              {"collapses", s.collapses},
+              {"flips", s.flips},
+              {"residual", s.residual}});
+    return j;
 }
 
 }  // namespace slc

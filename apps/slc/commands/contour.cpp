@@ -20,6 +20,7 @@
 #include "slc/evolve/overrides.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
+#include "slc/io/summary.hpp"
 #include "slc/io/surface_files.hpp"
 #include "slc/tree/triangulation.hpp"
 
@@ -59,31 +60,6 @@ ContourError measure_error(const DistanceTree& tree, const Interface& curves) {
         e.midpoints = std::max(e.midpoints, std::abs(f[curves.size() + i]));
     }
     return e;
-}
-
-nlohmann::json stats_json(const ContourStats& s) {
-    return {{"cells", s.cells},
-            {"leaves", s.leaves},
-            {"triangles", s.triangles},
-            {"thin_cells", s.thin_cells},
-            {"curves", s.curves},
-            {"segments", s.segments},
-            {"vertices", s.vertices},
-            {"mean_segment_length", s.mean_segment_length},
-            {"g_evals", s.g_evals},
-            {"g_evals_tree", s.g_evals_tree},
-            {"settled", s.settled},
-            {"g_evals_roots", s.g_evals_roots},
-            {"g_evals_refine", s.g_evals_refine},
-            {"g_evals_per_vertex", s.g_evals_per_vertex},
-            {"gamma", s.gamma},
-            {"perturbed", s.perturbed},
-            {"stalled_roots", s.stalled_roots},
-            {"passes", s.passes},
-            {"splits", s.splits},
-            {"rejected", s.rejected},
-            {"pruned", s.pruned},
-            {"joined", s.joined}};
 }
 
 /// The tree's triangulation (unperturbed) and leaves, the input faintly, the contour and its
@@ -157,7 +133,7 @@ void write_results(const ContourCommandOptions& o, const ContourOptions& options
     const ContourError e = measure_error(tree, r.curves);
     const double error = std::max(e.vertices, e.midpoints);
     summary["status"] = "ok";
-    summary.update(stats_json(r.stats));
+    summary.update(contour_stats_json(r.stats));
     summary["error"] = r.curves.empty() ? nlohmann::json(nullptr) : nlohmann::json(error);
     summary["error_vertices"] = e.vertices;
     summary["error_midpoints"] = e.midpoints;

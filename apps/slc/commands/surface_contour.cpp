@@ -19,6 +19,7 @@
 #include "slc/evolve/overrides.hpp"
 #include "slc/evolve/surface_problems.hpp"
 #include "slc/io/interface_json.hpp"
+#include "slc/io/summary.hpp"
 #include "slc/io/surface_files.hpp"
 #include "slc/io/surface_picture.hpp"
 #include "slc/io/vtk.hpp"
@@ -137,30 +138,11 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     const SurfaceContourStats& st = result.stats;
     summary["status"] = "ok";
     summary["params"]["gamma"] = st.gamma;
-    summary.update({{"cells", st.cells},
-                    {"leaves", st.leaves},
-                    {"tetrahedra", st.tetrahedra},
-                    {"triangles", st.triangles},
-                    {"vertices", st.vertices},
-                    {"components", component_count(s)},
+    summary.update(contour_stats_json(st));
+    summary.update({{"components", component_count(s)},
                     {"genus", s.triangles.empty() ? 0 : genus(s)},
                     {"area", area(s)},
-                    {"volume", volume(s)},
-                    {"g_evals", st.g_evals},
-                    {"g_evals_tree", st.g_evals_tree},
-                    {"settled", st.settled},
-                    {"g_evals_roots", st.g_evals_roots},
-                    {"g_evals_refine", st.g_evals_refine},
-                    {"passes", st.passes},
-                    {"splits", st.splits},
-                    {"rejected", st.rejected},
-                    {"collapses", st.collapses},
-                    {"flips", st.flips},
-                    {"g_evals_per_vertex", st.g_evals_per_vertex},
-                    {"perturbed", st.perturbed},
-                    {"thin_cells", st.thin_cells},
-                    {"specks", st.specks},
-                    {"unconverged_roots", st.unconverged_roots}});
+                    {"volume", volume(s)}});
     // Whether refinement met ε, when refinement was asked for.
     if (r.refine != 0) summary["converged"] = st.converged;
     std::optional<double> error;

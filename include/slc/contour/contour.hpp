@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <optional>
 
+#include "slc/contour/contour_stats.hpp"
 #include "slc/contour/implicit_function.hpp"
 #include "slc/contour/root_finding.hpp"
 #include "slc/core/box.hpp"
@@ -87,38 +88,14 @@ struct ContourOptions {
     double resolved_eps() const;
 };
 
-/// What a contour cost and what it produced.
-struct ContourStats {
-    std::size_t cells = 0;      ///< cells of the topology tree, all levels (as the paper counts)
-    std::size_t leaves = 0;     ///< leaves of the topology tree
-    std::size_t triangles = 0;  ///< triangles of its triangulation
+/// What a contour of curves cost and what it produced: the fields both dimensions share
+/// (BasicContourStats), and the curves' own.
+struct ContourStats : BasicContourStats<2> {
+    std::size_t triangles = 0;  ///< triangles of the tree's triangulation
     std::size_t curves = 0;     ///< closed polygons in the result
-    std::size_t vertices = 0;   ///< vertices of the result (= segments: every curve is closed)
-    std::size_t segments = 0;   ///< segments of the result (= vertices)
+    std::size_t segments = 0;   ///< segments of the result (= vertices: every curve is closed)
     double mean_segment_length = 0.0;  ///< total length / segments; 0 for an empty result
-
-    std::size_t g_evals = 0;         ///< all evaluations of G, each point counted once
-    std::size_t g_evals_tree = 0;    ///< of which: building the tree and perturbing vertices
-    std::size_t g_evals_roots = 0;   ///< of which: root finding on the triangle edges
-    std::size_t g_evals_refine = 0;  ///< of which: adaptive refinement (midpoints, brackets, roots)
-    double g_evals_per_vertex = 0.0;  ///< g_evals / vertices; 0 for an empty result
-
-    /// Tree points that distance_slack, the bounds or the gradient bound settled without
-    /// evaluating G.
-    std::size_t settled = 0;
-    std::size_t bound_evals = 0;  ///< evaluations of the bounds (not counted in g_evals)
-    double gamma = 0.0;           ///< the gradient bound γ at which the tree was balanced
-    std::size_t thin_cells = 0;   ///< cells split beyond K where G bends (thin_depth)
-    /// Cells that bend were left whole: thin cells are at most twice as many as the cells at K.
-    bool thin_budget_reached = false;
-    double finest_cell = 0.0;       ///< the edge of the tree's finest cells, thin cells included
-    Vec2 finest_at{};               ///< the centre of the first of them
-    std::size_t perturbed = 0;      ///< triangulation vertices moved because |G| ≤ η there
-    std::size_t stalled_roots = 0;  ///< roots left with |G| > η: G jumps across zero there
-    int passes = 0;                 ///< refinement passes done (passes that found candidates)
-    std::size_t splits = 0;         ///< vertices added by refinement
-    std::size_t rejected = 0;       ///< split candidates refused (no bracket, or a safeguard)
-    std::size_t pruned = 0;         ///< vertices removed by pruning
+    std::size_t pruned = 0;            ///< vertices removed by pruning
     /// Pairs of the interpolant's curves that refinement started from as one, G between them
     /// having the sign they enclose (a tip parted from its body at a neck narrower than a cell).
     std::size_t joined = 0;
@@ -141,7 +118,7 @@ struct ContourResult {
 ///
 /// The result's curves are closed, simple and mutually disjoint polygons with G > 0 on the right
 /// of each (counterclockwise around regions where G < 0), every vertex with |G| ≤ η unless
-/// stats.stalled_roots > 0. After refinement to convergence every segment midpoint has
+/// stats.unconverged_roots > 0. After refinement to convergence every segment midpoint has
 /// |G| ≤ ε except for segments whose split the safeguards refused (stats.rejected). A G without
 /// a zero in the domain gives an empty Interface.
 ///

@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <optional>
 
+#include "slc/contour/contour_stats.hpp"
 #include "slc/contour/implicit_function.hpp"
 #include "slc/contour/root_finding.hpp"
 #include "slc/core/box3.hpp"
@@ -76,38 +77,17 @@ struct SurfaceContourOptions {
     double resolved_eps() const;
 };
 
-/// What a surface contour cost and what it produced.
-struct SurfaceContourStats {
-    std::size_t cells = 0;       ///< cells of the topology octree, all levels
-    std::size_t leaves = 0;      ///< leaves of the octree
-    std::size_t thin_cells = 0;  ///< cells split beyond K where G bends (thin_depth)
-    /// Cells that bend were left whole: thin cells are at most twice as many as the cells at K.
-    bool thin_budget_reached = false;
-    double finest_cell = 0.0;  ///< the edge of the tree's finest cells, thin cells included
-    Vec3 finest_at{};          ///< the centre of the first of them
+/// What a surface contour cost and what it produced: the fields both dimensions share
+/// (BasicContourStats), and the surfaces' own.
+struct SurfaceContourStats : BasicContourStats<3> {
     /// Closed components of the linear contour less than a finest cell across, dropped when
     /// cells went beyond K (a speck beside a convex corner).
     std::size_t specks = 0;
-    std::size_t tetrahedra = 0;      ///< tetrahedra of its mesh
-    std::size_t triangles = 0;       ///< triangles of the result
-    std::size_t vertices = 0;        ///< vertices of the result
-    std::size_t g_evals = 0;         ///< all evaluations of G, each point counted once
-    std::size_t g_evals_tree = 0;    ///< of which: the tree, the mesh vertices and perturbation
-    std::size_t g_evals_roots = 0;   ///< of which: root finding on the tetrahedra's edges
-    std::size_t g_evals_refine = 0;  ///< of which: adaptive refinement
-    /// Tree points that distance_slack or the bounds settled without evaluating G.
-    std::size_t settled = 0;
-    std::size_t bound_evals = 0;        ///< evaluations of the bounds (not counted in g_evals)
-    double g_evals_per_vertex = 0.0;    ///< g_evals / vertices; 0 for an empty result
-    double gamma = 0.0;                 ///< the gradient bound at which the tree balanced
-    std::size_t perturbed = 0;          ///< mesh vertices moved off |G| ≤ η
-    std::size_t unconverged_roots = 0;  ///< roots where G jumps across zero (|G| > η there)
-    int passes = 0;                     ///< refinement passes that split something
-    std::size_t splits = 0;             ///< edges split by refinement
-    std::size_t rejected = 0;           ///< splits refused by a safeguard
-    std::size_t collapses = 0;          ///< needle edges collapsed by refinement
-    std::size_t flips = 0;              ///< edges flipped by refinement
-    bool converged = false;  ///< refinement stopped with no midpoint or centroid beyond ε
+    std::size_t tetrahedra = 0;  ///< tetrahedra of its mesh
+    std::size_t triangles = 0;   ///< triangles of the result
+    std::size_t collapses = 0;   ///< needle edges collapsed by refinement
+    std::size_t flips = 0;       ///< edges flipped by refinement
+    bool converged = false;      ///< refinement stopped with no midpoint or centroid beyond ε
     /// The largest |G| refinement saw at the edge midpoints and centroids of its last pass: at
     /// most ε when converged; 0 without refinement.
     double residual = 0.0;

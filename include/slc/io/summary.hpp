@@ -29,6 +29,14 @@ std::string run_name(const SurfaceRunOptions& options);
 /// stay bounded (scripts/memcheck) reads it from summary.json.
 double peak_rss_mib();
 
+/// A contour's statistics as `slc contour` writes them into summary.json and Python's contour
+/// functions return them: the same key for a field of BasicContourStats in both dimensions
+/// (finest_at as a list of coordinates), then the dimension's own (the curves' max_midpoint_value
+/// is null unless refinement ran to convergence). Whether a surface's refinement converged is for
+/// the caller to add, who knows whether refinement was asked for.
+nlohmann::json contour_stats_json(const ContourStats& stats);
+nlohmann::json contour_stats_json(const SurfaceContourStats& stats);  ///< (see above)
+
 /// summary.json of a run: problem, run, params (N, K, P, ε, η, ρ, M, E, S, L, domain, the law and
 /// its parameters, extension, arcs, area correction, σ, the problem's own parameters), t_end, t,
 /// steps, steps_done, status, e_inf (Equation 11 where the problem has an exact solution, else

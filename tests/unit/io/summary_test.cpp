@@ -39,5 +39,49 @@ TEST(Summary, EtaIsRaisedToTheRoundingFloorOfTheDomainTheRunReached) {
               tolerance::rounding_floor(doubled_domain(s.domain, 2)));
 }
 
+TEST(Summary, ContourStatisticsHaveTheSameKeysInBothDimensions) {
+    ContourStats curves;
+    curves.finest_at = {0.25, -0.5};
+    curves.unconverged_roots = 3;
+    SurfaceContourStats surface;
+    surface.finest_at = {0.25, -0.5, 1.0};
+    surface.unconverged_roots = 4;
+    const nlohmann::json c = contour_stats_json(curves);
+    const nlohmann::json s = contour_stats_json(surface);
+    for (const char* key : {"cells",
+                            "leaves",
+                            "thin_cells",
+                            "thin_budget_reached",
+                            "finest_cell",
+                            "finest_at",
+                            "vertices",
+                            "g_evals",
+                            "g_evals_tree",
+                            "g_evals_roots",
+                            "g_evals_refine",
+                            "g_evals_per_vertex",
+                            "settled",
+                            "bound_evals",
+                            "gamma",
+                            "perturbed",
+                            "unconverged_roots",
+                            "passes",
+                            "splits",
+                            "rejected",
+                            "triangles"}) {
+        EXPECT_TRUE(c.contains(key)) << key;
+        EXPECT_TRUE(s.contains(key)) << key;
+    }
+    EXPECT_EQ(c["finest_at"], nlohmann::json({0.25, -0.5}));
+    EXPECT_EQ(s["finest_at"], nlohmann::json({0.25, -0.5, 1.0}));
+    EXPECT_EQ(c["unconverged_roots"], 3);
+    EXPECT_EQ(s["unconverged_roots"], 4);
+    EXPECT_TRUE(c["max_midpoint_value"].is_null());
+    for (const char* key : {"curves", "segments", "pruned", "joined", "slivers"})
+        EXPECT_TRUE(c.contains(key) && !s.contains(key)) << key;
+    for (const char* key : {"tetrahedra", "specks", "collapses", "flips", "residual"})
+        EXPECT_TRUE(s.contains(key) && !c.contains(key)) << key;
+}
+
 }  // namespace
 }  // namespace slc
