@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "options_check.hpp"
 #include "rounding.hpp"
 #include "slc/core/error.hpp"
 #include "stages.hpp"
@@ -18,38 +19,10 @@ namespace slc {
 namespace {
 
 void validate(const ContourOptions& o, const Box& domain) {
-    auto positive = [](double x) { return x > 0.0 && std::isfinite(x); };
-    if (o.depth < 0 || o.depth > Quadtree::max_supported_depth) {
-        throw InvalidInput(fmt::format("contour depth K must be between 0 and {}, got {}",
-                                       Quadtree::max_supported_depth, o.depth));
-    }
-    if (o.thin_depth < 0) {
-        throw InvalidInput(
-            fmt::format("thin cells' extra depth must be >= 0, got {}", o.thin_depth));
-    }
-    if (o.refine_passes < 0 && o.refine_passes != ContourOptions::until_converged) {
-        throw InvalidInput(
-            fmt::format("refinement passes P must be >= 0, got {}", o.refine_passes));
-    }
-    if (o.max_refine_passes < 0) {
-        throw InvalidInput(
-            fmt::format("max_refine_passes must be >= 0, got {}", o.max_refine_passes));
-    }
-    if (o.eta && !positive(*o.eta))
-        throw InvalidInput(fmt::format("eta must be positive, got {}", *o.eta));
-    if (o.eps && (!positive(*o.eps) || *o.eps < o.resolved_eta())) {
-        throw InvalidInput(
-            fmt::format("eps must be at least eta = {}, got {}", o.resolved_eta(), *o.eps));
-    }
+    contouring::check_shared_options(o, Quadtree::max_supported_depth);
     if (!(o.rho >= 0.0 && o.rho < 1.0)) {
         throw InvalidInput(fmt::format("rho must be in [0, 1), got {}", o.rho));
     }
-    if (o.distance_slack && !(*o.distance_slack >= 0.0 && std::isfinite(*o.distance_slack))) {
-        throw InvalidInput(
-            fmt::format("distance_slack must be finite and >= 0, got {}", *o.distance_slack));
-    }
-    if (!positive(o.gamma))
-        throw InvalidInput(fmt::format("gamma must be positive, got {}", o.gamma));
     const double w = domain.width();
     if (!(w > 0.0) || !std::isfinite(w) || !is_finite(domain.lo) || domain.height() != w) {
         throw InvalidInput(

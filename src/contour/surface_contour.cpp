@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "options_check.hpp"
 #include "rounding.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
@@ -27,31 +28,7 @@ using contouring::SurfaceTopology;
 
 /// Throws InvalidInput naming the first option out of range, or a domain that is not a cube.
 void validate(const SurfaceContourOptions& o, const Box3& domain) {
-    auto positive = [](double x) { return x > 0.0 && std::isfinite(x); };
-    if (o.depth < 0 || o.depth > max_tetrahedralized_depth) {
-        throw InvalidInput(fmt::format("contour depth K must be between 0 and {}, got {}",
-                                       max_tetrahedralized_depth, o.depth));
-    }
-    if (o.eta && !positive(*o.eta))
-        throw InvalidInput(fmt::format("eta must be positive, got {}", *o.eta));
-    if (!positive(o.gamma))
-        throw InvalidInput(fmt::format("gamma must be positive, got {}", o.gamma));
-    if (o.thin_depth < 0) {
-        throw InvalidInput(
-            fmt::format("thin cells' extra depth must be >= 0, got {}", o.thin_depth));
-    }
-    if (o.refine_passes < 0 && o.refine_passes != SurfaceContourOptions::until_converged) {
-        throw InvalidInput(
-            fmt::format("refinement passes P must be >= 0, got {}", o.refine_passes));
-    }
-    if (o.distance_slack && !(*o.distance_slack >= 0.0 && std::isfinite(*o.distance_slack))) {
-        throw InvalidInput(
-            fmt::format("distance slack must be >= 0 and finite, got {}", *o.distance_slack));
-    }
-    if (o.eps && (!positive(*o.eps) || *o.eps < o.resolved_eta())) {
-        throw InvalidInput(
-            fmt::format("eps must be at least eta = {}, got {}", o.resolved_eta(), *o.eps));
-    }
+    contouring::check_shared_options(o, max_tetrahedralized_depth);
     const double w = domain.width();
     if (!(w > 0.0) || !std::isfinite(w) || !is_finite(domain.lo) || !domain.is_cube()) {
         throw InvalidInput(fmt::format(

@@ -443,6 +443,11 @@ TEST(SurfaceContour, BadInputAndNonFiniteValues) {
     EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.depth = 21}), InvalidInput);
     EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.eta = 0.0}), InvalidInput);
     EXPECT_THROW(contour_surface(g, Box3{{0, 0, 0}, {1, 2, 1}}, {}), InvalidInput);
+    // The checks both dimensions share (options_check.hpp), as for curves.
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.max_refine_passes = -1}),
+                 InvalidInput);
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.thin_depth = -1}), InvalidInput);
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.gamma = 0.0}), InvalidInput);
     const auto nan = pointwise<Vec3>([](Vec3 x) { return x.x > 0.3 ? std::nan("") : x.x; });
     EXPECT_THROW(contour_surface(nan, Box3::centered_cube(1.0), {.depth = 3}), NumericalFailure);
 }
