@@ -15,7 +15,7 @@ from ._interface import Interface, _integer, _interface, _points, _refine, _thre
 from ._problem import _NamedProblem
 from ._tables import ConvergenceTable, nan_array as _array
 from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, _check_frames,
-                       _run_end, run_surface, study_surface)
+                       _run_end, _RunEnd, run_surface, study_surface)
 
 
 class FlowField:
@@ -94,24 +94,13 @@ class Step(NamedTuple):
     cpu_s: float  #: CPU seconds of this step
 
 
-@dataclass
-class RunResult:
-    """How a run ended: ``status`` is "ok", "vanished", "interrupted" (Ctrl-C, or an observer
-    returned False), "error" or "unstable" (a step broke what the law keeps — area, shape, its
-    area rate — even split into 16 sub-steps); ``message`` says why, naming the time."""
+@dataclass(kw_only=True)
+class RunResult(_RunEnd):
+    """How a run of curves ended: status, t, history, summary, message and e_inf as every run
+    has them, the final curves and the frames kept."""
 
     interface: Interface
-    status: str
-    t: float
-    history: dict[str, np.ndarray]
     frames: list[tuple[float, Interface]] = field(default_factory=list)
-    summary: dict[str, Any] = field(default_factory=dict)
-    message: str = ""
-
-    @property
-    def e_inf(self) -> float | None:
-        """The error of the paper's Eq. (11) at the end, for a problem with an exact solution."""
-        return self.summary.get("e_inf")
 
 
 class Problem(_NamedProblem):

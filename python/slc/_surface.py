@@ -155,7 +155,7 @@ class SurfaceProblem(_NamedProblem):
 
 
 class SurfaceStep(NamedTuple):
-    """What an observer of run() on a surface sees after each step."""
+    """What an observer of run() on a surface sees after each step: as Step, with the surface."""
 
     step: int  #: 1..steps
     steps: int  #: N
@@ -164,26 +164,36 @@ class SurfaceStep(NamedTuple):
     cpu_s: float  #: CPU seconds of this step
 
 
-@dataclass
-class SurfaceRunResult:
-    """How a run of a surface ended: ``status`` is "ok", "vanished", "interrupted", "error",
-    "unstable" (a step broke what the law keeps — volume, components, genus — even split into
-    16 sub-steps, or the volume drifted by more than volume_drift, 1% unless set) or, with
+@dataclass(kw_only=True)
+class _RunEnd:
+    """How a run ended, for curves and surfaces alike: ``status`` is "ok", "vanished",
+    "interrupted" (Ctrl-C, or an observer returned False), "error", "unstable" (a step broke what
+    the law keeps — area or volume, parts, shape, rate — even split into 16 sub-steps) or, with
     guards=False, "broken" (the run reached its end, but a step broke what the law keeps);
-    ``message`` says why."""
+    ``message`` says why, naming the time. ``history``: per-step arrays; ``summary``: the keys
+    of summary.json."""
 
-    surface: Surface
     status: str
     t: float
     history: dict[str, np.ndarray]
-    frames: list[tuple[float, Surface]] = field(default_factory=list)
     summary: dict[str, Any] = field(default_factory=dict)
     message: str = ""
 
     @property
     def e_inf(self) -> float | None:
-        """The largest |exact| over the final vertices and centroids, where it is known."""
+        """The error at the end where the exact solution is known: Eq. (11) for curves (the
+        largest |exact distance| over vertices and segment midpoints), the largest |exact| over
+        vertices and centroids for a surface; None otherwise."""
         return self.summary.get("e_inf")
+
+
+@dataclass(kw_only=True)
+class SurfaceRunResult(_RunEnd):
+    """How a run of a surface ended (see RunResult); a law that keeps the volume also ends
+    "unstable" when the volume drifted by more than volume_drift, 1% unless set."""
+
+    surface: Surface
+    frames: list[tuple[float, Surface]] = field(default_factory=list)
 
 
 def _check_frames(frames) -> None:
