@@ -22,7 +22,16 @@ typename Kernel::Nearest ClimbingQuery<Tree, Kernel>::nearest(Point x) const {
     const bool plain = t.in_plain_range(x);
     for (;;) {
         if (!t.is_listed(c)) {
-            t.hierarchy().nearest(elements, x, best);
+            // Queries come in batches of nearby points, so the nearest element of this thread's
+            // last hierarchy search in the same tree is a near one to start from. It only prunes:
+            // the answer is the same for any thread count.
+            thread_local struct {
+                const Tree* tree = nullptr;
+                std::uint32_t element = 0;
+            } last;
+            const std::uint32_t hint = last.tree == &t ? last.element : Kernel::Hierarchy::no_hint;
+            t.hierarchy().nearest(elements, x, best, hint);
+            last = {&t, Kernel::element_of(best)};
             break;
         }
         for (std::uint32_t e : t.cell_list(c))

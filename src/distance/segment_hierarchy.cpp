@@ -43,9 +43,10 @@ SegmentHierarchy::SegmentHierarchy(std::span<const Segment> segments) {
         boxes_[i] = unite(boxes_[2 * i], boxes_[2 * i + 1]);
 }
 
-void SegmentHierarchy::nearest(std::span<const Segment> segments, Vec2 x,
-                               NearestSegment& best) const {
+void SegmentHierarchy::nearest(std::span<const Segment> segments, Vec2 x, NearestSegment& best,
+                               std::uint32_t hint) const {
     if (boxes_.empty()) return;
+    if (hint < segments.size()) best.offer(hint, closest_point(segments[hint], x));
     // Depth-first, nearer child first; a box is opened only if it may hold a segment at most as
     // far as the best (ties matter: the lower index wins).
     std::uint32_t stack[64];

@@ -183,11 +183,15 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles, Bound
     });
 }
 
-void TriangleHierarchy::nearest(std::span<const Triangle3> triangles, Vec3 x,
-                                NearestFacet& best) const {
+void TriangleHierarchy::nearest(std::span<const Triangle3> triangles, Vec3 x, NearestFacet& best,
+                                std::uint32_t hint) const {
     if (nodes_.empty()) return;
     const double slack = rounding * std::max({std::abs(x.x), std::abs(x.y), std::abs(x.z)});
     const bool plain = plain_ && in_plain_range(x);
+    // The hint's point is the one the search computes for it, so it changes only what is pruned.
+    if (hint < triangles.size())
+        best.offer(hint, plain ? closest_point_in_range(triangles[hint], x)
+                               : closest_point(triangles[hint], x));
     std::uint32_t stack[64];
     int top = 0;
     stack[top++] = 0;

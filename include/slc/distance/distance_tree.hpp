@@ -42,6 +42,8 @@ struct SegmentKernel {
     static SegmentPoint closest_point(const Segment& s, Vec2 x, bool /*plain*/) {
         return slc::closest_point(s, x);
     }
+    /// The segment of a nearest pair (or SegmentHierarchy::no_hint when none was found).
+    static std::uint32_t element_of(const NearestSegment& n) { return n.segment; }
     /// The square x ± m (as rounded) that a cell's triple must hold to end the climb.
     static Box reach(Vec2 x, double m) { return {{x.x - m, x.y - m}, {x.x + m, x.y + m}}; }
     /// The nearest point without its sign: distance |F(x)|.

@@ -50,8 +50,12 @@ public:
 
     /// Lowers best to the least (distance2, segment) over all segments: exact, and the same
     /// answer as a scan of every segment. A best already found (for example from a short list
-    /// near x) only prunes more.
-    void nearest(std::span<const Segment> segments, Vec2 x, NearestSegment& best) const;
+    /// near x) only prunes more; so does hint, a segment to try first (an index out of range:
+    /// none).
+    void nearest(std::span<const Segment> segments, Vec2 x, NearestSegment& best,
+                 std::uint32_t hint = no_hint) const;
+    /// The hint of nearest() that tries nothing first.
+    static constexpr std::uint32_t no_hint = std::numeric_limits<std::uint32_t>::max();
 
 private:
     std::uint32_t leaves_ = 0;  ///< leaf boxes, a power of two; node i has children 2i, 2i + 1

@@ -41,6 +41,8 @@ struct TriangleKernel {
     static FacetPoint closest_point(const Triangle3& t, Vec3 x, bool plain) {
         return plain ? closest_point_in_range(t, x) : slc::closest_point(t, x);
     }
+    /// The triangle of a nearest pair (or TriangleHierarchy::no_hint when none was found).
+    static std::uint32_t element_of(const NearestFacet& n) { return n.triangle; }
     /// The cube of half-width m around x, exactly a cube (Box3::cube), that a cell's triple must
     /// hold to end the climb.
     static Box3 reach(Vec3 x, double m) { return Box3::cube(x, m); }

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -94,8 +95,12 @@ public:
     /// Lowers best to the least (distance2, triangle) over all triangles: exact, the same answer
     /// as a scan of every triangle. A best already found only prunes more; so do slabs
     /// (Bounds::boxes_and_slabs), by a factor of 10 to 15 for points deep inside a sphere
-    /// (docs/tables/table1_3d.md).
-    void nearest(std::span<const Triangle3> triangles, Vec3 x, NearestFacet& best) const;
+    /// (docs/tables/table1_3d.md). hint: a triangle to try first (an index out of range: none);
+    /// one near x prunes the search from its start, and the answer does not depend on it.
+    void nearest(std::span<const Triangle3> triangles, Vec3 x, NearestFacet& best,
+                 std::uint32_t hint = no_hint) const;
+    /// The hint of nearest() that tries nothing first.
+    static constexpr std::uint32_t no_hint = std::numeric_limits<std::uint32_t>::max();
     /// True when every triangle is in_plain_range: a query point within it too may take
     /// closest_point_in_range.
     bool plain() const { return plain_; }
