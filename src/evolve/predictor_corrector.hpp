@@ -97,6 +97,13 @@ Result advance_normal_law(const Shape& shape, double t, double k, const Region& 
     };
     auto predicted = contour_within(
         predictor, s_now ? std::optional(k * *s_now + now.max_bulge()) : std::nullopt);
+    if (now.constant_speed()) {
+        // The corrector's G would be the predictor's to the last bit (constant_speed()): the
+        // predicted contour is the step's, its statistics the final contour's, as for a flow.
+        result.stats.corrector = predicted.stats;
+        shape_of(result) = std::move(shape_of(predicted));
+        return result;
+    }
     result.stats.predictor = predicted.stats;
     if (vanished(shape_of(predicted))) return result;
 

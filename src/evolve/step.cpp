@@ -200,6 +200,8 @@ public:
     double max_speed() const { return max_speed_; }
     /// A normal law's max|V| over the distance field's normals (max_normal_speed()).
     std::optional<double> normal_speed_bound() const { return max_speed_; }
+    /// A normal law's speed when it is one number everywhere (VelocityLaw::constant_speed).
+    std::optional<double> constant_speed() const { return law_.constant_speed(); }
 
     /// Adds the normal speed s to every vertex velocity, along the bisectors of the segments'
     /// normals: a move of the mean of a nonlocal law, whose speeds are V − mean.

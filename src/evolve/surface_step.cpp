@@ -116,6 +116,8 @@ public:
     double max_speed() const { return max_speed_; }
     /// A normal law's bound on |V|, when it gives one.
     std::optional<double> normal_speed_bound() const { return law_.speed_bound(); }
+    /// A normal law's speed when it is one number everywhere (VelocityLaw::constant_speed).
+    std::optional<double> constant_speed() const { return law_.constant_speed(); }
     /// Adds the normal speed s to every vertex velocity, along the fitted normals: a move of the
     /// mean of a nonlocal law, whose speeds are V − mean.
     void add_normal_speed(double s) {

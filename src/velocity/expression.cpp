@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -148,9 +149,17 @@ public:
     }
 
     const ExpressionSpec& spec() const { return spec_; }
-    /// True when the expression reads the variable or constant `name`.
+    /// True when the expression reads the variable `name`.
     bool uses(std::string_view name) const {
         return std::find(used_.begin(), used_.end(), name) != used_.end();
+    }
+    /// Its value when it reads no variable (muparser's functions are pure, so it is one number
+    /// then), else nothing.
+    std::optional<double> constant() const {
+        if (!used_.empty() || spec_.values != 1) return std::nullopt;
+        double value = 0.0;
+        for_each(1, [&](Evaluator& e, std::size_t) { value = e.value(); });
+        return value;
     }
 
     /// Calls body(evaluator, i) for every i in [0, n), on all worker threads for large n; body
@@ -258,8 +267,16 @@ public:
     using Point = PointOf<dim>;
     /// module: where the vertex normals of curves come from; unset for surfaces.
     SpeedExpression(std::shared_ptr<const EvaluatorPool> pool, std::optional<GeometryModule> module)
-        : BasicNormalLaw<dim>(module), pool_(std::move(pool)) {}
+        : BasicNormalLaw<dim>(module), pool_(std::move(pool)), constant_(pool_->constant()) {}
     std::string name() const override { return "speed = " + shown(pool_->spec().text); }
+    /// A number (no variable read) moves as unit-normal at that speed, and keeps what it keeps.
+    Invariants invariants() const override {
+        return constant_ ? constant_speed_invariants<dim>(*constant_) : Invariants{};
+    }
+    std::optional<double> speed_bound() const override {
+        return constant_ ? std::optional(std::abs(*constant_)) : std::nullopt;
+    }
+    std::optional<double> constant_speed() const override { return constant_; }
     void normal_speeds(double t, std::span<const Point> points, std::span<const Point> normals,
                        std::span<double> out) const override {
         pool_->for_each(points.size(), [&](Evaluator& e, std::size_t i) {
@@ -271,6 +288,7 @@ public:
 
 private:
     std::shared_ptr<const EvaluatorPool> pool_;
+    std::optional<double> constant_;  ///< the speed when the expression reads no variable
 };
 
 /// v(x, t, C, N) with the curvature (the mean curvature of surfaces): known at the vertices only.

@@ -36,4 +36,15 @@ struct Invariants {
     std::optional<double> volume_rate_per_area = std::nullopt;
 };
 
+/// What a constant normal speed s keeps, in dimension dim (unit-normal, a speed expression that
+/// reads no variable): at 0 nothing moves; s > 0 only grows the region and s < 0 only shrinks it;
+/// a surface's volume changes at s times its area.
+template <int dim>
+Invariants constant_speed_invariants(double s) {
+    if (s == 0.0) return {.keeps_area = true, .rigid = true};
+    Invariants kept{.cannot_vanish = s > 0.0, .cannot_grow = s < 0.0};
+    if constexpr (dim == 3) kept.volume_rate_per_area = s;
+    return kept;
+}
+
 }  // namespace slc

@@ -95,14 +95,12 @@ public:
         : NormalLaw(module), speed_(speed) {}
     std::string name() const override { return "unit-normal"; }
     /// No motion at speed 0; a growing curve at speed > 0, a shrinking one below.
-    Invariants invariants() const override {
-        if (speed_ == 0.0) return {.keeps_area = true, .rigid = true};
-        return {.cannot_vanish = speed_ > 0.0, .cannot_grow = speed_ < 0.0};
-    }
+    Invariants invariants() const override { return constant_speed_invariants<2>(speed_); }
     /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
                        std::span<double> out) const override;
     std::optional<double> speed_bound() const override { return std::abs(speed_); }
+    std::optional<double> constant_speed() const override { return speed_; }
 
 private:
     double speed_;

@@ -56,16 +56,12 @@ public:
     explicit SurfaceNormalSpeed(double speed = 1.0) : speed_(speed) {}
     std::string name() const override { return "unit-normal"; }
     /// No motion at speed 0; a growing surface at speed > 0; the volume changing at s·A.
-    Invariants invariants() const override {
-        if (speed_ == 0.0) return {.keeps_area = true, .rigid = true};
-        return {.cannot_vanish = speed_ > 0.0,
-                .cannot_grow = speed_ < 0.0,
-                .volume_rate_per_area = speed_};
-    }
+    Invariants invariants() const override { return constant_speed_invariants<3>(speed_); }
     /// The normal speed at each point with its normal, as the base's normal_speeds().
     void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
                        std::span<double> out) const override;
     std::optional<double> speed_bound() const override { return std::abs(speed_); }
+    std::optional<double> constant_speed() const override { return speed_; }
 
 private:
     double speed_;

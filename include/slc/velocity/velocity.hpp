@@ -111,6 +111,11 @@ public:
     /// distance_slack); the surfaces are the same. A run refuses a bound times its time span
     /// beyond the coordinate limit (the arithmetic would overflow).
     virtual std::optional<double> speed_bound() const { return std::nullopt; }
+    /// V, for a normal law whose speed is one number at every time, point and normal
+    /// (unit-normal, a speed expression that reads no variable), or nothing. The step's
+    /// trapezoidal corrector then gives G = F − k/2 (V + V), the predictor's F − kV to the last
+    /// bit, and the predicted contour is the step's.
+    virtual std::optional<double> constant_speed() const { return std::nullopt; }
 
     /// The closed box outside which the law is not known (a velocity given on a grid), or
     /// nothing for a law known everywhere. run() refuses initial curves that leave it and ends

@@ -59,6 +59,25 @@ TEST(Advance, NormalLawGivesTheExactOffsetOfASquareCornersIncluded) {
     }
 }
 
+TEST(Advance, AConstantSpeedsStepIsItsPredictorToTheLastBit) {
+    // With V one number, the corrector's G = F − k/2 (V + V) is the predictor's F − kV, so the
+    // step ends at its predicted contour: the curves of the whole step of the same speed given
+    // as a lambda (which claims no constant speed), for fewer evaluations.
+    const Box domain = Box::centered_square(2.0);
+    const auto lambda = normal_law("shrink", [](double, Vec2, Vec2) { return -1.0; });
+    ASSERT_FALSE(lambda->constant_speed());
+    const StepOptions o = converged();
+    const StepResult whole = advance(square(), 0.0, 0.2, *lambda, domain, o);
+    const StepResult predicted = advance(square(), 0.0, 0.2, NormalSpeed(-1.0), domain, o);
+    const auto points = [](const Interface& c) {
+        return std::vector<Vec2>(c.points().begin(), c.points().end());
+    };
+    EXPECT_EQ(points(predicted.curves), points(whole.curves));
+    EXPECT_GT(whole.stats.predictor.g_evals, 0u);
+    EXPECT_EQ(predicted.stats.predictor.g_evals, 0u);
+    EXPECT_LT(predicted.stats.g_evals(), whole.stats.g_evals());
+}
+
 TEST(Advance, VertexNormalsCutTheGrowingCorners) {
     // The paper's way, the vertex normals extended from the nearest point, moves each corner
     // along its bisector by k only: the exact corner arc lies k(√2 − 1) beyond it.

@@ -42,6 +42,23 @@ TEST(SurfaceStep, UsersLambdasInSpace) {
     EXPECT_EQ(c.vertices, d.vertices);
 }
 
+TEST(SurfaceStep, AConstantSpeedsStepIsItsPredictorToTheLastBit) {
+    // As for curves: the built-in constant speed ends at the predicted contour, the lambda of the
+    // same speed (no constant speed claimed) runs the corrector too, and the surfaces agree.
+    const auto lambda = normal_law("shrink", [](double, Vec3, Vec3) { return -1.0; });
+    ASSERT_FALSE(lambda->constant_speed());
+    const Surface start = box_surface({-0.45, -0.52, -0.47}, {0.55, 0.48, 0.53}, 4);
+    const SurfaceStepOptions o = refined(4, 1e-3);
+    const SurfaceStepResult whole = advance(start, 0.0, 0.1, *lambda, unit_domain, o);
+    const SurfaceStepResult predicted =
+        advance(start, 0.0, 0.1, SurfaceNormalSpeed(-1.0), unit_domain, o);
+    EXPECT_EQ(predicted.surface.vertices, whole.surface.vertices);
+    EXPECT_EQ(predicted.surface.triangles, whole.surface.triangles);
+    EXPECT_GT(whole.stats.predictor.g_evals, 0u);
+    EXPECT_EQ(predicted.stats.predictor.g_evals, 0u);
+    EXPECT_LT(predicted.stats.g_evals(), whole.stats.g_evals());
+}
+
 TEST(SurfaceStep, SameSurfaceForAnyThreadCount) {
     const SurfaceMeanCurvatureFlow law;
     const Surface start = torus({}, 0.5, 0.2, 32, 16);

@@ -55,6 +55,27 @@ TEST(SpeedExpression, OneIsTheUnitNormalLaw) {
     EXPECT_EQ(vertex_velocities(*law, 0.0, curves), vertex_velocities(builtin, 0.0, curves));
 }
 
+TEST(SpeedExpression, ANumberIsAConstantSpeedWithTheUnitNormalLawsInvariants) {
+    // An expression that reads no variable is one number: the step then stops at its predictor,
+    // the guards check what unit-normal at that speed keeps, and the speed bounds G.
+    const auto grow = surface_speed_expression_law("2 * s", {{"s", 0.25}});
+    EXPECT_EQ(grow->constant_speed(), 0.5);
+    EXPECT_EQ(grow->speed_bound(), 0.5);
+    const Invariants kept = grow->invariants();
+    EXPECT_TRUE(kept.cannot_vanish && !kept.cannot_grow);
+    EXPECT_EQ(kept.volume_rate_per_area, 0.5);
+    const auto shrink = speed_expression_law("-1");
+    EXPECT_EQ(shrink->constant_speed(), -1.0);
+    EXPECT_TRUE(shrink->invariants().cannot_grow);
+    EXPECT_FALSE(shrink->invariants().volume_rate_per_area);
+    for (const char* reads : {"x", "0 * t + 1", "1 + 0 * nz"}) {
+        const auto law = surface_speed_expression_law(reads);
+        EXPECT_FALSE(law->constant_speed()) << reads;
+        EXPECT_FALSE(law->speed_bound()) << reads;
+        EXPECT_FALSE(law->invariants().cannot_vanish) << reads;
+    }
+}
+
 TEST(SpeedExpression, ReadsPointTimeAndNormal) {
     const auto law = speed_expression_law("x + 10*y + 100*t + 1000*nx + 10000*ny");
     const std::vector<Vec2> points = {{1, 2}, {-3, 0.5}};
