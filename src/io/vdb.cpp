@@ -44,7 +44,7 @@ std::string one_line(const char* what) {
 
 /// A grid as a message names it: 'name' (class, values).
 std::string described(const openvdb::GridBase& grid) {
-    return fmt::format("'{}' ({}, {} values)", grid.getName(),
+    return fmt::format("'{}' (class {}, {} values)", one_line(grid.getName().c_str()),
                        openvdb::GridBase::gridClassToString(grid.getGridClass()), grid.valueType());
 }
 
@@ -99,7 +99,8 @@ openvdb::GridBase::Ptr chosen_grid(const openvdb::GridPtrVec& grids, const std::
             }
             return g;
         }
-        throw InvalidInput(fmt::format("{}: no grid named '{}' (grids: {})", source, name, all));
+        throw InvalidInput(
+            fmt::format("{}: no grid named '{}' (grids: {})", source, one_line(name.c_str()), all));
     }
     for (const auto& g : grids)
         if (is_level_set(*g)) return g;
@@ -110,7 +111,8 @@ openvdb::GridBase::Ptr chosen_grid(const openvdb::GridPtrVec& grids, const std::
 /// The contour of a level set's trilinear interpolant (read_vdb_level_set).
 template <class GridT>
 Surface contoured(const GridT& grid, const std::string& source, const VdbReadOptions& options) {
-    const std::string what = fmt::format("{}: level set '{}'", source, grid.getName());
+    const std::string what =
+        fmt::format("{}: level set '{}'", source, one_line(grid.getName().c_str()));
     const openvdb::CoordBBox active = grid.evalActiveVoxelBoundingBox();
     if (active.empty()) throw InvalidInput(fmt::format("{} has no active voxels", what));
 
@@ -137,9 +139,9 @@ Surface contoured(const GridT& grid, const std::string& source, const VdbReadOpt
     if (options.depth) {
         contour.depth = *options.depth;
     } else {
-        // The shallowest depth whose cells are at most a voxel wide: finer cells would only
-        // sample the same trilinear pieces again.
-        const double cells = std::ceil(std::log2(domain.width() / voxel));
+        // The depth whose cells are nearest a voxel wide (within a factor √2): finer cells
+        // would only sample the same trilinear pieces again, coarser ones miss what they hold.
+        const double cells = std::round(std::log2(domain.width() / voxel));
         contour.depth = static_cast<int>(std::clamp(cells, 1.0, double{max_tetrahedralized_depth}));
     }
     const openvdb::tools::GridSampler<GridT, openvdb::tools::BoxSampler> sampler(grid);

@@ -18,8 +18,8 @@ namespace slc {
 struct VdbReadOptions {
     /// The grid to read by name; empty (the default): the file's first level-set grid.
     std::string grid;
-    /// K, the depth of the contouring octree; unset (the default): the depth whose finest cells
-    /// are at most a voxel wide, so the contour resolves what the grid does.
+    /// K, the depth of the contouring octree; unset (the default): the depth whose cells are
+    /// nearest a voxel wide (within a factor √2), so the contour resolves what the grid does.
     std::optional<int> depth = std::nullopt;
 };
 

@@ -254,16 +254,17 @@ TEST(VdbLevelSet, RefusesGridsThatAreNotLevelSets) {
     fog->setName("density");
     const fs::path fog_file = dir.path() / "fog.vdb";
     write_with_openvdb(fog_file, {fog});
-    expect_refused(fog_file,
-                   "no level-set grid of float or double values (grids: 'density' (fog volume, "
-                   "float values))");
+    expect_refused(
+        fog_file,
+        "no level-set grid of float or double values (grids: 'density' (class fog volume, "
+        "float values))");
 
     const auto velocity = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
     velocity->tree().setValue(openvdb::Coord(1, 2, 3), openvdb::Vec3s(1.0f, 0.0f, 0.0f));
     velocity->setName("v");
     const fs::path vector_file = dir.path() / "vector.vdb";
     write_with_openvdb(vector_file, {velocity});
-    expect_refused(vector_file, "(grids: 'v' (unknown, vec3s values))");
+    expect_refused(vector_file, "(grids: 'v' (class unknown, vec3s values))");
 
     // A level set beside them is read; a grid asked for by name must be one.
     const auto ball =
@@ -275,8 +276,8 @@ TEST(VdbLevelSet, RefusesGridsThatAreNotLevelSets) {
     EXPECT_LE(sphere_error(read_vdb_level_set(mixed, {.grid = "ball"}), {0, 0, 0}, 1.0), 0.1);
     EXPECT_EQ(invalid_input_message([&] { read_vdb_level_set(mixed, {.grid = "density"}); }),
               mixed.string() +
-                  ": grid 'density' (fog volume, float values) is not a level set of float or "
-                  "double values");
+                  ": grid 'density' (class fog volume, float values) is not a level set of float "
+                  "or double values");
     EXPECT_NE(invalid_input_message([&] {
                   read_vdb_level_set(mixed, {.grid = "nothing"});
               }).find("no grid named 'nothing'"),
