@@ -14,7 +14,8 @@ void add_problem_source_options(CLI::App& cmd, ProblemSource& o) {
     auto* initial = cmd.add_option(
         "--initial", o.initial,
         "Curves (an interface file, .json) or a closed triangle surface (.obj, .stl, "
-        ".ply) to move instead of a problem");
+        ".ply; or .vdb, an OpenVDB file whose first level-set grid is contoured at about its "
+        "voxel size) to move instead of a problem");
     problem->excludes(initial);
     cmd.add_option("--velocity", o.velocity, velocity_help())->excludes(problem);
     cmd.add_option("--speed", o.speed,
