@@ -1,7 +1,8 @@
 /// @file
-/// OpenVDB level sets in and out (vdb.hpp): the only file that includes OpenVDB's headers. A
-/// level set is read by contouring its trilinear interpolant (paper §2, d = 3) and written as the
-/// exact signed distance of the surface (paper §1.3) in a narrow band of voxels.
+/// OpenVDB level sets in and out, and vector grids as flow fields (vdb.hpp): the only file that
+/// includes OpenVDB's headers. A level set is read by contouring its trilinear interpolant (paper
+/// §2, d = 3) and written as the exact signed distance of the surface (paper §1.3) in a narrow
+/// band of voxels.
 #include "slc/io/vdb.hpp"
 
 #include <fmt/format.h>
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -28,6 +30,7 @@
 #include "slc/contour/surface_contour.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/input_text.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/tree/tetrahedralization.hpp"
 
@@ -51,6 +54,24 @@ std::string described(const openvdb::GridBase& grid) {
 bool is_level_set(const openvdb::GridBase& grid) {
     return grid.getGridClass() == openvdb::GRID_LEVEL_SET &&
            (grid.isType<openvdb::FloatGrid>() || grid.isType<openvdb::DoubleGrid>());
+}
+
+bool is_vector_grid(const openvdb::GridBase& grid) {
+    return grid.isType<openvdb::Vec3SGrid>() || grid.isType<openvdb::Vec3DGrid>();
+}
+
+/// The world box of the centres of voxels [lo, hi] (an index box) under a linear transform.
+Box3 world_box(const openvdb::math::Transform& transform, const openvdb::Vec3d& lo,
+               const openvdb::Vec3d& hi) {
+    Box3 world = Box3::empty();
+    for (int corner = 0; corner < 8; ++corner) {
+        const openvdb::Vec3d index(corner & 1 ? hi.x() : lo.x(), corner & 2 ? hi.y() : lo.y(),
+                                   corner & 4 ? hi.z() : lo.z());
+        const openvdb::Vec3d p = transform.indexToWorld(index);
+        const Vec3 q{p.x(), p.y(), p.z()};
+        world = unite(world, Box3{q, q});
+    }
+    return world;
 }
 
 /// All the grids of the file at path, read whole. Any failure of OpenVDB's reader (not an
@@ -83,19 +104,26 @@ openvdb::GridPtrVecPtr file_grids(const std::filesystem::path& path) {
     }
 }
 
-/// The grid options.grid names, or the first level set; a clear error when there is none.
+/// What read_vdb_level_set and vdb_field_law read: a test of a grid, and how messages say it
+/// ("level-set grid of ...", "level set of ...").
+struct GridKind {
+    bool (*fits)(const openvdb::GridBase&);
+    const char* grid;  ///< "no {grid}"
+    const char* one;   ///< "grid 'x' is not a {one}"
+};
+
+/// The grid `name` names, or the first grid of its kind; a clear error when there is none.
 openvdb::GridBase::Ptr chosen_grid(const openvdb::GridPtrVec& grids, const std::string& source,
-                                   const std::string& name) {
+                                   const std::string& name, const GridKind& kind) {
     if (grids.empty()) throw InvalidInput(fmt::format("{}: no grids", source));
     std::string all;
     for (const auto& g : grids) all += (all.empty() ? "" : ", ") + described(*g);
     if (!name.empty()) {
         for (const auto& g : grids) {
             if (g->getName() != name) continue;
-            if (!is_level_set(*g)) {
+            if (!kind.fits(*g)) {
                 throw InvalidInput(
-                    fmt::format("{}: grid {} is not a level set of float or double values", source,
-                                described(*g)));
+                    fmt::format("{}: grid {} is not a {}", source, described(*g), kind.one));
             }
             return g;
         }
@@ -103,9 +131,8 @@ openvdb::GridBase::Ptr chosen_grid(const openvdb::GridPtrVec& grids, const std::
             fmt::format("{}: no grid named '{}' (grids: {})", source, one_line(name.c_str()), all));
     }
     for (const auto& g : grids)
-        if (is_level_set(*g)) return g;
-    throw InvalidInput(
-        fmt::format("{}: no level-set grid of float or double values (grids: {})", source, all));
+        if (kind.fits(*g)) return g;
+    throw InvalidInput(fmt::format("{}: no {} (grids: {})", source, kind.grid, all));
 }
 
 /// The contour of a level set's trilinear interpolant (read_vdb_level_set).
@@ -119,15 +146,8 @@ Surface contoured(const GridT& grid, const std::string& source, const VdbReadOpt
     // The world box of the active voxels: their index box grown by half a voxel (voxel
     // centres sit at integer index coordinates), its eight corners mapped to world space.
     const openvdb::math::Transform& transform = grid.transform();
-    Box3 world = Box3::empty();
-    for (int corner = 0; corner < 8; ++corner) {
-        const openvdb::Vec3d index((corner & 1 ? active.max().x() + 0.5 : active.min().x() - 0.5),
-                                   (corner & 2 ? active.max().y() + 0.5 : active.min().y() - 0.5),
-                                   (corner & 4 ? active.max().z() + 0.5 : active.min().z() - 0.5));
-        const openvdb::Vec3d p = transform.indexToWorld(index);
-        const Vec3 q{p.x(), p.y(), p.z()};
-        world = unite(world, Box3{q, q});
-    }
+    const Box3 world = world_box(transform, active.min().asVec3d() - openvdb::Vec3d(0.5),
+                                 active.max().asVec3d() + openvdb::Vec3d(0.5));
     const openvdb::Vec3d sizes = transform.voxelSize();
     const double voxel = std::min({sizes.x(), sizes.y(), sizes.z()});
     const double width = std::max({world.extent(0), world.extent(1), world.extent(2)});
@@ -228,12 +248,80 @@ void write_grids(const std::filesystem::path& path, const openvdb::GridPtrVec& g
     }
 }
 
+/// A vector grid as a steady flow field (vdb_field_law).
+template <class GridT, class Sampler>
+class VdbField final : public SurfaceFlowFieldLaw {
+public:
+    VdbField(typename GridT::ConstPtr grid, Box3 extent, std::string name)
+        : grid_(std::move(grid)), sampler_(*grid_), extent_(extent), name_(std::move(name)) {}
+    std::string name() const override { return name_; }
+    void sample(double, std::span<const Vec3> points, std::span<Vec3> out) const override {
+        // The sampler reads the tree without a cache: safe on all threads at once.
+        parallel_for(points.size(), [&](std::size_t i) {
+            const Vec3 x = points[i];
+            const auto u = sampler_.wsSample(openvdb::Vec3d(x.x, x.y, x.z));
+            out[i] = {static_cast<double>(u.x()), static_cast<double>(u.y()),
+                      static_cast<double>(u.z())};
+        });
+    }
+    std::optional<Box3> extent() const override { return extent_; }
+
+private:
+    typename GridT::ConstPtr grid_;  ///< owned here; the sampler refers to it
+    openvdb::tools::GridSampler<GridT, Sampler> sampler_;
+    Box3 extent_;
+    std::string name_;
+};
+
+template <class GridT>
+std::unique_ptr<SurfaceVelocityLaw> field_of(typename GridT::ConstPtr grid,
+                                             const std::string& source) {
+    const openvdb::CoordBBox active = grid->evalActiveVoxelBoundingBox();
+    if (active.empty()) {
+        throw InvalidInput(fmt::format("{}: vector grid '{}' has no active voxels", source,
+                                       one_line(grid->getName().c_str())));
+    }
+    const Box3 extent =
+        world_box(grid->transform(), active.min().asVec3d(), active.max().asVec3d());
+    std::string name = "field-file " + source;
+    if (grid->getGridClass() == openvdb::GRID_STAGGERED) {
+        return std::make_unique<VdbField<GridT, openvdb::tools::StaggeredBoxSampler>>(
+            std::move(grid), extent, std::move(name));
+    }
+    return std::make_unique<VdbField<GridT, openvdb::tools::BoxSampler>>(std::move(grid), extent,
+                                                                         std::move(name));
+}
+
 }  // namespace
+
+bool is_vdb_file(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".vdb";
+}
+
+std::unique_ptr<SurfaceVelocityLaw> vdb_field_law(const std::filesystem::path& path,
+                                                  const std::string& grid) {
+    const openvdb::GridPtrVecPtr grids = file_grids(path);
+    const std::string source = path.string();
+    const openvdb::GridBase::Ptr chosen =
+        chosen_grid(*grids, source, grid,
+                    {is_vector_grid, "vector grid of vec3s or vec3d values",
+                     "vector grid of vec3s or vec3d values"});
+    if (const auto f = openvdb::gridConstPtrCast<openvdb::Vec3SGrid>(chosen))
+        return field_of<openvdb::Vec3SGrid>(f, source);
+    return field_of<openvdb::Vec3DGrid>(openvdb::gridConstPtrCast<openvdb::Vec3DGrid>(chosen),
+                                        source);
+}
 
 Surface read_vdb_level_set(const std::filesystem::path& path, const VdbReadOptions& options) {
     const openvdb::GridPtrVecPtr grids = file_grids(path);
     const std::string source = path.string();
-    const openvdb::GridBase::Ptr grid = chosen_grid(*grids, source, options.grid);
+    const openvdb::GridBase::Ptr grid =
+        chosen_grid(*grids, source, options.grid,
+                    {is_level_set, "level-set grid of float or double values",
+                     "level set of float or double values"});
     if (const auto f = openvdb::gridConstPtrCast<openvdb::FloatGrid>(grid))
         return contoured(*f, source, options);
     return contoured(*openvdb::gridConstPtrCast<openvdb::DoubleGrid>(grid), source, options);

@@ -1,7 +1,8 @@
-# OpenVDB level sets on the command line: slc run --vdb writes final.vdb, which --initial (and
+# OpenVDB files on the command line: slc run --vdb writes final.vdb, which --initial (and
 # slc distance) read back as a surface; files that are missing, truncated, not OpenVDB, or hold
 # no level set (a fog volume, a vec3s grid: data/*.vdb, written by OpenVDB) or no zero crossing
-# exit 2 with one line naming the file.
+# exit 2 with one line naming the file; a vec3s grid moves a surface (--field-file), which may
+# not start or go outside its active voxels.
 DATA="$(cd "$(dirname "$0")" && pwd)/data"
 source "$(dirname "$0")/lib.sh" "$1"
 
@@ -41,8 +42,45 @@ expect_error "a level set without zero crossing" "outside.vdb: level set 'outsid
 expect_error "distance refuses it too" "fog.vdb: no level-set grid" -- distance --initial "$DATA/fog.vdb" --points origin.csv
 check "nothing was written for them" test ! -e f
 
-# The options' own errors.
 echo '{"time": 0, "curves": [{"points": [[-1, -1], [1, -1], [1, 1], [-1, 1]]}]}' >square.json
+
+# A vec3s grid as a flow field: data/velocity.vdb holds (-y, x, 0) on the voxels of [0, 2]^3.
+python3 - <<'PY'
+import math
+n, m, c, r = 12, 24, (1.0, 1.0, 1.0), 0.3
+V = [(c[0], c[1], c[2] + r)]
+for i in range(1, n):
+    t = math.pi * i / n
+    V += [(c[0] + r * math.sin(t) * math.cos(2 * math.pi * j / m),
+           c[1] + r * math.sin(t) * math.sin(2 * math.pi * j / m), c[2] + r * math.cos(t))
+          for j in range(m)]
+V.append((c[0], c[1], c[2] - r))
+k = lambda i, j: 1 + (i - 1) * m + j % m
+F = [(0, k(1, j), k(1, j + 1)) for j in range(m)]
+for i in range(1, n - 1):
+    for j in range(m):
+        F += [(k(i, j), k(i + 1, j), k(i + 1, j + 1)), (k(i, j), k(i + 1, j + 1), k(i, j + 1))]
+F += [(k(n - 1, j), len(V) - 1, k(n - 1, j + 1)) for j in range(m)]
+with open("ball.obj", "w") as f:
+    f.writelines("v %.9g %.9g %.9g\n" % v for v in V)
+    f.writelines("f %d %d %d\n" % (a + 1, b + 1, c + 1) for a, b, c in F)
+PY
+expect_ok "a vec3s field moves a surface" -- run --initial ball.obj --field-file "$DATA/velocity.vdb" --t-end 0.2 -N 2 -K 4 --quiet --out g
+check "it turns the ball about the z axis by 0.2" python3 -c "
+import math
+V = [list(map(float, l.split()[1:4])) for l in open('g/final.obj') if l.startswith('v ')]
+c = [sum(v[a] for v in V) / len(V) for a in range(3)]
+want = (math.cos(0.2) - math.sin(0.2), math.sin(0.2) + math.cos(0.2), 1.0)
+assert max(abs(c[a] - want[a]) for a in range(3)) < 0.02, (c, want)"
+expect_status "leaving the field's voxels is an error naming time and place" 3 -- run --initial ball.obj --field-file "$DATA/velocity.vdb" --t-end 0.8 -N 2 -K 3 --quiet --out h
+check "  the message" grep -qE "at t = .* the surface left the region where velocity 'field-file .*velocity.vdb' is known, \[0, 2\] x \[0, 2\] x \[0, 2\], at \(" err.txt
+expect_error "a surface outside the field" "the initial surface leaves the region where velocity 'field-file .*velocity.vdb' is known" -- run --initial a/final.vdb --field-file "$DATA/velocity.vdb" --t-end 0.1 --out f
+expect_error "a fog volume is no field" "fog.vdb: no vector grid of vec3s or vec3d values" -- run --initial ball.obj --field-file "$DATA/fog.vdb" --t-end 0.1 --out f
+echo "0,0,1,0" >field.csv
+expect_error "a lattice file for a surface" "--field-file for a surface takes an OpenVDB vector grid \(.vdb\), got 'field.csv'" -- run --initial ball.obj --field-file field.csv --t-end 0.1 --out f
+expect_error "an OpenVDB field for curves" "--field-file: an OpenVDB field \(.vdb\) moves surfaces, not curves" -- run --initial square.json --field-file "$DATA/velocity.vdb" --t-end 0.1 --out f
+
+# The options' own errors.
 expect_error "--vdb with curves" "^slc: --vdb is for surfaces, not curves" -- run --initial square.json --velocity unit-normal --t-end 0.1 --vdb --out f
 expect_error "--vdb-voxel with curves" "^slc: --vdb-voxel is for surfaces, not curves" -- run --initial square.json --velocity unit-normal --t-end 0.1 --vdb-voxel 0.1 --out f
 expect_error "--vdb-voxel 0" "--vdb-voxel" -- run --problem sphere-curvature --vdb-voxel 0 --out f

@@ -27,6 +27,7 @@
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
+#include "slc/io/vdb.hpp"
 #include "slc/io/vtk.hpp"
 
 namespace slc::cli {
@@ -450,9 +451,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                      const std::string& id, const Checkpoint* from, OutputFolder& folder) {
     // The settings of curves among the method options are refused by apply_overrides.
     const std::vector<std::pair<bool, const char*>> curve_only = {
-        {o.source.field_file.has_value(), "--field-file"},
-        {o.vtk, "--vtk"},
-        {!o.method.geometry.empty(), "--geometry"}};
+        {o.vtk, "--vtk"}, {!o.method.geometry.empty(), "--geometry"}};
     for (const auto& [given_option, name] : curve_only)
         if (given_option) throw InvalidInput(fmt::format("{} is for curves, not surfaces", name));
     apply_threads(o.method.threads);
@@ -461,6 +460,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  .velocity = o.source.velocity,
                  .speed = o.source.speed,
                  .field = o.source.field,
+                 .field_file = o.source.field_file,
                  .params = o.source.params,
                  .t_end = o.source.t_end,
                  .domain = o.source.domain,
@@ -497,6 +497,8 @@ void add_run_command(CLI::App& app) {
         if (!surface && o->view) throw InvalidInput("--view is for surfaces, not curves");
         if (!surface && o->volume_drift)
             throw InvalidInput("--volume-drift is for surfaces, not curves");
+        if (!surface && o->source.field_file && is_vdb_file(*o->source.field_file))
+            throw InvalidInput("--field-file: an OpenVDB field (.vdb) moves surfaces, not curves");
         if (!surface && (o->vdb || o->vdb_voxel))
             throw InvalidInput(
                 fmt::format("{} is for surfaces, not curves", o->vdb ? "--vdb" : "--vdb-voxel"));

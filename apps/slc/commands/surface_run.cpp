@@ -119,16 +119,24 @@ SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
     } else {
         one_velocity_law({{"--velocity", !r.velocity.empty()},
                           {"--speed", r.speed.has_value()},
-                          {"--field", r.field.has_value()}},
-                         "--initial with a surface needs --velocity NAME, --speed or --field");
+                          {"--field", r.field.has_value()},
+                          {"--field-file", r.field_file.has_value()}},
+                         "--initial with a surface needs --velocity NAME, --speed, --field or "
+                         "--field-file");
         if (!r.t_end) throw InvalidInput("--initial needs --t-end");
         LoadedSurface in = load_surface(r.initial, r.domain);
         p.name = std::filesystem::path(r.initial).stem().string();
         p.initial = std::move(in.surface);
         p.domain = in.domain;
-        p.law = r.speed   ? surface_speed_expression_law(*r.speed, params)
-                : r.field ? surface_field_expression_law(*r.field, params)
-                          : make_surface_velocity(r.velocity, params);
+        if (r.field_file && !is_vdb_file(*r.field_file)) {
+            throw InvalidInput(fmt::format(
+                "--field-file for a surface takes an OpenVDB vector grid (.vdb), got '{}'",
+                *r.field_file));
+        }
+        p.law = r.speed        ? surface_speed_expression_law(*r.speed, params)
+                : r.field      ? surface_field_expression_law(*r.field, params)
+                : r.field_file ? vdb_field_law(*r.field_file)
+                               : make_surface_velocity(r.velocity, params);
         p.t_end = *r.t_end;
     }
     SurfaceRunOptions options =

@@ -21,7 +21,9 @@ struct SurfaceRunRequest {
     std::string velocity;              ///< the law of --initial by name, or empty
     std::optional<std::string> speed;  ///< or a normal speed expression (--speed)
     std::optional<std::string> field;  ///< or a flow field expression "U, V, W" (--field)
-    std::vector<std::string> params;   ///< key=value
+    /// or a flow field on an OpenVDB vector grid (--field-file F.vdb)
+    std::optional<std::string> field_file;
+    std::vector<std::string> params;  ///< key=value
     std::optional<double> t_end;
     DomainOptions domain;
     /// N, K, P, ε, η, L, the thin depth, the volume correction (area_correction), the volume

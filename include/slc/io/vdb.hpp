@@ -1,18 +1,24 @@
 /// @file
 /// OpenVDB level sets in and out (DESIGN §8, files): a surface read from the zero set of a
 /// level-set grid, contoured by contour_surface (paper §2 with d = 3) from the grid's trilinear
-/// interpolant; and a surface written as a narrow-band level set whose values are the exact
-/// signed distances of SurfaceDistanceTree (paper §1.3) at the voxel centres. OpenVDB's own
+/// interpolant; a surface written as a narrow-band level set whose values are the exact signed
+/// distances of SurfaceDistanceTree (paper §1.3) at the voxel centres; and a vector grid read as
+/// a steady flow field that moves surfaces. OpenVDB's own
 /// headers stay in the source (src/io/vdb.cpp): this header needs none of them.
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "slc/geometry/surface.hpp"
+#include "slc/velocity/velocity.hpp"
 
 namespace slc {
+
+/// True when path names an OpenVDB file by its extension (.vdb, any case).
+bool is_vdb_file(const std::filesystem::path& path);
 
 /// What read_vdb_level_set reads, and how finely it contours.
 struct VdbReadOptions {
@@ -63,5 +69,19 @@ inline constexpr double max_vdb_voxels_per_side = 16384.0;
 /// half-width below 1, or a path that cannot be written ("cannot write PATH: reason").
 void write_vdb_level_set(const std::filesystem::path& path, const Surface& surface,
                          const VdbWriteOptions& options);
+
+/// A steady flow field from the vector grid (vec3s or vec3d values) of the OpenVDB file at path:
+/// the first such grid, or the one named grid. u(x) is the grid's trilinear interpolant in world
+/// coordinates (OpenVDB's BoxSampler; StaggeredBoxSampler for a grid of class staggered), exact
+/// for a field linear in x (a rotation) and second order in the voxel otherwise; t is ignored.
+/// Its extent() is the world box of the centres of the grid's active voxels: a run refuses a
+/// surface that starts outside it and ends with an error naming the time and the point where the
+/// surface leaves it (sample() answers everywhere, as contouring needs). The law is named
+/// "field-file PATH". NOTE: for a sparse grid the box also holds inactive voxels, whose value
+/// (the background, often zero) the field then takes. Throws InvalidInput, one line naming the
+/// file, as read_vdb_level_set for the file itself; for no vector grid (each grid named with its
+/// class and value type), no grid of that name, or no active voxels.
+std::unique_ptr<SurfaceVelocityLaw> vdb_field_law(const std::filesystem::path& path,
+                                                  const std::string& grid = {});
 
 }  // namespace slc

@@ -1,7 +1,8 @@
 // Tests of OpenVDB level sets in and out (vdb.hpp), against OpenVDB's own tools: a sphere made by
 // openvdb::tools::createLevelSetSphere is read within a voxel of the sphere; slc's level set of a
 // surface measured by openvdb::tools::levelSetVolume and levelSetArea gives the surface's volume
-// and area; its values are the exact signed distances; bad files are one-line InvalidInput.
+// and area; its values are the exact signed distances; a vector grid is a flow field, exact for a
+// rotation; bad files are one-line InvalidInput.
 #include "slc/io/vdb.hpp"
 
 #include <fmt/format.h>
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 
 #include "slc/core/error.hpp"
@@ -300,6 +302,77 @@ TEST(VdbLevelSet, RefusesLevelSetsWithoutZeroCrossing) {
     const fs::path blank_file = dir.path() / "blank.vdb";
     write_with_openvdb(blank_file, {blank});
     expect_refused(blank_file, "has no active voxels");
+}
+
+/// A vec3s grid of the field (−y, x, 0.5) at the voxels [−20, 20]³ of size 0.1.
+openvdb::Vec3SGrid::Ptr rotation_grid() {
+    const auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(0.1));
+    grid->setName("velocity");
+    auto accessor = grid->getAccessor();
+    for (int i = -20; i <= 20; ++i)
+        for (int j = -20; j <= 20; ++j)
+            for (int k = -20; k <= 20; ++k)
+                accessor.setValue(openvdb::Coord(i, j, k),
+                                  openvdb::Vec3s(static_cast<float>(-0.1 * j),
+                                                 static_cast<float>(0.1 * i), 0.5f));
+    return grid;
+}
+
+TEST(VdbField, SamplesARotationWithinItsActiveVoxels) {
+    const TempDir dir("slc_vdb");
+    const fs::path path = dir.path() / "field.vdb";
+    write_with_openvdb(path, {rotation_grid()});
+    const auto law = vdb_field_law(path);
+    EXPECT_TRUE(law->is_field());
+    EXPECT_EQ(law->name(), "field-file " + path.string());
+    const std::optional<Box3> extent = law->extent();
+    ASSERT_TRUE(extent);
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(extent->lo[a], -2.0, 1e-12);
+        EXPECT_NEAR(extent->hi[a], 2.0, 1e-12);
+    }
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> in(-1.95, 1.95);
+    std::vector<Vec3> x(1000);
+    for (Vec3& p : x) p = {in(rng), in(rng), in(rng)};
+    std::vector<Vec3> u(x.size());
+    law->sample(0.0, x, u);
+    // Trilinear interpolation is exact for a linear field; the values are floats (6e−8
+    // relative, at most 2 here).
+    constexpr double float_rounding = 1e-6;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        EXPECT_NEAR(u[i].x, -x[i].y, float_rounding) << "seed 7, point " << i;
+        EXPECT_NEAR(u[i].y, x[i].x, float_rounding) << "seed 7, point " << i;
+        EXPECT_NEAR(u[i].z, 0.5, float_rounding) << "seed 7, point " << i;
+    }
+}
+
+TEST(VdbField, RefusesFilesWithoutAVectorGrid) {
+    const TempDir dir("slc_vdb");
+    const auto ball =
+        openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(1.0f, openvdb::Vec3f(0.0f), 0.1f);
+    ball->setName("ball");
+    const fs::path level_set = dir.path() / "ball.vdb";
+    write_with_openvdb(level_set, {ball});
+    EXPECT_EQ(invalid_input_message([&] { vdb_field_law(level_set); }),
+              level_set.string() +
+                  ": no vector grid of vec3s or vec3d values (grids: 'ball' (class level set, "
+                  "float values))");
+    const fs::path both = dir.path() / "both.vdb";
+    write_with_openvdb(both, {ball, rotation_grid()});
+    EXPECT_EQ(vdb_field_law(both)->extent()->hi.x, vdb_field_law(both, "velocity")->extent()->hi.x);
+    EXPECT_NE(invalid_input_message([&] {
+                  vdb_field_law(both, "ball");
+              }).find("grid 'ball' (class level set, float values) is not a vector grid"),
+              std::string::npos);
+    const fs::path blank = dir.path() / "blank.vdb";
+    write_with_openvdb(blank, {openvdb::Vec3DGrid::create()});
+    EXPECT_NE(invalid_input_message([&] { vdb_field_law(blank); }).find("has no active voxels"),
+              std::string::npos);
+    EXPECT_NE(invalid_input_message([&] { vdb_field_law(dir.path() / "missing.vdb"); })
+                  .find("cannot read"),
+              std::string::npos);
 }
 
 }  // namespace
