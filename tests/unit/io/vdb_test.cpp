@@ -370,8 +370,9 @@ TEST(VdbField, RefusesFilesWithoutAVectorGrid) {
     write_with_openvdb(blank, {openvdb::Vec3DGrid::create()});
     EXPECT_NE(invalid_input_message([&] { vdb_field_law(blank); }).find("has no active voxels"),
               std::string::npos);
-    EXPECT_NE(invalid_input_message([&] { vdb_field_law(dir.path() / "missing.vdb"); })
-                  .find("cannot read"),
+    EXPECT_NE(invalid_input_message([&] {
+                  vdb_field_law(dir.path() / "missing.vdb");
+              }).find("cannot read"),
               std::string::npos);
 }
 
