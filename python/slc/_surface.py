@@ -106,8 +106,8 @@ class Surface(_AtTime):
 
     @classmethod
     def load(cls, path, time: float = 0.0) -> "Surface":
-        """Reads a surface file (.obj, .stl ASCII or binary, .ply), validated as ``slc run
-        --initial`` does."""
+        """Reads a surface file (.obj, .stl ASCII or binary, .ply, or .vdb: see
+        :meth:`from_vdb`), validated as ``slc run --initial`` does."""
         v, t, notes = _slc.load_surface(str(path))
         for note in notes:
             warnings.warn(f"{path}: {note}", stacklevel=2)
@@ -117,6 +117,26 @@ class Surface(_AtTime):
         """Writes the surface as .obj (17 significant digits) or .vtp (for ParaView, with
         ``.time``), by the extension."""
         _slc.save_surface(str(path), self._vertices, self._triangles, self.time)
+
+    @classmethod
+    def from_vdb(cls, path, grid: str | None = None, depth: int | None = None,
+                 time: float = 0.0) -> "Surface":
+        """Reads the zero set of a level-set grid (class level set, float or double) of an
+        OpenVDB file: the first such grid, or the one named ``grid``. slc contours the grid's
+        trilinear interpolant at the depth whose cells are about a voxel wide (or ``depth``) and
+        validates the result as :meth:`load` does. A file that is not OpenVDB, truncated, or
+        without such a grid or zero crossing is a ValueError naming it."""
+        v, t, notes = _slc.load_vdb(str(path), grid or "", depth)
+        for note in notes:
+            warnings.warn(f"{path}: {note}", stacklevel=2)
+        return cls._trusted(v, t, time)
+
+    def to_vdb(self, path, voxel: float, half_width: float = 3.0, name: str = "surface") -> None:
+        """Writes the surface as an OpenVDB narrow-band level set: one FloatGrid ``name`` of
+        class level set with voxels of size ``voxel``, holding the exact signed distance
+        (negative inside) at the voxel centres within ``half_width`` voxels of the surface."""
+        _slc.save_vdb(str(path), self._vertices, self._triangles, float(voxel),
+                      float(half_width), name)
 
 
 def _surface(x) -> Surface:

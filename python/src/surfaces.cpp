@@ -23,6 +23,7 @@
 #include "slc/io/interface_json.hpp"
 #include "slc/io/summary.hpp"
 #include "slc/io/surface_files.hpp"
+#include "slc/io/vdb.hpp"
 #include "slc/io/vtk.hpp"
 #include "slc/tree/tetrahedralization.hpp"
 
@@ -76,6 +77,32 @@ py::tuple load_surface_file(const std::string& path) {
     }
     const py::tuple arrays = surface_arrays(p->surface);
     return py::make_tuple(arrays[0], arrays[1], p->notes);
+}
+
+/// The zero set of an OpenVDB file's level-set grid (the first, or the one named), contoured
+/// and prepared: (vertices, triangles, notes).
+py::tuple load_vdb_file(const std::string& path, const std::string& grid,
+                        std::optional<int> depth) {
+    std::optional<PreparedSurface> p;
+    {
+        py::gil_scoped_release release;
+        Surface raw = read_vdb_level_set(path, {.grid = grid, .depth = depth});
+        try {
+            p.emplace(prepare_surface(std::move(raw)));
+        } catch (const InvalidInput& e) {
+            throw InvalidInput(fmt::format("{}: {}", path, e.what()));
+        }
+    }
+    const py::tuple arrays = surface_arrays(p->surface);
+    return py::make_tuple(arrays[0], arrays[1], p->notes);
+}
+
+/// Writes a valid surface as an OpenVDB narrow-band level set (write_vdb_level_set).
+void save_vdb_file(const std::string& path, const Array& vertices, const IndexArray& triangles,
+                   double voxel, double half_width, const std::string& name) {
+    const Surface s = surface_of(vertices, triangles);
+    py::gil_scoped_release release;
+    write_vdb_level_set(path, s, {.voxel = voxel, .half_width = half_width, .name = name});
 }
 
 /// Writes a surface as .obj or .vtp (by the extension), atomically.
@@ -361,6 +388,9 @@ void add_surface_functions(py::module_& m) {
     m.def("load_surface", &load_surface_file, py::arg("path"));
     m.def("save_surface", &save_surface_file, py::arg("path"), py::arg("vertices"),
           py::arg("triangles"), py::arg("time"));
+    m.def("load_vdb", &load_vdb_file, py::arg("path"), py::arg("grid"), py::arg("depth"));
+    m.def("save_vdb", &save_vdb_file, py::arg("path"), py::arg("vertices"), py::arg("triangles"),
+          py::arg("voxel"), py::arg("half_width"), py::arg("name"));
     m.def("surface_distance", &surface_distance, py::arg("vertices"), py::arg("triangles"),
           py::arg("points"), py::arg("threads"));
     m.def("surface_measures", &surface_measures, py::arg("vertices"), py::arg("triangles"));

@@ -26,6 +26,38 @@ def mean_radius(s):
 # ---- the Surface -------------------------------------------------------------------------------
 
 
+def test_a_surface_goes_to_openvdb_and_back(tmp_path):
+    s = sphere()
+    voxel = 0.02
+    s.to_vdb(tmp_path / "s.vdb", voxel=voxel)
+    back = slc.Surface.from_vdb(tmp_path / "s.vdb")
+    assert back.components == 1 and back.genus == 0
+    # The level set holds exact distances of s, whose vertices lie within 1e-3 of the sphere;
+    # the zero set of its trilinear interpolant lies within a small part of a voxel of s.
+    assert np.abs(np.linalg.norm(back.vertices, axis=1) - 0.5).max() <= voxel
+    assert back.volume == pytest.approx(s.volume, rel=1e-2)
+    assert len(slc.Surface.load(tmp_path / "s.vdb")) == len(back)
+    assert len(slc.Surface.from_vdb(tmp_path / "s.vdb", grid="surface", depth=5)) > 0
+
+
+def test_openvdb_errors_are_value_errors(tmp_path):
+    s = sphere()
+    with pytest.raises(ValueError, match="voxel size must be positive and finite, got 0"):
+        s.to_vdb(tmp_path / "s.vdb", voxel=0)
+    with pytest.raises(ValueError, match="cannot read .*missing.vdb"):
+        slc.Surface.from_vdb(tmp_path / "missing.vdb")
+    (tmp_path / "text.vdb").write_text("v 0 0 0\n")
+    with pytest.raises(ValueError, match="text.vdb: not a readable OpenVDB file"):
+        slc.Surface.from_vdb(tmp_path / "text.vdb")
+    s.to_vdb(tmp_path / "s.vdb", voxel=0.05, name="ball")
+    cut = (tmp_path / "s.vdb").read_bytes()[:2000]
+    (tmp_path / "cut.vdb").write_bytes(cut)
+    with pytest.raises(ValueError, match="cut.vdb: not a readable OpenVDB file: its 2000 bytes"):
+        slc.Surface.from_vdb(tmp_path / "cut.vdb")
+    with pytest.raises(ValueError, match=r"no grid named 'surface' \(grids: 'ball' \(class level"):
+        slc.Surface.from_vdb(tmp_path / "s.vdb", grid="surface")
+
+
 def test_a_surface_is_validated_measured_and_saved(tmp_path):
     s = sphere()
     assert s.components == 1 and s.genus == 0 and len(s) == len(s.triangles)

@@ -16,6 +16,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/io/interface_json.hpp"
+#include "slc/io/vdb.hpp"
 
 namespace slc {
 namespace {
@@ -198,7 +199,7 @@ bool is_surface_file(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext == ".obj" || ext == ".stl" || ext == ".ply";
+    return ext == ".obj" || ext == ".stl" || ext == ".ply" || ext == ".vdb";
 }
 
 Surface parse_obj(std::string_view text, const std::string& source) {
@@ -282,13 +283,14 @@ Surface parse_stl(std::string_view bytes, const std::string& source) {
 
 Surface read_surface(const std::filesystem::path& path) {
     if (!is_surface_file(path)) {
-        throw InvalidInput(
-            fmt::format("{}: unknown surface format (expected .obj, .stl or .ply)", path.string()));
+        throw InvalidInput(fmt::format(
+            "{}: unknown surface format (expected .obj, .stl, .ply or .vdb)", path.string()));
     }
-    const std::string bytes = read_text_file(path);
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext == ".vdb") return read_vdb_level_set(path);
+    const std::string bytes = read_text_file(path);
     if (ext == ".obj") return parse_obj(bytes, path.string());
     if (ext == ".stl") return parse_stl(bytes, path.string());
     return parse_ply(bytes, path.string());

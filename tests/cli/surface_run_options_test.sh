@@ -63,7 +63,7 @@ expect_ok "--field -y,x,0" -- run --initial ball.obj --field "-y, x, 0" --t-end 
 expect_ok "--velocity rotation" -- run --initial ball.obj --velocity rotation --t-end 0.1 -N 1 -K 3 --out rot1 --quiet
 check "--field -y,x,0 moves as rotation" cmp -s field/final.obj rot1/final.obj
 expect_error "a field of two values" "field expression '-y, x': gives 2 values; a flow field needs three, u, v and w" -- run --initial ball.obj --field "-y, x" --t-end 1 --out x
-expect_error "two laws" "give one velocity law of --velocity, --speed and --field, got --velocity and --speed" -- run --initial ball.obj --velocity curvature --speed 1 --t-end 1 --out x
+expect_error "two laws" "give one velocity law of --velocity, --speed, --field and --field-file, got --velocity and --speed" -- run --initial ball.obj --velocity curvature --speed 1 --t-end 1 --out x
 expect_error "a view of one number" "--view must be two finite numbers AZ,EL in degrees, got '30'" -- run --initial ball.obj --velocity curvature --t-end 1 --view 30 --out x
 expect_error "a view for curves" "--view is for surfaces, not curves" -- run --problem vortex --view 30,20 --out x
 expect_error "thin cells beyond their range" "--thin-depth: must be an integer from 0 to 8, got '9'" -- run --problem vortex --thin-depth 9 --out x
@@ -71,8 +71,8 @@ expect_error "thin cells beyond their range" "--thin-depth: must be an integer f
 # Errors.
 expect_error "unknown law" "unknown velocity 'spin' for a surface; known: rotation" -- run --initial ball.obj --velocity spin --t-end 1 --out x
 touch f.csv
-expect_error "a law of curves' options" "--field-file is for curves, not surfaces" -- run --initial ball.obj --field-file f.csv --t-end 1 --out x
-expect_error "no law" "--initial with a surface needs --velocity NAME, --speed or --field" -- run --initial ball.obj --t-end 1 --out x
+expect_error "a lattice field of curves" "--field-file for a surface takes an OpenVDB vector grid \(.vdb\), got 'f.csv'" -- run --initial ball.obj --field-file f.csv --t-end 1 --out x
+expect_error "no law" "--initial with a surface needs --velocity NAME, --speed, --field or --field-file" -- run --initial ball.obj --t-end 1 --out x
 expect_error "no end" "--initial needs --t-end" -- run --initial ball.obj --velocity curvature --out x
 expect_error "unknown parameter" "problem 'sphere-rotation' has no parameter 'x'; it takes none" -- run --problem sphere-rotation --param x=1 --out x
 expect_error "missing parameter" "velocity 'translation' needs parameter uz" -- run --initial ball.obj --velocity translation --param ux=1 --param uy=0 --t-end 1 --out x

@@ -73,8 +73,8 @@ LoadedInterface load_interface(const std::string& path, const DomainOptions& dom
 /// centred on the surface's bounding box with half-width 1.5 times its largest half-side.
 Box3 resolve_domain3(const DomainOptions& options, const Box3& bounds);
 
-/// A surface read from an .obj, .stl or .ply file, validated (prepare_surface), with its domain
-/// resolved; every vertex must lie in the domain. Notes of what validation changed (reversed
+/// A surface read from an .obj, .stl, .ply or .vdb file, validated (prepare_surface), with its
+/// domain resolved; every vertex must lie in the domain. Notes of what validation changed (reversed
 /// components) go to stderr, prefixed with the file name.
 struct LoadedSurface {
     Surface surface;

@@ -184,12 +184,12 @@ void add_contour_command(CLI::App& app) {
         "Contours the exact signed distance of an interface (paper Tables 2 and 3): writes "
         "final.json, summary.json (cells, segments, mean segment length, error = max |F| over "
         "vertices and segment midpoints, cpu_s, g_evals, g_evals_per_vertex) and final.svg/.png "
-        "(tree and contour); for a surface (.obj, .stl, .ply) or --function, final.obj, "
+        "(tree and contour); for a surface (.obj, .stl, .ply, .vdb) or --function, final.obj, "
         "final.vtp, final.png and summary.json (triangles, error over vertices, edge midpoints "
         "and centroids)");
     const auto require_source = add_initial_or_builtin(
         *cmd, o->initial,
-        "Interface file (JSON), or a closed surface (.obj, .stl, .ply) contoured in space",
+        "Interface file (JSON), or a closed surface (.obj, .stl, .ply, .vdb) contoured in space",
         "--function", o->function,
         "Instead of --initial, a built-in implicit surface in [-1, 1]^3: sphere, torus, cassini");
     cmd->add_option("-K,--depth", o->depth,

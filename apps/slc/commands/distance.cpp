@@ -65,10 +65,10 @@ void add_distance_command(CLI::App& app) {
         app, "distance",
         "Signed distance (negative inside) and nearest point of the interface for each x,y line of "
         "a CSV file; prints x,y,distance,nearest_x,nearest_y with 17 significant digits. For a "
-        "surface (.obj, .stl, .ply), x,y,z lines and x,y,z,distance,nearest_x,nearest_y,"
+        "surface (.obj, .stl, .ply, .vdb), x,y,z lines and x,y,z,distance,nearest_x,nearest_y,"
         "nearest_z");
     cmd->add_option("--initial", o->initial,
-                    "Interface file (JSON), or a closed surface (.obj, .stl, .ply): 3D")
+                    "Interface file (JSON), or a closed surface (.obj, .stl, .ply, .vdb): 3D")
         ->required();
     cmd->add_option("--points", o->points,
                     "Query points, one x,y (x,y,z for a surface) per line (optional header)")

@@ -14,7 +14,8 @@ void add_problem_source_options(CLI::App& cmd, ProblemSource& o) {
     auto* initial = cmd.add_option(
         "--initial", o.initial,
         "Curves (an interface file, .json) or a closed triangle surface (.obj, .stl, "
-        ".ply) to move instead of a problem");
+        ".ply; or .vdb, an OpenVDB file whose first level-set grid is contoured at about its "
+        "voxel size) to move instead of a problem");
     problem->excludes(initial);
     cmd.add_option("--velocity", o.velocity, velocity_help())->excludes(problem);
     cmd.add_option("--speed", o.speed,
@@ -33,7 +34,9 @@ void add_problem_source_options(CLI::App& cmd, ProblemSource& o) {
                    "Steady flow field on a uniform lattice, bilinearly interpolated: CSV lines "
                    "x,y,u,v (any order, header optional) or legacy VTK STRUCTURED_POINTS (.vtk, "
                    "ASCII) with a 2- or 3-component point-data array. The curves must stay "
-                   "inside the lattice. Instead of --velocity")
+                   "inside the lattice. For a surface: an OpenVDB file (.vdb) whose first vector "
+                   "grid (vec3s or vec3d) is trilinearly interpolated; the surface must stay "
+                   "within its active voxels. Instead of --velocity")
         ->excludes(problem);
     cmd.add_option("--param", o.params,
                    "key=value: a parameter of the velocity law or the problem, or a constant of "

@@ -27,6 +27,7 @@
 #include "slc/geometry/validate.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/render.hpp"
+#include "slc/io/vdb.hpp"
 #include "slc/io/vtk.hpp"
 
 namespace slc::cli {
@@ -75,6 +76,8 @@ struct RunCommand {
     bool estimate = false;
     std::optional<double> volume_drift;
     bool no_guards = false;
+    bool vdb = false;
+    std::optional<double> vdb_voxel;
 };
 
 /// Frames 0..n at evenly spaced steps; frame_path(i) names them.
@@ -356,12 +359,20 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
                   "keeps (a part thinner than the contours tears, the area or volume drifts), to "
                   "see what a coarse run gives; the run then ends with status broken, exit "
                   "status 0, and the first break in summary.json's message");
+    cmd->add_flag("--vdb", o->vdb,
+                  "For a surface: also write the final surface as DIR/final.vdb, an OpenVDB "
+                  "narrow-band level set (FloatGrid 'surface', half-width 3 voxels) holding the "
+                  "exact signed distance at the voxel centres; voxel size by --vdb-voxel");
+    cmd->add_option("--vdb-voxel", o->vdb_voxel,
+                    "The voxel size of DIR/final.vdb (implies --vdb); default half the edge of "
+                    "the contour's cells at depth K, and at most 1/128 of the domain's width")
+        ->check(positive_number());
     cmd->add_flag("--quiet", o->quiet, "No progress or closing line");
     cmd->add_option("--out", o->out,
                     "Output folder (required, except with --resume): summary.json, final.json, "
                     "final.svg/.png, history.csv/.png, frames; for a surface final.obj, "
-                    "final.vtp and final.png instead of final.json and final.svg, and "
-                    "initial.obj");
+                    "final.vtp and final.png instead of final.json and final.svg, "
+                    "initial.obj, and final.vdb with --vdb");
     cmd->add_option(
            "--checkpoint-every", o->checkpoint_every,
            "Write DIR/checkpoint.json every n steps, and when stopped by Ctrl-C or SIGTERM")
@@ -440,9 +451,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                      const std::string& id, const Checkpoint* from, OutputFolder& folder) {
     // The settings of curves among the method options are refused by apply_overrides.
     const std::vector<std::pair<bool, const char*>> curve_only = {
-        {o.source.field_file.has_value(), "--field-file"},
-        {o.vtk, "--vtk"},
-        {!o.method.geometry.empty(), "--geometry"}};
+        {o.vtk, "--vtk"}, {!o.method.geometry.empty(), "--geometry"}};
     for (const auto& [given_option, name] : curve_only)
         if (given_option) throw InvalidInput(fmt::format("{} is for curves, not surfaces", name));
     apply_threads(o.method.threads);
@@ -451,6 +460,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  .velocity = o.source.velocity,
                  .speed = o.source.speed,
                  .field = o.source.field,
+                 .field_file = o.source.field_file,
                  .params = o.source.params,
                  .t_end = o.source.t_end,
                  .domain = o.source.domain,
@@ -458,6 +468,8 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  .frames = o.frames,
                  .estimate = o.estimate,
                  .view = o.view,
+                 .vdb = o.vdb || o.vdb_voxel.has_value(),
+                 .vdb_voxel = o.vdb_voxel,
                  .quiet = o.quiet,
                  .checkpoint_every = o.checkpoint_every,
                  .given = given,
@@ -470,11 +482,11 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
 }  // namespace
 
 void add_run_command(CLI::App& app) {
-    const auto [cmd, o] =
-        add_command<RunCommand>(app, "run",
-                                "Moves an interface: a named problem (--problem), or your curves "
-                                "(.json) or surface (.obj, .stl, .ply) given by --initial, under a "
-                                "velocity law");
+    const auto [cmd, o] = add_command<RunCommand>(
+        app, "run",
+        "Moves an interface: a named problem (--problem), or your curves "
+        "(.json) or surface (.obj, .stl, .ply, .vdb) given by --initial, under a "
+        "velocity law");
     add_run_options(cmd, o.get());
     cmd->callback([o, cmd] {
         if (!o->resume.empty()) return resume_command(*cmd, *o);
@@ -485,6 +497,11 @@ void add_run_command(CLI::App& app) {
         if (!surface && o->view) throw InvalidInput("--view is for surfaces, not curves");
         if (!surface && o->volume_drift)
             throw InvalidInput("--volume-drift is for surfaces, not curves");
+        if (!surface && o->source.field_file && is_vdb_file(*o->source.field_file))
+            throw InvalidInput("--field-file: an OpenVDB field (.vdb) moves surfaces, not curves");
+        if (!surface && (o->vdb || o->vdb_voxel))
+            throw InvalidInput(
+                fmt::format("{} is for surfaces, not curves", o->vdb ? "--vdb" : "--vdb-voxel"));
         const StopSignals signals;
         const std::vector<GivenOption> all = given_options(*cmd, {});
         const std::string id =

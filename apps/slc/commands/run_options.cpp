@@ -185,7 +185,7 @@ std::string velocity_help() {
         return text;
     };
     return "Velocity law for --initial:" + listed(velocity_catalog()) +
-           "\nVelocity law for --initial with a surface (.obj, .stl, .ply):" +
+           "\nVelocity law for --initial with a surface (.obj, .stl, .ply, .vdb):" +
            listed(surface_velocity_catalog());
 }
 

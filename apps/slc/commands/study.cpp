@@ -486,7 +486,7 @@ void add_study_command(CLI::App& app) {
         "(table.md, table.csv, table.json, error_vs_time.svg/.png); for a problem of surfaces "
         "(sphere-rotation, sphere-curvature, merging-spheres) --rows x --columns of it. --initial "
         "FILE --velocity LAW "
-        "--t-end T: self-convergence of your curve or surface (.obj, .stl, .ply), which has "
+        "--t-end T: self-convergence of your curve or surface (.obj, .stl, .ply, .vdb), which has "
         "none: the run at --rows "
         "resolutions (N doubled, K + 1 and eps / 4 each; the rest as slc run takes it), each "
         "final interface compared with the next (Hausdorff distance at vertices and segment "

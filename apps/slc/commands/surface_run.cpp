@@ -25,6 +25,7 @@
 #include "slc/io/summary.hpp"
 #include "slc/io/surface_files.hpp"
 #include "slc/io/surface_picture.hpp"
+#include "slc/io/vdb.hpp"
 #include "slc/io/vtk.hpp"
 #include "slc/velocity/expression.hpp"
 
@@ -93,6 +94,10 @@ void draw_history(const std::vector<HistoryRow>& rows, const std::string& title,
 
 }  // namespace
 
+double default_vdb_voxel(const Box3& domain, int depth) {
+    return domain.width() / std::max(128.0, std::ldexp(1.0, depth + 1));
+}
+
 bool is_surface_run(const std::string& problem, const std::string& initial) {
     return (!problem.empty() && is_surface_problem(problem)) ||
            (!initial.empty() && is_surface_file(initial));
@@ -114,16 +119,24 @@ SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
     } else {
         one_velocity_law({{"--velocity", !r.velocity.empty()},
                           {"--speed", r.speed.has_value()},
-                          {"--field", r.field.has_value()}},
-                         "--initial with a surface needs --velocity NAME, --speed or --field");
+                          {"--field", r.field.has_value()},
+                          {"--field-file", r.field_file.has_value()}},
+                         "--initial with a surface needs --velocity NAME, --speed, --field or "
+                         "--field-file");
         if (!r.t_end) throw InvalidInput("--initial needs --t-end");
         LoadedSurface in = load_surface(r.initial, r.domain);
         p.name = std::filesystem::path(r.initial).stem().string();
         p.initial = std::move(in.surface);
         p.domain = in.domain;
-        p.law = r.speed   ? surface_speed_expression_law(*r.speed, params)
-                : r.field ? surface_field_expression_law(*r.field, params)
-                          : make_surface_velocity(r.velocity, params);
+        if (r.field_file && !is_vdb_file(*r.field_file)) {
+            throw InvalidInput(fmt::format(
+                "--field-file for a surface takes an OpenVDB vector grid (.vdb), got '{}'",
+                *r.field_file));
+        }
+        p.law = r.speed        ? surface_speed_expression_law(*r.speed, params)
+                : r.field      ? surface_field_expression_law(*r.field, params)
+                : r.field_file ? vdb_field_law(*r.field_file)
+                               : make_surface_velocity(r.velocity, params);
         p.t_end = *r.t_end;
     }
     SurfaceRunOptions options =
@@ -186,6 +199,15 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     if (r.estimate) require_half_resolution(options.steps, options.step.contour.depth);
     const std::optional<SurfaceRunOptions> coarse =
         r.estimate ? std::optional(surface_resolution_options(options, -1)) : std::nullopt;
+
+    // final.vdb's voxel, refused before the run when too fine for the domain.
+    const double vdb_voxel =
+        r.vdb_voxel ? *r.vdb_voxel : default_vdb_voxel(p.domain, options.step.contour.depth);
+    if (r.vdb && !(p.domain.width() / vdb_voxel <= max_vdb_voxels_per_side)) {
+        throw InvalidInput(fmt::format(
+            "--vdb-voxel {} is too fine for the domain, {} wide: more than {} voxels a side",
+            vdb_voxel, p.domain.width(), max_vdb_voxels_per_side));
+    }
 
     const Checkpoint* from = r.from;
     if (from) check_surface_checkpoint(*from, p.domain, options, folder.target());
@@ -288,6 +310,10 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     draw_history(history, fmt::format("{}: volume and area", p.name), dir / "history.png");
     write_file_atomic(dir / "final.obj", obj_text(s));
     write_file_atomic(dir / "final.vtp", vtp_text(s, result.t));
+    if (r.vdb && !s.empty()) {
+        write_vdb_level_set(dir / "final.vdb", s, {.voxel = vdb_voxel});
+        summary["vdb_voxel"] = vdb_voxel;
+    }
     const std::string title = fmt::format(
         "{}: t = {:.4g} ({}), {} triangles{}", p.name, result.t, to_string(result.status), s.size(),
         std::isfinite(e) ? fmt::format(", e_inf {:.2e}", e) : std::string());

@@ -21,7 +21,9 @@ struct SurfaceRunRequest {
     std::string velocity;              ///< the law of --initial by name, or empty
     std::optional<std::string> speed;  ///< or a normal speed expression (--speed)
     std::optional<std::string> field;  ///< or a flow field expression "U, V, W" (--field)
-    std::vector<std::string> params;   ///< key=value
+    /// or a flow field on an OpenVDB vector grid (--field-file F.vdb)
+    std::optional<std::string> field_file;
+    std::vector<std::string> params;  ///< key=value
     std::optional<double> t_end;
     DomainOptions domain;
     /// N, K, P, ε, η, L, the thin depth, the volume correction (area_correction), the volume
@@ -32,6 +34,10 @@ struct SurfaceRunRequest {
     /// surfaces in summary.json's "error_estimate".
     bool estimate = false;
     std::optional<std::string> view;  ///< "AZ,EL" in degrees
+    /// --vdb: the final surface also as DIR/final.vdb, an OpenVDB level set.
+    bool vdb = false;
+    /// --vdb-voxel: its voxel size; unset: default_vdb_voxel.
+    std::optional<double> vdb_voxel;
     bool quiet = false;
     /// Write DIR/checkpoint.json every n steps (and when a signal stops the run); 0: never.
     int checkpoint_every = 0;
@@ -59,10 +65,16 @@ SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& request);
 /// True when `slc run` was given a surface problem or a surface file.
 bool is_surface_run(const std::string& problem, const std::string& initial);
 
-/// Runs (from request.from when given), writes final.obj, final.vtp, final.png,
-/// history.csv/.png, frames (frames.pvd, frames/*.vtp and *.png), checkpoints and summary.json
-/// (last) into folder and commits it. Throws NumericalFailure after writing everything when the
-/// run ends with status error or unstable, Interrupted when a signal stopped it.
+/// The voxel size of final.vdb when --vdb-voxel is not given: half the edge of the contour's
+/// cells at depth K in domain, and at most 1/128 of the domain's width, so the level set resolves
+/// what the run's contour does.
+double default_vdb_voxel(const Box3& domain, int depth);
+
+/// Runs (from request.from when given), writes final.obj, final.vtp, final.png, final.vdb (with
+/// request.vdb, unless nothing is left), history.csv/.png, frames (frames.pvd, frames/*.vtp and
+/// *.png), checkpoints and summary.json (last) into folder and commits it. Throws NumericalFailure
+/// after writing everything when the run ends with status error or unstable, Interrupted when a
+/// signal stopped it.
 void run_surface(const SurfaceRunRequest& request, OutputFolder& folder);
 
 }  // namespace slc::cli

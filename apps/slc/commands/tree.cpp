@@ -253,7 +253,8 @@ void add_tree_command(CLI::App& app) {
         "tree, signed distance, nearest-point and Whitney extensions of u = (-y, x)");
     const auto require_source = add_initial_or_builtin(
         *cmd, o->initial,
-        "Interface file (JSON), or a closed surface (.obj, .stl, .ply): the octree is drawn in "
+        "Interface file (JSON), or a closed surface (.obj, .stl, .ply, .vdb): the octree is drawn "
+        "in "
         "a slice z = const",
         "--shape", o->shape, "A built-in shape in [-1, 1]^2: propeller, circle, two-circles");
     add_domain_options(*cmd, o->domain);

@@ -13,8 +13,8 @@
 
 namespace slc {
 
-/// True when path names a surface file by its extension (.obj, .stl, .ply, any case): the tool
-/// then works in 3D.
+/// True when path names a surface file by its extension (.obj, .stl, .ply, .vdb, any case): the
+/// tool then works in 3D.
 bool is_surface_file(const std::filesystem::path& path);
 
 /// Parses OBJ text: `v x y z` (a fourth number, or colours, ignored), `f a b c ...` with 1-based
@@ -37,8 +37,9 @@ Surface parse_stl(std::string_view bytes, const std::string& source);
 /// skipped. Throws InvalidInput naming source and the header line or element at fault.
 Surface parse_ply(std::string_view bytes, const std::string& source);
 
-/// Reads a surface file, chosen by extension (is_surface_file). A missing file, an unknown
-/// extension or bad content is InvalidInput naming the file.
+/// Reads a surface file, chosen by extension (is_surface_file); a .vdb file is an OpenVDB level
+/// set, contoured by read_vdb_level_set (vdb.hpp). A missing file, an unknown extension or bad
+/// content is InvalidInput naming the file.
 Surface read_surface(const std::filesystem::path& path);
 
 /// OBJ text of a surface: `v` lines (shortest round-trip decimals), then `f` lines (1-based).

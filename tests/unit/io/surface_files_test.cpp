@@ -180,7 +180,7 @@ TEST(SurfaceFiles, ReadSurfaceChoosesByExtension) {
         FAIL();
     } catch (const InvalidInput& e) {
         EXPECT_EQ(std::string(e.what()),
-                  "nowhere/x.off: unknown surface format (expected .obj, .stl or .ply)");
+                  "nowhere/x.off: unknown surface format (expected .obj, .stl, .ply or .vdb)");
     }
 }
 
