@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from . import _slc
 from ._interface import Interface
 from ._run import Problem, RunResult
 from ._surface import Surface, SurfaceProblem, SurfaceRunResult
@@ -49,9 +50,23 @@ def _draw_history(axes, history: dict[str, np.ndarray]) -> None:
         a.grid(True, alpha=0.3)
 
 
+def _new_surface_axes(surface: Surface):
+    """3D axes looking at surface as slc's pictures do (``slc run``'s final.png): from azimuth 35°
+    and elevation 25° about the up axis its extents suggest (z for CAD files and slc's shapes, y
+    for a scan standing in y; ``_slc.up_axis``)."""
+    import matplotlib.pyplot as plt
+
+    ax = plt.figure(figsize=(5, 5)).add_subplot(projection="3d")
+    if len(surface) > 0:
+        v = surface.vertices
+        up = _slc.up_axis(v.min(axis=0).tolist(), v.max(axis=0).tolist())
+        ax.view_init(elev=25, azim=35, vertical_axis=up)
+    return ax
+
+
 def _draw_surface(ax, surface: Surface, color) -> None:
     """The triangles shaded by the angle of their normals to a light above the viewer's left
-    shoulder (the axes' view: azim, elev), on equal axes."""
+    shoulder (the axes' view: azim, elev about its vertical axis), on equal axes."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     v, t = surface.vertices, surface.triangles
@@ -60,9 +75,11 @@ def _draw_surface(ax, surface: Surface, color) -> None:
     n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
     azim, elev = np.radians(ax.azim), np.radians(ax.elev)
     toward = np.array([np.cos(elev) * np.cos(azim), np.cos(elev) * np.sin(azim), np.sin(elev)])
-    left = np.array([-np.sin(azim), np.cos(azim), 0.0])  # the viewer's left
-    up = np.cross(toward, left)
-    light = toward + 0.5 * left + 0.6 * up
+    right = np.array([-np.sin(azim), np.cos(azim), 0.0])  # the viewer's right
+    up = np.cross(toward, right)
+    light = toward - 0.5 * right + 0.6 * up
+    # Those are in the frame whose third axis is the vertical one; matplotlib rolls its axes so.
+    light = np.roll(light, getattr(ax, "_vertical_axis", 2) - 2)
     shade = 0.25 + 0.75 * np.clip(n @ (light / np.linalg.norm(light)), 0.0, 1.0)
     import matplotlib.colors as mcolors
 
@@ -92,7 +109,9 @@ def plot(obj, ax=None, *, cmap: str = "viridis", **style) -> Any:
     - a history dict (``RunResult.history``): area and length against t on two axes (ax may be
       a pair of axes; a single ax gets the area alone); a surface's history: volume and area;
     - a Surface, a SurfaceProblem's initial surface or a SurfaceRunResult's final one: shaded
-      triangles on 3D axes (ax must be 3D: ``projection="3d"``); ``color`` sets the colour.
+      triangles on 3D axes (ax must be 3D: ``projection="3d"``); ``color`` sets the colour. New
+      axes look from azimuth 35°, elevation 25° about the up axis the surface's extents suggest,
+      as the tool's pictures do (a scan standing in y stands up).
     ax: where to draw; a new figure when None.
     """
     import matplotlib.pyplot as plt
@@ -103,7 +122,7 @@ def plot(obj, ax=None, *, cmap: str = "viridis", **style) -> Any:
         obj = obj.surface
     if isinstance(obj, Surface):
         if ax is None:
-            ax = plt.figure(figsize=(5, 5)).add_subplot(projection="3d")
+            ax = _new_surface_axes(obj)
         if len(obj) > 0:
             _draw_surface(ax, obj, style.get("color", "C0"))
         return ax

@@ -23,6 +23,7 @@
 #include "slc/io/interface_json.hpp"
 #include "slc/io/summary.hpp"
 #include "slc/io/surface_files.hpp"
+#include "slc/io/surface_picture.hpp"
 #include "slc/io/vdb.hpp"
 #include "slc/io/vtk.hpp"
 #include "slc/tree/tetrahedralization.hpp"
@@ -394,6 +395,15 @@ void add_surface_functions(py::module_& m) {
     m.def("surface_distance", &surface_distance, py::arg("vertices"), py::arg("triangles"),
           py::arg("points"), py::arg("threads"));
     m.def("surface_measures", &surface_measures, py::arg("vertices"), py::arg("triangles"));
+    m.def(
+        "up_axis",
+        [](const std::vector<double>& lo, const std::vector<double>& hi) {
+            if (lo.size() != 3 || hi.size() != 3)
+                throw InvalidInput("up_axis: a box's corners are 3 coordinates each");
+            const UpAxis up = up_axis(Box3{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}});
+            return std::string(up == UpAxis::x ? "x" : up == UpAxis::y ? "y" : "z");
+        },
+        py::arg("lo"), py::arg("hi"));
 }
 
 }  // namespace slc::python

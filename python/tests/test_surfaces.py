@@ -235,6 +235,19 @@ def test_a_surface_and_its_history_are_drawn(tmp_path):
     axes = slc.plot(r.history)
     assert axes[0].get_ylabel() == "volume" and axes[1].get_ylabel() == "area"
     ax.figure.savefig(tmp_path / "s.png")
+    # A figure standing in y (a scan's axes) stands up, as in the tool's pictures: the light
+    # follows the vertical axis, so its top faces are lit.
+    figure = slc.Surface(slc.contour_surface(
+        lambda p: np.linalg.norm(p / [0.3, 0.8, 0.2], axis=1) - 1.0, 1.0, 4))
+    assert slc._slc.up_axis([-0.3, -0.8, -0.2], [0.3, 0.8, 0.2]) == "y"
+    assert slc._slc.up_axis([-0.5, -0.5, -0.5], [0.5, 0.5, 0.5]) == "z"
+    ax = slc.plot(figure)
+    assert (ax.elev, ax.azim) == (25, 35) and ax._vertical_axis == 1
+    shade = np.asarray(ax.collections[0].get_facecolor())[:, 0] / matplotlib.colors.to_rgb("C0")[0]
+    v, t = figure.vertices, figure.triangles
+    heights = v[t].mean(axis=1)[:, 1]
+    assert shade[heights > 0.7].mean() > shade[heights < -0.7].mean()
+    ax.figure.savefig(tmp_path / "standing.png")
     plt.close("all")
 
 
