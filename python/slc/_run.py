@@ -76,9 +76,10 @@ class FieldExpression(_Expression):
 
 
 class FieldFile:
-    """A steady flow field sampled on a uniform grid, as ``slc run --field-file``: CSV lines
-    x,y,u,v or legacy VTK STRUCTURED_POINTS, interpolated bilinearly; a run whose curves leave
-    the grid ends with status "error"."""
+    """A steady flow field sampled on a uniform grid, as ``slc run --field-file``: for curves CSV
+    lines x,y,u,v or legacy VTK STRUCTURED_POINTS, interpolated bilinearly; for a surface an
+    OpenVDB vector grid (.vdb), interpolated trilinearly. A run that leaves the grid (the box of
+    a VDB grid's active voxels) ends with status "error"."""
 
     def __init__(self, path):
         self.path = str(path)

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "slc/evolve/surface_problems.hpp"
+#include "slc/io/vdb.hpp"
 #include "slc/velocity/expression.hpp"
 #include "slc/velocity/grid_field.hpp"
 
@@ -184,7 +185,14 @@ std::unique_ptr<VelocityLaw> make_law(const LawSpec& spec) {
         return speed_expression_law(spec.velocity.cast<std::string>(), spec.params, module);
     if (spec.kind == "field")
         return field_expression_law(spec.velocity.cast<std::string>(), spec.params);
-    if (spec.kind == "field-file") return grid_field_law(spec.velocity.cast<std::string>());
+    if (spec.kind == "field-file") {
+        const std::string path = spec.velocity.cast<std::string>();
+        if (is_vdb_file(path)) {
+            throw InvalidInput(fmt::format(
+                "FieldFile('{}'): an OpenVDB field (.vdb) moves surfaces, not curves", path));
+        }
+        return grid_field_law(path);
+    }
     return python_law<2>(spec, module);
 }
 
@@ -198,9 +206,12 @@ std::unique_ptr<SurfaceVelocityLaw> make_surface_law(const LawSpec& spec) {
     if (spec.kind == "field")
         return surface_field_expression_law(spec.velocity.cast<std::string>(), spec.params);
     if (spec.kind == "field-file") {
-        throw InvalidInput(
-            "field files move curves; for a surface give a law's name, an expression or a "
-            "Python callable (FlowField, NormalSpeed)");
+        const std::string path = spec.velocity.cast<std::string>();
+        if (!is_vdb_file(path)) {
+            throw InvalidInput(fmt::format(
+                "FieldFile for a surface takes an OpenVDB vector grid (.vdb), got '{}'", path));
+        }
+        return vdb_field_law(path);
     }
     return python_law<3>(spec, std::nullopt);
 }

@@ -3,6 +3,7 @@ Python or as expressions (against the built-in law they must equal, or an exact 
 problems, studies, observers and errors."""
 
 import math
+import pathlib
 
 import matplotlib
 
@@ -12,6 +13,9 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 import slc  # noqa: E402
+
+
+DATA = pathlib.Path(__file__).resolve().parents[2] / "tests" / "cli" / "data"
 
 
 def sphere(r=0.5, depth=4, eps=1e-3):
@@ -38,6 +42,24 @@ def test_a_surface_goes_to_openvdb_and_back(tmp_path):
     assert back.volume == pytest.approx(s.volume, rel=1e-2)
     assert len(slc.Surface.load(tmp_path / "s.vdb")) == len(back)
     assert len(slc.Surface.from_vdb(tmp_path / "s.vdb", grid="surface", depth=5)) > 0
+
+
+def test_an_openvdb_vector_grid_moves_a_surface(tmp_path):
+    # tests/cli/data/velocity.vdb: (-y, x, 0) on the voxels of [0, 2]^3, written by OpenVDB.
+    field = slc.FieldFile(DATA / "velocity.vdb")
+    ball = slc.Surface(slc.contour_surface(
+        lambda p: np.linalg.norm(p - [1.0, 1.0, 1.0], axis=1) - 0.3, (0.5, 0.5, 0.5, 1.5, 1.5, 1.5),
+        4))
+    r = slc.run(ball, field, 0.2, steps=2, depth=4)
+    assert r.status == "ok"
+    want = [math.cos(0.2) - math.sin(0.2), math.sin(0.2) + math.cos(0.2), 1.0]
+    assert np.abs(r.surface.vertices.mean(axis=0) - want).max() < 0.02
+    r = slc.run(ball, field, 0.8, steps=2, depth=3)
+    assert r.status == "error" and "left the region" in r.message
+    with pytest.raises(ValueError, match=r"takes an OpenVDB vector grid \(.vdb\), got 'f.csv'"):
+        slc.run(ball, slc.FieldFile("f.csv"), 0.1)
+    with pytest.raises(ValueError, match=r"an OpenVDB field \(.vdb\) moves surfaces, not curves"):
+        slc.run(slc.Interface([[0, 0], [1, 0], [0, 1]]), field, 0.1)
 
 
 def test_openvdb_errors_are_value_errors(tmp_path):
@@ -397,7 +419,7 @@ def test_bad_input_to_a_run_of_a_surface_is_refused():
         slc.run(s, "rotation", 1.0, arcs=True)
     with pytest.raises(ValueError, match="unknown velocity 'spin'"):
         slc.run(s, "spin", 1.0)
-    with pytest.raises(ValueError, match="field files move curves"):
+    with pytest.raises(ValueError, match=r"takes an OpenVDB vector grid \(.vdb\), got .f.csv."):
         slc.run(s, slc.FieldFile("f.csv"), 1.0)
     with pytest.raises(ValueError, match="a flow field needs three"):
         slc.run(s, slc.FieldExpression("-y, x"), 1.0)

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "render_layout.hpp"
@@ -466,7 +467,49 @@ void save(std::span<const Surface> surfaces, const SurfaceColoring* coloring,
     });
 }
 
+/// "+x" for the axis direction nearest the unit vector v (its largest component).
+std::string axis_name(Vec3 v) {
+    int a = 0;
+    for (int i = 1; i < 3; ++i)
+        if (std::abs(v[i]) > std::abs(v[a])) a = i;
+    return fmt::format("{}{}", v[a] < 0.0 ? '-' : '+', "xyz"[a]);
+}
+
 }  // namespace
+
+void save_surface_views(std::span<const Surface> surfaces, const std::filesystem::path& path,
+                        const SurfaceView& view) {
+    const PictureFormat format = picture_format(path);
+    check_view(view);
+    SurfaceView page = view;
+    page.width *= 2;
+    page.height *= 2;
+    check_view(page);
+    const Box3 box = checked_bounding_box(surfaces);
+    std::array<SurfaceView, 4> views{view, view, view, view};
+    views[1].azimuth = 0.0;
+    views[1].elevation = 0.0;
+    views[2].azimuth = 90.0;
+    views[2].elevation = 0.0;
+    views[3].azimuth = 0.0;
+    views[3].elevation = 90.0;
+    for (std::size_t i = 1; i < views.size(); ++i)
+        views[i].title = "from " + axis_name(camera(views[i]).toward);
+    views[3].title += " (above)";
+    const double unit = format == PictureFormat::png ? 1.0 / png_scale : 1.0;
+    write_picture(path, format, unit * 2 * view.width, unit * 2 * view.height, [&](cairo_t* cr) {
+        cairo_scale(cr, unit, unit);
+        for (std::size_t i = 0; i < views.size(); ++i) {
+            cairo_save(cr);
+            cairo_translate(cr, static_cast<double>(i % 2) * view.width,
+                            static_cast<double>(i / 2) * view.height);
+            cairo_rectangle(cr, 0.0, 0.0, view.width, view.height);
+            cairo_clip(cr);
+            draw(cr, surfaces, page_map(box, views[i]), views[i], nullptr);
+            cairo_restore(cr);
+        }
+    });
+}
 
 UpAxis up_axis(const Box3& box) {
     const Vec3 e = box.hi - box.lo;

@@ -169,6 +169,8 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         // stands up); a built-in function's with z up.
         const UpAxis up = source.surface ? up_axis(bounding_box(*source.surface)) : UpAxis::z;
         save_surface_picture(s, dir / "final.png", {.title = title, .up = up});
+        save_surface_views(std::span<const Surface>(&s, 1), dir / "views.png",
+                           {.width = 500, .height = 500, .title = title, .up = up});
     }
     // A refinement that stops with midpoints or centroids beyond ε (its splits refused, or P
     // spent) says so: the files are written, and the status and the exit status tell.

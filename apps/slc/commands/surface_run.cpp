@@ -322,6 +322,10 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         const SurfaceColoring moved{vertex_distances(s, p.initial),
                                     "distance from the initial surface (+ outside it)"};
         save_surface_picture(s, moved, dir / "final.png", titled(title));
+        // And from along the axes, where a part the first view hides shows.
+        SurfaceView four = titled(title);
+        four.width = four.height = 500;
+        save_surface_views(std::span<const Surface>(&s, 1), dir / "views.png", four);
     } else {
         save_surface_picture(
             p.initial, dir / "final.png",

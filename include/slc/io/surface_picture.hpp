@@ -73,6 +73,16 @@ void save_surface_picture(std::span<const Surface> surfaces, const std::filesyst
 void save_surface_picture(const Surface& surface, const std::filesystem::path& path,
                           const SurfaceView& view = {});
 
+/// Four views of the surfaces on one page of 2 × 2 pictures, each view.width × view.height: view
+/// itself at the top left, then along the axes of its up frame, so that what one view hides
+/// another shows: from the first and the second horizontal axis at elevation 0 (with up z, from
+/// +x and from +y) and from straight above (+z). Each is fitted to the surfaces as
+/// save_surface_picture fits one, with its own axis triad and scale bar, titled with the
+/// direction it looks from (the first keeps view.title). As above otherwise; the page's sides
+/// must stay within [1, 32767].
+void save_surface_views(std::span<const Surface> surfaces, const std::filesystem::path& path,
+                        const SurfaceView& view = {});
+
 /// One surface coloured by a quantity (SurfaceColoring), with its colour bar; as above. Throws
 /// InvalidInput, besides, when there is not one value a vertex or a value is not finite.
 void save_surface_picture(const Surface& surface, const SurfaceColoring& coloring,

@@ -227,6 +227,34 @@ TEST(SurfacePicture, GuidesAreDrawnInTheBandBelowTheSurface) {
     EXPECT_FALSE(any_pixel(without.get(), 3 * side / 4, side, band_top, side, black));
 }
 
+TEST(SurfacePicture, FourViewsShowWhatOneHides) {
+    // Two spheres on the x axis: seen from +x the nearer (blue) hides the smaller farther one
+    // (orange); from +y and from above both show. The page holds the four views 2 × 2.
+    const TempDir dir;
+    const std::vector<Surface> in_line = {sphere({1.5, 0.0, 0.0}, 1.0, 3),
+                                          sphere({-1.5, 0.0, 0.0}, 0.8, 3)};
+    SurfaceView view;
+    view.width = view.height = 400;
+    view.edges = false;
+    view.guides = false;
+    save_surface_views(in_line, dir.path() / "views.png", view);
+    const ImagePtr image = read_png(dir.path() / "views.png");
+    EXPECT_EQ(cairo_image_surface_get_width(image.get()), 800);
+    EXPECT_EQ(cairo_image_surface_get_height(image.get()), 800);
+    const auto shows = [&](int quadrant, auto condition) {
+        const int x0 = (quadrant % 2) * 400, y0 = (quadrant / 2) * 400;
+        return any_pixel(image.get(), x0, x0 + 400, y0, y0 + 400, condition);
+    };
+    EXPECT_TRUE(shows(0, is_blue) && shows(0, is_orange));  // the view given: both
+    EXPECT_TRUE(shows(1, is_blue));                         // from +x: the nearer only
+    EXPECT_FALSE(shows(1, is_orange));
+    for (const int quadrant : {2, 3})  // from +y, from above
+        EXPECT_TRUE(shows(quadrant, is_blue) && shows(quadrant, is_orange)) << quadrant;
+    view.width = 20000;
+    EXPECT_THROW(save_surface_views(in_line, dir.path() / "wide.png", view), InvalidInput);
+    EXPECT_FALSE(fs::exists(dir.path() / "wide.png"));
+}
+
 TEST(SurfacePicture, ColoringPaintsByTheValuesWithAColourBar) {
     // Coloured by x: seen from +x the sphere's middle is red, from −x blue; the colour bar's two
     // ends in the band below.
