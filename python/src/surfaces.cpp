@@ -64,12 +64,14 @@ py::tuple prepare_surface_arrays(const Array& vertices, const IndexArray& triang
     return py::make_tuple(arrays[0], arrays[1], p->notes);
 }
 
-/// A surface file (.obj, .stl, .ply) read and prepared: (vertices, triangles, notes).
-py::tuple load_surface_file(const std::string& path) {
+/// The surface read() gives, prepared (InvalidInput naming path when it is not valid):
+/// (vertices, triangles, notes).
+template <class Read>
+py::tuple prepared_arrays(const std::string& path, Read read) {
     std::optional<PreparedSurface> p;
     {
         py::gil_scoped_release release;
-        Surface raw = read_surface(path);
+        Surface raw = read();
         try {
             p.emplace(prepare_surface(std::move(raw)));
         } catch (const InvalidInput& e) {
@@ -80,22 +82,17 @@ py::tuple load_surface_file(const std::string& path) {
     return py::make_tuple(arrays[0], arrays[1], p->notes);
 }
 
+/// A surface file (.obj, .stl, .ply, .vdb) read and prepared: (vertices, triangles, notes).
+py::tuple load_surface_file(const std::string& path) {
+    return prepared_arrays(path, [&] { return read_surface(path); });
+}
+
 /// The zero set of an OpenVDB file's level-set grid (the first, or the one named), contoured
 /// and prepared: (vertices, triangles, notes).
 py::tuple load_vdb_file(const std::string& path, const std::string& grid,
                         std::optional<int> depth) {
-    std::optional<PreparedSurface> p;
-    {
-        py::gil_scoped_release release;
-        Surface raw = read_vdb_level_set(path, {.grid = grid, .depth = depth});
-        try {
-            p.emplace(prepare_surface(std::move(raw)));
-        } catch (const InvalidInput& e) {
-            throw InvalidInput(fmt::format("{}: {}", path, e.what()));
-        }
-    }
-    const py::tuple arrays = surface_arrays(p->surface);
-    return py::make_tuple(arrays[0], arrays[1], p->notes);
+    return prepared_arrays(
+        path, [&] { return read_vdb_level_set(path, {.grid = grid, .depth = depth}); });
 }
 
 /// Writes a valid surface as an OpenVDB narrow-band level set (write_vdb_level_set).

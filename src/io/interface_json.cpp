@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <system_error>
 #include <variant>
 
@@ -263,7 +264,8 @@ std::string interface_json(const Interface& curves, double time) {
     return out;
 }
 
-void write_file_atomic(const std::filesystem::path& path, const std::string& text) {
+void write_file_atomic(const std::filesystem::path& path,
+                       const std::function<void(const std::filesystem::path&)>& write) {
     auto fail = [&](const std::string& reason) {
         return InvalidInput(fmt::format("cannot write {}: {}", path.string(), reason));
     };
@@ -277,17 +279,11 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
     static std::atomic<unsigned long> counter{0};
     std::filesystem::path temp = path;
     temp += fmt::format(".tmp{}.{}", static_cast<long>(::getpid()), counter++);
-
-    std::FILE* file = std::fopen(temp.c_str(), "wb");
-    if (file == nullptr) throw fail(std::generic_category().message(errno));
-    const bool written =
-        std::fwrite(text.data(), 1, text.size(), file) == text.size() && std::fflush(file) == 0;
-    const int write_error = errno;
-    const bool closed = std::fclose(file) == 0;
-    if (!written || !closed) {
-        const int err = written ? errno : write_error;
+    try {
+        write(temp);
+    } catch (const std::exception& e) {
         std::filesystem::remove(temp, ec);
-        throw fail(std::generic_category().message(err));
+        throw fail(e.what());
     }
     std::filesystem::rename(temp, path, ec);
     if (ec) {
@@ -295,6 +291,20 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
         std::filesystem::remove(temp, ec);
         throw fail(reason);
     }
+}
+
+void write_file_atomic(const std::filesystem::path& path, const std::string& text) {
+    write_file_atomic(path, [&text](const std::filesystem::path& temp) {
+        std::FILE* file = std::fopen(temp.c_str(), "wb");
+        if (file == nullptr) throw std::runtime_error(std::generic_category().message(errno));
+        const bool written =
+            std::fwrite(text.data(), 1, text.size(), file) == text.size() && std::fflush(file) == 0;
+        const int write_error = errno;
+        const bool closed = std::fclose(file) == 0;
+        if (!written || !closed)
+            throw std::runtime_error(
+                std::generic_category().message(written ? errno : write_error));
+    });
 }
 
 std::string read_text_file(const std::filesystem::path& path) {

@@ -11,11 +11,9 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/SignedFloodFill.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -23,6 +21,7 @@
 #include <exception>
 #include <fstream>
 #include <ios>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -32,6 +31,7 @@
 #include "slc/core/input_text.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
+#include "slc/io/interface_json.hpp"
 #include "slc/tree/tetrahedralization.hpp"
 
 namespace slc {
@@ -220,32 +220,15 @@ Vec3 voxel_centre(const openvdb::Coord& ijk, double h) {
 /// Writes grids to path through a temporary file beside it, renamed when complete, so that a
 /// failure leaves any earlier file whole.
 void write_grids(const std::filesystem::path& path, const openvdb::GridPtrVec& grids) {
-    auto fail = [&](const std::string& reason) {
-        return InvalidInput(fmt::format("cannot write {}: {}", path.string(), reason));
-    };
-    std::error_code ec;
-    const std::filesystem::path parent = path.parent_path();
-    if (!parent.empty()) {
-        std::filesystem::create_directories(parent, ec);
-        if (ec) throw fail(ec.message());
-    }
-    static std::atomic<unsigned long> counter{0};
-    std::filesystem::path temp = path;
-    temp += fmt::format(".tmp{}.{}", static_cast<long>(::getpid()), counter++);
-    try {
-        openvdb::io::File file(temp.string());
-        file.write(grids);
-        file.close();
-    } catch (const std::exception& e) {
-        std::filesystem::remove(temp, ec);
-        throw fail(one_line(e.what()));
-    }
-    std::filesystem::rename(temp, path, ec);
-    if (ec) {
-        const std::string reason = ec.message();
-        std::filesystem::remove(temp, ec);
-        throw fail(reason);
-    }
+    write_file_atomic(path, [&grids](const std::filesystem::path& temp) {
+        try {
+            openvdb::io::File file(temp.string());
+            file.write(grids);
+            file.close();
+        } catch (const std::exception& e) {
+            throw std::runtime_error(one_line(e.what()));
+        }
+    });
 }
 
 /// A vector grid as a steady flow field (vdb_field_law).

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -53,5 +54,11 @@ std::string read_text_file(const std::filesystem::path& path);
 /// path, so that a reader never sees a partial file. Creates missing parent folders. Throws
 /// InvalidInput when the folder cannot be written.
 void write_file_atomic(const std::filesystem::path& path, const std::string& text);
+
+/// The same for a file that write(temp) writes at the temporary path it is given (another
+/// library's writer): an exception from it (its what() the reason) removes the temporary and
+/// becomes InvalidInput ("cannot write PATH: reason"), leaving any earlier file at path whole.
+void write_file_atomic(const std::filesystem::path& path,
+                       const std::function<void(const std::filesystem::path&)>& write);
 
 }  // namespace slc
