@@ -78,11 +78,16 @@ class FieldExpression(_Expression):
 class FieldFile:
     """A steady flow field sampled on a uniform grid, as ``slc run --field-file``: for curves CSV
     lines x,y,u,v or legacy VTK STRUCTURED_POINTS, interpolated bilinearly; for a surface an
-    OpenVDB vector grid (.vdb), interpolated trilinearly. A run that leaves the grid (the box of
-    a VDB grid's active voxels) ends with status "error"."""
+    OpenVDB vector grid (.vdb), interpolated trilinearly. outside="error" (the default): a run
+    that leaves the grid (the box of a VDB grid's active voxels) ends with status "error";
+    outside="zero": the field is zero there, and what leaves the grid stops (``slc run
+    --field-outside zero``)."""
 
-    def __init__(self, path):
+    def __init__(self, path, outside: str = "error"):
+        if outside not in ("error", "zero"):
+            raise ValueError(f"FieldFile: outside must be 'error' or 'zero', got {outside!r}")
         self.path = str(path)
+        self.outside = outside
 
 
 class Step(NamedTuple):
@@ -216,7 +221,8 @@ def _law(velocity, params, geometry):
         return _slc.LawSpec(velocity.text, velocity.kind, velocity.text, velocity.constants,
                             geometry)
     if isinstance(velocity, FieldFile):
-        return _slc.LawSpec(velocity.path, "field-file", velocity.path, params, geometry)
+        return _slc.LawSpec(velocity.path, "field-file", velocity.path, params, geometry,
+                            zero_outside=velocity.outside == "zero")
     if isinstance(velocity, NormalSpeed):
         return _slc.LawSpec(velocity.f, "normal", velocity.name, params, geometry)
     if isinstance(velocity, str):

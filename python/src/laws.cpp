@@ -9,6 +9,7 @@
 #include "slc/io/vdb.hpp"
 #include "slc/velocity/expression.hpp"
 #include "slc/velocity/grid_field.hpp"
+#include "slc/velocity/zero_outside.hpp"
 
 namespace slc::python {
 namespace {
@@ -191,7 +192,8 @@ std::unique_ptr<VelocityLaw> make_law(const LawSpec& spec) {
             throw InvalidInput(fmt::format(
                 "FieldFile('{}'): an OpenVDB field (.vdb) moves surfaces, not curves", path));
         }
-        return grid_field_law(path);
+        auto law = grid_field_law(path);
+        return spec.zero_outside ? zero_outside_extent(std::move(law)) : std::move(law);
     }
     return python_law<2>(spec, module);
 }
@@ -211,7 +213,8 @@ std::unique_ptr<SurfaceVelocityLaw> make_surface_law(const LawSpec& spec) {
             throw InvalidInput(fmt::format(
                 "FieldFile for a surface takes an OpenVDB vector grid (.vdb), got '{}'", path));
         }
-        return vdb_field_law(path);
+        auto law = vdb_field_law(path);
+        return spec.zero_outside ? zero_outside_extent(std::move(law)) : std::move(law);
     }
     return python_law<3>(spec, std::nullopt);
 }

@@ -22,6 +22,7 @@ struct LawSpec {
     std::string name;
     VelocityParams params;
     std::optional<std::string> geometry;
+    bool zero_outside = false;  ///< kind "field-file": zero outside the grid (zero_outside_extent)
 };
 
 /// The law spec describes; InvalidInput for an unknown built-in law, parameter or geometry, or

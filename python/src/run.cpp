@@ -166,6 +166,7 @@ Problem curve_problem_of(const std::vector<Array>& arrays, double t_start, doubl
     } else if (spec.kind == "field-file") {
         p.velocity = spec.kind;
         p.velocity_file = spec.velocity.cast<std::string>();
+        p.velocity_zero_outside = spec.zero_outside;
     }
     return p;
 }
@@ -181,12 +182,13 @@ py::dict problem_parameters(const Problem& p) {
 void add_run_functions(py::module_& m) {
     py::class_<LawSpec>(m, "LawSpec")
         .def(py::init([](py::object velocity, std::string kind, std::string name,
-                         VelocityParams params, std::optional<std::string> geometry) {
-                 return LawSpec{std::move(velocity), std::move(kind), std::move(name),
-                                std::move(params), std::move(geometry)};
+                         VelocityParams params, std::optional<std::string> geometry,
+                         bool zero_outside) {
+                 return LawSpec{std::move(velocity), std::move(kind),     std::move(name),
+                                std::move(params),   std::move(geometry), zero_outside};
              }),
              py::arg("velocity"), py::arg("kind"), py::arg("name"), py::arg("params"),
-             py::arg("geometry"));
+             py::arg("geometry"), py::arg("zero_outside") = false);
     py::class_<RunOverrides>(m, "RunOverrides")
         .def(py::init<>())
         .def_readwrite("steps", &RunOverrides::steps)

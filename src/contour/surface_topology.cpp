@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "perturb.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/core/point_text.hpp"
@@ -22,12 +23,6 @@
 
 namespace slc::contouring {
 namespace {
-
-/// Perturbation: the first displacement is this fraction of the finest cell edge, doubled at each
-/// attempt; after max_perturbations attempts it is 3.2% of that edge, well below the smallest
-/// altitude of the mesh's tetrahedra (an eighth of the finest edge), so the mesh stays valid.
-constexpr double first_perturbation = 1e-3;
-constexpr int max_perturbations = 6;
 
 using Evaluator = SpaceEvaluator;
 
@@ -152,50 +147,11 @@ void check_boundary(const SurfaceTopology& topo, double eta) {
     });
 }
 
-/// Moves inner vertices with |G| ≤ η off zero (§2.1), all of one attempt in one batch. Throws
-/// NumericalFailure when one stays there after max_perturbations attempts. Returns the number of
-/// vertices moved.
+/// Moves inner vertices with |G| ≤ η off zero (§2.1), all in the same direction.
 std::size_t perturb(SurfaceTopology& topo, const Evaluator& g, double eta) {
-    auto& mesh = topo.mesh;
-    const double h = topo.tree.edge(topo.tree.depth());
-    std::vector<std::uint32_t> todo;
-    for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v)
-        if (std::abs(topo.values[v]) <= eta) todo.push_back(v);
-    const std::size_t moved = todo.size();
-    std::vector<Vec3> original;
-    for (std::uint32_t v : todo) original.push_back(mesh.vertices[v]);
-    std::vector<std::size_t> slot(todo.size());
-    std::iota(slot.begin(), slot.end(), std::size_t{0});
-    for (int k = 0; !todo.empty(); ++k) {
-        if (k == max_perturbations) {
-            throw NumericalFailure(fmt::format(
-                "G vanishes (|G| <= eta = {}) at and around {} after {} perturbations up to "
-                "{:.3g}: G and its gradient seem to vanish together, so the contour is "
-                "ill-posed there",
-                eta, place(original[slot.front()]), max_perturbations,
-                first_perturbation * std::ldexp(h, max_perturbations - 1)));
-        }
-        std::vector<Vec3> points;
-        for (std::size_t i = 0; i < todo.size(); ++i) {
-            const double step = first_perturbation * std::ldexp(h, k);
-            points.push_back(original[slot[i]] + step * perturbation_direction(k));
-        }
-        std::vector<double> got(points.size());
-        g(points, got);
-        std::vector<std::uint32_t> left;
-        std::vector<std::size_t> left_slot;
-        for (std::size_t i = 0; i < todo.size(); ++i) {
-            mesh.vertices[todo[i]] = points[i];
-            topo.values[todo[i]] = got[i];
-            if (std::abs(got[i]) <= eta) {
-                left.push_back(todo[i]);
-                left_slot.push_back(slot[i]);
-            }
-        }
-        todo = std::move(left);
-        slot = std::move(left_slot);
-    }
-    return moved;
+    return perturb_vertices<3>(topo.mesh.vertices, topo.values, g, eta,
+                               topo.tree.edge(topo.tree.depth()),
+                               [](std::size_t, int k) { return perturbation_direction(k); });
 }
 
 /// The tetrahedra where G changes sign, in order, their corners' signs counted on all threads.

@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 
+#include "perturb.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/key_map.hpp"
 #include "slc/core/parallel.hpp"
@@ -18,12 +19,6 @@
 
 namespace slc::contouring {
 namespace {
-
-/// Perturbation: the first displacement is this fraction of the finest cell edge, doubled at each
-/// attempt. After max_perturbations attempts it is 3.2% of that edge: far below the 35% of the
-/// edge that the smallest triangle altitude allows, so the triangulation stays valid.
-constexpr double first_perturbation = 1e-3;
-constexpr int max_perturbations = 6;
 
 /// The tree sampler of the plane (TreeSampler<2>, with the caller's bounds on G), and what the
 /// triangulation needs of it: the centres of the finest leaves and the vertices' values.
@@ -151,44 +146,10 @@ Vec2 perturbation_direction(std::size_t v, int k) {
     return {std::cos(angle), std::sin(angle)};
 }
 
-/// Moves interior vertices with |G| ≤ η (§2.1) until none is left; all such vertices of one
-/// attempt are evaluated in one batch. Returns the number of vertices moved.
+/// Moves interior vertices with |G| ≤ η (§2.1) until none is left, each in its own direction.
 std::size_t perturb(Topology& topo, BatchFunctionRef g, double eta) {
-    struct Pending {
-        std::size_t vertex;
-        Vec2 original;
-    };
-    auto& mesh = topo.mesh;
-    const double h = topo.tree.edge(topo.tree.depth());
-    std::vector<Pending> todo;
-    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
-        if (std::abs(topo.values[v]) <= eta) todo.push_back({v, mesh.vertices[v]});
-    const std::size_t moved = todo.size();
-    for (int k = 0; !todo.empty(); ++k) {
-        if (k == max_perturbations) {
-            throw NumericalFailure(fmt::format(
-                "G vanishes (|G| <= eta = {}) at and around {} after {} perturbations up to "
-                "{:.3g}: "
-                "G and its gradient seem to vanish together, so the contour is ill-posed there",
-                eta, place(todo.front().original), max_perturbations,
-                first_perturbation * std::ldexp(h, max_perturbations - 1)));
-        }
-        std::vector<Vec2> points;
-        for (const Pending& p : todo) {
-            const double step = first_perturbation * std::ldexp(h, k);
-            points.push_back(p.original + step * perturbation_direction(p.vertex, k));
-        }
-        std::vector<double> values(points.size());
-        g(points, values);
-        std::vector<Pending> left;
-        for (std::size_t i = 0; i < todo.size(); ++i) {
-            mesh.vertices[todo[i].vertex] = points[i];
-            topo.values[todo[i].vertex] = values[i];
-            if (std::abs(values[i]) <= eta) left.push_back(todo[i]);
-        }
-        todo = std::move(left);
-    }
-    return moved;
+    return perturb_vertices<2>(topo.mesh.vertices, topo.values, g, eta,
+                               topo.tree.edge(topo.tree.depth()), perturbation_direction);
 }
 
 /// Stand-ins at vertices of triangles where G changes sign get their exact values: root finding

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include "slc/core/error.hpp"
@@ -12,6 +13,15 @@
 #include "slc/distance/climbing_query.hpp"
 
 namespace slc {
+
+/// What both trees' cell lists share. Relative growth of a triple before testing elements against
+/// it: an element that misses the triple only by rounding still makes the list, which can only
+/// lengthen a list, never make a query inexact.
+inline constexpr double triple_slack = 1e-12;
+
+/// Cells whose lists would be longer than this keep none: a query meeting one turns to the element
+/// hierarchy, whose pruned descent beats a scan of so many elements.
+inline constexpr std::size_t longest_scanned_list = 48;
 
 template <class Tree, class Kernel>
 typename Kernel::Nearest ClimbingQuery<Tree, Kernel>::nearest(Point x) const {

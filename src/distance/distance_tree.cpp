@@ -17,15 +17,6 @@
 namespace slc {
 namespace {
 
-/// Relative growth of a triple before testing segments against it: a segment that misses the
-/// triple only by rounding still makes the list, which can only lengthen the list, never make a
-/// query inexact.
-constexpr double triple_slack = 1e-12;
-
-/// A query meeting a cell list longer than this turns to the segment hierarchy, whose pruned
-/// descent beats a scan of so many segments.
-constexpr std::size_t longest_scanned_list = 48;
-
 /// A level of the tree is built on all worker threads when its cells list at least this many
 /// segments in all: below, starting the threads costs more than the work.
 constexpr std::size_t min_parallel_work = 4096;

@@ -15,14 +15,6 @@
 namespace slc {
 namespace {
 
-/// Relative growth of a triple before testing triangles against it: a triangle that misses the
-/// triple only by rounding still makes the list, which can only lengthen it.
-constexpr double triple_slack = 1e-12;
-
-/// Cells whose lists would be longer than this keep none: a query reaching one turns to the
-/// triangle hierarchy.
-constexpr std::size_t longest_scanned_list = 48;
-
 /// Half the diagonal of a unit cube, √3/2.
 constexpr double half_diagonal = 0.8660254037844386;
 

@@ -16,6 +16,7 @@
 #include "slc/geometry/shapes.hpp"
 #include "slc/velocity/expression.hpp"
 #include "slc/velocity/grid_field.hpp"
+#include "slc/velocity/zero_outside.hpp"
 
 namespace slc {
 namespace {
@@ -400,7 +401,10 @@ std::unique_ptr<VelocityLaw> problem_law(const Problem& p, std::optional<Geometr
         return speed_expression_law(p.velocity_expression, p.velocity_params, module);
     if (p.velocity == "field")
         return field_expression_law(p.velocity_expression, p.velocity_params);
-    if (p.velocity == "field-file") return grid_field_law(p.velocity_file);
+    if (p.velocity == "field-file") {
+        auto law = grid_field_law(p.velocity_file);
+        return p.velocity_zero_outside ? zero_outside_extent(std::move(law)) : std::move(law);
+    }
     return make_velocity(p.velocity, p.velocity_params, module);
 }
 

@@ -314,15 +314,8 @@ std::string read_text_file(const std::filesystem::path& path) {
                         "for an input file",
                         path.string(), more, bytes, max_input_bytes, max_input_bytes >> 20));
     };
-    // Devices (/dev/zero never ends), pipes and folders are refused before they are opened.
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (ec) throw cannot_read(path, ec.value());
-    if (!std::filesystem::is_regular_file(status)) {
-        throw InvalidInput(fmt::format("cannot read {}: not a regular file", path.string()));
-    }
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (!ec && size > max_input_bytes) throw too_large(size, "");
+    const std::uintmax_t size = regular_file_size(path);
+    if (size > max_input_bytes) throw too_large(size, "");
     std::string text = file_bytes(path, max_input_bytes);
     if (text.size() > max_input_bytes)
         throw too_large(text.size(), "more than ");  // it grew meanwhile

@@ -114,7 +114,10 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"arc_width", o.step.resolved_arc_width((o.t_end - o.t_start) / o.steps)}};
     if (p.velocity == "speed" || p.velocity == "field")
         params["velocity_expression"] = p.velocity_expression;
-    if (p.velocity == "field-file") params["velocity_file"] = p.velocity_file;
+    if (p.velocity == "field-file") {
+        params["velocity_file"] = p.velocity_file;
+        params["field_outside"] = p.velocity_zero_outside ? "zero" : "error";
+    }
     for (const auto& q : p.parameters) params["problem_params"][q.name] = q.value;
     nlohmann::json s = {
         {"problem", p.name},

@@ -77,14 +77,7 @@ Box3 world_box(const openvdb::math::Transform& transform, const openvdb::Vec3d& 
 /// All the grids of the file at path, read whole. Any failure of OpenVDB's reader (not an
 /// OpenVDB file, a truncated one, an unknown grid type) is InvalidInput naming the file.
 openvdb::GridPtrVecPtr file_grids(const std::filesystem::path& path) {
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (ec) throw cannot_read(path, ec.value());
-    if (!std::filesystem::is_regular_file(status)) {
-        throw InvalidInput(fmt::format("cannot read {}: not a regular file", path.string()));
-    }
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (ec) throw cannot_read(path, ec.value());
+    const std::uintmax_t size = regular_file_size(path);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw cannot_read(path, errno);
     // OpenVDB's reader does not check every read: a stream that throws at the first short read

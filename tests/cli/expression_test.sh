@@ -174,4 +174,17 @@ printf '# vtk DataFile Version 3.0\nt\nBINARY\n' >binary.vtk
 expect_error "binary VTK" "binary.vtk: only ASCII legacy VTK files are read" -- "${run_tri[@]}" --field-file binary.vtk
 check "bad input writes nothing" test ! -e bad
 
+# Zero outside the lattice when asked (--field-outside zero): a circle of radius 0.25 carried
+# right at unit speed stops at the lattice's edge x = 1 instead of ending with an error.
+circle_json 0.25 64 >disk.json
+expect_status "leaving the lattice is an error by default" 3 -- run --initial disk.json --field-file right.csv --t-end 0.9 -N 9 --quiet --out wall_error
+expect_ok "--field-outside zero" -- run --initial disk.json --field-file right.csv --field-outside zero --t-end 0.9 -N 9 --quiet --out wall
+check "  recorded in summary.json" test "$(json wall/summary.json 's["params"]["field_outside"]')" = zero
+check "  what reached the edge x = 1 stopped there, the rest went on" python3 -c "
+import json
+x = [p[0] for c in json.load(open('wall/final.json'))['curves'] for p in c['points']]
+assert 0.99 < max(x) < 1.01 and abs(min(x) - 0.65) < 0.01, (min(x), max(x))"
+expect_error "--field-outside needs --field-file" "--field-outside requires --field-file" -- run --initial disk.json --velocity rotation --field-outside zero --t-end 0.1 --out f
+expect_error "--field-outside is error or zero" "--field-outside: none not in \{error,zero\}" -- run --initial disk.json --field-file right.csv --field-outside none --t-end 0.1 --out f
+
 finish

@@ -11,11 +11,18 @@ check "final.vdb is there" test -s a/final.vdb
 # K = 4 in the cube [-1, 1]^3: half a cell is 1/16, coarser than 1/128 of the domain.
 check "its voxel is 1/128 of the domain" test "$(json a/summary.json "s['vdb_voxel']")" = "0.015625"
 
-expect_ok "--vdb-voxel sets the voxel" -- run --problem sphere-curvature -N 2 -K 4 --t-end 0.01 --vdb-voxel 0.05 --quiet --out b
+expect_ok "--vdb-voxel sets the voxel" -- run --problem sphere-curvature -N 2 -K 4 --t-end 0.01 --vdb-voxel 0.05 --frames 2 --quiet --out b
 check "its voxel is 0.05" test "$(json b/summary.json "s['vdb_voxel']")" = "0.05"
+check "each frame is a level set too" test -s b/frames/frame_0000.vdb -a -s b/frames/frame_0001.vdb -a -s b/frames/frame_0002.vdb
 
 # The level set read back: the same sphere, R^2 = 0.25 - 4t at t = 0.01.
 echo "0,0,0" >origin.csv
+expect_ok "distance reads the first frame's level set" -- distance --initial b/frames/frame_0000.vdb --points origin.csv
+cp out.txt d0.csv
+check "the first frame is the sphere at t = 0, radius 0.5 to 0.01" python3 -c "
+import csv
+row = next(csv.DictReader(open('d0.csv')))
+assert abs(-float(row['distance']) - 0.5) < 0.01, row"
 expect_ok "distance reads final.vdb" -- distance --initial a/final.vdb --points origin.csv
 cp out.txt d.csv
 check "the sphere read back has radius sqrt(0.21) to 0.005" python3 -c "
@@ -74,6 +81,10 @@ want = (math.cos(0.2) - math.sin(0.2), math.sin(0.2) + math.cos(0.2), 1.0)
 assert max(abs(c[a] - want[a]) for a in range(3)) < 0.02, (c, want)"
 expect_status "leaving the field's voxels is an error naming time and place" 3 -- run --initial ball.obj --field-file "$DATA/velocity.vdb" --t-end 0.8 -N 2 -K 3 --quiet --out h
 check "  the message" grep -qE "at t = .* the surface left the region where velocity 'field-file .*velocity.vdb' is known, \[0, 2\] x \[0, 2\] x \[0, 2\], at \(" err.txt
+expect_ok "--field-outside zero: what leaves the voxels stops there" -- run --initial ball.obj --field-file "$DATA/velocity.vdb" --field-outside zero --t-end 0.8 -N 2 -K 3 --quiet --out h0
+check "  no vertex beyond the voxels' box [0, 2]^3 by more than 0.01" python3 -c "
+V = [list(map(float, l.split()[1:4])) for l in open('h0/final.obj') if l.startswith('v ')]
+assert all(-0.01 < c < 2.01 for v in V for c in v), (min(min(v) for v in V), max(max(v) for v in V))"
 expect_error "a surface outside the field" "the initial surface leaves the region where velocity 'field-file .*velocity.vdb' is known" -- run --initial a/final.vdb --field-file "$DATA/velocity.vdb" --t-end 0.1 --out f
 expect_error "a fog volume is no field" "fog.vdb: no vector grid of vec3s or vec3d values" -- run --initial ball.obj --field-file "$DATA/fog.vdb" --t-end 0.1 --out f
 echo "0,0,1,0" >field.csv

@@ -2,6 +2,7 @@
 #include "commands/problem_source.hpp"
 
 #include <filesystem>
+#include <string>
 
 #include "commands/run_options.hpp"
 #include "slc/core/error.hpp"
@@ -38,6 +39,13 @@ void add_problem_source_options(CLI::App& cmd, ProblemSource& o) {
                    "grid (vec3s or vec3d) is trilinearly interpolated; the surface must stay "
                    "within its active voxels. Instead of --velocity")
         ->excludes(problem);
+    cmd.add_option("--field-outside", o.field_outside,
+                   "Where the --field-file field is not given: 'error' (the default: a run that "
+                   "leaves the lattice, or the grid's active voxels, ends with an error naming "
+                   "the time and the place) or 'zero' (the field is zero there, and what leaves "
+                   "stops)")
+        ->check(CLI::IsMember({"error", "zero"}))
+        ->needs("--field-file");
     cmd.add_option("--param", o.params,
                    "key=value: a parameter of the velocity law or the problem, or a constant of "
                    "--speed and --field expressions (repeatable)");
@@ -71,6 +79,7 @@ Problem resolve_problem(const ProblemSource& o) {
     law_source.velocity = o.velocity.empty() ? chosen.substr(2) : o.velocity;  // "speed", ...
     law_source.velocity_expression = o.speed ? *o.speed : o.field.value_or("");
     law_source.velocity_file = o.field_file.value_or("");
+    law_source.velocity_zero_outside = o.field_outside == "zero";
     law_source.velocity_params = params;
     const auto law = problem_law(law_source, std::nullopt);
     require_inside_extent(*law, in.curves);
@@ -78,6 +87,7 @@ Problem resolve_problem(const ProblemSource& o) {
                               in.domain, in.time, *o.t_end, *law, law_source.velocity, params);
     p.velocity_expression = law_source.velocity_expression;
     p.velocity_file = law_source.velocity_file;
+    p.velocity_zero_outside = law_source.velocity_zero_outside;
     return p;
 }
 

@@ -22,6 +22,9 @@ struct ProblemSource {
     std::optional<std::string> speed;       ///< --speed EXPR: a normal speed
     std::optional<std::string> field;       ///< --field EXPR,EXPR: a flow field
     std::optional<std::string> field_file;  ///< --field-file PATH: a flow field on a lattice
+    /// --field-outside: "error" (the default), or "zero": the --field-file field is zero outside
+    /// its lattice (or grid).
+    std::string field_outside = "error";
     std::optional<double> t_end;
     DomainOptions domain;
     std::vector<std::string> params;

@@ -362,7 +362,8 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
     cmd->add_flag("--vdb", o->vdb,
                   "For a surface: also write the final surface as DIR/final.vdb, an OpenVDB "
                   "narrow-band level set (FloatGrid 'surface', half-width 3 voxels) holding the "
-                  "exact signed distance at the voxel centres; voxel size by --vdb-voxel");
+                  "exact signed distance at the voxel centres, and each frame of --frames as "
+                  "DIR/frames/frame_NNNN.vdb; voxel size by --vdb-voxel");
     cmd->add_option("--vdb-voxel", o->vdb_voxel,
                     "The voxel size of DIR/final.vdb (implies --vdb); default half the edge of "
                     "the contour's cells at depth K, and at most 1/128 of the domain's width")
@@ -461,6 +462,7 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
                  .speed = o.source.speed,
                  .field = o.source.field,
                  .field_file = o.source.field_file,
+                 .field_zero_outside = o.source.field_outside == "zero",
                  .params = o.source.params,
                  .t_end = o.source.t_end,
                  .domain = o.source.domain,

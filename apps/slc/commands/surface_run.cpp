@@ -28,6 +28,7 @@
 #include "slc/io/vdb.hpp"
 #include "slc/io/vtk.hpp"
 #include "slc/velocity/expression.hpp"
+#include "slc/velocity/zero_outside.hpp"
 
 namespace slc::cli {
 namespace {
@@ -133,8 +134,10 @@ SurfaceRunSetup resolve_surface_run(const SurfaceRunRequest& r) {
                 "--field-file for a surface takes an OpenVDB vector grid (.vdb), got '{}'",
                 *r.field_file));
         }
-        p.law = r.speed        ? surface_speed_expression_law(*r.speed, params)
-                : r.field      ? surface_field_expression_law(*r.field, params)
+        p.law = r.speed   ? surface_speed_expression_law(*r.speed, params)
+                : r.field ? surface_field_expression_law(*r.field, params)
+                : r.field_file && r.field_zero_outside
+                    ? zero_outside_extent(vdb_field_law(*r.field_file))
                 : r.field_file ? vdb_field_law(*r.field_file)
                                : make_surface_velocity(r.velocity, params);
         p.t_end = *r.t_end;
@@ -223,7 +226,8 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     std::string history_text = "step,t,volume,area,triangles,components\n";
     for (const HistoryRow& h : history) history_text += history_line(h);
 
-    // Frames 0..F at evenly spaced steps, as .vtp (with a .pvd collection) and shaded PNGs.
+    // Frames 0..F at evenly spaced steps, as .vtp (with a .pvd collection) and shaded PNGs, and
+    // with --vdb as OpenVDB level sets.
     const int frames = std::min(r.frames, options.steps);
     std::optional<VtkSeries> series;
     auto frame_png = [&](int i) { return dir / "frames" / fmt::format("frame_{:04d}.png", i); };
@@ -235,6 +239,11 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         if (!s.empty()) {
             save_surface_picture(s, frame_png(frames_written),
                                  titled(fmt::format("{}: t = {:.4g}", p.name, t)));
+            if (r.vdb) {
+                write_vdb_level_set(
+                    dir / "frames" / fmt::format("frame_{:04d}.vdb", frames_written), s,
+                    {.voxel = vdb_voxel});
+            }
         }
         ++frames_written;
     };

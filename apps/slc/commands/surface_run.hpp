@@ -23,6 +23,7 @@ struct SurfaceRunRequest {
     std::optional<std::string> field;  ///< or a flow field expression "U, V, W" (--field)
     /// or a flow field on an OpenVDB vector grid (--field-file F.vdb)
     std::optional<std::string> field_file;
+    bool field_zero_outside = false;  ///< --field-outside zero
     std::vector<std::string> params;  ///< key=value
     std::optional<double> t_end;
     DomainOptions domain;

@@ -26,6 +26,21 @@ inline InvalidInput cannot_read(const std::filesystem::path& path, int err) {
         fmt::format("cannot read {}: {}", path.string(), std::generic_category().message(err)));
 }
 
+/// The size in bytes of the regular file at path. Devices (/dev/zero never ends), pipes and
+/// folders are refused before they are opened ("cannot read PATH: not a regular file"), and a
+/// file whose state cannot be read throws cannot_read().
+inline std::uintmax_t regular_file_size(const std::filesystem::path& path) {
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (ec) throw cannot_read(path, ec.value());
+    if (!std::filesystem::is_regular_file(status)) {
+        throw InvalidInput(fmt::format("cannot read {}: not a regular file", path.string()));
+    }
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) throw cannot_read(path, ec.value());
+    return size;
+}
+
 /// The bytes of the file at path, read to its end or until more than max_bytes have been read:
 /// a result longer than max_bytes means a larger file, which the caller refuses. Throws
 /// cannot_read() when the file cannot be opened or read. O(bytes read).

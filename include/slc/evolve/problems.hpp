@@ -57,9 +57,12 @@ struct Problem {
     /// The law: a built-in one by make_velocity name, or "speed" or "field" (velocity_expression
     /// is its text) or "field-file" (velocity_file names the file); see problem_law().
     std::string velocity;
-    VelocityParams velocity_params;        ///< its parameters, or the expression's constants
-    std::string velocity_expression;       ///< for "speed" and "field": the expression
-    std::string velocity_file;             ///< for "field-file": the lattice velocity's file
+    VelocityParams velocity_params;   ///< its parameters, or the expression's constants
+    std::string velocity_expression;  ///< for "speed" and "field": the expression
+    std::string velocity_file;        ///< for "field-file": the lattice velocity's file
+    /// For "field-file": the field is zero outside the lattice (zero_outside_extent) instead of
+    /// unknown there, where a run refuses the curves.
+    bool velocity_zero_outside = false;
     std::optional<GeometryModule> module;  ///< overrides the law's default geometry module
     /// The extension and arcs of the run; a named problem sets the paper's (nearest point,
     /// chords), a user's curve leaves them to the law's defaults (StepOptions).
