@@ -19,6 +19,7 @@
 #include "slc/io/interface_json.hpp"
 
 namespace slc {
+using render_detail::check;
 namespace {
 
 using namespace render_detail;
@@ -299,13 +300,6 @@ Page measured_layout(const Box& view, const std::string& title, const Layers& la
     return layout(cr.get(), view, title, layers);
 }
 
-void check(cairo_status_t status, const std::filesystem::path& path) {
-    if (status != CAIRO_STATUS_SUCCESS) {
-        throw InvalidInput(
-            fmt::format("cannot draw {}: {}", path.string(), cairo_status_to_string(status)));
-    }
-}
-
 std::string svg_bytes(double width, double height, const DrawPage& draw,
                       const std::filesystem::path& path) {
     std::string bytes;
@@ -348,6 +342,13 @@ void check_positive(double v, const char* what) {
 }  // namespace
 
 namespace render_detail {
+
+void check(cairo_status_t status, const std::filesystem::path& path) {
+    if (status != CAIRO_STATUS_SUCCESS) {
+        throw InvalidInput(
+            fmt::format("cannot draw {}: {}", path.string(), cairo_status_to_string(status)));
+    }
+}
 
 PictureFormat picture_format(const std::filesystem::path& path) {
     std::string ext = path.extension().string();

@@ -174,4 +174,7 @@ using DrawPage = std::function<void(cairo_t* cr)>;
 void write_picture(const std::filesystem::path& path, PictureFormat format, double width,
                    double height, const DrawPage& draw);
 
+/// Throws InvalidInput "cannot draw PATH: reason" unless status is CAIRO_STATUS_SUCCESS.
+void check(cairo_status_t status, const std::filesystem::path& path);
+
 }  // namespace slc::render_detail

@@ -19,6 +19,7 @@
 #include "render_layout.hpp"
 #include "slc/core/box3.hpp"
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/core/vec2.hpp"
 #include "slc/io/render.hpp"
 
@@ -497,12 +498,44 @@ void save_surface_views(std::span<const Surface> surfaces, const std::filesystem
         views[i].title = "from " + axis_name(camera(views[i]).toward);
     views[3].title += " (above)";
     const double unit = format == PictureFormat::png ? 1.0 / png_scale : 1.0;
+    auto at = [&](std::size_t i) {
+        return Vec2{static_cast<double>(i % 2) * view.width,
+                    static_cast<double>(i / 2) * view.height};
+    };
+    if (format == PictureFormat::png) {
+        // Each view drawn on a thread of its own, into an image of its own pixels (a pixel a
+        // unit of the view, as the page's), then the four set on the page: the same picture
+        // for any thread count, in a quarter of the time on four cores.
+        std::vector<SurfacePtr> images;
+        for (std::size_t i = 0; i < views.size(); ++i) {
+            images.emplace_back(
+                cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(view.width),
+                                           static_cast<int>(view.height)),
+                &cairo_surface_destroy);
+        }
+        parallel_for(
+            views.size(),
+            [&](std::size_t i) {
+                const ContextPtr cr(cairo_create(images[i].get()), &cairo_destroy);
+                draw(cr.get(), surfaces, page_map(box, views[i]), views[i], nullptr);
+                check(cairo_status(cr.get()), path);
+            },
+            1);
+        write_picture(path, format, unit * 2 * view.width, unit * 2 * view.height,
+                      [&](cairo_t* cr) {
+                          cairo_scale(cr, unit, unit);
+                          for (std::size_t i = 0; i < views.size(); ++i) {
+                              cairo_set_source_surface(cr, images[i].get(), at(i).x, at(i).y);
+                              cairo_paint(cr);
+                          }
+                      });
+        return;
+    }
     write_picture(path, format, unit * 2 * view.width, unit * 2 * view.height, [&](cairo_t* cr) {
         cairo_scale(cr, unit, unit);
         for (std::size_t i = 0; i < views.size(); ++i) {
             cairo_save(cr);
-            cairo_translate(cr, static_cast<double>(i % 2) * view.width,
-                            static_cast<double>(i / 2) * view.height);
+            cairo_translate(cr, at(i).x, at(i).y);
             cairo_rectangle(cr, 0.0, 0.0, view.width, view.height);
             cairo_clip(cr);
             draw(cr, surfaces, page_map(box, views[i]), views[i], nullptr);
