@@ -2,7 +2,8 @@
 // each kind of law, and Enright's test beside OpenVDB (from docs/tables/enright.md, which
 // bench/enright.py writes). Writes its tables and summaries into their regions of the section
 // "Moving surfaces" of docs/performance.md, a page written by hand (doc_regions.hpp); with
-// --check-page it only checks that the page holds those regions.
+// --check-page it only checks that the page holds those regions, and with --enright-only it only
+// writes the Enright table into its region.
 //
 // A step's time is the least wall time of --repeats calls of advance() on the same surface, the
 // calls alternating between one thread and all (each call does all of a step's work, from the
@@ -12,6 +13,7 @@
 //
 // Usage: surface_performance_bench [--out FILE] [--enright FILE] [--repeats n] [--rounds n]
 //                                  [--largest-depth K] [--triangles n] [--check-page]
+//                                  [--enright-only]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -170,6 +172,19 @@ int run_bench(int argc, char** argv) {
     }
     // Before the measurements, not after.
     bench::require_regions(out, regions);
+    const auto enright_region = [&] {
+        const std::string table = enright_table(enright);
+        return bench::Region{"enright", table.empty()
+                                            ? fmt::format("{} is missing: run bench/enright.py "
+                                                          "(scripts/bench runs it).\n",
+                                                          enright)
+                                            : table};
+    };
+    if (bench::take_switch(argc, argv, "--enright-only")) {  // the table only, nothing measured
+        bench::write_regions(out, {enright_region()});
+        fmt::print(stderr, "wrote the Enright region of {}\n", out);
+        return 0;
+    }
 
     // Rows of about 5,000, 20,000, 80,000 and 320,000 triangles (K = 4..7), then each kind of
     // law on a surface of about `target` triangles. A slow spell of this machine (up to 1.45×
@@ -277,11 +292,7 @@ int run_bench(int argc, char** argv) {
         md = "No step above reached 10⁵ triangles.\n";
     }
     page.emplace_back("surface-speedups", md);
-    const std::string table = enright_table(enright);
-    page.emplace_back("enright", table.empty() ? fmt::format("{} is missing: run bench/enright.py "
-                                                             "(scripts/bench runs it).\n",
-                                                             enright)
-                                               : table);
+    page.push_back(enright_region());
     bench::write_regions(out, page);
     fmt::print(stderr, "wrote {}\n", out);
     return 0;
