@@ -75,6 +75,7 @@ LAWS_3D = ["rotation", "translation", "enright", "unit-normal", "anisotropic", "
            "volume-preserving-curvature"]
 SHAPE_GROSS = 0.05  # of the half-width
 VOLUME_DRIFT = 0.01  # SurfaceRunOptions::volume_drift
+KEEPS_VOLUME = ("rotation", "translation", "enright", "volume-preserving-curvature")
 AREA_GROWTH = 0.005  # SurfaceRunOptions::area_growth
 CURVATURE_VOLUME = 0.02  # the campaign's own: of V0, beside a quarter of the law's change
 STEINER_STEP = 0.1  # a constant normal speed's swept volume, a step
@@ -586,8 +587,13 @@ def main():
     p.add_argument("--keep", help="write the cases' files here and keep them")
     p.add_argument("--threads", type=int, default=1, help="--threads of each run (default 1)")
     p.add_argument("--verbose", action="store_true", help="print each run's outcome as it ends")
+    p.add_argument("--runs", type=int, help="this many runs instead of the size's")
+    p.add_argument("--coarse-only", action="store_true", help="every run coarse")
+    p.add_argument("--coarse-args", default="",
+                   help="more settings of the coarse runs, e.g. '-P 0' (no refinement)")
     a = p.parse_args()
     runs, seed = SIZES[a.size]
+    runs = a.runs or runs
     seed = a.seed if a.seed is not None else seed
     rng = random.Random(seed)
     slc = os.path.abspath(a.slc)
@@ -597,7 +603,9 @@ def main():
     start = time.time()
     try:
         for i in range(runs):
-            case = surface_case(rng, i, a.size == "small")
+            case = surface_case(rng, i, a.size == "small" or a.coarse_only)
+            if case["coarse"]:
+                case["args"] += a.coarse_args.split()
             if a.only is not None and i != a.only:
                 continue
             s = case["shape"]
@@ -621,8 +629,14 @@ def main():
             row = f"{case['law']}, {'coarse' if case['coarse'] else 'defaults'}"
             tally.add(row, outcome, shown, detail)
             if a.verbose:
-                print(f"{i} {row} {s['desc']}: {outcome} in {time.time() - began:.1f} s "
-                      f"{detail or ''}", flush=True)
+                drift = ""
+                if summary and summary.get("volume_initial"):
+                    # The start's volume, and a law that keeps it the end's, from the smooth shape's.
+                    drift = f" start {summary['volume_initial'] / s['smooth_volume'] - 1:+.2%}"
+                    if case["law"] in KEEPS_VOLUME and summary.get("volume") is not None:
+                        drift += f", end {summary['volume'] / s['smooth_volume'] - 1:+.2%}"
+                print(f"{i} {row} {s['desc']}: {outcome} in {time.time() - began:.1f} s"
+                      f"{drift} {detail or ''}", flush=True)
             if not a.keep:
                 shutil.rmtree(folder, ignore_errors=True)
     finally:

@@ -241,16 +241,19 @@ RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domai
     start.start_thin_depth = options.step.contour.thin_depth;
     if (options.check_start && !initial.empty()) {
         // A flow field at rest: G(x) = F(x), so the step's contour is the curves' own.
+        const Translation rest({0.0, 0.0});
         const auto read = [&](int thin) {
             StepOptions o = options.step;
             o.contour.thin_depth = thin;
-            return advance(initial, options.t_start, 1.0, Translation({0.0, 0.0}), domain, o)
-                .curves;
+            return advance(initial, options.t_start, 1.0, rest, domain, o).curves;
         };
         const ContourOptions& c = options.step.contour;
-        start.start_thin_depth = detail::start_as_given<2>(initial, domain, c.depth, c.thin_depth,
-                                                           finest_cell(domain, c), read)
-                                     .first;
+        const detail::StartTolerance keep{
+            .cell = finest_cell(domain, c),
+            .measure = step_area(initial, rest, options.step, domain),
+            .tolerance = detail::start_measure_tolerance(c, length(initial))};
+        start.start_thin_depth =
+            detail::start_as_given<2>(initial, domain, c.depth, c.thin_depth, keep, read).first;
     }
     if (law.invariants().area_rate_per_curve || law.invariants().rigid)
         start.start_area = step_area(initial, law, options.step, domain);

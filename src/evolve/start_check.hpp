@@ -1,15 +1,16 @@
 // The start of a user's run is the user's shape (internal to evolve, written once for curves and
 // surfaces): the contour that a step at rest makes of it must have its components and holes (a
-// surface's handles), and no vertex of the given shape may lie farther from it than a finest
-// cell. Where a part is thinner than the cells resolve, the thin cells go deeper; a part that the
-// deepest still loses is refused before the first step, named by its place, rather than a run
-// that ends `ok` without it.
+// surface's handles), no vertex of the given shape may lie farther from it than a finest cell,
+// and its area or volume must be the given shape's within what eps allows. Where a part is thinner
+// than the cells resolve, the thin cells go deeper; a part that the deepest still loses is refused
+// before the first step, named by its place, rather than a run that ends `ok` without it.
 #pragma once
 
 #include <fmt/format.h>
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -40,6 +41,10 @@ inline ShapeTopology shape_topology(const Interface& curves) {
 }
 inline ShapeTopology shape_topology(const Surface& s) { return {component_count(s), genus(s)}; }
 
+/// The area the curves enclose, or the volume the surface does.
+inline double shape_measure(const Interface& curves) { return area(curves); }
+inline double shape_measure(const Surface& s) { return volume(s); }
+
 inline std::span<const Vec2> shape_vertices(const Interface& curves) { return curves.points(); }
 inline std::span<const Vec3> shape_vertices(const Surface& s) { return s.vertices; }
 
@@ -49,12 +54,42 @@ inline std::string describe(const ShapeTopology& t, int dim) {
         dim == 2 ? (t.holes == 1 ? "hole" : "holes") : (t.holes == 1 ? "handle" : "handles"));
 }
 
+/// What the start must keep of the given shape beyond its topology: no vertex of it farther
+/// than `cell` (the finest cell at K) from the contour, and the area (curves) or volume
+/// (surface) the contour encloses within `tolerance` of `measure`, the given shape's as a step
+/// reads it (arcs or patches included).
+struct StartTolerance {
+    double cell = 0.0;
+    double measure = 0.0;
+    double tolerance = 0.0;
+};
+
+/// The measure's tolerance for a shape of length or area `size` contoured with `contour`: 2 ε L
+/// when refinement runs until converged (a contour within ε of the shape everywhere moves the
+/// measure by at most ε L); with a cap on the passes (P, or the two passes of the curvature laws)
+/// ε is not the contour's promise, and only the topology and the vertices are checked.
+template <class Options>
+double start_measure_tolerance(const Options& contour, double size) {
+    if (contour.refine_passes != Options::until_converged)
+        return std::numeric_limits<double>::infinity();
+    return 2.0 * contour.resolved_eps() * size;
+}
+
+/// How the contour a step at rest makes of the given shape is not that shape.
+struct StartMismatch {
+    std::string why;  ///< the counts, the vertex farthest from the contour, or the measures
+    /// Only the area or volume differs: the contours are too coarse everywhere (refinement or
+    /// K), not thin somewhere.
+    bool measure_only = false;
+};
+
 /// Why `read`, the contour a step at rest makes of `given`, is not `given`, or nothing: other
-/// components or holes, or a vertex of `given` farther than `cell` (the finest cell at K) from
-/// it; the reason names the counts and the vertex farthest from it.
+/// components or holes, a vertex of `given` farther than a cell from it, or another area or
+/// volume.
 template <int dim>
-std::optional<std::string> start_mismatch(const ShapeOf<dim>& given, const ShapeOf<dim>& read,
-                                          const RegionOf<dim>& domain, double cell) {
+std::optional<StartMismatch> start_mismatch(const ShapeOf<dim>& given, const ShapeOf<dim>& read,
+                                            const RegionOf<dim>& domain,
+                                            const StartTolerance& keep) {
     const ShapeTopology want = shape_topology(given), got = shape_topology(read);
     const auto points = shape_vertices(given);
     std::size_t far = 0;
@@ -73,42 +108,67 @@ std::optional<std::string> start_mismatch(const ShapeOf<dim>& given, const Shape
             }
         }
     }
-    if (want == got && farthest <= cell) return std::nullopt;
-    const std::string where = farthest > 0.01 * cell
+    const double measure = shape_measure(read);
+    const bool shape_kept = want == got && farthest <= keep.cell;
+    if (shape_kept && std::abs(measure - keep.measure) <= keep.tolerance) return std::nullopt;
+    if (shape_kept) {
+        return StartMismatch{
+            fmt::format("the {} {:.6g} became {:.6g} ({:+.3g}%; eps allows {:.3g})",
+                        dim == 2 ? "area" : "volume", keep.measure, measure,
+                        100.0 * (measure / keep.measure - 1.0), keep.tolerance),
+            true};
+    }
+    const std::string where = farthest > 0.01 * keep.cell
                                   ? fmt::format(", and the part near {} lies {:.3g} from them",
                                                 point_text6(points[far]), farthest)
                                   : std::string();
-    return fmt::format("{} became {}{}", describe(want, dim), describe(got, dim), where);
+    return StartMismatch{
+        fmt::format("{} became {}{}", describe(want, dim), describe(got, dim), where), false};
 }
 
 /// The start of a user's run: the contour at rest of `given` (read(thin), at depth K with thin
 /// levels of thin cells) that keeps it (start_mismatch), at the options' thin depth or, where a
-/// part is thinner than that resolves, two levels deeper at a time up to setting_range's most.
-/// Returns the depth and the contour; throws NumericalFailure naming the part and the settings
-/// when the deepest does not keep it either.
+/// part is thinner than that resolves, two levels deeper at a time up to setting_range's most
+/// (no deeper once the thin cells change nothing). Returns the depth and the contour; throws
+/// NumericalFailure naming the part and the settings when the deepest does not keep it either.
 template <int dim, class Read>
 std::pair<int, ShapeOf<dim>> start_as_given(const ShapeOf<dim>& given, const RegionOf<dim>& domain,
-                                            int depth, int thin_depth, double cell, Read read) {
+                                            int depth, int thin_depth, const StartTolerance& keep,
+                                            Read read) {
     int thin = thin_depth;
+    std::optional<double> before;  // the measure one depth up
     for (;;) {
         ShapeOf<dim> contour = read(thin);
-        const std::optional<std::string> why = start_mismatch<dim>(given, contour, domain, cell);
-        if (!why) return {thin, std::move(contour)};
-        if (thin < setting_range::thin_depth.hi && thin_depth > 0) {
+        const std::optional<StartMismatch> mismatch =
+            start_mismatch<dim>(given, contour, domain, keep);
+        if (!mismatch) return {thin, std::move(contour)};
+        const double measure = shape_measure(contour);
+        const bool same = before && *before == measure;
+        before = measure;
+        if (thin < setting_range::thin_depth.hi && thin_depth > 0 && !same) {
             thin = std::min(thin + 2, setting_range::thin_depth.hi);
             continue;
         }
         const std::string cells = thin > 0 ? fmt::format("cells {:.3g}, thin cells down to {:.3g}",
-                                                         cell, std::ldexp(cell, -thin))
-                                           : fmt::format("cells {:.3g}, no thin cells", cell);
-        const std::string raise =
-            thin < setting_range::thin_depth.hi
-                ? fmt::format("raise --thin-depth (now {}) or -K", thin)
-                : fmt::format("raise -K (--thin-depth is at its most, {})", thin);
-        throw NumericalFailure(fmt::format(
-            "the contours at K = {} ({}) do not keep the {} as given: {}; a part is thinner than "
-            "they resolve: {}",
-            depth, cells, dim == 2 ? "curves" : "surface", *why, raise));
+                                                         keep.cell, std::ldexp(keep.cell, -thin))
+                                           : fmt::format("cells {:.3g}, no thin cells", keep.cell);
+        std::string advice;
+        if (mismatch->measure_only) {
+            advice = "the contours are coarser than eps: raise -K or -P (refinement passes)";
+        } else if (same) {
+            advice = fmt::format(
+                "a part is thinner than they resolve: raise -K (thin cells {} levels deep split "
+                "no more than {} did)",
+                thin, thin - 2);
+        } else {
+            advice = "a part is thinner than they resolve: " +
+                     (thin < setting_range::thin_depth.hi
+                          ? fmt::format("raise --thin-depth (now {}) or -K", thin)
+                          : fmt::format("raise -K (--thin-depth is at its most, {})", thin));
+        }
+        throw NumericalFailure(
+            fmt::format("the contours at K = {} ({}) do not keep the {} as given: {}; {}", depth,
+                        cells, dim == 2 ? "curves" : "surface", mismatch->why, advice));
     }
 }
 

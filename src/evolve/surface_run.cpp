@@ -198,8 +198,10 @@ Surface surface_as_read(const Surface& s, const Box3& domain, SurfaceRunOptions&
         return contour;
     };
     const SurfaceContourOptions& c = options.step.contour;
-    auto [thin, contour] = detail::start_as_given<3>(s, domain, c.depth, c.thin_depth,
-                                                     std::ldexp(domain.width(), -c.depth), read);
+    const detail::StartTolerance keep{.cell = std::ldexp(domain.width(), -c.depth),
+                                      .measure = step_volume(s, options.step),
+                                      .tolerance = detail::start_measure_tolerance(c, area(s))};
+    auto [thin, contour] = detail::start_as_given<3>(s, domain, c.depth, c.thin_depth, keep, read);
     options.step.contour.thin_depth = thin;
     return std::move(contour);
 }

@@ -36,6 +36,72 @@ constexpr double corner_angle = 0.5;
 /// surface bends there faster than the fitted normals follow (a radius below about three edges).
 constexpr double patch_angle = 0.35;
 
+/// How a step reads a surface beyond its triangles: the vertex normals the field normal uses,
+/// the corners, and each triangle's edge bulges β for curved patches (SurfaceStepOptions::patches).
+struct PatchReading {
+    std::vector<Vec3> normals;  ///< the fitted normals, angle-weighted within two rings of a corner
+    std::vector<char> corner;   ///< vertices at a corner or sharp edge
+    std::vector<std::array<double, 3>> bulge;  ///< β of each triangle's edges; empty: flat
+    double max_bulge = 0.0;  ///< a bound on the patches' height over their triangles, max|β|/3
+};
+
+/// The reading of `surface` with fitted vertex normals `normals` and its pseudo-normals.
+PatchReading read_patches(const Surface& surface, std::vector<Vec3> normals,
+                          const PseudoNormals& pseudo, bool patches) {
+    PatchReading r;
+    // Corners: a triangle turns more than corner_angle from the angle-weighted normal (the
+    // tree's vertex pseudo-normal, scaled to unit length). The fitted normals are second
+    // order on smooth parts, but a fit across a corner tilts them: within two rings of a
+    // corner the angle-weighted normal (the face's own on a flat face) is kept.
+    std::vector<Vec3> weighted = pseudo.vertex;
+    for (Vec3& n : weighted)
+        if (const double length = norm(n); length > 0.0) n = n / length;
+    const std::vector<Vec3>& face = pseudo.face;
+    const double limit = std::cos(corner_angle);
+    const std::size_t n = surface.triangles.size();
+    std::vector<std::uint8_t> turned(n);  // bit c: corner c turns from the face
+    parallel_for(n, [&](std::size_t f) {
+        unsigned bits = 0;
+        for (int c = 0; c < 3; ++c)
+            if (dot(face[f], weighted[surface.triangles[f][c]]) < limit) bits |= 1u << c;
+        turned[f] = static_cast<std::uint8_t>(bits);
+    });
+    r.corner.assign(surface.vertices.size(), 0);
+    for (std::size_t f = 0; f < n; ++f)
+        for (int c = 0; c < 3; ++c)
+            if (turned[f] >> c & 1u) r.corner[surface.triangles[f][c]] = 1;
+    const VertexRings rings = vertex_rings(surface);
+    parallel_for(surface.vertices.size(), [&](std::size_t v) {
+        bool near = r.corner[v] != 0;
+        for (const std::uint32_t w : rings.of(v)) {
+            near = near || r.corner[w];
+            for (const std::uint32_t u : rings.of(w)) near = near || r.corner[u];
+        }
+        if (near) normals[v] = weighted[v];
+    });
+    if (patches) {
+        const double patch_limit = std::cos(patch_angle);
+        r.bulge.resize(n);
+        parallel_for(n, [&](std::size_t f) {
+            const TriangleIndices& tri = surface.triangles[f];
+            for (int e = 0; e < 3; ++e) {
+                const std::uint32_t a = tri[e], b = tri[(e + 1) % 3];
+                // Flat at a corner, and where the normals turn too fast along the edge for a
+                // quadric to follow.
+                const bool flat =
+                    r.corner[a] || r.corner[b] || dot(normals[a], normals[b]) < patch_limit;
+                r.bulge[f][e] = flat ? 0.0
+                                     : 0.5 * dot(normals[b] - normals[a],
+                                                 surface.vertices[b] - surface.vertices[a]);
+            }
+        });
+        for (const std::array<double, 3>& beta : r.bulge)
+            for (const double b : beta) r.max_bulge = std::max(r.max_bulge, std::abs(b) / 3.0);
+    }
+    r.normals = std::move(normals);
+    return r;
+}
+
 /// Everything a step reads of the surface at one time: its distance tree, and the vertex
 /// velocities (nearest-point extension) or vertex normals (normal laws) it extends.
 class SurfaceLevel {
@@ -57,58 +123,15 @@ public:
             u_ = vertex_velocities(law, t, surface, geometry);
             for (const Vec3& u : u_) max_speed_ = std::max(max_speed_, norm(u));
         }
-        normals_ = geometry.normals.empty()
-                       ? surface_geometry(surface, {.curvature = false}).normals
-                       : std::move(geometry.normals);
-        // Corners: a triangle turns more than corner_angle from the angle-weighted normal (the
-        // tree's vertex pseudo-normal, scaled to unit length). The fitted normals are second
-        // order on smooth parts, but a fit across a corner tilts them: within two rings of a
-        // corner the angle-weighted normal (the face's own on a flat face) is kept.
-        std::vector<Vec3> weighted = tree_.normals().vertex;
-        for (Vec3& n : weighted)
-            if (const double length = norm(n); length > 0.0) n = n / length;
-        const std::vector<Vec3>& face = tree_.normals().face;
-        const double limit = std::cos(corner_angle);
-        const std::size_t n = surface.triangles.size();
-        std::vector<std::uint8_t> turned(n);  // bit c: corner c turns from the face
-        parallel_for(n, [&](std::size_t f) {
-            unsigned bits = 0;
-            for (int c = 0; c < 3; ++c)
-                if (dot(face[f], weighted[surface.triangles[f][c]]) < limit) bits |= 1u << c;
-            turned[f] = static_cast<std::uint8_t>(bits);
-        });
-        corner_.assign(surface.vertices.size(), 0);
-        for (std::size_t f = 0; f < n; ++f)
-            for (int c = 0; c < 3; ++c)
-                if (turned[f] >> c & 1u) corner_[surface.triangles[f][c]] = 1;
-        const VertexRings rings = vertex_rings(surface);
-        parallel_for(surface.vertices.size(), [&](std::size_t v) {
-            bool near = corner_[v] != 0;
-            for (const std::uint32_t w : rings.of(v)) {
-                near = near || corner_[w];
-                for (const std::uint32_t u : rings.of(w)) near = near || corner_[u];
-            }
-            if (near) normals_[v] = weighted[v];
-        });
-        if (options.patches) {
-            const double patch_limit = std::cos(patch_angle);
-            bulge_.resize(n);
-            parallel_for(n, [&](std::size_t f) {
-                const TriangleIndices& tri = surface.triangles[f];
-                for (int e = 0; e < 3; ++e) {
-                    const std::uint32_t a = tri[e], b = tri[(e + 1) % 3];
-                    // Flat at a corner, and where the normals turn too fast along the edge
-                    // for a quadric to follow.
-                    const bool flat =
-                        corner_[a] || corner_[b] || dot(normals_[a], normals_[b]) < patch_limit;
-                    bulge_[f][e] = flat ? 0.0
-                                        : 0.5 * dot(normals_[b] - normals_[a],
-                                                    surface.vertices[b] - surface.vertices[a]);
-                }
-            });
-            for (const std::array<double, 3>& beta : bulge_)
-                for (const double b : beta) max_bulge_ = std::max(max_bulge_, std::abs(b) / 3.0);
-        }
+        std::vector<Vec3> fitted = geometry.normals.empty()
+                                       ? surface_geometry(surface, {.curvature = false}).normals
+                                       : std::move(geometry.normals);
+        PatchReading reading =
+            read_patches(surface, std::move(fitted), tree_.normals(), options.patches);
+        normals_ = std::move(reading.normals);
+        corner_ = std::move(reading.corner);
+        bulge_ = std::move(reading.bulge);
+        max_bulge_ = reading.max_bulge;
     }
 
     /// The largest speed of the vertex velocities (nearest-point extension; 0 without them): the
@@ -249,6 +272,24 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
 }
 
 }  // namespace
+
+double step_volume(const Surface& surface, const SurfaceStepOptions& options) {
+    const double triangles = volume(surface);
+    if (!options.patches || surface.empty()) return triangles;
+    const PatchReading reading =
+        read_patches(surface, surface_geometry(surface, {.curvature = false}).normals,
+                     pseudo_normals(surface), true);
+    // The patch over a triangle rises Σ w_a w_b β_ab above it, and ∫ w_a w_b dA = A/12.
+    double bulges = 0.0;
+    for (std::size_t f = 0; f < surface.triangles.size(); ++f) {
+        const TriangleIndices& tri = surface.triangles[f];
+        const Vec3 a = surface.vertices[tri[0]], b = surface.vertices[tri[1]],
+                   c = surface.vertices[tri[2]];
+        const std::array<double, 3>& beta = reading.bulge[f];
+        bulges += norm(cross(b - a, c - a)) / 24.0 * (beta[0] + beta[1] + beta[2]);
+    }
+    return triangles + bulges;
+}
 
 SurfaceStepResult advance(const Surface& surface, double t, double k, const SurfaceVelocityLaw& law,
                           const Box3& domain, const SurfaceStepOptions& options) {

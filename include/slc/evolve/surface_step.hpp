@@ -74,6 +74,10 @@ struct SurfaceStepResult {
     SurfaceStepStats stats;  ///< both contours' statistics
 };
 
+/// The volume a valid surface encloses as a step of a flow field or a normal law reads it: its
+/// triangles', plus the bulges of its curved patches (SurfaceStepOptions::patches) over them.
+double step_volume(const Surface& surface, const SurfaceStepOptions& options);
+
 /// Advances a valid surface inside domain (a cube) from t to t + k under law. Components may
 /// vanish; an empty result means nothing is left. Deterministic: the same for any thread count.
 /// Throws InvalidInput for k ≤ 0, an empty surface, the Whitney extension, or a direct extension

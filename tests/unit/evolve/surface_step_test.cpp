@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <type_traits>
 
 #include "slc/core/error.hpp"
@@ -106,6 +107,22 @@ TEST(SurfaceStep, BadInput) {
                  LeftDomain);
     const auto bad = field_law("bad", [](double, Vec3 x) { return Vec3{1.0 / x.x, 0.0, 0.0}; });
     EXPECT_THROW(advance(s, 0.0, 0.1, *bad, unit_domain, o), NumericalFailure);
+}
+
+TEST(SurfaceStep, StepVolumeAddsThePatchesBulges) {
+    // An icosphere's triangles cut inside the sphere they sample; its patches give all but 2% of
+    // the difference back (measured: 320 triangles 3.4% low, their patches 0.051%; 1,280
+    // triangles 0.86% and 0.0034%). Without patches the step reads the triangles.
+    const double exact = 4.0 / 3.0 * std::numbers::pi * 0.125;
+    for (const int subdivisions : {2, 3}) {
+        const Surface s = sphere({0.1, -0.2, 0.3}, 0.5, subdivisions);
+        const double chords = volume(s), patches = step_volume(s, {});
+        SurfaceStepOptions flat;
+        flat.patches = false;
+        EXPECT_EQ(step_volume(s, flat), chords);
+        EXPECT_LT(chords, patches);
+        EXPECT_LT(std::abs(patches - exact), 0.02 * (exact - chords)) << subdivisions;
+    }
 }
 
 }  // namespace
