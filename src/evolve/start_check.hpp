@@ -78,8 +78,8 @@ double start_measure_tolerance(const Options& contour, double size) {
 /// How the contour a step at rest makes of the given shape is not that shape.
 struct StartMismatch {
     std::string why;  ///< the counts, the vertex farthest from the contour, or the measures
-    /// Only the area or volume differs: the contours are too coarse everywhere (refinement or
-    /// K), not thin somewhere.
+    /// Only the area or volume differs: refinement, run until converged, left the contours
+    /// farther than ε (its safeguards refuse splits at creases), not a part thinner than a cell.
     bool measure_only = false;
 };
 
@@ -154,7 +154,7 @@ std::pair<int, ShapeOf<dim>> start_as_given(const ShapeOf<dim>& given, const Reg
                                            : fmt::format("cells {:.3g}, no thin cells", keep.cell);
         std::string advice;
         if (mismatch->measure_only) {
-            advice = "the contours are coarser than eps: raise -K or -P (refinement passes)";
+            advice = "refinement did not bring the contours within eps of it: raise -K";
         } else if (same) {
             advice = fmt::format(
                 "a part is thinner than they resolve: raise -K (thin cells {} levels deep split "
