@@ -77,7 +77,8 @@ double start_measure_tolerance(const Options& contour, double size) {
 
 /// How the contour a step at rest makes of the given shape is not that shape.
 struct StartMismatch {
-    std::string why;  ///< the counts, the vertex farthest from the contour, or the measures
+    std::string why;       ///< the counts, the vertex farthest from the contour, or the measures
+    double measure = 0.0;  ///< the area or volume the contour encloses
     /// Only the area or volume differs: refinement, run until converged, left the contours
     /// farther than ε (its safeguards refuse splits at creases), not a part thinner than a cell.
     bool measure_only = false;
@@ -116,14 +117,15 @@ std::optional<StartMismatch> start_mismatch(const ShapeOf<dim>& given, const Sha
             fmt::format("the {} {:.6g} became {:.6g} ({:+.3g}%; eps allows {:.3g})",
                         dim == 2 ? "area" : "volume", keep.measure, measure,
                         100.0 * (measure / keep.measure - 1.0), keep.tolerance),
-            true};
+            measure, true};
     }
     const std::string where = farthest > 0.01 * keep.cell
                                   ? fmt::format(", and the part near {} lies {:.3g} from them",
                                                 point_text6(points[far]), farthest)
                                   : std::string();
     return StartMismatch{
-        fmt::format("{} became {}{}", describe(want, dim), describe(got, dim), where), false};
+        fmt::format("{} became {}{}", describe(want, dim), describe(got, dim), where), measure,
+        false};
 }
 
 /// The start of a user's run: the contour at rest of `given` (read(thin), at depth K with thin
@@ -142,9 +144,8 @@ std::pair<int, ShapeOf<dim>> start_as_given(const ShapeOf<dim>& given, const Reg
         const std::optional<StartMismatch> mismatch =
             start_mismatch<dim>(given, contour, domain, keep);
         if (!mismatch) return {thin, std::move(contour)};
-        const double measure = shape_measure(contour);
-        const bool same = before && *before == measure;
-        before = measure;
+        const bool same = before && *before == mismatch->measure;
+        before = mismatch->measure;
         if (thin < setting_range::thin_depth.hi && thin_depth > 0 && !same) {
             thin = std::min(thin + 2, setting_range::thin_depth.hi);
             continue;

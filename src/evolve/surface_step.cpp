@@ -126,12 +126,7 @@ public:
         std::vector<Vec3> fitted = geometry.normals.empty()
                                        ? surface_geometry(surface, {.curvature = false}).normals
                                        : std::move(geometry.normals);
-        PatchReading reading =
-            read_patches(surface, std::move(fitted), tree_.normals(), options.patches);
-        normals_ = std::move(reading.normals);
-        corner_ = std::move(reading.corner);
-        bulge_ = std::move(reading.bulge);
-        max_bulge_ = reading.max_bulge;
+        read_ = read_patches(surface, std::move(fitted), tree_.normals(), options.patches);
     }
 
     /// The largest speed of the vertex velocities (nearest-point extension; 0 without them): the
@@ -146,13 +141,13 @@ public:
     void add_normal_speed(double s) {
         max_speed_ = 0.0;
         for (std::size_t v = 0; v < u_.size(); ++v) {
-            u_[v] += s * normals_[v];
+            u_[v] += s * read_.normals[v];
             max_speed_ = std::max(max_speed_, norm(u_[v]));
         }
     }
     /// A bound on the patches' height over their triangles, |F − the triangles' distance| (0
     /// without patches): Σ w_a w_b β_ab ≤ max|β| Σ w_a w_b ≤ max|β|/3.
-    double max_bulge() const { return max_bulge_; }
+    double max_bulge() const { return read_.max_bulge; }
 
     /// F(x): the signed distance to this level's surface read as curved patches
     /// (SurfaceStepOptions::patches), or to its triangles.
@@ -197,8 +192,8 @@ private:
     /// sum to O(h³); it is zero at the vertices and depends only on an edge's ends along it, so
     /// the patches meet continuously.
     double distance(const SurfacePoint& p) const {
-        if (bulge_.empty()) return p.distance;
-        const std::array<double, 3>& beta = bulge_[p.triangle];
+        if (read_.bulge.empty()) return p.distance;
+        const std::array<double, 3>& beta = read_.bulge[p.triangle];
         const std::array<double, 3>& w = p.weights;
         return p.distance - (w[0] * w[1] * beta[0] + w[1] * w[2] * beta[1] + w[2] * w[0] * beta[2]);
     }
@@ -212,10 +207,11 @@ private:
         const TriangleIndices& tri = surface_.triangles[p.triangle];
         bool smooth = true;
         for (int c = 0; c < 3; ++c)
-            if (p.weights[c] > 0.0 && corner_[tri[c]]) smooth = false;
+            if (p.weights[c] > 0.0 && read_.corner[tri[c]]) smooth = false;
         if (smooth) {
-            const Vec3 sum = p.weights[0] * normals_[tri[0]] + p.weights[1] * normals_[tri[1]] +
-                             p.weights[2] * normals_[tri[2]];
+            const Vec3 sum = p.weights[0] * read_.normals[tri[0]] +
+                             p.weights[1] * read_.normals[tri[1]] +
+                             p.weights[2] * read_.normals[tri[2]];
             const double s = norm(sum);
             if (s > 0.0) return sum / s;
         }
@@ -229,12 +225,9 @@ private:
     SurfaceDistanceTree tree_;
     const SurfaceVelocityLaw& law_;
     double t_;
-    std::vector<Vec3> u_;        ///< vertex velocities, for the nearest-point extension
-    std::vector<Vec3> normals_;  ///< vertex normals, for a normal law
-    std::vector<char> corner_;   ///< vertices at a corner or sharp edge
-    std::vector<std::array<double, 3>> bulge_;  ///< β of each triangle's edges, for patches
+    std::vector<Vec3> u_;  ///< vertex velocities, for the nearest-point extension
+    PatchReading read_;    ///< vertex normals (for a normal law), corners, patches' bulges
     double max_speed_ = 0.0;
-    double max_bulge_ = 0.0;
 };
 
 SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
@@ -282,11 +275,8 @@ double step_volume(const Surface& surface, const SurfaceStepOptions& options) {
     // The patch over a triangle rises Σ w_a w_b β_ab above it, and ∫ w_a w_b dA = A/12.
     double bulges = 0.0;
     for (std::size_t f = 0; f < surface.triangles.size(); ++f) {
-        const TriangleIndices& tri = surface.triangles[f];
-        const Vec3 a = surface.vertices[tri[0]], b = surface.vertices[tri[1]],
-                   c = surface.vertices[tri[2]];
         const std::array<double, 3>& beta = reading.bulge[f];
-        bulges += norm(cross(b - a, c - a)) / 24.0 * (beta[0] + beta[1] + beta[2]);
+        bulges += area(surface.triangle(f)) / 12.0 * (beta[0] + beta[1] + beta[2]);
     }
     return triangles + bulges;
 }
