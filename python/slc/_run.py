@@ -4,7 +4,6 @@ studies, on top of the module _slc (the library's run loop, with the GIL release
 from __future__ import annotations
 
 import inspect
-import warnings
 from dataclasses import dataclass, field
 from typing import Any, Callable, NamedTuple
 
@@ -382,12 +381,10 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
             return observer(Step(step, n, t, Interface._trusted(arrays, t), cpu_s))
 
     out = _slc.run(p, law, options, int(frames), threads, on_step, bool(estimate))
-    if out["status"] == "broken":
-        warnings.warn(f"guards=False: {out['message']}", stacklevel=3)
     return RunResult(
         interface=Interface._trusted(out["curves"], out["t"]),
         frames=[(t, Interface._trusted(a, t)) for t, a in out["frames"]],
-        **_run_end(out),
+        **_run_end(out, stacklevel=3),
     )
 
 

@@ -222,9 +222,22 @@ def _check_frames(frames) -> None:
         raise TypeError(f"frames must be an integer, got {frames!r}")
 
 
-def _run_end(out: dict) -> dict[str, Any]:
+def _run_end(out: dict, stacklevel: int) -> dict[str, Any]:
     """How a run ended, from the module's answer: status, t, history, summary and message, as a
-    RunResult and a SurfaceRunResult take them."""
+    RunResult and a SurfaceRunResult take them. Warns (UserWarning) what the command line notes
+    on stderr: the summary's note (contours left beyond eps, a part split off thinner than the
+    cells without thin cells), a step taken again with deeper thin cells (thin_deeper), and with
+    guards=False the first break; stacklevel: as warnings.warn's, the caller's frame being 2."""
+    summary = out["summary"]
+    if "note" in summary:
+        warnings.warn(summary["note"], stacklevel=stacklevel)
+    if "thin_deeper" in summary:
+        d = summary["thin_deeper"]
+        warnings.warn(f"{d['why']}: a part thinner than the contours resolved, kept by deeper "
+                      f"thin cells; the run went on with them {d['depth']} levels deep",
+                      stacklevel=stacklevel)
+    if out["status"] == "broken":
+        warnings.warn(f"guards=False: {out['message']}", stacklevel=stacklevel)
     return {k: out[k] for k in ("status", "t", "history", "summary", "message")}
 
 
@@ -242,14 +255,10 @@ def run_surface(p, options, frames: int, observer: Callable[[SurfaceStep], Any] 
             return observer(SurfaceStep(step, n, t, Surface._trusted(v, tri, t), cpu_s))
     out = _slc.run_surface(p, options, int(frames), threads, on_step,
                            bool(estimate))
-    if "note" in out["summary"]:  # contours left beyond eps (summary's unconverged_steps)
-        warnings.warn(out["summary"]["note"], stacklevel=3)
-    if out["status"] == "broken":
-        warnings.warn(f"guards=False: {out['message']}", stacklevel=3)
     return SurfaceRunResult(
         surface=Surface._trusted(out["vertices"], out["triangles"], out["t"]),
         frames=[(t, Surface._trusted(v, tri, t)) for t, v, tri in out["frames"]],
-        **_run_end(out),
+        **_run_end(out, stacklevel=4),
     )
 
 

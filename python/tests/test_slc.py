@@ -231,6 +231,19 @@ def test_contour_splits_thin_cells_where_asked_in_both_dimensions():
         slc.contour_surface(shell, 1, 5, thin_depth=1.5)
 
 
+def test_a_step_that_tears_a_wall_is_taken_again_deeper():
+    # A ring whose wall shrinks to 0.01 in one step at K = 4 with one level of thin cells: torn
+    # into pieces there, the ring again at five levels, and the run says so, as the command
+    # line's note.
+    ring = slc.Interface([circle(0.5, 256), circle(0.44, 256)[::-1]])
+    with pytest.warns(UserWarning, match="kept by deeper thin cells; the run went on with them 5"):
+        r = slc.run(ring, "unit-normal", 0.025, speed=-1, steps=1, depth=4, thin_depth=1)
+    assert r.status == "ok" and len(r.interface) == 2
+    assert r.summary["thin_deeper"]["depth"] == 5
+    exact = math.pi * (0.475 ** 2 - 0.465 ** 2)
+    assert abs(r.interface.area - exact) < 2e-3 * exact
+
+
 def test_contour_checks_what_f_returns_and_passes_its_errors_on():
     with pytest.raises(ValueError, match=r"f must return an \(m,\) array"):
         slc.contour(lambda p: np.zeros((len(p), 2)), 1.0, 4)

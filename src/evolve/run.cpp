@@ -238,7 +238,7 @@ RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domai
     RunResult start;  // resume() checks the options
     start.curves = initial;
     start.t = options.t_start;
-    start.start_thin_depth = options.step.contour.thin_depth;
+    start.thin_depth = options.step.contour.thin_depth;
     if (options.check_start && !initial.empty()) {
         // A flow field at rest: G(x) = F(x), so the step's contour is the curves' own.
         const Translation rest({0.0, 0.0});
@@ -252,7 +252,7 @@ RunResult run(const Interface& initial, const VelocityLaw& law, const Box& domai
             .cell = finest_cell(domain, c),
             .measure = step_area(initial, rest, options.step, domain),
             .tolerance = detail::start_measure_tolerance(c, length(initial))};
-        start.start_thin_depth =
+        start.thin_depth =
             detail::start_as_given<2>(initial, domain, c.depth, c.thin_depth, keep, read).first;
     }
     if (law.invariants().area_rate_per_curve || law.invariants().rigid)

@@ -14,6 +14,7 @@
 #include "slc/tree/tetrahedralization.hpp"
 #include "slc/velocity/surface_laws.hpp"
 #include "start_check.hpp"
+#include "thin_parts.hpp"
 #include "time_loop.hpp"
 
 namespace slc {
@@ -54,11 +55,10 @@ public:
         return (t_next - t0) / parts;
     }
 
-    LoopHooks(const SurfaceVelocityLaw& law, const Box3& domain, const SurfaceRunOptions& options)
+    LoopHooks(const SurfaceVelocityLaw& law, const Box3&, const SurfaceRunOptions& options)
         : options_(options),
           invariants_(law.invariants()),
           eps_(options.step.contour.resolved_eps()),
-          cell_(finest_cell(domain, options.step.contour)),
           until_converged_(options.step.contour.refine_passes ==
                            SurfaceContourOptions::until_converged) {}
 
@@ -71,7 +71,6 @@ public:
         double corrected = 0.0;
         bool unconverged = false;
         double residual = 0.0;
-        double thin_at = std::numeric_limits<double>::quiet_NaN(), thin_thickness = 0.0;
     };
 
     /// Counts the sub-step from `before` at t to s (its G evaluations in r whether or not the
@@ -90,10 +89,6 @@ public:
         if (a.unconverged) {
             ++r.unconverged_steps;
             r.largest_residual = std::max(r.largest_residual, a.residual);
-        }
-        if (std::isnan(r.thin_split_at) && !std::isnan(a.thin_at)) {
-            r.thin_split_at = a.thin_at;
-            r.thin_split_thickness = a.thin_thickness;
         }
     }
 
@@ -116,7 +111,6 @@ private:
     const SurfaceRunOptions& options_;
     Invariants invariants_;
     double eps_;
-    double cell_;  ///< the finest cell: a new component thinner than it is a thin split
     bool until_converged_;
 };
 
@@ -130,11 +124,6 @@ std::optional<std::string> LoopHooks<3>::record(Attempt& a, const Surface& befor
     if (until_converged_ && !s.surface.empty() && !s.stats.corrector.converged) {
         a.unconverged = true;
         a.residual = std::max(a.residual, s.stats.corrector.residual);
-    }
-    if (const auto thin = thinnest_new_component(before, s.surface);
-        thin && *thin < cell_ && std::isnan(a.thin_at)) {
-        a.thin_at = t + k;
-        a.thin_thickness = *thin;
     }
     auto v = surface_invariant_violation(invariants_, before, s.surface, k, eps_);
     if (!v || options_.guards) return v;
@@ -301,34 +290,10 @@ std::optional<std::string> surface_invariant_violation(const Invariants& law, co
     return std::nullopt;
 }
 
-double finest_cell(const Box3& domain, const SurfaceContourOptions& contour) {
-    return std::ldexp(domain.width(), -(contour.depth + contour.thin_depth));
-}
-
 std::optional<double> thinnest_new_component(const Surface& before, const Surface& after) {
-    const std::size_t old_count = component_count(before);
-    const std::vector<std::uint32_t> label = component_labels(after);
-    const std::size_t count =
-        label.empty() ? 0 : *std::max_element(label.begin(), label.end()) + std::size_t{1};
-    if (count <= old_count) return std::nullopt;
-    // Each component's volume (the divergence theorem, from any origin: its own first vertex)
-    // and area.
-    std::vector<double> v(count, 0.0), a(count, 0.0);
-    std::vector<Vec3> origin(count);
-    std::vector<std::uint8_t> seen(count, 0);
-    for (std::size_t t = 0; t < after.size(); ++t) {
-        const std::uint32_t c = label[t];
-        const Triangle3 tri = after.triangle(t);
-        if (!seen[c]) origin[c] = tri.a, seen[c] = 1;
-        const Vec3 p = tri.a - origin[c], q = tri.b - origin[c], r = tri.c - origin[c];
-        v[c] += dot(p, cross(q, r)) / 6.0;
-        a[c] += 0.5 * norm(cross(tri.b - tri.a, tri.c - tri.a));
-    }
-    // The new components are the thinnest ones: a split makes parts of a whole.
-    std::vector<double> thickness(count);
-    for (std::size_t c = 0; c < count; ++c) thickness[c] = a[c] > 0.0 ? 3.0 * v[c] / a[c] : 0.0;
-    std::sort(thickness.begin(), thickness.end());
-    return thickness[count - old_count - 1];
+    const auto part = detail::thinnest_new_part<3>(before, after);
+    if (!part) return std::nullopt;
+    return part->thickness;
 }
 
 SurfaceRunResult run(const Surface& initial, const SurfaceVelocityLaw& law, const Box3& domain,

@@ -25,8 +25,11 @@
 #include "slc/core/error.hpp"
 #include "slc/core/stop.hpp"
 #include "slc/core/tolerances.hpp"
+#include "slc/evolve/overrides.hpp"
 #include "slc/evolve/run.hpp"
+#include "start_check.hpp"
 #include "step_common.hpp"
+#include "thin_parts.hpp"
 
 namespace slc::detail {
 
@@ -188,23 +191,111 @@ struct Unstable {
     std::string message;
 };
 
+/// A sub-step's new topology as the contours at its thin depth give it, confirmed by those two
+/// levels deeper (confirm_topology): the sub-step to keep, or why it cannot be.
+template <int dim>
+struct Confirmed {
+    typename LoopHooks<dim>::StepResult step;
+    std::optional<std::string> unresolved;
+};
+
+/// The sub-step `s` from `before` (t to t + k) when its contours change the topology (components
+/// and holes or handles), checked against the same sub-step with thin cells two levels deeper:
+/// the same topology there confirms the change (a part the law split off, joined, opened or made
+/// vanish), and the deeper sub-step is kept; another says the coarser contours tore or joined a
+/// part thinner than they resolve, and the run goes on at the deeper thin depth (options',
+/// r.thin_depth, r.deeper_at), checked again the same way. A change that the deepest thin cells
+/// (setting_range::thin_depth) do not confirm is unresolved: why, naming the thin depths and the
+/// topologies they give.
+/// " near (x, y[, z])", the centre of a finest cell of the step's contours (ContourStats::
+/// finest_at): where thin cells went deepest, or nothing when none did.
+template <class StepResult>
+std::string finest_place(const StepResult& s) {
+    const auto& c = s.stats.corrector.finest_cell > 0.0 ? s.stats.corrector : s.stats.predictor;
+    return c.finest_cell > 0.0 ? " near " + point_text6(c.finest_at) : std::string();
+}
+
+inline std::string levels(int n) { return fmt::format("{} {}", n, n == 1 ? "level" : "levels"); }
+
+template <int dim>
+Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const ShapeOf<dim>& before,
+                                double t, double k, const BasicVelocityLaw<dim>& law,
+                                const RegionOf<dim>& domain,
+                                typename LoopHooks<dim>::Options& options,
+                                typename LoopHooks<dim>::Result& r) {
+    using H = LoopHooks<dim>;
+    int& thin = options.step.contour.thin_depth;
+    const ShapeTopology was = shape_topology(before);
+    ShapeTopology now = shape_topology(H::shape(s));
+    while (now != was) {
+        if (thin >= setting_range::thin_depth.hi) {
+            return {std::move(s),
+                    fmt::format("at t = {:.6g}: the step's contours made {} of {}{}, and thin "
+                                "cells {} deep do not confirm it: a part is thinner than they "
+                                "resolve; raise -K",
+                                t + k, describe(now, dim), describe(was, dim), finest_place(s),
+                                levels(thin))};
+        }
+        typename H::Options o = options;
+        o.step.contour.thin_depth = std::min(thin + 2, setting_range::thin_depth.hi);
+        typename H::StepResult deeper =
+            step_in_growing_domain<dim>(before, t, k, law, domain, o, r);
+        const ShapeTopology there = shape_topology(H::shape(deeper));
+        if (there == now) {
+            // Thin cells at their budget split no deeper where it ran out: the same contours
+            // again, which confirm nothing.
+            if (deeper.stats.predictor.thin_budget_reached ||
+                deeper.stats.corrector.thin_budget_reached) {
+                return {std::move(deeper),
+                        fmt::format("at t = {:.6g}: the step's contours made {} of {}{}, and "
+                                    "thin cells {} deep, at their budget of cells, do not "
+                                    "confirm it: a part is thinner than they resolve; raise -K",
+                                    t + k, describe(now, dim), describe(was, dim),
+                                    finest_place(deeper), levels(o.step.contour.thin_depth))};
+            }
+            return {std::move(deeper), std::nullopt};
+        }
+        // The coarser contours tore or joined what the deeper keep: the run goes on deeper.
+        if (std::isnan(r.deeper_at)) {
+            r.deeper_at = t;
+            r.deeper_why = fmt::format(
+                "at t = {:.6g} thin cells {} deep made {} of {}{}, and {} deep {}", t + k,
+                levels(thin), describe(now, dim), describe(was, dim), finest_place(deeper),
+                levels(o.step.contour.thin_depth), describe(there, dim));
+        }
+        thin = o.step.contour.thin_depth;
+        r.thin_depth = thin;
+        s = std::move(deeper);
+        now = there;
+    }
+    return {std::move(s), std::nullopt};
+}
+
 /// The step from Γ(t) (r's) to t_next: whole, or when it breaks the law's invariants (guards)
 /// split into 2, 4, ... sub-steps until each keeps them. A split whose step fails
 /// (NumericalFailure: a contour that leaves a fixed domain, say) is retried the same way. The
 /// hooks check each sub-step (LoopHooks::record) and the run's budget after the step
-/// (LoopHooks::run_budget), and add what the kept split did to r (LoopHooks::commit). Throws
-/// Unstable when no split keeps the invariants or the run leaves its budget, and the finest
-/// split's NumericalFailure when every split fails.
+/// (LoopHooks::run_budget), and add what the kept split did to r (LoopHooks::commit).
+///
+/// With the guards and thin cells (thin_depth > 0), a sub-step that changes the topology is
+/// confirmed by deeper thin cells first (confirm_topology); one the deepest do not confirm is
+/// split as a step that breaks an invariant, and a break of the law's own invariants, which
+/// names the cause better, is the one reported. With no thin cells (the paper's uniform trees), a
+/// part split off thinner than the finest cell is noted (r.thin_split).
+///
+/// Throws Unstable when no split keeps the invariants or the run leaves its budget, and the
+/// finest split's NumericalFailure when every split fails.
 template <int dim>
 typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result& r, double t_next,
                                                  const LoopHooks<dim>& hooks,
                                                  const BasicVelocityLaw<dim>& law,
                                                  const RegionOf<dim>& domain,
-                                                 const typename LoopHooks<dim>::Options& options) {
+                                                 typename LoopHooks<dim>::Options& options) {
     using H = LoopHooks<dim>;
     const int halvings = options.guards ? options.max_substep_halvings : 0;
+    const int& thin = options.step.contour.thin_depth;
     const typename H::Start start = hooks.start(H::shape(r));
-    std::string violation;
+    std::string violation, torn;  // the law's last break; a change the contours cannot confirm
     for (int j = 0; j <= halvings; ++j) {
         const int parts = 1 << j;
         typename H::StepResult out{H::shape(r), {}};
@@ -215,8 +306,15 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
             const double t_to = i == parts ? t_next : r.t + (t_next - r.t) * i / parts;
             const double k = H::substep_length(r.t, t_next, parts, t, t_to);
             typename H::StepResult s;
+            std::optional<std::string> unresolved;
             try {
                 s = step_in_growing_domain<dim>(H::shape(out), t, k, law, domain, options, r);
+                if (options.guards && thin > 0) {
+                    Confirmed<dim> c = confirm_topology<dim>(std::move(s), H::shape(out), t, k, law,
+                                                             domain, options, r);
+                    s = std::move(c.step);
+                    unresolved = std::move(c.unresolved);
+                }
                 check_extent<NumericalFailure>(
                     law, H::shape(s), [&](const std::string& region, std::size_t, const auto& p) {
                         return fmt::format(
@@ -233,8 +331,23 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
                 kept = false;
                 break;
             }
+            if (thin == 0 && std::isnan(r.thin_split.at)) {
+                // No thin cells asked: the paper's uniform trees, whose tears are noted.
+                const double cell = std::ldexp(domain.width(), -options.step.contour.depth);
+                if (const auto part = thinnest_new_part<dim>(H::shape(out), H::shape(s));
+                    part && part->thickness < cell) {
+                    r.thin_split = {t_to, part->thickness, cell, {}};
+                    for (int c = 0; c < dim; ++c) r.thin_split.near.push_back(part->where[c]);
+                }
+            }
+            // A law's own invariant names the break better (and smaller steps may keep it).
             if (auto v = hooks.record(attempt, H::shape(out), s, t, k, r)) {
                 violation = std::move(*v);
+                kept = false;
+                break;
+            }
+            if (unresolved) {
+                if (violation.empty()) torn = std::move(*unresolved);
                 kept = false;
                 break;
             }
@@ -265,7 +378,8 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
         }
         return out;
     }
-    throw Unstable{hooks.unstable_after_splits(violation, 1 << halvings, r.t)};
+    throw Unstable{
+        hooks.unstable_after_splits(violation.empty() ? torn : violation, 1 << halvings, r.t)};
 }
 
 /// Throws InvalidInput unless `from` is a state a run with `options` passes through.
@@ -306,7 +420,7 @@ void check_resume(const typename LoopHooks<dim>::Result& from, const BasicVeloci
 }
 
 /// Steps from.steps_done + 1 .. N from `from`, with the options `given` (their thin cells at
-/// least from.start_thin_depth), its counters and clocks carried on: resume() of
+/// least from.thin_depth), its counters and clocks carried on: resume() of
 /// either dimension. Failures inside a step end the run with status error, a step or a run that
 /// breaks what the law keeps with status unstable, an empty interface with vanished, an observer
 /// that returns false before the last step with interrupted.
@@ -318,13 +432,14 @@ typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result&
                                           const typename LoopHooks<dim>::Observer& observer) {
     using H = LoopHooks<dim>;
     check_resume<dim>(from, law, given);
-    // The thin cells the start needed (RunTotals::start_thin_depth), also on a resume.
+    // The thin cells the start or a step before needed (RunTotals::thin_depth), also on a
+    // resume; guarded_step deepens them where a step needs more.
     typename H::Options options = given;
     int& thin = options.step.contour.thin_depth;
-    thin = std::max(thin, from.start_thin_depth);
+    thin = std::max(thin, from.thin_depth);
     const H hooks(law, domain, options);
     typename H::Result r = from;
-    r.start_thin_depth = thin;
+    r.thin_depth = thin;
     r.status = RunStatus::ok;
     r.message.clear();
     const double wall_before = from.wall_s, cpu_before = from.cpu_s;

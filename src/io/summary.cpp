@@ -2,6 +2,7 @@
 #include "slc/io/summary.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -54,6 +55,24 @@ void put_resolution(nlohmann::json& s, const RunTotals& r) {
     if (r.finest_cell > 0.0)
         s["finest_cell"] = {{"width", r.finest_cell}, {"at_t", r.finest_t}, {"at", r.finest_at}};
     if (!std::isnan(r.thin_budget_at)) s["thin_budget_reached_at_t"] = r.thin_budget_at;
+    if (!std::isnan(r.deeper_at))
+        s["thin_deeper"] = {{"at_t", r.deeper_at}, {"why", r.deeper_why}, {"depth", r.thin_depth}};
+    if (const ThinSplit& t = r.thin_split; !std::isnan(t.at)) {
+        s["thin_split"] = {
+            {"at_t", t.at}, {"thickness", t.thickness}, {"cell", t.cell}, {"near", t.near}};
+    }
+}
+
+/// The note of a run with no thin cells that split off a part thinner than its finest cell.
+std::optional<std::string> thin_split_note(const RunTotals& r) {
+    const ThinSplit& t = r.thin_split;
+    if (std::isnan(t.at)) return std::nullopt;
+    return fmt::format(
+        "the step to t = {:.6g} split off a part {:.3g} thick near {}, thinner than the finest "
+        "cell, {:.3g}: with no thin cells the contours may have torn a part thinner than they "
+        "resolve rather than the law splitting it (thin_split); --thin-depth or a larger depth K "
+        "resolves such parts",
+        t.at, t.thickness, fmt::format("({:.6g})", fmt::join(t.near, ", ")), t.cell);
 }
 
 /// The fields that both dimensions' contour statistics share.
@@ -98,7 +117,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"eta", std::max(c.resolved_eta(),
                          tolerance::rounding_floor(doubled_domain(p.domain, r.domain_doublings)))},
         {"rho", c.rho},
-        {"thin_depth", std::max(c.thin_depth, r.start_thin_depth)},
+        {"thin_depth", std::max(c.thin_depth, r.thin_depth)},
         {"guards", o.guards},
         {"M", o.step.embedded.mesh},
         {"E", o.step.embedded.eno_order},
@@ -142,6 +161,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"g_evals_per_vertex",
          r.vertices_produced > 0 ? static_cast<double>(r.g_evals) / r.vertices_produced : 0.0}};
     if (!r.message.empty()) s["message"] = r.message;
+    if (const auto note = thin_split_note(r)) s["note"] = *note;
     if (r.split_steps > 0)
         s["substeps"] = {{"split_steps", r.split_steps}, {"most", r.most_substeps}};
     if (o.step.resolved_area_correction(law)) s["area_corrected"] = r.area_corrected;
@@ -179,7 +199,7 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
           {"eps", c.resolved_eps()},
           {"eta", std::max(options.step.resolved_eta(), tolerance::rounding_floor(doubled_domain(
                                                             p.domain, r.domain_doublings)))},
-          {"thin_depth", std::max(c.thin_depth, r.start_thin_depth)},
+          {"thin_depth", std::max(c.thin_depth, r.thin_depth)},
           {"volume_drift", options.volume_drift},
           {"guards", options.guards},
           {"threads", thread_count()}}},
@@ -216,17 +236,7 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
                 r.unconverged_steps, r.steps_done, r.largest_residual, c.resolved_eps()));
         }
     }
-    if (!std::isnan(r.thin_split_at)) {
-        const double cell = finest_cell(p.domain, c);
-        summary["thin_split"] = {
-            {"at_t", r.thin_split_at}, {"thickness", r.thin_split_thickness}, {"cell", cell}};
-        notes.push_back(fmt::format(
-            "the step to t = {:.6g} split off a component {:.3g} thick (3 volume / area), "
-            "thinner than the finest cell, {:.3g}: the contours may have torn a part thinner "
-            "than they resolve rather than the law splitting it (thin_split); a larger depth K "
-            "or --thin-depth resolves such parts",
-            r.thin_split_at, r.thin_split_thickness, cell));
-    }
+    if (const auto note = thin_split_note(r)) notes.push_back(*note);
     if (!notes.empty()) {
         std::string note = notes[0];
         for (std::size_t i = 1; i < notes.size(); ++i) note += "; and " + notes[i];

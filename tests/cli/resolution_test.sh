@@ -79,6 +79,29 @@ check "the speck: the start's note" grep -q "a part of the curves is thinner tha
 check "the speck: thin_depth 8 in summary.json" grep -q '"thin_depth": 8' speck/summary.json
 check "the speck: both curves kept" test "$(curves speck)" = 2
 
+# A step whose contours tear a wall is taken again with deeper thin cells: a circular ring of
+# radii 0.5 and 0.44 shrunk at unit speed in one step at K = 4 with one level of thin cells. To a
+# wall 0.01 wide: torn into pieces at one level, the ring at five, within 2e-3 of the exact
+# offset, and the note says so. To a wall 0.004 wide: thin cells reach their budget of cells
+# before they resolve it, and the run ends unstable, naming the place and -K.
+python3 -c "
+import json, math
+c = lambda r, n: [[r * math.cos(2 * math.pi * i / n), r * math.sin(2 * math.pi * i / n)] for i in range(n)]
+json.dump({'curves': [{'points': c(0.5, 256)}, {'points': c(0.44, 256)[::-1]}]}, open('round.json', 'w'))"
+expect_ok "a ring's wall shrunk to 0.01" -- run --initial round.json --velocity unit-normal \
+    --param speed=-1 --t-end 0.025 -N 1 -K 4 --thin-depth 1 --out round --quiet
+check "the ring: the note names the depths" grep -q "slc: note: at t = 0.025 thin cells 1 level deep made .* of 2 components with 1 hole near (.*kept by deeper thin cells; the run went on with them 5 levels deep" err.txt
+check "the ring: thin_deeper in summary.json" python3 -c "
+import json, sys
+d = json.load(open('round/summary.json'))['thin_deeper']
+sys.exit(not (d['at_t'] == 0 and d['depth'] == 5))"
+check "the ring: two curves" test "$(curves round)" = 2
+e=$(offset_error round round.json 0.025)
+check "the ring: within 2e-3 of the exact offset (measured $e)" small "$e" 2e-3
+expect_status "a ring's wall shrunk to 0.004" 3 -- run --initial round.json --velocity unit-normal \
+    --param speed=-1 --t-end 0.028 -N 1 -K 4 --thin-depth 1 --out torn --quiet
+check "torn: unstable, naming the place and -K" grep -q "slc: error: .*made .* of 2 components with 1 hole near (.*do not confirm it: a part is thinner than they resolve; raise -K" err.txt
+
 # --domain 150 around a unit circle: K = 12, the default's finest cell (it kept K = 5, cells of
 # 9.4, and failed); the offset as accurate as in the default domain (1.2e-3 both, the 64-gon's
 # corners rounded off).

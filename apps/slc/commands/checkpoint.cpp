@@ -115,7 +115,13 @@ void put_totals(Json& json, const RunTotals& s) {
     if (s.finest_cell > 0.0)
         json["finest_cell"] = {{"width", s.finest_cell}, {"at_t", s.finest_t}, {"at", s.finest_at}};
     if (!std::isnan(s.thin_budget_at)) json["thin_budget_at"] = s.thin_budget_at;
-    json["start_thin_depth"] = s.start_thin_depth;
+    json["thin_depth"] = s.thin_depth;
+    if (!std::isnan(s.deeper_at))
+        json["thin_deeper"] = {{"at_t", s.deeper_at}, {"why", s.deeper_why}};
+    if (const ThinSplit& t = s.thin_split; !std::isnan(t.at)) {
+        json["thin_split"] = {
+            {"at_t", t.at}, {"thickness", t.thickness}, {"cell", t.cell}, {"near", t.near}};
+    }
     if (!s.broken.empty()) json["broken"] = s.broken;
 }
 
@@ -138,7 +144,16 @@ void get_totals(const Json& json, RunTotals& s) {
     }
     if (json.contains("thin_budget_at")) s.thin_budget_at = json.at("thin_budget_at").get<double>();
     s.status = RunStatus::interrupted;
-    s.start_thin_depth = json.value("start_thin_depth", -1);
+    s.thin_depth = json.value("thin_depth", json.value("start_thin_depth", -1));
+    if (json.contains("thin_split")) {
+        const Json& t = json.at("thin_split");
+        s.thin_split = {t.at("at_t").get<double>(), t.at("thickness").get<double>(),
+                        t.at("cell").get<double>(), t.at("near").get<std::vector<double>>()};
+    }
+    if (json.contains("thin_deeper")) {
+        s.deeper_at = json.at("thin_deeper").at("at_t").get<double>();
+        s.deeper_why = json.at("thin_deeper").at("why").get<std::string>();
+    }
     s.broken = json.value("broken", std::string());
 }
 
@@ -163,10 +178,6 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
         json["volume_corrected"] = s.volume_corrected;
         json["unconverged_steps"] = s.unconverged_steps;
         json["largest_residual"] = s.largest_residual;
-        if (!std::isnan(s.thin_split_at)) {
-            json["thin_split_at"] = s.thin_split_at;
-            json["thin_split_thickness"] = s.thin_split_thickness;
-        }
         json["least_area"] = s.least_area.value;
         json["least_area_t"] = s.least_area.t;
         json["frames_kept"] = c.frames_kept;
@@ -209,10 +220,6 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
             s.unconverged_steps = json.value("unconverged_steps", 0);
             s.largest_residual = json.value("largest_residual", 0.0);
             s.least_area = {json.value("least_area", 0.0), json.value("least_area_t", 0.0)};
-            if (json.contains("thin_split_at")) {
-                s.thin_split_at = json.at("thin_split_at").get<double>();
-                s.thin_split_thickness = json.at("thin_split_thickness").get<double>();
-            }
             c.frames_kept = json.at("frames_kept").get<int>();
             c.frame_times = json.at("frame_times").get<std::vector<double>>();
             s.surface = surface_from(json);

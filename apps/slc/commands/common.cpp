@@ -263,12 +263,20 @@ void warn_broken(const RunTotals& r) {
     if (!r.broken.empty()) fmt::print(stderr, "slc: warning: --no-guards: {}\n", r.broken);
 }
 
-void note_deeper_start(std::string_view what, int asked, int used) {
-    if (used <= asked) return;
-    fmt::print(stderr,
-               "slc: note: a part of the {} is thinner than the contours resolve at --thin-depth "
-               "{}; the thin cells went {} levels deep to keep it (summary.json: thin_depth)\n",
-               what, asked, used);
+void note_deeper(std::string_view what, int asked, int start, const RunTotals& r) {
+    if (start > asked) {
+        fmt::print(stderr,
+                   "slc: note: a part of the {} is thinner than the contours resolve at "
+                   "--thin-depth {}; the thin cells went {} levels deep to keep it (summary.json: "
+                   "thin_depth)\n",
+                   what, asked, start);
+    }
+    if (!std::isnan(r.deeper_at)) {
+        fmt::print(stderr,
+                   "slc: note: {}: a part thinner than the contours resolved, kept by deeper thin "
+                   "cells; the run went on with them {} levels deep (summary.json: thin_deeper)\n",
+                   r.deeper_why, r.thin_depth);
+    }
 }
 
 void print_estimate(const nlohmann::json& estimate) {

@@ -132,9 +132,10 @@ void print_estimate(const nlohmann::json& estimate);
 /// closing line of slc run.
 std::string finest_cell_text(const nlohmann::json& summary);
 
-/// Prints to stderr the note of a start that needed thin cells deeper than asked (RunTotals::
-/// start_thin_depth), when used > asked; `what`: "curves" or "surface".
-void note_deeper_start(std::string_view what, int asked, int used);
+/// Prints to stderr the notes of thin cells deeper than asked: the start's, `start` levels where
+/// `asked` were asked, and a step's that was taken again deeper (RunTotals::deeper_at); `what`:
+/// "curves" or "surface".
+void note_deeper(std::string_view what, int asked, int start, const RunTotals& r);
 
 /// Prints to stderr the warning of a run with its guards off that broke what its law keeps
 /// (RunTotals::broken), when it did.

@@ -270,7 +270,11 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
     const bool finished = r.status == RunStatus::ok || r.status == RunStatus::vanished ||
                           r.status == RunStatus::interrupted || r.status == RunStatus::broken;
     warn_broken(r);
-    if (finished) note_deeper_start("curves", options.step.contour.thin_depth, r.start_thin_depth);
+    // The start's depth is the run's unless a step went deeper (whose note then says the depth).
+    if (finished) {
+        const int asked = options.step.contour.thin_depth;
+        note_deeper("curves", asked, std::isnan(r.deeper_at) ? r.thin_depth : asked, r);
+    }
     if (finished && r.domain_doublings > 0) {
         const Box d = doubled_domain(p.domain, r.domain_doublings);
         fmt::print(
@@ -288,6 +292,8 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
     history.save_plot(p.name);
     nlohmann::json summary = run_summary(p, options, r, *law);
     summary["run_id"] = id;
+    if (finished && summary.contains("note"))
+        fmt::print(stderr, "slc: note: {}\n", summary["note"].get<std::string>());
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     if (coarse) {  // the summary is written once without it, in case the extra run is stopped
         summary["error_estimate"] = estimate_json(

@@ -29,6 +29,16 @@ enum class RunStatus {
 /// The summary.json spelling of a status.
 const char* to_string(RunStatus status);
 
+/// A part a step split off thinner than the finest cell (RunTotals::thin_split): the time at the
+/// end of the step (NaN if none did), its thickness d·(area or volume)/(length or area), a disc's
+/// or ball's radius, the cell's width, and the part's centre (x, y or x, y, z).
+struct ThinSplit {
+    double at = std::numeric_limits<double>::quiet_NaN();
+    double thickness = 0.0;
+    double cell = 0.0;
+    std::vector<double> near;
+};
+
 /// What every run reports, of curves or of surfaces: how and where it ended, and what it cost.
 struct RunTotals {
     double t = 0.0;                    ///< the time reached
@@ -57,8 +67,20 @@ struct RunTotals {
     double thin_budget_at = std::numeric_limits<double>::quiet_NaN();
     /// The levels of thin cells the run's contours take: the options' own, or more where the
     /// start of a user's shape needed them to keep it (RunOptions::check_start,
-    /// surface_as_read); −1 when the run did not say (a resume takes the options').
-    int start_thin_depth = -1;
+    /// surface_as_read) or a step did (deeper_at); −1 when the run did not say (a resume takes
+    /// the options').
+    int thin_depth = -1;
+    /// The time at the start of the first step that changed the topology where the contours may
+    /// have torn a part thinner than they resolve, and was taken again with deeper thin cells
+    /// (thin_depth then the depth the run went on with), and what that step did: a part split
+    /// off, and where, or the invariant it broke; NaN and empty when no step did.
+    double deeper_at = std::numeric_limits<double>::quiet_NaN();
+    std::string deeper_why;  ///< (see deeper_at)
+    /// With no thin cells asked (thin_depth 0, the paper's uniform trees): the first step that
+    /// split off a part thinner than the finest cell, which the contours may have torn; noted,
+    /// as the paper's method at that depth gives it (a user's default thin cells take such a
+    /// step again deeper, deeper_at, or end the run unstable).
+    ThinSplit thin_split;
     /// With the guards off (RunOptions::guards, SurfaceRunOptions::guards): where and how the
     /// run first broke what its law keeps, as in the message of an unstable run; empty while it
     /// has not.

@@ -77,11 +77,6 @@ struct SurfaceRunResult : RunTotals {
     /// and the largest |G| such a contour left (SurfaceContourStats::residual).
     int unconverged_steps = 0;
     double largest_residual = 0.0;  ///< (see unconverged_steps)
-    /// The time of the first step that split off a component thinner than a finest cell (its
-    /// thickness 3V/A, a sphere's radius, below the cell's width, thin cells included: the
-    /// contours may tear such a part), and that thickness; NaN and 0 when no step did.
-    double thin_split_at = std::numeric_limits<double>::quiet_NaN();
-    double thin_split_thickness = 0.0;  ///< (see thin_split_at)
 };
 
 /// A user's surface as the steps of a run read it: the contour, at the run's K, P, ε and η, of
@@ -100,10 +95,6 @@ Surface surface_as_read(const Surface& s, const Box3& domain, SurfaceRunOptions&
 /// The least thickness 3V/A (V the volume, A the area; a sphere's radius) of the components of
 /// `after` beyond those of `before`, when `after` has more components; nullopt otherwise.
 std::optional<double> thinnest_new_component(const Surface& before, const Surface& after);
-
-/// The edge of the finest cell the contours of `contour` make in `domain`, thin cells included
-/// (the same in a domain grown: K a level deeper each time).
-double finest_cell(const Box3& domain, const SurfaceContourOptions& contour);
 
 /// The cube domain doubled about its centre `times` times.
 Box3 doubled_domain(const Box3& domain, int times);

@@ -1,0 +1,112 @@
+// A step that changes the topology, one rule for curves and surfaces (time_loop.hpp,
+// thin_parts.hpp): the change is confirmed by the same step with thin cells two levels deeper, or
+// the run goes on deeper where the coarser contours tore a wall; a change the deepest cannot
+// confirm ends the run unstable, naming the place. The parts a step split off are measured by
+// their thickness, a disc's or a ball's radius.
+#include "thin_parts.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "slc/evolve/defaults.hpp"
+#include "slc/evolve/surface_problems.hpp"
+#include "slc/evolve/surface_run.hpp"
+#include "slc/geometry/shapes.hpp"
+#include "slc/geometry/surface_shapes.hpp"
+#include "slc/velocity/laws.hpp"
+#include "slc/velocity/surface_laws.hpp"
+
+namespace slc::detail {
+namespace {
+
+TEST(ThinParts, ANewPartIsMeasuredByItsThicknessAndPlace) {
+    const Interface one({shapes::circle({}, 1.0, 256)});
+    const Interface two({shapes::circle({}, 1.0, 256), shapes::circle({3.0, 0.0}, 0.05, 64)});
+    const auto curve = thinnest_new_part<2>(one, two);
+    ASSERT_TRUE(curve);
+    EXPECT_NEAR(curve->thickness, 0.05, 1e-4);  // 2 A / L of a circle: its radius
+    EXPECT_NEAR(curve->where.x, 3.0, 1e-12);
+    EXPECT_NEAR(curve->where.y, 0.0, 1e-12);
+    EXPECT_FALSE(thinnest_new_part<2>(two, one));
+    EXPECT_FALSE(thinnest_new_part<2>(two, two));
+
+    const Surface ball = slc::sphere({}, 0.3, 3);
+    const Surface pair = join({slc::sphere({}, 0.3, 3), slc::sphere({0.6, 0.1, 0.0}, 0.05, 3)});
+    const auto part = thinnest_new_part<3>(ball, pair);
+    ASSERT_TRUE(part);
+    EXPECT_NEAR(part->thickness, 0.05, 1e-3);  // 3 V / A of a ball: its radius
+    EXPECT_NEAR(part->where.x, 0.6, 1e-9);
+    EXPECT_NEAR(part->where.y, 0.1, 1e-9);
+    EXPECT_FALSE(thinnest_new_part<3>(pair, ball));
+}
+
+/// A ring of radii 0.5 and 0.44 (a wall 0.06 wide) shrunk at unit speed in one step to t: its
+/// wall 0.06 − 2t wide, at K = 4 (cells 0.094) with one level of thin cells.
+RunResult shrunk_ring(double t) {
+    const Interface ring({shapes::circle({}, 0.5, 256), shapes::circle({}, 0.44, 256)});
+    Interface oriented = ring;
+    oriented.reverse_curve(1);  // the hole clockwise
+    const NormalSpeed law(-1.0);
+    RunOptions o = default_run_options(oriented, law, 0.0, t);
+    o.steps = 1;
+    o.step.contour.depth = 4;
+    o.step.contour.thin_depth = 1;
+    return run(oriented, law, default_domain(oriented.curves()), o);
+}
+
+TEST(TopologyChange, ATornWallIsTakenAgainDeeper) {
+    // The wall 0.01 wide: one level of thin cells (0.047) tears it into pieces, three join it
+    // into one curve, five keep the ring; the run goes on at five.
+    const RunResult r = shrunk_ring(0.025);
+    ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+    EXPECT_EQ(r.curves.curve_count(), 2U);
+    EXPECT_EQ(region_parts(r.curves).holes, 1U);
+    EXPECT_EQ(r.thin_depth, 5);
+    EXPECT_EQ(r.deeper_at, 0.0);
+    EXPECT_NE(r.deeper_why.find("thin cells 1 level deep made "), std::string::npos)
+        << r.deeper_why;
+    EXPECT_NE(r.deeper_why.find("of 2 components with 1 hole near ("), std::string::npos)
+        << r.deeper_why;
+    const double exact = std::numbers::pi * (0.475 * 0.475 - 0.465 * 0.465);
+    EXPECT_NEAR(area(r.curves) / exact, 1.0, 2e-3);
+}
+
+TEST(TopologyChange, AChangeTheDeepestCannotConfirmIsUnstable) {
+    // The wall 0.004 wide: thin cells reach their budget of cells before they resolve it, and
+    // the contours at 5 and 7 levels tear it alike, which confirms nothing.
+    const RunResult r = shrunk_ring(0.028);
+    EXPECT_EQ(r.status, RunStatus::unstable);
+    EXPECT_EQ(r.steps_done, 0);
+    EXPECT_NE(r.message.find("do not confirm it: a part is thinner than they resolve; raise -K"),
+              std::string::npos)
+        << r.message;
+    EXPECT_NE(r.message.find("of 2 components with 1 hole near ("), std::string::npos) << r.message;
+}
+
+TEST(TopologyChange, SurfacesFollowTheSameRule) {
+    // A torus of radii 0.55 and 0.2 shrunk at unit speed to a tube 0.02 thick in one step, at
+    // K = 4 (cells 0.14) with one level of thin cells: torn into pieces there, one torus at
+    // three levels.
+    const Surface tube = slc::torus({}, 0.55, 0.2, 96, 48);
+    const SurfaceNormalSpeed law(-1.0);
+    SurfaceRunOptions o = default_surface_run_options(tube, 0.0, 0.18);
+    o.steps = 1;
+    o.step.contour.depth = 4;
+    o.step.contour.eps = 2e-3;
+    o.step.contour.thin_depth = 1;
+    const SurfaceRunResult r = run(tube, law, default_domain(bounding_box(tube)), o);
+    ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+    EXPECT_EQ(component_count(r.surface), 1U);
+    EXPECT_EQ(genus(r.surface), 1);
+    EXPECT_EQ(r.thin_depth, 3);
+    EXPECT_NE(r.deeper_why.find("of 1 component with 1 handle"), std::string::npos) << r.deeper_why;
+    const double exact = 2.0 * std::numbers::pi * std::numbers::pi * 0.55 * 0.02 * 0.02;
+    EXPECT_NEAR(volume(r.surface) / exact, 1.0, 0.03);
+}
+
+}  // namespace
+}  // namespace slc::detail
