@@ -199,14 +199,6 @@ struct Confirmed {
     std::optional<std::string> unresolved;
 };
 
-/// The sub-step `s` from `before` (t to t + k) when its contours change the topology (components
-/// and holes or handles), checked against the same sub-step with thin cells two levels deeper:
-/// the same topology there confirms the change (a part the law split off, joined, opened or made
-/// vanish), and the deeper sub-step is kept; another says the coarser contours tore or joined a
-/// part thinner than they resolve, and the run goes on at the deeper thin depth (options',
-/// r.thin_depth, r.deeper_at), checked again the same way. A change that the deepest thin cells
-/// (setting_range::thin_depth) do not confirm is unresolved: why, naming the thin depths and the
-/// topologies they give.
 /// " near (x, y[, z])", the centre of a finest cell of the step's contours (ContourStats::
 /// finest_at): where thin cells went deepest, or nothing when none did.
 template <class StepResult>
@@ -215,8 +207,25 @@ std::string finest_place(const StepResult& s) {
     return c.finest_cell > 0.0 ? " near " + point_text6(c.finest_at) : std::string();
 }
 
+/// Whether the step's contours left cells that bend whole, their thin cells at their budget
+/// (contouring::thin_cell_budget): such contours are the same at any thin depth.
+template <class StepResult>
+bool at_budget(const StepResult& s) {
+    return s.stats.predictor.thin_budget_reached || s.stats.corrector.thin_budget_reached;
+}
+
 inline std::string levels(int n) { return fmt::format("{} {}", n, n == 1 ? "level" : "levels"); }
 
+/// The sub-step `s` from `before` (t to t + k) when its contours change the topology (components
+/// and holes or handles), checked against the same sub-step with thin cells two levels deeper:
+/// the same topology there confirms the change (a part the law split off, joined, opened or made
+/// vanish), and the deeper sub-step is kept; another says the coarser contours tore or joined a
+/// part thinner than they resolve, and the run goes on at the deeper thin depth (options',
+/// r.thin_depth, r.deeper_at), checked again the same way. At the deepest thin cells
+/// (setting_range::thin_depth) the change is checked against two levels shallower instead. A
+/// change two depths do not agree on, or thin cells at their budget (which split no deeper where
+/// it ran out, and give the same contours at any depth), is unresolved: why, naming the thin
+/// depths, the topologies they give and the place.
 template <int dim>
 Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const ShapeOf<dim>& before,
                                 double t, double k, const BasicVelocityLaw<dim>& law,
@@ -229,23 +238,29 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
     ShapeTopology now = shape_topology(H::shape(s));
     while (now != was) {
         if (thin >= setting_range::thin_depth.hi) {
-            return {std::move(s),
-                    fmt::format("at t = {:.6g}: the step's contours made {} of {}{}, and thin "
-                                "cells {} deep do not confirm it: a part is thinner than they "
-                                "resolve; raise -K",
-                                t + k, describe(now, dim), describe(was, dim), finest_place(s),
-                                levels(thin))};
+            typename H::Options o = options;
+            o.step.contour.thin_depth = thin - 2;
+            typename H::StepResult coarser =
+                step_in_growing_domain<dim>(before, t, k, law, domain, o, r);
+            r.g_evals += coarser.stats.g_evals();  // a confirmation, not kept
+            if (shape_topology(H::shape(coarser)) == now && !at_budget(s))
+                return {std::move(s), std::nullopt};
+            return {
+                std::move(s),
+                fmt::format("at t = {:.6g}: the step's contours made {} of {}{}, and thin "
+                            "cells {} deep{} do not confirm it: a part is thinner than they "
+                            "resolve; raise -K",
+                            t + k, describe(now, dim), describe(was, dim), finest_place(s),
+                            levels(thin - 2), at_budget(s) ? ", at their budget of cells," : "")};
         }
         typename H::Options o = options;
         o.step.contour.thin_depth = std::min(thin + 2, setting_range::thin_depth.hi);
         typename H::StepResult deeper =
             step_in_growing_domain<dim>(before, t, k, law, domain, o, r);
         const ShapeTopology there = shape_topology(H::shape(deeper));
+        r.g_evals += s.stats.g_evals();  // the coarser sub-step, not kept
         if (there == now) {
-            // Thin cells at their budget split no deeper where it ran out: the same contours
-            // again, which confirm nothing.
-            if (deeper.stats.predictor.thin_budget_reached ||
-                deeper.stats.corrector.thin_budget_reached) {
+            if (at_budget(deeper)) {
                 return {std::move(deeper),
                         fmt::format("at t = {:.6g}: the step's contours made {} of {}{}, and "
                                     "thin cells {} deep, at their budget of cells, do not "

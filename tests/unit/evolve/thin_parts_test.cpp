@@ -87,6 +87,24 @@ TEST(TopologyChange, AChangeTheDeepestCannotConfirmIsUnstable) {
     EXPECT_NE(r.message.find("of 2 components with 1 hole near ("), std::string::npos) << r.message;
 }
 
+TEST(TopologyChange, AChangeTheLawMakesIsKeptAtAnyThinDepth) {
+    // Two circles 0.1 apart grown at unit speed by 0.1 merge: confirmed two levels deeper, or at
+    // the most thin depth two levels shallower, and the run stays at the depth it was given.
+    const Interface pair(
+        {shapes::circle({-0.55, 0.0}, 0.5, 256), shapes::circle({0.55, 0.0}, 0.5, 256)});
+    const NormalSpeed law(1.0);
+    for (const int thin : {6, 8}) {
+        RunOptions o = default_run_options(pair, law, 0.0, 0.1);
+        o.steps = 1;
+        o.step.contour.thin_depth = thin;
+        const RunResult r = run(pair, law, default_domain(pair.curves()), o);
+        ASSERT_EQ(r.status, RunStatus::ok) << thin << ": " << r.message;
+        EXPECT_EQ(r.curves.curve_count(), 1U) << thin;
+        EXPECT_EQ(r.thin_depth, thin);
+        EXPECT_TRUE(std::isnan(r.deeper_at)) << r.deeper_why;
+    }
+}
+
 TEST(TopologyChange, SurfacesFollowTheSameRule) {
     // A torus of radii 0.55 and 0.2 shrunk at unit speed to a tube 0.02 thick in one step, at
     // K = 4 (cells 0.14) with one level of thin cells: torn into pieces there, one torus at
