@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,18 +45,25 @@ TEST(ThinParts, ANewPartIsMeasuredByItsThicknessAndPlace) {
     EXPECT_FALSE(thinnest_new_part<3>(pair, ball));
 }
 
-/// A ring of radii 0.5 and 0.44 (a wall 0.06 wide) shrunk at unit speed in one step to t: its
-/// wall 0.06 − 2t wide, at K = 4 (cells 0.094) with one level of thin cells.
-RunResult shrunk_ring(double t) {
-    const Interface ring({shapes::circle({}, 0.5, 256), shapes::circle({}, 0.44, 256)});
-    Interface oriented = ring;
-    oriented.reverse_curve(1);  // the hole clockwise
-    const NormalSpeed law(-1.0);
-    RunOptions o = default_run_options(oriented, law, 0.0, t);
-    o.steps = 1;
+/// A ring of radii 0.5 and 0.44 (a wall 0.06 wide) shrunk at unit speed in `steps` steps to t:
+/// its wall 0.06 − 2t wide, at K = 4 (cells 0.094) with one level of thin cells.
+Interface ring() {
+    Interface r({shapes::circle({}, 0.5, 256), shapes::circle({}, 0.44, 256)});
+    r.reverse_curve(1);  // the hole clockwise
+    return r;
+}
+
+RunOptions ring_options(double t, int steps) {
+    RunOptions o = default_run_options(ring(), NormalSpeed(-1.0), 0.0, t);
+    o.steps = steps;
     o.step.contour.depth = 4;
     o.step.contour.thin_depth = 1;
-    return run(oriented, law, default_domain(oriented.curves()), o);
+    return o;
+}
+
+RunResult shrunk_ring(double t, int steps = 1, const Observer& observer = {}) {
+    return run(ring(), NormalSpeed(-1.0), default_domain(ring().curves()), ring_options(t, steps),
+               observer);
 }
 
 TEST(TopologyChange, ATornWallIsTakenAgainDeeper) {
@@ -85,6 +93,30 @@ TEST(TopologyChange, AChangeTheDeepestCannotConfirmIsUnstable) {
               std::string::npos)
         << r.message;
     EXPECT_NE(r.message.find("of 2 components with 1 hole near ("), std::string::npos) << r.message;
+}
+
+TEST(TopologyChange, AResumedRunGoesOnAtTheDepthItReached) {
+    // The first of two steps to t = 0.024 tears the wall at one level of thin cells and keeps
+    // it at three; the run resumed after it goes on at three, as the whole run does.
+    std::optional<RunResult> after_first;
+    const RunResult whole = shrunk_ring(0.024, 2, [&](const StepReport& s) {
+        if (s.step == 1) after_first = *s.run;
+        return true;
+    });
+    ASSERT_EQ(whole.status, RunStatus::ok) << whole.message;
+    ASSERT_TRUE(after_first);
+    EXPECT_EQ(after_first->thin_depth, 3);
+    EXPECT_EQ(after_first->deeper_at, 0.0);
+    const RunResult rest = resume(*after_first, NormalSpeed(-1.0), default_domain(ring().curves()),
+                                  ring_options(0.024, 2));
+    ASSERT_EQ(rest.status, RunStatus::ok) << rest.message;
+    EXPECT_EQ(rest.thin_depth, whole.thin_depth);
+    EXPECT_EQ(rest.deeper_why, whole.deeper_why);
+    ASSERT_EQ(rest.curves.size(), whole.curves.size());
+    for (std::size_t i = 0; i < rest.curves.size(); ++i) {
+        EXPECT_EQ(rest.curves.point(i).x, whole.curves.point(i).x);
+        EXPECT_EQ(rest.curves.point(i).y, whole.curves.point(i).y);
+    }
 }
 
 TEST(TopologyChange, AChangeTheLawMakesIsKeptAtAnyThinDepth) {
