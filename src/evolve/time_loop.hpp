@@ -236,6 +236,14 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
     int& thin = options.step.contour.thin_depth;
     const ShapeTopology was = shape_topology(before);
     ShapeTopology now = shape_topology(H::shape(s));
+    // Why the change is not confirmed: `at`'s contours against those `depth` levels deep.
+    const auto unconfirmed = [&](const typename H::StepResult& at, int depth) {
+        return fmt::format(
+            "at t = {:.6g}: the step's contours made {} of {}{}, and thin cells {} deep{} do not "
+            "confirm it: a part is thinner than they resolve; raise -K",
+            t + k, describe(now, dim), describe(was, dim), finest_place(at), levels(depth),
+            at_budget(at) ? ", at their budget of cells," : "");
+    };
     while (now != was) {
         if (thin >= setting_range::thin_depth.hi) {
             typename H::Options o = options;
@@ -245,13 +253,8 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
             r.g_evals += coarser.stats.g_evals();  // a confirmation, not kept
             if (shape_topology(H::shape(coarser)) == now && !at_budget(s))
                 return {std::move(s), std::nullopt};
-            return {
-                std::move(s),
-                fmt::format("at t = {:.6g}: the step's contours made {} of {}{}, and thin "
-                            "cells {} deep{} do not confirm it: a part is thinner than they "
-                            "resolve; raise -K",
-                            t + k, describe(now, dim), describe(was, dim), finest_place(s),
-                            levels(thin - 2), at_budget(s) ? ", at their budget of cells," : "")};
+            std::string why = unconfirmed(s, thin - 2);
+            return {std::move(s), std::move(why)};
         }
         typename H::Options o = options;
         o.step.contour.thin_depth = std::min(thin + 2, setting_range::thin_depth.hi);
@@ -261,12 +264,8 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
         r.g_evals += s.stats.g_evals();  // the coarser sub-step, not kept
         if (there == now) {
             if (at_budget(deeper)) {
-                return {std::move(deeper),
-                        fmt::format("at t = {:.6g}: the step's contours made {} of {}{}, and "
-                                    "thin cells {} deep, at their budget of cells, do not "
-                                    "confirm it: a part is thinner than they resolve; raise -K",
-                                    t + k, describe(now, dim), describe(was, dim),
-                                    finest_place(deeper), levels(o.step.contour.thin_depth))};
+                std::string why = unconfirmed(deeper, o.step.contour.thin_depth);
+                return {std::move(deeper), std::move(why)};
             }
             return {std::move(deeper), std::nullopt};
         }
