@@ -166,7 +166,7 @@ void refine(Surface& s, SpaceFunctionRef g, const SurfaceContourOptions& options
     const contouring::SurfaceRefinement r = contouring::refine_surface(
         s, counted, options.resolved_eps(),
         RootOptions{.eta = options.resolved_eta(), .method = options.root_method},
-        options.refine_passes, options.max_refine_passes, options.max_vertices);
+        options.refine_passes, options.max_refine_passes, options.max_vertices, options.creases);
     stats.passes = r.passes;
     stats.splits = r.splits;
     stats.rejected = r.rejected;

@@ -92,6 +92,17 @@ struct Edges {
     }
 };
 
+/// The vertices opposite edge e in its two triangles, as one key.
+std::uint64_t opposite_key(const Surface& s, const Edges& edges, std::uint32_t e) {
+    auto opposite = [&](std::uint32_t t) {
+        for (const std::uint32_t v : s.triangles[t])
+            if (v != edges.ends[e][0] && v != edges.ends[e][1]) return v;
+        return std::uint32_t{0};
+    };
+    const auto [t0, t1] = edges.triangles[e];
+    return edge_key(opposite(t0), opposite(t1));
+}
+
 /// The triangles that replace t = (v0, v1, v2) when the edges flagged in `split` (bit k: edge
 /// from corner k to corner k + 1) get the vertices w[k], oriented as t.
 void children(const Surface& s, const TriangleIndices& t, unsigned split,
@@ -154,10 +165,26 @@ bool along(const Surface& s, Vec3 n, const TriangleIndices& now, double cosine) 
     return dot(n / nn, m / mm) > cosine;
 }
 
-/// True when every child keeps area and turns less than 60° from the surface around its parent.
-bool children_sound(const Surface& s, Vec3 around, std::span<const TriangleIndices> kids) {
+/// A child may turn at most this far from the surface around its parent (cos 60°), or from its
+/// parent itself this far (cos 30°), or, when the parent is split where a crease crosses it,
+/// this far (cos 84°).
+constexpr double min_parent_cosine = 0.866;
+constexpr double min_crease_cosine = 0.1;
+
+/// True when every child of triangle t keeps area and turns less than 60° from the surface
+/// `around` t or less than 30° from t itself: a flat triangle beside a fold, whose neighbours
+/// turn the surface around it, is split in its plane. When t is split where a crease crosses it
+/// (`crease`), its children lie on the crease's two sides, which turn from the surface around t
+/// as far as the crease folds (90° at a box's edge); t's own plane cuts across the fold, within
+/// 90° of either side, and a child may turn up to 84° from it.
+bool children_sound(const Surface& s, const TriangleIndices& t, Vec3 around, bool creases,
+                    bool crease, std::span<const TriangleIndices> kids) {
+    const Vec3 n = area_normal(s, t);
+    const double parent_cosine = crease ? min_crease_cosine : min_parent_cosine;
     for (const TriangleIndices& kid : kids)
-        if (!along(s, around, kid, min_normal_cosine)) return false;
+        if (!along(s, around, kid, min_normal_cosine) &&
+            !(creases && along(s, n, kid, parent_cosine)))
+            return false;
     return true;
 }
 
@@ -567,104 +594,250 @@ struct NormalRoot {
     std::uint32_t edge = 0;
     Vec3 point;
     bool found = false;
+    bool crease = false;  ///< the point is where the edge crosses a crease (crease_point)
 };
 
-/// For each candidate edge, a root of G (|G| ≤ η) on the line through its midpoint along the
-/// normal (the sum of its two triangles' area normals), on the side where G falls towards zero.
-/// First Newton's step from the midpoint as if G were a signed distance (slope 1 along the
-/// normal), then a secant step through it: on a distance-like G one or two evaluations settle an
-/// edge. The rest get brackets reaching ½, 1, then 2 edge lengths, shrunk by find_roots. An edge
-/// whose normal vanishes or whose line meets no sign change within reach has no root. Returned in
-/// a fixed order (the steps' and then the brackets'), whatever the threads.
-std::vector<NormalRoot> roots_along_normals(const Surface& s, const Edges& edges,
-                                            std::span<const std::uint32_t> candidates,
-                                            std::span<const double> mid, const SpaceEvaluator& g,
-                                            const RootOptions& roots) {
-    std::vector<NormalRoot> out;
-    struct Line {
-        std::uint32_t edge;
-        Vec3 origin;                // the midpoint
-        Vec3 direction;             // unit, towards the zero set
-        double length;              // the edge's
-        double g0;                  // G at the midpoint
-        double s1 = 0.0, g1 = 0.0;  // the last point probed, and G there (first the midpoint)
+/// A line searched for a root of G: from `origin`, where G is g0 (|g0| > η), along the unit
+/// `direction` in which G falls towards zero, as far as bracket_reach[2] times `length`.
+struct RootLine {
+    Vec3 origin;
+    Vec3 direction;
+    double length = 0.0;
+    double g0 = 0.0;
+};
+
+/// A root of G on a line, and its distance along it (NaN: none found).
+struct LineRoot {
+    Vec3 point;
+    double distance = nan;
+};
+
+/// A root of G (|G| ≤ η) on each line, where one is found. First
+/// Newton's step from the origin as if G were a signed distance (slope 1 along the line), then a
+/// secant step through it: on a distance-like G one or two evaluations settle a line. The rest
+/// get brackets reaching ½, 1, then 2 lengths, shrunk by find_roots. Each round is one batch of
+/// G; the answers do not depend on the threads.
+std::vector<LineRoot> roots_along_lines(std::span<const RootLine> lines, const SpaceEvaluator& g,
+                                        const RootOptions& roots) {
+    std::vector<LineRoot> at(lines.size());
+    struct Search {
+        std::uint32_t line;
+        double s1 = 0.0, g1 = 0.0;  // the last point probed, and G there (first the origin)
     };
-    std::vector<Line> lines;
-    for (const std::uint32_t e : candidates) {
-        const auto [t0, t1] = edges.triangles[e];
-        const Vec3 n = area_normal(s, s.triangles[t0]) + area_normal(s, s.triangles[t1]);
-        const double size = norm(n);
-        const Vec3 a = s.vertices[edges.ends[e][0]], b = s.vertices[edges.ends[e][1]];
-        if (!(size > 0.0)) {
-            out.push_back({e, {}, false});
-            continue;
-        }
-        const Vec3 origin = 0.5 * (a + b);
-        if (std::abs(mid[e]) <= roots.eta) {
-            out.push_back({e, origin, true});
-            continue;
-        }
-        // Towards the zero set: against the normal where G > 0 (outside).
-        lines.push_back({e, origin, (mid[e] > 0.0 ? -1.0 : 1.0) / size * n, distance(a, b), mid[e],
-                         0.0, mid[e]});
-    }
+    std::vector<Search> open;
+    open.reserve(lines.size());
+    for (std::uint32_t i = 0; i < lines.size(); ++i) open.push_back({i, 0.0, lines[i].g0});
     std::vector<Bracket3> brackets;
     std::vector<std::uint32_t> bracketed;
-    // One probe of every line that `step` gives a distance for (NaN: none), in one batch: a root,
-    // or a bracket with the line's last point (s1, g1), settles it. The lines not probed go on,
+    std::vector<std::pair<double, double>> bracket_span;  // the distances of a bracket's ends
+    // One probe of every open line that `step` gives a distance for (NaN: none), in one batch: a
+    // root, or a bracket with the line's last point, settles it. The lines not probed stay open,
     // then those probed, with that point as their last.
     auto probe = [&](auto step) {
-        std::vector<Line> probed, rest, unsettled;
+        std::vector<Search> probed, rest, unsettled;
         std::vector<Vec3> points;
-        for (const Line& l : lines) {
-            const double d = step(l);
+        for (const Search& o : open) {
+            const double d = step(o);
             if (std::isnan(d)) {
-                rest.push_back(l);
+                rest.push_back(o);
             } else {
-                probed.push_back(l);
-                points.push_back(l.origin + d * l.direction);
+                probed.push_back(o);
+                points.push_back(lines[o.line].origin + d * lines[o.line].direction);
             }
         }
         std::vector<double> values(points.size());
         g(points, values);
         for (std::size_t k = 0; k < probed.size(); ++k) {
-            Line l = probed[k];
-            const double d = step(l), v = values[k];
+            Search o = probed[k];
+            const RootLine& l = lines[o.line];
+            const double d = step(o), v = values[k];
             if (std::abs(v) <= roots.eta) {
-                out.push_back({l.edge, points[k], true});
-            } else if ((v > 0.0) != (l.g1 > 0.0)) {
-                brackets.push_back({l.origin + l.s1 * l.direction, points[k], l.g1, v});
-                bracketed.push_back(l.edge);
+                at[o.line] = {points[k], d};
+            } else if ((v > 0.0) != (o.g1 > 0.0)) {
+                brackets.push_back({l.origin + o.s1 * l.direction, points[k], o.g1, v});
+                bracketed.push_back(o.line);
+                bracket_span.emplace_back(o.s1, d);
             } else {
-                l.s1 = d, l.g1 = v;
-                unsettled.push_back(l);
+                o.s1 = d, o.g1 = v;
+                unsettled.push_back(o);
             }
         }
         rest.insert(rest.end(), unsettled.begin(), unsettled.end());
-        lines = std::move(rest);
+        open = std::move(rest);
     };
-    const auto within_reach = [](const Line& l, double d) {
-        return std::isfinite(d) && d <= bracket_reach[2] * l.length ? d : nan;
+    const auto within_reach = [&](const Search& o, double d) {
+        return std::isfinite(d) && d <= bracket_reach[2] * lines[o.line].length ? d : nan;
     };
-    // Newton's step, G's slope taken as 1: |G(midpoint)|, within the brackets' reach (a G far
-    // from a distance goes to the brackets at once).
-    probe([&](const Line& l) { return within_reach(l, std::abs(l.g0)); });
-    // The secant step through the midpoint and Newton's point, onward and within reach.
-    probe([&](const Line& l) {
-        if (l.s1 == 0.0) return nan;
-        const double d = l.s1 * l.g0 / (l.g0 - l.g1);
-        return d > l.s1 ? within_reach(l, d) : nan;
+    // Newton's step, G's slope taken as 1: |G(origin)|, within the brackets' reach (a G far from
+    // a distance goes to the brackets at once).
+    probe([&](const Search& o) { return within_reach(o, std::abs(lines[o.line].g0)); });
+    // The secant step through the origin and Newton's point, onward and within reach.
+    probe([&](const Search& o) {
+        if (o.s1 == 0.0) return nan;
+        const double g0 = lines[o.line].g0;
+        const double d = o.s1 * g0 / (g0 - o.g1);
+        return d > o.s1 ? within_reach(o, d) : nan;
     });
-    // Brackets from the midpoint along the normal, reaching ½, 1, then 2 edge lengths.
+    // Brackets from the origin along the line, reaching ½, 1, then 2 lengths.
     for (const double reach : bracket_reach) {
-        for (Line& l : lines) l.s1 = 0.0, l.g1 = l.g0;
-        probe([&](const Line& l) { return reach * l.length; });
+        for (Search& o : open) o.s1 = 0.0, o.g1 = lines[o.line].g0;
+        probe([&](const Search& o) { return reach * lines[o.line].length; });
     }
-    for (const Line& l : lines) out.push_back({l.edge, {}, false});
     const std::vector<Root3> found =
         find_roots([&](std::span<const Vec3> x, std::span<double> v) { g(x, v); }, brackets, roots);
-    for (std::size_t i = 0; i < found.size(); ++i)
-        out.push_back({bracketed[i], found[i].point, found[i].converged});
+    for (std::size_t i = 0; i < found.size(); ++i) {
+        if (!found[i].converged) continue;
+        const auto [s0, s1] = bracket_span[i];
+        at[bracketed[i]] = {found[i].point, s0 + found[i].t * (s1 - s0)};
+    }
+    return at;
+}
+
+/// An edge whose midpoint lies this far from the zero set, in edge lengths, may cross a crease
+/// (a fold of about 3.6° or more): a smooth surface's chord is off it by κL²/8, below L/64 once
+/// edges are shorter than an eighth of the radius of curvature.
+constexpr double crease_sagitta = 1.0 / 64.0;
+/// The profile of the zero set above an edge is a crease's (two lines) when the height at the
+/// midpoint is twice the lesser of those at the quarters within this fraction; a smooth
+/// surface's (a parabola) has 1.5 times it.
+constexpr double crease_fit = 0.05;
+/// A crease point's G is settled within a quarter of the edge's length (twice this times it).
+constexpr double crease_reach = 0.125;
+
+/// Where the edge from a to b (both on the zero set) crosses a crease, from the heights of the
+/// zero set above it along one direction at its quarters and midpoint (h1, hm, h3): two lines
+/// through the edge's ends, h = α s and h = β (1 − s), meet at s = β / (α + β), height
+/// αβ / (α + β). Nothing when the heights are not such a tent.
+std::optional<Vec3> crease_point(Vec3 a, Vec3 b, Vec3 direction, double h1, double hm, double h3) {
+    if (!(h1 > 0.0 && h3 > 0.0 && hm > 0.0)) return std::nullopt;
+    if (std::abs(hm - 2.0 * std::min(h1, h3)) > crease_fit * hm) return std::nullopt;
+    const double alpha = 4.0 * h1, beta = 4.0 * h3;
+    const double s = beta / (alpha + beta);
+    return a + s * (b - a) + (alpha * s) * direction;
+}
+
+/// For each candidate edge, the new vertex of its split: a root of G (|G| ≤ η) on the line
+/// through its midpoint along the normal (the sum of its two triangles' area normals), on the
+/// side where G falls towards zero (roots_along_lines). Where the midpoint lies far from the zero
+/// set for the edge's length (crease_sagitta), the roots on the parallel lines through the edge's
+/// quarters tell a crease from a curve; on a crease the vertex goes to the crease (crease_point,
+/// its G settled along the same line), so that the children of the triangles across it lie on
+/// its two sides, and a surface of flat facets converges in a pass where halving its edges
+/// only halves their error. An edge whose normal vanishes or whose line meets no sign change
+/// within reach has no root. Returned in edge order of the candidates, whatever the threads.
+std::vector<NormalRoot> roots_along_normals(const Surface& s, const Edges& edges,
+                                            std::span<const std::uint32_t> candidates,
+                                            std::span<const double> mid, const SpaceEvaluator& g,
+                                            const RootOptions& roots, bool creases) {
+    std::vector<NormalRoot> out(candidates.size());
+    std::vector<RootLine> lines;
+    std::vector<std::uint32_t> line_of;  // the candidate of each line
+    for (std::uint32_t c = 0; c < candidates.size(); ++c) {
+        const std::uint32_t e = candidates[c];
+        out[c].edge = e;
+        const auto [t0, t1] = edges.triangles[e];
+        const Vec3 n = area_normal(s, s.triangles[t0]) + area_normal(s, s.triangles[t1]);
+        const double size = norm(n);
+        const Vec3 a = s.vertices[edges.ends[e][0]], b = s.vertices[edges.ends[e][1]];
+        if (!(size > 0.0)) continue;
+        const Vec3 origin = 0.5 * (a + b);
+        if (std::abs(mid[e]) <= roots.eta) {
+            out[c].point = origin, out[c].found = true;
+            continue;
+        }
+        // Towards the zero set: against the normal where G > 0 (outside).
+        lines.push_back({origin, (mid[e] > 0.0 ? -1.0 : 1.0) / size * n, distance(a, b), mid[e]});
+        line_of.push_back(c);
+    }
+    const std::vector<LineRoot> at = roots_along_lines(lines, g, roots);
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        if (std::isnan(at[i].distance)) continue;
+        out[line_of[i]].point = at[i].point;
+        out[line_of[i]].found = true;
+    }
+    if (!creases) return out;
+
+    // Creases: G at the quarters of the edges whose midpoint lies far off, in one batch.
+    std::vector<std::uint32_t> suspects;  // indices into lines
+    std::vector<Vec3> quarters;
+    for (std::uint32_t i = 0; i < lines.size(); ++i) {
+        if (std::isnan(at[i].distance) ||
+            !(std::abs(lines[i].g0) > crease_sagitta * lines[i].length))
+            continue;
+        const std::uint32_t e = candidates[line_of[i]];
+        const Vec3 a = s.vertices[edges.ends[e][0]], b = s.vertices[edges.ends[e][1]];
+        suspects.push_back(i);
+        quarters.push_back(0.75 * a + 0.25 * b);
+        quarters.push_back(0.25 * a + 0.75 * b);
+    }
+    if (suspects.empty()) return out;
+    std::vector<double> quarter_value(quarters.size());
+    g(quarters, quarter_value);
+    std::vector<RootLine> quarter_lines;
+    std::vector<std::uint32_t> quarter_of;  // the suspect of each pair of quarter lines
+    for (std::uint32_t k = 0; k < suspects.size(); ++k) {
+        const RootLine& l = lines[suspects[k]];
+        const double v1 = quarter_value[2 * k], v3 = quarter_value[2 * k + 1];
+        // A tent's quarters lie on the midpoint's side, off the zero set, and G at the midpoint
+        // is twice G at the quarter on its side of the crease (G a distance: the heights times
+        // one cosine), where a smooth surface's is 4/3 of both.
+        if (!((v1 > 0.0) == (l.g0 > 0.0) && (v3 > 0.0) == (l.g0 > 0.0) &&
+              std::abs(v1) > roots.eta && std::abs(v3) > roots.eta))
+            continue;
+        const double g0 = std::abs(l.g0);
+        if (!(std::min(std::abs(g0 - 2.0 * std::abs(v1)), std::abs(g0 - 2.0 * std::abs(v3))) <=
+              2.0 * crease_fit * g0))
+            continue;
+        quarter_lines.push_back({quarters[2 * k], l.direction, l.length, v1});
+        quarter_lines.push_back({quarters[2 * k + 1], l.direction, l.length, v3});
+        quarter_of.push_back(k);
+    }
+    const std::vector<LineRoot> quarter_at = roots_along_lines(quarter_lines, g, roots);
+    std::vector<RootLine> crease_lines;
+    std::vector<std::uint32_t> crease_of;  // the line of each crease point
+    std::vector<Vec3> points;
+    std::vector<double> crease_height;  // the height of the zero set at the midpoint
+    for (std::uint32_t j = 0; j < quarter_of.size(); ++j) {
+        const std::uint32_t i = suspects[quarter_of[j]];
+        const std::uint32_t e = candidates[line_of[i]];
+        const std::optional<Vec3> x = crease_point(
+            s.vertices[edges.ends[e][0]], s.vertices[edges.ends[e][1]], lines[i].direction,
+            quarter_at[2 * j].distance, at[i].distance, quarter_at[2 * j + 1].distance);
+        if (!x) continue;
+        points.push_back(*x);
+        crease_of.push_back(i);
+        crease_height.push_back(at[i].distance);
+    }
+    std::vector<double> values(points.size());
+    g(points, values);
+    for (std::uint32_t k = 0; k < points.size(); ++k) {
+        const std::uint32_t i = crease_of[k];
+        // A rounded edge's profile is a tent with its tip cut off: its lines' meeting point
+        // lies off the zero set by a fair part of the height.
+        if (!(std::abs(values[k]) <= crease_fit * crease_height[k])) continue;
+        if (std::abs(values[k]) <= roots.eta) {
+            out[line_of[i]].point = points[k];
+            out[line_of[i]].crease = true;
+            continue;
+        }
+        // Settled along the edge's line from the crease point, towards the zero set.
+        const Vec3 d =
+            (values[k] > 0.0) == (lines[i].g0 > 0.0) ? lines[i].direction : -lines[i].direction;
+        crease_lines.push_back({points[k], d, crease_reach * lines[i].length, values[k]});
+    }
+    std::vector<std::uint32_t> settle_of;
+    for (std::uint32_t k = 0; k < points.size(); ++k) {
+        if (std::abs(values[k]) > roots.eta && std::abs(values[k]) <= crease_fit * crease_height[k])
+            settle_of.push_back(crease_of[k]);
+    }
+    const std::vector<LineRoot> settled = roots_along_lines(crease_lines, g, roots);
+    for (std::size_t k = 0; k < crease_lines.size(); ++k) {
+        // A crease point whose G settles nowhere near keeps the midpoint's root.
+        if (std::isnan(settled[k].distance)) continue;
+        NormalRoot& r = out[line_of[settle_of[k]]];
+        r.point = settled[k].point;
+        r.crease = true;
+    }
     return out;
 }
 
@@ -672,10 +845,12 @@ std::vector<NormalRoot> roots_along_normals(const Surface& s, const Edges& edges
 
 SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps,
                                  const RootOptions& roots, int passes, int max_passes,
-                                 std::size_t max_vertices) {
+                                 std::size_t max_vertices, bool creases) {
     SurfaceRefinement result;
     KeyMap<double> midpoint_value;  // G at the midpoint of edge (a, b); vertices never move
-    KeyMap<std::uint8_t> frozen;    // edges whose split a safeguard refused
+    // Edges whose split a safeguard refused, with the vertices opposite them then (opposite_key):
+    // an edge is tried again once a split beside it has changed its two triangles.
+    KeyMap<std::uint64_t> frozen;
     std::vector<double> centroid_value(s.size(), nan);
     // Triangles changed since the last crossing check; the linear contour is embedded.
     std::vector<std::uint8_t> dirty(s.size(), 0);
@@ -687,6 +862,10 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         improve(s, centroid_value, dirty, pass == 0, result);
         const Edges edges(s);
         const std::size_t m = edges.size();
+        auto is_frozen = [&](std::uint32_t e) {
+            const std::uint64_t* v = frozen.find(edge_key(edges.ends[e][0], edges.ends[e][1]));
+            return v && (!creases || *v == opposite_key(s, edges, e));
+        };
         auto midpoint = [&](std::uint32_t e) {
             return 0.5 * (s.vertices[edges.ends[e][0]] + s.vertices[edges.ends[e][1]]);
         };
@@ -718,9 +897,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         {
             auto splits_anyway = [&](std::uint32_t t) {
                 for (const std::uint32_t e : edges.of_triangle[t]) {
-                    if (std::abs(mid[e]) > eps &&
-                        !frozen.contains(edge_key(edges.ends[e][0], edges.ends[e][1])))
-                        return true;
+                    if (std::abs(mid[e]) > eps && !is_frozen(e)) return true;
                 }
                 return false;
             };
@@ -762,8 +939,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         }
         const bool any_beyond = std::find(wanted.begin(), wanted.end(), 1) != wanted.end();
         for (std::uint32_t e = 0; e < m; ++e)
-            if (wanted[e] && frozen.contains(edge_key(edges.ends[e][0], edges.ends[e][1])))
-                wanted[e] = 0;
+            if (wanted[e] && is_frozen(e)) wanted[e] = 0;
         std::vector<std::uint32_t> candidates;
         for (std::uint32_t e = 0; e < m; ++e)
             if (wanted[e]) candidates.push_back(e);
@@ -778,13 +954,14 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
 
         // The new vertex of each edge: G's root along the normal at its midpoint.
         auto refuse = [&](std::uint32_t e) {
-            frozen.assign(edge_key(edges.ends[e][0], edges.ends[e][1]), 1);
+            frozen.assign(edge_key(edges.ends[e][0], edges.ends[e][1]), opposite_key(s, edges, e));
             ++result.rejected;
         };
         const std::vector<NormalRoot> found =
-            roots_along_normals(s, edges, candidates, mid, g, roots);
+            roots_along_normals(s, edges, candidates, mid, g, roots, creases);
         // The new vertices, numbered after the old ones in edge order.
         std::vector<std::uint32_t> vertex_of(m, std::numeric_limits<std::uint32_t>::max());
+        std::vector<std::uint8_t> on_crease(m, 0);
         const auto old_vertices = static_cast<std::uint32_t>(s.vertices.size());
         std::vector<Vec3> added;
         for (const NormalRoot& r : found) {
@@ -793,6 +970,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
                 continue;
             }
             vertex_of[r.edge] = old_vertices + static_cast<std::uint32_t>(added.size());
+            on_crease[r.edge] = r.crease;
             added.push_back(r.point);
         }
         s.vertices.insert(s.vertices.end(), added.begin(), added.end());
@@ -826,7 +1004,12 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
                          std::vector<TriangleIndices>& kids) {
             kids.clear();
             children(s, s.triangles[t], mask, w, kids);
-            return children_sound(s, normal_around(s, edges, t), kids);
+            const std::array<std::uint32_t, 3>& sides = edges.of_triangle[t];
+            const bool crease = std::any_of(sides.begin(), sides.end(), [&](std::uint32_t e) {
+                return split[e] && on_crease[e];
+            });
+            return children_sound(s, s.triangles[t], normal_around(s, edges, t), creases, crease,
+                                  kids);
         };
         // Each sweep's tests for the masks at its start, on all threads; the sweep itself tests
         // again only the triangles whose mask a refusal before them changed, so the outcome is

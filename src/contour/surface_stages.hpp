@@ -75,9 +75,11 @@ struct SurfaceRefinement {
 /// split, for good, when no root is found within reach, when a triangle it makes turns more than
 /// 60° from its parent or loses its area, or when the triangles it makes meet the rest of the
 /// surface; the surface stays closed, manifold and oriented. Throws LimitExceeded naming ε when the
-/// vertices would pass max_vertices.
+/// vertices would pass max_vertices. With `creases` (SurfaceContourOptions::creases), an edge
+/// across a crease is split on it, a flat triangle beside a fold may be split in its plane, and
+/// a refused edge is tried again once a split beside it changed its triangles.
 SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps,
                                  const RootOptions& roots, int passes, int max_passes,
-                                 std::size_t max_vertices);
+                                 std::size_t max_vertices, bool creases);
 
 }  // namespace slc::contouring

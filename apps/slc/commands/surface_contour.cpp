@@ -128,9 +128,12 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         .eps = tolerances.eps,
         .eta = tolerances.eta,
         .thin_depth = r.thin_depth,
+        // A mesh's facets meet at creases, which refinement follows.
+        .creases = source.surface.has_value(),
         .distance_slack = source.lipschitz ? std::optional(0.0) : std::nullopt};
     summary["params"]["eps"] = options.resolved_eps();
     summary["params"]["eta"] = options.resolved_eta();
+    summary["params"]["creases"] = options.creases;
     // cpu_s and wall_s time the contour alone, evaluations of G included.
     const SurfaceContour result = timed_contour(
         summary, folder, "", [&] { return contour_surface(g, source.domain, options); });

@@ -55,6 +55,14 @@ struct SurfaceContourOptions {
     /// or cut across. 0 (the default) keeps every leaf at depth K or above; Enright's test,
     /// whose sheet thins below a cell, takes 2 (docs/surfaces.md).
     int thin_depth = 0;
+    /// Refinement follows creases, for G the distance of a surface of flat facets (a user's
+    /// mesh): an edge whose midpoint lies off the zero set by more than L/64 and whose profile
+    /// along the normal at its quarters and midpoint is two lines (a fold of the surface) is split
+    /// where the lines meet, on the crease, and the children of the triangles across it lie on
+    /// its two sides, where halving edges that cross a crease only halves their error. A split
+    /// refused is tried again once a split beside it changed its triangles. Off (the default)
+    /// for the steps of a run, whose G rounds what a crease would sharpen (docs/surfaces.md).
+    bool creases = false;
     /// How brackets are shrunk.
     RootMethod root_method = RootMethod::brent;
     /// δ ≥ 0, when the caller can guarantee |G(x) − G(y)| ≤ |x − y| + δ for all x and y: 0 for a

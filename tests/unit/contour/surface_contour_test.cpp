@@ -143,6 +143,33 @@ TEST(SurfaceContour, ContoursTheExactDistanceOfABoxSurface) {
     EXPECT_NEAR(volume(finer.surface), exact, 0.03 * exact);
 }
 
+TEST(SurfaceContour, RefinementFollowsTheCreasesOfAMesh) {
+    // A torus of 24 × 12 flat quads (576 triangles): its distance folds along every edge of the
+    // mesh, where halving the contour's edges only halves their error. Refinement that follows
+    // the creases puts vertices on them and meets ε = 1e−5 at K = 4 in under 150,000
+    // triangles; the same without (`creases` off, a run's steps) takes 749,306 (88,424 with, by
+    // `slc contour`) and 8 times the time.
+    const Surface mesh = torus({}, 0.55, 0.2, 24, 12);
+    const Box3 domain = Box3::centered_cube(1.0);
+    const SurfaceDistanceTree tree(mesh, domain, {.depth = 4});
+    const auto distance = [&](Vec3 x) { return tree.closest_point(x).distance; };
+    const SurfaceContourOptions options{.depth = 4,
+                                        .refine_passes = SurfaceContourOptions::until_converged,
+                                        .eps = 1e-5,
+                                        .thin_depth = 2,
+                                        .creases = true,
+                                        .distance_slack = 0.0};
+    const SurfaceContour got = contour_surface(pointwise<Vec3>(distance), domain, options);
+    EXPECT_TRUE(got.stats.converged);
+    EXPECT_LE(largest_error(got.surface, distance), 1e-5);
+    EXPECT_LT(got.surface.size(), 150'000u);
+    for (const Vec3 v : got.surface.vertices) ASSERT_LE(std::abs(distance(v)), 1e-7);
+    EXPECT_TRUE(closed_and_oriented(got.surface));
+    EXPECT_TRUE(prepare_surface(got.surface).notes.empty());
+    EXPECT_EQ(genus(got.surface), 1);
+    EXPECT_EQ(component_count(got.surface), 1u);
+}
+
 TEST(SurfaceContour, ATiltedCubeWithThinCellsStaysOnePiece) {
     // Beside a convex corner off the axes, thin cells finer than their neighbours can leave a
     // mesh vertex just inside the corner with no neighbour inside, and the linear zero set a

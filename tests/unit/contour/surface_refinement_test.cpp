@@ -87,7 +87,7 @@ TEST(SurfaceRefinement, ACentroidTheMidpointsCannotSeeIsEvaluated) {
     std::size_t count = 0;
     const contouring::SpaceEvaluator g(cube, count);
     const contouring::SurfaceRefinement r =
-        contouring::refine_surface(s, g, 0.01, {}, 1, 1, 1'000'000);
+        contouring::refine_surface(s, g, 0.01, {}, 1, 1, 1'000'000, false);
     EXPECT_NEAR(r.residual, cut / 3.0, 1e-12);
     EXPECT_EQ(r.converged, 0u);
     EXPECT_GE(r.splits + r.rejected, 8u);  // each corner's longest edge, split or refused
