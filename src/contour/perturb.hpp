@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <utility>
@@ -15,12 +16,15 @@
 
 namespace slc::contouring {
 
-/// The first displacement is this fraction of the finest cell edge h, doubled at each attempt.
-/// After max_perturbations attempts it is 3.2% of h: well below the smallest altitude of the
-/// mesh's simplices (35% of h for the triangles of the plane, an eighth of h for the tetrahedra of
-/// space), so the mesh stays valid.
+/// The first displacement is this fraction of the finest cell edge h, doubled at each attempt up
+/// to the sixth, 3.2% of h: well below the smallest altitude of the mesh's simplices (35% of h
+/// for the triangles of the plane, an eighth of h for the tetrahedra of space), so the mesh stays
+/// valid. The attempts after it keep that length in new directions: a vertex on a flat part of
+/// the zero set with η a fair part of h (η = ε/100 of a coarse ε) needs a direction well off the
+/// plane, which six directions need not give.
 inline constexpr double first_perturbation = 1e-3;
-inline constexpr int max_perturbations = 6;
+inline constexpr int doubled_perturbations = 6;
+inline constexpr int max_perturbations = 12;
 
 /// Moves the vertices whose values are within η of zero off it, all of one attempt in one batch
 /// `g(points, values)`: at attempt k, vertex v goes to where it was plus first_perturbation·2^k·h
@@ -45,9 +49,10 @@ std::size_t perturb_vertices(std::vector<PointOf<dim>>& vertices, std::vector<do
                 "{:.3g}: G and its gradient seem to vanish together, so the contour is "
                 "ill-posed there",
                 eta, point_text(todo.front().original, 6), max_perturbations,
-                first_perturbation * std::ldexp(h, max_perturbations - 1)));
+                first_perturbation * std::ldexp(h, doubled_perturbations - 1)));
         }
-        const double step = first_perturbation * std::ldexp(h, k);
+        const double step =
+            first_perturbation * std::ldexp(h, std::min(k, doubled_perturbations - 1));
         std::vector<Point> points;
         points.reserve(todo.size());
         for (const Pending& p : todo) points.push_back(p.original + step * direction(p.vertex, k));

@@ -199,6 +199,34 @@ TEST(SurfaceContour, ATiltedCubeWithThinCellsStaysOnePiece) {
     }
 }
 
+TEST(SurfaceContour, MeshVerticesOnAFlatFaceAreMovedOffItWithACoarseEta) {
+    // ε = 1e−2 makes η = ε/100 = 1e−4, a fair part of the finest cell (0.02 at K 5 with thin
+    // cells): the six doubling displacements of a mesh vertex within η of a face of this cube
+    // (turned 0.7 rad about (1, 2, 3)) all ran nearly along it, and the contour was refused as
+    // ill-posed. Further directions at the largest length find the face's side.
+    Surface cube = box_surface({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}, 4);
+    const Vec3 axis = Vec3{1, 2, 3} / std::sqrt(14.0);
+    const double c = std::cos(0.7), s = std::sin(0.7);
+    for (Vec3& v : cube.vertices) v = c * v + s * cross(axis, v) + (1 - c) * dot(axis, v) * axis;
+    const Box3 b = bounding_box(cube);
+    const double half = 0.5 * std::max({b.extent(0), b.extent(1), b.extent(2)});
+    const Box3 domain = Box3::cube(b.center(), 1.5 * half);
+    const SurfaceDistanceTree tree(cube, domain, {.depth = 5});
+    const auto g = pointwise<Vec3>([&](Vec3 x) { return tree.closest_point(x).distance; });
+    const SurfaceContour got =
+        contour_surface(g, domain,
+                        {.depth = 5,
+                         .refine_passes = SurfaceContourOptions::until_converged,
+                         .eps = 1e-2,
+                         .thin_depth = 2,
+                         .distance_slack = 0.0});
+    EXPECT_GT(got.stats.perturbed, 0u);
+    EXPECT_TRUE(got.stats.converged);
+    EXPECT_TRUE(closed_and_oriented(got.surface));
+    EXPECT_EQ(euler_characteristic(got.surface), 2);
+    EXPECT_NEAR(volume(got.surface), 1.0, 0.03);
+}
+
 TEST(SurfaceContour, ThinPartsSplitBeyondTheDepth) {
     // A tilted disk of radius 0.6 thickened to t = 0.02, a third of a cell at K = 5 (edge 1/16):
     // an exact signed distance. At depth K the tetrahedra miss most of it; with cells split two
