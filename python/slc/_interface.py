@@ -262,7 +262,7 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
 
 def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None = None,
                     refine=None, slack: float | None = None, eta: float | None = None,
-                    thin_depth: int = 0):
+                    thin_depth: int = 0, creases: bool = False):
     """The zero set of f, a vectorised function f((m, 3) array) -> (m,) array, in box, by the
     contouring of space (paper §2 with d = 3): a closed, oriented triangle surface facing f > 0.
 
@@ -272,7 +272,9 @@ def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float 
     converged when eps is given, none otherwise. slack: δ >= 0 when
     |f(x) - f(y)| <= |x - y| + δ everywhere (0 for a signed distance): points far from the
     surface are then not evaluated, and the surface is the same. eta: η, |f| <= η at every
-    vertex (default 1e-10, or eps/100 when refining). thin_depth: as for contour(). Returns
+    vertex (default 1e-10, or eps/100 when refining). thin_depth: as for contour(). creases:
+    refinement follows the creases of f, the distance of a surface of flat facets (a mesh's, by
+    slc.distance), where its facets meet, as ``slc contour`` of a mesh file does. Returns
     (vertices (n, 3) float array,
     triangles (m, 3) int array of vertex indices, stats dict). Where f has no zero in the box
     (none the octree of depth K finds), both arrays are empty, with a UserWarning saying so.
@@ -287,7 +289,7 @@ def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float 
     vertices, triangles, stats = _slc.contour_surface(
         f, box, int(depth), None if eps is None else float(eps), _refine(refine),
         None if slack is None else float(slack), None if eta is None else float(eta),
-        _integer("thin_depth", thin_depth))
+        _integer("thin_depth", thin_depth), bool(creases))
     if len(triangles) == 0:
         x0, y0, z0, x1, y1, z1 = stats["domain"]
         _warn_no_zero(f"[{x0:g}, {x1:g}]x[{y0:g}, {y1:g}]x[{z0:g}, {z1:g}]", depth)

@@ -166,13 +166,14 @@ py::tuple contour_function(const py::object& f, const std::vector<double>& box, 
 py::tuple contour_surface_function(const py::object& f, const std::vector<double>& box, int depth,
                                    std::optional<double> eps, int refine,
                                    std::optional<double> slack, std::optional<double> eta,
-                                   int thin_depth) {
+                                   int thin_depth, bool creases) {
     const Box3 domain = cube_around_corners(box, "box");
     const SurfaceContourOptions options{.depth = depth,
                                         .refine_passes = refine,
                                         .eps = eps,
                                         .eta = eta,
                                         .thin_depth = checked_thin_depth(thin_depth),
+                                        .creases = creases,
                                         .distance_slack = slack};
     auto g = [&f](std::span<const Vec3> points, std::span<double> values) {
         call_batch(f, points, values);
@@ -231,7 +232,7 @@ PYBIND11_MODULE(_slc, m) {
           py::arg("eps"), py::arg("refine"), py::arg("thin_depth"));
     m.def("contour_surface", &contour_surface_function, py::arg("f"), py::arg("box"),
           py::arg("depth"), py::arg("eps"), py::arg("refine"), py::arg("slack"), py::arg("eta"),
-          py::arg("thin_depth"));
+          py::arg("thin_depth"), py::arg("creases"));
     add_run_functions(m);
     add_surface_functions(m);
     m.def("velocity_names", &velocity_names);

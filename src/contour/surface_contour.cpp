@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "options_check.hpp"
@@ -163,10 +164,21 @@ void split_quads(std::span<const std::array<std::uint32_t, 4>> quads, std::span<
 void refine(Surface& s, SpaceFunctionRef g, const SurfaceContourOptions& options,
             SurfaceContourStats& stats) {
     const SpaceEvaluator counted(g, stats.g_evals_refine);
-    const contouring::SurfaceRefinement r = contouring::refine_surface(
-        s, counted, options.resolved_eps(),
-        RootOptions{.eta = options.resolved_eta(), .method = options.root_method},
-        options.refine_passes, options.max_refine_passes, options.max_vertices, options.creases);
+    const RootOptions roots{.eta = options.resolved_eta(), .method = options.root_method};
+    auto refined = [&](Surface& surface, bool creases) {
+        return contouring::refine_surface(surface, counted, options.resolved_eps(), roots,
+                                          options.refine_passes, options.max_refine_passes,
+                                          options.max_vertices, creases);
+    };
+    std::optional<Surface> linear;
+    if (options.creases) linear = s;
+    contouring::SurfaceRefinement r = refined(s, options.creases);
+    // Where following creases left a part beyond ε (slivers about a vertex where several creases
+    // meet), plain refinement from the linear contour, if it comes nearer.
+    if (linear && r.converged == 0) {
+        const contouring::SurfaceRefinement plain = refined(*linear, false);
+        if (plain.converged != 0 || plain.residual < r.residual) s = std::move(*linear), r = plain;
+    }
     stats.passes = r.passes;
     stats.splits = r.splits;
     stats.rejected = r.rejected;

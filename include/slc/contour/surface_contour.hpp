@@ -60,8 +60,10 @@ struct SurfaceContourOptions {
     /// along the normal at its quarters and midpoint is two lines (a fold of the surface) is split
     /// where the lines meet, on the crease, and the children of the triangles across it lie on
     /// its two sides, where halving edges that cross a crease only halves their error. A split
-    /// refused is tried again once a split beside it changed its triangles. Off (the default)
-    /// for the steps of a run, whose G rounds what a crease would sharpen (docs/surfaces.md).
+    /// refused is tried again once a split beside it changed its triangles. Should that leave a
+    /// part beyond ε (slivers about a vertex where several creases meet), plain refinement of
+    /// the linear contour is kept instead if it comes nearer. Off (the default) for the steps of
+    /// a run, whose G rounds what a crease would sharpen (docs/surfaces.md).
     bool creases = false;
     /// How brackets are shrunk.
     RootMethod root_method = RootMethod::brent;
