@@ -229,7 +229,7 @@ def _integer(name: str, value) -> int | None:
 
 
 def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None = None,
-            refine=None, thin_depth: int = 0) -> Interface:
+            refine=None, thin_depth: int = 0, stats: bool = False):
     """The zero set of f, a vectorised function f((m, 2) array) -> (m,) array, in box, by the
     adaptive contouring (paper §2): curves with f > 0 on their right (counterclockwise around
     regions where f < 0).
@@ -240,7 +240,9 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
     is given, none otherwise. thin_depth: levels beyond K, 0 to 8, that cells split where f bends
     as a distance does beside a part thinner than a cell, a near contact or a corner (as ``slc
     contour --thin-depth``; 0 by default, since f need not be a distance). f is called once per
-    batch of points, on the calling thread.
+    batch of points, on the calling thread. stats=True returns ``(curves, stats)``, stats a dict
+    of the contour's statistics under the keys of ``slc contour``'s summary.json (cells, leaves,
+    segments, vertices, g_evals, passes, …) with eps and domain, as contour_surface's.
 
     Where f has no zero in the box (none the tree of depth K finds: f keeps one sign at every
     point sampled), the result is an empty Interface, with a UserWarning saying so.
@@ -252,12 +254,13 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
         refine = "converged" if eps is not None else 0
     if isinstance(depth, bool) or not isinstance(depth, numbers.Integral):
         raise TypeError(f"depth must be an integer, got {depth!r}")
-    arrays, stats = _slc.contour(f, box, int(depth), None if eps is None else float(eps),
-                                 _refine(refine), _integer("thin_depth", thin_depth))
+    arrays, figures = _slc.contour(f, box, int(depth), None if eps is None else float(eps),
+                                   _refine(refine), _integer("thin_depth", thin_depth))
     if not arrays:
-        x0, y0, x1, y1 = stats["domain"]
+        x0, y0, x1, y1 = figures["domain"]
         _warn_no_zero(f"[{x0:g}, {x1:g}]x[{y0:g}, {y1:g}]", depth)
-    return Interface._trusted(arrays)
+    curves = Interface._trusted(arrays)
+    return (curves, figures) if stats else curves
 
 
 def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None = None,

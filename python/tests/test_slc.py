@@ -200,6 +200,12 @@ def test_contour_of_a_circle_is_within_eps():
     assert curves.area > 0.0  # counterclockwise around G < 0
     assert all(len(s) == 2 and s[1] == 2 for s in calls)
     assert max(s[0] for s in calls) > 100  # batches, not points
+    # With its statistics, under the keys of `slc contour`'s summary.json, as for surfaces.
+    again, stats = slc.contour(g, (-1, -1, 1, 1), 5, eps=eps, stats=True)
+    assert np.array_equal(again.curves[0], c)
+    assert stats["segments"] == len(c) and stats["curves"] == 1 and stats["eps"] == eps
+    assert stats["passes"] > 0 and stats["g_evals"] > len(c)
+    assert stats["domain"] == [-1.0, -1.0, 1.0, 1.0]
 
 
 def test_contour_splits_thin_cells_where_asked_in_both_dimensions():
