@@ -165,18 +165,18 @@ bool along(const Surface& s, Vec3 n, const TriangleIndices& now, double cosine) 
     return dot(n / nn, m / mm) > cosine;
 }
 
-/// A child may turn at most this far from the surface around its parent (cos 60°), or from its
-/// parent itself this far (cos 30°), or, when the parent is split where a crease crosses it,
-/// this far (cos 84°).
+/// Following creases, a child may also turn this far from its parent itself (cos 30°), or,
+/// when the parent is split where a crease crosses it, this far (cos 84°).
 constexpr double min_parent_cosine = 0.866;
 constexpr double min_crease_cosine = 0.1;
 
 /// True when every child of triangle t keeps area and turns less than 60° from the surface
-/// `around` t or less than 30° from t itself: a flat triangle beside a fold, whose neighbours
-/// turn the surface around it, is split in its plane. When t is split where a crease crosses it
-/// (`crease`), its children lie on the crease's two sides, which turn from the surface around t
-/// as far as the crease folds (90° at a box's edge); t's own plane cuts across the fold, within
-/// 90° of either side, and a child may turn up to 84° from it.
+/// `around` t. Following creases (`creases`), also when it turns less than 30° from t itself: a
+/// flat triangle beside a fold, whose neighbours turn the surface around it, is split in its
+/// plane. When t is split where a crease crosses it (`crease`), its children lie on the
+/// crease's two sides, which turn from the surface around t as far as the crease folds (90° at
+/// a box's edge); t's own plane cuts across the fold, within 90° of either side, and a child
+/// may turn up to 84° from it.
 bool children_sound(const Surface& s, const TriangleIndices& t, Vec3 around, bool creases,
                     bool crease, std::span<const TriangleIndices> kids) {
     const Vec3 n = area_normal(s, t);
