@@ -263,9 +263,10 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
     return (curves, figures) if stats else curves
 
 
-def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None = None,
+def contour_surface(f, box, depth: int, eps: float | None = None,
                     refine=None, slack: float | None = None, eta: float | None = None,
-                    thin_depth: int = 0, creases: bool = False):
+                    thin_depth: int = 0, creases: bool | None = None,
+                    threads: int | None = None):
     """The zero set of f, a vectorised function f((m, 3) array) -> (m,) array, in box, by the
     contouring of space (paper §2 with d = 3): a closed, oriented triangle surface facing f > 0.
 
@@ -276,8 +277,10 @@ def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float 
     |f(x) - f(y)| <= |x - y| + δ everywhere (0 for a signed distance): points far from the
     surface are then not evaluated, and the surface is the same. eta: η, |f| <= η at every
     vertex (default 1e-10, or eps/100 when refining). thin_depth: as for contour(). creases:
-    refinement follows the creases of f, the distance of a surface of flat facets (a mesh's, by
-    slc.distance), where its facets meet, as ``slc contour`` of a mesh file does. Returns
+    refinement follows the creases where the flat facets of a mesh meet, when f is a mesh's
+    distance. f may be a Surface itself: its exact signed distance, computed on ``threads``
+    threads without calls into Python, as ``slc contour --initial mesh.obj`` contours it
+    (creases followed unless creases=False; slack is 0). Returns
     (vertices (n, 3) float array,
     triangles (m, 3) int array of vertex indices, stats dict). Where f has no zero in the box
     (none the octree of depth K finds), both arrays are empty, with a UserWarning saying so.
@@ -289,10 +292,19 @@ def contour_surface(f: Callable[[np.ndarray], Any], box, depth: int, eps: float 
         refine = "converged" if eps is not None else 0
     if isinstance(depth, bool) or not isinstance(depth, numbers.Integral):
         raise TypeError(f"depth must be an integer, got {depth!r}")
-    vertices, triangles, stats = _slc.contour_surface(
-        f, box, int(depth), None if eps is None else float(eps), _refine(refine),
-        None if slack is None else float(slack), None if eta is None else float(eta),
-        _integer("thin_depth", thin_depth), bool(creases))
+    from ._surface import Surface  # (the module of surfaces builds on this one)
+
+    eps = None if eps is None else float(eps)
+    eta = None if eta is None else float(eta)
+    if isinstance(f, Surface):
+        vertices, triangles, stats = _slc.contour_surface_mesh(
+            f.vertices, f.triangles, box, int(depth), eps, _refine(refine), eta,
+            _integer("thin_depth", thin_depth), True if creases is None else bool(creases),
+            _threads(threads))
+    else:
+        vertices, triangles, stats = _slc.contour_surface(
+            f, box, int(depth), eps, _refine(refine), None if slack is None else float(slack),
+            eta, _integer("thin_depth", thin_depth), bool(creases))
     if len(triangles) == 0:
         x0, y0, z0, x1, y1, z1 = stats["domain"]
         _warn_no_zero(f"[{x0:g}, {x1:g}]x[{y0:g}, {y1:g}]x[{z0:g}, {z1:g}]", depth)

@@ -24,10 +24,13 @@
 #include "calls.hpp"
 #include "run.hpp"
 #include "slc/contour/contour.hpp"
+#include "slc/contour/implicit_function.hpp"
 #include "slc/contour/surface_contour.hpp"
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/distance/distance_tree.hpp"
+#include "slc/distance/surface_distance_tree.hpp"
 #include "slc/evolve/defaults.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/geometry/interface.hpp"
@@ -163,6 +166,20 @@ py::tuple contour_function(const py::object& f, const std::vector<double>& box, 
     return py::make_tuple(arrays_of(r.curves), python_of(stats));
 }
 
+/// contour_surface's answer: the surface's arrays and its statistics.
+py::tuple surface_contour_answer(const SurfaceContour& result, const SurfaceContourOptions& options,
+                                 const Box3& domain) {
+    const py::tuple arrays = surface_arrays(result.surface);
+    nlohmann::json stats = contour_stats_json(result.stats);
+    stats["converged"] = result.stats.converged;
+    stats["eps"] = options.resolved_eps();
+    stats["eta"] = options.resolved_eta();
+    stats["creases"] = options.creases;
+    stats["domain"] = {domain.lo.x, domain.lo.y, domain.lo.z,
+                       domain.hi.x, domain.hi.y, domain.hi.z};
+    return py::make_tuple(arrays[0], arrays[1], python_of(stats));
+}
+
 py::tuple contour_surface_function(const py::object& f, const std::vector<double>& box, int depth,
                                    std::optional<double> eps, int refine,
                                    std::optional<double> slack, std::optional<double> eta,
@@ -183,14 +200,34 @@ py::tuple contour_surface_function(const py::object& f, const std::vector<double
         py::gil_scoped_release release;
         result.emplace(contour_surface(g, domain, options));
     }
-    const py::tuple arrays = surface_arrays(result->surface);
-    nlohmann::json stats = contour_stats_json(result->stats);
-    stats["converged"] = result->stats.converged;
-    stats["eps"] = options.resolved_eps();
-    stats["eta"] = options.resolved_eta();
-    stats["domain"] = {domain.lo.x, domain.lo.y, domain.lo.z,
-                       domain.hi.x, domain.hi.y, domain.hi.z};
-    return py::make_tuple(arrays[0], arrays[1], python_of(stats));
+    return surface_contour_answer(*result, options, domain);
+}
+
+/// contour_surface of a Surface: its exact signed distance (the distance tree's, as `slc
+/// contour` of a mesh file), on all threads, without calls into Python.
+py::tuple contour_surface_mesh(const Array& vertices, const IndexArray& triangles,
+                               const std::vector<double>& box, int depth, std::optional<double> eps,
+                               int refine, std::optional<double> eta, int thin_depth, bool creases,
+                               int threads) {
+    const Surface surface = surface_of(vertices, triangles);
+    if (surface.empty()) throw InvalidInput("the surface has no triangles");
+    const Box3 domain = cube_around_corners(box, "box");
+    const SurfaceContourOptions options{.depth = depth,
+                                        .refine_passes = refine,
+                                        .eps = eps,
+                                        .eta = eta,
+                                        .thin_depth = checked_thin_depth(thin_depth),
+                                        .creases = creases,
+                                        .distance_slack = 0.0};
+    const SurfaceContour result = without_gil(threads, [&] {
+        const SurfaceDistanceTree tree(
+            surface, domain, {.depth = SurfaceDistanceTree::default_depth(surface, domain)});
+        return contour_surface(
+            pointwise<Vec3>([&](Vec3 x) { return tree.closest_point(x).distance; },
+                            expensive_grain),
+            domain, options);
+    });
+    return surface_contour_answer(result, options, domain);
 }
 
 py::list velocity_names() {
@@ -233,6 +270,9 @@ PYBIND11_MODULE(_slc, m) {
     m.def("contour_surface", &contour_surface_function, py::arg("f"), py::arg("box"),
           py::arg("depth"), py::arg("eps"), py::arg("refine"), py::arg("slack"), py::arg("eta"),
           py::arg("thin_depth"), py::arg("creases"));
+    m.def("contour_surface_mesh", &contour_surface_mesh, py::arg("vertices"), py::arg("triangles"),
+          py::arg("box"), py::arg("depth"), py::arg("eps"), py::arg("refine"), py::arg("eta"),
+          py::arg("thin_depth"), py::arg("creases"), py::arg("threads"));
     add_run_functions(m);
     add_surface_functions(m);
     m.def("velocity_names", &velocity_names);

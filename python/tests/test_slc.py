@@ -297,15 +297,19 @@ def test_contour_surface_follows_the_creases_of_a_mesh():
         return slc.distance(mesh, p)[0]
 
     eps = 1e-3
-    vertices, triangles, stats = slc.contour_surface(g, 1.0, 3, eps=eps, slack=0.0, creases=True)
-    assert stats["converged"] and stats["residual"] <= eps
+    # The Surface itself: its exact distance in C++, creases followed by default.
+    vertices, triangles, stats = slc.contour_surface(mesh, 1.0, 3, eps=eps)
+    assert stats["converged"] and stats["residual"] <= eps and stats["creases"]
     assert slc.Surface(vertices, triangles).genus == 1
     a, b, c = (vertices[triangles[:, k]] for k in range(3))
     for p in (0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (a + b + c) / 3):
         assert np.abs(g(p)).max() <= eps
+    # Its distance as a Python function, creases asked for: the same contour.
+    v2, t2, s2 = slc.contour_surface(g, 1.0, 3, eps=eps, slack=0.0, creases=True)
+    assert s2["converged"] and len(t2) == len(triangles)
     # Plain refinement, halving edges across the creases, stops beyond eps with more triangles.
-    _, plain, _ = slc.contour_surface(g, 1.0, 3, eps=eps, slack=0.0)
-    assert len(triangles) < len(plain)
+    _, plain, plain_stats = slc.contour_surface(mesh, 1.0, 3, eps=eps, creases=False)
+    assert not plain_stats["converged"] and len(triangles) < len(plain)
 
 
 def test_contour_surface_of_a_torus_is_closed_and_within_eps():
