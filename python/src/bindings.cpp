@@ -166,6 +166,19 @@ py::tuple contour_function(const py::object& f, const std::vector<double>& box, 
     return py::make_tuple(arrays_of(r.curves), python_of(stats));
 }
 
+/// contour_surface's options as Python gives them.
+SurfaceContourOptions surface_contour_options(int depth, int refine, std::optional<double> eps,
+                                              std::optional<double> eta, int thin_depth,
+                                              bool creases, std::optional<double> slack) {
+    return {.depth = depth,
+            .refine_passes = refine,
+            .eps = eps,
+            .eta = eta,
+            .thin_depth = checked_thin_depth(thin_depth),
+            .creases = creases,
+            .distance_slack = slack};
+}
+
 /// contour_surface's answer: the surface's arrays and its statistics.
 py::tuple surface_contour_answer(const SurfaceContour& result, const SurfaceContourOptions& options,
                                  const Box3& domain) {
@@ -185,13 +198,8 @@ py::tuple contour_surface_function(const py::object& f, const std::vector<double
                                    std::optional<double> slack, std::optional<double> eta,
                                    int thin_depth, bool creases) {
     const Box3 domain = cube_around_corners(box, "box");
-    const SurfaceContourOptions options{.depth = depth,
-                                        .refine_passes = refine,
-                                        .eps = eps,
-                                        .eta = eta,
-                                        .thin_depth = checked_thin_depth(thin_depth),
-                                        .creases = creases,
-                                        .distance_slack = slack};
+    const SurfaceContourOptions options =
+        surface_contour_options(depth, refine, eps, eta, thin_depth, creases, slack);
     auto g = [&f](std::span<const Vec3> points, std::span<double> values) {
         call_batch(f, points, values);
     };
@@ -212,13 +220,9 @@ py::tuple contour_surface_mesh(const Array& vertices, const IndexArray& triangle
     const Surface surface = surface_of(vertices, triangles);
     if (surface.empty()) throw InvalidInput("the surface has no triangles");
     const Box3 domain = cube_around_corners(box, "box");
-    const SurfaceContourOptions options{.depth = depth,
-                                        .refine_passes = refine,
-                                        .eps = eps,
-                                        .eta = eta,
-                                        .thin_depth = checked_thin_depth(thin_depth),
-                                        .creases = creases,
-                                        .distance_slack = 0.0};
+    // A signed distance is 1-Lipschitz: points far from its surface need no value.
+    const SurfaceContourOptions options =
+        surface_contour_options(depth, refine, eps, eta, thin_depth, creases, 0.0);
     const SurfaceContour result = without_gil(threads, [&] {
         const SurfaceDistanceTree tree(
             surface, domain, {.depth = SurfaceDistanceTree::default_depth(surface, domain)});
