@@ -793,10 +793,8 @@ std::vector<NormalRoot> roots_along_normals(const Surface& s, const Edges& edges
         quarter_of.push_back(k);
     }
     const std::vector<LineRoot> quarter_at = roots_along_lines(quarter_lines, g, roots);
-    std::vector<RootLine> crease_lines;
     std::vector<std::uint32_t> crease_of;  // the line of each crease point
     std::vector<Vec3> points;
-    std::vector<double> crease_height;  // the height of the zero set at the midpoint
     for (std::uint32_t j = 0; j < quarter_of.size(); ++j) {
         const std::uint32_t i = suspects[quarter_of[j]];
         const std::uint32_t e = candidates[line_of[i]];
@@ -806,15 +804,16 @@ std::vector<NormalRoot> roots_along_normals(const Surface& s, const Edges& edges
         if (!x) continue;
         points.push_back(*x);
         crease_of.push_back(i);
-        crease_height.push_back(at[i].distance);
     }
     std::vector<double> values(points.size());
     g(points, values);
+    std::vector<RootLine> crease_lines;
+    std::vector<std::uint32_t> settle_of;  // the line of each crease point settled
     for (std::uint32_t k = 0; k < points.size(); ++k) {
         const std::uint32_t i = crease_of[k];
         // A rounded edge's profile is a tent with its tip cut off: its lines' meeting point
-        // lies off the zero set by a fair part of the height.
-        if (!(std::abs(values[k]) <= crease_fit * crease_height[k])) continue;
+        // lies off the zero set by a fair part of the height (at the midpoint).
+        if (!(std::abs(values[k]) <= crease_fit * at[i].distance)) continue;
         if (std::abs(values[k]) <= roots.eta) {
             out[line_of[i]].point = points[k];
             out[line_of[i]].crease = true;
@@ -824,11 +823,7 @@ std::vector<NormalRoot> roots_along_normals(const Surface& s, const Edges& edges
         const Vec3 d =
             (values[k] > 0.0) == (lines[i].g0 > 0.0) ? lines[i].direction : -lines[i].direction;
         crease_lines.push_back({points[k], d, crease_reach * lines[i].length, values[k]});
-    }
-    std::vector<std::uint32_t> settle_of;
-    for (std::uint32_t k = 0; k < points.size(); ++k) {
-        if (std::abs(values[k]) > roots.eta && std::abs(values[k]) <= crease_fit * crease_height[k])
-            settle_of.push_back(crease_of[k]);
+        settle_of.push_back(i);
     }
     const std::vector<LineRoot> settled = roots_along_lines(crease_lines, g, roots);
     for (std::size_t k = 0; k < crease_lines.size(); ++k) {
