@@ -13,6 +13,8 @@
 
 #include "slc/core/error.hpp"
 #include "slc/distance/distance_tree.hpp"
+#include "slc/geometry/balls.hpp"
+#include "slc/geometry/segment.hpp"
 #include "slc/geometry/shapes.hpp"
 #include "slc/velocity/expression.hpp"
 #include "slc/velocity/grid_field.hpp"
@@ -69,7 +71,10 @@ auto rotation_exact(const Problem& p, Vec2 c, double omega) {
         };
 }
 
-/// Huygens' principle: under normal speed s the interface at t is the level set F0 = s t.
+/// Huygens' principle: under normal speed s the interface at t is the level set F0 = s t, and
+/// F0 − s t is its signed distance where the offset is convex (a convex shape growing) or on the
+/// side where nothing was cut (the inside of a shrinking shape). Where the offset has cusps or
+/// sharpened corners it is only a lower bound; problems that know their offset exactly say so.
 auto huygens_exact(const Problem& p, double speed) {
     auto f0 = std::make_shared<Distance>(p.initial, p.domain);
     return [f0, speed](std::span<const Vec2> xs, double t) -> std::optional<std::vector<double>> {
@@ -82,6 +87,24 @@ auto huygens_exact(const Problem& p, double speed) {
 double velocity_param(const Problem& p, const std::string& name, double fallback) {
     auto it = p.velocity_params.find(name);
     return it == p.velocity_params.end() ? fallback : it->second;
+}
+
+using ExactSolution = decltype(Problem::exact);
+
+/// Discs growing at normal speed s ≥ 0: the exact distance to the union of the discs grown by
+/// s t (Eq. 11), right in the cusps and islands where they merge. Shrinking, the union's inner
+/// offset is not a union of discs, and there is no exact solution.
+ExactSolution growing_discs_exact(std::vector<Ball<2>> discs, double speed) {
+    return
+        [discs, speed](std::span<const Vec2> xs, double t) -> std::optional<std::vector<double>> {
+            if (speed < 0.0) return std::nullopt;
+            std::vector<Ball<2>> grown = discs;
+            for (Ball<2>& b : grown) b.radius += speed * t;
+            std::vector<double> d;
+            d.reserve(xs.size());
+            for (Vec2 x : xs) d.push_back(union_of_balls_distance<2>(grown, x));
+            return d;
+        };
 }
 
 /// An equilateral triangle of circumradius r about the origin, tilted, sides split evenly.
@@ -206,17 +229,34 @@ Problem triangle_normal(const Params& params) {
              {triangle(1.0, tilt * pi / 180, 64)}, Box::centered_square(2.5), 0.4, "unit-normal");
     p.parameters = {{"tilt", tilt, "rotation of the triangle, degrees"}};
     set_run(p, 80, 0, 5, 2, 1e-5);
+    // Growing, the offset of a convex shape is F0 − s t (make_problem). Shrinking, it is the
+    // triangle whose sides moved in by |s| t, with sharp corners: circumradius 1 − 2 |s| t.
+    const double speed = params.count("speed") ? params.at("speed") : 1.0;
+    if (speed < 0.0)
+        p.exact = [tilt, speed](std::span<const Vec2> xs,
+                                double t) -> std::optional<std::vector<double>> {
+            const double r = 1.0 + 2.0 * speed * t;
+            if (!(r > 0.0)) return std::nullopt;
+            const Interface shrunk{{triangle(r, tilt * pi / 180, 1)}};
+            std::vector<double> d;
+            d.reserve(xs.size());
+            for (Vec2 x : xs) d.push_back(closest_point_brute_force(shrunk, x).distance);
+            return d;
+        };
     return p;
 }
 
-Problem merging_circles(const Params&) {
+Problem merging_circles(const Params& params) {
+    const std::vector<Ball<2>> discs{{{-0.6, 0}, 0.4}, {{0.6, 0}, 0.4}, {{0, 0.9}, 0.3}};
     Problem p = base("merging-circles",
                      "three circles growing with unit normal speed and merging, cusps and islands "
                      "(§4.5.2, Fig. 14, Table 6)",
-                     {shapes::circle({-0.6, 0}, 0.4, 512), shapes::circle({0.6, 0}, 0.4, 512),
-                      shapes::circle({0, 0.9}, 0.3, 384)},
+                     {shapes::circle(discs[0].centre, discs[0].radius, 512),
+                      shapes::circle(discs[1].centre, discs[1].radius, 512),
+                      shapes::circle(discs[2].centre, discs[2].radius, 384)},
                      Box::centered_square(2.0), 0.5, "unit-normal");
     set_run(p, 160, 0, 5, 2, 1e-5);
+    p.exact = growing_discs_exact(discs, params.count("speed") ? params.at("speed") : 1.0);
     p.study.paper_table = "table6_merging";
     return p;
 }
@@ -360,7 +400,7 @@ Problem make_problem(const std::string& name, const std::map<std::string, double
             for (const auto& q : p.parameters) own = own || q.name == key;
             if (!own) p.velocity_params[key] = value;
         }
-        if (p.velocity == "unit-normal")
+        if (p.velocity == "unit-normal" && !p.exact)
             p.exact = huygens_exact(p, velocity_param(p, "speed", 1.0));
         // The paper's method unless a problem says otherwise: its tables are the reference.
         if (!p.extension) p.extension = Extension::nearest_point;

@@ -46,11 +46,20 @@ StudyResult study(const Problem& problem, int rows, const RunOptions& base,
             cell.refine = p;
             cell.options = study_cell_options(problem, row, p, base);
             const RunOptions& o = cell.options;
-            const RunResult r = run(initial, *law, problem.domain, o);
+            RunResult r = run(initial, *law, problem.domain, o);
+            if (r.status == RunStatus::unstable && o.guards) {
+                // The paper's table has every cell: without the guards the run goes on to its
+                // end, and its error is reported beside the break that stopped it.
+                cell.stopped = r.message;
+                RunOptions off = o;
+                off.guards = false;
+                r = run(initial, *law, problem.domain, off);
+            }
             cell.status = r.status;
-            // A run stopped short of its end (unstable, error) has no error to compare: the
-            // exact solution is known at t_end, and its curves stopped at an earlier time.
-            if (r.status == RunStatus::ok || r.status == RunStatus::vanished)
+            // A run stopped short of its end (error) has no error to compare: the exact
+            // solution is known at t_end, and its curves stopped at an earlier time.
+            if (r.status == RunStatus::ok || r.status == RunStatus::vanished ||
+                r.status == RunStatus::broken)
                 cell.e_inf = max_error(problem, r.curves, r.t);
             cell.cpu_s_per_step = r.steps_done > 0 ? r.cpu_s / r.steps_done : 0.0;
             cell.g_evals_per_vertex = r.vertices_produced > 0

@@ -12,6 +12,7 @@
 #include "slc/core/error.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/evolve/overrides.hpp"
+#include "slc/geometry/balls.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/velocity/surface_laws.hpp"
 #include "user_defaults.hpp"
@@ -179,8 +180,10 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
         p.steps = 10;
         p.study = SurfaceStudyPlan{.steps = 5, .depth = 5, .eps = 4e-4};
         p.law = std::make_unique<SurfaceNormalSpeed>(1.0);
+        // The union of the grown balls, exact also in the neck where they merge (Eq. 11).
         p.exact = [a, b](double t, Vec3 x) {
-            return std::min(distance(x, a), distance(x, b)) - (0.25 + t);
+            const Ball<3> balls[] = {{a, 0.25 + t}, {b, 0.25 + t}};
+            return union_of_balls_distance<3>(balls, x);
         };
     } else if (name == "box-normal") {
         const VelocityParams v = resolve(what, {{"speed", 1.0}}, params);

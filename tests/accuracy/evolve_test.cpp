@@ -19,6 +19,8 @@
 #include "slc/evolve/run.hpp"
 #include "slc/evolve/self_convergence.hpp"
 #include "slc/evolve/step.hpp"
+#include "slc/geometry/balls.hpp"
+#include "slc/geometry/segment.hpp"
 #include "slc/geometry/shapes.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/velocity/factory.hpp"
@@ -83,14 +85,19 @@ TEST(Run, RotatedCircleReturnsToItsStart) {
 TEST(Run, GrowingAndShrinkingSquaresMeetHuygens) {
     for (double speed : {1.0, -1.0}) {
         SCOPED_TRACE(::testing::Message() << "speed " << speed);
-        // Huygens: Γ(t) is the level set F0 = speed · t of the initial distance F0.
+        // Huygens: growing, the square's offset has rounded corners and F0 − t is its distance;
+        // shrinking, it is the square of half-width 1 − t, with sharp corners.
         const Interface square({shapes::rectangle({-1, -1}, {1, 1}, 32)});
         const DistanceTree f0(square, Box::centered_square(2.5),
                               {.depth = 8, .triangulate = false});
+        const auto exact = [&](Vec2 x, double t) {
+            if (speed > 0) return f0.closest_point(x).distance - speed * t;
+            const double w = 1.0 + speed * t;
+            const Interface inner({shapes::rectangle({-w, -w}, {w, w})});
+            return closest_point_brute_force(inner, x).distance;
+        };
         const Problem p =
-            with_initial("triangle-normal", square.curves(),
-                         [&](Vec2 x, double t) { return f0.closest_point(x).distance - speed * t; },
-                         {{"speed", speed}});
+            with_initial("triangle-normal", square.curves(), exact, {{"speed", speed}});
         const auto [r, e] = solve(p, options(0.4, 20, 6, 1, 1e-6));
         EXPECT_EQ(r.status, RunStatus::ok);
         ASSERT_TRUE(e);
@@ -102,15 +109,41 @@ TEST(Run, GrowingAndShrinkingSquaresMeetHuygens) {
 
 TEST(Run, TwoCirclesMergeIntoOneComponent) {
     const Interface two({shapes::circle({-0.5, 0}, 0.4, 256), shapes::circle({0.5, 0}, 0.4, 256)});
-    const DistanceTree f0(two, Box::centered_square(2.0), {.depth = 8, .triangulate = false});
     const Problem p = with_initial("merging-circles", two.curves(), [&](Vec2 x, double t) {
-        return f0.closest_point(x).distance - t;
+        const Ball<2> grown[] = {{{-0.5, 0}, 0.4 + t}, {{0.5, 0}, 0.4 + t}};
+        return union_of_balls_distance<2>(grown, x);
     });
     const auto [r, e] = solve(p, options(0.3, 30, 5, 2, 1e-5));
     EXPECT_EQ(r.status, RunStatus::ok);
     EXPECT_EQ(r.curves.curve_count(), 1u);
     ASSERT_TRUE(e);
     EXPECT_LT(*e, 0.03);
+}
+
+TEST(Problems, UnitSpeedOffsetsAreScoredByTheirExactDistance) {
+    // Eq. 11 needs the distance to the exact Γ(t), which F0 − s t is not in the cusps of merging
+    // circles nor beyond the sharp corners of a shrinking triangle.
+    const Problem merging = make_problem("merging-circles");
+    // At t = 0.5 the discs (radii 0.9, 0.9, 0.8) enclose an island; from its centre region the
+    // nearest boundary point is a corner where two of the grown circles cross.
+    const Ball<2> grown[] = {{{-0.6, 0}, 0.9}, {{0.6, 0}, 0.9}, {{0, 0.9}, 0.8}};
+    const std::vector<Vec2> xs{{0, 0.55}, {0, 0.45}, {1.6, 0}};
+    const auto d = merging.exact(xs, 0.5);
+    ASSERT_TRUE(d);
+    for (std::size_t i = 0; i < xs.size(); ++i)
+        EXPECT_DOUBLE_EQ((*d)[i], union_of_balls_distance<2>(grown, xs[i]));
+    EXPECT_NEAR((*d)[2], 0.1, 1e-15);
+    EXPECT_FALSE(make_problem("merging-circles", {{"speed", -1.0}}).exact(xs, 0.1));
+
+    // The shrinking triangle's corner (0, 1) moves to (0, 1 − 2t); at t = 0.2, the point (0, 0.7)
+    // is 0.1 beyond it, where F0 + t = −0.15 + 0.2 says 0.05.
+    const Problem shrinking = make_problem("triangle-normal", {{"speed", -1.0}});
+    const std::vector<Vec2> beyond{{0, 0.7}, {0, 0}};
+    const auto e = shrinking.exact(beyond, 0.2);
+    ASSERT_TRUE(e);
+    EXPECT_NEAR((*e)[0], 0.1, 1e-12);
+    EXPECT_NEAR((*e)[1], -0.3, 1e-12);           // the inradius 0.5 less 0.2
+    EXPECT_FALSE(shrinking.exact(beyond, 0.5));  // nothing is left
 }
 
 TEST(Run, CircleUnderCurvatureFollowsTheExactRadiusAndVanishes) {

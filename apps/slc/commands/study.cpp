@@ -126,12 +126,24 @@ std::string markdown(const Problem& p, const StudyResult& s, const Paper& paper)
                 it == paper.end() ? "" : fmt::format(" / {:.3g}", it->second.first);
             const std::string t_paper =
                 it == paper.end() ? "" : fmt::format(" / {:.3g}", it->second.second);
-            e_line += fmt::format(
-                " {}{} |", cell.e_inf ? number(cell.e_inf) : to_string(cell.status), e_paper);
+            e_line +=
+                fmt::format(" {}{}{} |", cell.e_inf ? number(cell.e_inf) : to_string(cell.status),
+                            cell.stopped.empty() ? "" : "*", e_paper);
             t_line += fmt::format(" {:.2e}{} |", cell.cpu_s_per_step, t_paper);
         }
         md += e_line + "\n" + t_line + "\n";
     }
+    std::string stopped;
+    for (const StudyCell& c : s.cells)
+        if (!c.stopped.empty())
+            stopped += fmt::format("- {}/{}/{}/{}: {}\n", c.options.steps,
+                                   c.options.step.embedded.smoothing, c.options.step.contour.depth,
+                                   c.refine, c.stopped);
+    if (!stopped.empty())
+        md +=
+            "\n\\* The guards stop these runs; the cell is the same run without them "
+            "(`--no-guards`), as the paper's runs are, to its end (status broken):\n\n" +
+            stopped;
     md += orders_markdown(s, "segments halve per pass: 1 means first order");
     return md;
 }
@@ -468,7 +480,9 @@ void run_study(const StudyCommand& o) {
     const nlohmann::json cells = cells_json(s.cells, [](const StudyCell& c) {
         return nlohmann::json{{"run", run_name(c.options)},
                               {"g_evals_per_vertex", c.g_evals_per_vertex},
-                              {"segments", c.segments}};
+                              {"segments", c.segments},
+                              {"stopped_by_guards", c.stopped.empty() ? nlohmann::json(nullptr)
+                                                                      : nlohmann::json(c.stopped)}};
     });
     write_file_atomic(
         dir / "table.json",

@@ -20,10 +20,14 @@ struct StudyCell {
     int refine = 0;                    ///< P, the column
     RunOptions options;                ///< the run's settings (N/S/K/P/ε resolved)
     RunStatus status = RunStatus::ok;  ///< how the run ended
-    std::optional<double> e_inf;       ///< the error of Equation (11) at the end
-    double cpu_s_per_step = 0.0;       ///< process CPU seconds of the time loop / N
-    double g_evals_per_vertex = 0.0;   ///< G evaluations / vertices produced, whole run
-    std::size_t segments = 0;          ///< segments of the final curves
+    /// Why the guards stopped this cell's run (its message, naming the time), when they did: the
+    /// cell is then run again without them, as the paper's runs are, and status and e_inf are
+    /// that run's (status broken).
+    std::string stopped;
+    std::optional<double> e_inf;      ///< the error of Equation (11) at the end
+    double cpu_s_per_step = 0.0;      ///< process CPU seconds of the time loop / N
+    double g_evals_per_vertex = 0.0;  ///< G evaluations / vertices produced, whole run
+    std::size_t segments = 0;         ///< segments of the final curves
 };
 
 /// log2(coarse / fine), the observed order between two errors; nullopt where one is missing or
