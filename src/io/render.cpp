@@ -467,6 +467,48 @@ void Figure::add_arrows(std::span<const Vec2> at, std::span<const Vec2> vec, dou
         Layer{ArrowsLayer{{at.begin(), at.end()}, {vec.begin(), vec.end()}, scale, color}}));
 }
 
+void Figure::save_grid(std::span<const Figure> figures, int columns,
+                       const std::filesystem::path& path) {
+    if (figures.empty()) throw InvalidInput("a grid of pictures needs at least one");
+    if (columns < 1) throw InvalidInput(fmt::format("a grid needs a column, got {}", columns));
+    const PictureFormat format = picture_format(path);
+    std::vector<Layers> layers(figures.size());
+    std::vector<Page> pages;
+    double cell_width = 0.0, cell_height = 0.0;
+    for (std::size_t i = 0; i < figures.size(); ++i) {
+        for (const auto& layer : figures[i].layers_) layers[i].push_back(&layer->item);
+        Page page = measured_layout(figures[i].view_, figures[i].title_, layers[i]);
+        page.x_name = figures[i].x_name_;
+        page.y_name = figures[i].y_name_;
+        cell_width = std::max(cell_width, page.width);
+        cell_height = std::max(cell_height, page.height);
+        pages.push_back(std::move(page));
+    }
+    const std::size_t across = std::min(figures.size(), static_cast<std::size_t>(columns));
+    const std::size_t rows = (figures.size() + across - 1) / across;
+    // A PNG's png_scale makes 2 pixels of a layout pixel; many panels are drawn smaller.
+    const double shrink =
+        format == PictureFormat::png
+            ? std::min(1.0, 2400.0 / (png_scale * cell_width * static_cast<double>(across)))
+            : 1.0;
+    write_picture(path, format, shrink * cell_width * static_cast<double>(across),
+                  shrink * cell_height * static_cast<double>(rows), [&](cairo_t* cr) {
+                      cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
+                      cairo_paint(cr);
+                      cairo_scale(cr, shrink, shrink);
+                      for (std::size_t i = 0; i < figures.size(); ++i) {
+                          cairo_save(cr);
+                          cairo_translate(cr, cell_width * static_cast<double>(i % across),
+                                          cell_height * static_cast<double>(i / across));
+                          // render() paints its page white: only its own cell.
+                          cairo_rectangle(cr, 0.0, 0.0, cell_width, cell_height);
+                          cairo_clip(cr);
+                          render(cr, pages[i], layers[i], figures[i].title_);
+                          cairo_restore(cr);
+                      }
+                  });
+}
+
 void Figure::save(const std::filesystem::path& path) const {
     const PictureFormat format = picture_format(path);
     Layers layers;

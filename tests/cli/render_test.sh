@@ -11,6 +11,23 @@ check "png signature" bash -c "head -c 8 one.png | od -An -tx1 | grep -q '89 50 
 expect_error "bad extension" "extension|\.pdf" -- render square.json --out one.pdf
 expect_error "missing input" "missing.json" -- render missing.json --out x.svg
 
+# Panels: each file in its own; the frames of two runs overlaid at chosen times.
+expect_ok "panels of files" -- render square.json shifted.json --columns 2 --out panels.png
+check "panels: one picture twice as wide as tall" python3 -c "
+import struct
+w, h = struct.unpack('>II', open('panels.png', 'rb').read()[16:24])
+assert 1.8 < w / h < 2.4, (w, h)"
+expect_ok "frames of a run" -- run --problem triangle-normal -N 4 -K 4 -P 0 --frames 4 --out tri --quiet
+expect_ok "frames of another" -- run --problem triangle-normal -N 8 -K 4 -P 0 --frames 8 --out tri8 --quiet
+expect_ok "panels of two runs at times" -- render --frames tri tri8/ --columns 3 --times 0,0.2,0.4 --out times.svg
+check "three panels in a row" python3 -c "
+import re
+w, h = (float(v) for v in re.search(r'<svg[^>]*width=\"([0-9.]+)[a-z]*\"[^>]*height=\"([0-9.]+)', open('times.svg').read()).groups())
+assert 2.5 < w / h < 4.2, (w, h)"
+expect_error "times without panels" "--times" -- render --frames tri --times 0.2 --out x.svg
+expect_error "an animation of two runs" "one run" -- render --frames tri tri8 --out x.svg
+expect_error "zero columns" "columns" -- render square.json --columns 0 --out x.png
+
 expect_ok "tree of a built-in shape" -- tree --shape propeller --tree-depth 5 --out demo
 for f in summary.json interface.json tree.svg tree.png distance.png extension.png whitney.png; do
     check "tree writes $f" test -s "demo/$f"

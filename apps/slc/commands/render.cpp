@@ -19,8 +19,10 @@ namespace {
 
 struct RenderOptions {
     std::vector<std::string> files;
-    std::string frames;
+    std::vector<std::string> frames;
     double seconds_per_frame = 0.25;
+    int columns = 0;
+    std::vector<double> times;
     std::string out;
     std::string title;
     DomainOptions view;
@@ -54,24 +56,114 @@ std::vector<std::filesystem::path> frame_files(const std::filesystem::path& dir)
 }
 
 void render_animation(const RenderOptions& o) {
+    if (o.frames.size() != 1)
+        throw InvalidInput(
+            "an animation draws one run's frames: give --columns to set runs side by side");
     if (std::filesystem::path(o.out).extension() != ".svg")
         throw InvalidInput(
             fmt::format("--frames draws an animated SVG: --out must end in .svg, got {}", o.out));
     std::vector<AnimationFrame> frames;
     Box bounds = Box::empty();
-    for (const auto& file : frame_files(o.frames)) {
+    for (const auto& file : frame_files(o.frames[0])) {
         const InterfaceFile raw = read_interface_json(file);
         // A run's last frame is empty when everything vanished.
         Interface curves = raw.curves.empty() ? Interface{} : prepare_interface(raw.curves).curves;
         if (!curves.empty()) bounds = unite(bounds, bounding_box(curves.points()));
         frames.push_back({raw.time, std::move(curves)});
     }
-    if (bounds.is_empty()) throw InvalidInput(fmt::format("every frame in {} is empty", o.frames));
+    if (bounds.is_empty())
+        throw InvalidInput(fmt::format("every frame in {} is empty", o.frames[0]));
     const AnimationOptions options{o.seconds_per_frame, o.title, true};
     write_file_atomic(o.out, animated_svg(frames, view_of(o.view, bounds), options));
 }
 
+/// One panel of a grid: its title and its interfaces, each with a legend label (or none).
+struct Panel {
+    std::string title;
+    std::vector<std::pair<std::string, Interface>> layers;
+};
+
+/// The frame of a run nearest each of `times`; every frame when none is given.
+std::vector<std::filesystem::path> frames_at(const std::string& dir,
+                                             const std::vector<double>& times) {
+    const auto files = frame_files(dir);
+    if (times.empty()) return files;
+    std::vector<double> at;
+    for (const auto& file : files) at.push_back(read_interface_json(file).time);
+    std::vector<std::filesystem::path> out;
+    for (double t : times) {
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < at.size(); ++i)
+            if (std::abs(at[i] - t) < std::abs(at[best] - t)) best = i;
+        out.push_back(files[best]);
+    }
+    return out;
+}
+
+/// Each file in a panel of its own; or a panel a time, holding each run's frame nearest it (the
+/// runs overlaid, named in a legend when there are several), `columns` to a row.
+void render_grid(const RenderOptions& o) {
+    std::vector<Panel> panels;
+    Box bounds = Box::empty();
+    const auto read = [&bounds](const std::filesystem::path& file) {
+        InterfaceFile raw = read_interface_json(file);
+        Interface curves = raw.curves.empty() ? Interface{} : prepare_interface(raw.curves).curves;
+        if (!curves.empty()) bounds = unite(bounds, bounding_box(curves.points()));
+        return std::pair{raw.time, std::move(curves)};
+    };
+    if (o.frames.empty()) {
+        for (const std::string& f : o.files)
+            panels.push_back(
+                {std::filesystem::path(f).filename().string(), {{"", read(f).second}}});
+    } else {
+        std::vector<std::vector<std::filesystem::path>> runs;
+        for (const std::string& dir : o.frames) runs.push_back(frames_at(dir, o.times));
+        // Without --times, the first run's frames set the panels; the others' nearest join them.
+        std::vector<double> times = o.times;
+        if (times.empty())
+            for (const auto& file : runs[0]) times.push_back(read_interface_json(file).time);
+        for (std::size_t r = 1; r < runs.size(); ++r) runs[r] = frames_at(o.frames[r], times);
+        for (std::size_t i = 0; i < times.size(); ++i) {
+            Panel panel;
+            for (std::size_t r = 0; r < runs.size(); ++r) {
+                auto [t, curves] = read(runs[r][i]);
+                if (r == 0) panel.title = fmt::format("t = {:.4g}", t);
+                std::filesystem::path name(o.frames[r]);  // "out/a/" names a
+                if (name.filename().empty()) name = name.parent_path();
+                const std::string label = runs.size() > 1 ? name.filename().string() : "";
+                panel.layers.emplace_back(label, std::move(curves));
+            }
+            panels.push_back(std::move(panel));
+        }
+    }
+    if (panels.size() > 64)
+        throw InvalidInput(
+            fmt::format("{} panels are too many for one picture (at most 64): "
+                        "choose frames with --times",
+                        panels.size()));
+    if (bounds.is_empty()) throw InvalidInput("every interface to draw is empty");
+    const Box view = view_of(o.view, bounds);
+    std::vector<Figure> figures;
+    for (const Panel& panel : panels) {
+        Figure& figure = figures.emplace_back(
+            view, o.title.empty() ? panel.title : fmt::format("{}: {}", o.title, panel.title));
+        // The runs' legend on the first panel only: the colours are the same in every one.
+        for (std::size_t r = 0; r < panel.layers.size(); ++r)
+            figure.add_curves(panel.layers[r].second,
+                              figures.size() == 1 ? panel.layers[r].first : "", palette_color(r));
+    }
+    Figure::save_grid(figures, o.columns, o.out);
+}
+
 void run_render(const RenderOptions& o) {
+    if (!o.times.empty() && (o.frames.empty() || o.columns == 0))
+        throw InvalidInput("--times picks frames for panels: give it with --frames and --columns");
+    if (o.columns > 0) {
+        if (o.frames.empty() && o.files.empty())
+            throw InvalidInput("give interface files to draw, or --frames DIR");
+        render_grid(o);
+        return;
+    }
     if (!o.frames.empty()) {
         render_animation(o);
         return;
@@ -96,20 +188,31 @@ void run_render(const RenderOptions& o) {
 void add_render_command(CLI::App& app) {
     const auto [cmd, o] = add_command<RenderOptions>(
         app, "render",
-        "Draws interface files as SVG or PNG (by the extension of --out), or the frames of a run "
-        "as an animated SVG (--frames)");
+        "Draws interface files as SVG or PNG (by the extension of --out), overlaid or in panels "
+        "(--columns), or the frames of a run as an animated SVG (--frames) or panels (--frames "
+        "--columns, --times)");
     auto* files = cmd->add_option("files", o->files,
                                   "Interface files of curves (JSON); a surface's "
                                   "pictures are drawn by slc run and slc contour (final.png)");
     cmd->add_option("--frames", o->frames,
                     "Instead of files: the frames of a run (DIR/frames/frame_*.json, from slc run "
                     "--out DIR --frames n) as an animated SVG, each frame in turn over a trail of "
-                    "all of them")
+                    "all of them; with --columns, panels of one or more runs (overlaid)")
         ->excludes(files);
     cmd->add_option("--seconds-per-frame", o->seconds_per_frame,
                     "With --frames: how long each frame shows (default 0.25)")
         ->check(positive_number());
-    cmd->add_option("--out", o->out, "Picture to write: .svg or .png (.svg with --frames)")
+    cmd->add_option("--columns", o->columns,
+                    "Draw each file, or each frame of --frames, in a panel of its own (the same "
+                    "view, titled by its file name or the frame's time), this many panels to a "
+                    "row: a time sequence as SVG or PNG, at most 64 panels")
+        ->check(CLI::Range(1, 64));
+    cmd->add_option("--times", o->times,
+                    "With --frames and --columns: the panels are the frames nearest these times "
+                    "(comma-separated), in this order")
+        ->delimiter(',');
+    cmd->add_option("--out", o->out,
+                    "Picture to write: .svg or .png (.svg with --frames, unless --columns)")
         ->required();
     cmd->add_option("--title", o->title, "Title above the picture");
     add_domain_options(*cmd, o->view);

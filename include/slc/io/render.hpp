@@ -80,6 +80,13 @@ public:
     /// Written atomically (write_file_atomic semantics).
     void save(const std::filesystem::path& path) const;
 
+    /// Writes the figures as one picture of panels, `columns` to a row (the last row may be
+    /// short), each with its own title, axes and legend, in cells of the largest one's size.
+    /// The extension (.svg or .png) picks the format, else InvalidInput; a PNG is drawn at
+    /// most 2400 pixels wide. Throws InvalidInput if there are no figures or columns < 1.
+    static void save_grid(std::span<const Figure> figures, int columns,
+                          const std::filesystem::path& path);
+
 private:
     struct Layer;
     Box view_;
