@@ -116,6 +116,25 @@ class Figures:
         shutil.copy(os.path.join(self.out(name), "frames.png"), os.path.join(self.figures, target))
         return f"![{name}](figures/{target})"
 
+    def panels(self, runs, times, columns, target, view=None, by_run=False):
+        """The frames nearest `times` of runs, a list of (legend label, run name), a panel a time
+        with the runs overlaid (`slc render --columns`), or with by_run a panel a run (all its
+        frames, or those nearest `times`), written to docs/figures/target."""
+        folder = self.out(f"panels-{target}")
+        os.makedirs(folder, exist_ok=True)
+        for label, name in runs:  # the legend names a run by its folder's name
+            os.symlink(self.out(name), os.path.join(folder, label))
+        args = [self.slc, "render", "--frames", *[os.path.join(folder, l) for l, _ in runs],
+                "--columns", str(columns), "--out", os.path.join(self.figures, target)]
+        if times:
+            args += ["--times", ",".join(f"{t:g}" for t in times)]
+        if by_run:
+            args.append("--by-run")
+        if view:
+            args += ["--box", ",".join(f"{v:g}" for v in view)]
+        subprocess.run(args, check=True)
+        return f"![{target}](figures/{target})"
+
     def distance(self, a_name, b_name, box, j=None, turn_b=0.0):
         """Distance between the final curves (or frame j) of two runs, b turned by turn_b°; None
         when a run ended before frame j."""
@@ -160,8 +179,8 @@ G is the exact offset of the polygon (docs/algorithms/evolve.md).
                 base = ["--problem", "triangle-normal", "--param", f"speed={speed}",
                         "--extension", extension]
                 runs = {
-                    "coarse": ["-N", "40", "-K", "4", "-P", "2", "--eps", "1e-4"],
-                    "fine": ["-N", "80", "-K", "5", "-P", "2", "--eps", "1e-4"],
+                    "coarse": ["-N", "40", "-K", "4", "-P", "2", "--eps", "1e-4", "--frames", "4"],
+                    "fine": ["-N", "80", "-K", "5", "-P", "2", "--eps", "1e-4", "--frames", "4"],
                     "flat": ["-N", "80", "-K", "5", "-P", "2", "--eps", "1e-5"],
                     "tilted": ["-N", "80", "-K", "5", "-P", "2", "--eps", "1e-5", "--param",
                                "tilt=10", "--frames", "4"],
@@ -176,18 +195,71 @@ G is the exact offset of the polygon (docs/algorithms/evolve.md).
                     f"{fmt(s['flat']['e_inf'])} | {fmt(s['tilted']['e_inf'])} | "
                     f"{fmt(self.distance(f'{tag}-flat', f'{tag}-tilted', box, turn_b=-10))} | "
                     f"{lo}–{hi} |\n".replace("1–1", "1"))
-        self.write("\n| shrinking, direct, tilted 10° | growing, direct, tilted 10° |\n|---|---|\n")
-        self.write(f"| {self.picture('tri-1direct-tilted', 'figure13_shrinking.png')} | "
-                   f"{self.picture('tri+1direct-tilted', 'figure13_growing.png')} |\n\n")
+        self.write("\nThe paper's method (the nearest-point extension) at t = 0, 0.1, …, 0.4: "
+                   "40/0/4/2/1e−4 (`coarse`) over 80/0/5/2/1e−4 (`fine`), and the 80/0/5/2/1e−5 "
+                   "run tilted 10° and turned back (`tilted`):\n\n")
+        for speed, target in ((-1, "figure13_shrinking.png"), (1, "figure13_growing.png")):
+            tag = f"tri{speed:+d}nearest"
+            back = self.out(f"{tag}-tilted-back")
+            os.makedirs(os.path.join(back, "frames"), exist_ok=True)
+            for j in range(5):
+                with open(frame_path(self.out(f"{tag}-tilted"), j)) as f:
+                    frame = json.load(f)
+                for curve in frame["curves"]:
+                    curve["points"] = turned([curve["points"]], -10)[0]
+                with open(frame_path(back, j), "w") as f:
+                    json.dump(frame, f)
+            self.write(self.panels([("coarse", f"{tag}-coarse"), ("fine", f"{tag}-fine"),
+                                    ("tilted", f"{tag}-tilted-back")],
+                                   [0, 0.1, 0.2, 0.3, 0.4], 5, target,
+                                   view=[-1.6, -1.6, 1.6, 1.6]) + "\n\n")
         self.write(
             "Shrinking, the corners stay sharp to rounding with the direct extension: refinement "
             "places a vertex where the sides' lines meet, and a tip that the tree's interpolant "
             "parts from its body at a neck narrower than a cell (K = 5, t ≈ 0.2) is joined back "
             "(docs/algorithms/contour.md). The paper's nearest-point extension moves each corner "
-            "vertex along its averaged normal, which cuts the corners by about a hundredth. "
+            "vertex along its averaged normal and blends it into the sides' velocities, which "
+            "cuts the shrinking corners (E∞ above, by Eq. 11's exact distance to the shrunken "
+            "triangle) and leaves spurs where a cut corner is contoured again (what was tried: "
+            "docs/notes/corners.md). "
             "Growing, the corner arcs start smaller than a cell and the paper's triangle "
             "safeguard keeps refinement from reaching them (a user's run, which has it off, ends "
             "2.3e−4 from the exact offset: docs/defaults.md).\n\n")
+
+    # Figs. 12, 14, 16 ----------------------------------------------------------------------
+    def side_by_side(self):
+        self.write("""## Figs. 12, 14 and 16: the captions' runs side by side
+
+The paper draws each of these as four runs, coarse to fine, each with its frames overlaid. Here
+the same N/S/K/P/ε (the caption's), each run's frames in time's colours (dark first), and its E∞
+(Eq. 11) at the end.
+
+""")
+        figures = [
+            ("Fig. 12: a propeller under rigid rotation, two periods", "propeller-rotation",
+             "figure12_propeller.png", 8,
+             [("40", "0", "3", "1", "1e-3"), ("80", "0", "4", "2", "1e-4"),
+              ("160", "0", "5", "3", "1e-5"), ("320", "0", "6", "4", "1e-6")]),
+            ("Fig. 14: circles merging with unit normal velocity", "merging-circles",
+             "figure14_merging.png", 5,
+             [("40", "0", "3", "0", "1e-3"), ("80", "0", "4", "1", "1e-4"),
+              ("160", "0", "5", "2", "1e-5"), ("320", "0", "6", "3", "1e-6")]),
+            ("Fig. 16: circles shrinking under curvature flow, 0 ≤ t ≤ 2", "circle-curvature",
+             "figure16_curvature.png", 8,
+             [("20", "1", "3", "0", "1e-3"), ("40", "1", "4", "1", "1e-4"),
+              ("80", "1", "5", "2", "1e-5"), ("160", "2", "6", "3", "1e-6")]),
+        ]
+        for title, problem, target, frames, runs in figures:
+            names, cells = [], []
+            for n, smoothing, k, p, eps in runs:
+                name = f"{problem}-{n}"
+                s = self.run(name, ["--problem", problem, "-N", n, "-S", smoothing, "-K", k,
+                                    "-P", p, "--eps", eps, "--frames", str(frames)])
+                names.append((name, name))
+                cells.append(f"{n}/{smoothing}/{k}/{p}/{eps.replace('-', '−')}: "
+                             f"{s['status']}, E∞ {fmt(s['e_inf'])}")
+            self.write(f"**{title}.** " + "; ".join(cells) + ".\n\n"
+                       + self.panels(names, [], 4, target, by_run=True) + "\n\n")
 
     # Fig. 15 -----------------------------------------------------------------------------
     def wulff(self):
@@ -270,7 +342,12 @@ step). The distance between the two runs is taken at the paper's drawn times.
                    + " |\n|---|" + "---|" * 9 + "\n| distance between the runs | " + " | ".join(
                        fmt(self.distance("spiral512", "spiral1024", box, j=j))
                        for j in (1, 2, 4, 8, 16, 32, 64, 128, 256)) + " |\n\n")
-        self.write(f"{self.picture('spiral512', 'figure18_spiral.png')}\n\n")
+        drawn = [0.0] + [0.01 * 2 ** j for j in range(9)]
+        self.write("The paper's times, both runs in each panel (a run that ended early shows its "
+                   "last frame):\n\n"
+                   + self.panels([("512 steps", "spiral512"), ("1024 steps", "spiral1024")],
+                                 drawn, 5, "figure18_spiral.png",
+                                 view=[-1.7, -1.7, 2.2, 2.2]) + "\n\n")
         self.write(
             "**Stability and the domain.** The step is explicit, so curvature flow is stable only "
             "while k/h² stays below a bound that S raises (the embedded mesh has h = 2b/M, "
@@ -329,13 +406,25 @@ wiggles), to t = 10.24 (the paper gives neither its bubbles nor its domain or ti
 |---|---|---|---|---|---|---|---|
 """)
         args = ["-N", "2048", "-S", "3", "-K", "7", "-P", "4", "--eps", "1e-4"]
-        s = self.run("bubbles", ["--problem", "bubbles-nonlocal", *args, "--frames", "8"])
+        s = self.run("bubbles", ["--problem", "bubbles-nonlocal", *args, "--frames", "1024"])
         self.run("bubblesc", ["--problem", "bubbles-nonlocal", *args, "--area-correction"])
         worst, last = area_drift(self.out("bubbles"))
         cworst, clast = area_drift(self.out("bubblesc"))
         self.write(f"| 2048/3/7/4/1e−4 | {s['status']} | {fmt(worst)} | {fmt(last)} | "
                    f"{fmt(cworst)} | {fmt(clast)} | {s['components']} | {fmt(s['wall_s'], 3)} |\n\n")
-        self.write(f"{self.picture('bubbles', 'figure19_bubbles.png')}\n\n")
+        drawn = [0.0] + [0.01 * 2 ** j for j in range(11)]
+        changes, prev = [], None
+        for row in history(self.out("bubbles")):
+            if row["components"] != prev:
+                changes.append(row["components"])
+                prev = row["components"]
+        self.write("At geometrically growing times: the bubbles that touch merge within the first "
+                   "tenths, the small ones shrink and vanish, the rest round off into one (a panel "
+                   "after the run's end shows its last frame). The number of curves, each time it "
+                   f"changed: {', '.join(str(int(c)) for c in changes)}; where two bubbles first "
+                   "touch, the neck can leave a speck for a step or two.\n\n"
+                   + self.panels([("2048 steps", "bubbles")], drawn, 4, "figure19_bubbles.png",
+                                 view=[-3.2, -3.2, 3.2, 3.2]) + "\n\n")
         rows = history(self.out("bubbles"))
         a, length = rows[-1]["area"], rows[-1]["length"]
         self.write(
@@ -367,7 +456,8 @@ def main():
     parser.add_argument("--slc", required=True)
     parser.add_argument("--out", required=True, help="the Markdown file to write")
     parser.add_argument("--figures", required=True, help="folder of the pictures")
-    parser.add_argument("--only", nargs="*", default=["triangles", "wulff", "spiral", "bubbles"])
+    parser.add_argument("--only", nargs="*",
+                        default=["side_by_side", "triangles", "wulff", "spiral", "bubbles"])
     args = parser.parse_args()
     os.makedirs(args.figures, exist_ok=True)
     with tempfile.TemporaryDirectory() as work:

@@ -24,6 +24,12 @@ check "three panels in a row" python3 -c "
 import re
 w, h = (float(v) for v in re.search(r'<svg[^>]*width=\"([0-9.]+)[a-z]*\"[^>]*height=\"([0-9.]+)', open('times.svg').read()).groups())
 assert 2.5 < w / h < 4.2, (w, h)"
+expect_ok "a panel a run" -- render --frames tri tri8 --by-run --columns 2 --out byrun.png
+check "two panels side by side" python3 -c "
+import struct
+w, h = struct.unpack('>II', open('byrun.png', 'rb').read()[16:24])
+assert 1.8 < w / h < 2.4, (w, h)"
+expect_error "a panel a run without columns" "--by-run" -- render --frames tri --by-run --out x.png
 expect_error "times without panels" "--times" -- render --frames tri --times 0.2 --out x.svg
 expect_error "an animation of two runs" "one run" -- render --frames tri tri8 --out x.svg
 expect_error "zero columns" "columns" -- render square.json --columns 0 --out x.png

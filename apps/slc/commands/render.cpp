@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "commands/commands.hpp"
 #include "commands/common.hpp"
@@ -23,6 +25,7 @@ struct RenderOptions {
     double seconds_per_frame = 0.25;
     int columns = 0;
     std::vector<double> times;
+    bool by_run = false;
     std::string out;
     std::string title;
     DomainOptions view;
@@ -77,6 +80,20 @@ void render_animation(const RenderOptions& o) {
     write_file_atomic(o.out, animated_svg(frames, view_of(o.view, bounds), options));
 }
 
+/// A run folder's name for a panel: its summary.json's "run" (N/S/K/P/eps) when it has one,
+/// else the folder's name.
+std::string run_title(const std::string& dir) {
+    std::filesystem::path name(dir);  // "out/a/" names a
+    if (name.filename().empty()) name = name.parent_path();
+    std::ifstream in(name / "summary.json");
+    if (in) {
+        const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+        if (j.is_object() && j.contains("run") && j["run"].is_string())
+            return j["run"].get<std::string>();
+    }
+    return name.filename().string();
+}
+
 /// One panel of a grid: its title and its interfaces, each with a legend label (or none).
 struct Panel {
     std::string title;
@@ -115,6 +132,13 @@ void render_grid(const RenderOptions& o) {
         for (const std::string& f : o.files)
             panels.push_back(
                 {std::filesystem::path(f).filename().string(), {{"", read(f).second}}});
+    } else if (o.by_run) {
+        for (const std::string& dir : o.frames) {
+            Panel panel{run_title(dir), {}};
+            for (const auto& file : frames_at(dir, o.times))
+                panel.layers.emplace_back("", read(file).second);
+            panels.push_back(std::move(panel));
+        }
     } else {
         std::vector<std::vector<std::filesystem::path>> runs;
         for (const std::string& dir : o.frames) runs.push_back(frames_at(dir, o.times));
@@ -147,10 +171,13 @@ void render_grid(const RenderOptions& o) {
     for (const Panel& panel : panels) {
         Figure& figure = figures.emplace_back(
             view, o.title.empty() ? panel.title : fmt::format("{}: {}", o.title, panel.title));
-        // The runs' legend on the first panel only: the colours are the same in every one.
+        // The runs' legend on the first panel only: the colours are the same in every one. A
+        // run's frames (--by-run) in time's colours.
+        const double last = std::max<double>(1.0, static_cast<double>(panel.layers.size()) - 1.0);
         for (std::size_t r = 0; r < panel.layers.size(); ++r)
-            figure.add_curves(panel.layers[r].second,
-                              figures.size() == 1 ? panel.layers[r].first : "", palette_color(r));
+            figure.add_curves(
+                panel.layers[r].second, figures.size() == 1 ? panel.layers[r].first : "",
+                o.by_run ? sequence_color(static_cast<double>(r) / last) : palette_color(r));
     }
     Figure::save_grid(figures, o.columns, o.out);
 }
@@ -158,6 +185,8 @@ void render_grid(const RenderOptions& o) {
 void run_render(const RenderOptions& o) {
     if (!o.times.empty() && (o.frames.empty() || o.columns == 0))
         throw InvalidInput("--times picks frames for panels: give it with --frames and --columns");
+    if (o.by_run && (o.frames.empty() || o.columns == 0))
+        throw InvalidInput("--by-run draws runs in panels: give it with --frames and --columns");
     if (o.columns > 0) {
         if (o.frames.empty() && o.files.empty())
             throw InvalidInput("give interface files to draw, or --frames DIR");
@@ -211,6 +240,9 @@ void add_render_command(CLI::App& app) {
                     "With --frames and --columns: the panels are the frames nearest these times "
                     "(comma-separated), in this order")
         ->delimiter(',');
+    cmd->add_flag("--by-run", o->by_run,
+                  "With --frames and --columns: a panel a run, its frames overlaid (all, or "
+                  "those nearest --times), titled by the run's N/S/K/P/eps");
     cmd->add_option("--out", o->out,
                     "Picture to write: .svg or .png (.svg with --frames, unless --columns)")
         ->required();
