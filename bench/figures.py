@@ -338,6 +338,44 @@ speed is −1 − (5/8) cos 3θ, shrinks away (its radius falls at 0.375 to 1.62
                     json.dump(frame, f)
                 j += 1
 
+    # Fig. 17 -----------------------------------------------------------------------------
+    def polygon(self):
+        self.write("""## Fig. 17: a tilted polygon shrinking under curvature flow
+
+> The curvature velocity displays fast-moving infinite transients at initial sharp corners, an
+> intermediate regime of smooth motion, and infinite velocity again as the interface vanishes.
+> […] runs a through d have parameters 320/1/5/4/10⁻³ through 2560/4/8/4/10⁻⁶.
+
+`slc run --problem polygon-curvature` (a comb-shaped 12-gon of area 72 tilted 10°, in
+[−8, 8]², docs/problems.md; the paper gives neither) with the paper's runs a–d, frames at
+t = 1, 2, …; the distance between successive runs (vertices and midpoints) where the paper
+overlays them.
+
+| run | status | vanished at t | seconds |
+|---|---|---|---|
+""")
+        runs = {"a": ["-N", "320", "-S", "1", "-K", "5", "-P", "4", "--eps", "1e-3"],
+                "b": ["-N", "640", "-S", "2", "-K", "6", "-P", "4", "--eps", "1e-4"],
+                "c": ["-N", "1280", "-S", "3", "-K", "7", "-P", "4", "--eps", "1e-5"],
+                "d": ["-N", "2560", "-S", "4", "-K", "8", "-P", "4", "--eps", "1e-6"]}
+        for name, args in runs.items():
+            s = self.run(f"polygon-{name}", ["--problem", "polygon-curvature", *args,
+                                             "--frames", "13"])
+            self.write(f"| {name}: {'/'.join(args[1::2])} | {s['status']} | {fmt(s['t'], 4)} | "
+                       f"{fmt(s['wall_s'], 3)} |\n")
+        box = [-8.0, -8.0, 8.0, 8.0]
+        times = (1, 2, 4, 8)
+        self.write("\n| t ≈ | " + " | ".join(str(t) for t in times) + " |\n|---|"
+                   + "---|" * len(times) + "\n")
+        for a, b in (("a", "b"), ("b", "c"), ("c", "d")):
+            self.write(f"| {a} vs {b} | " + " | ".join(
+                fmt(self.distance(f"polygon-{a}", f"polygon-{b}", box, j=t)) for t in times)
+                + " |\n")
+        self.write("\nThe four runs overlaid at t ≈ 0, 1, 2, 4 and 8 (the frame nearest each):"
+                   "\n\n" + self.panels([(n, f"polygon-{n}") for n in runs],
+                                          [0, 1, 2, 4, 8], 5, "figure17_polygon.png",
+                                          view=[-7, -6, 7, 6]) + "\n\n")
+
     # Fig. 18 -----------------------------------------------------------------------------
     def spiral(self):
         self.write("""## Fig. 18: a spiral unwinding under area-preserving curvature flow (Eq. 13)
@@ -500,7 +538,7 @@ result is not the paper's (the section below says how).
 | Fig. 14 | circles merging, four runs | below | drawn |
 | Fig. 15 | Wulff shapes, tilts superimposed | below | drawn; m = 3 jagged on its non-convex side |
 | Fig. 16 | circles under curvature flow, four runs | below | drawn |
-| Fig. 17 | a polygon under curvature flow, runs a–d | [problems.md](problems.md) (run a) | partly: run a only |
+| Fig. 17 | a polygon under curvature flow, runs a–d | below | drawn; run a kinks near t = 1.6–2.6, b–d do not |
 | Fig. 18 | a spiral under Eq. 13 | below | differs: the 512-step run ends `unstable` at t = 2.545 of 2.56 |
 | Fig. 19 | bubbles merging under Eq. 13 | below | differs: ends `unstable` at t = 7.735 of 10.24 |
 | Table 1 | distance tree cost | [tables/table1.md](tables/table1.md) | reproduced (cells 10–20% fewer) |
@@ -518,7 +556,8 @@ def main():
     parser.add_argument("--out", required=True, help="the Markdown file to write")
     parser.add_argument("--figures", required=True, help="folder of the pictures")
     parser.add_argument("--only", nargs="*",
-                        default=["side_by_side", "triangles", "wulff", "spiral", "bubbles"])
+                        default=["side_by_side", "triangles", "wulff", "polygon", "spiral",
+                                 "bubbles"])
     args = parser.parse_args()
     os.makedirs(args.figures, exist_ok=True)
     with tempfile.TemporaryDirectory() as work:
