@@ -80,18 +80,23 @@ void render_animation(const RenderOptions& o) {
     write_file_atomic(o.out, animated_svg(frames, view_of(o.view, bounds), options));
 }
 
+/// A run folder without a trailing separator ("out/a/" is out/a).
+std::filesystem::path run_folder(const std::string& dir) {
+    const std::filesystem::path p(dir);
+    return p.filename().empty() ? p.parent_path() : p;
+}
+
 /// A run folder's name for a panel: its summary.json's "run" (N/S/K/P/eps) when it has one,
 /// else the folder's name.
 std::string run_title(const std::string& dir) {
-    std::filesystem::path name(dir);  // "out/a/" names a
-    if (name.filename().empty()) name = name.parent_path();
-    std::ifstream in(name / "summary.json");
+    const std::filesystem::path folder = run_folder(dir);
+    std::ifstream in(folder / "summary.json");
     if (in) {
         const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
         if (j.is_object() && j.contains("run") && j["run"].is_string())
             return j["run"].get<std::string>();
     }
-    return name.filename().string();
+    return folder.filename().string();
 }
 
 /// One panel of a grid: its title and its interfaces, each with a legend label (or none).
@@ -152,9 +157,8 @@ void render_grid(const RenderOptions& o) {
             for (std::size_t r = 0; r < runs.size(); ++r) {
                 auto [t, curves] = read(runs[r][i]);
                 if (r == 0) panel.title = fmt::format("t = {:.4g}", t);
-                std::filesystem::path name(o.frames[r]);  // "out/a/" names a
-                if (name.filename().empty()) name = name.parent_path();
-                const std::string label = runs.size() > 1 ? name.filename().string() : "";
+                const std::string label =
+                    runs.size() > 1 ? run_folder(o.frames[r]).filename().string() : "";
                 panel.layers.emplace_back(label, std::move(curves));
             }
             panels.push_back(std::move(panel));
