@@ -226,6 +226,26 @@ G is the exact offset of the polygon (docs/algorithms/evolve.md).
             "safeguard keeps refinement from reaching them (a user's run, which has it off, ends "
             "2.3e−4 from the exact offset: docs/defaults.md).\n\n")
 
+    # Fig. 4 ------------------------------------------------------------------------------
+    def island(self):
+        self.write("""## Fig. 4: an island forming at the cusps where circles merge
+
+The paper's Fig. 4 shows an island (a hole) pinched off where merging circles meet and then
+closing, without giving its circles. `merging-circles` at Fig. 14's 80/0/4/1/1e−4, with a frame
+every step, near the place where its three circles meet:
+
+""")
+        self.run("island", ["--problem", "merging-circles", "-N", "80", "-K", "4", "-P", "1",
+                            "--eps", "1e-4", "--frames", "80"])
+        changes, prev = [], None
+        for row in history(self.out("island")):
+            if row["components"] != prev:
+                changes.append(f"{int(row['components'])} at t = {row['t']:g}")
+                prev = row["components"]
+        self.write("The number of curves: " + ", ".join(changes) + ".\n\n" + self.panels(
+            [("island", "island")], [0.1625, 0.175, 0.2, 0.2125, 0.225, 0.2375, 0.25, 0.2625],
+            4, "figure4_island.png", view=[-0.5, -0.2, 0.5, 0.8]) + "\n\n")
+
     # Figs. 12, 14, 16 ----------------------------------------------------------------------
     def side_by_side(self):
         self.write("""## Figs. 12, 14 and 16: the captions' runs side by side
@@ -525,7 +545,7 @@ result is not the paper's (the section below says how).
 | Fig. 1 | complexity, facetting, merging, time scales | the problems below and in [problems.md](problems.md) | an illustration |
 | Fig. 2 | a distance tree and its triangulation | [algorithms/distance.md](algorithms/distance.md) (`slc tree`) | drawn |
 | Fig. 3 | V_x and its nearest-point extension W_x, K = 5 and 6 | [algorithms/distance.md](algorithms/distance.md) | partly: one K, no V_x panel |
-| Fig. 4 | an island forming at a cusp as circles merge | Fig. 14 below (the 80/0/4/1 run) | partly: not the paper's time sequence |
+| Fig. 4 | an island forming at a cusp as circles merge | below | drawn, with `merging-circles` (the paper's circles are not given) |
 | Fig. 5 | linear contouring and bisection | [algorithms/contour.md](algorithms/contour.md) | partly: no bisection diagram |
 | Fig. 6 | a propeller contoured on K-level trees | [algorithms/contour.md](algorithms/contour.md) | partly: K = 3 only, not 3 to 6 |
 | Fig. 7 | adaptive refinement of a zero set | [algorithms/contour.md](algorithms/contour.md) | drawn |
@@ -556,8 +576,8 @@ def main():
     parser.add_argument("--out", required=True, help="the Markdown file to write")
     parser.add_argument("--figures", required=True, help="folder of the pictures")
     parser.add_argument("--only", nargs="*",
-                        default=["side_by_side", "triangles", "wulff", "polygon", "spiral",
-                                 "bubbles"])
+                        default=["island", "side_by_side", "triangles", "wulff", "polygon",
+                                 "spiral", "bubbles"])
     args = parser.parse_args()
     os.makedirs(args.figures, exist_ok=True)
     with tempfile.TemporaryDirectory() as work:
