@@ -218,10 +218,11 @@ G is the exact offset of the polygon (docs/algorithms/evolve.md).
             "places a vertex where the sides' lines meet, and a tip that the tree's interpolant "
             "parts from its body at a neck narrower than a cell (K = 5, t ≈ 0.2) is joined back "
             "(docs/algorithms/contour.md). The paper's nearest-point extension moves each corner "
-            "vertex along its averaged normal and blends it into the sides' velocities, which "
-            "cuts the shrinking corners (E∞ above, by Eq. 11's exact distance to the shrunken "
-            "triangle) and leaves spurs where a cut corner is contoured again (what was tried: "
-            "docs/notes/corners.md). "
+            "vertex along its averaged normal; at a shrinking corner each side keeps its own "
+            "normal's velocity up to the corner (docs/algorithms/evolve.md), and what is left "
+            "(E∞ above, by Eq. 11's exact distance to the shrunken triangle) is where the "
+            "contour does not find the corner and leaves spurs where a cut corner is contoured "
+            "again (docs/notes/corners.md). "
             "Growing, the corner arcs start smaller than a cell and the paper's triangle "
             "safeguard keeps refinement from reaching them (a user's run, which has it off, ends "
             "2.3e−4 from the exact offset: docs/defaults.md).\n\n")
@@ -564,7 +565,7 @@ result is not the paper's (the section below says how).
 | Table 1 | distance tree cost | [tables/table1.md](tables/table1.md) | reproduced (cells 10–20% fewer) |
 | Tables 2, 3 | linear and adaptive contouring | [table2.md](tables/table2.md), [table3.md](tables/table3.md) | reproduced |
 | Table 5 | a propeller turned twice | [tables/table5.md](tables/table5.md) | 16 of 25 errors at or below the paper's |
-| Table 6 | circles merging | [tables/table6.md](tables/table6.md) | 13 of 25 at or below, by Eq. 11's exact distance |
+| Table 6 | circles merging | [tables/table6.md](tables/table6.md) | 20 of 25 at or below, by Eq. 11's exact distance |
 | Table 7 | a circle under curvature flow | [tables/table7.md](tables/table7.md) | 25 of 25 at or below |
 
 """

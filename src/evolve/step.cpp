@@ -141,7 +141,10 @@ public:
                                           .arc_width = options.resolved_arc_width(k)};
             u_ = vertex_velocities(law, t, curves, context);
             if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
+            if (extension_ == Extension::nearest_point && law.constant_speed()) set_shocks();
             for (Vec2 u : u_) max_speed_ = std::max(max_speed_, norm(u));
+            for (const auto& [before, after] : sides_)
+                max_speed_ = std::max({max_speed_, norm(before), norm(after)});
         } else if (law.is_normal_law()) {
             set_vertex_normals();
             max_speed_ = max_normal_speed();
@@ -211,17 +214,68 @@ public:
             const Vec2 sum = segment_normal(curves.prev(v)) + segment_normal(v);
             const double length = norm(sum);
             if (length > 0.0) u_[v] += (s / length) * sum;
+            if (!shock_.empty() && shock_[v]) {
+                sides_[v].first += s * segment_normal(curves.prev(v));
+                sides_[v].second += s * segment_normal(v);
+            }
         }
         if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
         max_speed_ = 0.0;
         for (Vec2 u : u_) max_speed_ = std::max(max_speed_, norm(u));
+        for (const auto& [before, after] : sides_)
+            max_speed_ = std::max({max_speed_, norm(before), norm(after)});
     }
 
 private:
     /// W(x), given the closest point p of this level's polygon to x.
     Vec2 velocity(Vec2 x, const ClosestPoint& p) const {
         if (extension_ == Extension::whitney) return (*whitney_)(x);
-        return nearest_point_extension<Vec2>(tree_.curves(), u_, p);
+        if (sides_.empty() || p.t == 0.0 || p.t == 1.0)
+            return nearest_point_extension<Vec2>(tree_.curves(), u_, p);
+        const std::size_t a = p.segment, b = tree_.curves().next(a);
+        const Vec2 ua = shock_[a] ? sides_[a].second : u_[a];
+        const Vec2 ub = shock_[b] ? sides_[b].first : u_[b];
+        return (1.0 - p.t) * ua + p.t * ub;
+    }
+
+    /// Where a normal law of constant speed moves the two sides of a corner towards each other
+    /// (a shrinking convex corner, or the cusp where growing curves meet: a shock, where
+    /// characteristics end), each side moves with its own normal's velocity all the way to the
+    /// corner, as Huygens' principle has it: interpolating towards the corner's averaged normal
+    /// would cut the corner, or fill the cusp, by about a segment each step. Points nearest the
+    /// corner itself keep its vertex velocity, and corners whose sides part (rounding into a
+    /// fan) keep the interpolation, as the paper has it. (A speed that depends on the normal
+    /// is left to the paper's interpolation: at the corners of m = 3's non-convex Wulff shape
+    /// the sides' velocities made the shape depend on the grid's orientation.) A corner is a vertex
+    /// the polygon does not read as smooth (reads_smooth, as field_normal); sides_[v]: the
+    /// velocities of the segments before and after v, at v, where shock_[v].
+    void set_shocks() {
+        set_vertex_normals();
+        const Interface& curves = tree_.curves();
+        std::vector<Vec2> at, normals;
+        std::vector<std::size_t> corners;
+        for (std::size_t v = 0; v < curves.size(); ++v) {
+            if (smooth_[v]) continue;
+            corners.push_back(v);
+            for (std::size_t s : {curves.prev(v), v}) {
+                at.push_back(curves.point(v));
+                normals.push_back(segment_normal(s));
+            }
+        }
+        if (corners.empty()) return;
+        std::vector<double> speeds(at.size());
+        normal_speeds(at, normals, speeds);
+        for (std::size_t i = 0; i < corners.size(); ++i) {
+            const Vec2 before = normals[2 * i], after = normals[2 * i + 1];
+            const double turn = cross(before, after);  // > 0 at a convex corner
+            if (!(speeds[2 * i] * turn < 0.0 && speeds[2 * i + 1] * turn < 0.0)) continue;
+            if (sides_.empty()) {
+                sides_.assign(curves.size(), {});
+                shock_.assign(curves.size(), 0);
+            }
+            shock_[corners[i]] = 1;
+            sides_[corners[i]] = {speeds[2 * i] * before, speeds[2 * i + 1] * after};
+        }
     }
 
     /// distance(x), given the closest point p of this level's polygon to x.
@@ -328,6 +382,8 @@ private:
     std::vector<double> kappa_;         ///< arc curvatures at the vertices, empty without arcs
     std::vector<Vec2> vertex_normals_;  ///< pseudo-normals, for a normal law (field_normal)
     std::vector<char> smooth_;          ///< turning by at most arc_corner, for a normal law
+    std::vector<char> shock_;           ///< corners whose sides meet (set_shocks); empty: none
+    std::vector<std::pair<Vec2, Vec2>> sides_;  ///< their sides' velocities at them
     double max_bulge_ = 0.0;
     std::optional<WhitneyExtension<Vec2>> whitney_;
 };
