@@ -94,7 +94,8 @@ py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const
 }
 
 /// One cell of a study as a dict: row, P, run, N, K, eps, S, status, e_inf, cpu_s_per_step,
-/// g_evals_per_vertex, segments.
+/// g_evals_per_vertex, segments, stopped_by_guards (the guards' message where they stopped the
+/// run and the cell was run again without them, else None).
 py::dict cell_dict(const StudyCell& c) {
     py::dict d;
     d["row"] = c.row;
@@ -109,6 +110,7 @@ py::dict cell_dict(const StudyCell& c) {
     d["cpu_s_per_step"] = c.cpu_s_per_step;
     d["g_evals_per_vertex"] = c.g_evals_per_vertex;
     d["segments"] = c.segments;
+    d["stopped_by_guards"] = c.stopped.empty() ? py::object(py::none()) : py::cast(c.stopped);
     return d;
 }
 

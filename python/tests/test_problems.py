@@ -92,6 +92,16 @@ def test_a_study_gives_the_papers_table_with_its_orders():
     assert "| 40/1/4/1e-04 |" in s.table()
 
 
+def test_a_study_reports_the_cells_the_guards_stop_run_without_them():
+    # Table 5's 40/0/3/0 loses more than 5% of the area by t = 2.2: the guards stop it, and the
+    # cell is the run without them, to its end, as the paper's is.
+    s = slc.study(slc.problem("propeller-rotation"), rows=1)
+    first = s.cells[0]
+    assert first["status"] == "broken" and "t = " in first["stopped_by_guards"]
+    assert np.isfinite(s.errors).all()
+    assert all(c["stopped_by_guards"] is None for c in s.cells[1:] if c["status"] == "ok")
+
+
 def test_self_convergence_of_a_users_curve_observes_an_order():
     # An ellipse under curvature flow: no exact solution, so runs at three resolutions are
     # compared with each other; the distances fall and the estimate is below the coarse distance.
