@@ -214,16 +214,10 @@ public:
             const Vec2 sum = segment_normal(curves.prev(v)) + segment_normal(v);
             const double length = norm(sum);
             if (length > 0.0) u_[v] += (s / length) * sum;
-            if (!shock_.empty() && shock_[v]) {
-                sides_[v].first += s * segment_normal(curves.prev(v));
-                sides_[v].second += s * segment_normal(v);
-            }
         }
         if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
         max_speed_ = 0.0;
         for (Vec2 u : u_) max_speed_ = std::max(max_speed_, norm(u));
-        for (const auto& [before, after] : sides_)
-            max_speed_ = std::max({max_speed_, norm(before), norm(after)});
     }
 
 private:
@@ -249,6 +243,7 @@ private:
     /// the sides' velocities made the shape depend on the grid's orientation.) A corner is a vertex
     /// the polygon does not read as smooth (reads_smooth, as field_normal); sides_[v]: the
     /// velocities of the segments before and after v, at v, where shock_[v].
+    /// A law of constant speed keeps no area, so add_normal_speed() never meets shocks.
     void set_shocks() {
         set_vertex_normals();
         const Interface& curves = tree_.curves();

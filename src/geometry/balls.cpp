@@ -6,7 +6,6 @@
 #include <limits>
 #include <optional>
 #include <utility>
-#include <vector>
 
 namespace slc {
 namespace {
@@ -52,6 +51,7 @@ struct Crossing {
 
 template <int dim>
 std::optional<Crossing<dim>> crossing(const Ball<dim>& a, const Ball<dim>& b) {
+    if (!(a.radius > 0.0) || !(b.radius > 0.0)) return std::nullopt;
     const double d = distance(a.centre, b.centre);
     if (!(d > 0.0) || d >= a.radius + b.radius || d <= std::abs(a.radius - b.radius))
         return std::nullopt;
@@ -86,6 +86,7 @@ void offer_edges_and_corners(Balls<3> balls, Vec3 x, Nearest<3>& nearest) {
             // The corners, where a third sphere crosses the circle: c->q + h (cos φ n1 + sin φ n2)
             // with |p − c_k|² = r_k², that is A cos φ + B sin φ = C.
             for (std::size_t k = j + 1; k < balls.size(); ++k) {
+                if (!(balls[k].radius > 0.0)) continue;
                 const Vec3 m = c->q - balls[k].centre;
                 const double a = 2.0 * c->h * dot(m, n1), b = 2.0 * c->h * dot(m, n2);
                 const double rhs = balls[k].radius * balls[k].radius - norm2(m) - c->h * c->h;
@@ -102,15 +103,13 @@ void offer_edges_and_corners(Balls<3> balls, Vec3 x, Nearest<3>& nearest) {
 }  // namespace
 
 template <int dim>
-double union_of_balls_distance(std::span<const Ball<dim>> all, PointOf<dim> x) {
-    std::vector<Ball<dim>> kept;
-    for (const Ball<dim>& b : all)
-        if (b.radius > 0.0) kept.push_back(b);
-    const Balls<dim> balls(kept);
+double union_of_balls_distance(std::span<const Ball<dim>> balls, PointOf<dim> x) {
+    // A ball of radius ≤ 0 has no sphere, crosses nothing and covers nothing.
     bool inside = false;
     Nearest<dim> nearest(balls, x);
     for (std::size_t i = 0; i < balls.size(); ++i) {
         const Ball<dim>& b = balls[i];
+        if (!(b.radius > 0.0)) continue;
         const double r = distance(x, b.centre);
         inside = inside || r < b.radius;
         // The radial projection (from the centre itself, any point of the sphere is as near).

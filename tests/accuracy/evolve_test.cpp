@@ -152,7 +152,7 @@ TEST(Run, NearestPointExtensionMovesTheSidesOfAShockWithTheirOwnNormals) {
     // extension cut the triangle's corners (E∞ 0.0315 at 80/0/5/2/1e−4) and filled the cusps
     // (0.0124 at merging-circles' own 160/0/5/2/1e−5); with each side's own velocity, 0.0108
     // and 0.0040.
-    Problem triangle = make_problem("triangle-normal", {{"speed", -1.0}});
+    const Problem triangle = make_problem("triangle-normal", {{"speed", -1.0}});
     const auto [t, et] = solve(triangle, options(0.4, 80, 5, 2, 1e-4));
     EXPECT_EQ(t.status, RunStatus::ok);
     ASSERT_TRUE(et);

@@ -145,13 +145,13 @@ void render_grid(const RenderOptions& o) {
             panels.push_back(std::move(panel));
         }
     } else {
-        std::vector<std::vector<std::filesystem::path>> runs;
-        for (const std::string& dir : o.frames) runs.push_back(frames_at(dir, o.times));
         // Without --times, the first run's frames set the panels; the others' nearest join them.
+        std::vector<std::vector<std::filesystem::path>> runs{frames_at(o.frames[0], o.times)};
         std::vector<double> times = o.times;
         if (times.empty())
             for (const auto& file : runs[0]) times.push_back(read_interface_json(file).time);
-        for (std::size_t r = 1; r < runs.size(); ++r) runs[r] = frames_at(o.frames[r], times);
+        for (std::size_t r = 1; r < o.frames.size(); ++r)
+            runs.push_back(frames_at(o.frames[r], times));
         for (std::size_t i = 0; i < times.size(); ++i) {
             Panel panel;
             for (std::size_t r = 0; r < runs.size(); ++r) {
