@@ -548,7 +548,7 @@ result is not the paper's (the section below says how).
 | Fig. 3 | V_x and its nearest-point extension W_x, K = 5 and 6 | [algorithms/distance.md](algorithms/distance.md) | partly: one K, no V_x panel |
 | Fig. 4 | an island forming at a cusp as circles merge | below | drawn, with `merging-circles` (the paper's circles are not given) |
 | Fig. 5 | linear contouring and bisection | [algorithms/contour.md](algorithms/contour.md) | partly: no bisection diagram |
-| Fig. 6 | a propeller contoured on K-level trees | [algorithms/contour.md](algorithms/contour.md) | partly: K = 3 only, not 3 to 6 |
+| Fig. 6 | a propeller contoured on K-level trees | [algorithms/contour.md](algorithms/contour.md) | drawn |
 | Fig. 7 | adaptive refinement of a zero set | [algorithms/contour.md](algorithms/contour.md) | drawn |
 | Fig. 8 | refinement's safeguards | — | not drawn |
 | Fig. 9 | the local embedded mesh, x- and y-intervals | [algorithms/geometry.md](algorithms/geometry.md) | partly: x-intervals only |
