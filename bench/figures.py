@@ -551,7 +551,7 @@ result is not the paper's (the section below says how).
 | Fig. 6 | a propeller contoured on K-level trees | [algorithms/contour.md](algorithms/contour.md) | drawn |
 | Fig. 7 | adaptive refinement of a zero set | [algorithms/contour.md](algorithms/contour.md) | drawn |
 | Fig. 8 | refinement's safeguards | — | not drawn |
-| Fig. 9 | the local embedded mesh, x- and y-intervals | [algorithms/geometry.md](algorithms/geometry.md) | partly: x-intervals only |
+| Fig. 9 | the local embedded mesh, x- and y-intervals | [algorithms/geometry.md](algorithms/geometry.md) | drawn |
 | Fig. 10 | errors against CPU time | [tables/](tables/) `*_error_vs_time.png` | drawn |
 | Fig. 11 | semi-Lagrangian evaluation | — | not drawn |
 | Fig. 12 | a propeller turned twice, four runs | below | drawn |

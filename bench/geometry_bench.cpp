@@ -122,8 +122,9 @@ void write_table(const Recorder& rec, const std::string& path) {
     std::ofstream(path) << md;
 }
 
-/// The paper's Fig. 9 for the blob at M = 64, E = 3, S = 0: the local mesh of range R = 3 as its
-/// x-intervals, with the embedded normals at every sixth vertex.
+/// The paper's Fig. 9 for the blob at M = 64, E = 3, S = 0: the interface with the embedded
+/// normals at every sixth vertex, and the local mesh of range R = 3 viewed as its x-intervals
+/// and as its y-intervals, side by side.
 void draw_local_mesh(const std::string& path) {
     const int m = 64;
     const Interface& curves = blob(128);
@@ -131,22 +132,32 @@ void draw_local_mesh(const std::string& path) {
     const EmbeddedOptions options{.mesh = m, .eno_order = 3, .smoothing = 0};
     const EmbeddedFields fields = embedded_fields(tree, options);
     const VertexGeometry g = interpolate_geometry(fields, curves.points(), options.eno_order);
-    std::vector<Box> runs;
-    for (const auto& r : fields.mesh.rows())
-        runs.push_back({fields.mesh.position(r.lo, r.line), fields.mesh.position(r.hi, r.line)});
     std::vector<Vec2> at, normal;
     for (std::size_t i = 0; i < curves.size(); i += 6) {
         at.push_back(curves.point(i));
         normal.push_back(g.normals[i]);
     }
-    Figure fig(domain,
-               fmt::format("Local mesh, M = {}, range R = E + S = 3: {} points in {} x-intervals",
-                           m, fields.mesh.size(), fields.mesh.rows().size()));
-    fig.add_boxes(runs, palette_color(0), 0.8);
-    fig.add_points(fields.mesh.points(), palette_color(0), 1.2);
-    fig.add_curves(curves, "interface", palette_color(2), 1.5);
-    fig.add_arrows(at, normal, 0.12, palette_color(4));
-    fig.save(path);
+    const LocalMesh& mesh = fields.mesh;
+    const Box view{{-0.85, -0.85}, {0.85, 0.85}};
+    std::vector<Figure> panels;
+    panels.emplace_back(view, "(a) the interface and its embedded normals");
+    panels.back().add_curves(curves, "interface", palette_color(2), 1.5);
+    panels.back().add_arrows(at, normal, 0.12, palette_color(4));
+    const std::span<const LocalMesh::Interval> rows = mesh.rows(), columns = mesh.columns();
+    for (const bool by_rows : {true, false}) {
+        std::vector<Box> runs;
+        for (const auto& r : by_rows ? rows : columns) {
+            runs.push_back(by_rows ? Box{mesh.position(r.lo, r.line), mesh.position(r.hi, r.line)}
+                                   : Box{mesh.position(r.line, r.lo), mesh.position(r.line, r.hi)});
+        }
+        panels.emplace_back(
+            view, fmt::format("({}) {} points in {} {}-intervals", by_rows ? 'b' : 'c', mesh.size(),
+                              runs.size(), by_rows ? 'x' : 'y'));
+        panels.back().add_boxes(runs, palette_color(0), 0.8);
+        panels.back().add_points(mesh.points(), palette_color(0), 1.2);
+        panels.back().add_curves(curves, "interface", palette_color(2), 1.5);
+    }
+    Figure::save_grid(panels, 3, path);
 }
 
 }  // namespace
