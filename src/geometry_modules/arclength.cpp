@@ -66,6 +66,12 @@ std::vector<double> average_along(const Interface& curves, const std::vector<dou
 
 }  // namespace
 
+std::vector<double> average_along_curves(const Interface& curves, const std::vector<double>& f,
+                                         double width) {
+    const std::vector<double> length = segment_lengths(curves, "average along curves");
+    return average_along(curves, length, vertex_arc_lengths(curves), f, width);
+}
+
 VertexGeometry arclength_geometry(const Interface& curves, double width) {
     if (!(width >= 0.0) || !std::isfinite(width)) {
         throw InvalidInput(fmt::format(

@@ -10,6 +10,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/geometry_modules/arclength.hpp"
 #include "slc/geometry_modules/eno.hpp"
 
 namespace slc {
@@ -29,6 +30,9 @@ void validate(const EmbeddedOptions& o) {
     if (o.eno_order < 1 || o.eno_order > eno::max_order)
         throw InvalidInput(
             fmt::format("ENO order E must be in 1..{}, got {}", eno::max_order, o.eno_order));
+    if (!(o.average >= 0.0) || !std::isfinite(o.average))
+        throw InvalidInput(fmt::format(
+            "embedded curvature's averaging width must be finite and >= 0, got {}", o.average));
     if (o.smoothing < 0 || o.smoothing > max_smoothing)
         throw InvalidInput(
             fmt::format("smoothing passes S must be in 0..{}, got {}", max_smoothing, o.smoothing));
@@ -144,7 +148,12 @@ VertexGeometry interpolate_geometry(const EmbeddedFields& fields, std::span<cons
 
 VertexGeometry embedded_geometry(const DistanceTree& tree, const EmbeddedOptions& options) {
     const EmbeddedFields fields = embedded_fields(tree, options);
-    return interpolate_geometry(fields, tree.curves().points(), options.eno_order);
+    VertexGeometry g = interpolate_geometry(fields, tree.curves().points(), options.eno_order);
+    if (options.average > 0.0) {
+        const double h = tree.tree().root_box().width() / options.mesh;
+        g.curvature = average_along_curves(tree.curves(), g.curvature, options.average * h);
+    }
+    return g;
 }
 
 VertexGeometry embedded_geometry(const Interface& curves, Box domain,

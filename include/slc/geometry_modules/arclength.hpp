@@ -40,4 +40,9 @@ inline double circle_curvature(Vec2 u, Vec2 v) {
 /// on the thread count.
 VertexGeometry arclength_geometry(const Interface& curves, double width);
 
+/// f averaged along each curve with cubic B-spline weights of standard deviation `width` in
+/// arc length.
+std::vector<double> average_along_curves(const Interface& curves, const std::vector<double>& f,
+                                         double width);
+
 }  // namespace slc

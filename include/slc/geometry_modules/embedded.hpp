@@ -24,6 +24,13 @@ struct EmbeddedOptions {
     /// S: passes of cosine smoothing after each differentiation, >= 0 (the paper raises S
     /// logarithmically with M for curvature flows).
     int smoothing = 0;
+    /// Width, in mesh spacings h, over which the vertex curvature is averaged along Γ (the
+    /// arclength module's cubic B-spline weights, standard deviation average · h); 0: none, the
+    /// paper's module. The module resolves C to about h, and a polygon's distance field is kinked
+    /// at every vertex (its fans), so the interpolated C varies from vertex to vertex at a scale
+    /// the mesh cannot resolve; under curvature flow that noise roughens the curve below the mesh,
+    /// where C cannot see it to damp it (docs/notes/area-preserving.md).
+    double average = 1.0;
 };
 
 /// M = 2^(K+1), the paper's embedded mesh size for a contouring tree of depth K (0..29).
@@ -60,7 +67,8 @@ VertexGeometry interpolate_geometry(const EmbeddedFields& fields, std::span<cons
                                     int order);
 
 /// Vertex normals and curvature of the tree's curves by the embedded module: embedded_fields
-/// followed by interpolate_geometry at the vertices. Parallel; the result does not depend on
+/// followed by interpolate_geometry at the vertices, and the curvature averaged along Γ over
+/// EmbeddedOptions::average mesh spacings. Parallel; the result does not depend on
 /// the thread count.
 VertexGeometry embedded_geometry(const DistanceTree& tree, const EmbeddedOptions& options = {});
 

@@ -246,6 +246,8 @@ TEST(EmbeddedGeometry, RejectsOptionsOutOfRange) {
     EXPECT_THROW(embedded_geometry(tree, {.eno_order = 0}), InvalidInput);
     EXPECT_THROW(embedded_geometry(tree, {.eno_order = eno::max_order + 1}), InvalidInput);
     EXPECT_THROW(embedded_geometry(tree, {.smoothing = -1}), InvalidInput);
+    EXPECT_THROW(embedded_geometry(tree, {.average = -1.0}), InvalidInput);
+    EXPECT_THROW(embedded_geometry(tree, {.average = std::nan("")}), InvalidInput);
     EXPECT_EQ(default_mesh_size(6), 128);
     EXPECT_THROW(default_mesh_size(-1), InvalidInput);
 }
