@@ -122,6 +122,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"M", o.step.embedded.mesh},
         {"E", o.step.embedded.eno_order},
         {"S", o.step.embedded.smoothing},
+        {"embedded_average", o.step.embedded.average},
         {"L", o.step.resolved_tree_depth()},
         {"domain", {p.domain.lo.x, p.domain.lo.y, p.domain.hi.x, p.domain.hi.y}},
         {"t_end", o.t_end},

@@ -54,6 +54,9 @@ struct Problem {
     /// -K is 10^−K ℓ): 1 for a named problem, the half-width of a user's curves.
     double length_scale = 1.0;
     int smoothing = 0;  ///< S
+    /// EmbeddedOptions::average: the embedded curvature averaged along Γ over this many mesh
+    /// spacings (0: the paper's module).
+    double embedded_average = 0.0;
     /// The law: a built-in one by make_velocity name, or "speed" or "field" (velocity_expression
     /// is its text) or "field-file" (velocity_file names the file); see problem_law().
     std::string velocity;

@@ -25,12 +25,14 @@ struct EmbeddedOptions {
     /// logarithmically with M for curvature flows).
     int smoothing = 0;
     /// Width, in mesh spacings h, over which the vertex curvature is averaged along Γ (the
-    /// arclength module's cubic B-spline weights, standard deviation average · h); 0: none, the
-    /// paper's module. The module resolves C to about h, and a polygon's distance field is kinked
-    /// at every vertex (its fans), so the interpolated C varies from vertex to vertex at a scale
-    /// the mesh cannot resolve; under curvature flow that noise roughens the curve below the mesh,
-    /// where C cannot see it to damp it (docs/notes/area-preserving.md).
-    double average = 1.0;
+    /// arclength module's cubic B-spline weights, standard deviation average · h); 0, the
+    /// default: none, the paper's module. The module resolves C to about h, and a polygon's
+    /// distance field is kinked at every vertex (its fans), so the interpolated C varies from
+    /// vertex to vertex at scales the mesh cannot resolve; over the thousands of steps of a
+    /// nonlocal flow that stands still at circles, that roughens the curve below the mesh, where
+    /// C cannot see it to damp it (docs/notes/area-preserving.md). Figs. 18 and 19's problems
+    /// take 1.
+    double average = 0.0;
 };
 
 /// M = 2^(K+1), the paper's embedded mesh size for a contouring tree of depth K (0..29).
