@@ -40,6 +40,19 @@ def area_drift(out):
     return max(drifts, key=abs), drifts[-1]
 
 
+def from_its_circle(out):
+    """The largest distance of a vertex of the final curve (the first, when there are several)
+    from the circle of its area about its centroid."""
+    with open(os.path.join(out, "final.json")) as f:
+        points = json.load(f)["curves"][0]["points"]
+    a = cx = cy = 0.0
+    for (x0, y0), (x1, y1) in zip(points, points[1:] + points[:1]):
+        w = x0 * y1 - x1 * y0
+        a, cx, cy = a + 0.5 * w, cx + (x0 + x1) * w, cy + (y0 + y1) * w
+    cx, cy, radius = cx / (6 * a), cy / (6 * a), math.sqrt(abs(a) / math.pi)
+    return max(abs(math.hypot(x - cx, y - cy) - radius) for x, y in points)
+
+
 def components_range(out):
     counts = [int(r["components"]) for r in history(out)]
     return min(counts), max(counts)
@@ -443,8 +456,9 @@ step). The distance between the two runs is taken at the paper's drawn times.
             "M = 2^(K+1), in the domain [−b, b]²). Wiggles show as length in excess of the circle "
             "the spiral ends as, L/(2√(πA)) − 1 where the run ends (t = 2.56 unless the guard "
             "ended it, below):\n\n"
-            "| run | b | k/h² | status | ends at t | excess length there | area drift there |\n"
-            "|---|---|---|---|---|---|---|\n")
+            "| run | b | k/h² | status | ends at t | excess length there | from its circle there "
+            "| area drift there |\n"
+            "|---|---|---|---|---|---|---|---|\n")
         for name, args in runs.items():
             n, k_depth = int(args[1]), int(args[5])
             for b in (3, 4, 5):
@@ -461,17 +475,20 @@ step). The distance between the two runs is taken at the paper's drawn times.
                 excess = length / (2.0 * math.sqrt(math.pi * a)) - 1.0
                 self.write(f"| {'/'.join(args[1::2])} | {b} | {2.56 / n / h ** 2:.3g} | "
                            f"{summary['status']} | {fmt(rows[-1]['t'], 4)} | {fmt(excess)} | "
+                           f"{fmt(from_its_circle(self.out(out)))} | "
                            f"{fmt(area_drift(self.out(out))[1])} |\n")
         self.write(
             "\nIn [−3, 3]² neither of the paper's runs is stable; in [−5, 5]² both are, which is "
-            "why the problem takes it. What is left is noise at the scale of the vertices, finer "
-            "than the embedded mesh, whose smoothed curvature does not see it and so does not "
-            "damp it; it adds up slowly (a circle alone under Eq. 13 in [−5, 5]² at 2048/3/7/4 "
-            "ends 0.3% longer than itself at t = 10.24, its vertices jittering by up to 3.6e−3; "
-            "with the arclength module, 1e−5 longer). Eq. 13 only shortens curves, so a run "
-            "whose length grows 0.5% above the least it reached ends `unstable` "
-            "(docs/errors.md): the 512-step run does so near its end, and the distance to the "
-            "1024-step run is not taken after it.\n\n"
+            "why the problem takes it. The embedded module's curvature, interpolated to the "
+            "vertices, varies from vertex to vertex at a scale its mesh does not resolve (the "
+            "polygon's distance field is kinked at every vertex); used as it is, that roughened "
+            "the curve below the mesh, where the curvature cannot see the roughness to damp it, "
+            "the length grew, which Eq. 13 forbids, and the guard ended the 512-step run at "
+            "t = 2.545 (docs/errors.md). The module now averages its vertex curvature along "
+            "the curve over one mesh spacing (docs/algorithms/geometry.md; lab notes in "
+            "docs/notes/area-preserving.md), and both runs reach t = 2.56. What is left is the "
+            "distance from a circle above: a four-fold shape, in step with the mesh, where "
+            "the module's curvature is constant.\n\n"
             "Without the correction the area stays within the first table's figures: the law's "
             "mean, the Lagrange multiplier of the area, is fixed each step on the curve the step "
             "produces (docs/algorithms/evolve.md). Taken over the curve the step starts from, as "
@@ -518,16 +535,16 @@ wiggles), to t = 10.24 (the paper gives neither its bubbles nor its domain or ti
         a, length = rows[-1]["area"], rows[-1]["length"]
         self.write(
             "Without the correction the area stays within the table's figures through the "
-            "merges (with the mean over the curve each step starts from, 1.2% was lost). The "
-            "merged bubble gathers the vertex-scale noise of the spiral's circle, and its "
-            "length grows, which Eq. 13 forbids: "
-            + (f"the guard ends the run at t = {fmt(s['t'], 4)}, its length 0.5% above the "
-               "least it reached (docs/errors.md), "
-               if s["status"] == "unstable" else "")
-            + f"{fmt(length / (2.0 * math.sqrt(math.pi * a)) - 1.0)} longer than the circle of "
-            f"its area at t = {fmt(rows[-1]['t'], 4)}. With the arclength module and arcs "
-            "(docs/problems.md) it runs to the end. With the correction every step keeps the "
-            "area to rounding.\n\n")
+            "merges (with the mean over the curve each step starts from, 1.2% was lost). "
+            + (f"The guard ended the run at t = {fmt(s['t'], 4)}: {s['message']}. "
+               if s["status"] != "ok" else "")
+            + f"At t = {fmt(rows[-1]['t'], 4)} the merged bubble is "
+            f"{fmt(length / (2.0 * math.sqrt(math.pi * a)) - 1.0)} longer than the circle of "
+            f"its area and lies within {fmt(from_its_circle(self.out('bubbles')))} of it (a "
+            "four-fold shape in step with the mesh, as the spiral's; with the embedded "
+            "curvature used as interpolated, the vertex-scale roughness of the spiral's section "
+            "grew the length until the guard ended the run at t = 7.735). With the correction "
+            "every step keeps the area to rounding.\n\n")
 
 
 HEADER = """# The paper's figures at its own parameters
@@ -560,8 +577,8 @@ result is not the paper's (the section below says how).
 | Fig. 15 | Wulff shapes, tilts superimposed | below | drawn; m = 3 jagged on its non-convex side |
 | Fig. 16 | circles under curvature flow, four runs | below | drawn |
 | Fig. 17 | a polygon under curvature flow, runs a–d | below | drawn; run a kinks near t = 1.6–2.6, b–d do not |
-| Fig. 18 | a spiral under Eq. 13 | below | differs: the 512-step run ends `unstable` at t = 2.545 of 2.56 |
-| Fig. 19 | bubbles merging under Eq. 13 | below | differs: ends `unstable` at t = 7.735 of 10.24 |
+| Fig. 18 | a spiral under Eq. 13 | below | drawn; both runs reach t = 2.56, their final curves 1e−3 to 3e−3 from a circle |
+| Fig. 19 | bubbles merging under Eq. 13 | below | drawn; reaches t = 10.24, the final bubble 2e−3 from a circle |
 | Table 1 | distance tree cost | [tables/table1.md](tables/table1.md) | reproduced (cells 10–20% fewer) |
 | Tables 2, 3 | linear and adaptive contouring | [table2.md](tables/table2.md), [table3.md](tables/table3.md) | reproduced |
 | Table 5 | a propeller turned twice | [tables/table5.md](tables/table5.md) | 16 of 25 errors at or below the paper's |
