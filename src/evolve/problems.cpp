@@ -317,8 +317,8 @@ Problem spiral_nonlocal(const Params& params) {
     p.parameters = {{"tilt", tilt, "rotation of the spiral, degrees"}};
     p.module = GeometryModule::embedded;
     // The paper gives no domain, and the domain sets the embedded mesh h = 2b/M: the explicit
-    // step is stable for k/h² up to about 6 at S = 2 and 10 at S = 3 (docs/figures.md). In
-    // [−5, 5]² both of the paper's runs are (k/h² = 3.3 and 6.6); in [−3, 3]² neither is.
+    // step is stable only up to a k/h² that S raises (docs/figures.md). In [−5, 5]² both of the
+    // paper's runs are stable (k/h² = 3.3 and 6.6); in [−3, 3]² the 1024-step run (18) is not.
     // With the embedded curvature as interpolated, the curve roughens below the mesh and its
     // length grows from t = 1.29 (512 steps) until the guard stops it; averaged along the curve
     // over a mesh spacing it reaches t = 2.56 (EmbeddedOptions::average).
@@ -334,7 +334,7 @@ Problem bubbles_nonlocal(const Params&) {
                      bubbles(12, 2.7, 0.25, 0.75, 19), Box::centered_square(5.0), 10.24,
                      "volume-preserving-curvature");
     p.module = GeometryModule::embedded;
-    // [−5, 5]² as for the spiral: k/h² = 3.3 (9.1 in [−3, 3]², where the merged bubble wiggles),
+    // [−5, 5]² as for the spiral: k/h² = 3.3 (9.1 in [−3, 3]², where the area drifts 1.3e−4),
     // and the embedded curvature averaged as for the spiral (the guard stopped the run at
     // t = 7.735 without it).
     set_run(p, 2048, 3, 7, 4, 1e-4);
