@@ -150,8 +150,8 @@ VertexGeometry embedded_geometry(const DistanceTree& tree, const EmbeddedOptions
     const EmbeddedFields fields = embedded_fields(tree, options);
     VertexGeometry g = interpolate_geometry(fields, tree.curves().points(), options.eno_order);
     if (options.average > 0.0) {
-        const double h = tree.tree().root_box().width() / options.mesh;
-        g.curvature = average_along_curves(tree.curves(), g.curvature, options.average * h);
+        g.curvature = average_along_curves(tree.curves(), g.curvature,
+                                           options.average * fields.mesh.spacing());
     }
     return g;
 }
