@@ -19,10 +19,7 @@ namespace slc {
 namespace {
 
 void validate(const ContourOptions& o, const Box& domain) {
-    contouring::check_shared_options(o, Quadtree::max_supported_depth);
-    if (!(o.rho >= 0.0 && o.rho < 1.0)) {
-        throw InvalidInput(fmt::format("rho must be in [0, 1), got {}", o.rho));
-    }
+    contouring::check_options(o, Quadtree::max_supported_depth);
     const double w = domain.width();
     if (!(w > 0.0) || !std::isfinite(w) || !is_finite(domain.lo) || domain.height() != w) {
         throw InvalidInput(
@@ -113,8 +110,6 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
 }
 
 }  // namespace
-
-double ContourOptions::resolved_eps() const { return eps.value_or(std::pow(10.0, -depth)); }
 
 ContourResult contour(BatchFunctionRef g, const Box& domain, const ContourOptions& options) {
     return contour_with(g, domain, options, std::nullopt);

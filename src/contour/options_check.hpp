@@ -1,22 +1,24 @@
-// The range checks of the contour options that curves and surfaces share (ContourOptions,
-// SurfaceContourOptions): written once, so that both dimensions refuse the same settings with
-// the same words.
+// The range checks of the contour options (BasicContourOptions<dim>): written once, so that
+// both dimensions refuse the same settings with the same words.
 #pragma once
 
 #include <fmt/format.h>
 
 #include <cmath>
 
+#include "slc/contour/contour_options.hpp"
 #include "slc/core/error.hpp"
 
 namespace slc::contouring {
 
-/// Throws InvalidInput naming the first shared option out of range: K outside 0..max_depth (the
-/// deepest level the dimension's tree takes), a negative thin depth, P below 0 other than
+/// Throws InvalidInput naming the first option out of range: K outside 0..max_depth (the deepest
+/// level the dimension's tree takes), a negative thin depth, P below 0 other than
 /// until_converged, a negative cap on passes, η not positive, ε not positive or below η, a
-/// negative or infinite distance slack, γ not positive.
-template <class Options>
-void check_shared_options(const Options& o, int max_depth) {
+/// negative or infinite distance slack, γ not positive, ρ outside [0, 1); or an option of the
+/// other dimension set (creases for curves, ρ or the triangle safeguard for surfaces).
+template <int dim>
+void check_options(const BasicContourOptions<dim>& o, int max_depth) {
+    using Options = BasicContourOptions<dim>;
     auto positive = [](double x) { return x > 0.0 && std::isfinite(x); };
     if (o.depth < 0 || o.depth > max_depth) {
         throw InvalidInput(
@@ -46,6 +48,16 @@ void check_shared_options(const Options& o, int max_depth) {
     }
     if (!positive(o.gamma))
         throw InvalidInput(fmt::format("gamma must be positive, got {}", o.gamma));
+    if (!(o.rho >= 0.0 && o.rho < 1.0))
+        throw InvalidInput(fmt::format("rho must be in [0, 1), got {}", o.rho));
+    if constexpr (dim == 2) {
+        if (o.creases) throw InvalidInput("creases are followed by the contours of surfaces only");
+    } else {
+        if (o.rho != Options{}.rho || !o.triangle_safeguard) {
+            throw InvalidInput(
+                "rho and the triangle safeguard apply to the contours of curves only");
+        }
+    }
 }
 
 }  // namespace slc::contouring

@@ -29,7 +29,7 @@ using contouring::SurfaceTopology;
 
 /// Throws InvalidInput naming the first option out of range, or a domain that is not a cube.
 void validate(const SurfaceContourOptions& o, const Box3& domain) {
-    contouring::check_shared_options(o, max_tetrahedralized_depth);
+    contouring::check_options(o, max_tetrahedralized_depth);
     const double w = domain.width();
     if (!(w > 0.0) || !std::isfinite(w) || !is_finite(domain.lo) || !domain.is_cube()) {
         throw InvalidInput(fmt::format(
@@ -243,12 +243,5 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
                                const SurfaceContourOptions& options, SpaceBoundsRef bounds) {
     return contour_surface_with(g, domain, options, bounds);
 }
-
-double SurfaceContourOptions::resolved_eta() const {
-    if (eta) return *eta;
-    return refine_passes == 0 ? default_eta : std::max(default_eta, resolved_eps() / 100.0);
-}
-
-double SurfaceContourOptions::resolved_eps() const { return eps.value_or(std::pow(10.0, -depth)); }
 
 }  // namespace slc

@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <optional>
 
+#include "slc/contour/contour_options.hpp"
 #include "slc/contour/contour_stats.hpp"
 #include "slc/contour/implicit_function.hpp"
 #include "slc/contour/root_finding.hpp"
@@ -28,65 +29,8 @@
 
 namespace slc {
 
-/// Parameters of contour() (paper Table 4; DESIGN §4).
-struct ContourOptions {
-    /// refine_passes value meaning: refine until no segment midpoint exceeds ε, or a pass changes
-    /// nothing, but at most max_refine_passes passes.
-    static constexpr int until_converged = -1;
-
-    /// K: deepest level of the topology tree, 0..Quadtree::max_supported_depth.
-    int depth = 6;
-    /// P ≥ 0, or until_converged. Refinement also stops early when no midpoint exceeds ε or a
-    /// pass changes nothing, so a large P runs to convergence too.
-    int refine_passes = 0;
-    /// ε: midpoint tolerance of refinement, ε ≥ η; default 10^−K. Neither can go below what
-    /// doubles resolve in the domain, two ulps of its largest coordinate (2.2e−16 b in [−b, b]²):
-    /// a given ε below it is InvalidInput, the default 10^−K and η are raised to it.
-    std::optional<double> eps = std::nullopt;
-    /// η > 0: root-finding tolerance, |G| ≤ η at every vertex. Unset (the default):
-    /// default_eta, as for surfaces' linear contour (SurfaceContourOptions::eta).
-    std::optional<double> eta = std::nullopt;
-    /// Levels beyond K, 0..(Quadtree::max_supported_depth − K), for cells at depth K near the
-    /// zero set where G bends within the cell — its centre nearer zero than the mean of the ends
-    /// of a diagonal by more than a quarter of the half-diagonal, all three of one sign, which a
-    /// distance does not do on one side of a curve turning less than about two cells: a thin
-    /// part, two curves in near contact, a corner or a tight turn. Such cells split again, up to
-    /// K + thin_depth, so that the linear contour has both sides of what it would otherwise miss
-    /// or cut across (as SurfaceContourOptions::thin_depth). 0 (the default) keeps every leaf at
-    /// depth K or above.
-    int thin_depth = 0;
-    /// ρ in [0, 1): prune segments shorter than ρ times both neighbours; 0 disables pruning.
-    double rho = 0.1;
-    /// γ > 0: starting estimate of the gradient bound |∇G| ≤ γ, doubled until the tree balances.
-    double gamma = 1.0;
-    /// Cap on the passes of until_converged.
-    int max_refine_passes = 64;
-    /// Refinement that would pass this many contour vertices throws LimitExceeded naming ε
-    /// (about 100 bytes a vertex: 420 MB). A smooth curve of length L and curvature κ refined to
-    /// ε needs about L·sqrt(κ/8ε) vertices: 2.2e7 for the unit circle at ε = 1e−14.
-    std::size_t max_vertices = std::size_t{1} << 22;
-    /// The paper's triangle safeguard: a vertex added by refinement may stay in its segment's
-    /// triangle or move into an adjacent one where G has no sign change, no farther. Off, it may
-    /// go as far as its bracket reaches (at most three segment lengths, and short of every other
-    /// segment), the angle and crossing safeguards still keeping every curve simple and apart:
-    /// refinement then finds the corners of the zero set that the tree's triangles cut off.
-    bool triangle_safeguard = true;
-    /// How brackets are shrunk: Brent (default), Illinois, or the paper's bisection.
-    RootMethod root_method = RootMethod::brent;
-    /// δ ≥ 0, when the caller can guarantee |G(x) − G(y)| ≤ |x − y| + δ for all x and y: 0 for a
-    /// signed distance function, 2k·max|W| for the semi-Lagrangian formula. Tree points where a
-    /// nearby sample's value already bounds |G| above the split threshold are then not evaluated
-    /// (the bound, with its certain sign, stands in). The tree and the contour are those that
-    /// exact values give. Unset (the default): every tree point is evaluated.
-    std::optional<double> distance_slack = std::nullopt;
-
-    /// η when none is given.
-    static constexpr double default_eta = 1e-10;
-    /// η as given, or default_eta.
-    double resolved_eta() const { return eta.value_or(default_eta); }
-    /// ε as given, or its default 10^−K.
-    double resolved_eps() const;
-};
+/// Parameters of contour() (paper Table 4; DESIGN §4): contour_options.hpp.
+using ContourOptions = BasicContourOptions<2>;
 
 /// What a contour of curves cost and what it produced: the fields both dimensions share
 /// (BasicContourStats), and the curves' own.

@@ -426,6 +426,8 @@ TEST(Contour, InvalidOptionsAreRejected) {
     EXPECT_THROW(contour(g, unit_domain, with([](auto& o) { o.eps = 1e-12; })), InvalidInput);
     EXPECT_THROW(contour(g, unit_domain, with([](auto& o) { o.rho = 1.0; })), InvalidInput);
     EXPECT_THROW(contour(g, unit_domain, with([](auto& o) { o.gamma = -1.0; })), InvalidInput);
+    // Creases are the surfaces' own option (one options type for both dimensions).
+    EXPECT_THROW(contour(g, unit_domain, with([](auto& o) { o.creases = true; })), InvalidInput);
     EXPECT_THROW(contour(g, Box{{0, 0}, {1, 2}}, ContourOptions{}), InvalidInput);
     EXPECT_DOUBLE_EQ(with([](auto& o) { o.depth = 7; }).resolved_eps(), 1e-7);
 }

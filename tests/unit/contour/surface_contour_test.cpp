@@ -503,6 +503,10 @@ TEST(SurfaceContour, BadInputAndNonFiniteValues) {
                  InvalidInput);
     EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.thin_depth = -1}), InvalidInput);
     EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.gamma = 0.0}), InvalidInput);
+    // Pruning and the triangle safeguard are the curves' own options.
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.rho = 0.2}), InvalidInput);
+    EXPECT_THROW(contour_surface(g, Box3::centered_cube(1.0), {.triangle_safeguard = false}),
+                 InvalidInput);
     const auto nan = pointwise<Vec3>([](Vec3 x) { return x.x > 0.3 ? std::nan("") : x.x; });
     EXPECT_THROW(contour_surface(nan, Box3::centered_cube(1.0), {.depth = 3}), NumericalFailure);
 }
