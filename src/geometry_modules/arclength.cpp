@@ -1,4 +1,5 @@
-// The arclength geometry module: circumcircle curvature averaged along the curve.
+// The arclength geometry module: circumcircle curvature (a corner's turn over its half
+// segments) averaged along the curve.
 #include "slc/geometry_modules/arclength.hpp"
 
 #include <fmt/format.h>
@@ -89,7 +90,7 @@ VertexGeometry arclength_geometry(const Interface& curves, double width) {
         const Vec2 sum = tangent_in + tangent_out;
         const double sum_norm = norm(sum);
         g.normals[i] = sum_norm > 0.0 ? -perp(sum) / sum_norm : -perp(tangent_out);
-        g.curvature[i] = circle_curvature(u, v);
+        g.curvature[i] = vertex_curvature(u, v);
     });
     if (width > 0.0) {
         const std::vector<double> ds = vertex_arc_lengths(curves);

@@ -67,6 +67,16 @@ inline std::vector<Vec2> ellipse(Vec2 c, double a, double b, int n, bool clockwi
     return p;
 }
 
+/// The polygon through corners, each edge sampled at n points.
+inline std::vector<Vec2> polygon(const std::vector<Vec2>& corners, int n) {
+    std::vector<Vec2> p;
+    for (std::size_t c = 0; c < corners.size(); ++c) {
+        const Vec2 a = corners[c], b = corners[(c + 1) % corners.size()];
+        for (int k = 0; k < n; ++k) p.push_back(a + (static_cast<double>(k) / n) * (b - a));
+    }
+    return p;
+}
+
 /// The shapes at scale 1, by name.
 inline Curves shape(const std::string& name) {
     if (name == "circle") return {ellipse({0, 0}, 0.5, 0.5, 200)};
@@ -91,6 +101,11 @@ inline Curves shape(const std::string& name) {
         return {ellipse({-0.45, 0}, 0.3, 0.3, 120), ellipse({0.4, 0}, 0.2, 0.2, 80)};
     if (name == "with a hole")
         return {ellipse({0, 0}, 1.0, 1.0, 200), ellipse({0, 0}, 0.4, 0.4, 100, true)};
+    if (name == "square")  // side 1, 40 points an edge: four corners of 90°
+        return {polygon({{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}}, 40)};
+    if (name == "L with a hole")  // 1 × 1, arms 0.4; a 0.2 × 0.25 hole 0.1 from the outside
+        return {polygon({{0, 0}, {1, 0}, {1, 0.4}, {0.4, 0.4}, {0.4, 1}, {0, 1}}, 40),
+                polygon({{0.1, 0.1}, {0.1, 0.35}, {0.3, 0.35}, {0.3, 0.1}}, 40)};
     return {};
 }
 
@@ -112,6 +127,9 @@ inline std::vector<Case> cases() {
         {"two circles", "volume-preserving-curvature", {}, 0.005, Law::area_kept, 1e-3, 2},
         {"with a hole", "curvature", {}, 0.04, Law::area_rate, 0.01, 2},
         {"with a hole", "unit-normal", {}, 0.2, Law::offset, 5e-3},
+        {"square", "curvature", {}, 0.1, Law::area_rate, 0.01, 2},
+        // Before the hole vanishes (t = 0.05/2π): the outside loses what the hole gives back.
+        {"L with a hole", "curvature", {}, 0.005, Law::area_rate, 0.01, 2},
     };
 }
 

@@ -17,6 +17,7 @@
 #include "slc/contour/contour.hpp"
 #include "slc/core/box.hpp"
 #include "slc/geometry/interface.hpp"
+#include "slc/geometry_modules/arclength.hpp"
 #include "slc/geometry_modules/embedded.hpp"
 #include "slc/velocity/velocity.hpp"
 
@@ -61,7 +62,7 @@ struct StepOptions {
     /// back the area of Γ(t) by restore_area. Unset: on for such laws.
     std::optional<bool> area_correction = std::nullopt;
     /// Turning angle at a vertex (radians) above which arcs treats it as a corner.
-    static constexpr double arc_corner = 0.5;
+    static constexpr double arc_corner = corner_turn;
     /// Length of a segment, in finest cells of the contours (finest_cell), above which arcs treats
     /// its ends as corners under a rigid motion.
     static constexpr double arc_longest = 2.0;

@@ -1,6 +1,6 @@
 // Tests of the arclength geometry module: curvature exact on circles however unevenly sampled
-// and whatever the width, signs on holes, the bias of the averaging shrinking as σ⁴ on an
-// ellipse, and its errors.
+// and whatever the width, a corner's curvature integrating to its turn, signs on holes, the bias of
+// the averaging shrinking as σ⁴ on an ellipse, and its errors.
 #include "slc/geometry_modules/arclength.hpp"
 
 #include <gtest/gtest.h>
@@ -45,6 +45,45 @@ TEST(ArclengthGeometry, CurvatureIsExactOnCirclesHoweverUnevenAndWhateverTheWidt
                 ASSERT_NEAR(g.curvature[i] * r, -1.0, 1e-9) << "r = " << r << ", σ = " << width;
         }
     }
+}
+
+TEST(ArclengthGeometry, ACornersCurvatureIntegratesToItsTurn) {
+    // A square of side 1 sampled 8 points an edge, and an L with a square hole sampled unevenly:
+    // each corner's κ ds is its turn (±π/2), the sides' vertices have κ = 0, and Σ κ ds is −2π
+    // for each counterclockwise curve and +2π for the hole, as for a smooth curve. The circle
+    // through a corner and its neighbours would give √2 where the turn is π/2.
+    const auto sampled = [](std::vector<Vec2> corners, std::vector<int> per_edge) {
+        std::vector<Vec2> points;
+        for (std::size_t c = 0; c < corners.size(); ++c) {
+            const Vec2 a = corners[c], b = corners[(c + 1) % corners.size()];
+            const int n = per_edge[c % per_edge.size()];
+            for (int k = 0; k < n; ++k)
+                points.push_back(a + (static_cast<double>(k) / n) * (b - a));
+        }
+        return points;
+    };
+    const Interface square({sampled({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {8})});
+    const Interface l_with_hole(
+        {sampled({{0, 0}, {1, 0}, {1, 0.4}, {0.4, 0.4}, {0.4, 1}, {0, 1}}, {40, 7, 23, 9, 3, 11}),
+         sampled({{0.1, 0.1}, {0.1, 0.35}, {0.3, 0.35}, {0.3, 0.1}}, {5, 4, 6, 3})});
+    for (const Interface* curves : {&square, &l_with_hole}) {
+        const VertexGeometry g = arclength_geometry(*curves, 0.0);
+        for (std::size_t c = 0; c < curves->curve_count(); ++c) {
+            double total = 0.0;
+            for (std::size_t i = curves->offsets()[c]; i < curves->offsets()[c + 1]; ++i) {
+                const double ds = 0.5 * (norm(curves->point(i) - curves->point(curves->prev(i))) +
+                                         norm(curves->point(curves->next(i)) - curves->point(i)));
+                const double turn = std::abs(g.curvature[i] * ds);
+                EXPECT_TRUE(turn < 1e-12 || std::abs(turn - pi / 2) < 1e-12) << turn;
+                total += g.curvature[i] * ds;
+            }
+            EXPECT_NEAR(total, c == 0 ? -2.0 * pi : 2.0 * pi, 1e-12);
+        }
+    }
+    // A turn at most corner_turn is read as a smooth curve's: the circle's curvature.
+    const Vec2 u{1.0, 0.0}, v{std::cos(0.4), std::sin(0.4)};
+    EXPECT_DOUBLE_EQ(vertex_curvature(u, v), circle_curvature(u, v));
+    EXPECT_DOUBLE_EQ(vertex_curvature(u, {0.0, 2.0}), -2.0 * (pi / 2) / 3.0);
 }
 
 TEST(ArclengthGeometry, NormalsAreRadialOnRegularPolygonsAndHolesCurveTheOtherWay) {
