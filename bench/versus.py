@@ -86,8 +86,8 @@ def timed(slc, args, out):
         sys.exit(f"{' '.join(command)}: exit status {p.returncode}: {err.strip()}")
     summary = out / "summary.json"
     if summary.exists():
-        return json.loads(summary.read_text())["cpu_s"], out
-    return usage.ru_utime + usage.ru_stime, out
+        return json.loads(summary.read_text())["cpu_s"]
+    return usage.ru_utime + usage.ru_stime
 
 
 def digest(out, name):
@@ -135,7 +135,8 @@ def main():
             for repeat in range(a.repeat):
                 pair = {}
                 for key, slc in (("old", old), ("new", a.slc)):
-                    pair[key], out = timed(slc, args, folder / f"{number}-{key}-{repeat}")
+                    out = folder / f"{number}-{key}-{repeat}"
+                    pair[key] = timed(slc, args, out)
                     best[key] = min(best[key], pair[key])
                     digests[key] = digest(out, output)
                 ratios.append(pair["new"] / pair["old"])

@@ -59,8 +59,8 @@ double longest_smooth_segment(const VelocityLaw& law, const Box& domain, const S
 /// True where the polygon is read as a smooth curve: at a vertex whose segments u, v turn by at
 /// most StepOptions::arc_corner and are each at most `longest`.
 bool reads_smooth(Vec2 u, Vec2 v, double longest) {
-    return std::abs(std::atan2(cross(u, v), dot(u, v))) <= StepOptions::arc_corner &&
-           norm2(u) <= longest * longest && norm2(v) <= longest * longest;
+    return std::abs(turn_angle(u, v)) <= StepOptions::arc_corner && norm2(u) <= longest * longest &&
+           norm2(v) <= longest * longest;
 }
 
 /// The signed curvature of the circle through each vertex and its two neighbours (−1/R on a
@@ -351,7 +351,7 @@ private:
         std::vector<Vec2> at, normals;
         for (std::size_t v = 0; v < curves.size(); ++v) {
             const Vec2 a = segment_normal(curves.prev(v)), b = segment_normal(v);
-            const double turn = std::atan2(cross(a, b), dot(a, b));
+            const double turn = turn_angle(a, b);
             const int samples = 1 + static_cast<int>(std::ceil(std::abs(turn) / 0.02));
             for (int j = 0; j <= samples; ++j) {
                 const double angle = turn * j / samples;

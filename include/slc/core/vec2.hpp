@@ -54,6 +54,8 @@ constexpr Vec2 operator/(Vec2 a, double s) { return {a.x / s, a.y / s}; }
 constexpr double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 /// The z-component of a × b: positive when b lies counterclockwise of a.
 constexpr double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+/// The signed angle from direction a to direction b, in (−π, π]: positive counterclockwise.
+inline double turn_angle(Vec2 a, Vec2 b) { return std::atan2(cross(a, b), dot(a, b)); }
 /// a rotated a quarter turn counterclockwise, (x, y)^⊥ = (−y, x) as in the paper's §3.1.
 constexpr Vec2 perp(Vec2 a) { return {-a.y, a.x}; }
 /// The squared length |a|², without a square root.

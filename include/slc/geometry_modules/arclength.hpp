@@ -32,7 +32,7 @@ inline constexpr double corner_turn = 0.5;
 /// and its area, too slowly: a square's first step moved 86% of the law's area, and a step
 /// of an L-shaped region with a hole closed off a speck (docs/notes/corners.md).
 inline double vertex_curvature(Vec2 u, Vec2 v) {
-    const double turn = std::atan2(cross(u, v), dot(u, v));
+    const double turn = turn_angle(u, v);
     if (std::abs(turn) <= corner_turn) return circle_curvature(u, v);
     return -2.0 * turn / (norm(u) + norm(v));
 }
