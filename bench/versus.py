@@ -8,6 +8,11 @@ distance query the whole process's), and the outputs are compared byte for byte 
 final.obj, the distances printed). Writes the table into the region `versus` of
 docs/notes/performance.md (between <!-- begin versus --> and <!-- end versus -->).
 
+With --instructions, each command runs once a build under valgrind's callgrind instead, and the
+table gives the instructions the whole process executes (reading, computing, drawing and writing):
+a count that does not move with the machine's load, where the times of this machine move by
+15-30% between runs. It writes the region `versus-instructions`.
+
 The earlier revision is built from a git worktree in --work (only the tool, release flags as the
 release preset's), or given as a binary by --old."""
 import argparse
@@ -15,6 +20,7 @@ import hashlib
 import json
 import math
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -70,13 +76,16 @@ def cases(folder):
     ]
 
 
-def timed(slc, args, out):
+def timed(slc, args, out, instructions=False):
     """Runs slc with args into folder out; returns its CPU seconds: summary.json's cpu_s where it
-    writes one (the computation alone, not the pictures and files), else the whole process's."""
+    writes one (the computation alone, not the pictures and files), else the whole process's; or
+    with instructions, the instructions the process executes, counted by callgrind."""
     out.mkdir(parents=True, exist_ok=True)
     command = [slc, *args, "--threads", "1"]
     if args[0] != "distance":
         command += ["--out", str(out)]
+    if instructions:
+        command = ["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null", *command]
     with open(out.with_suffix(".stdout"), "wb") as stdout:
         p = subprocess.Popen(command, stdout=stdout, stderr=subprocess.PIPE)
         _, status, usage = os.wait4(p.pid, 0)
@@ -84,6 +93,11 @@ def timed(slc, args, out):
         err = p.stderr.read().decode()
     if p.returncode != 0:
         sys.exit(f"{' '.join(command)}: exit status {p.returncode}: {err.strip()}")
+    if instructions:
+        counted = re.search(r"Collected : (\d+)", err)
+        if not counted:
+            sys.exit(f"{' '.join(command)}: callgrind printed no count")
+        return int(counted.group(1))
     summary = out / "summary.json"
     if summary.exists():
         return json.loads(summary.read_text())["cpu_s"]
@@ -118,11 +132,15 @@ def main():
     parser.add_argument("--old", help="the earlier build's tool, instead of --revision")
     parser.add_argument("--out", default="docs/notes/performance.md")
     parser.add_argument("--repeat", type=int, default=7)
+    parser.add_argument("--instructions", action="store_true",
+                        help="count instructions under callgrind, once a build, instead of timing")
     a = parser.parse_args()
     if not a.old and not a.revision:
         sys.exit("give --revision REV or --old BINARY")
     old = a.old or build_old(a.revision, a.work)
     label = a.revision or a.old
+    if a.instructions:
+        return count_instructions(a, old, label)
     lines = [f"| command (one thread) | least CPU s, {label} | least CPU s, this | this ÷ before, "
              "median of the pairs (range) | same output |",
              "|---|---|---|---|---|"]
@@ -148,6 +166,26 @@ def main():
             lines.append(f"| {name} | {best['old']:.3f} | {best['new']:.3f} | {ratio:.3f} "
                          f"({min(ratios):.2f}–{max(ratios):.2f}) | {same} |")
     write_region(a.out, "versus", lines)
+
+
+def count_instructions(a, old, label):
+    lines = [f"| command (one thread, whole process) | instructions, {label} | instructions, this | "
+             "this ÷ before | same output |",
+             "|---|---|---|---|---|"]
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        for number, (name, args, output) in enumerate(cases(folder)):
+            count, digests = {}, {}
+            for key, slc in (("old", old), ("new", a.slc)):
+                out = folder / f"{number}-{key}"
+                count[key] = timed(slc, args, out, instructions=True)
+                digests[key] = digest(out, output)
+            ratio = count["new"] / count["old"]
+            same = "yes" if digests["old"] == digests["new"] else "no"
+            print(f"{name}: {count['old']:,} before, {count['new']:,} now, ratio {ratio:.4f}, "
+                  f"same output: {same}", flush=True)
+            lines.append(f"| {name} | {count['old']:,} | {count['new']:,} | {ratio:.4f} | {same} |")
+    write_region(a.out, "versus-instructions", lines)
 
 
 if __name__ == "__main__":

@@ -21,9 +21,9 @@ vertices of a stage, or a batch of points), never per point; what it raises reac
 """
 
 from ._interface import Interface, contour, contour_surface, distance
-from ._surface import Surface, SurfaceProblem, SurfaceRunResult, SurfaceStep, SurfaceStudy
+from ._surface import Step, Surface, SurfaceProblem, SurfaceRunResult, SurfaceStep, SurfaceStudy
 from ._run import (FieldExpression, FieldFile, FlowField, NormalSpeed, Problem, RunResult,
-                   SelfConvergence, SpeedExpression, Step, Study, problem, problems, run, study,
+                   SelfConvergence, SpeedExpression, Study, problem, problems, run, study,
                    velocities)
 from .plot import plot
 from .sweep import grid, sweep

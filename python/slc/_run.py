@@ -5,16 +5,16 @@ from __future__ import annotations
 
 import inspect
 from dataclasses import dataclass, field
-from typing import Any, Callable, NamedTuple
+from typing import Any, Callable
 
 import numpy as np
 
 from . import _slc
 from ._interface import Interface, _integer, _interface, _points, _refine, _threads
 from ._problem import _NamedProblem
-from ._tables import ConvergenceTable, nan_array as _array
-from ._surface import (Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy, _check_frames,
-                       _run_end, _RunEnd, run_surface, study_surface)
+from ._tables import ConvergenceTable, cell_arrays, nan_array as _array
+from ._surface import (Step, Surface, SurfaceProblem, SurfaceRunResult, SurfaceStudy,
+                       _check_frames, _run_end, _RunEnd, run_surface, study_surface)
 
 
 class FlowField:
@@ -87,16 +87,6 @@ class FieldFile:
             raise ValueError(f"FieldFile: outside must be 'error' or 'zero', got {outside!r}")
         self.path = str(path)
         self.outside = outside
-
-
-class Step(NamedTuple):
-    """What an observer of run() sees after each step."""
-
-    step: int  #: 1..steps
-    steps: int  #: N
-    t: float  #: the time reached
-    interface: Interface  #: the curves at t
-    cpu_s: float  #: CPU seconds of this step
 
 
 @dataclass(kw_only=True)
@@ -471,15 +461,11 @@ def study(subject, velocity=None, t_end: float | None = None, *, rows: int | Non
     if isinstance(subject, Problem):
         s = _slc.study(p, 5 if rows is None else _integer("rows", rows), o, threads,
                        observer)
-        shape = (s["rows"], s["columns"])
-        cells = s["cells"]
         return Study(
-            cells=cells,
-            errors=_array(c["e_inf"] for c in cells).reshape(shape),
-            cpu_s_per_step=_array(c["cpu_s_per_step"] for c in cells).reshape(shape),
+            **cell_arrays(s),
             row_orders=np.array([_array(r) for r in s["row_orders"]]),
             column_orders=np.array([_array(r) for r in s["column_orders"][:-1]]).reshape(
-                shape[0] - 1, shape[1]),
+                s["rows"] - 1, s["columns"]),
         )
     on_run = None
     if observer is not None:

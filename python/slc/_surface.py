@@ -15,7 +15,7 @@ import numpy as np
 from . import _slc
 from ._interface import _AtTime, _points
 from ._problem import _NamedProblem
-from ._tables import ConvergenceTable, nan_array as _array
+from ._tables import ConvergenceTable, cell_arrays, nan_array as _array
 
 
 def _vertices(a) -> np.ndarray:
@@ -174,14 +174,22 @@ class SurfaceProblem(_NamedProblem):
         return self._p.error(s._vertices, s._triangles, s.time)
 
 
-class SurfaceStep(NamedTuple):
-    """What an observer of run() on a surface sees after each step: as Step, with the surface."""
+class Step(NamedTuple):
+    """What an observer of run() sees after each step, for curves and surfaces alike."""
 
     step: int  #: 1..steps
     steps: int  #: N
     t: float  #: the time reached
-    surface: Surface  #: the surface at t
+    interface: Any  #: the curves (Interface) or the surface (Surface) at t
     cpu_s: float  #: CPU seconds of this step
+
+    @property
+    def surface(self):
+        """The interface, by the name a run of a surface gives it."""
+        return self.interface
+
+
+SurfaceStep = Step  # the name surfaces' observers had; one type for both dimensions
 
 
 @dataclass(kw_only=True)
@@ -241,7 +249,7 @@ def _run_end(out: dict, stacklevel: int) -> dict[str, Any]:
     return {k: out[k] for k in ("status", "t", "history", "summary", "message")}
 
 
-def run_surface(p, options, frames: int, observer: Callable[[SurfaceStep], Any] | None,
+def run_surface(p, options, frames: int, observer: Callable[[Step], Any] | None,
                 threads: int, estimate: bool = False) -> SurfaceRunResult:
     """Runs the _slc.SurfaceProblem p with the settings `options` (a _slc.RunOverrides: steps,
     depth, refine, eps, eta, thin_depth, area_correction: the volume correction, volume_drift:
@@ -252,7 +260,7 @@ def run_surface(p, options, frames: int, observer: Callable[[SurfaceStep], Any] 
     on_step = None
     if observer is not None:
         def on_step(step, n, t, v, tri, cpu_s):
-            return observer(SurfaceStep(step, n, t, Surface._trusted(v, tri, t), cpu_s))
+            return observer(Step(step, n, t, Surface._trusted(v, tri, t), cpu_s))
     out = _slc.run_surface(p, options, int(frames), threads, on_step,
                            bool(estimate))
     return SurfaceRunResult(
@@ -280,14 +288,9 @@ class SurfaceStudy(ConvergenceTable):
 def study_surface(problem: SurfaceProblem, rows: int, columns: int,
                   observer: Callable[[dict], Any] | None, threads: int) -> SurfaceStudy:
     s = _slc.study_surface(problem._p, rows, columns, threads, observer)
-    shape = (s["rows"], s["columns"])
-    cells = s["cells"]
+    rows, columns = s["rows"], s["columns"]
     return SurfaceStudy(
-        cells=cells,
-        errors=_array(c["e_inf"] for c in cells).reshape(shape),
-        cpu_s_per_step=_array(c["cpu_s_per_step"] for c in cells).reshape(shape),
-        row_orders=np.array([_array(r) for r in s["row_orders"]]).reshape(
-            shape[0], shape[1] - 1),
-        column_orders=np.array([_array(r) for r in s["column_orders"]]).reshape(
-            shape[0] - 1, shape[1]),
+        **cell_arrays(s),
+        row_orders=np.array([_array(r) for r in s["row_orders"]]).reshape(rows, columns - 1),
+        column_orders=np.array([_array(r) for r in s["column_orders"]]).reshape(rows - 1, columns),
     )

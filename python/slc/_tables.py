@@ -25,6 +25,16 @@ def nan_array(values) -> np.ndarray:
     return np.array([math.nan if v is None else v for v in values], dtype=float)
 
 
+def cell_arrays(s: dict) -> dict:
+    """The cells of a convergence table as _slc gives them, with their errors and CPU seconds a
+    step as rows x columns arrays: the fields every ConvergenceTable has but the orders."""
+    shape = (s["rows"], s["columns"])
+    cells = s["cells"]
+    return {"cells": cells,
+            "errors": nan_array(c["e_inf"] for c in cells).reshape(shape),
+            "cpu_s_per_step": nan_array(c["cpu_s_per_step"] for c in cells).reshape(shape)}
+
+
 @dataclass
 class ConvergenceTable:
     """What a convergence table of curves (Study) and of surfaces (SurfaceStudy) holds: ``cells``

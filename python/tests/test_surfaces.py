@@ -376,6 +376,9 @@ def test_an_observer_stops_a_run_of_a_surface():
     seen = []
 
     def observer(step):
+        # one Step type for curves and surfaces: .interface, also named .surface for a surface
+        assert isinstance(step, slc.Step) and isinstance(step.interface, slc.Surface)
+        assert step.surface is step.interface
         seen.append((step.step, step.t, len(step.surface)))
         return step.step < 2
 

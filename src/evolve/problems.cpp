@@ -207,6 +207,14 @@ void set_run(Problem& p, int steps, int smoothing, int depth, int refine, double
     p.eps = eps;
 }
 
+// The area-preserving flows of §4.7: the embedded module, its curvature averaged along the curve
+// over a mesh spacing (EmbeddedOptions::average).
+Problem embedded_averaged(Problem p) {
+    p.module = GeometryModule::embedded;
+    p.embedded_average = 1.0;
+    return p;
+}
+
 using Params = std::map<std::string, double>;
 
 Problem propeller_rotation(const Params&) {
@@ -315,7 +323,6 @@ Problem spiral_nonlocal(const Params& params) {
                      rotated(Curves{square_spiral(10, 0.5, 0.1)}, {}, tilt * pi / 180),
                      Box::centered_square(5.0), 2.56, "volume-preserving-curvature");
     p.parameters = {{"tilt", tilt, "rotation of the spiral, degrees"}};
-    p.module = GeometryModule::embedded;
     // The paper gives no domain, and the domain sets the embedded mesh h = 2b/M: the explicit
     // step is stable only up to a k/h² that S raises (docs/figures.md). In [−5, 5]² both of the
     // paper's runs are stable (k/h² = 3.3 and 6.6); in [−3, 3]² the 1024-step run (18) is not.
@@ -323,8 +330,7 @@ Problem spiral_nonlocal(const Params& params) {
     // length grows from t = 1.29 (512 steps) until the guard stops it; averaged along the curve
     // over a mesh spacing it reaches t = 2.56 (EmbeddedOptions::average).
     set_run(p, 512, 2, 7, 3, 1e-3);
-    p.embedded_average = 1.0;
-    return p;
+    return embedded_averaged(std::move(p));
 }
 
 Problem bubbles_nonlocal(const Params&) {
@@ -333,13 +339,11 @@ Problem bubbles_nonlocal(const Params&) {
                      "(§4.7, Fig. 19)",
                      bubbles(12, 2.7, 0.25, 0.75, 19), Box::centered_square(5.0), 10.24,
                      "volume-preserving-curvature");
-    p.module = GeometryModule::embedded;
     // [−5, 5]² as for the spiral: k/h² = 3.3 (9.1 in [−3, 3]², where the area drifts 1.3e−4),
     // and the embedded curvature averaged as for the spiral (the guard stopped the run at
     // t = 7.735 without it).
     set_run(p, 2048, 3, 7, 4, 1e-4);
-    p.embedded_average = 1.0;
-    return p;
+    return embedded_averaged(std::move(p));
 }
 
 Problem zalesak(const Params&) {

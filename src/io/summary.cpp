@@ -294,28 +294,24 @@ nlohmann::json estimate_json(const std::string& coarse, RunStatus status,
     return e;
 }
 
+// The counts each dimension adds to BasicContourStats, as summary.json names them (a
+// ContourStats' max_midpoint_value, optional, apart).
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ContourStats, triangles, curves, segments, mean_segment_length,
+                                   pruned, joined, slivers)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SurfaceContourStats, specks, tetrahedra, triangles, collapses,
+                                   flips, residual)
+
 nlohmann::json contour_stats_json(const ContourStats& s) {
     nlohmann::json j = basic_stats_json(s);
-    j.update({{"triangles", s.triangles},
-              {"curves", s.curves},
-              {"segments", s.segments},
-              {"mean_segment_length", s.mean_segment_length},
-              {"pruned", s.pruned},
-              {"joined", s.joined},
-              {"slivers", s.slivers},
-              {"max_midpoint_value", s.max_midpoint_value ? nlohmann::json(*s.max_midpoint_value)
-                                                          : nlohmann::json(nullptr)}});
+    j.update(nlohmann::json(s));
+    j["max_midpoint_value"] =
+        s.max_midpoint_value ? nlohmann::json(*s.max_midpoint_value) : nlohmann::json(nullptr);
     return j;
 }
 
 nlohmann::json contour_stats_json(const SurfaceContourStats& s) {
     nlohmann::json j = basic_stats_json(s);
-    j.update({{"specks", s.specks},
-              {"tetrahedra", s.tetrahedra},
-              {"triangles", s.triangles},
-              {"collapses", s.collapses},
-              {"flips", s.flips},
-              {"residual", s.residual}});
+    j.update(nlohmann::json(s));
     return j;
 }
 

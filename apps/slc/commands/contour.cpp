@@ -181,12 +181,7 @@ void run_contour(const ContourCommandOptions& o) {
 void add_contour_command(CLI::App& app) {
     const auto [cmd, o] = add_command<ContourCommandOptions>(
         app, "contour",
-        "Contours the exact signed distance of an interface (paper Tables 2 and 3): writes "
-        "final.json, summary.json (cells, segments, mean segment length, error = max |F| over "
-        "vertices and segment midpoints, cpu_s, g_evals, g_evals_per_vertex) and final.svg/.png "
-        "(tree and contour); for a surface (.obj, .stl, .ply, .vdb) or --function, final.obj, "
-        "final.vtp, final.png and summary.json (triangles, error over vertices, edge midpoints "
-        "and centroids)");
+        "Contours the exact signed distance of an interface (paper Tables 2 and 3)");
     const auto require_source = add_initial_or_builtin(
         *cmd, o->initial,
         "Interface file (JSON), or a closed surface (.obj, .stl, .ply, .vdb) contoured in space",
@@ -230,6 +225,12 @@ void add_contour_command(CLI::App& app) {
         ->check(integer_in(0, 30));
     cmd->add_option("--out", o->out, "Output folder")->required();
     add_threads_option(*cmd, o->threads);
+    cmd->footer(
+        "Writes final.json, summary.json (cells, segments, mean segment length, error = max |F| "
+        "over\nvertices and segment midpoints, cpu_s, g_evals, g_evals_per_vertex) and "
+        "final.svg/.png (tree and\ncontour); for a surface (.obj, .stl, .ply, .vdb) or --function, "
+        "final.obj, final.vtp, final.png\nand summary.json (triangles, error over vertices, edge "
+        "midpoints and centroids).");
     cmd->callback([o, require_source, refine] {
         require_source();
         // A tolerance given asks for it to be met: refinement until converged.

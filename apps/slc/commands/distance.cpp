@@ -61,12 +61,10 @@ void run_distance(const DistanceOptions& o) {
 }  // namespace
 
 void add_distance_command(CLI::App& app) {
-    const auto [cmd, o] = add_command<DistanceOptions>(
-        app, "distance",
-        "Signed distance (negative inside) and nearest point of the interface for each x,y line of "
-        "a CSV file; prints x,y,distance,nearest_x,nearest_y with 17 significant digits. For a "
-        "surface (.obj, .stl, .ply, .vdb), x,y,z lines and x,y,z,distance,nearest_x,nearest_y,"
-        "nearest_z");
+    const auto [cmd, o] =
+        add_command<DistanceOptions>(app, "distance",
+                                     "Signed distance (negative inside) and nearest point of an "
+                                     "interface at the points of a CSV file");
     cmd->add_option("--initial", o->initial,
                     "Interface file (JSON), or a closed surface (.obj, .stl, .ply, .vdb): 3D")
         ->required();
@@ -78,6 +76,10 @@ void add_distance_command(CLI::App& app) {
                     "Depth L of the distance tree (default: cells about one mean segment wide)")
         ->check(integer_in(0, 30));
     add_threads_option(*cmd, o->threads);
+    cmd->footer(
+        "Reads x,y lines and prints x,y,distance,nearest_x,nearest_y with 17 significant digits; "
+        "for a\nsurface (.obj, .stl, .ply, .vdb), x,y,z lines and "
+        "x,y,z,distance,nearest_x,nearest_y,nearest_z.");
     cmd->callback([o] { run_distance(*o); });
 }
 

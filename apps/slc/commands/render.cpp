@@ -220,10 +220,7 @@ void run_render(const RenderOptions& o) {
 
 void add_render_command(CLI::App& app) {
     const auto [cmd, o] = add_command<RenderOptions>(
-        app, "render",
-        "Draws interface files as SVG or PNG (by the extension of --out), overlaid or in panels "
-        "(--columns), or the frames of a run as an animated SVG (--frames) or panels (--frames "
-        "--columns, --times)");
+        app, "render", "Draws interface files, or the frames of a run, as SVG or PNG");
     auto* files = cmd->add_option("files", o->files,
                                   "Interface files of curves (JSON); a surface's "
                                   "pictures are drawn by slc run and slc contour (final.png)");
@@ -252,6 +249,10 @@ void add_render_command(CLI::App& app) {
         ->required();
     cmd->add_option("--title", o->title, "Title above the picture");
     add_domain_options(*cmd, o->view);
+    cmd->footer(
+        "The extension of --out chooses SVG or PNG. Files are overlaid, or in panels with "
+        "--columns; a\nrun's frames make an animated SVG (--frames) or panels (--frames --columns, "
+        "--times).");
     cmd->callback([o] { run_render(*o); });
 }
 

@@ -492,9 +492,8 @@ void surface_command(const RunCommand& o, const std::vector<GivenOption>& given,
 void add_run_command(CLI::App& app) {
     const auto [cmd, o] = add_command<RunCommand>(
         app, "run",
-        "Moves an interface: a named problem (--problem), or your curves "
-        "(.json) or surface (.obj, .stl, .ply, .vdb) given by --initial, under a "
-        "velocity law");
+        "Moves an interface under a velocity law: a named problem (--problem), or your curves "
+        "or surface (--initial)");
     add_run_options(cmd, o.get());
     cmd->callback([o, cmd] {
         if (!o->resume.empty()) return resume_command(*cmd, *o);

@@ -494,19 +494,10 @@ void run_study(const StudyCommand& o) {
 }  // namespace
 
 void add_study_command(CLI::App& app) {
-    const auto [cmd, o] = add_command<StudyCommand>(
-        app, "study",
-        "Convergence. --problem NAME: the paper's 5x5 table for a problem with an exact solution "
-        "(table.md, table.csv, table.json, error_vs_time.svg/.png); for a problem of surfaces "
-        "(sphere-rotation, sphere-curvature, merging-spheres) --rows x --columns of it. --initial "
-        "FILE --velocity LAW "
-        "--t-end T: self-convergence of your curve or surface (.obj, .stl, .ply, .vdb), which has "
-        "none: the run at --rows "
-        "resolutions (N doubled, K + 1 and eps / 4 each; the rest as slc run takes it), each "
-        "final interface compared with the next (Hausdorff distance at vertices and segment "
-        "midpoints, or triangle centroids), "
-        "observed orders, and an estimate of the finest run's error (table.md, table.csv, "
-        "table.json, convergence.svg/.png, final_r.json or final_r.obj)");
+    const auto [cmd, o] =
+        add_command<StudyCommand>(app, "study",
+                                  "Convergence: the paper's 5x5 table of a named problem, or the "
+                                  "self-convergence of your curve or surface");
     add_problem_source_options(*cmd, o->source);
     cmd->add_option("--rows", o->rows,
                     "Rows of the table to run, 1..5 (default 5); with --initial the resolutions, "
@@ -524,6 +515,16 @@ void add_study_command(CLI::App& app) {
     add_method_options(*cmd, o->method);
     cmd->add_flag("--quiet", o->quiet, "No progress lines");
     cmd->add_option("--out", o->out, "Output folder")->required();
+    cmd->footer(
+        "--problem NAME: the paper's table for a problem with an exact solution (table.md, "
+        "table.csv,\ntable.json, error_vs_time.svg/.png); for a problem of surfaces "
+        "(sphere-rotation,\nsphere-curvature, merging-spheres) --rows x --columns of "
+        "it.\n\n--initial FILE --velocity LAW --t-end T: your curve or surface (.obj, .stl, .ply, "
+        ".vdb), which\nhas no exact solution, run at --rows resolutions (N doubled, K + 1 and eps "
+        "/ 4 each; the rest as\nslc run takes it), each final interface compared with the next "
+        "(Hausdorff distance at vertices\nand segment midpoints, or triangle centroids): observed "
+        "orders and an estimate of the finest\nrun's error (table.md, table.csv, table.json, "
+        "convergence.svg/.png, final_r.json or\nfinal_r.obj).");
     cmd->callback([o] { run_study(*o); });
 }
 

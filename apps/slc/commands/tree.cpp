@@ -249,8 +249,7 @@ void run_tree(const TreeOptions& o) {
 void add_tree_command(CLI::App& app) {
     const auto [cmd, o] = add_command<TreeOptions>(
         app, "tree",
-        "Builds the distance tree of an interface, checks it against brute force and draws it: "
-        "tree, signed distance, nearest-point and Whitney extensions of u = (-y, x)");
+        "Builds the distance tree of an interface, checks it against brute force and draws it");
     const auto require_source = add_initial_or_builtin(
         *cmd, o->initial,
         "Interface file (JSON), or a closed surface (.obj, .stl, .ply, .vdb): the octree is drawn "
@@ -270,6 +269,9 @@ void add_tree_command(CLI::App& app) {
                     ".svg and .png")
         ->required();
     add_threads_option(*cmd, o->threads);
+    cmd->footer(
+        "The picture's panels: the tree, the signed distance, and the nearest-point and "
+        "Whitney\nextensions of u = (-y, x).");
     cmd->callback([o, require_source] {
         require_source();
         run_tree(*o);
