@@ -51,6 +51,8 @@ RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, 
     // A user's run holds its law's area rate to 1% of the start's area, splitting the steps
     // that would take it further (a thin ellipse's tips at 40 steps miss it by 2.4%).
     o.area_drift = 0.01;
+    // And to 2% of the law's own change: a run that ends ok keeps dA/dt = -2 pi a curve.
+    o.area_rate_drift = 0.02;
     o.check_start = true;
     return o;
 }
@@ -79,6 +81,7 @@ Problem curve_problem(std::string name, const Interface& curves, const Box& doma
     p.check_start = defaults.check_start;
     p.max_domain_doublings = defaults.max_domain_doublings;
     p.area_drift = defaults.area_drift;
+    p.area_rate_drift = defaults.area_rate_drift;
     return p;
 }
 

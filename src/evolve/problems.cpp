@@ -442,6 +442,7 @@ RunOptions problem_run_options(const Problem& p) {
     r.step.arcs = p.arcs;
     r.step.area_correction = p.area_correction;
     r.area_drift = p.area_drift;
+    r.area_rate_drift = p.area_rate_drift;
     r.step.embedded.mesh = default_mesh_size(c.depth);
     r.step.embedded.smoothing = p.smoothing;
     r.step.embedded.average = p.embedded_average;

@@ -78,6 +78,10 @@ public:
             throw InvalidInput(
                 fmt::format("area_drift must be a positive fraction, got {}", options.area_drift));
         }
+        if (!(options.area_rate_drift >= 0.0) || !std::isfinite(options.area_rate_drift)) {
+            throw InvalidInput(fmt::format("area_rate_drift must be a fraction, 0 or more, got {}",
+                                           options.area_rate_drift));
+        }
         const double h = finest_cell(domain, options.step.contour);
         budget_ = GuardBudget{.run_lag_fraction = options.area_drift,
                               .run_length = options.t_end - options.t_start,
@@ -95,6 +99,7 @@ public:
         CurveMeasures m0;  ///< the measures before the next sub-step
         std::size_t g_evals = 0, vertices = 0;
         double corrected = 0.0, lag = 0.0, run_lag = 0.0;
+        double law_change = 0.0, run_law_change = 0.0;  ///< the law's area change, as lag
     };
 
     /// Checks the sub-step from `before` at t to s, and counts it in a: its break with the guards
@@ -110,8 +115,10 @@ public:
             note_broken(r, why + ": raise the steps N or the depth K");
         }
         if (const auto expected =
-                area_change_expected(invariants_, before, a.m0.area, s.curves, k, budget(r)))
+                area_change_expected(invariants_, before, a.m0.area, s.curves, k, budget(r))) {
             a.lag += (m1.area - a.m0.area) - *expected;
+            a.law_change += *expected;
+        }
         a.m0 = m1;
         note_cells(r, s.stats.predictor, t + k);
         note_cells(r, s.stats.corrector, t + k);
@@ -129,6 +136,7 @@ public:
     /// Adds what the kept split did to r.
     static void commit(const Attempt& a, RunResult& r) {
         r.area_lag = a.run_lag;
+        r.area_law_change = a.run_law_change;
         r.g_evals += a.g_evals;
         r.vertices_produced += a.vertices;
         r.area_corrected += a.corrected;
@@ -184,6 +192,20 @@ std::optional<BudgetBreach> LoopHooks<2>::run_budget(Attempt& a, const Interface
                         "depth K",
                         t_next, a.run_lag, 100.0 * a.run_lag / std::abs(r.start_area),
                         r.start_area),
+            true};
+    }
+    a.run_law_change = r.area_law_change + a.law_change;
+    // Beyond one step's tolerance of the contours (a.m0: the last sub-step's measures).
+    if (options_.area_rate_drift > 0.0 &&
+        std::abs(a.run_lag) > options_.area_rate_drift * std::abs(a.run_law_change) +
+                                  b.eps_lengths * eps_ * a.m0.length) {
+        return BudgetBreach{
+            fmt::format("by t = {}: the area has changed by {:.3g} where the law's rate gives "
+                        "{:.3g}, {:.3g}% off, more than the run's {:g}%: raise the steps N or the "
+                        "depth K",
+                        t_next, a.run_law_change + a.run_lag, a.run_law_change,
+                        100.0 * std::abs(a.run_lag / a.run_law_change),
+                        100.0 * options_.area_rate_drift),
             true};
     }
     if (invariants_.shortens && !curves.empty()) {

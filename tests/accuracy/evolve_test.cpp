@@ -227,6 +227,58 @@ TEST(Run, AnLWithARectangularHoleKeepsItsAreaUntilTheHoleVanishesOnTime) {
     EXPECT_LT(worst, 1.5e-3);  // 0.25% of the area; the step's area change is 2πk = 3.1e−3
 }
 
+TEST(Run, AUsersStarKeepsTheLawsAreaChangeByItsSplitSteps) {
+    // Seven sharp points under curvature flow at the default settings: dA/dt = −2π. Its first
+    // steps take the notches' area at the wrong rate (3.3% of the law's change by t = 0.02 in
+    // whole steps); a user's run splits the steps that take it beyond 2% of the change
+    // (RunOptions::area_rate_drift).
+    set_thread_count(1);
+    std::vector<Vec2> star;
+    for (int i = 0; i < 14; ++i) {
+        const double r = i % 2 == 0 ? 1.0 : 0.5, t = 2.0 * std::numbers::pi * i / 14;
+        star.push_back({r * std::cos(t), r * std::sin(t)});
+    }
+    const Box domain = default_domain({star});
+    const Interface initial = prepare_interface({star}, domain).curves;
+    const auto law = make_velocity("curvature", {});
+    const double t_end = 0.02, change = -2.0 * std::numbers::pi * t_end;
+    const RunOptions o = default_run_options(initial, *law, 0.0, t_end);
+    ASSERT_EQ(o.area_rate_drift, 0.02);
+    const auto miss = [&](const RunResult& r) {
+        return std::abs(area(r.curves) - area(initial) - change) / std::abs(change);
+    };
+    RunOptions whole = o;
+    whole.area_rate_drift = 0.0;
+    const RunResult unsplit = run(initial, *law, domain, whole);
+    const RunResult split = run(initial, *law, domain, o);
+    std::printf(
+        "area change off the law's by %.3g in whole steps, %.3g split (%d steps split, "
+        "%d without the run's budget)\n",
+        miss(unsplit), miss(split), split.split_steps, unsplit.split_steps);
+    ASSERT_EQ(unsplit.status, RunStatus::ok) << unsplit.message;
+    ASSERT_EQ(split.status, RunStatus::ok) << split.message;
+    EXPECT_GT(miss(unsplit), 0.025);
+    EXPECT_LT(miss(split), 0.02);
+    EXPECT_GT(split.split_steps, unsplit.split_steps);
+    EXPECT_NEAR(split.area_law_change, change, 1e-12);
+    // From the star after its first step, with no splitting allowed: the run ends unstable,
+    // naming the law's change and the setting to raise.
+    RunOptions first = o;
+    first.t_end = t_end / o.steps;
+    first.steps = 1;
+    const RunResult start = run(initial, *law, domain, first);
+    ASSERT_EQ(start.status, RunStatus::ok) << start.message;
+    RunOptions fixed = o;
+    fixed.t_start = first.t_end;
+    fixed.steps = o.steps - 1;
+    fixed.max_substep_halvings = 0;
+    const RunResult refused = run(start.curves, *law, domain, fixed);
+    EXPECT_EQ(refused.status, RunStatus::unstable);
+    EXPECT_NE(refused.message.find("where the law's rate gives"), std::string::npos)
+        << refused.message;
+    EXPECT_NE(refused.message.find("raise the steps N"), std::string::npos);
+}
+
 /// Largest distance of a vertex from the circle of radius r about the origin.
 double radius_error(const Interface& curves, double r) {
     double worst = 0.0;

@@ -192,6 +192,7 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     json["area_corrected"] = s.area_corrected;
     json["start_area"] = s.start_area;
     json["area_lag"] = s.area_lag;
+    json["area_law_change"] = s.area_law_change;
     json["rigid_segments"] = s.rigid_segments;
     json["least_length"] = s.least_length.value;
     json["least_length_t"] = s.least_length.t;
@@ -231,6 +232,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
         s.area_corrected = json.value("area_corrected", 0.0);
         s.start_area = json.value("start_area", 0.0);
         s.area_lag = json.value("area_lag", 0.0);
+        s.area_law_change = json.value("area_law_change", 0.0);
         s.rigid_segments = json.value("rigid_segments", std::size_t{0});
         s.least_length = {json.value("least_length", 0.0), json.value("least_length_t", 0.0)};
         c.frames_kept = json.at("frames_kept").get<int>();

@@ -74,6 +74,8 @@ struct Problem {
     std::optional<bool> area_correction;  ///< see extension (StepOptions::area_correction)
     /// RunOptions::area_drift: 0.05 for a named problem, 0.01 for a user's curves.
     double area_drift = 0.05;
+    /// RunOptions::area_rate_drift: 0 (not checked) for a named problem, 0.02 for a user's.
+    double area_rate_drift = 0.0;
     /// ContourOptions::triangle_safeguard: the paper's for a named problem, off for a user's
     /// curve (whose corners it would cut).
     bool triangle_safeguard = true;

@@ -114,6 +114,13 @@ struct RunOptions {
     /// one that breaks an invariant, and the run ends unstable when no split keeps it within.
     /// 0.05 for the paper's problems; a user's curves take 0.01 (default_run_options).
     double area_drift = 0.05;
+    /// With guards, under a law with an area rate: the summed area changes may also miss the
+    /// law's by at most this fraction of the change the law has made so far
+    /// (RunResult::area_law_change), beyond one step's tolerance of the contours; the steps
+    /// that take the run beyond it are split into sub-steps as for area_drift. 0: not checked
+    /// (the paper's problems); a user's curves take 0.02 (default_run_options), so that a run
+    /// that ends ok keeps dA/dt = −2π a curve to 2% (a coarse star's first steps miss it by 3%).
+    double area_rate_drift = 0.0;
 };
 
 struct RunResult;
@@ -146,6 +153,9 @@ struct RunResult : RunTotals {
     /// GuardBudget::run_lag_fraction of the start's area.
     double start_area = 0.0;
     double area_lag = 0.0;  ///< (see start_area)
+    /// With a rate: the area change the law has made over the run's steps, summed with signs
+    /// (RunOptions::area_rate_drift).
+    double area_law_change = 0.0;
     /// For a rigid motion: the segments of the run's first contour (0 before it), which the
     /// guards keep the later contours within GuardBudget::rigid_segments_growth of.
     std::size_t rigid_segments = 0;
