@@ -7,9 +7,11 @@
 // b.
 //
 // Run:  build/bin/example_implicit_contour [--out DIR]
-// Prints the segments of a coarse contour, contours three shapes finely, checks each vertex
-// against the known zero set |x − F1|·|x − F2| = b² and the number of curves, and draws
-// DIR/implicit_contour.svg and .png (default DIR: implicit_contour_out).
+// Prints the segments of a coarse contour and draws it as the paper's Fig. 5
+// (DIR/linear_contour.png: the tree's triangulation, the linear interpolant's zero set, its
+// vertices moved along their triangle edges to roots of G), contours three shapes finely, checks
+// each vertex against the known zero set |x − F1|·|x − F2| = b² and the number of curves, and
+// draws DIR/implicit_contour.svg and .png (default DIR: implicit_contour_out).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -37,6 +39,80 @@ double zero_set_error(const slc::Interface& curves, double b) {
     return worst;
 }
 
+/// Draws DIR/linear_contour.png (the paper's Fig. 5) for the contour c of g without refinement:
+/// (a) the topology tree's triangulation with the sign of G at its vertices and the zero set of
+/// the linear interpolant, (b) a closer view where the roots found along the triangle edges sit
+/// beside the interpolant's vertices. Returns whether every vertex of c lies on a triangle edge
+/// whose ends G gives opposite signs, with |G| ≤ η there.
+template <class G>
+bool draw_linear_contour(const slc::ContourResult& c, const G& g, const slc::Box& domain,
+                         const std::filesystem::path& out) {
+    const slc::Triangulation mesh = slc::triangulate(c.tree);
+    std::vector<double> value(mesh.vertices.size());
+    g(mesh.vertices, value);
+    struct Crossing {
+        slc::Vec2 a, b, linear;  // the edge's ends, and where the interpolant vanishes on it
+    };
+    std::vector<Crossing> crossings;
+    std::vector<std::vector<slc::Vec2>> linear_segments;
+    std::vector<slc::Vec2> inside, outside;
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+        (value[i] < 0.0 ? inside : outside).push_back(mesh.vertices[i]);
+    for (const auto& t : mesh.triangles) {
+        std::vector<slc::Vec2> ends;
+        for (int e = 0; e < 3; ++e) {
+            const std::uint32_t i = t[e], j = t[(e + 1) % 3];
+            if ((value[i] < 0.0) == (value[j] < 0.0)) continue;
+            const double s = value[i] / (value[i] - value[j]);
+            const slc::Vec2 x = mesh.vertices[i] + s * (mesh.vertices[j] - mesh.vertices[i]);
+            crossings.push_back({mesh.vertices[i], mesh.vertices[j], x});
+            ends.push_back(x);
+        }
+        if (ends.size() == 2) linear_segments.push_back(ends);
+    }
+    // Each vertex of c on its edge: the arrow from the interpolant's vertex to the root.
+    bool all_on_edges = true;
+    std::vector<slc::Vec2> from, moved;
+    std::vector<double> at_roots(c.curves.size());
+    g(c.curves.points(), at_roots);
+    for (std::size_t v = 0; v < c.curves.size(); ++v) {
+        const slc::Vec2 x = c.curves.point(v);
+        const Crossing* on = nullptr;
+        for (const Crossing& e : crossings) {
+            const double d2 = slc::closest_point(slc::Segment{e.a, e.b}, x).distance2;
+            if (std::sqrt(d2) <= 1e-12 * (1.0 + slc::norm(x))) on = &e;
+        }
+        all_on_edges = all_on_edges && on != nullptr && std::abs(at_roots[v]) <= 1e-10;
+        if (on) {
+            from.push_back(on->linear);
+            moved.push_back(x - on->linear);
+        }
+    }
+    const slc::Color grey{0.7, 0.7, 0.7}, blue{0.2, 0.35, 0.8}, orange{0.95, 0.55, 0.1},
+        red{0.85, 0.1, 0.1}, black{0.0, 0.0, 0.0, 1.0};
+    std::vector<slc::Figure> panels;
+    const slc::Box near{{0.6, -0.1}, {1.5, 0.8}};
+    panels.emplace_back(domain, "(a) the interpolant's zero set on the K = 3 tree");
+    panels.emplace_back(near, "(b) its vertices moved along their edges to |G| <= eta");
+    for (slc::Figure& f : panels) {
+        f.add_triangles(mesh.vertices, mesh.triangles, grey, 0.6);
+        f.add_points(inside, blue, 2.0);
+        f.add_points(outside, orange, 2.0);
+        for (std::size_t i = 0; i < linear_segments.size(); ++i) {
+            f.add_polyline(linear_segments[i], i == 0 ? "zero set of the linear interpolant" : "",
+                           red, 1.2);
+        }
+        f.add_polyline(std::vector<slc::Vec2>{}, "G < 0 at a vertex", blue, 2.0);
+        f.add_polyline(std::vector<slc::Vec2>{}, "G > 0 at a vertex", orange, 2.0);
+    }
+    panels[1].add_arrows(from, moved, 1.0, black);
+    for (slc::Figure& f : panels)
+        f.add_curves(c.curves, "the contour: roots of G on the edges", black, 1.0);
+    slc::Figure::save_grid(panels, 2, out / "linear_contour.png");
+    std::printf("wrote %s\n", (out / "linear_contour.png").c_str());
+    return all_on_edges && from.size() == c.curves.size();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -57,6 +133,14 @@ int main(int argc, char** argv) try {
         const slc::Segment s = coarse.curves.segment(i);
         std::printf("  (%+.6f, %+.6f) -> (%+.6f, %+.6f)\n", s.a.x, s.a.y, s.b.x, s.b.y);
     }
+
+    // The paper's Fig. 5 from this coarse contour: the tree's triangulation, the zero set of the
+    // piecewise-linear interpolant of G on it, and each of its vertices moved along its
+    // triangle edge to a root of G (|G| ≤ η): every vertex of the contour lies on an edge whose
+    // ends G gives opposite signs.
+    const bool roots_on_edges = draw_linear_contour(coarse, g_print, domain, out);
+    std::printf("every vertex of the coarse contour on a sign-changing triangle edge: %s\n",
+                roots_on_edges ? "yes" : "no");
 
     // Three shapes, finely: K = 6 and refinement to convergence (|G| ≤ ε at every midpoint).
     struct Case {
@@ -98,7 +182,7 @@ int main(int argc, char** argv) try {
     figure.save(out / "implicit_contour.svg");
     figure.save(out / "implicit_contour.png");
     std::printf("wrote %s\n", (out / "implicit_contour.png").c_str());
-    return ok ? 0 : 1;
+    return ok && roots_on_edges ? 0 : 1;
 } catch (const std::exception& e) {
     std::fprintf(stderr, "implicit_contour: %s\n", e.what());
     return 2;
