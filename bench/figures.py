@@ -568,13 +568,13 @@ result is not the paper's (the section below says how).
 | Fig. 2 | a distance tree and its triangulation | [algorithms/distance.md](algorithms/distance.md) (`slc tree`) | drawn |
 | Fig. 3 | V_x and its nearest-point extension W_x, K = 5 and 6 | [algorithms/distance.md](algorithms/distance.md) | partly: K = 5 and 6, no panel of V_x on Γ alone |
 | Fig. 4 | an island forming at a cusp as circles merge | below | drawn, with `merging-circles` (the paper's circles are not given) |
-| Fig. 5 | linear contouring and bisection | [algorithms/contour.md](algorithms/contour.md) | partly: no bisection diagram |
+| Fig. 5 | linear contouring and bisection | [algorithms/contour.md](algorithms/contour.md) (`examples/implicit_contour`) | drawn, on a Cassini oval: the interpolant's zero set and its vertices moved along their edges to roots |
 | Fig. 6 | a propeller contoured on K-level trees | [algorithms/contour.md](algorithms/contour.md) | drawn |
 | Fig. 7 | adaptive refinement of a zero set | [algorithms/contour.md](algorithms/contour.md) | drawn |
 | Fig. 8 | refinement's safeguards | — | not drawn |
 | Fig. 9 | the local embedded mesh, x- and y-intervals | [algorithms/geometry.md](algorithms/geometry.md) | drawn |
 | Fig. 10 | errors against CPU time | [tables/](tables/) `*_error_vs_time.png` | drawn |
-| Fig. 11 | semi-Lagrangian evaluation | — | not drawn |
+| Fig. 11 | semi-Lagrangian evaluation | [algorithms/evolve.md](algorithms/evolve.md) (`examples/semi_lagrangian`) | drawn, from a step written out by hand that gives `slc::advance`'s curve to the bit |
 | Fig. 12 | a propeller turned twice, four runs | below | drawn |
 | Fig. 13 | triangles growing and shrinking | below | differs: the nearest-point extension cuts shrinking corners |
 | Fig. 14 | circles merging, four runs | below | drawn |
