@@ -566,7 +566,7 @@ result is not the paper's (the section below says how).
 |---|---|---|---|
 | Fig. 1 | complexity, facetting, merging, time scales | the problems below and in [problems.md](problems.md) | an illustration |
 | Fig. 2 | a distance tree and its triangulation | [algorithms/distance.md](algorithms/distance.md) (`slc tree`) | drawn |
-| Fig. 3 | V_x and its nearest-point extension W_x, K = 5 and 6 | [algorithms/distance.md](algorithms/distance.md) | partly: K = 5 and 6, no panel of V_x on Γ alone |
+| Fig. 3 | V_x and its nearest-point extension W_x, K = 5 and 6 | [algorithms/distance.md](algorithms/distance.md) (`slc tree`, panels.png) | drawn: the tree, V_x on Γ and W_x at depths 5 and 6 |
 | Fig. 4 | an island forming at a cusp as circles merge | below | drawn, with `merging-circles` (the paper's circles are not given) |
 | Fig. 5 | linear contouring and bisection | [algorithms/contour.md](algorithms/contour.md) (`examples/implicit_contour`) | drawn, on a Cassini oval: the interpolant's zero set and its vertices moved along their edges to roots |
 | Fig. 6 | a propeller contoured on K-level trees | [algorithms/contour.md](algorithms/contour.md) | drawn |

@@ -121,6 +121,28 @@ void draw_points(cairo_t* cr, const Page& page, const PointsLayer& layer) {
     cairo_fill(cr);
 }
 
+/// Each segment in the colour of the mean of its ends' values.
+void draw_values(cairo_t* cr, const Page& page, const ValuesLayer& layer) {
+    const FieldRange range = field_range(layer);
+    const std::span<const Color> map = color_map(layer.diverging);
+    cairo_set_line_width(cr, layer.line_width);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+    for (std::size_t c = 0; c < layer.paths.size(); ++c) {
+        const std::vector<Vec2>& path = layer.paths[c];
+        const std::vector<double>& values = layer.values[c];
+        for (std::size_t i = 0; i < path.size(); ++i) {
+            const std::size_t j = (i + 1) % path.size();
+            const double v = 0.5 * (values[i] + values[j]);
+            if (!is_finite(path[i]) || !is_finite(path[j]) || !std::isfinite(v)) continue;
+            const Vec2 a = page.to_page(path[i]), b = page.to_page(path[j]);
+            cairo_move_to(cr, a.x, a.y);
+            cairo_line_to(cr, b.x, b.y);
+            set_color(cr, map_color(map, range.t(v)));
+            cairo_stroke(cr);
+        }
+    }
+}
+
 /// Arrows with a filled head whose size is fixed on the page, shrunk on short arrows.
 void draw_arrows(cairo_t* cr, const Page& page, const ArrowsLayer& layer) {
     constexpr double head_length = 7.0;
@@ -162,6 +184,7 @@ void draw_layers(cairo_t* cr, const Page& page, const Layers& layers) {
                               [&](const TrianglesLayer& l) { draw_triangles(cr, page, l); },
                               [&](const CurvesLayer& l) { draw_curves(cr, page, l); },
                               [&](const PointsLayer& l) { draw_points(cr, page, l); },
+                              [&](const ValuesLayer& l) { draw_values(cr, page, l); },
                               [&](const ArrowsLayer& l) { draw_arrows(cr, page, l); }},
                    *item);
     }
@@ -245,16 +268,16 @@ void draw_legend(cairo_t* cr, const Page& page, const Layers& layers) {
 }
 
 /// A vertical colour bar below the legend: the label above, the range's values at the right.
-void draw_colorbar(cairo_t* cr, const Page& page, const FieldLayer& field) {
-    const FieldRange range = field_range(field);
+void draw_colorbar(cairo_t* cr, const Page& page, const ColorScale& scale) {
+    const FieldRange range = scale.range;
     const double bar_top = page.colorbar_top;
     const double height = page.colorbar_height;
     const double x = page.side_x;
     cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
     set_font(cr, font_size);
-    draw_text(cr, field.label, x, bar_top - 0.6 * font_size, 0.0, 1.0);
+    draw_text(cr, scale.label, x, bar_top - 0.6 * font_size, 0.0, 1.0);
 
-    const std::span<const Color> map = color_map(field.diverging);
+    const std::span<const Color> map = color_map(scale.diverging);
     cairo_pattern_t* gradient = cairo_pattern_create_linear(0.0, bar_top + height, 0.0, bar_top);
     for (std::size_t i = 0; i < map.size(); ++i) {
         const Color& c = map[i];
@@ -283,7 +306,7 @@ void render(cairo_t* cr, const Page& page, const Layers& layers, const std::stri
     draw_axes(cr, page);
     draw_title(cr, page, title);
     draw_legend(cr, page, layers);
-    if (const FieldLayer* field = last_field(layers)) draw_colorbar(cr, page, *field);
+    if (const auto scale = color_scale(layers)) draw_colorbar(cr, page, *scale);
 }
 
 // ---- output -----------------------------------------------------------------------------------
@@ -447,6 +470,23 @@ void Figure::add_polyline(std::span<const Vec2> points, const std::string& label
     check_positive(line_width, "line width");
     layers_.push_back(std::make_shared<Layer>(Layer{CurvesLayer{
         {std::vector<Vec2>(points.begin(), points.end())}, label, color, line_width, false}}));
+}
+
+void Figure::add_curve_values(const Interface& curves, std::span<const double> values,
+                              const std::string& label, bool diverging, double line_width) {
+    check_positive(line_width, "line width");
+    if (values.size() != curves.size()) {
+        throw InvalidInput(fmt::format("values on curves {}: {} vertices but {} values", label,
+                                       curves.size(), values.size()));
+    }
+    ValuesLayer layer{curves.curves(), {}, label, diverging, line_width};
+    for (std::size_t c = 0; c < curves.curve_count(); ++c) {
+        const std::size_t first = curves.offsets()[c];
+        layer.values.emplace_back(
+            values.begin() + static_cast<std::ptrdiff_t>(first),
+            values.begin() + static_cast<std::ptrdiff_t>(first + layer.paths[c].size()));
+    }
+    layers_.push_back(std::make_shared<Layer>(Layer{std::move(layer)}));
 }
 
 void Figure::add_points(std::span<const Vec2> points, Color color, double radius) {

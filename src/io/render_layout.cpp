@@ -34,19 +34,29 @@ Color map_color(std::span<const Color> anchors, double t) {
     return {a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b), 1.0};
 }
 
-FieldRange field_range(const FieldLayer& field) {
+FieldRange value_range(std::span<const double> values, bool diverging) {
     double lo = std::numeric_limits<double>::infinity();
     double hi = -lo;
-    for (const double v : field.grid.values) {
+    for (const double v : values) {
         if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
     }
     if (lo > hi) return {-1.0, 1.0};  // no finite value at all
-    if (field.diverging) {
+    if (diverging) {
         const double m = std::max(std::abs(lo), std::abs(hi));
         return m > 0.0 ? FieldRange{-m, m} : FieldRange{-1.0, 1.0};
     }
     if (lo == hi) return {lo - 0.5, hi + 0.5};
     return {lo, hi};
+}
+
+FieldRange field_range(const FieldLayer& field) {
+    return value_range(field.grid.values, field.diverging);
+}
+
+FieldRange field_range(const ValuesLayer& layer) {
+    std::vector<double> all;
+    for (const auto& v : layer.values) all.insert(all.end(), v.begin(), v.end());
+    return value_range(all, layer.diverging);
 }
 
 // ---- numbers and text -------------------------------------------------------------------------
@@ -117,12 +127,15 @@ void set_color(cairo_t* cr, Color c) { cairo_set_source_rgba(cr, c.r, c.g, c.b, 
 
 // ---- layout -----------------------------------------------------------------------------------
 
-const FieldLayer* last_field(const Layers& layers) {
-    const FieldLayer* field = nullptr;
+std::optional<ColorScale> color_scale(const Layers& layers) {
+    std::optional<ColorScale> scale;
     for (const LayerItem* item : layers) {
-        if (const auto* f = std::get_if<FieldLayer>(item)) field = f;
+        if (const auto* f = std::get_if<FieldLayer>(item))
+            scale = ColorScale{f->label, f->diverging, field_range(*f)};
+        if (const auto* v = std::get_if<ValuesLayer>(item))
+            scale = ColorScale{v->label, v->diverging, field_range(*v)};
     }
-    return field;
+    return scale;
 }
 
 namespace {
@@ -182,9 +195,9 @@ double legend_width(cairo_t* cr, const Layers& layers) {
 double side_width(cairo_t* cr, const Layers& layers) {
     double w = std::max(min_side_width, legend_width(cr, layers));
     set_font(cr, font_size);
-    if (const FieldLayer* field = last_field(layers)) {
-        w = std::max(w, text_width(cr, field->label));
-        for (const auto& [v, s] : colorbar_labels(field_range(*field))) {
+    if (const auto scale = color_scale(layers)) {
+        w = std::max(w, text_width(cr, scale->label));
+        for (const auto& [v, s] : colorbar_labels(scale->range)) {
             w = std::max(w, colorbar_width + tick_length + label_gap + text_width(cr, s));
         }
     }
@@ -209,7 +222,7 @@ Page layout(cairo_t* cr, const Box& view, const std::string& title, const Layers
     // The side column: the legend at the top, the colour bar's label and the bar below it.
     const double legend = legend_height(layers);
     double side_bottom = page.plot_y + legend;
-    if (last_field(layers) != nullptr) {
+    if (color_scale(layers)) {
         page.colorbar_top = side_bottom + (legend > 0.0 ? 2.0 * font_size : 0.0) + 1.8 * font_size;
         page.colorbar_height = std::max(
             colorbar_min_height, std::min(colorbar_max_height, plot_bottom - page.colorbar_top));

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -74,14 +75,23 @@ struct PointsLayer {
     Color color;
     double radius = 0.0;
 };
+/// Curves whose segments are coloured by a value at each vertex (the mean of their ends'), on the
+/// colour map of a field.
+struct ValuesLayer {
+    std::vector<std::vector<Vec2>> paths;
+    std::vector<std::vector<double>> values;  ///< one per vertex of each path
+    std::string label;
+    bool diverging = false;
+    double line_width = 0.0;
+};
 struct ArrowsLayer {
     std::vector<Vec2> at;
     std::vector<Vec2> vec;
     double scale = 0.0;
     Color color;
 };
-using LayerItem =
-    std::variant<FieldLayer, BoxesLayer, TrianglesLayer, CurvesLayer, PointsLayer, ArrowsLayer>;
+using LayerItem = std::variant<FieldLayer, BoxesLayer, TrianglesLayer, CurvesLayer, PointsLayer,
+                               ValuesLayer, ArrowsLayer>;
 using Layers = std::vector<const LayerItem*>;
 
 template <class... F>
@@ -136,7 +146,10 @@ constexpr Color rgb(int hex) {
 std::span<const Color> color_map(bool diverging);
 /// The map's colour at t in [0, 1].
 Color map_color(std::span<const Color> anchors, double t);
+/// The range of the finite values (see FieldRange); {−1, 1} when there is none.
+FieldRange value_range(std::span<const double> values, bool diverging);
 FieldRange field_range(const FieldLayer& field);
+FieldRange field_range(const ValuesLayer& layer);
 /// A number as printed by fmt, made typographic ("−1.5e−5").
 std::string typeset(std::string s);
 Ticks nice_ticks(double lo, double hi);
@@ -145,8 +158,15 @@ double text_width(cairo_t* cr, const std::string& s);
 /// Draws s with its box anchored at (x, y); see render_layout.cpp.
 void draw_text(cairo_t* cr, const std::string& s, double x, double y, double ax, double ay);
 void set_color(cairo_t* cr, Color c);
-/// The last field layer, if any: the one the colour bar shows.
-const FieldLayer* last_field(const Layers& layers);
+/// What the colour bar shows: the label, map and range of the last layer coloured by values (a
+/// field or values on curves).
+struct ColorScale {
+    std::string label;
+    bool diverging = false;
+    FieldRange range;
+};
+/// The colour scale of the last layer coloured by values, if any.
+std::optional<ColorScale> color_scale(const Layers& layers);
 /// The labelled curve layers, in order, the first max_legend_entries of them: the legend's
 /// entries.
 std::vector<const CurvesLayer*> legend_entries(const Layers& layers);

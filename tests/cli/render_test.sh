@@ -35,7 +35,7 @@ expect_error "an animation of two runs" "one run" -- render --frames tri tri8 --
 expect_error "zero columns" "columns" -- render square.json --columns 0 --out x.png
 
 expect_ok "tree of a built-in shape" -- tree --shape propeller --tree-depth 5 --out demo
-for f in summary.json interface.json tree.svg tree.png distance.png extension.png whitney.png; do
+for f in summary.json interface.json tree.svg tree.png velocity.png distance.png extension.png whitney.png panels.png; do
     check "tree writes $f" test -s "demo/$f"
 done
 check "summary: exact against brute force" grep -q '"max_abs_difference": 0.0' demo/summary.json

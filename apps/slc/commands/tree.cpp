@@ -88,23 +88,33 @@ void draw_pictures(const DistanceTree& tree, const Box& domain, const std::files
         {"whitney", "Whitney extension W_x of u_x = -y"}};
     std::vector<Box> cells;
     for (std::uint32_t c : tree.tree().leaves()) cells.push_back(tree.tree().box(c));
-    for (const auto& [name, values] : fields) {
-        Figure figure(domain, titles.at(name));
-        figure.add_field(ScalarGrid{domain, n, n, values}, name == "distance" ? "F" : "W_x",
-                         name == "distance");
-        figure.add_boxes(cells, Color{0, 0, 0, 0.25});
-        figure.add_curves(curves, "interface", Color{0, 0, 0, 1});
+    const auto save = [&dir](const Figure& figure, const std::string& name) {
         figure.save(dir / (name + ".svg"));
         figure.save(dir / (name + ".png"));
-    }
+    };
+    std::vector<Figure> panels;  // the paper's Fig. 3: the tree, V_x on Γ, and W_x
     Figure figure(domain, fmt::format("Distance tree, depth {}, and its triangulation",
                                       tree.tree().max_depth()));
     figure.add_triangles(tree.triangulation().vertices, tree.triangulation().triangles,
                          Color{0.55, 0.65, 0.85, 1});
     figure.add_boxes(cells, Color{0, 0, 0, 1});
     figure.add_curves(curves, "interface", palette_color(1));
-    figure.save(dir / "tree.svg");
-    figure.save(dir / "tree.png");
+    save(figure, "tree");
+    panels.push_back(figure);
+    Figure velocity(domain, "Interfacial velocity V_x = -y on the interface");
+    velocity.add_curve_values(curves, ux, "V_x");
+    save(velocity, "velocity");
+    panels.push_back(velocity);
+    for (const auto& [name, values] : fields) {
+        Figure field(domain, titles.at(name));
+        field.add_field(ScalarGrid{domain, n, n, values}, name == "distance" ? "F" : "W_x",
+                        name == "distance");
+        field.add_boxes(cells, Color{0, 0, 0, 0.25});
+        field.add_curves(curves, "interface", Color{0, 0, 0, 1});
+        save(field, name);
+        if (name == "extension") panels.push_back(field);
+    }
+    Figure::save_grid(panels, 3, dir / "panels.png");
 }
 
 /// The pieces of the surface's triangles in the plane z = z0, as two-point polylines in x, y.
@@ -265,13 +275,14 @@ void add_tree_command(CLI::App& app) {
                     "For a surface: the height z of the slice drawn (default: the domain's "
                     "middle)");
     cmd->add_option("--out", o->out,
-                    "Output folder: summary.json, interface.json, tree/distance/extension/whitney "
-                    ".svg and .png")
+                    "Output folder: summary.json, interface.json, "
+                    "tree/velocity/distance/extension/whitney .svg and .png, panels.png")
         ->required();
     add_threads_option(*cmd, o->threads);
     cmd->footer(
-        "The picture's panels: the tree, the signed distance, and the nearest-point and "
-        "Whitney\nextensions of u = (-y, x).");
+        "For curves, the pictures: the tree, the x-component of u = (-y, x) on the curves, the\n"
+        "signed distance, and u_x's nearest-point and Whitney extensions; panels.png sets the\n"
+        "tree, u_x and its nearest-point extension side by side, as the paper's Fig. 3.");
     cmd->callback([o, require_source] {
         require_source();
         run_tree(*o);

@@ -43,7 +43,7 @@ struct ScalarGrid {
 
 /// A picture: axes with ticks around the view box, layers drawn in the order added, a legend of
 /// the labelled layers (the first 40, then a row "… and n more"), an optional colour bar for a
-/// field and a title.
+/// field or values on curves (the last added), and a title.
 class Figure {
 public:
     /// view: the region of the plane shown (kept square-aspect). Throws InvalidInput if empty.
@@ -64,6 +64,12 @@ public:
     /// An open polyline through points (a graph), with a legend entry `label` (none if empty).
     void add_polyline(std::span<const Vec2> points, const std::string& label, Color color,
                       double line_width = 1.5);
+    /// Every curve of an interface, closed, each segment coloured by the mean of its ends'
+    /// values (one per vertex, in the interface's order) on the map of add_field, with a colour
+    /// bar labelled `label`.
+    void add_curve_values(const Interface& curves, std::span<const double> values,
+                          const std::string& label, bool diverging = false,
+                          double line_width = 3.0);
     /// Dots at points (for instance the vertices of a curve).
     void add_points(std::span<const Vec2> points, Color color, double radius = 1.5);
     /// Arrows from at[i] along vec[i] * scale (plane units).

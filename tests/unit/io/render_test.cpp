@@ -159,6 +159,29 @@ TEST(Render, DivergingFieldIsBlueBelowZeroAndRedAboveWithYUp) {
     EXPECT_EQ(corner.r + corner.g + corner.b, 3 * 255);
 }
 
+TEST(Render, ValuesOnACurveColourItsSegmentsOnTheFieldsMap) {
+    // A circle of radius 0.5 coloured by y at its vertices, on the diverging map: red at its top,
+    // blue at its bottom, and a colour bar as for a field.
+    const TempDir dir;
+    const Interface c = circle({0.0, 0.0}, 0.5, 64);
+    std::vector<double> y;
+    for (const Vec2 p : c.points()) y.push_back(p.y);
+    Figure figure(Box::centered_square(1.0));
+    figure.add_curve_values(c, y, "V_y", true, 8.0);
+    figure.save(dir.path() / "values.png");
+    const SurfacePtr image = read_png(dir.path() / "values.png");
+    const int x = png_scale * (plot_left + plot_size / 2);
+    const Rgb top = pixel(image.get(), x, png_scale * (plot_top + plot_size / 4));
+    const Rgb bottom = pixel(image.get(), x, png_scale * (plot_top + 3 * plot_size / 4));
+    EXPECT_GT(top.r, top.b + 40) << top.r << " " << top.g << " " << top.b;
+    EXPECT_GT(bottom.b, bottom.r + 40) << bottom.r << " " << bottom.g << " " << bottom.b;
+    // Inside the circle nothing is drawn.
+    const Rgb centre = pixel(image.get(), x, png_scale * (plot_top + plot_size / 2));
+    EXPECT_EQ(centre.r + centre.g + centre.b, 3 * 255);
+    // One value a vertex.
+    EXPECT_THROW(figure.add_curve_values(c, std::span(y).first(10), "V_y"), InvalidInput);
+}
+
 TEST(Render, SavingReplacesTheFileAndLeavesNoTemporaryFile) {
     const TempDir dir;
     const fs::path path = dir.path() / "fig.svg";
