@@ -9,9 +9,11 @@ final.obj, the distances printed). Writes the table into the region `versus` of
 docs/notes/performance.md (between <!-- begin versus --> and <!-- end versus -->).
 
 With --instructions, each command runs once a build under valgrind's callgrind instead, and the
-table gives the instructions the whole process executes (reading, computing, drawing and writing):
-a count that does not move with the machine's load, where the times of this machine move by
-15-30% between runs. It writes the region `versus-instructions`.
+table gives the instructions of the library call that computes the result (slc::run,
+slc::contour, slc::contour_surface: their inclusive count, without reading, drawing and writing,
+as cpu_s times them) or, for a distance query, of the whole process: a count that does not move
+with the machine's load, where the times of this machine move by 15-30% between runs. It writes
+the region `versus-instructions`.
 
 The earlier revision is built from a git worktree in --work (only the tool, release flags as the
 release preset's), or given as a binary by --old."""
@@ -84,8 +86,9 @@ def timed(slc, args, out, instructions=False):
     command = [slc, *args, "--threads", "1"]
     if args[0] != "distance":
         command += ["--out", str(out)]
+    profile = out.with_suffix(".callgrind")
     if instructions:
-        command = ["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null", *command]
+        command = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={profile}", *command]
     with open(out.with_suffix(".stdout"), "wb") as stdout:
         p = subprocess.Popen(command, stdout=stdout, stderr=subprocess.PIPE)
         _, status, usage = os.wait4(p.pid, 0)
@@ -94,14 +97,34 @@ def timed(slc, args, out, instructions=False):
     if p.returncode != 0:
         sys.exit(f"{' '.join(command)}: exit status {p.returncode}: {err.strip()}")
     if instructions:
-        counted = re.search(r"Collected : (\d+)", err)
-        if not counted:
-            sys.exit(f"{' '.join(command)}: callgrind printed no count")
-        return int(counted.group(1))
+        entry = computation(args)
+        if entry is None:
+            counted = re.search(r"Collected : (\d+)", err)
+            if not counted:
+                sys.exit(f"{' '.join(command)}: callgrind printed no count")
+            return int(counted.group(1))
+        table = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100",
+                                str(profile)], capture_output=True, text=True, check=True).stdout
+        counts = [int(m.group(1).replace(",", "")) for m in
+                  re.finditer(r"^\s*([\d,]+) \(\s*[\d.]+%\)\s+\S*:" + entry, table, re.M)]
+        if not counts:
+            sys.exit(f"{' '.join(command)}: no {entry} in its profile")
+        return max(counts)
     summary = out / "summary.json"
     if summary.exists():
         return json.loads(summary.read_text())["cpu_s"]
     return usage.ru_utime + usage.ru_stime
+
+
+def computation(args):
+    """The library call whose inclusive instructions stand for a command's computation, as a
+    pattern of callgrind's function names; None for the whole process."""
+    if args[0] == "run":
+        surface = any(a.startswith("sphere") for a in args)
+        return r"slc::run\(slc::Surface const&" if surface else r"slc::run\(slc::Interface const&"
+    if args[0] == "contour":
+        return r"slc::contour_surface\(" if "--function" in args else r"slc::contour\("
+    return None
 
 
 def digest(out, name):
@@ -169,7 +192,7 @@ def main():
 
 
 def count_instructions(a, old, label):
-    lines = [f"| command (one thread, whole process) | instructions, {label} | instructions, this | "
+    lines = [f"| command (one thread) | instructions, {label} | instructions, this | "
              "this ÷ before | same output |",
              "|---|---|---|---|---|"]
     with tempfile.TemporaryDirectory() as tmp:
