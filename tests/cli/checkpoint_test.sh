@@ -191,7 +191,7 @@ check "disk full: no working folder left" test -z "$(ls -d kept.slc-* 2>/dev/nul
 # Bad use of --resume.
 expect_error "resume with other options" "--steps cannot be given" -- run --resume part --steps 3
 expect_error "resume without checkpoint" "cannot read" -- run --resume nowhere
-echo '{"format": "slc run checkpoint 1"}' >part/checkpoint.json
+echo '{"format": "slc run checkpoint 2"}' >part/checkpoint.json
 expect_error "resume a broken checkpoint" "not a checkpoint" -- run --resume part
 expect_error "checkpoint-every 0" "checkpoint-every" -- run --problem vortex --checkpoint-every 0 --out x
 finish

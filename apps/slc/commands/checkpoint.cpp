@@ -13,12 +13,25 @@
 #include "slc/geometry/validate_surface.hpp"
 #include "slc/io/interface_json.hpp"
 
+namespace slc {
+
+// What a checkpoint keeps of each dimension's run besides RunTotals (put_totals) and the
+// interface, under the fields' own names; a field missing from the file keeps its default.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RunLeast, value, t)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(RunResult, vertices_produced, area_corrected,
+                                                start_area, area_lag, area_law_change,
+                                                rigid_segments, least_length)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(SurfaceRunResult, volume_initial, volume_corrected,
+                                                unconverged_steps, largest_residual, least_area)
+
+}  // namespace slc
+
 namespace slc::cli {
 namespace {
 
 using Json = nlohmann::json;
 
-constexpr const char* format_name = "slc run checkpoint 1";
+constexpr const char* format_name = "slc run checkpoint 2";
 
 /// Each curve as one flat array x0, y0, x1, y1, ...; nlohmann-json writes every double in its
 /// shortest round-trip form, so the checkpoint reads back bit for bit.
@@ -171,33 +184,17 @@ void write_checkpoint(const std::filesystem::path& dir, const Checkpoint& c) {
     json["options"] = options;
     json["run_id"] = c.run_id;
     if (c.surface) {
-        const SurfaceRunResult& s = *c.surface;
         json["dimension"] = 3;
-        put_totals(json, s);
-        json["volume_initial"] = s.volume_initial;
-        json["volume_corrected"] = s.volume_corrected;
-        json["unconverged_steps"] = s.unconverged_steps;
-        json["largest_residual"] = s.largest_residual;
-        json["least_area"] = s.least_area.value;
-        json["least_area_t"] = s.least_area.t;
-        json["frames_kept"] = c.frames_kept;
+        put_totals(json, *c.surface);
+        json.update(Json(*c.surface));
         json["frame_times"] = c.frame_times;
-        put_surface(json, s.surface);
-        write_file_atomic(checkpoint_path(dir), json.dump() + "\n");
-        return;
+        put_surface(json, c.surface->surface);
+    } else {
+        put_totals(json, c.state);
+        json.update(Json(c.state));
+        json["curves"] = curves_json(c.state.curves);
     }
-    const RunResult& s = c.state;
-    put_totals(json, s);
-    json["vertices_produced"] = s.vertices_produced;
-    json["area_corrected"] = s.area_corrected;
-    json["start_area"] = s.start_area;
-    json["area_lag"] = s.area_lag;
-    json["area_law_change"] = s.area_law_change;
-    json["rigid_segments"] = s.rigid_segments;
-    json["least_length"] = s.least_length.value;
-    json["least_length_t"] = s.least_length.t;
     json["frames_kept"] = c.frames_kept;
-    json["curves"] = curves_json(s.curves);
     write_file_atomic(checkpoint_path(dir), json.dump() + "\n");
 }
 
@@ -216,27 +213,15 @@ Checkpoint read_checkpoint(const std::filesystem::path& dir) {
         if (json.value("dimension", 2) == 3) {
             SurfaceRunResult& s = c.surface.emplace();
             get_totals(json, s);
-            s.volume_initial = json.at("volume_initial").get<double>();
-            s.volume_corrected = json.value("volume_corrected", 0.0);
-            s.unconverged_steps = json.value("unconverged_steps", 0);
-            s.largest_residual = json.value("largest_residual", 0.0);
-            s.least_area = {json.value("least_area", 0.0), json.value("least_area_t", 0.0)};
-            c.frames_kept = json.at("frames_kept").get<int>();
+            json.get_to(s);
             c.frame_times = json.at("frame_times").get<std::vector<double>>();
             s.surface = surface_from(json);
-            return c;
+        } else {
+            get_totals(json, c.state);
+            json.get_to(c.state);
+            c.state.curves = curves_from(json.at("curves"));
         }
-        RunResult& s = c.state;
-        get_totals(json, s);
-        s.vertices_produced = json.at("vertices_produced").get<std::size_t>();
-        s.area_corrected = json.value("area_corrected", 0.0);
-        s.start_area = json.value("start_area", 0.0);
-        s.area_lag = json.value("area_lag", 0.0);
-        s.area_law_change = json.value("area_law_change", 0.0);
-        s.rigid_segments = json.value("rigid_segments", std::size_t{0});
-        s.least_length = {json.value("least_length", 0.0), json.value("least_length_t", 0.0)};
         c.frames_kept = json.at("frames_kept").get<int>();
-        s.curves = curves_from(json.at("curves"));
         return c;
     } catch (const std::exception& e) {
         // nlohmann-json's messages are one line: "[json.exception.type_error.302] ...".
