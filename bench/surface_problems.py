@@ -10,7 +10,7 @@ import sys
 from pathlib import Path
 
 PROBLEMS = ["sphere-rotation", "sphere-curvature", "merging-spheres", "box-normal",
-            "peanut-volume", "zalesak-sphere", "enright"]
+            "box-normal:speed=-1", "peanut-volume", "zalesak-sphere", "enright"]
 
 
 def fmt(x, spec):
@@ -27,15 +27,19 @@ def main():
     args = parser.parse_args()
     rows = []
     for name in args.problems:
-        out = Path(args.work) / name
-        run = subprocess.run([args.slc, "run", "--problem", name, "--out", str(out), "--quiet"],
-                             capture_output=True, text=True)
+        # NAME or NAME:key=value,...: the problem with those parameters.
+        problem, _, given = name.partition(":")
+        params = [a for kv in given.split(",") if kv for a in ("--param", kv)]
+        out = Path(args.work) / name.replace(":", "_").replace("=", "").replace(",", "_")
+        run = subprocess.run([args.slc, "run", "--problem", problem, *params, "--out", str(out),
+                              "--quiet"], capture_output=True, text=True)
         if run.returncode not in (0, 3):
             sys.exit(f"slc run --problem {name} failed: {run.stderr.strip()}")
         s = json.loads((out / "summary.json").read_text())
+        s["row"] = f"{problem} ({given})" if given else problem
         rows.append(s)
         Path(args.figures).mkdir(parents=True, exist_ok=True)
-        shutil.copy(out / "final.png", Path(args.figures) / f"surface_{name}.png")
+        shutil.copy(out / "final.png", Path(args.figures) / f"surface_{out.name}.png")
         print(f"{name}: {s['status']}, e_inf {s['e_inf']}, {s['wall_s']:.1f} s", flush=True)
     lines = [
         "<!-- written by bench/surface_problems.py (scripts/bench); do not edit -->",
@@ -47,7 +51,7 @@ def main():
     for s in rows:
         p = s["params"]
         lines.append(
-            f"| {s['problem']} | {p['N']} | {p['K']} | {p['eps']:.0e} | {s['status']} "
+            f"| {s['row']} | {p['N']} | {p['K']} | {p['eps']:.0e} | {s['status']} "
             f"| {s['triangles']:,} | {s['components']} | {s['genus']} | {fmt(s['e_inf'], '.2e')} "
             f"| {100 * s['volume_change']:+.3f}% | {s.get('unconverged_steps', 0)} "
             f"| {fmt(s.get('largest_residual'), '.2e')} | {s['g_evals']:,} | {s['wall_s']:.1f} "
