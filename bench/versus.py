@@ -162,54 +162,40 @@ def main():
         sys.exit("give --revision REV or --old BINARY")
     old = a.old or build_old(a.revision, a.work)
     label = a.revision or a.old
-    if a.instructions:
-        return count_instructions(a, old, label)
-    lines = [f"| command (one thread) | least CPU s, {label} | least CPU s, this | this ÷ before, "
-             "median of the pairs (range) | same output |",
-             "|---|---|---|---|---|"]
+    counting = a.instructions
+    repeats = 1 if counting else a.repeat  # a count does not vary from run to run
+    lines = ([f"| command (one thread) | instructions, {label} | instructions, this | "
+              "this ÷ before | same output |"] if counting else
+             [f"| command (one thread) | least CPU s, {label} | least CPU s, this | this ÷ before, "
+              "median of the pairs (range) | same output |"]) + ["|---|---|---|---|---|"]
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         for number, (name, args, output) in enumerate(cases(folder)):
             best = {"old": float("inf"), "new": float("inf")}
             digests = {}
             ratios = []
-            for repeat in range(a.repeat):
+            for repeat in range(repeats):
                 pair = {}
                 for key, slc in (("old", old), ("new", a.slc)):
                     out = folder / f"{number}-{key}-{repeat}"
-                    pair[key] = timed(slc, args, out)
+                    pair[key] = timed(slc, args, out, instructions=counting)
                     best[key] = min(best[key], pair[key])
                     digests[key] = digest(out, output)
                 ratios.append(pair["new"] / pair["old"])
             ratio = statistics.median(ratios)
             same = "yes" if digests["old"] == digests["new"] else "no"
+            if counting:
+                print(f"{name}: {best['old']:,} before, {best['new']:,} now, ratio {ratio:.4f}, "
+                      f"same output: {same}", flush=True)
+                lines.append(f"| {name} | {best['old']:,} | {best['new']:,} | {ratio:.4f} "
+                             f"| {same} |")
+                continue
             print(f"{name}: {best['old']:.3f} s before, {best['new']:.3f} s now, median ratio "
                   f"{ratio:.3f} ({min(ratios):.3f}-{max(ratios):.3f}), same output: {same}",
                   flush=True)
             lines.append(f"| {name} | {best['old']:.3f} | {best['new']:.3f} | {ratio:.3f} "
                          f"({min(ratios):.2f}–{max(ratios):.2f}) | {same} |")
-    write_region(a.out, "versus", lines)
-
-
-def count_instructions(a, old, label):
-    lines = [f"| command (one thread) | instructions, {label} | instructions, this | "
-             "this ÷ before | same output |",
-             "|---|---|---|---|---|"]
-    with tempfile.TemporaryDirectory() as tmp:
-        folder = Path(tmp)
-        for number, (name, args, output) in enumerate(cases(folder)):
-            count, digests = {}, {}
-            for key, slc in (("old", old), ("new", a.slc)):
-                out = folder / f"{number}-{key}"
-                count[key] = timed(slc, args, out, instructions=True)
-                digests[key] = digest(out, output)
-            ratio = count["new"] / count["old"]
-            same = "yes" if digests["old"] == digests["new"] else "no"
-            print(f"{name}: {count['old']:,} before, {count['new']:,} now, ratio {ratio:.4f}, "
-                  f"same output: {same}", flush=True)
-            lines.append(f"| {name} | {count['old']:,} | {count['new']:,} | {ratio:.4f} | {same} |")
-    write_region(a.out, "versus-instructions", lines)
-
+    write_region(a.out, "versus-instructions" if counting else "versus", lines)
 
 if __name__ == "__main__":
     main()

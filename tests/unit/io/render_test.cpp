@@ -60,6 +60,17 @@ Rgb pixel(cairo_surface_t* image, int x, int y) {
             static_cast<int>(argb & 0xff)};
 }
 
+/// On the centre column of a plain plot of [−1, 1]², the pixel a quarter of the way down (y = 0.5)
+/// is red and the one a quarter of the way up (y = −0.5) blue, as the diverging map draws
+/// positive and negative values.
+void expect_red_above_and_blue_below(cairo_surface_t* image) {
+    const int x = png_scale * (plot_left + plot_size / 2);
+    const Rgb upper = pixel(image, x, png_scale * (plot_top + plot_size / 4));
+    const Rgb lower = pixel(image, x, png_scale * (plot_top + 3 * plot_size / 4));
+    EXPECT_GT(upper.r, upper.b + 40) << upper.r << " " << upper.g << " " << upper.b;
+    EXPECT_GT(lower.b, lower.r + 40) << lower.r << " " << lower.g << " " << lower.b;
+}
+
 /// A field equal to y on the box: negative below the x axis, positive above.
 ScalarGrid y_field(const Box& box, int n) {
     ScalarGrid grid{box, n, n, std::vector<double>(static_cast<std::size_t>(n) * n)};
@@ -148,12 +159,7 @@ TEST(Render, DivergingFieldIsBlueBelowZeroAndRedAboveWithYUp) {
     figure.save(dir.path() / "field.png");
     const SurfacePtr image = read_png(dir.path() / "field.png");
 
-    // Centre column of the plot, a quarter of the way down (y = 0.5) and up (y = −0.5).
-    const int x = png_scale * (plot_left + plot_size / 2);
-    const Rgb upper = pixel(image.get(), x, png_scale * (plot_top + plot_size / 4));
-    const Rgb lower = pixel(image.get(), x, png_scale * (plot_top + 3 * plot_size / 4));
-    EXPECT_GT(upper.r, upper.b + 40) << upper.r << " " << upper.g << " " << upper.b;
-    EXPECT_GT(lower.b, lower.r + 40) << lower.r << " " << lower.g << " " << lower.b;
+    expect_red_above_and_blue_below(image.get());
     // Outside the plot the page is white.
     const Rgb corner = pixel(image.get(), 2, 2);
     EXPECT_EQ(corner.r + corner.g + corner.b, 3 * 255);
@@ -170,13 +176,10 @@ TEST(Render, ValuesOnACurveColourItsSegmentsOnTheFieldsMap) {
     figure.add_curve_values(c, y, "V_y", true, 8.0);
     figure.save(dir.path() / "values.png");
     const SurfacePtr image = read_png(dir.path() / "values.png");
-    const int x = png_scale * (plot_left + plot_size / 2);
-    const Rgb top = pixel(image.get(), x, png_scale * (plot_top + plot_size / 4));
-    const Rgb bottom = pixel(image.get(), x, png_scale * (plot_top + 3 * plot_size / 4));
-    EXPECT_GT(top.r, top.b + 40) << top.r << " " << top.g << " " << top.b;
-    EXPECT_GT(bottom.b, bottom.r + 40) << bottom.r << " " << bottom.g << " " << bottom.b;
+    expect_red_above_and_blue_below(image.get());
     // Inside the circle nothing is drawn.
-    const Rgb centre = pixel(image.get(), x, png_scale * (plot_top + plot_size / 2));
+    const Rgb centre = pixel(image.get(), png_scale * (plot_left + plot_size / 2),
+                             png_scale * (plot_top + plot_size / 2));
     EXPECT_EQ(centre.r + centre.g + centre.b, 3 * 255);
     // One value a vertex.
     EXPECT_THROW(figure.add_curve_values(c, std::span(y).first(10), "V_y"), InvalidInput);
