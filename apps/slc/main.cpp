@@ -11,6 +11,7 @@
 #include <string>
 
 #include "commands/commands.hpp"
+#include "commands/common.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/memory.hpp"
 #include "slc/core/stop.hpp"
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
     CLI::App app{"slc: moving interfaces by semi-Lagrangian contouring (J. Strain, JCP 2001)"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "slc 0.1.0");
+    app.formatter(slc::cli::help_formatter());
     slc::cli::add_run_command(app);
     slc::cli::add_study_command(app);
     slc::cli::add_contour_command(app);

@@ -136,7 +136,9 @@ expect_ok "rectangular box" -- run --initial hexagon.json --velocity rotation --
 check "rectangular box: the square around it" grep -q '"domain": \[' rect/summary.json
 expect_ok "help lists the problems" -- run --help
 check "help names zalesak" grep -q "zalesak" out.txt
-check "help says --initial reads surfaces too" grep -q "a closed triangle surface (.obj, .stl, .ply; or .vdb, an OpenVDB file" out.txt
+tr -s ' \n' ' ' <out.txt >help_joined.txt  # the help is wrapped to 100 columns
+check "help says --initial reads surfaces too" grep -q "a closed triangle surface (.obj, .stl, .ply; or .vdb, an OpenVDB file" help_joined.txt
+check "help is wrapped to 100 columns" test -z "$(awk 'length($0) > 100' out.txt)"
 
 # --estimate: one more run at half resolution; summary.json gets the distance between the two.
 expect_ok "user run with --estimate" -- run --initial square.json --velocity rotation --t-end 0.5 -N 4 -K 4 \

@@ -22,6 +22,59 @@
 
 namespace slc::cli {
 
+namespace {
+
+/// text wrapped at spaces to lines of at most `width` characters (a longer word stands alone):
+/// each line of the text keeps its indentation, and the continuation lines of an indented line (an
+/// item of a list) take two spaces more.
+std::string wrapped(const std::string& text, std::size_t width) {
+    std::string out;
+    std::istringstream lines(text);
+    std::string line;
+    for (bool first = true; std::getline(lines, line); first = false) {
+        if (!first) out += '\n';
+        const std::size_t indent = line.find_first_not_of(' ');
+        if (indent == std::string::npos) continue;
+        std::istringstream words(line.substr(indent));
+        std::string word, current(indent, ' ');
+        bool empty = true;
+        while (words >> word) {
+            if (!empty && current.size() + 1 + word.size() > width) {
+                out += current + '\n';
+                current = std::string(indent == 0 ? 0 : indent + 2, ' ') + word;
+            } else {
+                current += (empty ? "" : " ") + word;
+            }
+            empty = false;
+        }
+        out += current;
+    }
+    return out;
+}
+
+class WrappingFormatter : public CLI::Formatter {
+public:
+    std::string make_option_desc(const CLI::Option* option) const override {
+        return wrapped(CLI::Formatter::make_option_desc(option), help_width - get_column_width());
+    }
+    std::string make_description(const CLI::App* app) const override {
+        const std::string text = CLI::Formatter::make_description(app);
+        const bool ends_line = !text.empty() && text.back() == '\n';
+        return wrapped(text, help_width) + (ends_line ? "\n" : "");
+    }
+    std::string make_subcommand(const CLI::App* sub) const override {
+        std::stringstream out;
+        CLI::detail::format_help(out, sub->get_display_name(),
+                                 wrapped(sub->get_description(), help_width - get_column_width()),
+                                 get_column_width());
+        return out.str();
+    }
+};
+
+}  // namespace
+
+std::shared_ptr<CLI::Formatter> help_formatter() { return std::make_shared<WrappingFormatter>(); }
+
 void add_domain_options(CLI::App& cmd, DomainOptions& options, std::string_view more) {
     auto* domain =
         cmd.add_option("--domain", options.half_width,

@@ -36,6 +36,13 @@ struct DomainOptions {
 /// --domain.
 void add_domain_options(CLI::App& cmd, DomainOptions& options, std::string_view more = {});
 
+/// The help's formatter: each option's description (and each command's in the list) wrapped at
+/// spaces to lines of `help_width` characters, continuation lines under its column; a line of a
+/// description keeps its own indentation (the lists of problems and laws, whose items hang). Set on
+/// the app before its subcommands are added, which take it from there.
+inline constexpr std::size_t help_width = 100;
+std::shared_ptr<CLI::Formatter> help_formatter();
+
 /// Adds the subcommand `name` to app and makes the options its flags fill: shared, so that its
 /// callback, which runs after parsing, can hold them. Returns both.
 template <class Options>
