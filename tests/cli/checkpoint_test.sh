@@ -46,6 +46,17 @@ rm square.json user_part/final.json user_part/summary.json
 expect_ok "user curve resumed" -- run --resume user_part --quiet
 same_run "user curve resumed from step 4" user_full user_part
 
+# Under curvature flow a user's run holds its area to the law's change (area_lag,
+# area_law_change), which the checkpoint keeps: the resumed run splits the same steps.
+echo '{"curves": [{"points": [[1.0, 0.0], [0.450484, 0.216942], [0.62349, 0.781831], [0.11126, 0.487464], [-0.222521, 0.974928], [-0.311745, 0.390916], [-0.900969, 0.433884], [-0.5, 0.0], [-0.900969, -0.433884], [-0.311745, -0.390916], [-0.222521, -0.974928], [0.11126, -0.487464], [0.62349, -0.781831], [0.450484, -0.216942]]}]}' >star.json
+star_args=(run --initial star.json --velocity curvature --t-end 0.02 --quiet)
+expect_ok "star under curvature" -- "${star_args[@]}" --out star_full
+expect_ok "star checkpointed" -- "${star_args[@]}" --checkpoint-every 10 --out star_part
+check "star checkpoint keeps the law's area change" grep -q '"area_law_change":-0.0942' star_part/checkpoint.json
+rm star_part/final.json star_part/summary.json
+expect_ok "star resumed" -- run --resume star_part --quiet
+same_run "star resumed from step 30" star_full star_part
+
 # A surface: final.obj, history.csv, the frames (.vtp, .pvd) and the summary as the run never
 # stopped; a user's surface file is copied into the folder as a curve file is.
 surface_args=(run --problem sphere-rotation --t-end 1.5 -N 6 -K 4 --eps 2e-3 --frames 3 --quiet)
