@@ -84,6 +84,7 @@ public:
         }
         const double h = finest_cell(domain, options.step.contour);
         budget_ = GuardBudget{.run_lag_fraction = options.area_drift,
+                              .run_rate_fraction = options.area_rate_drift,
                               .run_length = options.t_end - options.t_start,
                               .resolved_area = std::numbers::pi * h * h};
     }
@@ -196,16 +197,16 @@ std::optional<BudgetBreach> LoopHooks<2>::run_budget(Attempt& a, const Interface
     }
     a.run_law_change = r.area_law_change + a.law_change;
     // Beyond one step's tolerance of the contours (a.m0: the last sub-step's measures).
-    if (options_.area_rate_drift > 0.0 &&
-        std::abs(a.run_lag) > options_.area_rate_drift * std::abs(a.run_law_change) +
-                                  b.eps_lengths * eps_ * a.m0.length) {
+    if (b.run_rate_fraction > 0.0 &&
+        std::abs(a.run_lag) >
+            b.run_rate_fraction * std::abs(a.run_law_change) + b.eps_lengths * eps_ * a.m0.length) {
         return BudgetBreach{
             fmt::format("by t = {}: the area has changed by {:.3g} where the law's rate gives "
                         "{:.3g}, {:.3g}% off, more than the run's {:g}%: raise the steps N or the "
                         "depth K",
                         t_next, a.run_law_change + a.run_lag, a.run_law_change,
                         100.0 * std::abs(a.run_lag / a.run_law_change),
-                        100.0 * options_.area_rate_drift),
+                        100.0 * b.run_rate_fraction),
             true};
     }
     if (invariants_.shortens && !curves.empty()) {

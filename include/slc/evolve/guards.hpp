@@ -36,6 +36,10 @@ struct GuardBudget {
     /// this fraction of the area at the start (RunResult::area_lag): steps each within their
     /// quarter, all lagging the same way, cannot add up to a wrong curve.
     double run_lag_fraction = 5e-2;
+    /// The same lag may also be at most this fraction of the change the law has made over the
+    /// run (RunResult::area_law_change), plus eps_lengths ε L: 0, not checked (the paper's
+    /// problems); a user's curves 0.02 (RunOptions::area_rate_drift).
+    double run_rate_fraction = 0.0;
     /// A rigid motion keeps the shape, so its contours need as many segments as its first one
     /// did, to within the tree's alignment: more than this many times as many means the steps
     /// roughen the curves (RunResult::rigid_segments).
