@@ -1,7 +1,7 @@
 # Sourced by the other scripts: installs the Debian packages the project needs when missing.
 slc_packages=(cmake ninja-build g++ pkg-config libcli11-dev nlohmann-json3-dev libfmt-dev
               libcairo2-dev libmuparser-dev libgtest-dev libgmock-dev libbenchmark-dev clang-format
-              python3 libopenvdb-dev)
+              python3 libopenvdb-dev libeigen3-dev)
 # The Python package (scripts/python-env): Debian's interpreter, pybind11, numpy, pytest.
 slc_python_packages=(python3-dev python3-venv python3-setuptools python3-wheel python3-pybind11
                      pybind11-dev python3-numpy python3-pytest python3-matplotlib python3-pandas

@@ -43,7 +43,8 @@ bool StepOptions::resolved_arcs(const VelocityLaw& law) const {
     if (resolved_extension(law) == Extension::direct && (law.is_normal_law() || law.is_field()))
         return true;
     const GeometryNeeds needs = law.needs();
-    return needs.curvature && needs.resolved_module() == GeometryModule::arclength;
+    return needs.smooth ||
+           (needs.curvature && needs.resolved_module() == GeometryModule::arclength);
 }
 
 namespace {
@@ -138,7 +139,8 @@ public:
         if (extension_ != Extension::direct) {
             const GeometryContext context{.tree = &tree_,
                                           .embedded = options.embedded,
-                                          .arc_width = options.resolved_arc_width(k)};
+                                          .arc_width = options.resolved_arc_width(k),
+                                          .step = k};
             u_ = vertex_velocities(law, t, curves, context);
             if (extension_ == Extension::whitney) whitney_.emplace(tree_, u_);
             if (extension_ == Extension::nearest_point && law.constant_speed()) set_shocks();

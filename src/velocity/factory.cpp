@@ -11,6 +11,7 @@
 
 #include "slc/core/error.hpp"
 #include "slc/velocity/laws.hpp"
+#include "slc/velocity/potential_laws.hpp"
 #include "slc/velocity/surface_laws.hpp"
 
 namespace slc {
@@ -85,6 +86,14 @@ const std::vector<Entry<2>>& curve_entries() {
          [](const Resolved&, M m) { return std::make_unique<CurvatureFlow>(m); }},
         {{"volume-preserving-curvature", "nonlocal u = (C - mean of C over all of Gamma) N", {}},
          [](const Resolved&, M m) { return std::make_unique<VolumePreservingCurvatureFlow>(m); }},
+        {{"mullins-sekerka",
+          "two-phase Mullins-Sekerka: V = jump of the flux of u, u harmonic off Gamma, u = -sigma "
+          "C on it (coarsening; keeps the total area)",
+          {param("sigma", 1, "surface tension"), param("din", 1, "diffusion coefficient inside"),
+           param("dout", 1, "diffusion coefficient outside")}},
+         [](const Resolved& p, M) {
+             return std::make_unique<MullinsSekerka>(p["sigma"], p["din"], p["dout"]);
+         }},
         {{"vortex",
           "LeVeque's single vortex on [0, 1]^2, reversed at t = period/2",
           {param("period", 8, "period T: the flow is multiplied by cos(pi t / T)")}},

@@ -145,7 +145,10 @@ void require_inside_extent(const VelocityLaw& law, const Interface& curves) {
         law.name(), b.lo.x, b.hi.x, b.lo.y, b.hi.y, *i, p.x, p.y));
 }
 
-VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curves,
+namespace {
+
+/// The normals and curvature of needs' module, or nothing when the law needs neither.
+VertexGeometry module_geometry(const GeometryNeeds& needs, const Interface& curves,
                                const GeometryContext& context) {
     if (!needs.any()) return {};
     const GeometryModule module = needs.resolved_module();
@@ -157,6 +160,15 @@ VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curv
         throw InvalidInput(
             "the embedded geometry module was given a distance tree of other curves");
     return embedded_geometry(*context.tree, context.embedded);
+}
+
+}  // namespace
+
+VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curves,
+                               const GeometryContext& context) {
+    VertexGeometry g = module_geometry(needs, curves, context);
+    g.step = context.step;
+    return g;
 }
 
 std::vector<Vec2> vertex_velocities(const VelocityLaw& law, double t, const Interface& curves,

@@ -109,8 +109,8 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         "Read the curve as circular arcs through its vertices, not as chords, when G is "
         "evaluated (corners turning by more than 0.5 rad stay sharp): for smooth curves, "
         "whose chords lose a little area each step. Default: on for curvature laws with "
-        "the arclength module (their default) and for laws evaluated directly (normal laws, "
-        "flow fields), off otherwise and for named problems");
+        "the arclength module (their default), for mullins-sekerka and for laws evaluated "
+        "directly (normal laws, flow fields), off otherwise and for named problems");
     cmd.add_flag_function(
         "--area-correction,!--no-area-correction",
         [&o](std::int64_t count) { o.settings.area_correction = count > 0; },

@@ -19,6 +19,9 @@ namespace slc {
 struct VertexGeometry {
     std::vector<Vec2> normals;      ///< outward unit normal N_i at vertex i
     std::vector<double> curvature;  ///< C_i at vertex i, −1/R on a circle of radius R
+    /// k, the time step the velocities are for (advance() sets it), or 0 outside a step: the
+    /// stiff laws (potential_laws.hpp) damp the modes an explicit step of k would amplify.
+    double step = 0.0;
 };
 
 /// The length of each segment i (from vertex i to next(i)). Throws InvalidInput, naming `module`

@@ -47,6 +47,10 @@ struct GeometryNeeds {
     bool curvature = false;  ///< curvature C = −∇·N
     /// Which module computes them; unset: resolved_module().
     std::optional<GeometryModule> module = std::nullopt;
+    /// True for a law that fits smooth curves through the vertices itself (the potential laws):
+    /// the step then reads the curves as arcs through their vertices, not as chords
+    /// (StepOptions::arcs), whose loss of a little each step the law would see as wrinkles.
+    bool smooth = false;
 
     /// True when the law needs normals or curvature.
     bool any() const { return normals || curvature; }
@@ -211,10 +215,12 @@ struct GeometryContext {
     /// σ ≥ 0 of the arclength module: the width, in arc length, over which it averages the
     /// curvature (0: none). advance() sets √k unless StepOptions::arc_width says otherwise.
     double arc_width = 0.0;
+    /// k, the step the velocities are for (VertexGeometry::step): advance() sets it.
+    double step = 0.0;
 };
 
-/// The vertex geometry a law asks for: empty when it needs none, else normals and curvature from
-/// its module. Throws InvalidInput when the embedded module is asked for without a tree, or with
+/// The vertex geometry a law asks for: no normals or curvature when it needs none, else those of
+/// its module; its step is context.step. Throws InvalidInput when the embedded module is asked for without a tree, or with
 /// a tree of other curves.
 VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curves,
                                const GeometryContext& context);

@@ -1,0 +1,50 @@
+/// @file
+/// Laws that move curves by a potential solved on them (paper §4.7's motivation: crystal growth
+/// is nonlocal, "the normal velocity at each point depends on all of Γ(t)"): the potential is
+/// harmonic off the curves with the curvature as its boundary values, and the curves move by its
+/// normal derivatives (slc/potential/boundary_integral.hpp; docs/algorithms/potential.md).
+///
+/// These laws are stiff: mode m of a circle of radius R decays at a rate ∝ σm³/R³. Within a
+/// step of size k (VertexGeometry::step) the velocity is taken linearly implicitly in its
+/// leading term, mode ξ of V (in arc length) divided by 1 + kλ(ξ), λ(ξ) the law's decay rate of
+/// a flat interface: explicit, the step would amplify modes with kλ > 2.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "slc/velocity/velocity.hpp"
+
+namespace slc {
+
+struct SmoothCurves;
+
+/// `mullins-sekerka`: two-phase Mullins–Sekerka (coarsening by diffusion, Ostwald ripening).
+/// Δu = 0 inside and outside the curves, u = −σC on them, u bounded at infinity; the normal
+/// speed is the jump of the flux, V = D_out ∂u_out/∂N − D_in ∂u_in/∂N. The total area is kept
+/// and the length falls; small particles shrink and vanish while large ones grow. A circle's
+/// mode m decays at σ(D_in + D_out) m(m² − 1)/R³.
+class MullinsSekerka final : public VelocityLaw {
+public:
+    /// sigma: σ > 0, the surface tension; d_in, d_out > 0: the diffusion coefficients inside and
+    /// outside. Throws InvalidInput otherwise.
+    explicit MullinsSekerka(double sigma = 1.0, double d_in = 1.0, double d_out = 1.0);
+    std::string name() const override { return "mullins-sekerka"; }
+    /// No module's normals or curvature: the law fits smooth curves itself.
+    GeometryNeeds needs() const override { return {.smooth = true}; }
+    /// The total area is kept; the length only falls (the gradient flow of length).
+    bool preserves_area() const override { return true; }
+    Invariants invariants() const override { return {.keeps_area = true, .shortens = true}; }
+    /// The vertex velocities V·N, N the smooth curves' normal.
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override;
+    /// V at the vertices, the law's normal speed, for a step of size k (0: none).
+    std::vector<double> normal_speeds(const Interface& curves, double k) const;
+
+private:
+    std::vector<double> normal_speeds(const SmoothCurves& s, double k) const;
+
+    double sigma_, d_in_, d_out_;
+};
+
+}  // namespace slc

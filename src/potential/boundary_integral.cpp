@@ -1,0 +1,322 @@
+// Closed curves made smooth (periodic cubic splines sampled evenly), the single-layer potential of
+// the logarithm on them by Kress's quadrature, and its first-kind equation solved by Eigen.
+#include "slc/potential/boundary_integral.hpp"
+
+#include <fmt/format.h>
+
+// Results must not depend on the number of threads: Eigen's own threading stays off; the
+// matrix is assembled by slc's parallel_for, one entry per iteration.
+#define EIGEN_DONT_PARALLELIZE
+#include <Eigen/Dense>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <unsupported/Eigen/FFT>
+#include <unsupported/Eigen/IterativeSolvers>
+
+#include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
+
+namespace slc {
+namespace {
+
+using std::numbers::pi;
+
+/// Up to this many samples the equation is solved by LU, beyond it by GMRES.
+constexpr std::size_t direct_solve_limit = 600;
+
+/// Solves the cyclic tridiagonal system a_i x_{i−1} + b_i x_i + c_i x_{i+1} = r_i (indices mod
+/// n, n ≥ 3), diagonally dominant, by the Sherman–Morrison form of the Thomas algorithm.
+std::vector<double> solve_cyclic(const std::vector<double>& a, const std::vector<double>& b,
+                                 const std::vector<double>& c, const std::vector<double>& r) {
+    const std::size_t n = b.size();
+    const double alpha = a[0], beta = c[n - 1], gamma = -b[0];
+    std::vector<double> bb = b;
+    bb[0] -= gamma;
+    bb[n - 1] -= alpha * beta / gamma;
+    auto thomas = [&](std::vector<double> d) {
+        std::vector<double> cp(n);
+        cp[0] = c[0] / bb[0];
+        d[0] /= bb[0];
+        for (std::size_t i = 1; i < n; ++i) {
+            const double m = bb[i] - a[i] * cp[i - 1];
+            cp[i] = c[i] / m;
+            d[i] = (d[i] - a[i] * d[i - 1]) / m;
+        }
+        for (std::size_t i = n - 1; i-- > 0;) d[i] -= cp[i] * d[i + 1];
+        return d;
+    };
+    std::vector<double> x = thomas(r);
+    std::vector<double> u(n, 0.0);
+    u[0] = gamma;
+    u[n - 1] = beta;
+    const std::vector<double> z = thomas(u);
+    const double f = (x[0] + beta * x[n - 1] / gamma) / (1.0 + z[0] + beta * z[n - 1] / gamma);
+    for (std::size_t i = 0; i < n; ++i) x[i] -= f * z[i];
+    return x;
+}
+
+/// A periodic cubic spline through points p_i at chord-length knots s_i, of period L.
+class PeriodicSpline {
+public:
+    explicit PeriodicSpline(std::span<const Vec2> p) : p_(p.begin(), p.end()) {
+        const std::size_t n = p.size();
+        s_.resize(n + 1);
+        s_[0] = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double h = norm(p[(i + 1) % n] - p[i]);
+            if (!(h > 0.0))
+                throw InvalidInput(fmt::format(
+                    "a curve's vertices {} and {} coincide at ({}, {}): no smooth curve through "
+                    "them",
+                    i, (i + 1) % n, p[i].x, p[i].y));
+            s_[i + 1] = s_[i] + h;
+        }
+        std::vector<double> a(n), b(n), c(n), rx(n), ry(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t im = (i + n - 1) % n, ip = (i + 1) % n;
+            const double hm = h(im), hp = h(i);
+            a[i] = hm;
+            b[i] = 2.0 * (hm + hp);
+            c[i] = hp;
+            const Vec2 r = 6.0 * ((p[ip] - p[i]) / hp - (p[i] - p[im]) / hm);
+            rx[i] = r.x;
+            ry[i] = r.y;
+        }
+        const std::vector<double> mx = solve_cyclic(a, b, c, rx), my = solve_cyclic(a, b, c, ry);
+        m_.resize(n);
+        for (std::size_t i = 0; i < n; ++i) m_[i] = {mx[i], my[i]};
+    }
+
+    /// The period L (the polygon's length).
+    double length() const { return s_.back(); }
+    /// The knot of vertex i.
+    double knot(std::size_t i) const { return s_[i]; }
+
+    /// γ, γ_s and γ_ss at s in [s_i, s_{i+1}].
+    struct Jet {
+        Vec2 x, d1, d2;
+    };
+    Jet at(std::size_t i, double s) const {
+        const std::size_t n = p_.size(), ip = (i + 1) % n;
+        const double hi = h(i), A = (s_[i + 1] - s) / hi, B = (s - s_[i]) / hi;
+        const Vec2 mi = m_[i], mp = m_[ip];
+        return {A * p_[i] + B * p_[ip] +
+                    (hi * hi / 6.0) * ((A * A * A - A) * mi + (B * B * B - B) * mp),
+                (p_[ip] - p_[i]) / hi +
+                    (hi / 6.0) * ((1.0 - 3.0 * A * A) * mi + (3.0 * B * B - 1.0) * mp),
+                A * mi + B * mp};
+    }
+
+private:
+    double h(std::size_t i) const { return s_[i + 1] - s_[i]; }
+
+    std::vector<Vec2> p_;
+    std::vector<double> s_;  // knots, s_[n] = L
+    std::vector<Vec2> m_;    // second derivatives at the knots
+};
+
+/// The outward unit normal and C of a spline jet (right of the direction of travel).
+std::pair<Vec2, double> normal_and_curvature(const PeriodicSpline::Jet& j) {
+    const double speed = norm(j.d1);
+    const Vec2 n = Vec2{j.d1.y, -j.d1.x} / speed;
+    const double kappa = (j.d1.x * j.d2.y - j.d1.y * j.d2.x) / (speed * speed * speed);
+    return {n, -kappa};
+}
+
+/// Kress's weights R_d, d = 0 … M − 1, for ∫_0^{2π} log(4 sin²((t − τ)/2)) g(τ) dτ at t = τ_i,
+/// d = i − j mod M, M = 2n samples.
+std::vector<double> kress_weights(std::size_t m_samples) {
+    const std::size_t n = m_samples / 2;
+    const double dn = static_cast<double>(n);
+    std::vector<double> r(m_samples);
+    for (std::size_t d = 0; d < m_samples; ++d) {
+        double sum = 0.0;
+        for (std::size_t m = 1; m < n; ++m)
+            sum +=
+                std::cos(static_cast<double>(m * d % m_samples) * pi / dn) / static_cast<double>(m);
+        r[d] = -(2.0 * pi / dn) * sum - (pi / (dn * dn)) * (d % 2 == 0 ? 1.0 : -1.0);
+    }
+    return r;
+}
+
+}  // namespace
+
+SmoothCurves smooth_curves(const Interface& curves, double samples_per_vertex,
+                           std::size_t min_samples) {
+    SmoothCurves s;
+    s.offsets.push_back(0);
+    s.vertex_offsets.assign(curves.offsets().begin(), curves.offsets().end());
+    s.vertex_tau.resize(curves.size());
+    s.vertex_normal.resize(curves.size());
+    for (std::size_t c = 0; c < curves.curve_count(); ++c) {
+        const std::span<const Vec2> p = curves.curve(c);
+        const PeriodicSpline spline(p);
+        const double wanted = std::ceil(samples_per_vertex * static_cast<double>(p.size()) / 2.0);
+        const std::size_t m = std::max(min_samples, 2 * static_cast<std::size_t>(wanted));
+        const double length = spline.length();
+        s.length.push_back(length);
+        std::size_t piece = 0;
+        for (std::size_t j = 0; j < m; ++j) {
+            const double at = length * static_cast<double>(j) / static_cast<double>(m);
+            while (piece + 1 < p.size() && spline.knot(piece + 1) <= at) ++piece;
+            const PeriodicSpline::Jet jet = spline.at(piece, at);
+            const auto [n, curvature] = normal_and_curvature(jet);
+            s.x.push_back(jet.x);
+            s.speed.push_back(norm(jet.d1) * length / (2.0 * pi));
+            s.normal.push_back(n);
+            s.curvature.push_back(curvature);
+        }
+        const std::size_t first = curves.offsets()[c];
+        for (std::size_t i = 0; i < p.size(); ++i) {
+            s.vertex_tau[first + i] = 2.0 * pi * spline.knot(i) / length;
+            s.vertex_normal[first + i] = normal_and_curvature(spline.at(i, spline.knot(i))).first;
+        }
+        s.offsets.push_back(s.x.size());
+    }
+    return s;
+}
+
+std::vector<double> interpolate_at_vertices(const SmoothCurves& s, std::size_t c,
+                                            std::span<const double> g) {
+    const std::size_t m = s.count(c);
+    if (g.size() != m)
+        throw InvalidInput(
+            fmt::format("interpolate_at_vertices: {} values for {} samples", g.size(), m));
+    Eigen::FFT<double> fft;
+    std::vector<std::complex<double>> spectrum;
+    fft.fwd(spectrum, std::vector<double>(g.begin(), g.end()));
+    const std::size_t half = m / 2;
+    const double scale = 1.0 / static_cast<double>(m);
+    std::vector<double> out;
+    for (std::size_t v = s.vertex_offsets[c]; v < s.vertex_offsets[c + 1]; ++v) {
+        // g(τ) = (1/M)(c_0 + 2 Re Σ_{0<k<M/2} c_k e^{ikτ} + c_{M/2} cos(Mτ/2)), summed with the
+        // rotation e^{iτ} applied k times.
+        const std::complex<double> step = std::polar(1.0, s.vertex_tau[v]);
+        std::complex<double> turn = step;
+        double sum = spectrum[0].real();
+        for (std::size_t k = 1; k < half; ++k, turn *= step)
+            sum += 2.0 * (spectrum[k] * turn).real();
+        sum +=
+            (spectrum[half] * std::polar(1.0, static_cast<double>(half) * s.vertex_tau[v])).real();
+        out.push_back(scale * sum);
+    }
+    return out;
+}
+
+std::vector<double> single_layer_matrix(const SmoothCurves& s) {
+    const std::size_t n = s.x.size();
+    std::vector<double> a(n * n);
+    std::vector<std::size_t> curve_of(n);
+    for (std::size_t c = 0; c < s.curve_count(); ++c)
+        for (std::size_t i = s.offsets[c]; i < s.offsets[c + 1]; ++i) curve_of[i] = c;
+    std::vector<std::vector<double>> kress(s.curve_count());
+    for (std::size_t c = 0; c < s.curve_count(); ++c) kress[c] = kress_weights(s.count(c));
+    parallel_for(n, [&](std::size_t i) {
+        const std::size_t ci = curve_of[i], first = s.offsets[ci], m = s.count(ci);
+        const double half = static_cast<double>(m / 2);
+        for (std::size_t j = 0; j < n; ++j) {
+            const std::size_t cj = curve_of[j];
+            double w;
+            if (cj != ci) {
+                // −(1/2π) log|x_i − x_j| times the trapezoidal weight 2π/M of curve cj.
+                w = -std::log(norm(s.x[i] - s.x[j])) / static_cast<double>(s.count(cj));
+            } else {
+                // Kress: −(1/4π) [R_{i−j} + (π/n) log(|x_i − x_j|² / (4 sin²((τ_i − τ_j)/2)))],
+                // the log of the speed² on the diagonal.
+                const std::size_t d = (i - first + m - (j - first)) % m;
+                double smooth;
+                if (d == 0) {
+                    smooth = std::log(s.speed[i] * s.speed[i]);
+                } else {
+                    const double sine =
+                        std::sin(pi * static_cast<double>(d) / static_cast<double>(m));
+                    smooth = std::log(norm2(s.x[i] - s.x[j]) / (4.0 * sine * sine));
+                }
+                w = -(kress[ci][d] + (pi / half) * smooth) / (4.0 * pi);
+            }
+            a[i * n + j] = w;
+        }
+    });
+    return a;
+}
+
+SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const double> f) {
+    const std::size_t n = s.x.size();
+    if (f.size() != n)
+        throw InvalidInput(
+            fmt::format("solve_single_layer: {} values for {} samples", f.size(), n));
+    const std::vector<double> a = single_layer_matrix(s);
+    // The unknowns: φ_j = μ_j |γ'(τ_j)| and u∞; the last row is ∫μ ds = Σ (2π/M_c) φ_j = 0.
+    Eigen::MatrixXd system(n + 1, n + 1);
+    Eigen::VectorXd rhs(n + 1);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < n; ++j) system(i, j) = a[i * n + j];
+        system(i, n) = 1.0;
+        rhs(i) = f[i];
+    }
+    for (std::size_t c = 0; c < s.curve_count(); ++c)
+        for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
+            system(n, j) = 2.0 * pi / static_cast<double>(s.count(c));
+    system(n, n) = 0.0;
+    rhs(n) = 0.0;
+
+    SingleLayerSolution out;
+    Eigen::VectorXd phi;
+    if (n <= direct_solve_limit) {
+        phi = system.partialPivLu().solve(rhs);
+    } else {
+        Eigen::GMRES<Eigen::MatrixXd, Eigen::DiagonalPreconditioner<double>> gmres(system);
+        gmres.set_restart(300);
+        gmres.setTolerance(1e-13);
+        gmres.setMaxIterations(3000);
+        phi = gmres.solve(rhs);
+        if (gmres.info() != Eigen::Success)
+            throw NumericalFailure(fmt::format(
+                "the potential's integral equation on {} points did not converge in {} GMRES "
+                "iterations (residual {:.2g}): curves too close for their sampling",
+                n, gmres.iterations(), gmres.error()));
+        out.iterations = static_cast<int>(gmres.iterations());
+    }
+    out.density.resize(n);
+    for (std::size_t j = 0; j < n; ++j) out.density[j] = phi(j) / s.speed[j];
+    out.u_infinity = phi(n);
+    return out;
+}
+
+std::vector<double> adjoint_double_layer(const SmoothCurves& s, std::span<const double> density) {
+    const std::size_t n = s.x.size();
+    std::vector<double> phi(n), out(n);
+    for (std::size_t c = 0; c < s.curve_count(); ++c)
+        for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
+            phi[j] = density[j] * s.speed[j] * 2.0 * pi / static_cast<double>(s.count(c));
+    parallel_for(n, [&](std::size_t i) {
+        double sum = 0.0;
+        for (std::size_t j = 0; j < n; ++j) {
+            // ∂G/∂N(x_i) = −(1/2π) (x_i − y)·N_i / |x_i − y|²; its limit on the diagonal, C_i/4π.
+            const Vec2 d = s.x[i] - s.x[j];
+            const double kernel =
+                j == i ? s.curvature[i] / (4.0 * pi) : -dot(d, s.normal[i]) / (2.0 * pi * norm2(d));
+            sum += kernel * phi[j];
+        }
+        out[i] = sum;
+    });
+    return out;
+}
+
+void filter_modes(const SmoothCurves& s, std::size_t c, std::span<double> g,
+                  const std::function<double(double)>& filter) {
+    const std::size_t m = s.count(c);
+    Eigen::FFT<double> fft;
+    std::vector<std::complex<double>> spectrum;
+    fft.fwd(spectrum, std::vector<double>(g.begin(), g.end()));
+    for (std::size_t k = 0; k < m; ++k) {
+        const double mode = static_cast<double>(k <= m / 2 ? k : m - k);
+        spectrum[k] *= filter(2.0 * pi * mode / s.length[c]);
+    }
+    std::vector<double> back;
+    fft.inv(back, spectrum);
+    std::copy(back.begin(), back.end(), g.begin());
+}
+
+}  // namespace slc
