@@ -8,6 +8,7 @@
 // matrix is assembled by slc's parallel_for, one entry per iteration.
 #define EIGEN_DONT_PARALLELIZE
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -21,6 +22,10 @@ namespace slc {
 namespace {
 
 using std::numbers::pi;
+
+/// Vertices closer than this fraction of a curve's mean spacing to the vertex before are left
+/// out of its spline (their values are still read back at their place).
+constexpr double min_vertex_gap = 0.01;
 
 /// Up to this many samples the equation is solved by LU, beyond it by GMRES.
 constexpr std::size_t direct_solve_limit = 600;
@@ -90,13 +95,21 @@ public:
 
     /// The period L (the polygon's length).
     double length() const { return s_.back(); }
-    /// The knot of vertex i.
+    /// The knot of point i.
     double knot(std::size_t i) const { return s_[i]; }
+    /// Point i the spline goes through.
+    Vec2 point(std::size_t i) const { return p_[i]; }
+    /// The number of points.
+    std::size_t knot_count() const { return p_.size(); }
 
     /// γ, γ_s and γ_ss at s in [s_i, s_{i+1}].
     struct Jet {
         Vec2 x, d1, d2;
     };
+    Jet at(double s) const {
+        const auto above = std::upper_bound(s_.begin(), s_.end() - 1, s);
+        return at(static_cast<std::size_t>(std::max<std::ptrdiff_t>(above - s_.begin() - 1, 0)), s);
+    }
     Jet at(std::size_t i, double s) const {
         const std::size_t n = p_.size(), ip = (i + 1) % n;
         const double hi = h(i), A = (s_[i + 1] - s) / hi, B = (s - s_[i]) / hi;
@@ -140,6 +153,17 @@ std::vector<double> kress_weights(std::size_t m_samples) {
     return r;
 }
 
+/// The vertices of a curve the spline goes through: each at least `gap` from the one kept before
+/// it and from the first. Contours can place two vertices a rounding error apart; a spline
+/// through both would turn sharply between them.
+std::vector<Vec2> spaced_vertices(std::span<const Vec2> p, double gap) {
+    std::vector<Vec2> kept{p[0]};
+    for (std::size_t i = 1; i < p.size(); ++i)
+        if (norm(p[i] - kept.back()) >= gap && norm(p[i] - p[0]) >= gap) kept.push_back(p[i]);
+    if (kept.size() < 3) return {p.begin(), p.end()};
+    return kept;
+}
+
 }  // namespace
 
 SmoothCurves smooth_curves(const Interface& curves, double samples_per_vertex,
@@ -151,26 +175,30 @@ SmoothCurves smooth_curves(const Interface& curves, double samples_per_vertex,
     s.vertex_normal.resize(curves.size());
     for (std::size_t c = 0; c < curves.curve_count(); ++c) {
         const std::span<const Vec2> p = curves.curve(c);
-        const PeriodicSpline spline(p);
+        const PeriodicSpline spline(
+            spaced_vertices(p, min_vertex_gap * length(p) / static_cast<double>(p.size())));
         const double wanted = std::ceil(samples_per_vertex * static_cast<double>(p.size()) / 2.0);
         const std::size_t m = std::max(min_samples, 2 * static_cast<std::size_t>(wanted));
         const double length = spline.length();
         s.length.push_back(length);
-        std::size_t piece = 0;
         for (std::size_t j = 0; j < m; ++j) {
-            const double at = length * static_cast<double>(j) / static_cast<double>(m);
-            while (piece + 1 < p.size() && spline.knot(piece + 1) <= at) ++piece;
-            const PeriodicSpline::Jet jet = spline.at(piece, at);
+            const PeriodicSpline::Jet jet =
+                spline.at(length * static_cast<double>(j) / static_cast<double>(m));
             const auto [n, curvature] = normal_and_curvature(jet);
             s.x.push_back(jet.x);
             s.speed.push_back(norm(jet.d1) * length / (2.0 * pi));
             s.normal.push_back(n);
             s.curvature.push_back(curvature);
         }
+        // Each vertex at its chord length from the last vertex the spline goes through.
         const std::size_t first = curves.offsets()[c];
+        std::size_t knot = 0;
         for (std::size_t i = 0; i < p.size(); ++i) {
-            s.vertex_tau[first + i] = 2.0 * pi * spline.knot(i) / length;
-            s.vertex_normal[first + i] = normal_and_curvature(spline.at(i, spline.knot(i))).first;
+            if (knot + 1 < spline.knot_count() && p[i] == spline.point(knot + 1)) ++knot;
+            const double at = std::min(spline.knot(knot) + norm(p[i] - spline.point(knot)),
+                                       std::nextafter(length, 0.0));
+            s.vertex_tau[first + i] = 2.0 * pi * at / length;
+            s.vertex_normal[first + i] = normal_and_curvature(spline.at(at)).first;
         }
         s.offsets.push_back(s.x.size());
     }
