@@ -376,6 +376,21 @@ def test_curvature_flow_loses_area_at_two_pi():
     assert s["params"]["P"] == 2 and s["params"]["eps"] == pytest.approx(1e-5)
 
 
+def test_mullins_sekerka_keeps_the_area_and_the_small_of_two_circles_vanishes():
+    # Coarsening: the circle of radius 0.3 vanishes into the one of 0.5 (at t = 0.056 by the
+    # accuracy tests), the total area kept to rounding through it, the length falling.
+    assert "mullins-sekerka" in slc.velocities()
+    two = [circle(0.3, 128) + np.array([-1.0, 0.0]), circle(0.5, 128) + np.array([1.0, 0.0])]
+    r = slc.run(slc.Interface(two), "mullins-sekerka", 0.08, steps=64)
+    assert r.status == "ok" and len(r.interface.curves) == 1
+    h = r.history
+    assert h["components"][0] == 2 and h["components"][-1] == 1
+    assert np.abs(h["area"] / h["area"][0] - 1).max() < 1e-12
+    assert (np.diff(h["length"]) <= 1e-12).all()
+    with pytest.raises(ValueError, match="sigma must be positive"):
+        slc.run(slc.Interface(two), "mullins-sekerka", 0.08, params={"sigma": -1})
+
+
 def test_an_estimate_runs_again_at_half_resolution():
     # As slc run --estimate: the distance to the run at N/2, K - 1, 4 eps, which bounds this
     # run's error when it converges at first order (measured: 8.0e-5 against 7.4e-7).
