@@ -12,6 +12,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <optional>
 #include <unsupported/Eigen/FFT>
 #include <unsupported/Eigen/IterativeSolvers>
 
@@ -205,6 +206,24 @@ SmoothCurves smooth_curves(const Interface& curves, double samples_per_vertex,
     return s;
 }
 
+std::vector<double> curve_integrals(const SmoothCurves& s, std::span<const double> g) {
+    std::vector<double> out;
+    for (std::size_t c = 0; c < s.curve_count(); ++c) {
+        double sum = 0.0;
+        for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j) sum += g[j] * s.speed[j];
+        out.push_back(sum * 2.0 * pi / static_cast<double>(s.count(c)));
+    }
+    return out;
+}
+
+std::vector<double> enclosed_areas(const SmoothCurves& s) {
+    // x × γ' with γ' = |γ'| T and the tangent T = (−N_y, N_x).
+    std::vector<double> g(s.x.size());
+    for (std::size_t j = 0; j < g.size(); ++j)
+        g[j] = 0.5 * cross(s.x[j], Vec2{-s.normal[j].y, s.normal[j].x});
+    return curve_integrals(s, g);
+}
+
 std::vector<double> interpolate_at_vertices(const SmoothCurves& s, std::size_t c,
                                             std::span<const double> g) {
     const std::size_t m = s.count(c);
@@ -269,47 +288,64 @@ std::vector<double> single_layer_matrix(const SmoothCurves& s) {
     return a;
 }
 
-SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const double> f) {
+std::vector<SingleLayerSolution> solve_single_layer(const SmoothCurves& s,
+                                                    std::span<const std::vector<double>> fs) {
     const std::size_t n = s.x.size();
-    if (f.size() != n)
-        throw InvalidInput(
-            fmt::format("solve_single_layer: {} values for {} samples", f.size(), n));
+    for (const std::vector<double>& f : fs)
+        if (f.size() != n)
+            throw InvalidInput(
+                fmt::format("solve_single_layer: {} values for {} samples", f.size(), n));
     const std::vector<double> a = single_layer_matrix(s);
     // The unknowns: φ_j = μ_j |γ'(τ_j)| and u∞; the last row is ∫μ ds = Σ (2π/M_c) φ_j = 0.
     Eigen::MatrixXd system(n + 1, n + 1);
-    Eigen::VectorXd rhs(n + 1);
     for (std::size_t i = 0; i < n; ++i) {
         for (std::size_t j = 0; j < n; ++j) system(i, j) = a[i * n + j];
         system(i, n) = 1.0;
-        rhs(i) = f[i];
     }
     for (std::size_t c = 0; c < s.curve_count(); ++c)
         for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
             system(n, j) = 2.0 * pi / static_cast<double>(s.count(c));
     system(n, n) = 0.0;
-    rhs(n) = 0.0;
 
-    SingleLayerSolution out;
-    Eigen::VectorXd phi;
+    std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
+    std::optional<Eigen::GMRES<Eigen::MatrixXd, Eigen::DiagonalPreconditioner<double>>> gmres;
     if (n <= direct_solve_limit) {
-        phi = system.partialPivLu().solve(rhs);
+        lu.emplace(system);
     } else {
-        Eigen::GMRES<Eigen::MatrixXd, Eigen::DiagonalPreconditioner<double>> gmres(system);
-        gmres.set_restart(300);
-        gmres.setTolerance(1e-13);
-        gmres.setMaxIterations(3000);
-        phi = gmres.solve(rhs);
-        if (gmres.info() != Eigen::Success)
-            throw NumericalFailure(fmt::format(
-                "the potential's integral equation on {} points did not converge in {} GMRES "
-                "iterations (residual {:.2g}): curves too close for their sampling",
-                n, gmres.iterations(), gmres.error()));
-        out.iterations = static_cast<int>(gmres.iterations());
+        gmres.emplace(system);
+        gmres->set_restart(300);
+        gmres->setTolerance(1e-13);
+        gmres->setMaxIterations(3000);
     }
-    out.density.resize(n);
-    for (std::size_t j = 0; j < n; ++j) out.density[j] = phi(j) / s.speed[j];
-    out.u_infinity = phi(n);
+    std::vector<SingleLayerSolution> out;
+    for (const std::vector<double>& f : fs) {
+        Eigen::VectorXd rhs(n + 1);
+        for (std::size_t i = 0; i < n; ++i) rhs(i) = f[i];
+        rhs(n) = 0.0;
+        SingleLayerSolution solution;
+        Eigen::VectorXd phi;
+        if (lu) {
+            phi = lu->solve(rhs);
+        } else {
+            phi = gmres->solve(rhs);
+            if (gmres->info() != Eigen::Success)
+                throw NumericalFailure(fmt::format(
+                    "the potential's integral equation on {} points did not converge in {} GMRES "
+                    "iterations (residual {:.2g}): curves too close for their sampling",
+                    n, gmres->iterations(), gmres->error()));
+            solution.iterations = static_cast<int>(gmres->iterations());
+        }
+        solution.density.resize(n);
+        for (std::size_t j = 0; j < n; ++j) solution.density[j] = phi(j) / s.speed[j];
+        solution.u_infinity = phi(n);
+        out.push_back(std::move(solution));
+    }
     return out;
+}
+
+SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const double> f) {
+    const std::vector<double> one(f.begin(), f.end());
+    return std::move(solve_single_layer(s, std::span(&one, 1)).front());
 }
 
 std::vector<double> adjoint_double_layer(const SmoothCurves& s, std::span<const double> density) {

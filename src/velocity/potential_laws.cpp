@@ -9,6 +9,38 @@
 #include "slc/potential/boundary_integral.hpp"
 
 namespace slc {
+namespace {
+
+/// The solution of the small dense system a x = b (a row-major, n × n), by Gaussian elimination
+/// with partial pivoting. Throws NumericalFailure when a is singular.
+std::vector<double> solve_small_system(std::vector<double> a, std::vector<double> b) {
+    const std::size_t n = b.size();
+    for (std::size_t col = 0; col < n; ++col) {
+        std::size_t pivot = col;
+        for (std::size_t r = col + 1; r < n; ++r)
+            if (std::abs(a[r * n + col]) > std::abs(a[pivot * n + col])) pivot = r;
+        if (!(std::abs(a[pivot * n + col]) > 0.0))
+            throw NumericalFailure(
+                "velocity 'mullins-sekerka': vanishing particles' fluxes are not independent; "
+                "raise the steps N");
+        for (std::size_t j = 0; j < n; ++j) std::swap(a[col * n + j], a[pivot * n + j]);
+        std::swap(b[col], b[pivot]);
+        for (std::size_t r = col + 1; r < n; ++r) {
+            const double f = a[r * n + col] / a[col * n + col];
+            for (std::size_t j = col; j < n; ++j) a[r * n + j] -= f * a[col * n + j];
+            b[r] -= f * b[col];
+        }
+    }
+    std::vector<double> x(n);
+    for (std::size_t r = n; r-- > 0;) {
+        double sum = b[r];
+        for (std::size_t j = r + 1; j < n; ++j) sum -= a[r * n + j] * x[j];
+        x[r] = sum / a[r * n + r];
+    }
+    return x;
+}
+
+}  // namespace
 
 MullinsSekerka::MullinsSekerka(double sigma, double d_in, double d_out)
     : sigma_(sigma), d_in_(d_in), d_out_(d_out) {
@@ -24,10 +56,8 @@ std::vector<double> MullinsSekerka::normal_speeds(const Interface& curves, doubl
     return normal_speeds(smooth_curves(curves), k);
 }
 
-std::vector<double> MullinsSekerka::normal_speeds(const SmoothCurves& s, double k) const {
-    std::vector<double> f(s.x.size());
-    for (std::size_t i = 0; i < f.size(); ++i) f[i] = -sigma_ * s.curvature[i];
-    const std::vector<double> mu = solve_single_layer(s, f).density;
+std::vector<double> MullinsSekerka::flux_jump(const SmoothCurves& s,
+                                              const std::vector<double>& mu) const {
     // V = D_out ∂u_out/∂N − D_in ∂u_in/∂N = (D_out − D_in) K'μ − (D_out + D_in) μ/2.
     std::vector<double> v(mu.size());
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = -0.5 * (d_out_ + d_in_) * mu[i];
@@ -35,18 +65,72 @@ std::vector<double> MullinsSekerka::normal_speeds(const SmoothCurves& s, double 
         const std::vector<double> kmu = adjoint_double_layer(s, mu);
         for (std::size_t i = 0; i < v.size(); ++i) v[i] += (d_out_ - d_in_) * kmu[i];
     }
+    return v;
+}
+
+std::vector<double> MullinsSekerka::normal_speeds(const SmoothCurves& s, double k) const {
+    std::vector<double> f(s.x.size());
+    for (std::size_t i = 0; i < f.size(); ++i) f[i] = -sigma_ * s.curvature[i];
+    std::vector<double> v = flux_jump(s, solve_single_layer(s, f).density);
+    if (k > 0.0) limit_vanishing(s, k, v);
     const double rate = sigma_ * (d_in_ + d_out_);
     std::vector<double> speeds;
     speeds.reserve(s.vertex_offsets.back());
     for (std::size_t c = 0; c < s.curve_count(); ++c) {
         const std::span<double> vc(v.data() + s.offsets[c], s.count(c));
         if (k > 0.0)
-            filter_modes(s, c, vc,
-                         [&](double xi) { return 1.0 / (1.0 + k * rate * xi * xi * xi); });
+            filter_modes(s, c, vc, [&](double xi) {
+                const double g = k * rate * xi * xi * xi;
+                return 1.0 / (1.0 + g * g);
+            });
         const std::vector<double> at = interpolate_at_vertices(s, c, vc);
         speeds.insert(speeds.end(), at.begin(), at.end());
     }
     return speeds;
+}
+
+void MullinsSekerka::limit_vanishing(const SmoothCurves& s, double k,
+                                     std::vector<double>& v) const {
+    // A curve whose rate of area dA_c/dt = ∫_c V ds would, held for the step, move a circle of its
+    // area inward by more than its radius (−k dA_c/dt > 2A_c) vanishes within the step; held for
+    // the whole step, its rate would hand the others far more than it has, and its own shape, a
+    // speck of a few cells, is no longer resolved. It is moved inward at one speed, by three
+    // times the radius of a circle of its area: the corrector averages that with the predicted
+    // curves' velocity, where the particle is gone, so the step ends with it vanished, not a speck
+    // that lingers. The others receive the flux that goes with it: its boundary value is shifted
+    // by a constant β_c (the potential is linear in its boundary values: V + Σ β_c W_c, W_c the
+    // response to 1 on curve c) until its rate is that one; the area the others gain beyond its
+    // area goes back by the step's area correction.
+    const std::vector<double> area = enclosed_areas(s), rate = curve_integrals(s, v);
+    std::vector<std::size_t> vanishing;
+    for (std::size_t c = 0; c < s.curve_count(); ++c)
+        if (-k * rate[c] * (area[c] > 0 ? 1.0 : -1.0) > 2.0 * std::abs(area[c]))
+            vanishing.push_back(c);
+    if (vanishing.empty()) return;
+    std::vector<std::vector<double>> unit(vanishing.size(), std::vector<double>(s.x.size(), 0.0));
+    for (std::size_t i = 0; i < vanishing.size(); ++i)
+        for (std::size_t j = s.offsets[vanishing[i]]; j < s.offsets[vanishing[i] + 1]; ++j)
+            unit[i][j] = 1.0;
+    std::vector<std::vector<double>> w;
+    for (const SingleLayerSolution& u : solve_single_layer(s, unit))
+        w.push_back(flux_jump(s, u.density));
+    // Σ_c β_c ∫_{c'} W_c ds = target_{c'} − ∫_{c'} V ds for each vanishing c', the target rate
+    // 2π(3R)R/k = 6A/k inward.
+    auto target = [&](std::size_t c) { return -6.0 * area[c] / k; };
+    const std::size_t n = vanishing.size();
+    std::vector<double> a(n * n), b(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        b[i] = target(vanishing[i]) - rate[vanishing[i]];
+        for (std::size_t j = 0; j < n; ++j) a[i * n + j] = curve_integrals(s, w[j])[vanishing[i]];
+    }
+    const std::vector<double> beta = solve_small_system(std::move(a), std::move(b));
+    for (std::size_t j = 0; j < n; ++j)
+        for (std::size_t i = 0; i < v.size(); ++i) v[i] += beta[j] * w[j][i];
+    const std::vector<double> lengths = curve_integrals(s, std::vector<double>(v.size(), 1.0));
+    for (std::size_t c : vanishing)
+        std::fill(v.begin() + static_cast<std::ptrdiff_t>(s.offsets[c]),
+                  v.begin() + static_cast<std::ptrdiff_t>(s.offsets[c + 1]),
+                  target(c) / lengths[c]);
 }
 
 std::vector<Vec2> MullinsSekerka::velocities(double, const Interface& curves,

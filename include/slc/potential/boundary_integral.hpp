@@ -50,6 +50,13 @@ struct SmoothCurves {
 SmoothCurves smooth_curves(const Interface& curves, double samples_per_vertex = 1.0,
                            std::size_t min_samples = 32);
 
+/// ∫_c g ds over each curve c of the periodic samples g (trapezoidal rule in τ: spectrally
+/// accurate for smooth g).
+std::vector<double> curve_integrals(const SmoothCurves& s, std::span<const double> g);
+
+/// The signed area each curve encloses (positive counterclockwise), ½∮ x × dx by the same rule.
+std::vector<double> enclosed_areas(const SmoothCurves& s);
+
 /// The values at the vertices of curve c (vertex_tau) of the trigonometric interpolant of the
 /// periodic samples g of that curve (g.size() == count(c)). O(M_c · vertices of c).
 std::vector<double> interpolate_at_vertices(const SmoothCurves& s, std::size_t c,
@@ -68,6 +75,9 @@ struct SingleLayerSolution {
 /// residual of 1e−13 (GMRES, Eigen's; a direct LU solve up to 600 samples). O(M²) memory and per
 /// iteration. Throws NumericalFailure when GMRES does not converge.
 SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const double> f);
+/// The same for several f at once, one solution each (one LU factorisation for all).
+std::vector<SingleLayerSolution> solve_single_layer(const SmoothCurves& s,
+                                                    std::span<const std::vector<double>> fs);
 
 /// The single-layer operator's matrix A, row-major, A[i·n + j] the weight of φ_j = μ_j |γ'(τ_j)|
 /// in (Sμ)(x_i): Kress's quadrature on a sample's own curve, the trapezoidal rule on others.

@@ -23,7 +23,9 @@ struct SmoothCurves;
 /// Δu = 0 inside and outside the curves, u = −σC on them, u bounded at infinity; the normal
 /// speed is the jump of the flux, V = D_out ∂u_out/∂N − D_in ∂u_in/∂N. The total area is kept
 /// and the length falls; small particles shrink and vanish while large ones grow. A circle's
-/// mode m decays at σ(D_in + D_out) m(m² − 1)/R³.
+/// mode m decays at σ(D_in + D_out) m(m² − 1)/R³. A particle that would vanish well within a
+/// step is given the flux that makes it vanish at the step's end, no more (docs/algorithms/
+/// potential.md).
 class MullinsSekerka final : public VelocityLaw {
 public:
     /// sigma: σ > 0, the surface tension; d_in, d_out > 0: the diffusion coefficients inside and
@@ -43,6 +45,10 @@ public:
 
 private:
     std::vector<double> normal_speeds(const SmoothCurves& s, double k) const;
+    /// V at the samples from the single layer's density μ.
+    std::vector<double> flux_jump(const SmoothCurves& s, const std::vector<double>& mu) const;
+    /// Within a step of k, a curve that would vanish well within it vanishes at its end.
+    void limit_vanishing(const SmoothCurves& s, double k, std::vector<double>& v) const;
 
     double sigma_, d_in_, d_out_;
 };
