@@ -71,6 +71,7 @@ std::optional<double> growth_above_least(RunLeast& least, double x, double t, do
 std::optional<double> area_change_expected(const Invariants& law, const Interface& before,
                                            double area_before, const Interface& after, double k,
                                            const GuardBudget& budget) {
+    if (law.area_rate && !before.empty()) return *law.area_rate * k;
     // Curves smaller than a cell are not resolved: their area moves as the tree allows.
     if (!law.area_rate_per_curve || before.empty() || after.curve_count() != before.curve_count() ||
         !(std::abs(area_before) > budget.resolved_area))

@@ -208,7 +208,9 @@ Result advance_extended(const Shape& shape, double t, double k, const Law& law,
     auto corrected = contour_corrector();
     if (law.preserves_area() && !vanished(shape_of(corrected))) {
         const auto [produced, boundary] = measures(shape_of(corrected));
-        const double s = -(produced - measures(shape).first) / (k * boundary);
+        // The law's exact measure: kept, or changing at its rate (a source's injection).
+        const double target = measures(shape).first + k * law.invariants().area_rate.value_or(0.0);
+        const double s = (target - produced) / (k * boundary);
         now.add_normal_speed(s);
         next.add_normal_speed(s);
         const std::size_t first_evals = corrected.stats.g_evals;

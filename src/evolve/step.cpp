@@ -455,7 +455,9 @@ StepResult advance(const Interface& curves, double t, double k, const VelocityLa
                    const Box& domain, const StepOptions& options) {
     StepResult result = advance_contours(curves, t, k, law, domain, options);
     if (options.resolved_area_correction(law) && !result.curves.empty()) {
-        AreaRestored restored = restore_area(result.curves, area(curves));
+        // The law's exact area: kept, or growing at its rate (a source's injection).
+        const double rate = law.invariants().area_rate.value_or(0.0);
+        AreaRestored restored = restore_area(result.curves, area(curves) + k * rate);
         result.curves = std::move(restored.curves);
         result.stats.area_correction = restored.added;
     }

@@ -28,6 +28,9 @@ using std::numbers::pi;
 /// out of its spline (their values are still read back at their place).
 constexpr double min_vertex_gap = 0.01;
 
+/// Beyond this many samples the dense system (8 bytes times its square: 800 MB) is refused.
+constexpr std::size_t max_samples = 10000;
+
 /// Up to this many samples the equation is solved by LU, beyond it by GMRES.
 constexpr std::size_t direct_solve_limit = 600;
 
@@ -289,23 +292,42 @@ std::vector<double> single_layer_matrix(const SmoothCurves& s) {
 }
 
 std::vector<SingleLayerSolution> solve_single_layer(const SmoothCurves& s,
-                                                    std::span<const std::vector<double>> fs) {
-    const std::size_t n = s.x.size();
+                                                    std::span<const std::vector<double>> fs,
+                                                    std::span<const std::size_t> group) {
+    const std::size_t n = s.x.size(), curves = s.curve_count();
     for (const std::vector<double>& f : fs)
         if (f.size() != n)
             throw InvalidInput(
                 fmt::format("solve_single_layer: {} values for {} samples", f.size(), n));
-    const std::vector<double> a = single_layer_matrix(s);
-    // The unknowns: φ_j = μ_j |γ'(τ_j)| and u∞; the last row is ∫μ ds = Σ (2π/M_c) φ_j = 0.
-    Eigen::MatrixXd system(n + 1, n + 1);
-    for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t j = 0; j < n; ++j) system(i, j) = a[i * n + j];
-        system(i, n) = 1.0;
+    if (n > max_samples)
+        throw NumericalFailure(fmt::format(
+            "the potential's integral equation on {} points (curves of {} vertices) would need "
+            "{:.1f} GB: wrinkled curves, raise the steps N; or fewer particles",
+            n, s.vertex_offsets.back(), 8e-9 * static_cast<double>(n) * static_cast<double>(n)));
+    if (!group.empty() && group.size() != curves)
+        throw InvalidInput(
+            fmt::format("solve_single_layer: {} groups for {} curves", group.size(), curves));
+    std::vector<std::size_t> sample_group(n, 0);
+    std::size_t groups = 1;
+    if (!group.empty()) {
+        groups = *std::max_element(group.begin(), group.end()) + 1;
+        for (std::size_t c = 0; c < curves; ++c)
+            for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
+                sample_group[j] = group[c];
     }
-    for (std::size_t c = 0; c < s.curve_count(); ++c)
+    const std::vector<double> a = single_layer_matrix(s);
+    // The unknowns: φ_j = μ_j |γ'(τ_j)| and each group's constant; the group's last row is
+    // ∫μ ds = Σ (2π/M_c) φ_j = 0 over its curves. Curves of other groups are not seen.
+    const std::size_t size = n + groups;
+    Eigen::MatrixXd system = Eigen::MatrixXd::Zero(size, size);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < n; ++j)
+            if (sample_group[i] == sample_group[j]) system(i, j) = a[i * n + j];
+        system(i, n + sample_group[i]) = 1.0;
+    }
+    for (std::size_t c = 0; c < curves; ++c)
         for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
-            system(n, j) = 2.0 * pi / static_cast<double>(s.count(c));
-    system(n, n) = 0.0;
+            system(n + sample_group[j], j) = 2.0 * pi / static_cast<double>(s.count(c));
 
     std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
     std::optional<Eigen::GMRES<Eigen::MatrixXd, Eigen::DiagonalPreconditioner<double>>> gmres;
@@ -319,9 +341,8 @@ std::vector<SingleLayerSolution> solve_single_layer(const SmoothCurves& s,
     }
     std::vector<SingleLayerSolution> out;
     for (const std::vector<double>& f : fs) {
-        Eigen::VectorXd rhs(n + 1);
+        Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size);
         for (std::size_t i = 0; i < n; ++i) rhs(i) = f[i];
-        rhs(n) = 0.0;
         SingleLayerSolution solution;
         Eigen::VectorXd phi;
         if (lu) {
@@ -337,10 +358,62 @@ std::vector<SingleLayerSolution> solve_single_layer(const SmoothCurves& s,
         }
         solution.density.resize(n);
         for (std::size_t j = 0; j < n; ++j) solution.density[j] = phi(j) / s.speed[j];
-        solution.u_infinity = phi(n);
+        for (std::size_t g = 0; g < groups; ++g) solution.constants.push_back(phi(n + g));
+        solution.u_infinity = solution.constants[0];
         out.push_back(std::move(solution));
     }
     return out;
+}
+
+bool encloses(std::span<const Vec2> p, Vec2 x) {
+    // Crossings of the ray from x towards +x.
+    bool inside = false;
+    for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++)
+        if ((p[i].y > x.y) != (p[j].y > x.y) &&
+            x.x < p[j].x + (x.y - p[j].y) * (p[i].x - p[j].x) / (p[i].y - p[j].y))
+            inside = !inside;
+    return inside;
+}
+
+std::optional<std::size_t> region_containing(const Interface& curves,
+                                             std::span<const std::size_t> region, Vec2 x) {
+    std::optional<std::size_t> best;
+    double best_area = 0.0;
+    for (std::size_t c = 0; c < curves.curve_count(); ++c) {
+        const double a = signed_area(curves.curve(c));
+        if (a > 0 && encloses(curves.curve(c), x) && (!best || a < best_area)) {
+            best = region[c];
+            best_area = a;
+        }
+    }
+    if (!best) return std::nullopt;
+    for (std::size_t c = 0; c < curves.curve_count(); ++c)
+        if (region[c] == *best && signed_area(curves.curve(c)) < 0 && encloses(curves.curve(c), x))
+            return std::nullopt;  // in a hole of that region
+    return best;
+}
+
+std::vector<std::size_t> curve_regions(const Interface& curves) {
+    const std::size_t count = curves.curve_count();
+    std::vector<double> areas(count);
+    std::vector<std::size_t> region(count, 0), outer_region(count, 0);
+    std::size_t regions = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+        areas[c] = signed_area(curves.curve(c));
+        if (areas[c] > 0) outer_region[c] = region[c] = regions++;
+    }
+    for (std::size_t c = 0; c < count; ++c) {
+        if (areas[c] > 0) continue;
+        std::optional<std::size_t> best;
+        for (std::size_t o = 0; o < count; ++o)
+            if (areas[o] > 0 && encloses(curves.curve(o), curves.curve(c)[0]) &&
+                (!best || areas[o] < areas[*best]))
+                best = o;
+        if (!best)
+            throw InvalidInput(fmt::format("curve {} is a hole (clockwise) inside no curve", c));
+        region[c] = outer_region[*best];
+    }
+    return region;
 }
 
 SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const double> f) {
@@ -348,8 +421,14 @@ SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const do
     return std::move(solve_single_layer(s, std::span(&one, 1)).front());
 }
 
-std::vector<double> adjoint_double_layer(const SmoothCurves& s, std::span<const double> density) {
+std::vector<double> adjoint_double_layer(const SmoothCurves& s, std::span<const double> density,
+                                         std::span<const std::size_t> group) {
     const std::size_t n = s.x.size();
+    std::vector<std::size_t> sample_group(n, 0);
+    if (!group.empty())
+        for (std::size_t c = 0; c < s.curve_count(); ++c)
+            for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
+                sample_group[j] = group[c];
     std::vector<double> phi(n), out(n);
     for (std::size_t c = 0; c < s.curve_count(); ++c)
         for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
@@ -357,6 +436,7 @@ std::vector<double> adjoint_double_layer(const SmoothCurves& s, std::span<const 
     parallel_for(n, [&](std::size_t i) {
         double sum = 0.0;
         for (std::size_t j = 0; j < n; ++j) {
+            if (sample_group[j] != sample_group[i]) continue;
             // ∂G/∂N(x_i) = −(1/2π) (x_i − y)·N_i / |x_i − y|²; its limit on the diagonal, C_i/4π.
             const Vec2 d = s.x[i] - s.x[j];
             const double kernel =

@@ -94,6 +94,14 @@ const std::vector<Entry<2>>& curve_entries() {
          [](const Resolved& p, M) {
              return std::make_unique<MullinsSekerka>(p["sigma"], p["din"], p["dout"]);
          }},
+        {{"hele-shaw",
+          "one-phase Hele-Shaw: V = -dp/dN, p harmonic inside each region, p = -sigma C on its "
+          "curves (each region keeps its area; q > 0 injects at (sx, sy))",
+          {param("sigma", 1, "surface tension"), param("q", 0, "injection rate, area per time"),
+           param("sx", 0, "x of the source"), param("sy", 0, "y of the source")}},
+         [](const Resolved& p, M) {
+             return std::make_unique<HeleShaw>(p["sigma"], p["q"], Vec2{p["sx"], p["sy"]});
+         }},
         {{"vortex",
           "LeVeque's single vortex on [0, 1]^2, reversed at t = period/2",
           {param("period", 8, "period T: the flow is multiplied by cos(pi t / T)")}},

@@ -1,9 +1,12 @@
-// The laws moved by a potential solved on the curves: two-phase Mullins–Sekerka.
+// The laws moved by a potential solved on the curves: two-phase Mullins–Sekerka and one-phase
+// Hele-Shaw.
 #include "slc/velocity/potential_laws.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numbers>
+#include <optional>
 
 #include "slc/core/error.hpp"
 #include "slc/potential/boundary_integral.hpp"
@@ -38,6 +41,15 @@ std::vector<double> solve_small_system(std::vector<double> a, std::vector<double
         x[r] = sum / a[r * n + r];
     }
     return x;
+}
+
+/// Multiplies mode ξ of the samples of curve c by 1/(1 + (kλ)²), kλ = k_rate ξ³: the filter of the
+/// stiff modes (docs/algorithms/potential.md).
+void filter_stiff_modes(const SmoothCurves& s, std::size_t c, std::span<double> v, double k_rate) {
+    filter_modes(s, c, v, [&](double xi) {
+        const double g = k_rate * xi * xi * xi;
+        return 1.0 / (1.0 + g * g);
+    });
 }
 
 }  // namespace
@@ -78,11 +90,7 @@ std::vector<double> MullinsSekerka::normal_speeds(const SmoothCurves& s, double 
     speeds.reserve(s.vertex_offsets.back());
     for (std::size_t c = 0; c < s.curve_count(); ++c) {
         const std::span<double> vc(v.data() + s.offsets[c], s.count(c));
-        if (k > 0.0)
-            filter_modes(s, c, vc, [&](double xi) {
-                const double g = k * rate * xi * xi * xi;
-                return 1.0 / (1.0 + g * g);
-            });
+        if (k > 0.0) filter_stiff_modes(s, c, vc, k * rate);
         const std::vector<double> at = interpolate_at_vertices(s, c, vc);
         speeds.insert(speeds.end(), at.begin(), at.end());
     }
@@ -138,6 +146,76 @@ std::vector<Vec2> MullinsSekerka::velocities(double, const Interface& curves,
     if (curves.empty()) return {};
     const SmoothCurves s = smooth_curves(curves);
     const std::vector<double> v = normal_speeds(s, geometry.step);
+    std::vector<Vec2> u(v.size());
+    for (std::size_t i = 0; i < u.size(); ++i) u[i] = v[i] * s.vertex_normal[i];
+    return u;
+}
+
+HeleShaw::HeleShaw(double sigma, double q, Vec2 source) : sigma_(sigma), q_(q), source_(source) {
+    if (!(sigma > 0.0) || !std::isfinite(sigma))
+        throw InvalidInput(
+            fmt::format("velocity 'hele-shaw': sigma must be positive, got {}", sigma));
+    if (!std::isfinite(q) || !std::isfinite(source.x) || !std::isfinite(source.y))
+        throw InvalidInput("velocity 'hele-shaw': q, sx and sy must be finite");
+}
+
+Invariants HeleShaw::invariants() const {
+    if (q_ == 0.0) return {.keeps_area = true, .shortens = true};
+    return {.area_rate = q_};
+}
+
+std::vector<double> HeleShaw::normal_speeds(const Interface& curves, double k) const {
+    if (curves.empty()) return {};
+    return normal_speeds(curves, smooth_curves(curves), k);
+}
+
+std::vector<double> HeleShaw::normal_speeds(const Interface& curves, const SmoothCurves& s,
+                                            double k) const {
+    const std::vector<std::size_t> region = curve_regions(curves);
+    // The source's potential G_s = −(Q/2π) log|x − source| in the region holding it: p = p_h + G_s
+    // with p_h harmonic, p_h = −σC − G_s on that region's curves.
+    std::optional<std::size_t> fed;
+    if (q_ != 0.0) {
+        fed = region_containing(curves, region, source_);
+        if (!fed)
+            throw InvalidInput(fmt::format(
+                "velocity 'hele-shaw': the source ({}, {}) lies inside no region of the curves",
+                source_.x, source_.y));
+    }
+    std::vector<double> f(s.x.size()), source_flux(s.x.size(), 0.0);
+    for (std::size_t c = 0; c < s.curve_count(); ++c) {
+        for (std::size_t i = s.offsets[c]; i < s.offsets[c + 1]; ++i) {
+            f[i] = -sigma_ * s.curvature[i];
+            if (fed && region[c] == *fed) {
+                const Vec2 d = s.x[i] - source_;
+                f[i] += q_ / (2.0 * std::numbers::pi) * std::log(norm(d));
+                // −∂G_s/∂N = (Q/2π) (x − source)·N / |x − source|².
+                source_flux[i] = q_ / (2.0 * std::numbers::pi) * dot(d, s.normal[i]) / norm2(d);
+            }
+        }
+    }
+    const std::vector<double> f_all[] = {f};
+    const std::vector<double> mu = solve_single_layer(s, f_all, region).front().density;
+    // V = −∂p/∂N = −(K'μ + μ/2) − ∂G_s/∂N.
+    const std::vector<double> kmu = adjoint_double_layer(s, mu, region);
+    std::vector<double> v(mu.size());
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = -(kmu[i] + 0.5 * mu[i]) + source_flux[i];
+    std::vector<double> speeds;
+    speeds.reserve(s.vertex_offsets.back());
+    for (std::size_t c = 0; c < s.curve_count(); ++c) {
+        const std::span<double> vc(v.data() + s.offsets[c], s.count(c));
+        if (k > 0.0) filter_stiff_modes(s, c, vc, k * sigma_);
+        const std::vector<double> at = interpolate_at_vertices(s, c, vc);
+        speeds.insert(speeds.end(), at.begin(), at.end());
+    }
+    return speeds;
+}
+
+std::vector<Vec2> HeleShaw::velocities(double, const Interface& curves,
+                                       const VertexGeometry& geometry) const {
+    if (curves.empty()) return {};
+    const SmoothCurves s = smooth_curves(curves);
+    const std::vector<double> v = normal_speeds(curves, s, geometry.step);
     std::vector<Vec2> u(v.size());
     for (std::size_t i = 0; i < u.size(); ++i) u[i] = v[i] * s.vertex_normal[i];
     return u;

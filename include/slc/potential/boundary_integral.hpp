@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -65,19 +66,38 @@ std::vector<double> interpolate_at_vertices(const SmoothCurves& s, std::size_t c
 /// The exterior–interior problem of two-phase Mullins–Sekerka: u harmonic off the curves,
 /// u = f on them, bounded at infinity. Written as u = Sμ + u∞ with ∫μ ds = 0, μ the single layer's
 /// density, which is the jump of the normal derivative: ∂u_out/∂N − ∂u_in/∂N = −μ.
+/// With groups of curves (interior problems, one per region: Hele-Shaw), each group is solved
+/// alone, its own constant and ∫μ ds = 0 over its own curves: u = S_g μ + c_g inside it.
 struct SingleLayerSolution {
-    std::vector<double> density;  ///< μ at the samples
-    double u_infinity = 0.0;      ///< the value of u at infinity
-    int iterations = 0;           ///< GMRES iterations, or 0 for the direct solve
+    std::vector<double> density;    ///< μ at the samples
+    double u_infinity = 0.0;        ///< the value of u at infinity (the first group's constant)
+    std::vector<double> constants;  ///< c_g of each group
+    int iterations = 0;             ///< GMRES iterations, or 0 for the direct solve
 };
 
 /// Solves Sμ + u∞ = f at the samples (f.size() == s.x.size()) with ∫μ ds = 0, to a relative
 /// residual of 1e−13 (GMRES, Eigen's; a direct LU solve up to 600 samples). O(M²) memory and per
-/// iteration. Throws NumericalFailure when GMRES does not converge.
+/// iteration. Throws NumericalFailure when GMRES does not converge, or beyond 10,000 samples
+/// (a dense matrix of 800 MB).
 SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const double> f);
-/// The same for several f at once, one solution each (one LU factorisation for all).
+/// The same for several f at once, one solution each (one LU factorisation for all). group: the
+/// group of each curve (0, 1, …), curves of different groups not seen by each other; empty: one
+/// group.
 std::vector<SingleLayerSolution> solve_single_layer(const SmoothCurves& s,
-                                                    std::span<const std::vector<double>> fs);
+                                                    std::span<const std::vector<double>> fs,
+                                                    std::span<const std::size_t> group = {});
+
+/// The region of each curve: a counterclockwise curve (positive area) is a region of its own, a
+/// clockwise one (a hole) belongs to the smallest counterclockwise curve around it. Regions are
+/// numbered 0, 1, … in the order of their outer curves. O(curves² · vertices).
+std::vector<std::size_t> curve_regions(const Interface& curves);
+
+/// True when x lies inside the closed polygon p (crossing number; either orientation).
+bool encloses(std::span<const Vec2> p, Vec2 x);
+
+/// The region (curve_regions) whose inside holds x, or nothing when x is inside no region.
+std::optional<std::size_t> region_containing(const Interface& curves,
+                                             std::span<const std::size_t> region, Vec2 x);
 
 /// The single-layer operator's matrix A, row-major, A[i·n + j] the weight of φ_j = μ_j |γ'(τ_j)|
 /// in (Sμ)(x_i): Kress's quadrature on a sample's own curve, the trapezoidal rule on others.
@@ -87,7 +107,9 @@ std::vector<double> single_layer_matrix(const SmoothCurves& s);
 /// K'μ at the samples: the adjoint double layer ∫ ∂G(x_i, y)/∂N(x_i) μ(y) ds_y of the density μ
 /// (trapezoidal rule; its kernel is smooth, C(x)/4π on the diagonal). The normal derivatives of
 /// u = Sμ are ∂u_out/∂N = K'μ − μ/2 and ∂u_in/∂N = K'μ + μ/2. O(M²).
-std::vector<double> adjoint_double_layer(const SmoothCurves& s, std::span<const double> density);
+/// group: as solve_single_layer's, curves of other groups not seen; empty: one group.
+std::vector<double> adjoint_double_layer(const SmoothCurves& s, std::span<const double> density,
+                                         std::span<const std::size_t> group = {});
 
 /// Multiplies each Fourier mode m of the periodic samples g of curve c by filter(ξ), ξ = 2π|m|/L_c
 /// the mode's wavenumber in arc length. O(M_c log M_c).

@@ -34,7 +34,7 @@ struct VelocityInfo {
 };
 
 /// Every built-in law, in a fixed order: rotation, translation, unit-normal, anisotropic,
-/// curvature, volume-preserving-curvature, mullins-sekerka, vortex.
+/// curvature, volume-preserving-curvature, mullins-sekerka, hele-shaw, vortex.
 const std::vector<VelocityInfo>& velocity_catalog();
 
 /// The built-in law `name` with the given parameters (missing ones take their defaults).
@@ -46,6 +46,7 @@ const std::vector<VelocityInfo>& velocity_catalog();
 ///   curvature                                      u = C·N
 ///   volume-preserving-curvature                    u = (C − C̄)·N
 ///   mullins-sekerka sigma [1], din [1], dout [1]   V = flux jump of u, Δu = 0 off Γ, u = −σC
+///   hele-shaw       sigma [1], q [0], sx, sy [0]   V = −∂p/∂N, Δp = 0 inside, p = −σC
 ///   vortex          period [8]                     LeVeque's single vortex on [0, 1]²
 /// module, when given, replaces the geometry module of the laws that need normals or curvature.
 /// Throws InvalidInput for an unknown law ("unknown velocity 'x'; known: rotation, ..."), an

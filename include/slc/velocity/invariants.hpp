@@ -31,6 +31,9 @@ struct Invariants {
     /// dA/dt = rate × (counterclockwise curves − clockwise ones) while no curve vanishes
     /// (curvature flow of embedded curves: −2π).
     std::optional<double> area_rate_per_curve = std::nullopt;
+    /// dA/dt = rate for the whole interface (a source injecting at the rate: hele-shaw's Q); the
+    /// step's area correction (VelocityLaw::preserves_area) then restores A(t) + k·rate.
+    std::optional<double> area_rate = std::nullopt;
     /// Of a surface: dV/dt = rate × A while no component vanishes or merges (a constant normal
     /// speed: the rate is the speed).
     std::optional<double> volume_rate_per_area = std::nullopt;

@@ -53,4 +53,35 @@ private:
     double sigma_, d_in_, d_out_;
 };
 
+/// `hele-shaw`: one-phase Hele-Shaw flow with surface tension (a viscous drop between two close
+/// plates, pressure-driven). Δp = 0 inside each region the curves enclose, p = −σC on its
+/// boundary, V = −∂p/∂N: each region keeps its area and its length falls, relaxing to a circle;
+/// a circle's mode m decays at σ m(m² − 1)/R³. With an injection rate Q ≠ 0 at the source
+/// (sx, sy), inside one region, that region's area grows at Q: p gains −(Q/2π) log|x − source|.
+class HeleShaw final : public VelocityLaw {
+public:
+    /// sigma > 0: the surface tension; q: the injection rate (area per unit time, either sign);
+    /// source: where it is injected. Throws InvalidInput unless sigma > 0 and all are finite.
+    explicit HeleShaw(double sigma = 1.0, double q = 0.0, Vec2 source = {});
+    std::string name() const override { return "hele-shaw"; }
+    /// No module's normals or curvature: the law fits smooth curves itself.
+    GeometryNeeds needs() const override { return {.smooth = true}; }
+    /// The area is known exactly: kept, or growing at Q.
+    bool preserves_area() const override { return true; }
+    Invariants invariants() const override;
+    /// The vertex velocities V·N, N the smooth curves' normal.
+    std::vector<Vec2> velocities(double t, const Interface& curves,
+                                 const VertexGeometry& geometry) const override;
+    /// V at the vertices, the law's normal speed, for a step of size k (0: none). Throws
+    /// InvalidInput when Q ≠ 0 and the source lies in no region or on a curve.
+    std::vector<double> normal_speeds(const Interface& curves, double k) const;
+
+private:
+    std::vector<double> normal_speeds(const Interface& curves, const SmoothCurves& s,
+                                      double k) const;
+
+    double sigma_, q_;
+    Vec2 source_;
+};
+
 }  // namespace slc

@@ -26,7 +26,7 @@ std::string invalid_input_message(F&& f) {
 
 TEST(MakeVelocity, BuildsEveryLawOfTheCatalogByName) {
     const auto& catalog = velocity_catalog();
-    ASSERT_EQ(catalog.size(), 8u);
+    ASSERT_EQ(catalog.size(), 9u);
     for (const auto& info : catalog) {
         VelocityParams params;
         for (const auto& p : info.parameters)
@@ -85,7 +85,7 @@ TEST(MakeVelocity, UnknownNameListsTheKnownLaws) {
     EXPECT_EQ(
         invalid_input_message([] { make_velocity("x"); }),
         "unknown velocity 'x'; known: rotation, translation, unit-normal, anisotropic, curvature, "
-        "volume-preserving-curvature, mullins-sekerka, vortex");
+        "volume-preserving-curvature, mullins-sekerka, hele-shaw, vortex");
 }
 
 TEST(MakeVelocity, UnknownParameterListsTheLawsParameters) {
