@@ -391,6 +391,17 @@ def test_mullins_sekerka_keeps_the_area_and_the_small_of_two_circles_vanishes():
         slc.run(slc.Interface(two), "mullins-sekerka", 0.08, params={"sigma": -1})
 
 
+def test_hele_shaw_with_a_source_grows_at_the_injection_rate():
+    # A drop of radius 0.5 fed at q = 1 off its centre: A(t) = A(0) + q t.
+    r = slc.run(slc.Interface(circle(0.5, 256)), "hele-shaw", 0.2, steps=16,
+                params={"q": 1.0, "sx": 0.1, "sy": 0.05})
+    assert r.status == "ok"
+    h = r.history
+    assert np.abs(h["area"] - h["area"][0] - h["t"]).max() < 1e-12
+    with pytest.raises(ValueError, match="inside no region"):
+        slc.run(slc.Interface(circle(0.5, 64)), "hele-shaw", 0.1, params={"q": 1.0, "sx": 2.0})
+
+
 def test_an_estimate_runs_again_at_half_resolution():
     # As slc run --estimate: the distance to the run at N/2, K - 1, 4 eps, which bounds this
     # run's error when it converges at first order (measured: 8.0e-5 against 7.4e-7).

@@ -52,6 +52,27 @@ void filter_stiff_modes(const SmoothCurves& s, std::size_t c, std::span<double> 
     });
 }
 
+/// The speeds v at the samples, their stiff modes filtered for a step of kλ = k_rate ξ³ (none
+/// when k_rate = 0), at the vertices.
+std::vector<double> vertex_speeds(const SmoothCurves& s, std::vector<double> v, double k_rate) {
+    std::vector<double> speeds;
+    speeds.reserve(s.vertex_offsets.back());
+    for (std::size_t c = 0; c < s.curve_count(); ++c) {
+        const std::span<double> vc(v.data() + s.offsets[c], s.count(c));
+        if (k_rate > 0.0) filter_stiff_modes(s, c, vc, k_rate);
+        const std::vector<double> at = interpolate_at_vertices(s, c, vc);
+        speeds.insert(speeds.end(), at.begin(), at.end());
+    }
+    return speeds;
+}
+
+/// u = V N at the vertices, N the smooth curves' normal.
+std::vector<Vec2> normal_velocities(const SmoothCurves& s, const std::vector<double>& v) {
+    std::vector<Vec2> u(v.size());
+    for (std::size_t i = 0; i < u.size(); ++i) u[i] = v[i] * s.vertex_normal[i];
+    return u;
+}
+
 }  // namespace
 
 MullinsSekerka::MullinsSekerka(double sigma, double d_in, double d_out)
@@ -85,16 +106,7 @@ std::vector<double> MullinsSekerka::normal_speeds(const SmoothCurves& s, double 
     for (std::size_t i = 0; i < f.size(); ++i) f[i] = -sigma_ * s.curvature[i];
     std::vector<double> v = flux_jump(s, solve_single_layer(s, f).density);
     if (k > 0.0) limit_vanishing(s, k, v);
-    const double rate = sigma_ * (d_in_ + d_out_);
-    std::vector<double> speeds;
-    speeds.reserve(s.vertex_offsets.back());
-    for (std::size_t c = 0; c < s.curve_count(); ++c) {
-        const std::span<double> vc(v.data() + s.offsets[c], s.count(c));
-        if (k > 0.0) filter_stiff_modes(s, c, vc, k * rate);
-        const std::vector<double> at = interpolate_at_vertices(s, c, vc);
-        speeds.insert(speeds.end(), at.begin(), at.end());
-    }
-    return speeds;
+    return vertex_speeds(s, std::move(v), k * sigma_ * (d_in_ + d_out_));
 }
 
 void MullinsSekerka::limit_vanishing(const SmoothCurves& s, double k,
@@ -145,10 +157,7 @@ std::vector<Vec2> MullinsSekerka::velocities(double, const Interface& curves,
                                              const VertexGeometry& geometry) const {
     if (curves.empty()) return {};
     const SmoothCurves s = smooth_curves(curves);
-    const std::vector<double> v = normal_speeds(s, geometry.step);
-    std::vector<Vec2> u(v.size());
-    for (std::size_t i = 0; i < u.size(); ++i) u[i] = v[i] * s.vertex_normal[i];
-    return u;
+    return normal_velocities(s, normal_speeds(s, geometry.step));
 }
 
 HeleShaw::HeleShaw(double sigma, double q, Vec2 source) : sigma_(sigma), q_(q), source_(source) {
@@ -200,25 +209,14 @@ std::vector<double> HeleShaw::normal_speeds(const Interface& curves, const Smoot
     const std::vector<double> kmu = adjoint_double_layer(s, mu, region);
     std::vector<double> v(mu.size());
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = -(kmu[i] + 0.5 * mu[i]) + source_flux[i];
-    std::vector<double> speeds;
-    speeds.reserve(s.vertex_offsets.back());
-    for (std::size_t c = 0; c < s.curve_count(); ++c) {
-        const std::span<double> vc(v.data() + s.offsets[c], s.count(c));
-        if (k > 0.0) filter_stiff_modes(s, c, vc, k * sigma_);
-        const std::vector<double> at = interpolate_at_vertices(s, c, vc);
-        speeds.insert(speeds.end(), at.begin(), at.end());
-    }
-    return speeds;
+    return vertex_speeds(s, std::move(v), k * sigma_);
 }
 
 std::vector<Vec2> HeleShaw::velocities(double, const Interface& curves,
                                        const VertexGeometry& geometry) const {
     if (curves.empty()) return {};
     const SmoothCurves s = smooth_curves(curves);
-    const std::vector<double> v = normal_speeds(curves, s, geometry.step);
-    std::vector<Vec2> u(v.size());
-    for (std::size_t i = 0; i < u.size(); ++i) u[i] = v[i] * s.vertex_normal[i];
-    return u;
+    return normal_velocities(s, normal_speeds(curves, s, geometry.step));
 }
 
 }  // namespace slc
