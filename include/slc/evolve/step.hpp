@@ -74,8 +74,9 @@ struct StepOptions {
     Extension resolved_extension(const VelocityLaw& law) const;
     /// arcs as given, or by default on for laws whose curvature comes from the arclength module
     /// (curvature flow: the chords' loss would otherwise add up over the steps), for laws that fit
-    /// smooth curves themselves (GeometryNeeds::smooth), and for laws evaluated directly (normal laws and flow fields: an offset of a smooth curve then
-    /// converges at second order in time instead of losing a chord's sagitta every step).
+    /// smooth curves themselves (GeometryNeeds::smooth), and for laws evaluated directly (normal
+    /// laws and flow fields: an offset of a smooth curve then converges at second order in time
+    /// instead of losing a chord's sagitta every step).
     bool resolved_arcs(const VelocityLaw& law) const;
     /// area_correction as given, or by default on for laws that keep the area.
     bool resolved_area_correction(const VelocityLaw& law) const {

@@ -220,8 +220,8 @@ struct GeometryContext {
 };
 
 /// The vertex geometry a law asks for: no normals or curvature when it needs none, else those of
-/// its module; its step is context.step. Throws InvalidInput when the embedded module is asked for without a tree, or with
-/// a tree of other curves.
+/// its module; its step is context.step. Throws InvalidInput when the embedded module is asked for
+/// without a tree, or with a tree of other curves.
 VertexGeometry vertex_geometry(const GeometryNeeds& needs, const Interface& curves,
                                const GeometryContext& context);
 
