@@ -302,7 +302,8 @@ std::vector<SingleLayerSolution> solve_single_layer(const SmoothCurves& s,
     if (n > max_samples)
         throw NumericalFailure(fmt::format(
             "the potential's integral equation on {} points (curves of {} vertices) would need "
-            "{:.1f} GB: wrinkled curves, raise the steps N; or fewer particles",
+            "{:.1f} GB, more than 0.8: fewer vertices (a lower --thin-depth or -K; if the curves "
+            "wrinkled, more steps N) or fewer particles",
             n, s.vertex_offsets.back(), 8e-9 * static_cast<double>(n) * static_cast<double>(n)));
     if (!group.empty() && group.size() != curves)
         throw InvalidInput(
