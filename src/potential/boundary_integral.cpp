@@ -254,9 +254,29 @@ std::vector<double> interpolate_at_vertices(const SmoothCurves& s, std::size_t c
     return out;
 }
 
-std::vector<double> single_layer_matrix(const SmoothCurves& s) {
+namespace {
+
+/// The group of each sample (group: of each curve, or empty for one group), and the number of
+/// groups.
+std::pair<std::vector<std::size_t>, std::size_t> sample_groups(const SmoothCurves& s,
+                                                               std::span<const std::size_t> group) {
+    std::vector<std::size_t> of(s.x.size(), 0);
+    if (group.empty()) return {std::move(of), 1};
+    if (group.size() != s.curve_count())
+        throw InvalidInput(
+            fmt::format("the potential: {} groups for {} curves", group.size(), s.curve_count()));
+    for (std::size_t c = 0; c < s.curve_count(); ++c)
+        for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j) of[j] = group[c];
+    return {std::move(of), *std::max_element(group.begin(), group.end()) + 1};
+}
+
+/// Calls write(i, j, A_ij) for every pair of samples of one group: the single-layer operator's
+/// weight of φ_j in (Sμ)(x_i), Kress's quadrature on a sample's own curve, the trapezoidal rule
+/// on others. Rows in parallel, each written by one thread.
+template <class Write>
+void assemble_single_layer(const SmoothCurves& s, std::span<const std::size_t> sample_group,
+                           Write&& write) {
     const std::size_t n = s.x.size();
-    std::vector<double> a(n * n);
     std::vector<std::size_t> curve_of(n);
     for (std::size_t c = 0; c < s.curve_count(); ++c)
         for (std::size_t i = s.offsets[c]; i < s.offsets[c + 1]; ++i) curve_of[i] = c;
@@ -266,6 +286,7 @@ std::vector<double> single_layer_matrix(const SmoothCurves& s) {
         const std::size_t ci = curve_of[i], first = s.offsets[ci], m = s.count(ci);
         const double half = static_cast<double>(m / 2);
         for (std::size_t j = 0; j < n; ++j) {
+            if (sample_group[j] != sample_group[i]) continue;
             const std::size_t cj = curve_of[j];
             double w;
             if (cj != ci) {
@@ -285,85 +306,106 @@ std::vector<double> single_layer_matrix(const SmoothCurves& s) {
                 }
                 w = -(kress[ci][d] + (pi / half) * smooth) / (4.0 * pi);
             }
-            a[i * n + j] = w;
+            write(i, j, w);
         }
     });
+}
+
+}  // namespace
+
+std::vector<double> single_layer_matrix(const SmoothCurves& s) {
+    const std::size_t n = s.x.size();
+    std::vector<double> a(n * n);
+    assemble_single_layer(s, std::vector<std::size_t>(n, 0),
+                          [&](std::size_t i, std::size_t j, double w) { a[i * n + j] = w; });
     return a;
 }
 
-std::vector<SingleLayerSolution> solve_single_layer(const SmoothCurves& s,
-                                                    std::span<const std::vector<double>> fs,
-                                                    std::span<const std::size_t> group) {
-    const std::size_t n = s.x.size(), curves = s.curve_count();
-    for (const std::vector<double>& f : fs)
-        if (f.size() != n)
-            throw InvalidInput(
-                fmt::format("solve_single_layer: {} values for {} samples", f.size(), n));
+/// The system's matrix and its factorisation (LU) or its iterative solver (GMRES).
+struct SingleLayerSystem::Factored {
+    Eigen::MatrixXd matrix;
+    std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
+    std::optional<Eigen::GMRES<Eigen::MatrixXd, Eigen::DiagonalPreconditioner<double>>> gmres;
+};
+
+SingleLayerSystem::SingleLayerSystem(const SmoothCurves& s, std::span<const std::size_t> group)
+    : s_(s), factored_(std::make_unique<Factored>()) {
+    const std::size_t n = s.x.size();
     if (n > max_samples)
         throw NumericalFailure(fmt::format(
             "the potential's integral equation on {} points (curves of {} vertices) would need "
             "{:.1f} GB, more than 0.8: fewer vertices (a lower --thin-depth or -K; if the curves "
             "wrinkled, more steps N) or fewer particles",
             n, s.vertex_offsets.back(), 8e-9 * static_cast<double>(n) * static_cast<double>(n)));
-    if (!group.empty() && group.size() != curves)
-        throw InvalidInput(
-            fmt::format("solve_single_layer: {} groups for {} curves", group.size(), curves));
-    std::vector<std::size_t> sample_group(n, 0);
-    std::size_t groups = 1;
-    if (!group.empty()) {
-        groups = *std::max_element(group.begin(), group.end()) + 1;
-        for (std::size_t c = 0; c < curves; ++c)
-            for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
-                sample_group[j] = group[c];
-    }
-    const std::vector<double> a = single_layer_matrix(s);
+    const auto [sample_group, groups] = sample_groups(s, group);
+    groups_ = groups;
     // The unknowns: φ_j = μ_j |γ'(τ_j)| and each group's constant; the group's last row is
     // ∫μ ds = Σ (2π/M_c) φ_j = 0 over its curves. Curves of other groups are not seen.
-    const std::size_t size = n + groups;
-    Eigen::MatrixXd system = Eigen::MatrixXd::Zero(size, size);
-    for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t j = 0; j < n; ++j)
-            if (sample_group[i] == sample_group[j]) system(i, j) = a[i * n + j];
-        system(i, n + sample_group[i]) = 1.0;
-    }
-    for (std::size_t c = 0; c < curves; ++c)
-        for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
+    Eigen::MatrixXd& system = factored_->matrix;
+    system = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n + groups),
+                                   static_cast<Eigen::Index>(n + groups));
+    assemble_single_layer(s, sample_group,
+                          [&](std::size_t i, std::size_t j, double w) { system(i, j) = w; });
+    for (std::size_t c = 0; c < s.curve_count(); ++c) {
+        for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j) {
+            system(j, n + sample_group[j]) = 1.0;
             system(n + sample_group[j], j) = 2.0 * pi / static_cast<double>(s.count(c));
-
-    std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
-    std::optional<Eigen::GMRES<Eigen::MatrixXd, Eigen::DiagonalPreconditioner<double>>> gmres;
-    if (n <= direct_solve_limit) {
-        lu.emplace(system);
-    } else {
-        gmres.emplace(system);
-        gmres->set_restart(300);
-        gmres->setTolerance(1e-13);
-        gmres->setMaxIterations(3000);
+        }
     }
+    if (n <= direct_solve_limit) {
+        factored_->lu.emplace(system);
+    } else {
+        factored_->gmres.emplace(system);
+        factored_->gmres->set_restart(300);
+        factored_->gmres->setTolerance(1e-13);
+        factored_->gmres->setMaxIterations(3000);
+    }
+}
+
+SingleLayerSystem::~SingleLayerSystem() = default;
+
+std::vector<SingleLayerSolution> SingleLayerSystem::solve(
+    std::span<const std::vector<double>> fs) const {
+    const std::size_t n = s_.x.size();
     std::vector<SingleLayerSolution> out;
     for (const std::vector<double>& f : fs) {
-        Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size);
+        if (f.size() != n)
+            throw InvalidInput(
+                fmt::format("the potential: {} boundary values for {} samples", f.size(), n));
+        Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n + groups_));
         for (std::size_t i = 0; i < n; ++i) rhs(i) = f[i];
         SingleLayerSolution solution;
         Eigen::VectorXd phi;
-        if (lu) {
-            phi = lu->solve(rhs);
+        if (factored_->lu) {
+            phi = factored_->lu->solve(rhs);
         } else {
-            phi = gmres->solve(rhs);
-            if (gmres->info() != Eigen::Success)
+            auto& gmres = *factored_->gmres;
+            phi = gmres.solve(rhs);
+            if (gmres.info() != Eigen::Success)
                 throw NumericalFailure(fmt::format(
                     "the potential's integral equation on {} points did not converge in {} GMRES "
                     "iterations (residual {:.2g}): curves too close for their sampling",
-                    n, gmres->iterations(), gmres->error()));
-            solution.iterations = static_cast<int>(gmres->iterations());
+                    n, gmres.iterations(), gmres.error()));
+            solution.iterations = static_cast<int>(gmres.iterations());
         }
         solution.density.resize(n);
-        for (std::size_t j = 0; j < n; ++j) solution.density[j] = phi(j) / s.speed[j];
-        for (std::size_t g = 0; g < groups; ++g) solution.constants.push_back(phi(n + g));
+        for (std::size_t j = 0; j < n; ++j) solution.density[j] = phi(j) / s_.speed[j];
+        for (std::size_t g = 0; g < groups_; ++g) solution.constants.push_back(phi(n + g));
         solution.u_infinity = solution.constants[0];
         out.push_back(std::move(solution));
     }
     return out;
+}
+
+std::optional<std::vector<double>> solve_dense(std::span<const double> a,
+                                               std::span<const double> b) {
+    const auto n = static_cast<Eigen::Index>(b.size());
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(
+        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+            a.data(), n, n));
+    if (!lu.isInvertible()) return std::nullopt;
+    const Eigen::VectorXd x = lu.solve(Eigen::Map<const Eigen::VectorXd>(b.data(), n));
+    return std::vector<double>(x.data(), x.data() + n);
 }
 
 bool encloses(std::span<const Vec2> p, Vec2 x) {
@@ -397,11 +439,11 @@ std::optional<std::size_t> region_containing(const Interface& curves,
 std::vector<std::size_t> curve_regions(const Interface& curves) {
     const std::size_t count = curves.curve_count();
     std::vector<double> areas(count);
-    std::vector<std::size_t> region(count, 0), outer_region(count, 0);
+    std::vector<std::size_t> region(count, 0);
     std::size_t regions = 0;
     for (std::size_t c = 0; c < count; ++c) {
         areas[c] = signed_area(curves.curve(c));
-        if (areas[c] > 0) outer_region[c] = region[c] = regions++;
+        if (areas[c] > 0) region[c] = regions++;
     }
     for (std::size_t c = 0; c < count; ++c) {
         if (areas[c] > 0) continue;
@@ -412,24 +454,20 @@ std::vector<std::size_t> curve_regions(const Interface& curves) {
                 best = o;
         if (!best)
             throw InvalidInput(fmt::format("curve {} is a hole (clockwise) inside no curve", c));
-        region[c] = outer_region[*best];
+        region[c] = region[*best];
     }
     return region;
 }
 
 SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const double> f) {
     const std::vector<double> one(f.begin(), f.end());
-    return std::move(solve_single_layer(s, std::span(&one, 1)).front());
+    return std::move(SingleLayerSystem(s).solve(std::span(&one, 1)).front());
 }
 
 std::vector<double> adjoint_double_layer(const SmoothCurves& s, std::span<const double> density,
                                          std::span<const std::size_t> group) {
     const std::size_t n = s.x.size();
-    std::vector<std::size_t> sample_group(n, 0);
-    if (!group.empty())
-        for (std::size_t c = 0; c < s.curve_count(); ++c)
-            for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
-                sample_group[j] = group[c];
+    const std::vector<std::size_t> sample_group = sample_groups(s, group).first;
     std::vector<double> phi(n), out(n);
     for (std::size_t c = 0; c < s.curve_count(); ++c)
         for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)

@@ -14,35 +14,6 @@
 namespace slc {
 namespace {
 
-/// The solution of the small dense system a x = b (a row-major, n × n), by Gaussian elimination
-/// with partial pivoting. Throws NumericalFailure when a is singular.
-std::vector<double> solve_small_system(std::vector<double> a, std::vector<double> b) {
-    const std::size_t n = b.size();
-    for (std::size_t col = 0; col < n; ++col) {
-        std::size_t pivot = col;
-        for (std::size_t r = col + 1; r < n; ++r)
-            if (std::abs(a[r * n + col]) > std::abs(a[pivot * n + col])) pivot = r;
-        if (!(std::abs(a[pivot * n + col]) > 0.0))
-            throw NumericalFailure(
-                "velocity 'mullins-sekerka': vanishing particles' fluxes are not independent; "
-                "raise the steps N");
-        for (std::size_t j = 0; j < n; ++j) std::swap(a[col * n + j], a[pivot * n + j]);
-        std::swap(b[col], b[pivot]);
-        for (std::size_t r = col + 1; r < n; ++r) {
-            const double f = a[r * n + col] / a[col * n + col];
-            for (std::size_t j = col; j < n; ++j) a[r * n + j] -= f * a[col * n + j];
-            b[r] -= f * b[col];
-        }
-    }
-    std::vector<double> x(n);
-    for (std::size_t r = n; r-- > 0;) {
-        double sum = b[r];
-        for (std::size_t j = r + 1; j < n; ++j) sum -= a[r * n + j] * x[j];
-        x[r] = sum / a[r * n + r];
-    }
-    return x;
-}
-
 /// Multiplies mode ξ of the samples of curve c by 1/(1 + (kλ)²), kλ = k_rate ξ³: the filter of the
 /// stiff modes (docs/algorithms/potential.md).
 void filter_stiff_modes(const SmoothCurves& s, std::size_t c, std::span<double> v, double k_rate) {
@@ -104,13 +75,15 @@ std::vector<double> MullinsSekerka::flux_jump(const SmoothCurves& s,
 std::vector<double> MullinsSekerka::normal_speeds(const SmoothCurves& s, double k) const {
     std::vector<double> f(s.x.size());
     for (std::size_t i = 0; i < f.size(); ++i) f[i] = -sigma_ * s.curvature[i];
-    std::vector<double> v = flux_jump(s, solve_single_layer(s, f).density);
-    if (k > 0.0) limit_vanishing(s, k, v);
+    const SingleLayerSystem system(s);
+    const std::vector<double> f_all[] = {std::move(f)};
+    std::vector<double> v = flux_jump(s, system.solve(f_all).front().density);
+    if (k > 0.0) limit_vanishing(s, system, k, v);
     return vertex_speeds(s, std::move(v), k * sigma_ * (d_in_ + d_out_));
 }
 
-void MullinsSekerka::limit_vanishing(const SmoothCurves& s, double k,
-                                     std::vector<double>& v) const {
+void MullinsSekerka::limit_vanishing(const SmoothCurves& s, const SingleLayerSystem& system,
+                                     double k, std::vector<double>& v) const {
     // A curve whose rate of area dA_c/dt = ∫_c V ds would, held for the step, move a circle of its
     // area inward by more than its radius (−k dA_c/dt > 2A_c) vanishes within the step; held for
     // the whole step, its rate would hand the others far more than it has, and its own shape, a
@@ -131,9 +104,11 @@ void MullinsSekerka::limit_vanishing(const SmoothCurves& s, double k,
     for (std::size_t i = 0; i < vanishing.size(); ++i)
         for (std::size_t j = s.offsets[vanishing[i]]; j < s.offsets[vanishing[i] + 1]; ++j)
             unit[i][j] = 1.0;
-    std::vector<std::vector<double>> w;
-    for (const SingleLayerSolution& u : solve_single_layer(s, unit))
+    std::vector<std::vector<double>> w, w_rates;  // W_c, and ∫ W_c ds over each curve
+    for (const SingleLayerSolution& u : system.solve(unit)) {
         w.push_back(flux_jump(s, u.density));
+        w_rates.push_back(curve_integrals(s, w.back()));
+    }
     // Σ_c β_c ∫_{c'} W_c ds = target_{c'} − ∫_{c'} V ds for each vanishing c', the target rate
     // 2π(3R)R/k = 6A/k inward.
     auto target = [&](std::size_t c) { return -6.0 * area[c] / k; };
@@ -141,9 +116,14 @@ void MullinsSekerka::limit_vanishing(const SmoothCurves& s, double k,
     std::vector<double> a(n * n), b(n);
     for (std::size_t i = 0; i < n; ++i) {
         b[i] = target(vanishing[i]) - rate[vanishing[i]];
-        for (std::size_t j = 0; j < n; ++j) a[i * n + j] = curve_integrals(s, w[j])[vanishing[i]];
+        for (std::size_t j = 0; j < n; ++j) a[i * n + j] = w_rates[j][vanishing[i]];
     }
-    const std::vector<double> beta = solve_small_system(std::move(a), std::move(b));
+    const std::optional<std::vector<double>> solved = solve_dense(a, b);
+    if (!solved)
+        throw NumericalFailure(
+            "velocity 'mullins-sekerka': vanishing particles' fluxes are not independent; "
+            "raise the steps N");
+    const std::vector<double>& beta = *solved;
     for (std::size_t j = 0; j < n; ++j)
         for (std::size_t i = 0; i < v.size(); ++i) v[i] += beta[j] * w[j][i];
     const std::vector<double> lengths = curve_integrals(s, std::vector<double>(v.size(), 1.0));
@@ -204,7 +184,7 @@ std::vector<double> HeleShaw::normal_speeds(const Interface& curves, const Smoot
         }
     }
     const std::vector<double> f_all[] = {f};
-    const std::vector<double> mu = solve_single_layer(s, f_all, region).front().density;
+    const std::vector<double> mu = SingleLayerSystem(s, region).solve(f_all).front().density;
     // V = −∂p/∂N = −(K'μ + μ/2) − ∂G_s/∂N.
     const std::vector<double> kmu = adjoint_double_layer(s, mu, region);
     std::vector<double> v(mu.size());

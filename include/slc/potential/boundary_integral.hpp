@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -75,17 +76,37 @@ struct SingleLayerSolution {
     int iterations = 0;             ///< GMRES iterations, or 0 for the direct solve
 };
 
-/// Solves Sμ + u∞ = f at the samples (f.size() == s.x.size()) with ∫μ ds = 0, to a relative
-/// residual of 1e−13 (GMRES, Eigen's; a direct LU solve up to 600 samples). O(M²) memory and per
-/// iteration. Throws NumericalFailure when GMRES does not converge, or beyond 10,000 samples
-/// (a dense matrix of 800 MB).
+/// The single-layer system of curves s, assembled and factored once, for as many boundary values
+/// f as wanted: Sμ + u∞ = f at the samples with ∫μ ds = 0, to a relative residual of 1e−13
+/// (a direct LU solve up to 600 samples, Eigen's GMRES beyond). group: the group of each curve
+/// (0, 1, …), curves of different groups not seen by each other; empty: one group. O(M²) memory;
+/// O(M³) to build up to 600 samples, O(M²) per GMRES iteration beyond. Throws NumericalFailure
+/// beyond 10,000 samples (a dense matrix of 800 MB). s must outlive the system.
+class SingleLayerSystem {
+public:
+    explicit SingleLayerSystem(const SmoothCurves& s, std::span<const std::size_t> group = {});
+    ~SingleLayerSystem();
+    SingleLayerSystem(const SingleLayerSystem&) = delete;
+    SingleLayerSystem& operator=(const SingleLayerSystem&) = delete;
+
+    /// One solution per f (f.size() == s.x.size()). Throws NumericalFailure when GMRES does not
+    /// converge.
+    std::vector<SingleLayerSolution> solve(std::span<const std::vector<double>> fs) const;
+
+private:
+    struct Factored;
+    const SmoothCurves& s_;
+    std::size_t groups_ = 1;
+    std::unique_ptr<Factored> factored_;
+};
+
+/// One f solved on one system, for one group.
 SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const double> f);
-/// The same for several f at once, one solution each (one LU factorisation for all). group: the
-/// group of each curve (0, 1, …), curves of different groups not seen by each other; empty: one
-/// group.
-std::vector<SingleLayerSolution> solve_single_layer(const SmoothCurves& s,
-                                                    std::span<const std::vector<double>> fs,
-                                                    std::span<const std::size_t> group = {});
+
+/// The solution of the small dense system a x = b (a row-major, b.size() unknowns) by Eigen's
+/// fully pivoted LU, or nothing when a is singular.
+std::optional<std::vector<double>> solve_dense(std::span<const double> a,
+                                               std::span<const double> b);
 
 /// The region of each curve: a counterclockwise curve (positive area) is a region of its own, a
 /// clockwise one (a hole) belongs to the smallest counterclockwise curve around it. Regions are
@@ -107,7 +128,7 @@ std::vector<double> single_layer_matrix(const SmoothCurves& s);
 /// K'μ at the samples: the adjoint double layer ∫ ∂G(x_i, y)/∂N(x_i) μ(y) ds_y of the density μ
 /// (trapezoidal rule; its kernel is smooth, C(x)/4π on the diagonal). The normal derivatives of
 /// u = Sμ are ∂u_out/∂N = K'μ − μ/2 and ∂u_in/∂N = K'μ + μ/2. O(M²).
-/// group: as solve_single_layer's, curves of other groups not seen; empty: one group.
+/// group: as SingleLayerSystem's, curves of other groups not seen; empty: one group.
 std::vector<double> adjoint_double_layer(const SmoothCurves& s, std::span<const double> density,
                                          std::span<const std::size_t> group = {});
 

@@ -18,6 +18,7 @@
 namespace slc {
 
 struct SmoothCurves;
+class SingleLayerSystem;
 
 /// `mullins-sekerka`: two-phase Mullins–Sekerka (coarsening by diffusion, Ostwald ripening).
 /// Δu = 0 inside and outside the curves, u = −σC on them, u bounded at infinity; the normal
@@ -48,7 +49,9 @@ private:
     /// V at the samples from the single layer's density μ.
     std::vector<double> flux_jump(const SmoothCurves& s, const std::vector<double>& mu) const;
     /// Within a step of k, a curve that would vanish well within it vanishes at its end.
-    void limit_vanishing(const SmoothCurves& s, double k, std::vector<double>& v) const;
+    /// system: the single layer of s, already factored.
+    void limit_vanishing(const SmoothCurves& s, const SingleLayerSystem& system, double k,
+                         std::vector<double>& v) const;
 
     double sigma_, d_in_, d_out_;
 };
