@@ -226,30 +226,38 @@ Result advance_extended(const Shape& shape, double t, double k, const Law& law,
 /// target by moving its vertices along their normals: shifts of δ = (target − M)/B (B its
 /// boundary measure, length or area), each vertex by at most a quarter of its shortest edge,
 /// each shift leaving O(δ²) of the difference, and more where vertices were held back: eight
-/// shifts at most leave rounding. A vertex stays where it is once a shift makes the interface
-/// meet itself at one of its elements (segments or triangles), as a fold of edges far shorter
-/// than the shift would. Returns the interface and the measure added (0, the interface as
-/// given, when no vertex can move). The dimension gives:
-///   measure(shape)                  the enclosed measure M
-///   shifts(shape, δ)                each vertex's shift: δ along its normal, clamped
+/// shifts at most leave rounding. The measure may have parts, each with its own target (the
+/// regions of curves that each keep their area). A vertex stays where it is once a shift makes
+/// the interface meet itself at one of its elements (segments or triangles), as a fold of edges
+/// far shorter than the shift would. Returns the interface and the measure added in all (0, the
+/// interface as given, when no vertex can move). The dimension gives:
+///   measure(shape)                  the enclosed measure M of each part
+///   shifts(shape, δ)                each vertex's shift: its part's δ along its normal, clamped
 ///   moved(shape, shifts, held)      the interface with the vertices not held shifted
 ///   contact(shape)                  two elements that meet, if any (optional pair)
 ///   corners(shape, element)         the vertices of an element
 template <class Shape, class Measure, class Shifts, class Moved, class Contact, class Corners>
-std::pair<Shape, double> restored_measure(const Shape& shape, double target, Measure measure,
-                                          Shifts shifts, Moved moved, Contact contact,
-                                          Corners corners) {
+std::pair<Shape, double> restored_measure(const Shape& shape, const std::vector<double>& target,
+                                          Measure measure, Shifts shifts, Moved moved,
+                                          Contact contact, Corners corners) {
+    const auto sum = [](const std::vector<double>& m) {
+        double total = 0.0;
+        for (const double x : m) total += x;
+        return total;
+    };
     std::pair<Shape, double> out{shape, 0.0};
     std::vector<bool> held(vertices_of(shape).size(), false);
     // One shift from s: the moved interface and the measure it added, or none.
     const auto shift_once = [&](const Shape& s) -> std::optional<std::pair<Shape, double>> {
-        const double m = measure(s);
-        const auto shift = shifts(s, target - m);
+        const std::vector<double> m = measure(s);
+        std::vector<double> missing(m.size());
+        for (std::size_t p = 0; p < m.size(); ++p) missing[p] = target[p] - m[p];
+        const auto shift = shifts(s, missing);
         for (int attempt = 0; attempt < 16; ++attempt) {
             Shape candidate = moved(s, shift, held);
             const auto met = contact(candidate);
             if (!met) {
-                const double added = measure(candidate) - m;
+                const double added = sum(measure(candidate)) - sum(m);
                 return std::pair(std::move(candidate), added);
             }
             bool newly_held = false;

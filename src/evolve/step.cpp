@@ -414,15 +414,31 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
 
 }  // namespace
 
-AreaRestored restore_area(const Interface& curves, double target) {
+namespace {
+
+/// restore_area and restore_region_areas: the curves' parts (part[c] of curve c) brought to
+/// their targets.
+AreaRestored restored_parts(const Interface& curves, std::span<const std::size_t> part,
+                            std::span<const double> target) {
+    const auto areas = [&](const Interface& c) {
+        std::vector<double> a(target.size(), 0.0);
+        for (std::size_t j = 0; j < c.curve_count(); ++j) a[part[j]] += signed_area(c.curve(j));
+        return a;
+    };
     // Each vertex moves along the bisector of its segments' normals, by at most a quarter of the
     // shorter of them: a sharp turn or a short segment would otherwise fold the curve; what it
     // holds back, the next shift gives. A zigzag of segments far shorter than the shift, left
     // where the zero set passes a cell corner, folds under any shift: its vertices are held.
-    const auto shifts = [](const Interface& c, double missing) {
-        const double delta = missing / length(c);
+    const auto shifts = [&](const Interface& c, const std::vector<double>& missing) {
+        std::vector<double> lengths(target.size(), 0.0);
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            const Segment s = c.segment(i);
+            lengths[part[c.curve_of(i)]] += distance(s.a, s.b);
+        }
         std::vector<Vec2> shift(c.size());
         for (std::size_t i = 0; i < c.size(); ++i) {
+            const std::size_t p = part[c.curve_of(i)];
+            const double delta = missing[p] / lengths[p];
             const Vec2 u = c.point(i) - c.point(c.prev(i));
             const Vec2 v = c.point(c.next(i)) - c.point(i);
             const Vec2 n = -perp(u / norm(u) + v / norm(v));  // the outside is on the right
@@ -446,20 +462,86 @@ AreaRestored restore_area(const Interface& curves, double target) {
         return std::array<std::size_t, 2>{s, c.next(s)};
     };
     auto [out, added] = detail::restored_measure(
-        curves, target, [](const Interface& c) { return area(c); }, shifts, moved,
+        curves, std::vector<double>(target.begin(), target.end()), areas, shifts, moved,
         [](const Interface& c) { return find_crossing(c); }, ends);
     return {std::move(out), added};
+}
+
+/// The regions of `after` matched to those of `before` (region r of after is match[r] of
+/// before): each to the one whose outer curve's mean vertex is nearest its own, when that pairs
+/// them one to one; nothing when the regions merged, split or vanished.
+std::optional<std::vector<std::size_t>> matched_regions(const Interface& before,
+                                                        const Interface& after) {
+    const auto outer_means = [](const Interface& c) {
+        std::vector<Vec2> p;
+        for (std::size_t j = 0; j < c.curve_count(); ++j) {
+            if (!(signed_area(c.curve(j)) > 0)) continue;
+            Vec2 sum{};
+            for (const Vec2 x : c.curve(j)) sum += x;
+            p.push_back(sum / static_cast<double>(c.curve(j).size()));
+        }
+        return p;
+    };
+    const std::vector<Vec2> from = outer_means(before), to = outer_means(after);
+    if (from.size() != to.size()) return std::nullopt;
+    std::vector<std::size_t> match(to.size());
+    std::vector<bool> taken(from.size(), false);
+    for (std::size_t r = 0; r < to.size(); ++r) {
+        std::size_t best = 0;
+        for (std::size_t q = 1; q < from.size(); ++q)
+            if (distance(to[r], from[q]) < distance(to[r], from[best])) best = q;
+        if (taken[best]) return std::nullopt;
+        taken[best] = true;
+        match[r] = best;
+    }
+    return match;
+}
+
+/// The regions of the curves after a step brought back to their areas before it (the one
+/// holding the law's source grown by k × its rate), or nothing when the regions changed.
+std::optional<AreaRestored> restored_regions(const Interface& before, const Interface& after,
+                                             double k, const Invariants& kept) {
+    const std::optional<std::vector<std::size_t>> match = matched_regions(before, after);
+    if (!match) return std::nullopt;
+    const std::vector<std::size_t> was = curve_regions(before);
+    std::vector<double> had(match->size(), 0.0);
+    for (std::size_t c = 0; c < before.curve_count(); ++c)
+        had[was[c]] += signed_area(before.curve(c));
+    std::optional<std::size_t> fed;
+    if (kept.area_rate && kept.area_source) fed = region_containing(before, was, *kept.area_source);
+    std::vector<double> target(match->size());
+    for (std::size_t r = 0; r < target.size(); ++r) {
+        const std::size_t q = (*match)[r];
+        target[r] = had[q] + (fed == q ? k * *kept.area_rate : 0.0);
+    }
+    return restore_region_areas(after, curve_regions(after), target);
+}
+
+}  // namespace
+
+AreaRestored restore_area(const Interface& curves, double target) {
+    const std::vector<std::size_t> one(curves.curve_count(), 0);
+    return restored_parts(curves, one, std::span(&target, 1));
+}
+
+AreaRestored restore_region_areas(const Interface& curves, std::span<const std::size_t> region,
+                                  std::span<const double> target) {
+    return restored_parts(curves, region, target);
 }
 
 StepResult advance(const Interface& curves, double t, double k, const VelocityLaw& law,
                    const Box& domain, const StepOptions& options) {
     StepResult result = advance_contours(curves, t, k, law, domain, options);
     if (options.resolved_area_correction(law) && !result.curves.empty()) {
-        // The law's exact area: kept, or growing at its rate (a source's injection).
-        const double rate = law.invariants().area_rate.value_or(0.0);
-        AreaRestored restored = restore_area(result.curves, area(curves) + k * rate);
-        result.curves = std::move(restored.curves);
-        result.stats.area_correction = restored.added;
+        // The law's exact area: kept, or growing at its rate (a source's injection); each
+        // region's own while they neither merge nor vanish, if the law keeps them.
+        const Invariants kept = law.invariants();
+        const double rate = kept.area_rate.value_or(0.0);
+        std::optional<AreaRestored> restored;
+        if (kept.keeps_region_areas) restored = restored_regions(curves, result.curves, k, kept);
+        if (!restored) restored = restore_area(result.curves, area(curves) + k * rate);
+        result.curves = std::move(restored->curves);
+        result.stats.area_correction = restored->added;
     }
     return result;
 }

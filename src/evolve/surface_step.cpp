@@ -288,8 +288,8 @@ SurfaceStepResult advance(const Surface& surface, double t, double k, const Surf
         // Each vertex moves along its angle-weighted normal, by at most a quarter of its shortest
         // edge; a vertex is held once the moved surface meets itself at one of its triangles
         // (exact predicates), as a fold of edges far shorter than the shift would.
-        const auto shifts = [](const Surface& s, double missing) {
-            const double delta = missing / area(s);
+        const auto shifts = [](const Surface& s, const std::vector<double>& missing) {
+            const double delta = missing[0] / area(s);
             const std::vector<Vec3> n = angle_weighted_normals(s);
             const VertexRings rings = vertex_rings(s);
             std::vector<Vec3> shift(s.vertices.size());
@@ -311,8 +311,9 @@ SurfaceStepResult advance(const Surface& surface, double t, double k, const Surf
             return out;
         };
         auto [out, added] = detail::restored_measure(
-            result.surface, volume(surface), [](const Surface& s) { return volume(s); }, shifts,
-            moved, [](const Surface& s) { return find_self_intersection(s); },
+            result.surface, {volume(surface)},
+            [](const Surface& s) { return std::vector<double>{volume(s)}; }, shifts, moved,
+            [](const Surface& s) { return find_self_intersection(s); },
             [](const Surface& s, std::uint32_t f) { return s.triangles[f]; });
         result.surface = std::move(out);
         result.stats.volume_correction = added;

@@ -1,4 +1,4 @@
-// Interface storage and its measures: area (shoelace) and length.
+// Interface storage and its measures: area (shoelace) and length; the regions its curves bound.
 #include "slc/geometry/interface.hpp"
 
 #include <fmt/format.h>
@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "slc/core/error.hpp"
+#include "slc/geometry/predicates.hpp"
 
 namespace slc {
 
@@ -77,6 +78,62 @@ double length(const Interface& curves) {
         total += distance(s.a, s.b);
     }
     return total;
+}
+
+bool encloses(const Interface& curves, std::size_t c, Vec2 p) {
+    // Half-open in y, so a vertex on the ray counts once.
+    bool inside = false;
+    for (std::size_t i = curves.offsets()[c]; i < curves.offsets()[c + 1]; ++i) {
+        const Segment s = curves.segment(i);
+        if ((s.a.y > p.y) != (s.b.y > p.y)) {
+            // p lies left of an upward segment (right of a downward one) iff the segment meets
+            // the ray right of p.
+            const int side = orientation(s.a, s.b, p);
+            if (s.b.y > s.a.y ? side > 0 : side < 0) inside = !inside;
+        }
+    }
+    return inside;
+}
+
+std::vector<std::size_t> curve_regions(const Interface& curves) {
+    const std::size_t count = curves.curve_count();
+    std::vector<double> areas(count);
+    std::vector<std::size_t> region(count, 0);
+    std::size_t regions = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+        areas[c] = signed_area(curves.curve(c));
+        if (areas[c] > 0) region[c] = regions++;
+    }
+    for (std::size_t c = 0; c < count; ++c) {
+        if (areas[c] > 0) continue;
+        std::optional<std::size_t> best;
+        for (std::size_t o = 0; o < count; ++o)
+            if (areas[o] > 0 && encloses(curves, o, curves.curve(c)[0]) &&
+                (!best || areas[o] < areas[*best]))
+                best = o;
+        if (!best)
+            throw InvalidInput(fmt::format("curve {} is a hole (clockwise) inside no curve", c));
+        region[c] = region[*best];
+    }
+    return region;
+}
+
+std::optional<std::size_t> region_containing(const Interface& curves,
+                                             std::span<const std::size_t> region, Vec2 x) {
+    std::optional<std::size_t> best;
+    double best_area = 0.0;
+    for (std::size_t c = 0; c < curves.curve_count(); ++c) {
+        const double a = signed_area(curves.curve(c));
+        if (a > 0 && encloses(curves, c, x) && (!best || a < best_area)) {
+            best = region[c];
+            best_area = a;
+        }
+    }
+    if (!best) return std::nullopt;
+    for (std::size_t c = 0; c < curves.curve_count(); ++c)
+        if (region[c] == *best && signed_area(curves.curve(c)) < 0 && encloses(curves, c, x))
+            return std::nullopt;  // in a hole of that region
+    return best;
 }
 
 }  // namespace slc

@@ -292,22 +292,6 @@ void check_crossings(const Interface& curves, const std::vector<CleanCurve>& cle
                     c1, c2, s1, c1, s2, c2));
 }
 
-/// Whether curve c encloses point p, by counting the crossings of the ray from p towards +x
-/// (half-open in y, so a vertex on the ray counts once). Exact; p must not lie on curve c.
-bool encloses(const Interface& curves, std::size_t c, Vec2 p) {
-    bool inside = false;
-    for (std::size_t i = curves.offsets()[c]; i < curves.offsets()[c + 1]; ++i) {
-        const Segment s = curves.segment(i);
-        if ((s.a.y > p.y) != (s.b.y > p.y)) {
-            // p lies left of an upward segment (right of a downward one) iff the segment meets
-            // the ray right of p.
-            const int side = orientation(s.a, s.b, p);
-            if (s.b.y > s.a.y ? side > 0 : side < 0) inside = !inside;
-        }
-    }
-    return inside;
-}
-
 /// How many other curves enclose curve c. The curves are disjoint, so one vertex decides.
 std::size_t nesting_depth(const Interface& curves, const std::vector<Box>& boxes, std::size_t c) {
     const Vec2 p = curves.point(curves.offsets()[c]);

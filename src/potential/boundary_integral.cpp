@@ -408,57 +408,6 @@ std::optional<std::vector<double>> solve_dense(std::span<const double> a,
     return std::vector<double>(x.data(), x.data() + n);
 }
 
-bool encloses(std::span<const Vec2> p, Vec2 x) {
-    // Crossings of the ray from x towards +x.
-    bool inside = false;
-    for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++)
-        if ((p[i].y > x.y) != (p[j].y > x.y) &&
-            x.x < p[j].x + (x.y - p[j].y) * (p[i].x - p[j].x) / (p[i].y - p[j].y))
-            inside = !inside;
-    return inside;
-}
-
-std::optional<std::size_t> region_containing(const Interface& curves,
-                                             std::span<const std::size_t> region, Vec2 x) {
-    std::optional<std::size_t> best;
-    double best_area = 0.0;
-    for (std::size_t c = 0; c < curves.curve_count(); ++c) {
-        const double a = signed_area(curves.curve(c));
-        if (a > 0 && encloses(curves.curve(c), x) && (!best || a < best_area)) {
-            best = region[c];
-            best_area = a;
-        }
-    }
-    if (!best) return std::nullopt;
-    for (std::size_t c = 0; c < curves.curve_count(); ++c)
-        if (region[c] == *best && signed_area(curves.curve(c)) < 0 && encloses(curves.curve(c), x))
-            return std::nullopt;  // in a hole of that region
-    return best;
-}
-
-std::vector<std::size_t> curve_regions(const Interface& curves) {
-    const std::size_t count = curves.curve_count();
-    std::vector<double> areas(count);
-    std::vector<std::size_t> region(count, 0);
-    std::size_t regions = 0;
-    for (std::size_t c = 0; c < count; ++c) {
-        areas[c] = signed_area(curves.curve(c));
-        if (areas[c] > 0) region[c] = regions++;
-    }
-    for (std::size_t c = 0; c < count; ++c) {
-        if (areas[c] > 0) continue;
-        std::optional<std::size_t> best;
-        for (std::size_t o = 0; o < count; ++o)
-            if (areas[o] > 0 && encloses(curves.curve(o), curves.curve(c)[0]) &&
-                (!best || areas[o] < areas[*best]))
-                best = o;
-        if (!best)
-            throw InvalidInput(fmt::format("curve {} is a hole (clockwise) inside no curve", c));
-        region[c] = region[*best];
-    }
-    return region;
-}
-
 SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const double> f) {
     const std::vector<double> one(f.begin(), f.end());
     return std::move(SingleLayerSystem(s).solve(std::span(&one, 1)).front());

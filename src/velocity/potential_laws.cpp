@@ -149,8 +149,8 @@ HeleShaw::HeleShaw(double sigma, double q, Vec2 source) : sigma_(sigma), q_(q), 
 }
 
 Invariants HeleShaw::invariants() const {
-    if (q_ == 0.0) return {.keeps_area = true, .shortens = true};
-    return {.area_rate = q_};
+    if (q_ == 0.0) return {.keeps_area = true, .shortens = true, .keeps_region_areas = true};
+    return {.area_rate = q_, .keeps_region_areas = true, .area_source = source_};
 }
 
 std::vector<double> HeleShaw::normal_speeds(const Interface& curves, double k) const {

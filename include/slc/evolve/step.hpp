@@ -12,7 +12,9 @@
 #include <cmath>
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <utility>
+#include <vector>
 
 #include "slc/contour/contour.hpp"
 #include "slc/core/box.hpp"
@@ -120,6 +122,12 @@ struct AreaRestored {
 /// find_crossing, O(N log N)), as a zigzag of segments far shorter than the shift would. The
 /// curves as given when no vertex can move. StepOptions::area_correction after every step.
 AreaRestored restore_area(const Interface& curves, double target);
+
+/// The same for each region of the curves on its own (region[c] of curve c, curve_regions):
+/// region r moved to enclose target[r], its shift δ_r = (target[r] − A_r)/L_r. After a step of a
+/// law that keeps each region's area (Invariants::keeps_region_areas).
+AreaRestored restore_region_areas(const Interface& curves, std::span<const std::size_t> region,
+                                  std::span<const double> target);
 
 /// The edge of the finest cell of contours at depth `contour.depth` in domain (the same in the
 /// domain doubled, K a level deeper each time).

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -86,5 +87,19 @@ double area(const Interface& curves);
 double length(std::span<const Vec2> curve);
 /// Total length of all curves.
 double length(const Interface& curves);
+
+/// Whether curve c encloses point p (either orientation), by the crossings of the ray from p
+/// towards +x. Exact; p must not lie on curve c.
+bool encloses(const Interface& curves, std::size_t c, Vec2 p);
+
+/// The region of each curve of disjoint curves: a counterclockwise curve (positive area) bounds a
+/// region of its own, a clockwise one (a hole) belongs to the smallest counterclockwise curve
+/// around it. Regions are numbered 0, 1, … in the order of their outer curves. Throws
+/// InvalidInput for a hole inside no curve. O(curves² · vertices).
+std::vector<std::size_t> curve_regions(const Interface& curves);
+
+/// The region (curve_regions) whose inside holds x, or nothing when x is inside no region.
+std::optional<std::size_t> region_containing(const Interface& curves,
+                                             std::span<const std::size_t> region, Vec2 x);
 
 }  // namespace slc

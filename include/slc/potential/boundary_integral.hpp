@@ -108,18 +108,6 @@ SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const do
 std::optional<std::vector<double>> solve_dense(std::span<const double> a,
                                                std::span<const double> b);
 
-/// The region of each curve: a counterclockwise curve (positive area) is a region of its own, a
-/// clockwise one (a hole) belongs to the smallest counterclockwise curve around it. Regions are
-/// numbered 0, 1, … in the order of their outer curves. O(curves² · vertices).
-std::vector<std::size_t> curve_regions(const Interface& curves);
-
-/// True when x lies inside the closed polygon p (crossing number; either orientation).
-bool encloses(std::span<const Vec2> p, Vec2 x);
-
-/// The region (curve_regions) whose inside holds x, or nothing when x is inside no region.
-std::optional<std::size_t> region_containing(const Interface& curves,
-                                             std::span<const std::size_t> region, Vec2 x);
-
 /// The single-layer operator's matrix A, row-major, A[i·n + j] the weight of φ_j = μ_j |γ'(τ_j)|
 /// in (Sμ)(x_i): Kress's quadrature on a sample's own curve, the trapezoidal rule on others.
 /// For tests and for the solver.

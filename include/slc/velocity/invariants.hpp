@@ -5,6 +5,8 @@
 
 #include <optional>
 
+#include "slc/core/vec2.hpp"
+
 namespace slc {
 
 /// A law's invariants; the default claims nothing.
@@ -34,6 +36,13 @@ struct Invariants {
     /// dA/dt = rate for the whole interface (a source injecting at the rate: hele-shaw's Q); the
     /// step's area correction (VelocityLaw::preserves_area) then restores A(t) + k·rate.
     std::optional<double> area_rate = std::nullopt;
+    /// Each region (an outer curve and its holes, curve_regions) keeps its own area, not only
+    /// their sum, while the regions neither merge nor vanish (hele-shaw's bubbles); with
+    /// area_rate, the region holding area_source grows at it. The step's area correction then
+    /// restores each region's area.
+    bool keeps_region_areas = false;
+    /// Where area_rate enters (hele-shaw's source), for keeps_region_areas.
+    std::optional<Vec2> area_source = std::nullopt;
     /// Of a surface: dV/dt = rate × A while no component vanishes or merges (a constant normal
     /// speed: the rate is the speed).
     std::optional<double> volume_rate_per_area = std::nullopt;

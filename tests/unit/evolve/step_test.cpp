@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <random>
@@ -208,6 +209,26 @@ TEST(RestoreArea, ShiftsPastAZigzagOfTinySegments) {
     // which give back what the fold held and the O(δ²) of the first: 1.9% more.
     const double delta = (target - area(zigzag)) / length(zigzag);
     EXPECT_NEAR(distance(restored.curves.point(150), zigzag.point(150)), delta, 0.03 * delta);
+}
+
+TEST(RestoreArea, EachRegionToItsOwnTarget) {
+    // A ring (an outer curve and its hole) and a disk: the ring is to lose 1% and the disk to
+    // gain 2%. Each region reaches its own area; one shift for all would share the difference.
+    std::vector<Vec2> hole = shapes::circle({0.0, 0.0}, 0.3, 128);
+    std::reverse(hole.begin(), hole.end());
+    const Interface curves(std::vector<std::vector<Vec2>>{
+        shapes::circle({0.0, 0.0}, 0.8, 256), hole, shapes::circle({2.0, 0.0}, 0.4, 128)});
+    const std::vector<std::size_t> region = curve_regions(curves);
+    ASSERT_EQ(region, (std::vector<std::size_t>{0, 0, 1}));
+    const double ring = signed_area(curves.curve(0)) + signed_area(curves.curve(1));
+    const double disk = signed_area(curves.curve(2));
+    const std::vector<double> target{0.99 * ring, 1.02 * disk};
+    const AreaRestored restored = restore_region_areas(curves, region, target);
+    const Interface& c = restored.curves;
+    EXPECT_NEAR(signed_area(c.curve(0)) + signed_area(c.curve(1)), target[0], 1e-13);
+    EXPECT_NEAR(signed_area(c.curve(2)), target[1], 1e-13);
+    EXPECT_NEAR(restored.added, target[0] + target[1] - ring - disk, 1e-13);
+    EXPECT_FALSE(find_crossing(c));
 }
 
 TEST(StepMeasures, ArcsOfAPolygonAsFineAsTheContoursMeasureTheCircle) {
