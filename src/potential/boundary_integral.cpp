@@ -321,11 +321,124 @@ std::vector<double> single_layer_matrix(const SmoothCurves& s) {
     return a;
 }
 
+namespace {
+
+/// GMRES's preconditioner for many curves: each curve's own augmented system (its block of S,
+/// its constant and its charge Q_c = ∫_c μ ds) solved exactly, the curves coupled through their
+/// charges alone, curve d's unit charge raising the potential on curve c by G_cd, the mean over
+/// c of S applied to d's equilibrium density. What is left, the curves' dipoles and higher
+/// moments on each other, shrinks as (size/distance)^m, so GMRES's iterations do not grow with
+/// the number of curves (docs/notes/potential.md). Set up in O(M² + Σ M_c³ + curves³).
+class CurveBlockPreconditioner {
+public:
+    template <class Matrix>
+    CurveBlockPreconditioner& analyzePattern(const Matrix&) {
+        return *this;
+    }
+    template <class Matrix>
+    CurveBlockPreconditioner& factorize(const Matrix&) {
+        return *this;
+    }
+    template <class Matrix>
+    CurveBlockPreconditioner& compute(const Matrix&) {
+        return *this;
+    }
+    Eigen::ComputationInfo info() const { return Eigen::Success; }
+
+    /// From the system's matrix (the samples' rows and columns, then a constant and a charge row
+    /// for each group).
+    void set_up(const Eigen::MatrixXd& system, const SmoothCurves& s,
+                std::span<const std::size_t> sample_group, std::size_t groups) {
+        const std::size_t n = s.x.size(), curves = s.curve_count();
+        offsets_ = s.offsets;
+        groups_ = groups;
+        n_ = n;
+        local_.clear();
+        unit_.assign(curves, Eigen::VectorXd());
+        for (std::size_t c = 0; c < curves; ++c) {
+            const auto m = static_cast<Eigen::Index>(s.count(c));
+            const auto first = static_cast<Eigen::Index>(s.offsets[c]);
+            Eigen::MatrixXd block = Eigen::MatrixXd::Zero(m + 1, m + 1);
+            block.topLeftCorner(m, m) = system.block(first, first, m, m);
+            block.col(m).head(m).setOnes();
+            block.row(m).head(m).setConstant(2.0 * pi / static_cast<double>(m));
+            local_.emplace_back(block);
+            unit_[c] = local_.back().solve(Eigen::VectorXd::Unit(m + 1, m));
+        }
+        // G_cd: the mean over curve c of S applied to curve d's equilibrium density.
+        Eigen::MatrixXd coupling = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(curves),
+                                                         static_cast<Eigen::Index>(curves));
+        parallel_for(curves, [&](std::size_t c) {
+            const auto m = static_cast<Eigen::Index>(s.count(c));
+            const auto first = static_cast<Eigen::Index>(s.offsets[c]);
+            for (std::size_t d = 0; d < curves; ++d) {
+                if (d == c || sample_group[s.offsets[d]] != sample_group[s.offsets[c]]) continue;
+                const auto md = static_cast<Eigen::Index>(s.count(d));
+                const auto first_d = static_cast<Eigen::Index>(s.offsets[d]);
+                coupling(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(d)) =
+                    (system.block(first, first_d, m, md) * unit_[d].head(md)).mean();
+            }
+        });
+        // The charges' system: b_c Q_c − Σ_d G_cd Q_d − C_g = −a_c for each curve (a_c + b_c Q_c
+        // the constant its own system gives it), Σ_{c in g} Q_c = r_g for each group.
+        const auto k = static_cast<Eigen::Index>(curves + groups);
+        Eigen::MatrixXd charges = -coupling;
+        charges.conservativeResize(k, k);
+        charges.rightCols(k - static_cast<Eigen::Index>(curves)).setZero();
+        charges.bottomRows(k - static_cast<Eigen::Index>(curves)).setZero();
+        for (std::size_t c = 0; c < curves; ++c) {
+            const auto ci = static_cast<Eigen::Index>(c);
+            const auto g = static_cast<Eigen::Index>(curves + sample_group[s.offsets[c]]);
+            charges(ci, ci) = unit_[c](unit_[c].size() - 1);
+            charges(ci, g) = -1.0;
+            charges(g, ci) = 1.0;
+        }
+        charges_.compute(charges);
+    }
+
+    template <class Rhs>
+    Eigen::VectorXd solve(const Rhs& r) const {
+        const std::size_t curves = local_.size();
+        Eigen::VectorXd out(r.size());
+        Eigen::VectorXd rhs(static_cast<Eigen::Index>(curves + groups_));
+        std::vector<Eigen::VectorXd> own(curves);
+        for (std::size_t c = 0; c < curves; ++c) {
+            const auto m = static_cast<Eigen::Index>(offsets_[c + 1] - offsets_[c]);
+            Eigen::VectorXd b(m + 1);
+            b.head(m) = r.segment(static_cast<Eigen::Index>(offsets_[c]), m);
+            b(m) = 0.0;
+            own[c] = local_[c].solve(b);
+            rhs(static_cast<Eigen::Index>(c)) = -own[c](m);
+        }
+        for (std::size_t g = 0; g < groups_; ++g)
+            rhs(static_cast<Eigen::Index>(curves + g)) = r(static_cast<Eigen::Index>(n_ + g));
+        const Eigen::VectorXd q = charges_.solve(rhs);
+        for (std::size_t c = 0; c < curves; ++c) {
+            const auto m = static_cast<Eigen::Index>(offsets_[c + 1] - offsets_[c]);
+            out.segment(static_cast<Eigen::Index>(offsets_[c]), m) =
+                own[c].head(m) + q(static_cast<Eigen::Index>(c)) * unit_[c].head(m);
+        }
+        for (std::size_t g = 0; g < groups_; ++g)
+            out(static_cast<Eigen::Index>(n_ + g)) = q(static_cast<Eigen::Index>(curves + g));
+        return out;
+    }
+
+private:
+    std::vector<std::size_t> offsets_;
+    std::size_t groups_ = 1, n_ = 0;
+    std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> local_;
+    std::vector<Eigen::VectorXd>
+        unit_;  // each curve's response to a unit charge, its constant last
+    Eigen::PartialPivLU<Eigen::MatrixXd> charges_;
+};
+
+}  // namespace
+
 /// The system's matrix and its factorisation (LU) or its iterative solver (GMRES).
 struct SingleLayerSystem::Factored {
     Eigen::MatrixXd matrix;
     std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
-    std::optional<Eigen::GMRES<Eigen::MatrixXd, Eigen::DiagonalPreconditioner<double>>> gmres;
+    std::optional<Eigen::GMRES<Eigen::MatrixXd, CurveBlockPreconditioner>> gmres;
 };
 
 SingleLayerSystem::SingleLayerSystem(const SmoothCurves& s, std::span<const std::size_t> group)
@@ -356,6 +469,7 @@ SingleLayerSystem::SingleLayerSystem(const SmoothCurves& s, std::span<const std:
         factored_->lu.emplace(system);
     } else {
         factored_->gmres.emplace(system);
+        factored_->gmres->preconditioner().set_up(system, s, sample_group, groups);
         factored_->gmres->set_restart(300);
         factored_->gmres->setTolerance(1e-13);
         factored_->gmres->setMaxIterations(3000);
