@@ -87,13 +87,12 @@ void MullinsSekerka::limit_vanishing(const SmoothCurves& s, const SingleLayerSys
     // A curve whose rate of area dA_c/dt = ∫_c V ds would, held for the step, move a circle of its
     // area inward by more than its radius (−k dA_c/dt > 2A_c) vanishes within the step; held for
     // the whole step, its rate would hand the others far more than it has, and its own shape, a
-    // speck of a few cells, is no longer resolved. It is moved inward at one speed, by three
-    // times the radius of a circle of its area: the corrector averages that with the predicted
-    // curves' velocity, where the particle is gone, so the step ends with it vanished, not a speck
-    // that lingers. The others receive the flux that goes with it: its boundary value is shifted
-    // by a constant β_c (the potential is linear in its boundary values: V + Σ β_c W_c, W_c the
-    // response to 1 on curve c) until its rate is that one; the area the others gain beyond its
-    // area goes back by the step's area correction.
+    // speck of a few cells, is no longer resolved. The others receive what it has, A_c over the
+    // step: its boundary value is shifted by a constant β_c (the potential is linear in its
+    // boundary values: V + Σ β_c W_c, W_c the response to 1 on curve c) until its rate is
+    // −A_c/k. Its own curve is then moved inward at one speed, by three times the radius of a
+    // circle of its area: the corrector averages that with the predicted curves' velocity, where
+    // the particle is gone, so the step ends with it vanished, not a speck that lingers.
     const std::vector<double> area = enclosed_areas(s), rate = curve_integrals(s, v);
     std::vector<std::size_t> vanishing;
     for (std::size_t c = 0; c < s.curve_count(); ++c)
@@ -109,13 +108,14 @@ void MullinsSekerka::limit_vanishing(const SmoothCurves& s, const SingleLayerSys
         w.push_back(flux_jump(s, u.density));
         w_rates.push_back(curve_integrals(s, w.back()));
     }
-    // Σ_c β_c ∫_{c'} W_c ds = target_{c'} − ∫_{c'} V ds for each vanishing c', the target rate
-    // 2π(3R)R/k = 6A/k inward.
+    // Σ_c β_c ∫_{c'} W_c ds = −A_{c'}/k − ∫_{c'} V ds for each vanishing c'; its own speed then
+    // moves it inward at 2π(3R)R/k = 6A/k.
+    auto given = [&](std::size_t c) { return -area[c] / k; };
     auto target = [&](std::size_t c) { return -6.0 * area[c] / k; };
     const std::size_t n = vanishing.size();
     std::vector<double> a(n * n), b(n);
     for (std::size_t i = 0; i < n; ++i) {
-        b[i] = target(vanishing[i]) - rate[vanishing[i]];
+        b[i] = given(vanishing[i]) - rate[vanishing[i]];
         for (std::size_t j = 0; j < n; ++j) a[i * n + j] = w_rates[j][vanishing[i]];
     }
     const std::optional<std::vector<double>> solved = solve_dense(a, b);
