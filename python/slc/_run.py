@@ -229,7 +229,7 @@ def _law(velocity, params, geometry):
 
 def _overrides(steps=None, depth=None, refine=None, eps=None, eta=None, smoothing=None,
                extension=None, arcs=None, area_correction=None, thin_depth=None,
-               volume_drift=None, guards=None):
+               volume_drift=None, guards=None, until_components=None):
     """The settings given, as the library's RunOverrides: it checks their ranges and refuses those
     of the other dimension (ValueError naming them)."""
     o = _slc.RunOverrides()
@@ -249,6 +249,10 @@ def _overrides(steps=None, depth=None, refine=None, eps=None, eta=None, smoothin
     if guards is not None and not isinstance(guards, bool):
         raise TypeError(f"guards must be True or False, got {guards!r}")
     o.guards = guards
+    left = _integer("until_components", until_components)
+    if left is not None and left < 1:
+        raise ValueError(f"until_components must be 1 or more, got {until_components}")
+    o.until_components = left
     return o
 
 
@@ -313,7 +317,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
         params: dict[str, float] | None = None, geometry: str | None = None,
         extension: str | None = None, arcs: bool | None = None,
         area_correction: bool | None = None, thin_depth: int | None = None,
-        volume_drift: float | None = None, guards: bool | None = None, frames: int = 0,
+        volume_drift: float | None = None, guards: bool | None = None,
+        until_components: int | None = None, frames: int = 0,
         observer: Callable[[Step], Any] | None = None, threads: int | None = None,
         estimate: bool = False, **law_params: float) -> RunResult:
     """Moves curves from interface.time to t_end, as ``slc run --initial`` does, or runs a named
@@ -328,6 +333,9 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     guards=False (as ``--no-guards``, curves and surfaces) takes every step whole and goes on to the
     end even when one breaks what the law keeps, to see what a coarse run gives: the result's
     status is then "broken", its message names the first break, and a UserWarning says so.
+    until_components (as ``--until-components``) ends the run, status "ok", once at most that many
+    components are left (particles: outer curves; a surface's connected components), t_end then
+    the latest time.
 
     velocity: a built-in law's name (``velocities()``; its parameters as keywords,
     ``run(I, "rotation", 1.0, omega=2)``, or in params), a FlowField, a
@@ -354,7 +362,7 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     there is none).
     """
     options = _overrides(steps, depth, refine, eps, eta, smoothing, extension, arcs,
-                         area_correction, thin_depth, volume_drift, guards)
+                         area_correction, thin_depth, volume_drift, guards, until_components)
     params = _law_params(velocity, params, law_params)
     threads = _threads(threads)
     if isinstance(interface, (Surface, SurfaceProblem)):

@@ -211,7 +211,8 @@ void add_run_functions(py::module_& m) {
         .def_readwrite("area_correction", &RunOverrides::area_correction)
         .def_readwrite("thin_depth", &RunOverrides::thin_depth)
         .def_readwrite("volume_drift", &RunOverrides::volume_drift)
-        .def_readwrite("guards", &RunOverrides::guards);
+        .def_readwrite("guards", &RunOverrides::guards)
+        .def_readwrite("until_components", &RunOverrides::until_components);
     py::class_<Problem>(m, "Problem")
         .def_readonly("name", &Problem::name)
         .def_readonly("description", &Problem::description)

@@ -387,6 +387,13 @@ def test_mullins_sekerka_keeps_the_area_and_the_small_of_two_circles_vanishes():
     assert h["components"][0] == 2 and h["components"][-1] == 1
     assert np.abs(h["area"] / h["area"][0] - 1).max() < 1e-12
     assert (np.diff(h["length"]) <= 1e-12).all()
+    # Asked to stop when one is left: the same steps up to the vanishing, then the end.
+    until = slc.run(slc.Interface(two), "mullins-sekerka", 0.08, steps=64, until_components=1)
+    vanished = int(np.argmax(h["components"] == 1))
+    assert until.status == "ok" and "1 components left" in until.summary["message"]
+    assert len(until.history["t"]) == vanished + 1 and until.history["t"][-1] < 0.08
+    with pytest.raises(ValueError, match="until_components must be 1 or more"):
+        slc.run(slc.Interface(two), "mullins-sekerka", 0.08, until_components=0)
     with pytest.raises(ValueError, match="sigma must be positive"):
         slc.run(slc.Interface(two), "mullins-sekerka", 0.08, params={"sigma": -1})
 

@@ -109,6 +109,7 @@ Checker apply_shared(const RunOverrides& q, SettingNames names, int dim, Options
     if (q.tree_depth) o.step.tree_depth = *q.tree_depth;
     if (q.thin_depth) o.step.contour.thin_depth = *q.thin_depth;
     if (q.guards) o.guards = *q.guards;
+    if (q.until_components) o.stop_components = *q.until_components;
     return check;
 }
 

@@ -55,6 +55,12 @@ public:
     static Interface& shape(RunResult& r) { return r.curves; }
     static const Interface& shape(const RunResult& r) { return r.curves; }
     static Interface& shape(StepResult& s) { return s.curves; }
+    /// Its particles: the counterclockwise curves.
+    static std::size_t components(const Interface& c) {
+        std::size_t outer = 0;
+        for (std::size_t j = 0; j < c.curve_count(); ++j) outer += signed_area(c.curve(j)) > 0;
+        return outer;
+    }
 
     /// The step's options in the domain doubled j times: K and the embedded module's mesh M a
     /// level finer, the same finest cell.

@@ -40,6 +40,7 @@ public:
     static Surface& shape(SurfaceRunResult& r) { return r.surface; }
     static const Surface& shape(const SurfaceRunResult& r) { return r.surface; }
     static Surface& shape(SurfaceStepResult& s) { return s.surface; }
+    static std::size_t components(const Surface& s) { return component_count(s); }
 
     /// The step's options in the domain doubled j times: K a level deeper, the same finest cell.
     static SurfaceStepOptions step_options(const SurfaceRunOptions& options, int j) {

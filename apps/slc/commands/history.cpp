@@ -4,7 +4,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
+#include <functional>
 #include <string_view>
 #include <system_error>
 
@@ -21,16 +23,16 @@ bool parse_number(std::string_view field, double& value) {
     return ec == std::errc{} && end == field.data() + field.size();
 }
 
-/// t, area and length of a line of history.csv, its first three fields; false unless the line
-/// is six numbers separated by commas.
-bool parse_level(std::string_view line, double (&numbers)[3]) {
+/// t, area, length and components of a line of history.csv, its first four fields; false unless
+/// the line is six numbers separated by commas.
+bool parse_level(std::string_view line, double (&numbers)[4]) {
     std::size_t fields = 0;
     std::size_t start = 0;
     while (true) {
         const std::size_t comma = line.find(',', start);
         double value = 0.0;
         if (!parse_number(line.substr(start, comma - start), value)) return false;
-        if (fields < 3) numbers[fields] = value;
+        if (fields < 4) numbers[fields] = value;
         ++fields;
         if (comma == std::string_view::npos) return fields == 6;
         start = comma + 1;
@@ -42,10 +44,12 @@ bool parse_level(std::string_view line, double (&numbers)[3]) {
 History::History(std::filesystem::path dir)
     : dir_(std::move(dir)), csv_(fmt::format("{}\n", header)) {}
 
-void History::record(double t, double area, double length, std::string_view line) {
+void History::record(double t, double area, double length, double components,
+                     std::string_view line) {
     t_.push_back(t);
     area_.push_back(area);
     length_.push_back(length);
+    components_.push_back(components);
     csv_ += line;
 }
 
@@ -55,7 +59,7 @@ void History::add(double t, const Interface& curves, double cpu_s) {
     const double a = area(curves);
     const double l = length(curves);
     // {} is the shortest form that reads back to the same double.
-    record(t, a, l,
+    record(t, a, l, static_cast<double>(curves.curve_count()),
            fmt::format("{},{},{},{},{},{}\n", t, a, l, curves.curve_count(), curves.size(), cpu_s));
 }
 
@@ -77,11 +81,12 @@ void History::resume(int steps_done, double t, const std::filesystem::path& path
                 fmt::format("the checkpoint after step {} needs {} time levels, the file has {}",
                             steps_done, levels, t_.size()));
         }
-        double numbers[3];
+        double numbers[4];
         if (!parse_level(std::string_view(text).substr(at, end - at), numbers)) {
             throw fail(fmt::format("line {} is not six comma-separated numbers", t_.size() + 2));
         }
-        record(numbers[0], numbers[1], numbers[2], std::string_view(text).substr(at, end + 1 - at));
+        record(numbers[0], numbers[1], numbers[2], numbers[3],
+               std::string_view(text).substr(at, end + 1 - at));
         at = end + 1;
     }
     if (t_.back() != t) {
@@ -93,9 +98,16 @@ void History::resume(int steps_done, double t, const std::filesystem::path& path
 void History::save_csv() const { write_file_atomic(csv_path(), csv_); }
 
 void History::save_plot(const std::string& name) const {
-    LinePlot plot{.title = fmt::format("{}: area and length", name), .x_name = "t", .panels = {}};
+    const bool counted = std::adjacent_find(components_.begin(), components_.end(),
+                                            std::not_equal_to<>()) != components_.end();
+    LinePlot plot{.title = fmt::format("{}: area{} length{}", name, counted ? "," : " and",
+                                       counted ? " and curves" : ""),
+                  .x_name = "t",
+                  .panels = {}};
     plot.panels.push_back({"area", {{t_, area_, palette_color(0)}}});
     plot.panels.push_back({"length", {{t_, length_, palette_color(1)}}});
+    // The number of curves when it changed (particles coarsening, bubbles merging).
+    if (counted) plot.panels.push_back({"curves", {{t_, components_, palette_color(2)}}});
     slc::save_plot(plot, dir_ / "history.png");
 }
 

@@ -1,6 +1,7 @@
 // The history of `slc run`: DIR/history.csv, one line per time level (the initial interface and
 // the interface after every step) with its area, length, components, segments and the CPU seconds
-// of the step that made it, and DIR/history.png, area and length against t.
+// of the step that made it, and DIR/history.png, area and length against t, and the number of
+// curves when it changed.
 #pragma once
 
 #include <filesystem>
@@ -38,17 +39,19 @@ public:
 
     /// Writes DIR/history.csv, every time level so far, atomically. Cost O(levels).
     void save_csv() const;
-    /// Draws area and length against t, titled "NAME: area and length", to DIR/history.png.
+    /// Draws area and length against t, and the number of curves when it changed, titled "NAME:
+    /// area and length" (or "area, length and curves"), to DIR/history.png.
     void save_plot(const std::string& name) const;
 
 private:
-    void record(double t, double area, double length, std::string_view line);
+    void record(double t, double area, double length, double components, std::string_view line);
 
     std::filesystem::path dir_;
     std::string csv_;  ///< history.csv: the header and a line per time level
     std::vector<double> t_;
     std::vector<double> area_;
     std::vector<double> length_;
+    std::vector<double> components_;
 };
 
 }  // namespace slc::cli

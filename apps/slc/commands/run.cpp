@@ -76,6 +76,7 @@ struct RunCommand {
     bool estimate = false;
     std::optional<double> volume_drift;
     bool no_guards = false;
+    std::optional<int> until_components;
     bool vdb = false;
     std::optional<double> vdb_voxel;
 };
@@ -183,6 +184,7 @@ RunOverrides run_settings(const RunCommand& o) {
     RunOverrides q = overrides_of(o.method);
     q.volume_drift = o.volume_drift;
     if (o.no_guards) q.guards = false;
+    if (o.until_components) q.until_components = static_cast<std::size_t>(*o.until_components);
     return q;
 }
 
@@ -365,6 +367,11 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
                   "keeps (a part thinner than the contours tears, the area or volume drifts), to "
                   "see what a coarse run gives; the run then ends with status broken, exit "
                   "status 0, and the first break in summary.json's message");
+    cmd->add_option("--until-components", o->until_components,
+                    "End the run, status ok, once at most this many components are left "
+                    "(particles: outer curves; a surface's connected components); --t-end is then "
+                    "the latest time")
+        ->check(integer_in(1, 100000000));
     cmd->add_flag("--vdb", o->vdb,
                   "For a surface: also write the final surface as DIR/final.vdb, an OpenVDB "
                   "narrow-band level set (FloatGrid 'surface', half-width 3 voxels) holding the "

@@ -95,6 +95,8 @@ struct RunOverrides {
     /// SurfaceContourOptions::thin_depth); unset: the problem's, or default_thin_depth for a
     /// user's shape.
     std::optional<int> thin_depth = std::nullopt;
+    /// RunOptions::stop_components, SurfaceRunOptions::stop_components.
+    std::optional<std::size_t> until_components = std::nullopt;
     // Surfaces only.
     std::optional<double> volume_drift = std::nullopt;  ///< SurfaceRunOptions::volume_drift
     std::optional<bool> guards = std::nullopt;  ///< RunOptions::guards, SurfaceRunOptions::guards

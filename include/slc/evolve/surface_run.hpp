@@ -28,6 +28,10 @@ struct SurfaceRunOptions {
     /// message the first break (a coarse run whose sheet tears, measured anyway).
     bool guards = true;
     int max_substep_halvings = 4;  ///< see guards
+    /// End the run, status ok, once it has at most this many components (0: run to t_end): a
+    /// coarsening run "until 10 particles are left". Curves count their outer curves (a hole is
+    /// not a particle), a surface its connected components.
+    std::size_t stop_components = 0;
     /// With guards, under a law that keeps the volume: the run ends unstable once the volume has
     /// drifted from the start's by more than this fraction (steps each within their budget may
     /// otherwise add up: a sheet thinner than the contours resolve loses volume step after

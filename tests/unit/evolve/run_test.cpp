@@ -127,6 +127,26 @@ TEST(Run, ReportsEachStepsCpuTimeWithinTheRunsTotal) {
     EXPECT_LE(sum, r.cpu_s);
 }
 
+TEST(Run, EndsWhenNoMoreComponentsThanAskedAreLeft) {
+    // Two circles shrinking at unit speed: the one of radius 0.22 vanishes at t = 0.22, within
+    // step 5 (k = 0.05); asked to stop at one component the run ends there, status ok, not at 0.45.
+    const Interface two(std::vector<std::vector<Vec2>>{shapes::circle({-0.8, 0.0}, 0.22, 64),
+                                                       shapes::circle({0.6, 0.0}, 0.6, 128)});
+    RunOptions o;
+    o.t_end = 0.45;
+    o.steps = 9;
+    o.step.contour.depth = 6;
+    o.stop_components = 1;
+    const RunResult r = run(two, NormalSpeed(-1.0), Box::centered_square(2.0), o);
+    ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+    EXPECT_EQ(r.steps_done, 5);
+    EXPECT_NEAR(r.t, 0.25, 1e-12);
+    EXPECT_EQ(r.curves.curve_count(), 1u);
+    EXPECT_NE(r.message.find("1 components left"), std::string::npos) << r.message;
+    o.stop_components = 0;
+    EXPECT_EQ(run(two, NormalSpeed(-1.0), Box::centered_square(2.0), o).steps_done, 9);
+}
+
 TEST(Run, EndsWithAnErrorWhenTheCurvesLeaveTheLawsExtent) {
     // u = (1, 0) on the lattice [−1, 1]²: a circle of radius 0.2 about (0.5, 0) reaches x = 1
     // at t = 0.3, between steps 2 and 3 of 0.125.

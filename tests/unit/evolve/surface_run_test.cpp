@@ -105,6 +105,15 @@ TEST(SurfaceRun, ResumeContinuesBitForBit) {
     EXPECT_THROW(resume(shifted, SurfaceRotation(), domain, o), InvalidInput);
 }
 
+TEST(SurfaceRun, EndsWhenNoMoreComponentsThanAskedAreLeft) {
+    SurfaceRunOptions o = coarse(1.0, 4);
+    o.stop_components = 1;  // one sphere: after the first step
+    const SurfaceRunResult r = run(sphere({0.2, 0.0, 0.0}, 0.3, 3), SurfaceRotation(), domain, o);
+    ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+    EXPECT_EQ(r.steps_done, 1);
+    EXPECT_NE(r.message.find("1 components left"), std::string::npos) << r.message;
+}
+
 TEST(SurfaceRun, SphereVanishesUnderMeanCurvature) {
     // R0 = 0.3 vanishes at t = 0.09/4 = 0.0225. The observer sees every step, the one that
     // vanished too (as for curves): its history ends with the empty surface.
