@@ -398,6 +398,17 @@ def test_mullins_sekerka_keeps_the_area_and_the_small_of_two_circles_vanishes():
         slc.run(slc.Interface(two), "mullins-sekerka", 0.08, params={"sigma": -1})
 
 
+def test_the_coarsening_problem_runs_until_as_many_particles_as_asked_are_left():
+    p = slc.problem("coarsening", count=20, left=10)
+    r = slc.run(p)
+    h = r.history
+    assert r.status == "ok" and len(r.interface.curves) == 10 and h["t"][-1] < 0.005
+    assert h["components"][0] == 20 and (np.diff(h["components"]) <= 0).all()
+    assert np.abs(h["area"] / h["area"][0] - 1).max() < 1e-12
+    with pytest.raises(ValueError, match="left must be a whole number"):
+        slc.problem("coarsening", count=20, left=20)
+
+
 def test_hele_shaw_with_a_source_grows_at_the_injection_rate():
     # A drop of radius 0.5 fed at q = 1 off its centre: A(t) = A(0) + q t.
     r = slc.run(slc.Interface(circle(0.5, 256)), "hele-shaw", 0.2, steps=16,

@@ -86,6 +86,9 @@ struct Problem {
     bool check_start = false;
     /// RunOptions::max_domain_doublings: 0 (the paper's fixed box) for a named problem.
     int max_domain_doublings = 0;
+    /// RunOptions::stop_components: the coarsening problem ends when this many particles are
+    /// left; 0, run to t_end.
+    std::size_t stop_components = 0;
     std::vector<ProblemParameter> parameters;  ///< the problem's own parameters, in use
     StudyPlan study;                           ///< the settings of `slc study`
     /// The exact signed distance to Γ(t) at points, when known at time t (else nullopt).
@@ -98,7 +101,8 @@ struct ProblemInfo {
     std::string summary;  ///< one line
 };
 /// Every named problem, in a fixed order: propeller-rotation, triangle-normal, merging-circles,
-/// wulff, circle-curvature, polygon-curvature, spiral-nonlocal, bubbles-nonlocal, zalesak, vortex.
+/// wulff, circle-curvature, polygon-curvature, spiral-nonlocal, bubbles-nonlocal, coarsening,
+/// zalesak, vortex.
 const std::vector<ProblemInfo>& problem_catalog();
 
 /// The problem `name` with parameters set from params: keys naming a problem parameter set it,

@@ -1,0 +1,89 @@
+#!/usr/bin/env python3
+"""The coarsening problem (100 particles under two-phase Mullins-Sekerka until 10 are left) by the
+tool, and what it measures: the number of particles against time, the total area's drift, and the
+mean radius cubed against time in the late stage (from half the particles on), whose slope the
+LSW law says is constant. Writes the table into the region `coarsening` of
+docs/algorithms/potential.md and the run's frames and history into docs/figures/."""
+import argparse
+import csv
+import math
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+
+def write_region(path, name, lines):
+    begin, end = f"<!-- begin {name} -->", f"<!-- end {name} -->"
+    text = Path(path).read_text()
+    if begin not in text or end not in text:
+        sys.exit(f"{path} has no region '{name}' ({begin} ... {end})")
+    head, rest = text.split(begin, 1)
+    Path(path).write_text(head + "\n".join([begin] + lines + [end]) + rest.split(end, 1)[1])
+
+
+def fit(xs, ys):
+    """Least squares y = a + b x: b and the correlation r."""
+    n = len(xs)
+    mx, my = sum(xs) / n, sum(ys) / n
+    sxx = sum((x - mx) ** 2 for x in xs)
+    syy = sum((y - my) ** 2 for y in ys)
+    sxy = sum((x - mx) * (y - my) for x, y in zip(xs, ys))
+    return sxy / sxx, sxy / math.sqrt(sxx * syy)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--slc", required=True)
+    ap.add_argument("--doc", required=True, help="the page holding the region `coarsening`")
+    ap.add_argument("--figures", required=True, help="folder for coarsening_*.png")
+    ap.add_argument("--work", default="out/coarsening")
+    a = ap.parse_args()
+    write_region(a.doc, "coarsening", ["(measuring)"])  # the region exists before the hour's run
+    subprocess.run([a.slc, "run", "--problem", "coarsening", "--frames", "100", "--quiet",
+                    "--out", a.work], check=True)
+    with open(Path(a.work) / "history.csv") as f:
+        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    t = [r["t"] for r in rows]
+    n = [int(r["components"]) for r in rows]
+    area = [r["area"] for r in rows]
+    cpu = sum(r["cpu_s"] for r in rows)
+    drift = max(abs(x / area[0] - 1) for x in area)
+    cubed = [(x / (math.pi * c)) ** 1.5 for x, c in zip(area, n)]
+    late = [i for i in range(len(rows)) if n[i] <= n[0] // 2]
+    slope, r = fit([t[i] for i in late], [cubed[i] for i in late])
+    halves = [len(late) // 2, len(late) - len(late) // 2]
+    first = fit([t[i] for i in late[:halves[0]]], [cubed[i] for i in late[:halves[0]]])[0]
+    second = fit([t[i] for i in late[halves[0]:]], [cubed[i] for i in late[halves[0]:]])[0]
+    marks = []
+    for target in (100, 75, 50, 35, 25, 20, 15, 10):
+        hit = next((i for i in range(len(rows)) if n[i] <= target), None)
+        if hit is not None:
+            marks.append(f"| {n[hit]} | {t[hit]:.3g} | {cubed[hit]:.3g} |")
+    lines = [
+        f"`slc run --problem coarsening` ({n[0]} particles, {len(rows) - 1} steps of "
+        f"{t[1] - t[0]:.3g}, {cpu:.0f} s CPU), written by `bench/coarsening.py`:",
+        "",
+        "| particles | t | mean radius³ |",
+        "|---|---|---|",
+        *marks,
+        "",
+        f"- The total area drifted by at most {drift:.1e} of its start.",
+        f"- Late stage ({n[late[0]]} particles down to {n[-1]}, {len(late)} time levels): mean "
+        f"radius cubed against t has slope {slope:.3g} (correlation {r:.4f}); {first:.3g} over its "
+        f"first half and {second:.3g} over its second (the LSW law: one constant slope).",
+    ]
+    write_region(a.doc, "coarsening", lines)
+    figures = Path(a.figures)
+    # Four panels: the start, when half and a quarter of the particles are left, and the end.
+    panel_times = [t[0]] + [t[next(i for i in range(len(rows)) if n[i] <= n[0] // d)] for d in (2, 4)]
+    panel_times.append(t[-1])
+    subprocess.run([a.slc, "render", "--frames", str(Path(a.work) / "frames"), "--columns", "4",
+                    "--times", ",".join(f"{x:.17g}" for x in panel_times), "--domain", "1",
+                    "--title", f"coarsening: {n[0]} particles to {n[-1]}",
+                    "--out", str(figures / "coarsening_frames.png")], check=True)
+    shutil.copy(Path(a.work) / "history.png", figures / "coarsening_history.png")
+
+
+if __name__ == "__main__":
+    main()
