@@ -6,6 +6,7 @@ LSW law says is constant. Writes the table into the region `coarsening` of
 docs/algorithms/potential.md and the run's frames and history into docs/figures/."""
 import argparse
 import csv
+import json
 import math
 import shutil
 import subprocess
@@ -40,8 +41,10 @@ def main():
     ap.add_argument("--work", default="out/coarsening")
     a = ap.parse_args()
     write_region(a.doc, "coarsening", ["(measuring)"])  # the region exists before the hour's run
+    # A run that ends unstable (exit status 3) is measured as far as it went, and says so.
     subprocess.run([a.slc, "run", "--problem", "coarsening", "--frames", "100", "--quiet",
-                    "--out", a.work], check=True)
+                    "--out", a.work], check=False)
+    summary = json.loads((Path(a.work) / "summary.json").read_text())
     with open(Path(a.work) / "history.csv") as f:
         rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
     t = [r["t"] for r in rows]
@@ -51,18 +54,22 @@ def main():
     drift = max(abs(x / area[0] - 1) for x in area)
     cubed = [(x / (math.pi * c)) ** 1.5 for x, c in zip(area, n)]
     late = [i for i in range(len(rows)) if n[i] <= n[0] // 2]
+    if len(late) < 4:
+        sys.exit(f"the run ended with {n[-1]} particles, before its late stage")
     slope, r = fit([t[i] for i in late], [cubed[i] for i in late])
     halves = [len(late) // 2, len(late) - len(late) // 2]
     first = fit([t[i] for i in late[:halves[0]]], [cubed[i] for i in late[:halves[0]]])[0]
     second = fit([t[i] for i in late[halves[0]:]], [cubed[i] for i in late[halves[0]:]])[0]
     marks = []
-    for target in (100, 75, 50, 35, 25, 20, 15, 10):
+    for target in (100, 75, 50, 35, 25, 20, 15, 10):  # the first time level at or below each
         hit = next((i for i in range(len(rows)) if n[i] <= target), None)
         if hit is not None:
             marks.append(f"| {n[hit]} | {t[hit]:.3g} | {cubed[hit]:.3g} |")
+    ended = "" if summary["status"] == "ok" else (
+        f" It ended **{summary['status']}** at t = {summary['t']:.3g}: {summary['message']}")
     lines = [
         f"`slc run --problem coarsening` ({n[0]} particles, {len(rows) - 1} steps of "
-        f"{t[1] - t[0]:.3g}, {cpu:.0f} s CPU), written by `bench/coarsening.py`:",
+        f"{t[1] - t[0]:.3g}, {cpu:.0f} s CPU), written by `bench/coarsening.py`.{ended}",
         "",
         "| particles | t | mean radius³ |",
         "|---|---|---|",

@@ -219,12 +219,17 @@ std::optional<BudgetBreach> LoopHooks<2>::run_budget(Attempt& a, const Interface
         // a.m0: the last sub-step's measures.
         if (const auto growth = growth_above_least(r.least_length, a.m0.length, t_next,
                                                    b.run_length_growth, b.eps_lengths * eps_)) {
+            // A law that fits its own smooth curves (the potential laws) has no geometry module
+            // to change.
+            const char* remedy = law_.needs().smooth
+                                     ? "raise the steps N or the depth K"
+                                     : "raise the steps N (or the smoothing S of the embedded "
+                                       "module), or use --geometry arclength";
             return BudgetBreach{fmt::format(
                 "by t = {:.6g}: the length has grown by {:.3g}% since t = {:.6g} under a law "
                 "that shortens the curves, more than the run's {:g}%: the steps roughen the "
-                "curves; raise the steps N (or the smoothing S of the embedded module), or "
-                "use --geometry arclength",
-                t_next, 100.0 * *growth, r.least_length.t, 100.0 * b.run_length_growth)};
+                "curves; {}",
+                t_next, 100.0 * *growth, r.least_length.t, 100.0 * b.run_length_growth, remedy)};
         }
     }
     if (invariants_.rigid && !curves.empty()) {

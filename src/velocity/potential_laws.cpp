@@ -14,15 +14,12 @@
 namespace slc {
 namespace {
 
-/// At most this fraction of a mode's amplitude is moved by the filtered speed in a step.
-constexpr double stiff_reach = 0.5;
-
-/// Multiplies mode ξ of the samples of curve c by (1 + (kλ/g)⁴)^(−1/4), kλ = k_rate ξ³ and
-/// g = stiff_reach: the filter of the stiff modes (docs/algorithms/potential.md).
+/// Multiplies mode ξ of the samples of curve c by 1/(1 + (kλ)²), kλ = k_rate ξ³: the filter of the
+/// stiff modes (docs/algorithms/potential.md).
 void filter_stiff_modes(const SmoothCurves& s, std::size_t c, std::span<double> v, double k_rate) {
     filter_modes(s, c, v, [&](double xi) {
-        const double x = k_rate * xi * xi * xi / stiff_reach;
-        return 1.0 / std::sqrt(std::sqrt(1.0 + x * x * x * x));
+        const double g = k_rate * xi * xi * xi;
+        return 1.0 / (1.0 + g * g);
     });
 }
 
