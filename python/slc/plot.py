@@ -1,5 +1,6 @@
-"""Pictures with matplotlib: curves, a run's frames, a run's history (area and length against t);
-surfaces shaded in 3D axes, and their history (volume and area against t)."""
+"""Pictures with matplotlib: curves, a run's frames, a run's history (area, length and, when it
+changed, the number of curves against t); surfaces shaded in 3D axes, and their history (volume
+and area against t)."""
 
 from __future__ import annotations
 
@@ -45,7 +46,11 @@ def _draw_history(axes, history: dict[str, np.ndarray]) -> None:
     if len(axes) > 1:
         axes[1].plot(t, history[second], marker=".", color="C1")
         axes[1].set_ylabel(second)
+    if len(axes) > 2:
+        axes[2].step(t, history["components"], where="post", color="C2")
+        axes[2].set_ylabel("curves" if "length" in history else "components")
     axes[-1].set_xlabel("t")
+    axes[-1].ticklabel_format(axis="x", style="sci", scilimits=(-2, 3))  # no 0.000125 crowding
     for a in axes:
         a.grid(True, alpha=0.3)
 
@@ -106,8 +111,9 @@ def plot(obj, ax=None, *, cmap: str = "viridis", **style) -> Any:
       to ``ax.plot`` (color, linewidth, label, ...);
     - a RunResult: its frames coloured by time (cmap), or its final curves when it kept none;
     - a list of (t, Interface) frames: the same;
-    - a history dict (``RunResult.history``): area and length against t on two axes (ax may be
-      a pair of axes; a single ax gets the area alone); a surface's history: volume and area;
+    - a history dict (``RunResult.history``): area and length against t on two axes, and the
+      number of curves on a third when it changed (ax may be two or three axes; a single ax gets
+      the area alone); a surface's history: volume and area (and its components);
     - a Surface, a SurfaceProblem's initial surface or a SurfaceRunResult's final one: shaded
       triangles on 3D axes (ax must be 3D: ``projection="3d"``); ``color`` sets the colour. New
       axes look from azimuth 35°, elevation 25° about the up axis the surface's extents suggest,
@@ -128,7 +134,11 @@ def plot(obj, ax=None, *, cmap: str = "viridis", **style) -> Any:
         return ax
     if isinstance(obj, dict) and "t" in obj and "area" in obj:
         if ax is None:
-            _, axes = plt.subplots(2, 1, sharex=True, figsize=(6, 5))
+            # The number of curves (or components) too when it changed, as history.png does.
+            counts = obj.get("components")
+            changed = counts is not None and len(np.unique(counts)) > 1
+            rows = 3 if changed else 2
+            _, axes = plt.subplots(rows, 1, sharex=True, figsize=(6, 2.5 * rows))
         else:
             axes = list(ax) if np.iterable(ax) else [ax]
         _draw_history(list(axes), obj)

@@ -405,6 +405,11 @@ def test_the_coarsening_problem_runs_until_as_many_particles_as_asked_are_left()
     assert r.status == "ok" and len(r.interface.curves) == 10 and h["t"][-1] < 0.005
     assert h["components"][0] == 20 and (np.diff(h["components"]) <= 0).all()
     assert np.abs(h["area"] / h["area"][0] - 1).max() < 1e-12
+    import matplotlib
+    matplotlib.use("Agg")
+    axes = slc.plot(h)  # the particles' count on a third axis, as history.png
+    assert len(axes) == 3 and axes[2].get_ylabel() == "curves"
+    assert len(slc.plot(slc.run(slc.Interface([circle(0.5, 64)]), "curvature", 0.01).history)) == 2
     with pytest.raises(ValueError, match="left must be a whole number"):
         slc.problem("coarsening", count=20, left=20)
 
