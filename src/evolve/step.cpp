@@ -414,15 +414,11 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
 
 }  // namespace
 
-namespace {
-
-/// restore_area and restore_region_areas: the curves' parts (part[c] of curve c) brought to
-/// their targets.
-AreaRestored restored_parts(const Interface& curves, std::span<const std::size_t> part,
-                            std::span<const double> target) {
+AreaRestored restore_region_areas(const Interface& curves, std::span<const std::size_t> region,
+                                  std::span<const double> target) {
     const auto areas = [&](const Interface& c) {
         std::vector<double> a(target.size(), 0.0);
-        for (std::size_t j = 0; j < c.curve_count(); ++j) a[part[j]] += signed_area(c.curve(j));
+        for (std::size_t j = 0; j < c.curve_count(); ++j) a[region[j]] += signed_area(c.curve(j));
         return a;
     };
     // Each vertex moves along the bisector of its segments' normals, by at most a quarter of the
@@ -433,11 +429,11 @@ AreaRestored restored_parts(const Interface& curves, std::span<const std::size_t
         std::vector<double> lengths(target.size(), 0.0);
         for (std::size_t i = 0; i < c.size(); ++i) {
             const Segment s = c.segment(i);
-            lengths[part[c.curve_of(i)]] += distance(s.a, s.b);
+            lengths[region[c.curve_of(i)]] += distance(s.a, s.b);
         }
         std::vector<Vec2> shift(c.size());
         for (std::size_t i = 0; i < c.size(); ++i) {
-            const std::size_t p = part[c.curve_of(i)];
+            const std::size_t p = region[c.curve_of(i)];
             const double delta = missing[p] / lengths[p];
             const Vec2 u = c.point(i) - c.point(c.prev(i));
             const Vec2 v = c.point(c.next(i)) - c.point(i);
@@ -466,6 +462,13 @@ AreaRestored restored_parts(const Interface& curves, std::span<const std::size_t
         [](const Interface& c) { return find_crossing(c); }, ends);
     return {std::move(out), added};
 }
+
+AreaRestored restore_area(const Interface& curves, double target) {
+    const std::vector<std::size_t> one(curves.curve_count(), 0);
+    return restore_region_areas(curves, one, std::span(&target, 1));
+}
+
+namespace {
 
 /// The regions of `after` matched to those of `before` (region r of after is match[r] of
 /// before): each to the one whose outer curve's mean vertex is nearest its own, when that pairs
@@ -518,16 +521,6 @@ std::optional<AreaRestored> restored_regions(const Interface& before, const Inte
 }
 
 }  // namespace
-
-AreaRestored restore_area(const Interface& curves, double target) {
-    const std::vector<std::size_t> one(curves.curve_count(), 0);
-    return restored_parts(curves, one, std::span(&target, 1));
-}
-
-AreaRestored restore_region_areas(const Interface& curves, std::span<const std::size_t> region,
-                                  std::span<const double> target) {
-    return restored_parts(curves, region, target);
-}
 
 StepResult advance(const Interface& curves, double t, double k, const VelocityLaw& law,
                    const Box& domain, const StepOptions& options) {

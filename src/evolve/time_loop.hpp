@@ -498,11 +498,13 @@ typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result&
             r.message = r.broken;
             break;
         }
-        if (options.stop_components > 0 && n < options.steps &&
-            H::components(H::shape(r)) <= options.stop_components) {
-            r.message = fmt::format("stopped at t = {:.6g}: {} components left (asked for {})", r.t,
-                                    H::components(H::shape(r)), options.stop_components);
-            break;
+        if (options.stop_components > 0 && n < options.steps) {
+            const std::size_t left = H::components(H::shape(r));
+            if (left <= options.stop_components) {
+                r.message = fmt::format("stopped at t = {:.6g}: {} components left (asked for {})",
+                                        r.t, left, options.stop_components);
+                break;
+            }
         }
         if (!go_on && n < options.steps) {
             r.status = RunStatus::interrupted;

@@ -349,10 +349,9 @@ public:
     /// for each group).
     void set_up(const Eigen::MatrixXd& system, const SmoothCurves& s,
                 std::span<const std::size_t> sample_group, std::size_t groups) {
-        const std::size_t n = s.x.size(), curves = s.curve_count();
+        const std::size_t curves = s.curve_count();
         offsets_ = s.offsets;
         groups_ = groups;
-        n_ = n;
         local_.clear();
         unit_.assign(curves, Eigen::VectorXd());
         for (std::size_t c = 0; c < curves; ++c) {
@@ -411,7 +410,8 @@ public:
             rhs(static_cast<Eigen::Index>(c)) = -own[c](m);
         }
         for (std::size_t g = 0; g < groups_; ++g)
-            rhs(static_cast<Eigen::Index>(curves + g)) = r(static_cast<Eigen::Index>(n_ + g));
+            rhs(static_cast<Eigen::Index>(curves + g)) =
+                r(static_cast<Eigen::Index>(offsets_.back() + g));
         const Eigen::VectorXd q = charges_.solve(rhs);
         for (std::size_t c = 0; c < curves; ++c) {
             const auto m = static_cast<Eigen::Index>(offsets_[c + 1] - offsets_[c]);
@@ -419,13 +419,14 @@ public:
                 own[c].head(m) + q(static_cast<Eigen::Index>(c)) * unit_[c].head(m);
         }
         for (std::size_t g = 0; g < groups_; ++g)
-            out(static_cast<Eigen::Index>(n_ + g)) = q(static_cast<Eigen::Index>(curves + g));
+            out(static_cast<Eigen::Index>(offsets_.back() + g)) =
+                q(static_cast<Eigen::Index>(curves + g));
         return out;
     }
 
 private:
     std::vector<std::size_t> offsets_;
-    std::size_t groups_ = 1, n_ = 0;
+    std::size_t groups_ = 1;
     std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> local_;
     std::vector<Eigen::VectorXd>
         unit_;  // each curve's response to a unit charge, its constant last

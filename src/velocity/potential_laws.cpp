@@ -183,7 +183,7 @@ std::vector<double> HeleShaw::normal_speeds(const Interface& curves, const Smoot
             }
         }
     }
-    const std::vector<double> f_all[] = {f};
+    const std::vector<double> f_all[] = {std::move(f)};
     const std::vector<double> mu = SingleLayerSystem(s, region).solve(f_all).front().density;
     // V = −∂p/∂N = −(K'μ + μ/2) − ∂G_s/∂N.
     const std::vector<double> kmu = adjoint_double_layer(s, mu, region);
