@@ -2,7 +2,7 @@
 """The coarsening problem (100 particles under two-phase Mullins-Sekerka until 10 are left) by the
 tool, and what it measures: the number of particles against time, the total area's drift, and the
 mean radius cubed against time in the late stage (from half the particles on), whose slope the
-LSW law says is constant. Writes the table into the region `coarsening` of
+LSW law says is constant (each particle's radius that of a circle of its area, from the frames). Writes the table into the region `coarsening` of
 docs/algorithms/potential.md and the run's frames and history into docs/figures/."""
 import argparse
 import csv
@@ -27,6 +27,11 @@ def fit(xs, ys):
     return sxy / sxx, sxy / math.sqrt(sxx * syy)
 
 
+def shoelace(points):
+    """The signed area of a closed polygon."""
+    return 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(points, points[1:] + points[:1]))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--slc", required=True)
@@ -46,19 +51,30 @@ def main():
     area = [r["area"] for r in rows]
     cpu = sum(r["cpu_s"] for r in rows)
     drift = max(abs(x / area[0] - 1) for x in area)
-    cubed = [(x / (math.pi * c)) ** 1.5 for x, c in zip(area, n)]
-    late = [i for i in range(len(rows)) if n[i] <= n[0] // 2]
+    # The mean radius from the frames (and the final curves): each particle's radius is that of
+    # a circle of its area.
+    states = sorted(Path(a.work, "frames").glob("frame_*.json")) + [Path(a.work) / "final.json"]
+    ft, fn, fcubed = [], [], []
+    for path in states:
+        state = json.loads(path.read_text())
+        radii = [math.sqrt(abs(shoelace(c["points"])) / math.pi) for c in state["curves"]]
+        if ft and state["time"] <= ft[-1]:
+            continue
+        ft.append(state["time"])
+        fn.append(len(radii))
+        fcubed.append((sum(radii) / len(radii)) ** 3)
+    late = [i for i in range(len(ft)) if fn[i] <= fn[0] // 2]
     if len(late) < 4:
         sys.exit(f"the run ended with {n[-1]} particles, before its late stage")
-    slope, r = fit([t[i] for i in late], [cubed[i] for i in late])
+    slope, r = fit([ft[i] for i in late], [fcubed[i] for i in late])
     halves = [len(late) // 2, len(late) - len(late) // 2]
-    first = fit([t[i] for i in late[:halves[0]]], [cubed[i] for i in late[:halves[0]]])[0]
-    second = fit([t[i] for i in late[halves[0]:]], [cubed[i] for i in late[halves[0]:]])[0]
+    first = fit([ft[i] for i in late[:halves[0]]], [fcubed[i] for i in late[:halves[0]]])[0]
+    second = fit([ft[i] for i in late[halves[0]:]], [fcubed[i] for i in late[halves[0]:]])[0]
     marks = []
     for target in (100, 75, 50, 35, 25, 20, 15, 10):  # the first time level at or below each
-        hit = next((i for i in range(len(rows)) if n[i] <= target), None)
+        hit = next((i for i in range(len(ft)) if fn[i] <= target), None)
         if hit is not None:
-            marks.append(f"| {n[hit]} | {t[hit]:.3g} | {cubed[hit]:.3g} |")
+            marks.append(f"| {fn[hit]} | {ft[hit]:.3g} | {fcubed[hit]:.3g} |")
     ended = "" if summary["status"] == "ok" else (
         f" It ended **{summary['status']}** at t = {summary['t']:.3g}: {summary['message']}")
     lines = [
@@ -70,7 +86,7 @@ def main():
         *marks,
         "",
         f"- The total area drifted by at most {drift:.1e} of its start.",
-        f"- Late stage ({n[late[0]]} particles down to {n[-1]}, {len(late)} time levels): mean "
+        f"- Late stage ({fn[late[0]]} particles down to {fn[-1]}, {len(late)} frames): mean "
         f"radius cubed against t has slope {slope:.3g} (correlation {r:.4f}); {first:.3g} over its "
         f"first half and {second:.3g} over its second (the LSW law: one constant slope).",
     ]

@@ -93,7 +93,8 @@ void MullinsSekerka::limit_vanishing(const SmoothCurves& s, const SingleLayerSys
     // −A_c/k. Its own curve is then moved inward at one speed, by three times the radius of a
     // circle of its area: the corrector averages that with the predicted curves' velocity, where
     // the particle is gone, so the step ends with it vanished, not a speck that lingers.
-    const std::vector<double> area = enclosed_areas(s), rate = curve_integrals(s, v);
+    const std::vector<double>& area = s.area;
+    const std::vector<double> rate = curve_integrals(s, v);
     std::vector<std::size_t> vanishing;
     for (std::size_t c = 0; c < s.curve_count(); ++c)
         if (-k * rate[c] * (area[c] > 0 ? 1.0 : -1.0) > 2.0 * std::abs(area[c]))
@@ -108,10 +109,8 @@ void MullinsSekerka::limit_vanishing(const SmoothCurves& s, const SingleLayerSys
         w.push_back(flux_jump(s, u.density));
         w_rates.push_back(curve_integrals(s, w.back()));
     }
-    // Σ_c β_c ∫_{c'} W_c ds = −A_{c'}/k − ∫_{c'} V ds for each vanishing c'; its own speed then
-    // moves it inward at 2π(3R)R/k = 6A/k.
+    // Σ_c β_c ∫_{c'} W_c ds = −A_{c'}/k − ∫_{c'} V ds for each vanishing c'.
     auto given = [&](std::size_t c) { return -area[c] / k; };
-    auto target = [&](std::size_t c) { return -6.0 * area[c] / k; };
     const std::size_t n = vanishing.size();
     std::vector<double> a(n * n), b(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -126,11 +125,13 @@ void MullinsSekerka::limit_vanishing(const SmoothCurves& s, const SingleLayerSys
     const std::vector<double>& beta = *solved;
     for (std::size_t j = 0; j < n; ++j)
         for (std::size_t i = 0; i < v.size(); ++i) v[i] += beta[j] * w[j][i];
-    const std::vector<double> lengths = curve_integrals(s, std::vector<double>(v.size(), 1.0));
+    // Its own speed moves it inward by 3R, R = √(|A|/π) (not by its rate over its length: the
+    // spline through a speck of a few cells can loop, its length several times the speck's).
     for (std::size_t c : vanishing)
-        std::fill(v.begin() + static_cast<std::ptrdiff_t>(s.offsets[c]),
-                  v.begin() + static_cast<std::ptrdiff_t>(s.offsets[c + 1]),
-                  target(c) / lengths[c]);
+        std::fill(
+            v.begin() + static_cast<std::ptrdiff_t>(s.offsets[c]),
+            v.begin() + static_cast<std::ptrdiff_t>(s.offsets[c + 1]),
+            -std::copysign(3.0 * std::sqrt(std::abs(area[c]) / std::numbers::pi), area[c]) / k);
 }
 
 std::vector<Vec2> MullinsSekerka::velocities(double, const Interface& curves,

@@ -4,7 +4,8 @@
 /// (laws in slc/velocity/potential_laws.hpp).
 ///
 /// Each curve is first made smooth and periodic: a periodic cubic spline through its vertices,
-/// parameterised by chord length, sampled at M points equally spaced in τ ∈ [0, 2π). On that
+/// parameterised by chord length, sampled at M points equally spaced in τ ∈ [0, 2π), the curvature
+/// at each sample fitted to the nine nearest vertices (degree 6, error O(h⁵)). On that
 /// sampling the single-layer potential S of the logarithm is discretised with Kress's product
 /// quadrature for the logarithmic singularity (spectrally accurate on smooth curves: R. Kress,
 /// Linear Integral Equations, §12.3) and the trapezoidal rule between curves. Values at the
@@ -29,10 +30,13 @@ namespace slc {
 struct SmoothCurves {
     std::vector<std::size_t> offsets;  ///< first sample of each curve; back() = sample count
     std::vector<double> length;        ///< L_c, the length of each curve's spline polygon
+    std::vector<double> area;          ///< the signed area of each curve's polygon (ccw > 0)
     std::vector<Vec2> x;               ///< γ(τ_j)
     std::vector<double> speed;         ///< |γ'(τ_j)|, τ-derivative
     std::vector<Vec2> normal;          ///< outward unit normal N (right of the direction of travel)
-    std::vector<double> curvature;     ///< C = −∇·N (−1/R on a counterclockwise circle)
+    /// C = −∇·N (−1/R on a counterclockwise circle), of a polynomial of degree 6 fitted to the
+    /// nine vertices nearest the sample (the spline's own where the curve has fewer than 12)
+    std::vector<double> curvature;
     /// The first vertex of each curve in Interface::points(); back() = vertex count.
     std::vector<std::size_t> vertex_offsets;
     /// τ of each vertex of the curves, indexed like Interface::points().
@@ -55,9 +59,6 @@ SmoothCurves smooth_curves(const Interface& curves, double samples_per_vertex = 
 /// ∫_c g ds over each curve c of the periodic samples g (trapezoidal rule in τ: spectrally
 /// accurate for smooth g).
 std::vector<double> curve_integrals(const SmoothCurves& s, std::span<const double> g);
-
-/// The signed area each curve encloses (positive counterclockwise), ½∮ x × dx by the same rule.
-std::vector<double> enclosed_areas(const SmoothCurves& s);
 
 /// The values at the vertices of curve c (vertex_tau) of the trigonometric interpolant of the
 /// periodic samples g of that curve (g.size() == count(c)). O(M_c · vertices of c).
