@@ -178,4 +178,15 @@ check "OMP_NUM_THREADS=1: one thread" test "$(json omp1/summary.json 's["threads
 expect_ok "--threads 1024" -- run --problem circle-curvature -N 4 -K 4 --threads 1024 --out t1024 --quiet
 check "--threads 1024: the $cores cores there are" test "$(json t1024/summary.json 's["threads"]')" = "$cores"
 check "--threads 1024: the same result" cmp -s omp1/final.json t1024/final.json
+
+# --until-components: the coarsening of six particles stops when three are left, before t_end; its
+# frames end with where it stopped (frame 1 of --frames 10, every 50 of the 500 steps).
+expect_ok "coarsening until three" -- run --problem coarsening --param count=6 --param left=3 \
+    --frames 10 --out co --quiet
+check "coarsening: three left" test "$(json co/summary.json 's["components"]')" = 3
+check "coarsening: stopped before t_end" json co/summary.json '1 if s["t"] < s["params"]["t_end"] else exit(1)'
+check "coarsening: the last frame is where it stopped" test \
+    "$(json co/frames/frame_0001.json 's["time"]')" = "$(json co/summary.json 's["t"]')"
+check "coarsening: no frame beyond it" test ! -e co/frames/frame_0002.json
+
 finish

@@ -57,4 +57,14 @@ check "the same surface for any thread count" cmp -s one/final.obj two/final.obj
 expect_ok "merging spheres" -- run --problem merging-spheres -K 4 --eps 1e-3 --out merge --quiet
 check "they merged" test "$(json merge/summary.json 's["components"], s["genus"]')" = "1 0"
 check "e_inf within 3e-3" test "$(json merge/summary.json 's["e_inf"] < 3e-3')" = True
+
+# --until-components: two spheres growing until they merge stop there, before t_end; the frames
+# end with where they stopped.
+expect_ok "merging spheres until one" -- run --problem merging-spheres -K 4 -N 20 \
+    --until-components 1 --frames 2 --out merge1 --quiet
+check "merging spheres: one left" test "$(json merge1/summary.json 's["components"]')" = 1
+check "merging spheres: the last frame is where it stopped" \
+    grep -q "timestep=\"$(json merge1/summary.json 's["t"]')\".*frame_0001.vtp" merge1/frames.pvd
+check "merging spheres: no frame beyond it" test ! -e merge1/frames/frame_0002.vtp
+
 finish

@@ -289,6 +289,13 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
 
     write_file_atomic(dir / "final.json", interface_json(r.curves, r.t));
     history.save_csv();
+    // A run that stopped before its last step (its components reached, vanished, unstable) ends
+    // its frames with where it stopped; an interrupted one leaves them to --resume.
+    if (o.frames > 0 && r.status != RunStatus::interrupted && !r.curves.empty() &&
+        vtk_step != r.steps_done) {
+        keep_frame(r.t, r.curves);
+        vtk_step = r.steps_done;
+    }
     if (vtk && vtk_step != r.steps_done) vtk->add(r.t, r.curves);
     draw(dir, p, initial, r, overlay.shown(), overlay.count());
     history.save_plot(p.name);
@@ -338,8 +345,9 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
     add_method_options(*cmd, o->method);
     cmd->add_option(
            "--frames", o->frames,
-           "Write this many frames (plus the initial one) to DIR/frames/ and draw them overlaid "
-           "in DIR/frames.svg/.png (at most 64: every n-th and the last)")
+           "Write this many frames (plus the initial one, and where the run stopped if it "
+           "stopped early) to DIR/frames/ and draw them overlaid in DIR/frames.svg/.png (at most "
+           "64: every n-th and the last)")
         ->check(integer_in(0, 100000));
     cmd->add_option("--view", o->view,
                     "For a surface: the direction its pictures look from, AZ,EL in degrees (about "
