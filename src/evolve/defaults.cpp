@@ -32,11 +32,38 @@ double length_scale(const Interface& curves) {
     return 0.5 * std::max(bounds.width(), bounds.height());
 }
 
+namespace {
+
+/// The largest |C| of the circles through each vertex and its two neighbours.
+double sharpest_turn(const Interface& curves) {
+    double most = 0.0;
+    for (std::size_t v = 0; v < curves.size(); ++v) {
+        const Vec2 a = curves.point(curves.prev(v)), b = curves.point(v),
+                   c = curves.point(curves.next(v));
+        const double across = norm(b - a) * norm(c - b) * norm(c - a);
+        if (across > 0.0) most = std::max(most, std::abs(2.0 * cross(b - a, c - b)) / across);
+    }
+    return most;
+}
+
+/// A user's run takes 40 steps, or for a stiff law (VelocityLaw::stiffness) enough that each
+/// step moves the sharpest turn of the start by a quarter of its rate's e-fold at most (an
+/// ellipse 0.8 × 0.4 under Hele-Shaw keeps corners at its tips, 0.017 from the circle it relaxes
+/// to at t = 0.5, in 40 steps; 1e−4 in 250), up to 2,000.
+int default_steps(const Interface& curves, const VelocityLaw& law, double t_start, double t_end) {
+    constexpr int fewest = 40, most = 2000;
+    const double wanted = 4.0 * (t_end - t_start) * law.stiffness(sharpest_turn(curves));
+    if (!(wanted > fewest)) return fewest;
+    return wanted >= most ? most : static_cast<int>(std::ceil(wanted));
+}
+
+}  // namespace
+
 RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, double t_start,
                                double t_end) {
     if (curves.empty()) throw InvalidInput("no curves: the interface is empty");
-    RunOptions o =
-        detail::user_run_options<2, RunOptions>(t_start, t_end, length_scale(curves), 40);
+    RunOptions o = detail::user_run_options<2, RunOptions>(
+        t_start, t_end, length_scale(curves), default_steps(curves, law, t_start, t_end));
     ContourOptions& c = o.step.contour;
     // A law known only at the vertices (the curvature laws, a law of their velocities) is
     // extended off the curve from its nearest point, whose kinks refinement to convergence would

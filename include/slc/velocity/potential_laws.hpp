@@ -5,11 +5,12 @@
 /// normal derivatives (slc/potential/boundary_integral.hpp; docs/algorithms/potential.md).
 ///
 /// These laws are stiff: mode m of a circle of radius R decays at a rate ∝ σm³/R³. Within a
-/// step of size k (VertexGeometry::step) the velocity is taken linearly implicitly in its
-/// leading term, mode ξ of V (in arc length) divided by 1 + kλ(ξ), λ(ξ) the law's decay rate of
-/// a flat interface: explicit, the step would amplify modes with kλ > 2.
+/// step of size k (VertexGeometry::step) mode ξ of V (in arc length) is multiplied by
+/// 1/(1 + (kλ(ξ))²), λ(ξ) the law's decay rate of a flat interface: explicit, the step would
+/// amplify modes with kλ > 2; so filtered, it holds them (stiffness() sets a user's steps).
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,10 @@ public:
     /// The total area is kept; the length only falls (the gradient flow of length).
     bool preserves_area() const override { return true; }
     Invariants invariants() const override { return {.keeps_area = true, .shortens = true}; }
+    /// σ(D_in + D_out)|C|³: the decay rate of a circle's modes of wavelength about its radius.
+    double stiffness(double curvature) const override {
+        return sigma_ * (d_in_ + d_out_) * std::pow(std::abs(curvature), 3);
+    }
     /// The vertex velocities V·N, N the smooth curves' normal.
     std::vector<Vec2> velocities(double t, const Interface& curves,
                                  const VertexGeometry& geometry) const override;
@@ -72,6 +77,10 @@ public:
     /// The area is known exactly: kept, or growing at Q.
     bool preserves_area() const override { return true; }
     Invariants invariants() const override;
+    /// σ|C|³: the decay rate of a circle's modes of wavelength about its radius.
+    double stiffness(double curvature) const override {
+        return sigma_ * std::pow(std::abs(curvature), 3);
+    }
     /// The vertex velocities V·N, N the smooth curves' normal.
     std::vector<Vec2> velocities(double t, const Interface& curves,
                                  const VertexGeometry& geometry) const override;

@@ -121,6 +121,16 @@ public:
     /// bit, and the predicted contour is the step's.
     virtual std::optional<double> constant_speed() const { return std::nullopt; }
 
+    /// The rate (1/time) at which the law moves the stiffest detail of a curve or surface whose
+    /// curvature is `curvature` (its sharpest turn): a step k with k·stiffness ≫ 1 holds such
+    /// details rather than moving them (the potential laws' filter of stiff modes). 0 for laws
+    /// whose step needs no such bound. A user's run takes enough steps for its start
+    /// (default_run_options).
+    virtual double stiffness(double curvature) const {
+        (void)curvature;
+        return 0.0;
+    }
+
     /// The closed box outside which the law is not known (a velocity given on a grid), or
     /// nothing for a law known everywhere. run() refuses initial curves that leave it and ends
     /// with an error when the curves leave it; velocities() and sample() must still answer at

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "slc/core/error.hpp"
@@ -11,6 +12,7 @@
 #include "slc/geometry/shapes.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/velocity/laws.hpp"
+#include "slc/velocity/potential_laws.hpp"
 
 namespace slc {
 namespace {
@@ -42,6 +44,23 @@ TEST(EpsForDepth, FollowsEachDimensionsRuleAndItsDefaults) {
     const Surface ball = sphere({0.0, 0.0, 0.0}, 2.0, 2);
     const SurfaceRunOptions s = default_surface_run_options(ball, 0.0, 1.0);
     EXPECT_EQ(*s.step.contour.eps, eps_for_depth(3, s.step.contour.depth, length_scale(ball)));
+}
+
+TEST(DefaultSteps, AStiffLawTakesAsManyAsTheSharpestTurnNeeds) {
+    // 40, or 4tσ(D_in + D_out)|C|³ at the start's sharpest turn under the potential laws, up to
+    // 2,000: the tips of an ellipse 0.8 × 0.4 turn at C = 5.
+    std::vector<Vec2> ellipse;
+    for (int i = 0; i < 256; ++i) {
+        const double a = 2 * std::numbers::pi * i / 256;
+        ellipse.push_back({0.8 * std::cos(a), 0.4 * std::sin(a)});
+    }
+    const Interface oval(std::vector<std::vector<Vec2>>{ellipse});
+    EXPECT_EQ(default_run_options(oval, HeleShaw(), 0.0, 0.5).steps, 250);
+    EXPECT_EQ(default_run_options(oval, MullinsSekerka(), 0.0, 0.5).steps, 500);
+    EXPECT_EQ(default_run_options(oval, HeleShaw(0.1), 0.0, 0.5).steps, 40);
+    EXPECT_EQ(default_run_options(oval, NormalSpeed(1.0), 0.0, 0.5).steps, 40);
+    const Interface speck(std::vector<std::vector<Vec2>>{shapes::circle({0.0, 0.0}, 0.01, 64)});
+    EXPECT_EQ(default_run_options(speck, HeleShaw(), 0.0, 1.0).steps, 2000);
 }
 
 TEST(ApplyOverrides, DepthSetsEpsInBothDimensions) {
