@@ -8,6 +8,7 @@
 // matrix is assembled by slc's parallel_for, one entry per iteration.
 #define EIGEN_DONT_PARALLELIZE
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -20,7 +21,74 @@
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 
+namespace slc::detail {
+
+/// The single-layer system's matrix, row by row contiguous.
+using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// RowMajorMatrix as GMRES sees it: its products with a vector computed a row per iteration of
+/// slc's parallel_for, each row's sum in one order whatever the number of threads (Eigen's own
+/// product runs on one core).
+class ParallelDense;
+
+}  // namespace slc::detail
+
+namespace Eigen::internal {
+template <>
+struct traits<slc::detail::ParallelDense> : public traits<Eigen::SparseMatrix<double>> {};
+}  // namespace Eigen::internal
+
+namespace slc::detail {
+
+class ParallelDense : public Eigen::EigenBase<ParallelDense> {
+public:
+    using Scalar = double;
+    using RealScalar = double;
+    using StorageIndex = int;
+    enum {
+        ColsAtCompileTime = Eigen::Dynamic,
+        MaxColsAtCompileTime = Eigen::Dynamic,
+        IsRowMajor = false
+    };
+    explicit ParallelDense(const RowMajorMatrix& m) : m_(&m) {}
+    Eigen::Index rows() const { return m_->rows(); }
+    Eigen::Index cols() const { return m_->cols(); }
+    template <class Rhs>
+    Eigen::Product<ParallelDense, Rhs, Eigen::AliasFreeProduct> operator*(
+        const Eigen::MatrixBase<Rhs>& x) const {
+        return Eigen::Product<ParallelDense, Rhs, Eigen::AliasFreeProduct>(*this, x.derived());
+    }
+    const RowMajorMatrix& matrix() const { return *m_; }
+
+private:
+    const RowMajorMatrix* m_;
+};
+
+}  // namespace slc::detail
+
+namespace Eigen::internal {
+template <class Rhs>
+struct generic_product_impl<slc::detail::ParallelDense, Rhs, SparseShape, DenseShape, GemvProduct>
+    : generic_product_impl_base<slc::detail::ParallelDense, Rhs,
+                                generic_product_impl<slc::detail::ParallelDense, Rhs>> {
+    using Scalar = typename Product<slc::detail::ParallelDense, Rhs>::Scalar;
+    template <class Dest>
+    static void scaleAndAddTo(Dest& dst, const slc::detail::ParallelDense& lhs, const Rhs& rhs,
+                              const Scalar& alpha) {
+        const slc::detail::RowMajorMatrix& m = lhs.matrix();
+        const Eigen::VectorXd x = rhs;
+        slc::parallel_for(static_cast<std::size_t>(m.rows()), [&](std::size_t i) {
+            const auto r = static_cast<Eigen::Index>(i);
+            dst(r) += alpha * m.row(r).dot(x);
+        });
+    }
+};
+}  // namespace Eigen::internal
+
 namespace slc {
+
+using detail::ParallelDense;
+using detail::RowMajorMatrix;
 namespace {
 
 using std::numbers::pi;
@@ -377,7 +445,7 @@ public:
 
     /// From the system's matrix (the samples' rows and columns, then a constant and a charge row
     /// for each group).
-    void set_up(const Eigen::MatrixXd& system, const SmoothCurves& s,
+    void set_up(const RowMajorMatrix& system, const SmoothCurves& s,
                 std::span<const std::size_t> sample_group, std::size_t groups) {
         const std::size_t curves = s.curve_count();
         offsets_ = s.offsets;
@@ -467,9 +535,10 @@ private:
 
 /// The system's matrix and its factorisation (LU) or its iterative solver (GMRES).
 struct SingleLayerSystem::Factored {
-    Eigen::MatrixXd matrix;
-    std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
-    std::optional<Eigen::GMRES<Eigen::MatrixXd, CurveBlockPreconditioner>> gmres;
+    RowMajorMatrix matrix;
+    std::optional<Eigen::PartialPivLU<RowMajorMatrix>> lu;
+    std::optional<ParallelDense> product;  // GMRES's view of matrix
+    std::optional<Eigen::GMRES<ParallelDense, CurveBlockPreconditioner>> gmres;
 };
 
 SingleLayerSystem::SingleLayerSystem(const SmoothCurves& s, std::span<const std::size_t> group)
@@ -485,9 +554,9 @@ SingleLayerSystem::SingleLayerSystem(const SmoothCurves& s, std::span<const std:
     groups_ = groups;
     // The unknowns: φ_j = μ_j |γ'(τ_j)| and each group's constant; the group's last row is
     // ∫μ ds = Σ (2π/M_c) φ_j = 0 over its curves. Curves of other groups are not seen.
-    Eigen::MatrixXd& system = factored_->matrix;
-    system = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n + groups),
-                                   static_cast<Eigen::Index>(n + groups));
+    RowMajorMatrix& system = factored_->matrix;
+    system = RowMajorMatrix::Zero(static_cast<Eigen::Index>(n + groups),
+                                  static_cast<Eigen::Index>(n + groups));
     assemble_single_layer(s, sample_group,
                           [&](std::size_t i, std::size_t j, double w) { system(i, j) = w; });
     for (std::size_t c = 0; c < s.curve_count(); ++c) {
@@ -499,7 +568,8 @@ SingleLayerSystem::SingleLayerSystem(const SmoothCurves& s, std::span<const std:
     if (n <= direct_solve_limit) {
         factored_->lu.emplace(system);
     } else {
-        factored_->gmres.emplace(system);
+        factored_->product.emplace(system);
+        factored_->gmres.emplace(*factored_->product);
         factored_->gmres->preconditioner().set_up(system, s, sample_group, groups);
         factored_->gmres->set_restart(300);
         factored_->gmres->setTolerance(1e-13);
