@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "slc/core/error.hpp"
+#include "slc/core/parallel.hpp"
 
 namespace slc {
 namespace {
@@ -170,6 +171,14 @@ TEST(SingleLayer, ManyParticlesConvergeInAFewIterationsToTheDirectSolution) {
     }
     EXPECT_LT(worst, 1e-10 * scale);
     EXPECT_NEAR(sol.u_infinity, (*direct)[n], 1e-10 * std::abs((*direct)[n]));
+
+    // GMRES's products run on the worker threads, each row in one order: one thread gives the
+    // same solution to the last bit.
+    set_thread_count(1);
+    const SingleLayerSolution one = solve_single_layer(s, f);
+    set_thread_count(0);
+    EXPECT_EQ(one.density, sol.density);
+    EXPECT_EQ(one.u_infinity, sol.u_infinity);
 
     // Each particle its own interior problem: the preconditioner is the inverse.
     std::vector<std::size_t> group(curves.curve_count());
