@@ -316,6 +316,10 @@ void warn_broken(const RunTotals& r) {
     if (!r.broken.empty()) fmt::print(stderr, "slc: warning: --no-guards: {}\n", r.broken);
 }
 
+bool ends_frames_where_stopped(const RunTotals& r, bool empty, bool last_frame_there) {
+    return !last_frame_there && !empty && r.status != RunStatus::interrupted;
+}
+
 void note_deeper(std::string_view what, int asked, int start, const RunTotals& r) {
     if (start > asked) {
         fmt::print(stderr,

@@ -148,6 +148,11 @@ void note_deeper(std::string_view what, int asked, int start, const RunTotals& r
 /// (RunTotals::broken), when it did.
 void warn_broken(const RunTotals& r);
 
+/// Whether a run's frames end with one more, where it stopped: when the last frame written is
+/// not there (it stopped early: its components reached, vanished, unstable) and there is something
+/// to show; an interrupted run leaves its frames to --resume. For curves and surfaces alike.
+bool ends_frames_where_stopped(const RunTotals& r, bool empty, bool last_frame_there);
+
 /// CLI11 checks with one-line messages naming the value: a positive finite number; a finite
 /// number >= 0; an integer in [lo, hi]; a number in [0, 1).
 CLI::Validator positive_number();

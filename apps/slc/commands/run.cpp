@@ -289,10 +289,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
 
     write_file_atomic(dir / "final.json", interface_json(r.curves, r.t));
     history.save_csv();
-    // A run that stopped before its last step (its components reached, vanished, unstable) ends
-    // its frames with where it stopped; an interrupted one leaves them to --resume.
-    if (o.frames > 0 && r.status != RunStatus::interrupted && !r.curves.empty() &&
-        vtk_step != r.steps_done) {
+    if (o.frames > 0 && ends_frames_where_stopped(r, r.curves.empty(), vtk_step == r.steps_done)) {
         keep_frame(r.t, r.curves);
         vtk_step = r.steps_done;
     }

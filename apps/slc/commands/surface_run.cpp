@@ -294,10 +294,9 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
         folder.publish();
     }
 
-    // A run that stopped before its last step (its components reached, vanished, unstable) ends
-    // its frames with where it stopped; an interrupted one leaves them to --resume.
-    if (frames > 0 && result.status != RunStatus::interrupted && !result.surface.empty() &&
-        (frame_times.empty() || frame_times.back() != result.t))
+    if (frames > 0 &&
+        ends_frames_where_stopped(result, result.surface.empty(),
+                                  !frame_times.empty() && frame_times.back() == result.t))
         write_frame(result.t, result.surface);
     const Surface& s = result.surface;
     nlohmann::json summary = surface_run_summary(p, p.initial, options, result);

@@ -109,8 +109,9 @@ struct RunOptions {
     bool guards = true;
     int max_substep_halvings = 4;  ///< see guards
     /// End the run, status ok, once it has at most this many components (0: run to t_end): a
-    /// coarsening run "until 10 particles are left". Curves count their outer curves (a hole is
-    /// not a particle), a surface its connected components.
+    /// coarsening run "until 10 particles are left". The components are the outer curves (a hole
+    /// is not a particle); a surface's are its connected components
+    /// (SurfaceRunOptions::stop_components).
     std::size_t stop_components = 0;
     /// With guards, under a law with an area rate (curvature flow): the steps' area changes,
     /// summed, may miss the law's by at most this fraction of the area at the start

@@ -28,9 +28,8 @@ struct SurfaceRunOptions {
     /// message the first break (a coarse run whose sheet tears, measured anyway).
     bool guards = true;
     int max_substep_halvings = 4;  ///< see guards
-    /// End the run, status ok, once it has at most this many components (0: run to t_end): a
-    /// coarsening run "until 10 particles are left". Curves count their outer curves (a hole is
-    /// not a particle), a surface its connected components.
+    /// End the run, status ok, once the surface has at most this many connected components (0:
+    /// run to t_end), as RunOptions::stop_components for curves.
     std::size_t stop_components = 0;
     /// With guards, under a law that keeps the volume: the run ends unstable once the volume has
     /// drifted from the start's by more than this fraction (steps each within their budget may
