@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
 #include <nlohmann/json.hpp>
+#include <span>
 
 #include "commands/run_options.hpp"
 #include "slc/core/parallel.hpp"
@@ -85,20 +87,6 @@ nlohmann::json estimate_json(const BasicSelfConvergenceResult<Run>& s) {
             {"order_observed", s.estimate->observed}};
 }
 
-/// table.json: head (the problem and its law) with "resolutions" (run_json of each run),
-/// "pairs", "estimate" and "note".
-template <class Run, class RunJson>
-nlohmann::json table_json(nlohmann::json head, const BasicSelfConvergenceResult<Run>& s,
-                          RunJson run_json, const std::string& note) {
-    nlohmann::json runs = nlohmann::json::array();
-    for (const Run& r : s.runs) runs.push_back(run_json(r));
-    head["resolutions"] = std::move(runs);
-    head["pairs"] = pairs_json(s);
-    head["estimate"] = estimate_json(s);
-    head["note"] = note;
-    return head;
-}
-
 /// A run's P in table.json: its passes of refinement, or "converged".
 nlohmann::json refine_json(int passes) {
     static_assert(ContourOptions::until_converged == SurfaceContourOptions::until_converged);
@@ -125,101 +113,168 @@ std::string csv_tail(const BasicSelfConvergenceResult<Run>& s, std::size_t r) {
     return fmt::format("{},{},{}", d, order, estimate);
 }
 
-/// table.csv: the header, then a line a run: r, row(options, result) (the run's own columns) and
-/// csv_tail.
-template <class Run, class Row>
-std::string csv_table(const BasicSelfConvergenceResult<Run>& s, const char* header, Row row) {
-    std::string out = header;
-    for (std::size_t r = 0; r < s.runs.size(); ++r)
-        out +=
-            fmt::format("{},{},{}\n", r, row(s.runs[r].options, s.runs[r].result), csv_tail(s, r));
-    return out;
+/// One column of a study's tables: its heading in table.md, its name in table.csv and
+/// table.json, and a run's value in it. Each dimension lists its columns once, so the three files
+/// cannot disagree.
+template <class Run>
+struct Column {
+    enum : unsigned { md = 1, csv = 2, json = 4, all = 7 };
+    unsigned where;       ///< the files it is in
+    const char* heading;  ///< in table.md
+    const char* key;      ///< in table.csv and table.json
+    nlohmann::json (*value)(const Run&);
+    const char* md_format = "{}";   ///< for a number in table.md
+    const char* csv_format = "{}";  ///< for a number in table.csv
+};
+
+/// A value of a column as text: a string as it is, a number in `format`.
+std::string cell(const nlohmann::json& v, const char* format) {
+    if (v.is_string()) return v.get<std::string>();
+    if (v.is_number_float()) return fmt::format(fmt::runtime(format), v.get<double>());
+    if (v.is_number_unsigned()) return fmt::format(fmt::runtime(format), v.get<std::uint64_t>());
+    return fmt::format(fmt::runtime(format), v.get<std::int64_t>());
 }
 
-/// The rows of table.md's table, a line a run: r, row(options, result) (the run's own cells,
-/// separated by " | "), the distance to the next run and the order observed.
-template <class Run, class Row>
-std::string markdown_rows(const BasicSelfConvergenceResult<Run>& s, Row row) {
-    std::string out;
+/// table.csv: r, the columns in it, distance_to_next, order and error_estimate; a line a run.
+template <class Run>
+std::string csv_table(const BasicSelfConvergenceResult<Run>& s,
+                      std::span<const Column<Run>> columns) {
+    std::string out = "r";
+    for (const Column<Run>& c : columns)
+        if (c.where & Column<Run>::csv) out += fmt::format(",{}", c.key);
+    out += ",distance_to_next,order,error_estimate\n";
     for (std::size_t r = 0; r < s.runs.size(); ++r) {
-        const std::string order = r < s.orders.size() ? number(s.orders[r], "{:.2f}") : "";
-        out += fmt::format("| {} | {} | {} | {} |\n", r, row(s.runs[r].options, s.runs[r].result),
-                           distance_cell(s, r), order);
+        out += std::to_string(r);
+        for (const Column<Run>& c : columns)
+            if (c.where & Column<Run>::csv) out += "," + cell(c.value(s.runs[r]), c.csv_format);
+        out += "," + csv_tail(s, r) + "\n";
     }
     return out;
 }
 
-std::string markdown(const Problem& p, const SelfConvergenceResult& s) {
+/// table.md's table: r, the columns in it, the distance to the next run and the order observed;
+/// a line a run.
+template <class Run>
+std::string markdown_table(const BasicSelfConvergenceResult<Run>& s,
+                           std::span<const Column<Run>> columns) {
+    std::string head = "| r |";
+    std::string rule = "|---|";
+    for (const Column<Run>& c : columns) {
+        if (!(c.where & Column<Run>::md)) continue;
+        head += fmt::format(" {} |", c.heading);
+        rule += "---|";
+    }
+    std::string out = head + " d(r, r+1) | order |\n" + rule + "---|---|\n";
+    for (std::size_t r = 0; r < s.runs.size(); ++r) {
+        out += fmt::format("| {} |", r);
+        for (const Column<Run>& c : columns)
+            if (c.where & Column<Run>::md)
+                out += fmt::format(" {} |", cell(c.value(s.runs[r]), c.md_format));
+        const std::string order = r < s.orders.size() ? number(s.orders[r], "{:.2f}") : "";
+        out += fmt::format(" {} | {} |\n", distance_cell(s, r), order);
+    }
+    return out;
+}
+
+/// A run's entry of table.json's "resolutions": r, the columns in it, and the message if any.
+template <class Run>
+nlohmann::json run_json(const Run& run, std::span<const Column<Run>> columns) {
+    nlohmann::json j = {{"r", run.level}};
+    for (const Column<Run>& c : columns)
+        if (c.where & Column<Run>::json) j[c.key] = c.value(run);
+    if (!run.result.message.empty()) j["message"] = run.result.message;
+    return j;
+}
+
+/// table.json: head (the problem and its law) with "resolutions" (run_json of each run),
+/// "pairs", "estimate" and "note".
+template <class Run>
+nlohmann::json table_json(nlohmann::json head, const BasicSelfConvergenceResult<Run>& s,
+                          std::span<const Column<Run>> columns, const std::string& note) {
+    nlohmann::json runs = nlohmann::json::array();
+    for (const Run& r : s.runs) runs.push_back(run_json(r, columns));
+    head["resolutions"] = std::move(runs);
+    head["pairs"] = pairs_json(s);
+    head["estimate"] = estimate_json(s);
+    head["note"] = note;
+    return head;
+}
+
+/// The columns of a study of curves.
+using CurveColumn = Column<ResolutionRun>;
+constexpr unsigned md_json = CurveColumn::md | CurveColumn::json;
+constexpr unsigned csv_json = CurveColumn::csv | CurveColumn::json;
+const CurveColumn curve_columns[] = {
+    {md_json, "N/S/K/P/ε", "run",
+     [](const ResolutionRun& r) -> nlohmann::json { return run_name(r.options); }},
+    {csv_json, "", "N", [](const ResolutionRun& r) -> nlohmann::json { return r.options.steps; }},
+    {csv_json, "", "S",
+     [](const ResolutionRun& r) -> nlohmann::json { return r.options.step.embedded.smoothing; }},
+    {csv_json, "", "K",
+     [](const ResolutionRun& r) -> nlohmann::json { return r.options.step.contour.depth; }},
+    {csv_json, "", "P",
+     [](const ResolutionRun& r) { return refine_json(r.options.step.contour.refine_passes); }},
+    {csv_json, "", "eps",
+     [](const ResolutionRun& r) -> nlohmann::json { return r.options.step.contour.resolved_eps(); },
+     "{}", "{:.6g}"},
+    {CurveColumn::json, "", "eta",
+     [](const ResolutionRun& r) -> nlohmann::json {
+         return r.options.step.contour.resolved_eta();
+     }},
+    {CurveColumn::all, "status", "status",
+     [](const ResolutionRun& r) -> nlohmann::json { return to_string(r.result.status); }},
+    {csv_json, "", "t", [](const ResolutionRun& r) -> nlohmann::json { return r.result.t; }},
+    {CurveColumn::all, "segments", "segments",
+     [](const ResolutionRun& r) -> nlohmann::json { return r.result.curves.size(); }},
+    {CurveColumn::all, "components", "components",
+     [](const ResolutionRun& r) -> nlohmann::json { return r.result.curves.curve_count(); }},
+    {CurveColumn::all, "area", "area",
+     [](const ResolutionRun& r) -> nlohmann::json { return area(r.result.curves); }, "{:.6g}"},
+    {CurveColumn::all, "length", "length",
+     [](const ResolutionRun& r) -> nlohmann::json { return length(r.result.curves); }, "{:.6g}"},
+    {CurveColumn::all, "CPU s", "cpu_s",
+     [](const ResolutionRun& r) -> nlohmann::json { return r.result.cpu_s; }, "{:.3g}", "{:.6g}"},
+};
+
+/// table.md: a title, what the study did (`intro`), the table and the note on the estimate.
+template <class Run>
+std::string markdown(const std::string& name, const std::string& intro,
+                     const BasicSelfConvergenceResult<Run>& s, std::span<const Column<Run>> columns,
+                     const std::string& note) {
+    return fmt::format("# Self-convergence study: {}\n\n{}\n\n{}\n{}\n", name, intro,
+                       markdown_table(s, columns), note);
+}
+
+/// "on N threads", of the CPU times of a study's tables.
+std::string on_threads() {
     const int threads = thread_count();
+    return fmt::format("on {} thread{}", threads, threads == 1 ? "" : "s");
+}
+
+std::string curves_intro(const Problem& p) {
     // The law as given: its name, or the expression or file after the option's name.
     const std::string given =
         p.velocity_expression.empty() ? p.velocity_file : p.velocity_expression;
     const std::string law_text = given.empty() ? p.velocity : p.velocity + " " + given;
-    std::string md = fmt::format("# Self-convergence study: {}\n\n", p.name);
-    md += fmt::format(
+    return fmt::format(
         "The curves of {} under `{}` from t = {:.6g} to {:.6g}, without an exact solution: each "
         "run is compared with the next finer one (twice the steps, one more level of K, ε/4). d "
         "is the largest distance from a vertex or segment midpoint of either final interface to "
         "the other (the symmetric Hausdorff distance, measured as Eq. 11 measures errors); the "
         "order on row r is log2(d(r, r+1) / d(r+1, r+2)) (2: second order). CPU seconds of the "
-        "time loop, "
-        "on {} thread{}. The final curves of run r are in final_r.json (`slc render final_*.json` "
-        "overlays them).\n\n",
-        p.name, law_text, p.t_start, p.t_end, threads, threads == 1 ? "" : "s");
-    md +=
-        "| r | N/S/K/P/ε | status | segments | components | area | length | CPU s | d(r, r+1) | "
-        "order |\n|---|---|---|---|---|---|---|---|---|---|\n";
-    md += markdown_rows(s, [](const RunOptions& o, const RunResult& res) {
-        return fmt::format("{} | {} | {} | {} | {:.6g} | {:.6g} | {:.3g}", run_name(o),
-                           to_string(res.status), res.curves.size(), res.curves.curve_count(),
-                           area(res.curves), length(res.curves), res.cpu_s);
-    });
-    md += "\n" + estimate_note(s, "curves") + "\n";
-    return md;
-}
-
-std::string csv(const SelfConvergenceResult& s) {
-    return csv_table(
-        s,
-        "r,N,S,K,P,eps,status,t,segments,components,area,length,cpu_s,distance_to_next,order,"
-        "error_estimate\n",
-        [](const RunOptions& o, const RunResult& res) {
-            return fmt::format(
-                "{},{},{},{},{:.6g},{},{},{},{},{},{},{:.6g}", o.steps, o.step.embedded.smoothing,
-                o.step.contour.depth, refine_name(o.step.contour.refine_passes),
-                o.step.contour.resolved_eps(), to_string(res.status), res.t, res.curves.size(),
-                res.curves.curve_count(), area(res.curves), length(res.curves), res.cpu_s);
-        });
+        "time loop, {}. The final curves of run r are in final_r.json (`slc render final_*.json` "
+        "overlays them).",
+        p.name, law_text, p.t_start, p.t_end, on_threads());
 }
 
 nlohmann::json json(const Problem& p, const SelfConvergenceResult& s) {
-    const auto run_json = [](const ResolutionRun& run_r) {
-        const RunOptions& o = run_r.options;
-        const RunResult& res = run_r.result;
-        nlohmann::json j = {{"r", run_r.level},
-                            {"run", run_name(o)},
-                            {"N", o.steps},
-                            {"S", o.step.embedded.smoothing},
-                            {"K", o.step.contour.depth},
-                            {"P", refine_json(o.step.contour.refine_passes)},
-                            {"eps", o.step.contour.resolved_eps()},
-                            {"eta", o.step.contour.resolved_eta()},
-                            {"status", to_string(res.status)},
-                            {"t", res.t},
-                            {"segments", res.curves.size()},
-                            {"components", res.curves.curve_count()},
-                            {"area", area(res.curves)},
-                            {"length", length(res.curves)},
-                            {"cpu_s", res.cpu_s}};
-        if (res.status == RunStatus::error) j["message"] = res.message;
-        return j;
-    };
-    nlohmann::json j = table_json({{"problem", p.name},
-                                   {"velocity", p.velocity},
-                                   {"velocity_params", p.velocity_params},
-                                   {"t_start", p.t_start},
-                                   {"t_end", p.t_end}},
-                                  s, run_json, estimate_note(s, "curves"));
+    nlohmann::json j =
+        table_json({{"problem", p.name},
+                    {"velocity", p.velocity},
+                    {"velocity_params", p.velocity_params},
+                    {"t_start", p.t_start},
+                    {"t_end", p.t_end}},
+                   s, std::span<const CurveColumn>(curve_columns), estimate_note(s, "curves"));
     if (!p.velocity_expression.empty()) j["velocity_expression"] = p.velocity_expression;
     if (!p.velocity_file.empty()) j["velocity_file"] = p.velocity_file;
     return j;
@@ -281,86 +336,71 @@ std::string surface_note(const SurfaceSelfConvergenceResult& s) {
     return note;
 }
 
-std::string surface_markdown(const SurfaceProblem& p, const SurfaceLawText& law,
-                             const SurfaceSelfConvergenceResult& s) {
-    const int threads = thread_count();
-    std::string md = fmt::format("# Self-convergence study: {}\n\n", p.name);
-    md += fmt::format(
+/// The columns of a study of surfaces.
+using SurfaceColumn = Column<SurfaceResolutionRun>;
+using SR = SurfaceResolutionRun;
+const SurfaceColumn surface_columns[] = {
+    {md_json, "run", "run", [](const SR& r) -> nlohmann::json { return run_name(r.options); }},
+    {csv_json, "", "N", [](const SR& r) -> nlohmann::json { return r.options.steps; }},
+    {csv_json, "", "K", [](const SR& r) -> nlohmann::json { return r.options.step.contour.depth; }},
+    {csv_json, "", "P",
+     [](const SR& r) { return refine_json(r.options.step.contour.refine_passes); }},
+    {csv_json, "", "eps",
+     [](const SR& r) -> nlohmann::json { return r.options.step.contour.resolved_eps(); }, "{}",
+     "{:.6g}"},
+    {SurfaceColumn::json, "", "eta",
+     [](const SR& r) -> nlohmann::json { return r.options.step.resolved_eta(); }},
+    {SurfaceColumn::all, "status", "status",
+     [](const SR& r) -> nlohmann::json { return to_string(r.result.status); }},
+    {csv_json, "", "t", [](const SR& r) -> nlohmann::json { return r.result.t; }},
+    {csv_json, "", "unconverged_steps",
+     [](const SR& r) -> nlohmann::json { return r.result.unconverged_steps; }},
+    {csv_json, "", "largest_residual",
+     [](const SR& r) -> nlohmann::json { return r.result.largest_residual; }, "{}", "{:.6g}"},
+    {SurfaceColumn::md, "beyond ε", "",
+     [](const SR& r) -> nlohmann::json {
+         const SurfaceRunResult& res = r.result;
+         if (res.unconverged_steps == 0) return "0";
+         return fmt::format("{} of {} ({:.3g})", res.unconverged_steps, res.steps_done,
+                            res.largest_residual);
+     }},
+    {SurfaceColumn::all, "triangles", "triangles",
+     [](const SR& r) -> nlohmann::json { return r.result.surface.size(); }},
+    {SurfaceColumn::all, "components", "components",
+     [](const SR& r) -> nlohmann::json { return component_count(r.result.surface); }},
+    {SurfaceColumn::all, "genus", "genus",
+     [](const SR& r) -> nlohmann::json { return genus(r.result.surface); }},
+    {SurfaceColumn::all, "volume", "volume",
+     [](const SR& r) -> nlohmann::json { return volume(r.result.surface); }, "{:.6g}", "{:.17g}"},
+    {SurfaceColumn::all, "area", "area",
+     [](const SR& r) -> nlohmann::json { return area(r.result.surface); }, "{:.6g}", "{:.17g}"},
+    {SurfaceColumn::all, "CPU s", "cpu_s",
+     [](const SR& r) -> nlohmann::json { return r.result.cpu_s; }, "{:.3g}", "{:.6g}"},
+};
+
+std::string surface_intro(const SurfaceProblem& p, const SurfaceLawText& law) {
+    return fmt::format(
         "The surface {} under `{}` from t = 0 to {:.6g}, without an exact solution: each run is "
         "compared with the next finer one (twice the steps, one more level of K, ε/4), each "
         "starting from the surface as `slc run --initial` reads it at its own K and ε. d is the "
         "largest distance from a vertex or triangle centroid of either final surface to the "
         "other; the order on row r is log2(d(r, r+1) / d(r+1, r+2)) (2: second order). CPU "
-        "seconds of the run, on {} thread{}. *beyond ε*: the steps whose contour refinement left "
+        "seconds of the run, {}. *beyond ε*: the steps whose contour refinement left "
         "beyond ε (splits its safeguards refused, as along sharp edges, or where the cells are "
         "too coarse for the surface), and the largest |G| left. The final surface of run r is "
-        "final_r.obj.\n\n",
-        p.name, law_text(law), p.t_end, threads, threads == 1 ? "" : "s");
-    md +=
-        "| r | run | status | beyond ε | triangles | components | genus | volume | area | CPU s | "
-        "d(r, r+1) | order |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    md += markdown_rows(s, [](const SurfaceRunOptions& o, const SurfaceRunResult& res) {
-        const Surface& f = res.surface;
-        const std::string beyond = res.unconverged_steps == 0
-                                       ? std::string("0")
-                                       : fmt::format("{} of {} ({:.3g})", res.unconverged_steps,
-                                                     res.steps_done, res.largest_residual);
-        return fmt::format("{} | {} | {} | {} | {} | {} | {:.6g} | {:.6g} | {:.3g}", run_name(o),
-                           to_string(res.status), beyond, f.size(), component_count(f), genus(f),
-                           volume(f), area(f), res.cpu_s);
-    });
-    md += "\n" + surface_note(s) + "\n";
-    return md;
-}
-
-std::string surface_csv(const SurfaceSelfConvergenceResult& s) {
-    return csv_table(
-        s,
-        "r,N,K,P,eps,status,t,unconverged_steps,largest_residual,triangles,components,genus,volume,"
-        "area,cpu_s,distance_to_next,order,error_estimate\n",
-        [](const SurfaceRunOptions& o, const SurfaceRunResult& res) {
-            const Surface& f = res.surface;
-            return fmt::format("{},{},{},{:.6g},{},{},{},{:.6g},{},{},{},{:.17g},{:.17g},{:.6g}",
-                               o.steps, o.step.contour.depth,
-                               refine_name(o.step.contour.refine_passes),
-                               o.step.contour.resolved_eps(), to_string(res.status), res.t,
-                               res.unconverged_steps, res.largest_residual, f.size(),
-                               component_count(f), genus(f), volume(f), area(f), res.cpu_s);
-        });
+        "final_r.obj.",
+        p.name, law_text(law), p.t_end, on_threads());
 }
 
 nlohmann::json surface_json(const SurfaceProblem& p, const SurfaceLawText& law,
                             const SurfaceSelfConvergenceResult& s) {
-    const auto run_json = [](const SurfaceResolutionRun& run_r) {
-        const SurfaceRunOptions& o = run_r.options;
-        const SurfaceRunResult& res = run_r.result;
-        const Surface& f = res.surface;
-        nlohmann::json j = {{"r", run_r.level},
-                            {"run", run_name(o)},
-                            {"N", o.steps},
-                            {"K", o.step.contour.depth},
-                            {"P", refine_json(o.step.contour.refine_passes)},
-                            {"eps", o.step.contour.resolved_eps()},
-                            {"eta", o.step.resolved_eta()},
-                            {"status", to_string(res.status)},
-                            {"t", res.t},
-                            {"unconverged_steps", res.unconverged_steps},
-                            {"largest_residual", res.largest_residual},
-                            {"triangles", f.size()},
-                            {"components", component_count(f)},
-                            {"genus", genus(f)},
-                            {"volume", volume(f)},
-                            {"area", area(f)},
-                            {"cpu_s", res.cpu_s}};
-        if (!res.message.empty()) j["message"] = res.message;
-        return j;
-    };
-    nlohmann::json j = table_json({{"problem", p.name},
-                                   {"velocity", law.name},
-                                   {"velocity_params", law.params},
-                                   {"t_start", 0.0},
-                                   {"t_end", p.t_end}},
-                                  s, run_json, surface_note(s));
+    nlohmann::json j =
+        table_json({{"problem", p.name},
+                    {"velocity", law.name},
+                    {"velocity_params", law.params},
+                    {"t_start", 0.0},
+                    {"t_end", p.t_end}},
+                   s, std::span<const SurfaceColumn>(surface_columns), surface_note(s));
     if (!law.expression.empty()) j["velocity_expression"] = law.expression;
     return j;
 }
@@ -383,8 +423,10 @@ void write_self_convergence_study(const Problem& p, const VelocityLaw& law, cons
         write_file_atomic(dir / fmt::format("final_{}.json", r.level),
                           interface_json(r.result.curves, r.result.t));
     }
-    write_file_atomic(dir / "table.md", markdown(p, s));
-    write_file_atomic(dir / "table.csv", csv(s));
+    write_file_atomic(dir / "table.md", markdown(p.name, curves_intro(p), s,
+                                                 std::span<const CurveColumn>(curve_columns),
+                                                 estimate_note(s, "curves")));
+    write_file_atomic(dir / "table.csv", csv_table<ResolutionRun>(s, curve_columns));
     write_file_atomic(dir / "table.json", json(p, s).dump(2) + "\n");
     plot(dir, p.name, s);
     if (!quiet) fmt::print("{}\n", estimate_note(s, "curves"));
@@ -403,8 +445,10 @@ void write_surface_self_convergence_study(const SurfaceProblem& p, const Surface
         });
     for (const SurfaceResolutionRun& r : s.runs)
         write_file_atomic(dir / fmt::format("final_{}.obj", r.level), obj_text(r.result.surface));
-    write_file_atomic(dir / "table.md", surface_markdown(p, law, s));
-    write_file_atomic(dir / "table.csv", surface_csv(s));
+    write_file_atomic(dir / "table.md",
+                      markdown(p.name, surface_intro(p, law), s,
+                               std::span<const SurfaceColumn>(surface_columns), surface_note(s)));
+    write_file_atomic(dir / "table.csv", csv_table<SurfaceResolutionRun>(s, surface_columns));
     write_file_atomic(dir / "table.json", surface_json(p, law, s).dump(2) + "\n");
     plot(dir, p.name, s);
     if (!quiet) fmt::print("{}\n", surface_note(s));
