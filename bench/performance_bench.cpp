@@ -416,7 +416,7 @@ std::tuple<Problem, Interface, RunResult> run_peer(const PeerRun& r) {
     o.step.contour.eps = r.eps;
     o.step.extension = r.extension;
     o.step.embedded.mesh = r.mesh.value_or(default_mesh_size(r.depth));
-    o.step.embedded.smoothing = p.smoothing;
+    o.step.embedded.smoothing = p.run.step.embedded.smoothing;
     set_thread_count(1);
     // The least wall time of three runs (the same result each time), as for the cells.
     RunResult result = run(initial, *law, p.domain, o);

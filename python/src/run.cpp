@@ -218,12 +218,17 @@ void add_run_functions(py::module_& m) {
         .def_readonly("description", &Problem::description)
         .def_readonly("t_start", &Problem::t_start)
         .def_readwrite("t_end", &Problem::t_end)
-        .def_readonly("steps", &Problem::steps)
-        .def_readonly("depth", &Problem::depth)
-        .def_property_readonly("refine", [](const Problem& p) { return refine_name(p.refine); })
-        .def_readonly("eps", &Problem::eps)
-        .def_readonly("eta", &Problem::eta)
-        .def_readonly("smoothing", &Problem::smoothing)
+        .def_property_readonly("steps", [](const Problem& p) { return p.run.steps; })
+        .def_property_readonly("depth", [](const Problem& p) { return p.run.step.contour.depth; })
+        .def_property_readonly(
+            "refine",
+            [](const Problem& p) { return refine_name(p.run.step.contour.refine_passes); })
+        .def_property_readonly("eps",
+                               [](const Problem& p) { return p.run.step.contour.resolved_eps(); })
+        .def_property_readonly("eta",
+                               [](const Problem& p) { return p.run.step.contour.resolved_eta(); })
+        .def_property_readonly("smoothing",
+                               [](const Problem& p) { return p.run.step.embedded.smoothing; })
         .def_readonly("length_scale", &Problem::length_scale)
         .def_readonly("velocity", &Problem::velocity)
         .def_readonly("velocity_params", &Problem::velocity_params)

@@ -88,7 +88,6 @@ Problem curve_problem(std::string name, const Interface& curves, const Box& doma
                       double t_end, const VelocityLaw& law, std::string velocity,
                       VelocityParams params) {
     const RunOptions defaults = default_run_options(curves, law, t_start, t_end);
-    const ContourOptions& c = defaults.step.contour;
     Problem p;
     p.name = std::move(name);
     p.initial = curves.curves();
@@ -97,18 +96,11 @@ Problem curve_problem(std::string name, const Interface& curves, const Box& doma
     p.t_end = t_end;
     p.velocity = std::move(velocity);
     p.velocity_params = std::move(params);
-    p.steps = defaults.steps;
-    p.depth = depth_for_domain(2, domain.width(), default_domain(curves.curves()).width());
-    p.refine = c.refine_passes;
-    p.eps = *c.eps;
-    p.eta = c.resolved_eta();
     p.length_scale = length_scale(curves);
-    p.triangle_safeguard = c.triangle_safeguard;
-    p.thin_depth = c.thin_depth;
-    p.check_start = defaults.check_start;
-    p.max_domain_doublings = defaults.max_domain_doublings;
-    p.area_drift = defaults.area_drift;
-    p.area_rate_drift = defaults.area_rate_drift;
+    p.run = defaults;
+    ContourOptions& c = p.run.step.contour;
+    c.depth = depth_for_domain(2, domain.width(), default_domain(curves.curves()).width());
+    c.eta = c.resolved_eta();
     return p;
 }
 

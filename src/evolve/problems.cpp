@@ -203,22 +203,23 @@ Problem base(std::string name, std::string description, Curves initial, Box doma
     p.domain = domain;
     p.t_end = t_end;
     p.velocity = std::move(velocity);
+    p.run.step.contour.eta = ContourOptions::default_eta;
     return p;
 }
 
 void set_run(Problem& p, int steps, int smoothing, int depth, int refine, double eps) {
-    p.steps = steps;
-    p.smoothing = smoothing;
-    p.depth = depth;
-    p.refine = refine;
-    p.eps = eps;
+    p.run.steps = steps;
+    p.run.step.embedded.smoothing = smoothing;
+    p.run.step.contour.depth = depth;
+    p.run.step.contour.refine_passes = refine;
+    p.run.step.contour.eps = eps;
 }
 
 // The area-preserving flows of §4.7: the embedded module, its curvature averaged along the curve
 // over a mesh spacing (EmbeddedOptions::average).
 Problem embedded_averaged(Problem p) {
     p.module = GeometryModule::embedded;
-    p.embedded_average = 1.0;
+    p.run.step.embedded.average = 1.0;
     return p;
 }
 
@@ -374,11 +375,11 @@ Problem coarsening(const Params& params) {
                      Box::centered_square(1.0), 0.005, "mullins-sekerka");
     p.parameters = {{"count", count, "particles at the start (2 to 150)"},
                     {"left", left, "the run ends when this many are left"}};
-    p.stop_components = static_cast<std::size_t>(left);
+    p.run.stop_components = static_cast<std::size_t>(left);
     set_run(p, 500, 0, 7, 2, 1e-4);
     // As a user's curves under this law: read as arcs, the total area restored each step.
-    p.arcs = true;
-    p.area_correction = true;
+    p.run.step.arcs = true;
+    p.run.step.area_correction = true;
     return p;
 }
 
@@ -451,9 +452,10 @@ Problem make_problem(const std::string& name, const std::map<std::string, double
         if (p.velocity == "unit-normal" && !p.exact)
             p.exact = huygens_exact(p, velocity_param(p, "speed", 1.0));
         // The paper's method unless a problem says otherwise: its tables are the reference.
-        if (!p.extension) p.extension = Extension::nearest_point;
-        if (!p.arcs) p.arcs = false;
-        if (!p.area_correction) p.area_correction = false;
+        StepOptions& step = p.run.step;
+        if (!step.extension) step.extension = Extension::nearest_point;
+        if (!step.arcs) step.arcs = false;
+        if (!step.area_correction) step.area_correction = false;
         return p;
     }
     std::string known;
@@ -462,28 +464,10 @@ Problem make_problem(const std::string& name, const std::map<std::string, double
 }
 
 RunOptions problem_run_options(const Problem& p) {
-    RunOptions r;
+    RunOptions r = p.run;
     r.t_start = p.t_start;
     r.t_end = p.t_end;
-    r.steps = p.steps;
-    r.max_domain_doublings = p.max_domain_doublings;
-    r.stop_components = p.stop_components;
-    ContourOptions& c = r.step.contour;
-    c.depth = p.depth;
-    c.refine_passes = p.refine;
-    c.eps = p.eps;
-    c.eta = p.eta;
-    c.triangle_safeguard = p.triangle_safeguard;
-    c.thin_depth = p.thin_depth;
-    r.check_start = p.check_start;
-    r.step.extension = p.extension;
-    r.step.arcs = p.arcs;
-    r.step.area_correction = p.area_correction;
-    r.area_drift = p.area_drift;
-    r.area_rate_drift = p.area_rate_drift;
-    r.step.embedded.mesh = default_mesh_size(c.depth);
-    r.step.embedded.smoothing = p.smoothing;
-    r.step.embedded.average = p.embedded_average;
+    r.step.embedded.mesh = default_mesh_size(r.step.contour.depth);
     return r;
 }
 

@@ -26,9 +26,10 @@ RunOptions study_cell_options(const Problem& problem, int row, int refine, const
     o.step.tree_depth = 0;
     o.step.embedded.mesh = default_mesh_size(o.step.contour.depth);
     o.step.embedded.smoothing = plan.smoothing[static_cast<std::size_t>(row)];
-    if (!o.step.extension) o.step.extension = problem.extension;
-    if (!o.step.arcs) o.step.arcs = problem.arcs;
-    if (!o.step.area_correction) o.step.area_correction = problem.area_correction;
+    const StepOptions& own = problem.run.step;
+    if (!o.step.extension) o.step.extension = own.extension;
+    if (!o.step.arcs) o.step.arcs = own.arcs;
+    if (!o.step.area_correction) o.step.area_correction = own.area_correction;
     return o;
 }
 

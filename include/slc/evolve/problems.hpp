@@ -45,18 +45,9 @@ struct Problem {
     Box domain;                              ///< the square the curves must stay in
     double t_start = 0.0;  ///< the initial curves' time (an interface file's "time")
     double t_end = 1.0;    ///< a, the final time
-    int steps = 40;        ///< N
-    int depth = 5;         ///< K
-    int refine = 2;        ///< P
-    double eps = 1e-5;     ///< ε
-    double eta = 1e-10;    ///< η
     /// The size ℓ of the curves, which scales the lengths the command line defaults to (ε from
     /// -K is 10^−K ℓ): 1 for a named problem, the half-width of a user's curves.
     double length_scale = 1.0;
-    int smoothing = 0;  ///< S
-    /// EmbeddedOptions::average: the embedded curvature averaged along Γ over this many mesh
-    /// spacings (0: the paper's module).
-    double embedded_average = 0.0;
     /// The law: a built-in one by make_velocity name, or "speed" or "field" (velocity_expression
     /// is its text) or "field-file" (velocity_file names the file); see problem_law().
     std::string velocity;
@@ -67,28 +58,12 @@ struct Problem {
     /// unknown there, where a run refuses the curves.
     bool velocity_zero_outside = false;
     std::optional<GeometryModule> module;  ///< overrides the law's default geometry module
-    /// The extension and arcs of the run; a named problem sets the paper's (nearest point,
-    /// chords), a user's curve leaves them to the law's defaults (StepOptions).
-    std::optional<Extension> extension;
-    std::optional<bool> arcs;             ///< see extension
-    std::optional<bool> area_correction;  ///< see extension (StepOptions::area_correction)
-    /// RunOptions::area_drift: 0.05 for a named problem, 0.01 for a user's curves.
-    double area_drift = 0.05;
-    /// RunOptions::area_rate_drift: 0 (not checked) for a named problem, 0.02 for a user's.
-    double area_rate_drift = 0.0;
-    /// ContourOptions::triangle_safeguard: the paper's for a named problem, off for a user's
-    /// curve (whose corners it would cut).
-    bool triangle_safeguard = true;
-    /// ContourOptions::thin_depth: 0 (the paper's uniform K) for a named problem,
-    /// default_thin_depth(2) for a user's curves.
-    int thin_depth = 0;
-    /// RunOptions::check_start: off for a named problem, on for a user's curves.
-    bool check_start = false;
-    /// RunOptions::max_domain_doublings: 0 (the paper's fixed box) for a named problem.
-    int max_domain_doublings = 0;
-    /// RunOptions::stop_components: the coarsening problem ends when this many particles are
-    /// left; 0, run to t_end.
-    std::size_t stop_components = 0;
+    /// The settings of its runs: N, K, P, ε, η, S, the extension, arcs and area correction, the
+    /// triangle safeguard, thin depth, guards, domain doublings and stop count. A named problem
+    /// holds the paper's (nearest-point extension, chords, uniform K, fixed box, a 5% area
+    /// guard); a user's curve (curve_problem) the defaults of default_run_options, at the depth
+    /// its domain takes. problem_run_options sets their t_start, t_end and embedded mesh size.
+    RunOptions run;
     std::vector<ProblemParameter> parameters;  ///< the problem's own parameters, in use
     StudyPlan study;                           ///< the settings of `slc study`
     /// The exact signed distance to Γ(t) at points, when known at time t (else nullopt).
