@@ -226,7 +226,7 @@ Interface thin_strip_retracts(const VelocityLaw& law) {
 
 TEST(MullinsSekerka, AThinStripRetractsIntoOneBlobConvergingInTheResolution) {
     // At the defaults (297 steps, K 5: cells 0.047 beside a strip 0.06 wide) against twice the
-    // steps and K 6: measured 5.2e−4 apart, the strip's length 2.19 -> 0.94.
+    // steps, K 6 and ε/10: measured 5.2e−4 apart, the strip's length 2.19 -> 0.94.
     const MullinsSekerka law;
     const Interface coarse = thin_strip_retracts(law);
     const Interface start = stadium(0.06);
