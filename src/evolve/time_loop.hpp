@@ -310,17 +310,28 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
     const int& thin = options.step.contour.thin_depth;
     const typename H::Start start = hooks.start(H::shape(r));
     std::string violation, torn;  // the law's last break; a change the contours cannot confirm
-    for (int j = 0; j <= halvings; ++j) {
-        const int parts = 1 << j;
+    // Each pass walks the step in sub-steps of (t_next − r.t)/2^level, level from `least` up to
+    // `halvings`: a sub-step that fails is taken again in halves from where it started, and the
+    // rest of the step at the level that succeeded (growing back to longer sub-steps within the
+    // step lets a corner's first rounding roughen the curve unseen). Where the whole step broke
+    // the run's budget, a pass starts over one level finer than the finest the last one took.
+    for (int least = 0, finest = 0; least <= halvings; least = finest + 1) {
         typename H::StepResult out{H::shape(r), {}};
         typename H::Attempt attempt{start};
         double t = r.t;
-        bool kept = true;
-        for (int i = 1; i <= parts && !H::shape(out).empty(); ++i) {
-            const double t_to = i == parts ? t_next : r.t + (t_next - r.t) * i / parts;
-            const double k = H::substep_length(r.t, t_next, parts, t, t_to);
+        int level = least, taken = 0;
+        finest = least;
+        std::int64_t at = 0;  // t = r.t + (t_next − r.t) at / 2^level
+        while (!H::shape(out).empty()) {
+            const std::int64_t parts = std::int64_t{1} << level;
+            const double t_to = at + 1 == parts
+                                    ? t_next
+                                    : r.t + (t_next - r.t) * static_cast<double>(at + 1) /
+                                                static_cast<double>(parts);
+            const double k = H::substep_length(r.t, t_next, static_cast<int>(parts), t, t_to);
             typename H::StepResult s;
             std::optional<std::string> unresolved;
+            bool failed = false;
             try {
                 s = step_in_growing_domain<dim>(H::shape(out), t, k, law, domain, options, r);
                 if (options.guards && thin > 0) {
@@ -341,11 +352,10 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
                 throw;  // a setting beyond a limit: smaller steps would not help
             } catch (const NumericalFailure&) {
                 // A step too large for the features may fail where smaller ones do not.
-                if (j == halvings) throw;
-                kept = false;
-                break;
+                if (level == halvings) throw;
+                failed = true;
             }
-            if (thin == 0 && std::isnan(r.thin_split.at)) {
+            if (!failed && thin == 0 && std::isnan(r.thin_split.at)) {
                 // No thin cells asked: the paper's uniform trees, whose tears are noted.
                 const double cell = std::ldexp(domain.width(), -options.step.contour.depth);
                 if (const auto part = thinnest_new_part<dim>(H::shape(out), H::shape(s));
@@ -355,20 +365,30 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
                 }
             }
             // A law's own invariant names the break better (and smaller steps may keep it).
-            if (auto v = hooks.record(attempt, H::shape(out), s, t, k, r)) {
-                violation = std::move(*v);
-                kept = false;
-                break;
+            const typename H::Attempt before = attempt;  // what a failed sub-step leaves
+            if (!failed) {
+                if (auto v = hooks.record(attempt, H::shape(out), s, t, k, r)) {
+                    violation = std::move(*v);
+                    failed = true;
+                } else if (unresolved) {
+                    if (violation.empty()) torn = std::move(*unresolved);
+                    failed = true;
+                }
             }
-            if (unresolved) {
-                if (violation.empty()) torn = std::move(*unresolved);
-                kept = false;
-                break;
+            if (failed) {
+                attempt = before;
+                if (level == halvings)
+                    throw Unstable{hooks.unstable_after_splits(violation.empty() ? torn : violation,
+                                                               1 << halvings, r.t)};
+                finest = std::max(finest, ++level);
+                at *= 2;
+                continue;
             }
             out = std::move(s);
             t = t_to;
+            ++taken;
+            if (++at == parts) break;
         }
-        if (!kept) continue;
         std::optional<BudgetBreach> over_budget =
             hooks.run_budget(attempt, H::shape(out), t_next, r);
         if (over_budget && !options.guards) {
@@ -376,19 +396,19 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
             over_budget.reset();
         }
         // A run beyond its budget ends with the interface before the step that took it there,
-        // which its history holds last; where smaller steps may keep it, the step is split first
-        // as one that breaks an invariant.
+        // which its history holds last; where smaller steps may keep it, the step is taken
+        // again in finer sub-steps first, as one that breaks an invariant.
         if (over_budget) {
-            if (over_budget->split && j < halvings) {
+            if (over_budget->split && finest < halvings) {
                 violation = std::move(over_budget->message);
                 continue;
             }
             throw Unstable{std::move(over_budget->message)};
         }
         hooks.commit(attempt, r);
-        if (parts > 1) {
+        if (taken > 1) {
             ++r.split_steps;
-            r.most_substeps = std::max(r.most_substeps, parts);
+            r.most_substeps = std::max(r.most_substeps, taken);
         }
         return out;
     }

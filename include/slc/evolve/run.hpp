@@ -103,11 +103,13 @@ struct RunOptions {
     /// vertex farther than a finest cell from it: a part thinner than the contours resolve.
     /// `slc run --initial` (default_run_options) checks; a named problem does not.
     bool check_start = false;
-    /// Check every step against the law's invariants (evolve/guards.hpp): a step that breaks them
-    /// is retried in 2, 4, ... 2^max_substep_halvings sub-steps (the N steps the observer sees
-    /// stay N), and a run that still breaks them ends with status unstable.
+    /// Check every step against the law's invariants (evolve/guards.hpp): a sub-step that breaks
+    /// them is taken again in two halves, down to 1/2^max_substep_halvings of the step, the
+    /// halves that keep them kept (the N steps the observer sees stay N), and a run that still
+    /// breaks them ends with status unstable. 8: a polygon's corners under curvature flow need
+    /// steps of about 1/32 of the default's at first, and a few sub-steps that fine cost little.
     bool guards = true;
-    int max_substep_halvings = 4;  ///< see guards
+    int max_substep_halvings = 8;  ///< see guards
     /// End the run, status ok, once it has at most this many components (0: run to t_end): a
     /// coarsening run "until 10 particles are left". The components are the outer curves (a hole
     /// is not a particle); a surface's are its connected components

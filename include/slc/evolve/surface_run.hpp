@@ -20,14 +20,15 @@ struct SurfaceRunOptions {
     double t_end = 1.0;       ///< the final time
     int steps = 20;           ///< N; k = (t_end − t_start) / N
     SurfaceStepOptions step;  ///< K, P, ε, L of each step
-    /// Check every step against the law's invariants (surface_invariant_violation): a step that
-    /// breaks them is retried in 2, 4, ... 2^max_substep_halvings sub-steps, and a run that still
+    /// Check every step against the law's invariants (surface_invariant_violation): a sub-step
+    /// that breaks them is taken again in two halves, down to 1/2^max_substep_halvings of the
+    /// step, the halves that keep them kept (guarded_step in time_loop.hpp), and a run that still
     /// breaks them ends with status unstable. Off: every step is taken whole and kept, and the
     /// run goes on to t_end; the steps are still checked (with the volume drift and the area
     /// growth below), and a run that broke what its law keeps ends with status broken, its
     /// message the first break (a coarse run whose sheet tears, measured anyway).
     bool guards = true;
-    int max_substep_halvings = 4;  ///< see guards
+    int max_substep_halvings = 8;  ///< see guards
     /// End the run, status ok, once the surface has at most this many connected components (0:
     /// run to t_end), as RunOptions::stop_components for curves.
     std::size_t stop_components = 0;
