@@ -54,6 +54,24 @@ double mode_amplitude(const Interface& curves, int m) {
     return std::hypot(a, b) / pi;
 }
 
+/// What the laws keep, watched at every step of a run: the total area's largest relative change
+/// from the start's, and the largest rise of the length in one step. Its `step` is an Observer.
+struct Kept {
+    explicit Kept(const Interface& start) : area0(area(start)), last_length(length(start)) {}
+    bool step(const StepReport& s) {
+        worst_drift = std::max(worst_drift, std::abs(area(*s.curves) / area0 - 1));
+        worst_rise = std::max(worst_rise, length(*s.curves) - last_length);
+        last_length = length(*s.curves);
+        return true;
+    }
+    /// Both kept to rounding.
+    void expect_kept() const {
+        EXPECT_LT(worst_drift, 1e-12);
+        EXPECT_LE(worst_rise, 1e-12);
+    }
+    double area0, last_length, worst_drift = 0, worst_rise = 0;
+};
+
 /// The run of curves under the law from 0 to t_end in `steps` steps, default settings otherwise.
 RunResult run_at_defaults(const Interface& curves, const VelocityLaw& law, double t_end, int steps,
                           const Observer& observer = {}) {
@@ -129,12 +147,9 @@ TEST(MullinsSekerka, UnequalCoefficientsDecayAtTheRateOfTheirSum) {
 TEST(MullinsSekerka, ACircleStaysACircleAndKeepsItsArea) {
     const MullinsSekerka law;
     const Interface start(std::vector<std::vector<Vec2>>{shapes::circle({0.1, -0.2}, 0.5, 256)});
-    double last_length = length(start), worst_rise = 0;
-    const RunResult r = run_at_defaults(start, law, 1.0, 40, [&](const StepReport& s) {
-        worst_rise = std::max(worst_rise, length(*s.curves) - last_length);
-        last_length = length(*s.curves);
-        return true;
-    });
+    Kept kept(start);
+    const RunResult r =
+        run_at_defaults(start, law, 1.0, 40, [&](const StepReport& s) { return kept.step(s); });
     ASSERT_EQ(r.status, RunStatus::ok) << r.message;
     // The radius of the area, kept to rounding; the vertices within 1e−6 of one circle (a
     // mode-4 residue of the grid, 2.3e−7 at t = 1, grows by about 1e−8 a step).
@@ -145,7 +160,7 @@ TEST(MullinsSekerka, ACircleStaysACircleAndKeepsItsArea) {
         hi = std::max(hi, norm(x - Vec2{0.1, -0.2}));
     }
     EXPECT_LT(hi - lo, 1e-6);
-    EXPECT_LE(worst_rise, 1e-12);
+    kept.expect_kept();
 }
 
 /// The time the smaller of two circles (radii 0.3 and 0.5, centres 2 apart) vanishes, run to
@@ -154,20 +169,17 @@ double vanishing_time(int steps) {
     const MullinsSekerka law;
     const Interface start(std::vector<std::vector<Vec2>>{shapes::circle({-1, 0}, 0.3, 128),
                                                          shapes::circle({1, 0}, 0.5, 128)});
-    double last_seen = 0, worst_drift = 0, last_length = length(start), worst_rise = 0;
+    double last_seen = 0;
+    Kept kept(start);
     const RunResult r = run_at_defaults(start, law, 0.08, steps, [&](const StepReport& s) {
         for (std::size_t c = 0; c < s.curves->curve_count(); ++c)
             if (s.curves->curve(c)[0].x < 0) last_seen = s.t;
-        worst_drift = std::max(worst_drift, std::abs(area(*s.curves) / area(start) - 1));
-        worst_rise = std::max(worst_rise, length(*s.curves) - last_length);
-        last_length = length(*s.curves);
-        return true;
+        return kept.step(s);
     });
     EXPECT_EQ(r.status, RunStatus::ok) << r.message;
     EXPECT_EQ(r.curves.curve_count(), 1u);
     EXPECT_GT(area(r.curves), pi * 0.25 * 1.1);  // the larger one grew
-    EXPECT_LT(worst_drift, 1e-12);               // the total area, through the vanishing
-    EXPECT_LE(worst_rise, 1e-12);
+    kept.expect_kept();                          // the total area, through the vanishing
     return last_seen + 0.5 * 0.08 / steps;
 }
 
@@ -188,25 +200,20 @@ TEST(MullinsSekerka, ThirtyParticlesCoarsenToFiveKeepingTheirAreaAndShortening) 
     const Problem p = make_problem("coarsening", {{"count", 30.0}, {"left", 5.0}});
     const std::unique_ptr<VelocityLaw> law = problem_law(p, std::nullopt);
     const Interface start(p.initial);
-    double worst_drift = 0, worst_rise = -1;
-    double last_length = length(start);
+    Kept kept(start);
     std::size_t last_count = start.curve_count();
     bool only_vanish = true;
     const RunResult r =
         run(start, *law, p.domain, problem_run_options(p), [&](const StepReport& s) {
-            worst_drift = std::max(worst_drift, std::abs(area(*s.curves) / area(start) - 1));
-            worst_rise = std::max(worst_rise, length(*s.curves) - last_length);
-            last_length = length(*s.curves);
             only_vanish = only_vanish && s.curves->curve_count() <= last_count;
             last_count = s.curves->curve_count();
-            return true;
+            return kept.step(s);
         });
     ASSERT_EQ(r.status, RunStatus::ok) << r.message;
     EXPECT_LE(r.curves.curve_count(), 5u);  // two may vanish in the last step
     EXPECT_GE(r.curves.curve_count(), 1u);
     EXPECT_LT(r.t, p.t_end);
-    EXPECT_LT(worst_drift, 1e-12);
-    EXPECT_LE(worst_rise, 1e-12);
+    kept.expect_kept();
     EXPECT_TRUE(only_vanish);
 }
 
@@ -233,19 +240,13 @@ Interface stadium(double w) {
 /// step; returns the final curves.
 Interface thin_strip_retracts(const VelocityLaw& law) {
     const Interface start = stadium(0.06);
-    double last_length = length(start), worst_rise = 0, worst_drift = 0;
+    Kept kept(start);
     const RunOptions o = default_run_options(start, law, 0.0, 1e-3);
-    const RunResult r =
-        run(start, law, default_domain(start.curves()), o, [&](const StepReport& s) {
-            worst_drift = std::max(worst_drift, std::abs(area(*s.curves) / area(start) - 1));
-            worst_rise = std::max(worst_rise, length(*s.curves) - last_length);
-            last_length = length(*s.curves);
-            return true;
-        });
+    const RunResult r = run(start, law, default_domain(start.curves()), o,
+                            [&](const StepReport& s) { return kept.step(s); });
     EXPECT_EQ(r.status, RunStatus::ok) << r.message;
     EXPECT_EQ(r.curves.curve_count(), 1u);
-    EXPECT_LT(worst_drift, 1e-12);
-    EXPECT_LE(worst_rise, 1e-12);
+    kept.expect_kept();
     EXPECT_LT(length(r.curves), 0.8 * length(start));  // it retracted
     return r.curves;
 }
