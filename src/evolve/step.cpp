@@ -175,14 +175,9 @@ public:
     /// (field_normal), one closest-point query each, on all worker threads.
     void distances_and_normals(std::span<const Vec2> xs, std::span<double> f,
                                std::span<Vec2> n) const {
-        parallel_for(
-            xs.size(),
-            [&](std::size_t i) {
-                const ClosestPoint p = tree_.closest_point(xs[i]);
-                f[i] = distance(p);
-                n[i] = field_normal(xs[i], p);
-            },
-            expensive_grain);
+        detail::distances_and_normals(
+            tree_, xs, f, n, [this](const ClosestPoint& p) { return distance(p); },
+            [this](Vec2 x, const ClosestPoint& p) { return field_normal(x, p); });
     }
     /// The normal law's speeds V(t, x_i, n_i) at this level's time, one call of the law for the
     /// batch; NumericalFailure naming the point unless all are finite.

@@ -116,6 +116,22 @@ void checked_normal_speeds(const BasicVelocityLaw<dim>& law, double t,
     }
 }
 
+/// What a normal law's step needs of a level's distance field at a batch of points: F there
+/// (`distance` of the closest point) and the normal the law sees (`normal` at the point and its
+/// closest point), one closest-point query of `tree` each, on all worker threads.
+template <class Tree, class Point, class Distance, class Normal>
+void distances_and_normals(const Tree& tree, std::span<const Point> xs, std::span<double> f,
+                           std::span<Point> n, Distance distance, Normal normal) {
+    parallel_for(
+        xs.size(),
+        [&](std::size_t i) {
+            const auto p = tree.closest_point(xs[i]);
+            f[i] = distance(p);
+            n[i] = normal(xs[i], p);
+        },
+        expensive_grain);
+}
+
 /// The predictor of a normal law's step at a batch: G̃(x) = F(x) − k V(x, N(x)), F and N the
 /// distance field of the level `now` (a Level with distances_and_normals and normal_speeds).
 template <class Level, class Point>

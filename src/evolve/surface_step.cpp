@@ -168,14 +168,9 @@ public:
     /// F and the normal a normal law sees (field_normal) at a batch of points, in parallel.
     void distances_and_normals(std::span<const Vec3> xs, std::span<double> f,
                                std::span<Vec3> n) const {
-        parallel_for(
-            xs.size(),
-            [&](std::size_t i) {
-                const SurfacePoint p = tree_.closest_point(xs[i]);
-                f[i] = distance(p);
-                n[i] = field_normal(xs[i], p);
-            },
-            expensive_grain);
+        detail::distances_and_normals(
+            tree_, xs, f, n, [this](const SurfacePoint& p) { return distance(p); },
+            [this](Vec3 x, const SurfacePoint& p) { return field_normal(x, p); });
     }
     /// V(t, x_i, n_i) at this level's time for a batch, one call of the law; NumericalFailure
     /// naming the point unless all are finite.
