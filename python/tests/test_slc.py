@@ -376,6 +376,23 @@ def test_curvature_flow_loses_area_at_two_pi():
     assert s["params"]["P"] == 2 and s["params"]["eps"] == pytest.approx(1e-5)
 
 
+def test_a_star_polygon_under_curvature_flow_vanishes_when_its_area_says():
+    # Ten corners (points 0.5, notches 0.2): its first step keeps dA/dt = -2 pi only in sub-steps
+    # of 1/32, then whole steps; it vanishes at A / 2 pi = 0.0468 to within a step (measured
+    # 0.0475 of 0.05 in 40 steps), its area A - 2 pi t to 0.5% of A on the way.
+    pts = [[(0.5 if i % 2 == 0 else 0.2) * math.cos(math.pi / 2 + i * math.pi / 5),
+            (0.5 if i % 2 == 0 else 0.2) * math.sin(math.pi / 2 + i * math.pi / 5)]
+           for i in range(10)]
+    star = slc.Interface(np.array(pts))
+    r = slc.run(star, "curvature", 0.05)
+    assert r.status == "vanished"
+    assert r.t == pytest.approx(star.area / (2 * math.pi), abs=0.05 / 40)
+    h = r.history
+    alive = h["components"] > 0
+    assert np.abs(h["area"][alive] - (star.area - 2 * math.pi * h["t"][alive])).max() < 5e-3 * star.area
+    assert r.summary["substeps"]["most"] >= 32
+
+
 def test_mullins_sekerka_keeps_the_area_and_the_small_of_two_circles_vanishes():
     # Coarsening: the circle of radius 0.3 vanishes into the one of 0.5 (at t = 0.056 by the
     # accuracy tests), the total area kept to rounding through it, the length falling.
