@@ -286,10 +286,11 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
 }
 
 /// The step from Γ(t) (r's) to t_next: whole, or when it breaks the law's invariants (guards)
-/// split into 2, 4, ... sub-steps until each keeps them. A split whose step fails
-/// (NumericalFailure: a contour that leaves a fixed domain, say) is retried the same way. The
-/// hooks check each sub-step (LoopHooks::record) and the run's budget after the step
-/// (LoopHooks::run_budget), and add what the kept split did to r (LoopHooks::commit).
+/// in sub-steps, each one that breaks them taken again in halves, down to 1/2^halvings of the
+/// step. A sub-step that fails (NumericalFailure: a contour that leaves a fixed domain, say) is
+/// halved the same way. The hooks check each sub-step (LoopHooks::record) and the run's budget
+/// after the step (LoopHooks::run_budget), and add what the kept sub-steps did to r
+/// (LoopHooks::commit).
 ///
 /// With the guards and thin cells (thin_depth > 0), a sub-step that changes the topology is
 /// confirmed by deeper thin cells first (confirm_topology); one the deepest do not confirm is
@@ -297,8 +298,8 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
 /// names the cause better, is the one reported. With no thin cells (the paper's uniform trees), a
 /// part split off thinner than the finest cell is noted (r.thin_split).
 ///
-/// Throws Unstable when no split keeps the invariants or the run leaves its budget, and the
-/// finest split's NumericalFailure when every split fails.
+/// Throws Unstable when a sub-step of 1/2^halvings breaks the invariants or the run leaves its
+/// budget, and the NumericalFailure of a sub-step that fine.
 template <int dim>
 typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result& r, double t_next,
                                                  const LoopHooks<dim>& hooks,
