@@ -196,7 +196,8 @@ SurfaceStep = Step  # the name surfaces' observers had; one type for both dimens
 class _RunEnd:
     """How a run ended, for curves and surfaces alike: ``status`` is "ok", "vanished",
     "interrupted" (Ctrl-C, or an observer returned False), "error", "unstable" (a step broke what
-    the law keeps — area or volume, parts, shape, rate — even split into 16 sub-steps) or, with
+    the law keeps — area or volume, parts, shape, rate — even in sub-steps of 1/256 of a step,
+    1/16 for a surface) or, with
     guards=False, "broken" (the run reached its end, but a step broke what the law keeps);
     ``message`` says why, naming the time. ``history``: per-step arrays; ``summary``: the keys
     of summary.json."""
