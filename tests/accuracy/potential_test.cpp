@@ -290,7 +290,7 @@ TEST(HeleShaw, ABubbleWithASourceGrowsAtTheInjectionRate) {
 
 TEST(HeleShaw, AThinBubbleRetractsKeepingItsArea) {
     // One phase, so slower than Mullins–Sekerka: the ends' bulbs reach x = ±0.36 by t = 0.001
-    // (150 steps), the length 2.19 -> 1.55.
+    // (149 steps), the length 2.19 -> 1.55.
     const Interface end = thin_strip_retracts(HeleShaw());
     double reach = 0;
     for (Vec2 x : end.points()) reach = std::max(reach, std::abs(x.x));
