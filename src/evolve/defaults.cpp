@@ -9,6 +9,7 @@
 #include "slc/core/error.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/evolve/overrides.hpp"
+#include "slc/geometry_modules/arclength.hpp"
 #include "user_defaults.hpp"
 
 namespace slc {
@@ -34,14 +35,14 @@ double length_scale(const Interface& curves) {
 
 namespace {
 
-/// The largest |C| of the circles through each vertex and its two neighbours.
+/// The largest |C| of the circles through each vertex and its two neighbours (circle_curvature).
 double sharpest_turn(const Interface& curves) {
     double most = 0.0;
     for (std::size_t v = 0; v < curves.size(); ++v) {
-        const Vec2 a = curves.point(curves.prev(v)), b = curves.point(v),
-                   c = curves.point(curves.next(v));
-        const double across = norm(b - a) * norm(c - b) * norm(c - a);
-        if (across > 0.0) most = std::max(most, std::abs(2.0 * cross(b - a, c - b)) / across);
+        const Vec2 b = curves.point(v), u = b - curves.point(curves.prev(v)),
+                   w = curves.point(curves.next(v)) - b;
+        if (norm(u) * norm(w) * norm(u + w) > 0.0)
+            most = std::max(most, std::abs(circle_curvature(u, w)));
     }
     return most;
 }
