@@ -116,9 +116,18 @@ std::string csv_tail(const BasicSelfConvergenceResult<Run>& s, std::size_t r) {
 /// One column of a study's tables: its heading in table.md, its name in table.csv and
 /// table.json, and a run's value in it. Each dimension lists its columns once, so the three files
 /// cannot disagree.
+/// The files a column is in (Column::where), for curves and surfaces alike.
+enum In : unsigned {
+    in_md = 1,
+    in_csv = 2,
+    in_json = 4,
+    in_md_json = in_md | in_json,
+    in_csv_json = in_csv | in_json,
+    in_all = in_md | in_csv | in_json
+};
+
 template <class Run>
 struct Column {
-    enum : unsigned { md = 1, csv = 2, json = 4, all = 7 };
     unsigned where;       ///< the files it is in
     const char* heading;  ///< in table.md
     const char* key;      ///< in table.csv and table.json
@@ -141,12 +150,12 @@ std::string csv_table(const BasicSelfConvergenceResult<Run>& s,
                       std::span<const Column<Run>> columns) {
     std::string out = "r";
     for (const Column<Run>& c : columns)
-        if (c.where & Column<Run>::csv) out += fmt::format(",{}", c.key);
+        if (c.where & in_csv) out += fmt::format(",{}", c.key);
     out += ",distance_to_next,order,error_estimate\n";
     for (std::size_t r = 0; r < s.runs.size(); ++r) {
         out += std::to_string(r);
         for (const Column<Run>& c : columns)
-            if (c.where & Column<Run>::csv) out += "," + cell(c.value(s.runs[r]), c.csv_format);
+            if (c.where & in_csv) out += "," + cell(c.value(s.runs[r]), c.csv_format);
         out += "," + csv_tail(s, r) + "\n";
     }
     return out;
@@ -160,7 +169,7 @@ std::string markdown_table(const BasicSelfConvergenceResult<Run>& s,
     std::string head = "| r |";
     std::string rule = "|---|";
     for (const Column<Run>& c : columns) {
-        if (!(c.where & Column<Run>::md)) continue;
+        if (!(c.where & in_md)) continue;
         head += fmt::format(" {} |", c.heading);
         rule += "---|";
     }
@@ -168,8 +177,7 @@ std::string markdown_table(const BasicSelfConvergenceResult<Run>& s,
     for (std::size_t r = 0; r < s.runs.size(); ++r) {
         out += fmt::format("| {} |", r);
         for (const Column<Run>& c : columns)
-            if (c.where & Column<Run>::md)
-                out += fmt::format(" {} |", cell(c.value(s.runs[r]), c.md_format));
+            if (c.where & in_md) out += fmt::format(" {} |", cell(c.value(s.runs[r]), c.md_format));
         const std::string order = r < s.orders.size() ? number(s.orders[r], "{:.2f}") : "";
         out += fmt::format(" {} | {} |\n", distance_cell(s, r), order);
     }
@@ -181,7 +189,7 @@ template <class Run>
 nlohmann::json run_json(const Run& run, std::span<const Column<Run>> columns) {
     nlohmann::json j = {{"r", run.level}};
     for (const Column<Run>& c : columns)
-        if (c.where & Column<Run>::json) j[c.key] = c.value(run);
+        if (c.where & in_json) j[c.key] = c.value(run);
     if (!run.result.message.empty()) j["message"] = run.result.message;
     return j;
 }
@@ -202,37 +210,36 @@ nlohmann::json table_json(nlohmann::json head, const BasicSelfConvergenceResult<
 
 /// The columns of a study of curves.
 using CurveColumn = Column<ResolutionRun>;
-constexpr unsigned md_json = CurveColumn::md | CurveColumn::json;
-constexpr unsigned csv_json = CurveColumn::csv | CurveColumn::json;
 const CurveColumn curve_columns[] = {
-    {md_json, "N/S/K/P/ε", "run",
+    {in_md_json, "N/S/K/P/ε", "run",
      [](const ResolutionRun& r) -> nlohmann::json { return run_name(r.options); }},
-    {csv_json, "", "N", [](const ResolutionRun& r) -> nlohmann::json { return r.options.steps; }},
-    {csv_json, "", "S",
+    {in_csv_json, "", "N",
+     [](const ResolutionRun& r) -> nlohmann::json { return r.options.steps; }},
+    {in_csv_json, "", "S",
      [](const ResolutionRun& r) -> nlohmann::json { return r.options.step.embedded.smoothing; }},
-    {csv_json, "", "K",
+    {in_csv_json, "", "K",
      [](const ResolutionRun& r) -> nlohmann::json { return r.options.step.contour.depth; }},
-    {csv_json, "", "P",
+    {in_csv_json, "", "P",
      [](const ResolutionRun& r) { return refine_json(r.options.step.contour.refine_passes); }},
-    {csv_json, "", "eps",
+    {in_csv_json, "", "eps",
      [](const ResolutionRun& r) -> nlohmann::json { return r.options.step.contour.resolved_eps(); },
      "{}", "{:.6g}"},
-    {CurveColumn::json, "", "eta",
+    {in_json, "", "eta",
      [](const ResolutionRun& r) -> nlohmann::json {
          return r.options.step.contour.resolved_eta();
      }},
-    {CurveColumn::all, "status", "status",
+    {in_all, "status", "status",
      [](const ResolutionRun& r) -> nlohmann::json { return to_string(r.result.status); }},
-    {csv_json, "", "t", [](const ResolutionRun& r) -> nlohmann::json { return r.result.t; }},
-    {CurveColumn::all, "segments", "segments",
+    {in_csv_json, "", "t", [](const ResolutionRun& r) -> nlohmann::json { return r.result.t; }},
+    {in_all, "segments", "segments",
      [](const ResolutionRun& r) -> nlohmann::json { return r.result.curves.size(); }},
-    {CurveColumn::all, "components", "components",
+    {in_all, "components", "components",
      [](const ResolutionRun& r) -> nlohmann::json { return r.result.curves.curve_count(); }},
-    {CurveColumn::all, "area", "area",
+    {in_all, "area", "area",
      [](const ResolutionRun& r) -> nlohmann::json { return area(r.result.curves); }, "{:.6g}"},
-    {CurveColumn::all, "length", "length",
+    {in_all, "length", "length",
      [](const ResolutionRun& r) -> nlohmann::json { return length(r.result.curves); }, "{:.6g}"},
-    {CurveColumn::all, "CPU s", "cpu_s",
+    {in_all, "CPU s", "cpu_s",
      [](const ResolutionRun& r) -> nlohmann::json { return r.result.cpu_s; }, "{:.3g}", "{:.6g}"},
 };
 
@@ -340,42 +347,43 @@ std::string surface_note(const SurfaceSelfConvergenceResult& s) {
 using SurfaceColumn = Column<SurfaceResolutionRun>;
 using SR = SurfaceResolutionRun;
 const SurfaceColumn surface_columns[] = {
-    {md_json, "run", "run", [](const SR& r) -> nlohmann::json { return run_name(r.options); }},
-    {csv_json, "", "N", [](const SR& r) -> nlohmann::json { return r.options.steps; }},
-    {csv_json, "", "K", [](const SR& r) -> nlohmann::json { return r.options.step.contour.depth; }},
-    {csv_json, "", "P",
+    {in_md_json, "run", "run", [](const SR& r) -> nlohmann::json { return run_name(r.options); }},
+    {in_csv_json, "", "N", [](const SR& r) -> nlohmann::json { return r.options.steps; }},
+    {in_csv_json, "", "K",
+     [](const SR& r) -> nlohmann::json { return r.options.step.contour.depth; }},
+    {in_csv_json, "", "P",
      [](const SR& r) { return refine_json(r.options.step.contour.refine_passes); }},
-    {csv_json, "", "eps",
+    {in_csv_json, "", "eps",
      [](const SR& r) -> nlohmann::json { return r.options.step.contour.resolved_eps(); }, "{}",
      "{:.6g}"},
-    {SurfaceColumn::json, "", "eta",
+    {in_json, "", "eta",
      [](const SR& r) -> nlohmann::json { return r.options.step.resolved_eta(); }},
-    {SurfaceColumn::all, "status", "status",
+    {in_all, "status", "status",
      [](const SR& r) -> nlohmann::json { return to_string(r.result.status); }},
-    {csv_json, "", "t", [](const SR& r) -> nlohmann::json { return r.result.t; }},
-    {csv_json, "", "unconverged_steps",
+    {in_csv_json, "", "t", [](const SR& r) -> nlohmann::json { return r.result.t; }},
+    {in_csv_json, "", "unconverged_steps",
      [](const SR& r) -> nlohmann::json { return r.result.unconverged_steps; }},
-    {csv_json, "", "largest_residual",
+    {in_csv_json, "", "largest_residual",
      [](const SR& r) -> nlohmann::json { return r.result.largest_residual; }, "{}", "{:.6g}"},
-    {SurfaceColumn::md, "beyond ε", "",
+    {in_md, "beyond ε", "",
      [](const SR& r) -> nlohmann::json {
          const SurfaceRunResult& res = r.result;
          if (res.unconverged_steps == 0) return "0";
          return fmt::format("{} of {} ({:.3g})", res.unconverged_steps, res.steps_done,
                             res.largest_residual);
      }},
-    {SurfaceColumn::all, "triangles", "triangles",
+    {in_all, "triangles", "triangles",
      [](const SR& r) -> nlohmann::json { return r.result.surface.size(); }},
-    {SurfaceColumn::all, "components", "components",
+    {in_all, "components", "components",
      [](const SR& r) -> nlohmann::json { return component_count(r.result.surface); }},
-    {SurfaceColumn::all, "genus", "genus",
+    {in_all, "genus", "genus",
      [](const SR& r) -> nlohmann::json { return genus(r.result.surface); }},
-    {SurfaceColumn::all, "volume", "volume",
+    {in_all, "volume", "volume",
      [](const SR& r) -> nlohmann::json { return volume(r.result.surface); }, "{:.6g}", "{:.17g}"},
-    {SurfaceColumn::all, "area", "area",
-     [](const SR& r) -> nlohmann::json { return area(r.result.surface); }, "{:.6g}", "{:.17g}"},
-    {SurfaceColumn::all, "CPU s", "cpu_s",
-     [](const SR& r) -> nlohmann::json { return r.result.cpu_s; }, "{:.3g}", "{:.6g}"},
+    {in_all, "area", "area", [](const SR& r) -> nlohmann::json { return area(r.result.surface); },
+     "{:.6g}", "{:.17g}"},
+    {in_all, "CPU s", "cpu_s", [](const SR& r) -> nlohmann::json { return r.result.cpu_s; },
+     "{:.3g}", "{:.6g}"},
 };
 
 std::string surface_intro(const SurfaceProblem& p, const SurfaceLawText& law) {
