@@ -88,9 +88,14 @@ public:
             throw InvalidInput(fmt::format("area_rate_drift must be a fraction, 0 or more, got {}",
                                            options.area_rate_drift));
         }
+        if (!(options.area_step_share >= 0.0) || !std::isfinite(options.area_step_share)) {
+            throw InvalidInput(
+                fmt::format("area_step_share must be 0 or more, got {}", options.area_step_share));
+        }
         const double h = finest_cell(domain, options.step.contour);
         budget_ = GuardBudget{.run_lag_fraction = options.area_drift,
                               .run_rate_fraction = options.area_rate_drift,
+                              .step_share = options.area_step_share,
                               .run_length = options.t_end - options.t_start,
                               .resolved_area = std::numbers::pi * h * h};
     }
@@ -242,6 +247,19 @@ std::optional<BudgetBreach> LoopHooks<2>::run_budget(Attempt& a, const Interface
                 "rigid motion keeps the shape: the steps roughen the curves; use --extension "
                 "direct or raise --eps",
                 t_next, curves.size(), r.rigid_segments)};
+        }
+    }
+    // The step's own lag beyond its share of the run's (a.m0: the last sub-step's measures):
+    // finer sub-steps while they help, then the best kept (guarded_step).
+    if (b.step_share > 0.0 && r.start_area != 0.0 && options_.t_end > r.t) {
+        const double left = b.run_lag_fraction * std::abs(r.start_area) - std::abs(r.area_lag);
+        const double share =
+            b.step_share * left * (t_next - r.t) / (options_.t_end - r.t) + eps_ * a.m0.length;
+        if (std::abs(a.lag) > share) {
+            return BudgetBreach{
+                fmt::format("by t = {}: the step's area lag {:.3g} is beyond its share {:.3g}",
+                            t_next, a.lag, share),
+                true, std::abs(a.lag)};
         }
     }
     return std::nullopt;

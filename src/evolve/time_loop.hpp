@@ -62,10 +62,14 @@ class LoopHooks;
 
 /// A run beyond one of its budgets (LoopHooks::run_budget): why, and whether the step is split
 /// into sub-steps to keep it (a drift that smaller steps make smaller, as a law's area rate
-/// missed) or the run ends there (steps that roughen the interface).
+/// missed) or the run ends there (steps that roughen the interface). A share (a step beyond its
+/// share of a budget the run still keeps) is split only while the splits take `excess` down,
+/// and never ends the run.
 struct BudgetBreach {
     std::string message;
     bool split = false;
+    double excess = 0.0;  ///< a share's measure of the step beyond it (0: not a share)
+    bool share() const { return excess > 0.0; }
 };
 
 /// The process's CPU time (all threads) in whole nanoseconds: a difference of two readings is
@@ -311,6 +315,24 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
     const int& thin = options.step.contour.thin_depth;
     const typename H::Start start = hooks.start(H::shape(r));
     std::string violation, torn;  // the law's last break; a change the contours cannot confirm
+    // The last pass beyond only a share of a budget (BudgetBreach::share), kept in case a finer
+    // pass does no better or breaks.
+    struct Pass {
+        typename H::StepResult out;
+        typename H::Attempt attempt;
+        int taken = 0;
+        double excess = 0.0;
+    };
+    std::optional<Pass> best;
+    const auto keep = [&](typename H::StepResult out, const typename H::Attempt& attempt,
+                          int taken) {
+        hooks.commit(attempt, r);
+        if (taken > 1) {
+            ++r.split_steps;
+            r.most_substeps = std::max(r.most_substeps, taken);
+        }
+        return out;
+    };
     // Each pass walks the step in sub-steps of (t_next − r.t)/2^level, level from `least` up to
     // `halvings`: a sub-step that fails is taken again in halves from where it started, and the
     // rest of the step at the level that succeeded (growing back to longer sub-steps within the
@@ -378,9 +400,11 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
             }
             if (failed) {
                 attempt = before;
-                if (level == halvings)
+                if (level == halvings) {
+                    if (best) return keep(std::move(best->out), best->attempt, best->taken);
                     throw Unstable{hooks.unstable_after_splits(violation.empty() ? torn : violation,
                                                                1 << halvings, r.t)};
+                }
                 finest = std::max(finest, ++level);
                 at *= 2;
                 continue;
@@ -392,27 +416,39 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
         }
         std::optional<BudgetBreach> over_budget =
             hooks.run_budget(attempt, H::shape(out), t_next, r);
+        if (over_budget && over_budget->share()) {
+            // Beyond its share only: finer while each pass takes the excess down by a quarter
+            // (a lag of the time step halves), else the better of the last two is kept.
+            const double excess = over_budget->excess;
+            over_budget.reset();
+            if (!best || excess < 0.75 * best->excess) {
+                if (finest < halvings) {
+                    best = Pass{std::move(out), attempt, taken, excess};
+                    continue;
+                }
+            } else if (best->excess < excess) {
+                return keep(std::move(best->out), best->attempt, best->taken);
+            }
+        }
         if (over_budget && !options.guards) {
             note_broken(r, std::move(over_budget->message));
             over_budget.reset();
         }
         // A run beyond its budget ends with the interface before the step that took it there,
         // which its history holds last; where smaller steps may keep it, the step is taken
-        // again in finer sub-steps first, as one that breaks an invariant.
+        // again in finer sub-steps first, as one that breaks an invariant. A finer pass after
+        // one beyond only a share falls back to that one.
         if (over_budget) {
+            if (best) return keep(std::move(best->out), best->attempt, best->taken);
             if (over_budget->split && finest < halvings) {
                 violation = std::move(over_budget->message);
                 continue;
             }
             throw Unstable{std::move(over_budget->message)};
         }
-        hooks.commit(attempt, r);
-        if (taken > 1) {
-            ++r.split_steps;
-            r.most_substeps = std::max(r.most_substeps, taken);
-        }
-        return out;
+        return keep(std::move(out), attempt, taken);
     }
+    if (best) return keep(std::move(best->out), best->attempt, best->taken);
     throw Unstable{
         hooks.unstable_after_splits(violation.empty() ? torn : violation, 1 << halvings, r.t)};
 }

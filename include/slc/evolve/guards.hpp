@@ -1,8 +1,8 @@
 /// @file
 /// The run loop's physical guards (docs/errors.md, "What the guards catch"): after every step,
 /// what the law's exact motion keeps (Invariants) is compared with what the step did, within an
-/// error budget. A step that breaks it is retried in 2, 4, 8 and 16 sub-steps; a run that still
-/// breaks it ends with status unstable.
+/// error budget. A sub-step that breaks it is taken again in halves (time_loop.hpp's
+/// guarded_step); a run that still breaks it ends with status unstable.
 #pragma once
 
 #include <optional>
@@ -40,6 +40,10 @@ struct GuardBudget {
     /// run (RunResult::area_law_change), plus eps_lengths ε L: 0, not checked (the paper's
     /// problems); a user's curves 0.02 (RunOptions::area_rate_drift).
     double run_rate_fraction = 0.0;
+    /// A step's own lag may be at most this many times its even share of what is left of
+    /// run_lag_fraction's budget, or it is taken again in finer sub-steps while they help
+    /// (RunOptions::area_step_share); 0: not checked.
+    double step_share = 0.0;
     /// A rigid motion keeps the shape, so its contours need as many segments as its first one
     /// did, to within the tree's alignment: more than this many times as many means the steps
     /// roughen the curves (RunResult::rigid_segments).

@@ -128,6 +128,14 @@ struct RunOptions {
     /// (the paper's problems); a user's curves take 0.02 (default_run_options), so that a run
     /// that ends ok keeps dA/dt = −2π a curve to 2% (a coarse star's first steps miss it by 3%).
     double area_rate_drift = 0.0;
+    /// With guards, under a law with an area rate: a step whose own lag exceeds this many times
+    /// its even share of what is left of area_drift's budget (the budget left × k / (t_end − t),
+    /// plus ε L) is taken again in finer sub-steps, as long as each halving takes its lag down
+    /// by a quarter; the finest that did is kept. So the early steps of a sharp start (a thin
+    /// ellipse's tips, where the flow is fastest) do not spend the budget the later ones need.
+    /// 0: not checked (the paper's problems take the paper's steps); a user's curves take 0.5
+    /// (default_run_options).
+    double area_step_share = 0.0;
 };
 
 struct RunResult;
