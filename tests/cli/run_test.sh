@@ -128,6 +128,14 @@ expect_ok "domain grows" -- run --initial hexagon.json --velocity unit-normal --
 check "domain grows: one note on stderr" test "$(grep -c "domain grew" err.txt)" -eq 1
 check "domain grows: summary says so" grep -q '"domain_grown"' big/summary.json
 check "domain grows: status ok" grep -q '"status": "ok"' big/summary.json
+# A drop 4e-3 across carried round LeVeque's vortex moves 0.2 in its first step, 50 times its
+# size: the domain doubles 8 times (of the 10 a user's run allows) and the drop keeps its area.
+awk 'BEGIN { printf "{\"curves\": [{\"points\": ["; for (i = 0; i < 128; i++)
+    printf "%s[%.17g, %.17g]", (i ? ", " : ""), 0.76 + 0.002 * cos(2 * 3.141592653589793 * i / 128), 0.61 + 0.002 * sin(2 * 3.141592653589793 * i / 128)
+    print "]}]}" }' >drop.json
+expect_ok "a drop in the vortex" -- run --initial drop.json --velocity vortex --t-end 2 --out drop --quiet
+check "a drop in the vortex: the domain doubled 8 times, status ok" test "$(json drop/summary.json 's["status"], s["domain_grown"]["doublings"]')" = "ok 8"
+check "a drop in the vortex: area within 1e-4 of the circle's" json drop/summary.json '1 if abs(s["area"] / (3.141592653589793 * 0.002 ** 2) - 1) < 1e-4 else exit(1)'
 # A named problem keeps the paper's fixed domain: leaving it is an error that names the setting.
 expect_status "named problem leaves its domain" 3 -- run --problem triangle-normal --t-end 3 -N 10 -K 4 -P 0 --out out3 --quiet
 # A rectangular box is taken as the square around it.
