@@ -17,8 +17,8 @@ namespace slc::detail {
 
 /// RunOptions (dim 2) or SurfaceRunOptions (dim 3) for a shape of length scale ℓ from t_start to
 /// t_end in N = steps steps: K = 5, ε = eps_for_depth(dim, 5, ℓ), η = 1e−10 ℓ, up to ten
-/// doublings of the domain (a drop 1e−3 across carried round LeVeque's vortex needs eight). Throws InvalidInput unless t_start and t_end are finite with t_end
-/// after t_start.
+/// doublings of the domain (a drop 1e−3 across carried round LeVeque's vortex needs eight).
+/// Throws InvalidInput unless t_start and t_end are finite with t_end after t_start.
 template <int dim, class Options>
 Options user_run_options(double t_start, double t_end, double length_scale, int steps) {
     if (!std::isfinite(t_start) || !std::isfinite(t_end) || !(t_end > t_start)) {

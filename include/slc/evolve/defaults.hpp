@@ -33,7 +33,11 @@ double length_scale(const Interface& curves);
 ///   cuts are found again (ContourOptions::triangle_safeguard);
 /// - the extension: the law itself where it is known off the curve (flow fields, normal laws),
 ///   the nearest-point extension otherwise (StepOptions::resolved_extension); arcs for the
-///   curvature laws and the laws evaluated directly (StepOptions::resolved_arcs).
+///   curvature laws and the laws evaluated directly (StepOptions::resolved_arcs);
+/// - the guards of a law with an area rate: the run's area within 1% of the start's and 2% of the
+///   law's change (RunOptions::area_drift, area_rate_drift), each step within half its share of
+///   what is left of the 1% (RunOptions::area_step_share), and the start checked
+///   (RunOptions::check_start).
 /// Throws InvalidInput for empty curves or t_end not after t_start.
 RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, double t_start,
                                double t_end);
