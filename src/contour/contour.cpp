@@ -56,6 +56,22 @@ Interface drop_slivers(Interface curves, double eta, std::size_t& dropped) {
     return dropped == 0 ? curves : Interface(kept);
 }
 
+/// The curves but those less than `size` across (the larger side of their box), counted in
+/// dropped: the rule of the surfaces' drop_specks, for curves.
+Interface drop_specks(Interface curves, double size, std::size_t& dropped) {
+    std::vector<std::vector<Vec2>> kept;
+    for (std::size_t c = 0; c < curves.curve_count(); ++c) {
+        const auto curve = curves.curve(c);
+        const Box b = bounding_box(curve);
+        if (std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y) < size) {
+            ++dropped;
+            continue;
+        }
+        kept.emplace_back(curve.begin(), curve.end());
+    }
+    return dropped == 0 ? curves : Interface(kept);
+}
+
 /// contour() with or without bounds on G.
 ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourOptions& given,
                            std::optional<BatchBoundsRef> bounds) {
@@ -105,6 +121,11 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
     stats.g_evals = evaluations;
 
     Interface curves = drop_slivers(chain.to_interface(), options.resolved_eta(), stats.slivers);
+    // As for surfaces: where cells went beyond K, a closed curve less than a finest cell across
+    // is below what the mesh resolves (a loop of G at the corner of a non-convex Wulff shape,
+    // which the thin cells of a user's curves would otherwise keep as a hole the law forbids).
+    if (stats.thin_cells > 0)
+        curves = drop_specks(std::move(curves), stats.finest_cell, stats.specks);
     count_output(curves, stats);
     return {std::move(curves), std::move(topo.tree), stats};
 }

@@ -84,6 +84,7 @@ nlohmann::json basic_stats_json(const BasicContourStats<dim>& s) {
             {"leaves", s.leaves},
             {"thin_cells", s.thin_cells},
             {"thin_budget_reached", s.thin_budget_reached},
+            {"specks", s.specks},
             {"finest_cell", s.finest_cell},
             {"finest_at", at},
             {"vertices", s.vertices},
@@ -298,8 +299,8 @@ nlohmann::json estimate_json(const std::string& coarse, RunStatus status,
 // ContourStats' max_midpoint_value, optional, apart).
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ContourStats, triangles, curves, segments, mean_segment_length,
                                    pruned, joined, slivers)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SurfaceContourStats, specks, tetrahedra, triangles, collapses,
-                                   flips, residual)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SurfaceContourStats, tetrahedra, triangles, collapses, flips,
+                                   residual)
 
 nlohmann::json contour_stats_json(const ContourStats& s) {
     nlohmann::json j = basic_stats_json(s);

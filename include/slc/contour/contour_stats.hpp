@@ -20,6 +20,10 @@ struct BasicContourStats {
     /// Cells that bend were left whole: thin cells are at most twice as many as the cells at K.
     bool thin_budget_reached = false;
     double finest_cell = 0.0;  ///< the edge of the tree's finest cells, thin cells included
+    /// Closed components of the contour less than a finest cell across, dropped where cells went
+    /// beyond K: below what the mesh resolves (a speck beside a convex corner, or where the
+    /// corner of a non-convex Wulff shape leaves G a loop).
+    std::size_t specks = 0;
     PointOf<dim> finest_at{};  ///< the centre of the first of them
     std::size_t vertices = 0;  ///< vertices of the result
 

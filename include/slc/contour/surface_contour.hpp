@@ -32,9 +32,6 @@ using SurfaceContourOptions = BasicContourOptions<3>;
 /// What a surface contour cost and what it produced: the fields both dimensions share
 /// (BasicContourStats), and the surfaces' own.
 struct SurfaceContourStats : BasicContourStats<3> {
-    /// Closed components of the linear contour less than a finest cell across, dropped when
-    /// cells went beyond K (a speck beside a convex corner).
-    std::size_t specks = 0;
     std::size_t tetrahedra = 0;  ///< tetrahedra of its mesh
     std::size_t triangles = 0;   ///< triangles of the result
     std::size_t collapses = 0;   ///< needle edges collapsed by refinement

@@ -257,6 +257,29 @@ TEST(Contour, ALoopThinnerThanEtaIsASliverNotAComponent) {
     EXPECT_EQ(k.stats.slivers, 1u);
 }
 
+TEST(Contour, ACurveLessThanAFinestCellAcrossIsDroppedWhereCellsWentBeyondK) {
+    // A disk, and a speck of radius 0.003 about a vertex of the thin cells' finest level (cells
+    // of 2/128 at K = 5 with two thin levels): the cone of its distance bends the cells there,
+    // which split to the finest level and see G < 0 at the speck's centre. Less than a finest
+    // cell across, it is below what the mesh resolves and is dropped, as a surface's specks are;
+    // the uniform tree at K = 7 (cells of the same size, no thin cells) keeps it.
+    const Vec2 speck{0.5 + 1.0 / 64.0, 0.25};
+    const auto g = pointwise([&](Vec2 p) {
+        return std::min(distance(p, {-0.3, 0.0}) - 0.4, distance(p, speck) - 0.003);
+    });
+    ContourOptions thin = options(5, 2);
+    thin.thin_depth = 2;
+    const ContourResult r = contour(g, unit_domain, thin);
+    ASSERT_GT(r.stats.thin_cells, 0u);
+    EXPECT_EQ(r.stats.finest_cell, 2.0 / 128.0);
+    EXPECT_EQ(r.stats.specks, 1u);
+    ASSERT_EQ(r.curves.curve_count(), 1u);
+    EXPECT_NEAR(signed_area(r.curves.curve(0)), pi * 0.16, refined_area_tolerance);
+    const ContourResult uniform = contour(g, unit_domain, options(7, 2));
+    EXPECT_EQ(uniform.stats.specks, 0u);
+    EXPECT_EQ(uniform.curves.curve_count(), 2u);
+}
+
 /// max over the sides of a convex polygon (counterclockwise) of the signed distance to the
 /// side's line: zero exactly on the polygon, |∇G| = 1, with its corners sharp.
 auto convex_polygon(std::vector<Vec2> corners) {
