@@ -39,15 +39,13 @@ void count_output(const Interface& curves, ContourStats& s) {
         curves.empty() ? 0.0 : static_cast<double>(s.g_evals) / static_cast<double>(curves.size());
 }
 
-/// The curves but those whose mean width 2|A|/L is below the root tolerance η: a loop that thin
-/// is not a component but the sign of G flickering along a line where G jumps across zero
-/// without a root (the medial axis of a curve about to vanish, where the step's feet part), and
-/// it has no interior for the next step's distance to see.
-Interface drop_slivers(Interface curves, double eta, std::size_t& dropped) {
+/// The curves but those `drop` is true of, counted in `dropped`.
+template <class Drop>
+Interface drop_curves(Interface curves, Drop drop, std::size_t& dropped) {
     std::vector<std::vector<Vec2>> kept;
     for (std::size_t c = 0; c < curves.curve_count(); ++c) {
         const auto curve = curves.curve(c);
-        if (2.0 * std::abs(signed_area(curve)) < eta * length(curve)) {
+        if (drop(curve)) {
             ++dropped;
             continue;
         }
@@ -56,20 +54,19 @@ Interface drop_slivers(Interface curves, double eta, std::size_t& dropped) {
     return dropped == 0 ? curves : Interface(kept);
 }
 
-/// The curves but those less than `size` across (the larger side of their box), counted in
-/// dropped: the rule of the surfaces' drop_specks, for curves.
-Interface drop_specks(Interface curves, double size, std::size_t& dropped) {
-    std::vector<std::vector<Vec2>> kept;
-    for (std::size_t c = 0; c < curves.curve_count(); ++c) {
-        const auto curve = curves.curve(c);
-        const Box b = bounding_box(curve);
-        if (std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y) < size) {
-            ++dropped;
-            continue;
-        }
-        kept.emplace_back(curve.begin(), curve.end());
-    }
-    return dropped == 0 ? curves : Interface(kept);
+/// Whether a curve's mean width 2|A|/L is below the root tolerance η: a loop that thin is not a
+/// component but the sign of G flickering along a line where G jumps across zero without a
+/// root (the medial axis of a curve about to vanish, where the step's feet part), and it has no
+/// interior for the next step's distance to see.
+bool is_sliver(std::span<const Vec2> curve, double eta) {
+    return 2.0 * std::abs(signed_area(curve)) < eta * length(curve);
+}
+
+/// Whether a curve is less than `size` across (the larger side of its box): the rule of the
+/// surfaces' drop_specks, for curves.
+bool is_speck(std::span<const Vec2> curve, double size) {
+    const Box b = bounding_box(curve);
+    return std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y) < size;
 }
 
 /// contour() with or without bounds on G.
@@ -120,12 +117,17 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
     stats.max_midpoint_value = refined.max_midpoint_value;
     stats.g_evals = evaluations;
 
-    Interface curves = drop_slivers(chain.to_interface(), options.resolved_eta(), stats.slivers);
+    const double eta = options.resolved_eta();
+    Interface curves = drop_curves(
+        chain.to_interface(), [&](auto curve) { return is_sliver(curve, eta); }, stats.slivers);
     // As for surfaces: where cells went beyond K, a closed curve less than a finest cell across
     // is below what the mesh resolves (a loop of G at the corner of a non-convex Wulff shape,
     // which the thin cells of a user's curves would otherwise keep as a hole the law forbids).
-    if (stats.thin_cells > 0)
-        curves = drop_specks(std::move(curves), stats.finest_cell, stats.specks);
+    if (stats.thin_cells > 0) {
+        const double finest = stats.finest_cell;
+        curves = drop_curves(
+            std::move(curves), [&](auto curve) { return is_speck(curve, finest); }, stats.specks);
+    }
     count_output(curves, stats);
     return {std::move(curves), std::move(topo.tree), stats};
 }
