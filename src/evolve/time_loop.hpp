@@ -289,6 +289,18 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
     return {std::move(s), std::nullopt};
 }
 
+/// What else to name when a step of a normal law whose speed depends on the direction breaks its
+/// law in every split while thin cells are on: where its Wulff shape is not convex, the step
+/// leaves G loops smaller than a cell at the corners, which thin cells resolve as parts or holes
+/// the law forbids and which more steps or a deeper K do not mend (the defaults campaign's case
+/// 45: unstable at N = 40, 80 and at K = 6; ok at --thin-depth 2).
+template <int dim>
+std::string thin_cells_hint(const BasicVelocityLaw<dim>& law, int thin_depth) {
+    if (thin_depth <= 2 || !law.is_normal_law() || law.constant_speed()) return {};
+    return ", or lower --thin-depth (to 2 or 0: thin cells resolve loops of G smaller than a "
+           "cell, as the corners of a speed that depends on the normal leave)";
+}
+
 /// The step from Γ(t) (r's) to t_next: whole, or when it breaks the law's invariants (guards)
 /// in sub-steps, each one that breaks them taken again in halves, down to 1/2^halvings of the
 /// step. A sub-step that fails (NumericalFailure: a contour that leaves a fixed domain, say) is
@@ -403,7 +415,8 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
                 if (level == halvings) {
                     if (best) return keep(std::move(best->out), best->attempt, best->taken);
                     throw Unstable{hooks.unstable_after_splits(violation.empty() ? torn : violation,
-                                                               1 << halvings, r.t)};
+                                                               1 << halvings, r.t) +
+                                   thin_cells_hint(law, thin)};
                 }
                 finest = std::max(finest, ++level);
                 at *= 2;
@@ -450,7 +463,8 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
     }
     if (best) return keep(std::move(best->out), best->attempt, best->taken);
     throw Unstable{
-        hooks.unstable_after_splits(violation.empty() ? torn : violation, 1 << halvings, r.t)};
+        hooks.unstable_after_splits(violation.empty() ? torn : violation, 1 << halvings, r.t) +
+        thin_cells_hint(law, thin)};
 }
 
 /// Throws InvalidInput unless `from` is a state a run with `options` passes through.
