@@ -326,7 +326,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     Surface (or a SurfaceProblem) moves the same way and gives a SurfaceRunResult; its velocity
     takes (m, 3) arrays, the options of curves alone (smoothing, geometry, extension, arcs) are
     refused, area_correction turns the volume correction on or off, and thin_depth (as
-    ``--thin-depth``; a named problem's own, for a user's shape 6 for curves and 2 for a surface)
+    ``--thin-depth``; a named problem's own, for a user's shape 6 for curves (2 under a speed that
+    depends on the normal) and 2 for a surface)
     splits cells up to that many levels beyond K where a part thinner than a
     cell lies; volume_drift (surfaces only, as ``--volume-drift``) is the fraction of its volume a
     surface under a law that keeps it may drift before the run ends "unstable" (0.01 unless set);

@@ -289,16 +289,16 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
     return {std::move(s), std::nullopt};
 }
 
-/// What else to name when a step of a normal law whose speed depends on the direction breaks its
+/// What else to name when a step of a normal law whose speed depends on the normal breaks its
 /// law in every split while thin cells are on: where its Wulff shape is not convex, the step
 /// leaves G loops smaller than a cell at the corners, which thin cells resolve as parts or holes
 /// the law forbids and which more steps or a deeper K do not mend (the defaults campaign's case
-/// 45: unstable at N = 40, 80 and at K = 6; ok at --thin-depth 2).
+/// 45 at thin depth 6: unstable at N = 40, 80 and at K = 6; ok at thin depth 2).
 template <int dim>
 std::string thin_cells_hint(const BasicVelocityLaw<dim>& law, int thin_depth) {
-    if (thin_depth <= 2 || !law.is_normal_law() || law.constant_speed()) return {};
-    return ", or lower --thin-depth (to 2 or 0: thin cells resolve loops of G smaller than a "
-           "cell, as the corners of a speed that depends on the normal leave)";
+    if (thin_depth == 0 || !law.is_normal_law() || law.constant_speed()) return {};
+    return ", or lower --thin-depth (thin cells resolve loops of G smaller than a cell, as the "
+           "corners of a speed that depends on the normal leave)";
 }
 
 /// The step from Γ(t) (r's) to t_next: whole, or when it breaks the law's invariants (guards)

@@ -72,10 +72,11 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                    "ulps of the domain's largest coordinate, below which doubles cannot place a "
                    "root)")
         ->check(positive_number());
-    cmd.add_option("--thin-depth", o.settings.thin_depth,
-                   "Levels beyond K for cells where the zero set's two sides, or a sharp turn, lie "
-                   "within one cell (a problem's own: 0, but 2 for enright and box-normal; for "
-                   "--initial 6 for curves, 2 for a surface)")
+    cmd.add_option(
+           "--thin-depth", o.settings.thin_depth,
+           "Levels beyond K for cells where the zero set's two sides, or a sharp turn, lie "
+           "within one cell (a problem's own: 0, but 2 for enright and box-normal; for "
+           "--initial 6 for curves, 2 under a speed that depends on the normal, 2 for a surface)")
         ->check(integer_in(setting_range::thin_depth));
     cmd.add_option("--rho", o.settings.rho, "rho: pruning ratio in [0, 1) (default 0.1)")
         ->check(fraction_below_one());

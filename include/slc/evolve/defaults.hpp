@@ -31,6 +31,8 @@ double length_scale(const Interface& curves);
 ///   arclength, and arcs; a law of vertex velocities): P = 2 passes; a law evaluated directly:
 ///   refinement until converged; both without the triangle safeguard, so that corners the tree
 ///   cuts are found again (ContourOptions::triangle_safeguard);
+/// - thin cells 6 levels beyond K (default_thin_depth), 2 under a normal law whose speed depends
+///   on the normal (whose non-convex Wulff shapes leave G loops smaller than a cell);
 /// - the extension: the law itself where it is known off the curve (flow fields, normal laws),
 ///   the nearest-point extension otherwise (StepOptions::resolved_extension); arcs for the
 ///   curvature laws and the laws evaluated directly (StepOptions::resolved_arcs);
