@@ -81,7 +81,7 @@ RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, 
     // the cost (a unit circle under the law's own speed to t = 0.5: 101 s CPU, against 7 s two
     // deep), and ended 11 of the defaults campaign's 29 anisotropic runs unstable. Two levels, as
     // for a surface: a start with a part thinner than that still takes more (check_start).
-    if (law.is_normal_law() && !law.constant_speed()) c.thin_depth = 2;
+    if (detail::normal_speed_varies(law)) c.thin_depth = 2;
     o.step.embedded.mesh = default_mesh_size(c.depth);
     // A user's run holds its law's area rate to 1% of the start's area, splitting the steps
     // that would take it further (a thin ellipse's tips at 40 steps miss it by 2.4%).

@@ -30,6 +30,7 @@
 #include "start_check.hpp"
 #include "step_common.hpp"
 #include "thin_parts.hpp"
+#include "user_defaults.hpp"
 
 namespace slc::detail {
 
@@ -289,14 +290,13 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
     return {std::move(s), std::nullopt};
 }
 
-/// What else to name when a step of a normal law whose speed depends on the normal breaks its
-/// law in every split while thin cells are on: where its Wulff shape is not convex, the step
-/// leaves G loops smaller than a cell at the corners, which thin cells resolve as parts or holes
-/// the law forbids and which more steps or a deeper K do not mend (the defaults campaign's case
-/// 45 at thin depth 6: unstable at N = 40, 80 and at K = 6; ok at thin depth 2).
+/// What else to name when a step of a normal law whose speed varies (normal_speed_varies) breaks
+/// its law in every split while thin cells are on: the loops its step leaves in G at a
+/// non-convex Wulff shape's corners are not mended by more steps or a deeper K (the defaults
+/// campaign's case 45 at thin depth 6: unstable at N = 40, 80 and at K = 6; ok at thin depth 2).
 template <int dim>
 std::string thin_cells_hint(const BasicVelocityLaw<dim>& law, int thin_depth) {
-    if (thin_depth == 0 || !law.is_normal_law() || law.constant_speed()) return {};
+    if (thin_depth == 0 || !normal_speed_varies(law)) return {};
     return ", or lower --thin-depth (thin cells resolve loops of G smaller than a cell, as the "
            "corners of a speed that depends on the normal leave)";
 }
@@ -345,6 +345,7 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
         }
         return out;
     };
+    const auto keep_best = [&] { return keep(std::move(best->out), best->attempt, best->taken); };
     // Each pass walks the step in sub-steps of (t_next − r.t)/2^level, level from `least` up to
     // `halvings`: a sub-step that fails is taken again in halves from where it started, and the
     // rest of the step at the level that succeeded (growing back to longer sub-steps within the
@@ -413,7 +414,7 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
             if (failed) {
                 attempt = before;
                 if (level == halvings) {
-                    if (best) return keep(std::move(best->out), best->attempt, best->taken);
+                    if (best) return keep_best();
                     throw Unstable{hooks.unstable_after_splits(violation.empty() ? torn : violation,
                                                                1 << halvings, r.t) +
                                    thin_cells_hint(law, thin)};
@@ -440,7 +441,7 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
                     continue;
                 }
             } else if (best->excess < excess) {
-                return keep(std::move(best->out), best->attempt, best->taken);
+                return keep_best();
             }
         }
         if (over_budget && !options.guards) {
@@ -452,7 +453,7 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
         // again in finer sub-steps first, as one that breaks an invariant. A finer pass after
         // one beyond only a share falls back to that one.
         if (over_budget) {
-            if (best) return keep(std::move(best->out), best->attempt, best->taken);
+            if (best) return keep_best();
             if (over_budget->split && finest < halvings) {
                 violation = std::move(over_budget->message);
                 continue;
@@ -461,7 +462,7 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
         }
         return keep(std::move(out), attempt, taken);
     }
-    if (best) return keep(std::move(best->out), best->attempt, best->taken);
+    if (best) return keep_best();
     throw Unstable{
         hooks.unstable_after_splits(violation.empty() ? torn : violation, 1 << halvings, r.t) +
         thin_cells_hint(law, thin)};

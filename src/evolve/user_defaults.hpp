@@ -12,8 +12,17 @@
 
 #include "slc/core/error.hpp"
 #include "slc/evolve/overrides.hpp"
+#include "slc/velocity/velocity.hpp"
 
 namespace slc::detail {
+
+/// Whether law is a normal law whose speed is not one constant (anisotropic, a speed expression
+/// in the normal): where its Wulff shape is not convex, its step leaves G loops smaller than a
+/// cell at the corners, which thin cells resolve as parts or holes the law forbids.
+template <int dim>
+bool normal_speed_varies(const BasicVelocityLaw<dim>& law) {
+    return law.is_normal_law() && !law.constant_speed();
+}
 
 /// RunOptions (dim 2) or SurfaceRunOptions (dim 3) for a shape of length scale ℓ from t_start to
 /// t_end in N = steps steps: K = 5, ε = eps_for_depth(dim, 5, ℓ), η = 1e−10 ℓ, up to ten
