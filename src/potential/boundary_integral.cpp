@@ -12,12 +12,14 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <optional>
 #include <unsupported/Eigen/FFT>
 #include <unsupported/Eigen/IterativeSolvers>
 
+#include "log_sum.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 
@@ -26,68 +28,68 @@ namespace slc::detail {
 /// The single-layer system's matrix, row by row contiguous.
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// RowMajorMatrix as GMRES sees it: its products with a vector computed a row per iteration of
-/// slc's parallel_for, each row's sum in one order whatever the number of threads (Eigen's own
-/// product runs on one core).
-class ParallelDense;
+/// A square operator as GMRES sees it: its product with a vector is apply(x, y), y = A x, the
+/// dense matrix's a row per iteration of slc's parallel_for or the fast summation's, either the
+/// same whatever the number of threads (Eigen's own product runs on one core).
+class LinearOperator;
 
 }  // namespace slc::detail
 
 namespace Eigen::internal {
 template <>
-struct traits<slc::detail::ParallelDense> : public traits<Eigen::SparseMatrix<double>> {};
+struct traits<slc::detail::LinearOperator> : public traits<Eigen::SparseMatrix<double>> {};
 }  // namespace Eigen::internal
 
 namespace slc::detail {
 
-class ParallelDense : public Eigen::EigenBase<ParallelDense> {
+class LinearOperator : public Eigen::EigenBase<LinearOperator> {
 public:
     using Scalar = double;
     using RealScalar = double;
     using StorageIndex = int;
+    using Apply = std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>;
     enum {
         ColsAtCompileTime = Eigen::Dynamic,
         MaxColsAtCompileTime = Eigen::Dynamic,
         IsRowMajor = false
     };
-    explicit ParallelDense(const RowMajorMatrix& m) : m_(&m) {}
-    Eigen::Index rows() const { return m_->rows(); }
-    Eigen::Index cols() const { return m_->cols(); }
+    LinearOperator(Eigen::Index n, Apply apply) : n_(n), apply_(std::move(apply)) {}
+    Eigen::Index rows() const { return n_; }
+    Eigen::Index cols() const { return n_; }
     template <class Rhs>
-    Eigen::Product<ParallelDense, Rhs, Eigen::AliasFreeProduct> operator*(
+    Eigen::Product<LinearOperator, Rhs, Eigen::AliasFreeProduct> operator*(
         const Eigen::MatrixBase<Rhs>& x) const {
-        return Eigen::Product<ParallelDense, Rhs, Eigen::AliasFreeProduct>(*this, x.derived());
+        return Eigen::Product<LinearOperator, Rhs, Eigen::AliasFreeProduct>(*this, x.derived());
     }
-    const RowMajorMatrix& matrix() const { return *m_; }
+    void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const { apply_(x, y); }
 
 private:
-    const RowMajorMatrix* m_;
+    Eigen::Index n_;
+    Apply apply_;
 };
 
 }  // namespace slc::detail
 
 namespace Eigen::internal {
 template <class Rhs>
-struct generic_product_impl<slc::detail::ParallelDense, Rhs, SparseShape, DenseShape, GemvProduct>
-    : generic_product_impl_base<slc::detail::ParallelDense, Rhs,
-                                generic_product_impl<slc::detail::ParallelDense, Rhs>> {
-    using Scalar = typename Product<slc::detail::ParallelDense, Rhs>::Scalar;
+struct generic_product_impl<slc::detail::LinearOperator, Rhs, SparseShape, DenseShape, GemvProduct>
+    : generic_product_impl_base<slc::detail::LinearOperator, Rhs,
+                                generic_product_impl<slc::detail::LinearOperator, Rhs>> {
+    using Scalar = typename Product<slc::detail::LinearOperator, Rhs>::Scalar;
     template <class Dest>
-    static void scaleAndAddTo(Dest& dst, const slc::detail::ParallelDense& lhs, const Rhs& rhs,
+    static void scaleAndAddTo(Dest& dst, const slc::detail::LinearOperator& lhs, const Rhs& rhs,
                               const Scalar& alpha) {
-        const slc::detail::RowMajorMatrix& m = lhs.matrix();
         const Eigen::VectorXd x = rhs;
-        slc::parallel_for(static_cast<std::size_t>(m.rows()), [&](std::size_t i) {
-            const auto r = static_cast<Eigen::Index>(i);
-            dst(r) += alpha * m.row(r).dot(x);
-        });
+        Eigen::VectorXd y(x.size());
+        lhs.apply(x, y);
+        dst += alpha * y;
     }
 };
 }  // namespace Eigen::internal
 
 namespace slc {
 
-using detail::ParallelDense;
+using detail::LinearOperator;
 using detail::RowMajorMatrix;
 namespace {
 
@@ -102,6 +104,14 @@ constexpr std::size_t max_samples = 10000;
 
 /// Up to this many samples the equation is solved by LU, beyond it by GMRES.
 constexpr std::size_t direct_solve_limit = 600;
+
+/// Beyond this many samples the operators are summed fast (Summation::automatic).
+constexpr std::size_t fast_summation_from = 3000;
+
+/// GMRES's relative residual over the dense matrix, and over the fast summation (whose products
+/// are accurate to about 1e−14 relative).
+constexpr double dense_tolerance = 1e-13;
+constexpr double fast_tolerance = 1e-12;
 
 /// Solves the cyclic tridiagonal system a_i x_{i−1} + b_i x_i + c_i x_{i+1} = r_i (indices mod
 /// n, n ≥ 3), diagonally dominant, by the Sherman–Morrison form of the Thomas algorithm.
@@ -368,6 +378,36 @@ std::pair<std::vector<std::size_t>, std::size_t> sample_groups(const SmoothCurve
     return {std::move(of), *std::max_element(group.begin(), group.end()) + 1};
 }
 
+/// Kress's weights R_d of each curve's sample count, and the curve of each sample.
+struct KressTables {
+    std::vector<std::size_t> curve_of;
+    std::vector<std::vector<double>> weights;
+
+    explicit KressTables(const SmoothCurves& s) : curve_of(s.x.size()), weights(s.curve_count()) {
+        for (std::size_t c = 0; c < s.curve_count(); ++c) {
+            weights[c] = kress_weights(s.count(c));
+            for (std::size_t i = s.offsets[c]; i < s.offsets[c + 1]; ++i) curve_of[i] = c;
+        }
+    }
+};
+
+/// The single-layer operator's weight of φ_j in (Sμ)(x_i) for samples i, j of one curve c:
+/// Kress's −(1/4π) [R_{i−j} + (2π/M) log(|x_i − x_j|² / (4 sin²((τ_i − τ_j)/2)))], the log of
+/// the speed² on the diagonal.
+double own_curve_weight(const SmoothCurves& s, const KressTables& kress, std::size_t c,
+                        std::size_t i, std::size_t j) {
+    const std::size_t first = s.offsets[c], m = s.count(c);
+    const std::size_t d = (i - first + m - (j - first)) % m;
+    double smooth;
+    if (d == 0) {
+        smooth = std::log(s.speed[i] * s.speed[i]);
+    } else {
+        const double sine = std::sin(pi * static_cast<double>(d) / static_cast<double>(m));
+        smooth = std::log(norm2(s.x[i] - s.x[j]) / (4.0 * sine * sine));
+    }
+    return -(kress.weights[c][d] + (2.0 * pi / static_cast<double>(m)) * smooth) / (4.0 * pi);
+}
+
 /// Calls write(i, j, A_ij) for every pair of samples of one group: the single-layer operator's
 /// weight of φ_j in (Sμ)(x_i), Kress's quadrature on a sample's own curve, the trapezoidal rule
 /// on others. Rows in parallel, each written by one thread.
@@ -375,38 +415,99 @@ template <class Write>
 void assemble_single_layer(const SmoothCurves& s, std::span<const std::size_t> sample_group,
                            Write&& write) {
     const std::size_t n = s.x.size();
-    std::vector<std::size_t> curve_of(n);
-    for (std::size_t c = 0; c < s.curve_count(); ++c)
-        for (std::size_t i = s.offsets[c]; i < s.offsets[c + 1]; ++i) curve_of[i] = c;
-    std::vector<std::vector<double>> kress(s.curve_count());
-    for (std::size_t c = 0; c < s.curve_count(); ++c) kress[c] = kress_weights(s.count(c));
+    const KressTables kress(s);
     parallel_for(n, [&](std::size_t i) {
-        const std::size_t ci = curve_of[i], first = s.offsets[ci], m = s.count(ci);
-        const double half = static_cast<double>(m / 2);
+        const std::size_t ci = kress.curve_of[i];
         for (std::size_t j = 0; j < n; ++j) {
             if (sample_group[j] != sample_group[i]) continue;
-            const std::size_t cj = curve_of[j];
-            double w;
-            if (cj != ci) {
-                // −(1/2π) log|x_i − x_j| times the trapezoidal weight 2π/M of curve cj.
-                w = -std::log(norm(s.x[i] - s.x[j])) / static_cast<double>(s.count(cj));
-            } else {
-                // Kress: −(1/4π) [R_{i−j} + (π/n) log(|x_i − x_j|² / (4 sin²((τ_i − τ_j)/2)))],
-                // the log of the speed² on the diagonal.
-                const std::size_t d = (i - first + m - (j - first)) % m;
-                double smooth;
-                if (d == 0) {
-                    smooth = std::log(s.speed[i] * s.speed[i]);
-                } else {
-                    const double sine =
-                        std::sin(pi * static_cast<double>(d) / static_cast<double>(m));
-                    smooth = std::log(norm2(s.x[i] - s.x[j]) / (4.0 * sine * sine));
-                }
-                w = -(kress[ci][d] + (pi / half) * smooth) / (4.0 * pi);
-            }
+            const std::size_t cj = kress.curve_of[j];
+            // −(1/2π) log|x_i − x_j| times the trapezoidal weight 2π/M of curve cj.
+            const double w =
+                cj != ci ? -std::log(norm(s.x[i] - s.x[j])) / static_cast<double>(s.count(cj))
+                         : own_curve_weight(s, kress, ci, i, j);
             write(i, j, w);
         }
     });
+}
+
+/// The block of curve c with itself of the single-layer operator's matrix.
+Eigen::MatrixXd own_curve_block(const SmoothCurves& s, const KressTables& kress, std::size_t c) {
+    const auto m = static_cast<Eigen::Index>(s.count(c));
+    Eigen::MatrixXd block(m, m);
+    const std::size_t first = s.offsets[c];
+    for (Eigen::Index i = 0; i < m; ++i)
+        for (Eigen::Index j = 0; j < m; ++j)
+            block(i, j) = own_curve_weight(s, kress, c, first + static_cast<std::size_t>(i),
+                                           first + static_cast<std::size_t>(j));
+    return block;
+}
+
+/// The single-layer operator summed fast (docs/algorithms/potential.md): the trapezoidal rule's
+/// logarithms over every sample of a group by the treecode (LogSum), then on each curve what
+/// Kress's quadrature adds to the trapezoidal rule there: a circulant (its weights depend on
+/// i − j mod M alone: −R_d/4π + log(4 sin²(πd/M))/2M), applied by FFT, and −log|γ'(τ_i)|/M on
+/// the diagonal. O(M log M) a product.
+class FastSingleLayer {
+public:
+    FastSingleLayer(const SmoothCurves& s, std::span<const std::size_t> sample_group)
+        : s_(s), sum_(s.x, sample_group) {
+        Eigen::FFT<double> fft;
+        for (std::size_t c = 0; c < s.curve_count(); ++c) {
+            const std::size_t m = s.count(c);
+            const std::vector<double> r = kress_weights(m);
+            // The circulant's weights c_d as a linear convolution's kernel c̃_e = c_{(e − M + 1)
+            // mod M}, e in [0, 2M − 2], zero-padded to a power of two at or above 2M − 1.
+            std::size_t padded = 1;
+            while (padded < 2 * m - 1) padded *= 2;
+            std::vector<double> kernel(padded, 0.0);
+            for (std::size_t e = 0; e + 1 < 2 * m; ++e) {
+                const std::size_t d = (e + 1) % m;  // e − (M − 1) mod M
+                double w = -r[d] / (4.0 * pi);
+                if (d != 0) {
+                    const double sine =
+                        std::sin(pi * static_cast<double>(d) / static_cast<double>(m));
+                    w += std::log(4.0 * sine * sine) / (2.0 * static_cast<double>(m));
+                }
+                kernel[e] = w;
+            }
+            spectrum_.emplace_back();
+            fft.fwd(spectrum_.back(), kernel);
+        }
+    }
+
+    /// y = Sφ at the samples, φ_j = μ_j |γ'(τ_j)|.
+    void apply(std::span<const double> phi, std::span<double> y) const {
+        const std::size_t n = s_.x.size();
+        std::vector<double> q(n);
+        for (std::size_t c = 0; c < s_.curve_count(); ++c)
+            for (std::size_t j = s_.offsets[c]; j < s_.offsets[c + 1]; ++j)
+                q[j] = -phi[j] / static_cast<double>(s_.count(c));
+        sum_.sum(q, y, {});
+        Eigen::FFT<double> fft;
+        std::vector<std::complex<double>> spectrum;
+        std::vector<double> padded, convolved;
+        for (std::size_t c = 0; c < s_.curve_count(); ++c) {
+            const std::size_t first = s_.offsets[c], m = s_.count(c);
+            padded.assign(spectrum_[c].size(), 0.0);
+            std::copy_n(phi.begin() + static_cast<std::ptrdiff_t>(first), m, padded.begin());
+            fft.fwd(spectrum, padded);
+            for (std::size_t k = 0; k < spectrum.size(); ++k) spectrum[k] *= spectrum_[c][k];
+            fft.inv(convolved, spectrum);
+            for (std::size_t i = 0; i < m; ++i)
+                y[first + i] += convolved[i + m - 1] - std::log(s_.speed[first + i]) *
+                                                           phi[first + i] / static_cast<double>(m);
+        }
+    }
+
+private:
+    const SmoothCurves& s_;
+    detail::LogSum sum_;
+    std::vector<std::vector<std::complex<double>>> spectrum_;  // each curve's padded kernel's
+};
+
+/// Whether the fast summation is used for `samples` samples.
+bool fast_for(Summation how, std::size_t samples) {
+    return how == Summation::fast || (how == Summation::automatic && samples > fast_summation_from);
 }
 
 }  // namespace
@@ -419,6 +520,12 @@ std::vector<double> single_layer_matrix(const SmoothCurves& s) {
     return a;
 }
 
+std::vector<double> apply_single_layer(const SmoothCurves& s, std::span<const double> phi) {
+    std::vector<double> y(s.x.size());
+    FastSingleLayer(s, std::vector<std::size_t>(s.x.size(), 0)).apply(phi, y);
+    return y;
+}
+
 namespace {
 
 /// GMRES's preconditioner for many curves: each curve's own augmented system (its block of S,
@@ -426,7 +533,7 @@ namespace {
 /// charges alone, curve d's unit charge raising the potential on curve c by G_cd, the mean over
 /// c of S applied to d's equilibrium density. What is left, the curves' dipoles and higher
 /// moments on each other, shrinks as (size/distance)^m, so GMRES's iterations do not grow with
-/// the number of curves (docs/notes/potential.md). Set up in O(M² + Σ M_c³ + curves³).
+/// the number of curves (docs/notes/potential.md). Set up in O(Σ M_c³ + curves³) and the G_cd.
 class CurveBlockPreconditioner {
 public:
     template <class Matrix>
@@ -443,52 +550,52 @@ public:
     }
     Eigen::ComputationInfo info() const { return Eigen::Success; }
 
-    /// From the system's matrix (the samples' rows and columns, then a constant and a charge row
-    /// for each group).
-    void set_up(const RowMajorMatrix& system, const SmoothCurves& s,
-                std::span<const std::size_t> sample_group, std::size_t groups) {
+    /// From each curve's own block of S (own_block(c)) and the potential on curve c of d's
+    /// equilibrium density (coupling(c, d, density of d at its samples)).
+    template <class OwnBlock, class Coupling>
+    void set_up(const SmoothCurves& s, std::span<const std::size_t> sample_group,
+                std::size_t groups, OwnBlock&& own_block, Coupling&& coupling) {
         const std::size_t curves = s.curve_count();
         offsets_ = s.offsets;
         groups_ = groups;
-        local_.clear();
+        local_.assign(curves, Eigen::PartialPivLU<Eigen::MatrixXd>());
         unit_.assign(curves, Eigen::VectorXd());
-        for (std::size_t c = 0; c < curves; ++c) {
-            const auto m = static_cast<Eigen::Index>(s.count(c));
-            const auto first = static_cast<Eigen::Index>(s.offsets[c]);
-            Eigen::MatrixXd block = Eigen::MatrixXd::Zero(m + 1, m + 1);
-            block.topLeftCorner(m, m) = system.block(first, first, m, m);
-            block.col(m).head(m).setOnes();
-            block.row(m).head(m).setConstant(2.0 * pi / static_cast<double>(m));
-            local_.emplace_back(block);
-            unit_[c] = local_.back().solve(Eigen::VectorXd::Unit(m + 1, m));
-        }
+        parallel_for(
+            curves,
+            [&](std::size_t c) {
+                const auto m = static_cast<Eigen::Index>(s.count(c));
+                Eigen::MatrixXd block = Eigen::MatrixXd::Zero(m + 1, m + 1);
+                block.topLeftCorner(m, m) = own_block(c);
+                block.col(m).head(m).setOnes();
+                block.row(m).head(m).setConstant(2.0 * pi / static_cast<double>(m));
+                local_[c].compute(block);
+                unit_[c] = local_[c].solve(Eigen::VectorXd::Unit(m + 1, m));
+            },
+            expensive_grain);
         // G_cd: the mean over curve c of S applied to curve d's equilibrium density.
-        Eigen::MatrixXd coupling = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(curves),
-                                                         static_cast<Eigen::Index>(curves));
+        Eigen::MatrixXd g = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(curves),
+                                                  static_cast<Eigen::Index>(curves));
         parallel_for(curves, [&](std::size_t c) {
-            const auto m = static_cast<Eigen::Index>(s.count(c));
-            const auto first = static_cast<Eigen::Index>(s.offsets[c]);
             for (std::size_t d = 0; d < curves; ++d) {
                 if (d == c || sample_group[s.offsets[d]] != sample_group[s.offsets[c]]) continue;
                 const auto md = static_cast<Eigen::Index>(s.count(d));
-                const auto first_d = static_cast<Eigen::Index>(s.offsets[d]);
-                coupling(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(d)) =
-                    (system.block(first, first_d, m, md) * unit_[d].head(md)).mean();
+                g(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(d)) =
+                    coupling(c, d, unit_[d].head(md));
             }
         });
         // The charges' system: b_c Q_c − Σ_d G_cd Q_d − C_g = −a_c for each curve (a_c + b_c Q_c
         // the constant its own system gives it), Σ_{c in g} Q_c = r_g for each group.
         const auto k = static_cast<Eigen::Index>(curves + groups);
-        Eigen::MatrixXd charges = -coupling;
+        Eigen::MatrixXd charges = -g;
         charges.conservativeResize(k, k);
         charges.rightCols(k - static_cast<Eigen::Index>(curves)).setZero();
         charges.bottomRows(k - static_cast<Eigen::Index>(curves)).setZero();
         for (std::size_t c = 0; c < curves; ++c) {
             const auto ci = static_cast<Eigen::Index>(c);
-            const auto g = static_cast<Eigen::Index>(curves + sample_group[s.offsets[c]]);
+            const auto gi = static_cast<Eigen::Index>(curves + sample_group[s.offsets[c]]);
             charges(ci, ci) = unit_[c](unit_[c].size() - 1);
-            charges(ci, g) = -1.0;
-            charges(g, ci) = 1.0;
+            charges(ci, gi) = -1.0;
+            charges(gi, ci) = 1.0;
         }
         charges_.compute(charges);
     }
@@ -533,51 +640,122 @@ private:
 
 }  // namespace
 
-/// The system's matrix and its factorisation (LU) or its iterative solver (GMRES).
+/// The system's matrix and its factorisation (LU), or its GMRES solver over the dense matrix or
+/// the fast summation.
 struct SingleLayerSystem::Factored {
-    RowMajorMatrix matrix;
+    RowMajorMatrix matrix;  // empty with the fast summation
+    std::optional<FastSingleLayer> fast;
     std::optional<Eigen::PartialPivLU<RowMajorMatrix>> lu;
-    std::optional<ParallelDense> product;  // GMRES's view of matrix
-    std::optional<Eigen::GMRES<ParallelDense, CurveBlockPreconditioner>> gmres;
+    std::optional<LinearOperator> product;  // GMRES's view of the system
+    std::optional<Eigen::GMRES<LinearOperator, CurveBlockPreconditioner>> gmres;
 };
 
-SingleLayerSystem::SingleLayerSystem(const SmoothCurves& s, std::span<const std::size_t> group)
+SingleLayerSystem::SingleLayerSystem(const SmoothCurves& s, std::span<const std::size_t> group,
+                                     Summation how)
     : s_(s), factored_(std::make_unique<Factored>()) {
     const std::size_t n = s.x.size();
-    if (n > max_samples)
-        throw NumericalFailure(fmt::format(
-            "the potential's integral equation on {} points (curves of {} vertices) would need "
-            "{:.1f} GB, more than 0.8: fewer vertices (a lower --thin-depth or -K; if the curves "
-            "wrinkled, more steps N) or fewer particles",
-            n, s.vertex_offsets.back(), 8e-9 * static_cast<double>(n) * static_cast<double>(n)));
     const auto [sample_group, groups] = sample_groups(s, group);
     groups_ = groups;
+    const auto size = static_cast<Eigen::Index>(n + groups);
     // The unknowns: φ_j = μ_j |γ'(τ_j)| and each group's constant; the group's last row is
     // ∫μ ds = Σ (2π/M_c) φ_j = 0 over its curves. Curves of other groups are not seen.
-    RowMajorMatrix& system = factored_->matrix;
-    system = RowMajorMatrix::Zero(static_cast<Eigen::Index>(n + groups),
-                                  static_cast<Eigen::Index>(n + groups));
-    assemble_single_layer(s, sample_group,
-                          [&](std::size_t i, std::size_t j, double w) { system(i, j) = w; });
-    for (std::size_t c = 0; c < s.curve_count(); ++c) {
-        for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j) {
-            system(j, n + sample_group[j]) = 1.0;
-            system(n + sample_group[j], j) = 2.0 * pi / static_cast<double>(s.count(c));
+    Factored& f = *factored_;
+    const KressTables kress(s);
+    const auto preconditioner = [&]() -> CurveBlockPreconditioner& {
+        return f.gmres->preconditioner();
+    };
+    if (fast_for(how, n)) {
+        f.fast.emplace(s, sample_group);
+        f.product.emplace(
+            size, [this, n, sample_group](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+                factored_->fast->apply(std::span(x.data(), n), std::span(y.data(), n));
+                const SmoothCurves& c = s_;
+                for (std::size_t g = 0; g < groups_; ++g) y(static_cast<Eigen::Index>(n + g)) = 0.0;
+                for (std::size_t k = 0; k < c.curve_count(); ++k) {
+                    for (std::size_t j = c.offsets[k]; j < c.offsets[k + 1]; ++j) {
+                        const std::size_t g = sample_group[j];
+                        y(static_cast<Eigen::Index>(j)) += x(static_cast<Eigen::Index>(n + g));
+                        y(static_cast<Eigen::Index>(n + g)) += 2.0 * pi /
+                                                               static_cast<double>(c.count(k)) *
+                                                               x(static_cast<Eigen::Index>(j));
+                    }
+                }
+            });
+        f.gmres.emplace(*f.product);
+        // Curves far apart (centroids more than 4 times their radii's sum apart) see each other's
+        // unit charge as a point's, −log|c_c − c_d|/2π; nearer ones by the trapezoidal rule.
+        std::vector<Vec2> centroid(s.curve_count());
+        std::vector<double> radius(s.curve_count(), 0.0);
+        for (std::size_t c = 0; c < s.curve_count(); ++c) {
+            for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j) centroid[c] += s.x[j];
+            centroid[c] = centroid[c] / static_cast<double>(s.count(c));
+            for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
+                radius[c] = std::max(radius[c], norm(s.x[j] - centroid[c]));
         }
-    }
-    if (n <= direct_solve_limit) {
-        factored_->lu.emplace(system);
+        preconditioner().set_up(
+            s, sample_group, groups, [&](std::size_t c) { return own_curve_block(s, kress, c); },
+            [&](std::size_t c, std::size_t d, const auto& unit) {
+                const double apart = norm(centroid[c] - centroid[d]);
+                if (apart > 4.0 * (radius[c] + radius[d])) return -std::log(apart) / (2.0 * pi);
+                double sum = 0.0;
+                for (std::size_t i = s.offsets[c]; i < s.offsets[c + 1]; ++i)
+                    for (std::size_t j = s.offsets[d]; j < s.offsets[d + 1]; ++j)
+                        sum -= std::log(norm(s.x[i] - s.x[j])) *
+                               unit(static_cast<Eigen::Index>(j - s.offsets[d]));
+                return sum / static_cast<double>(s.count(d) * s.count(c));
+            });
+        f.gmres->setTolerance(fast_tolerance);
     } else {
-        factored_->product.emplace(system);
-        factored_->gmres.emplace(*factored_->product);
-        factored_->gmres->preconditioner().set_up(system, s, sample_group, groups);
-        factored_->gmres->set_restart(300);
-        factored_->gmres->setTolerance(1e-13);
-        factored_->gmres->setMaxIterations(3000);
+        if (n > max_samples)
+            throw NumericalFailure(fmt::format(
+                "the potential's dense integral equation on {} points (curves of {} vertices) "
+                "would need {:.1f} GB, more than 0.8: the fast summation (or fewer vertices)",
+                n, s.vertex_offsets.back(),
+                8e-9 * static_cast<double>(n) * static_cast<double>(n)));
+        RowMajorMatrix& system = f.matrix;
+        system = RowMajorMatrix::Zero(size, size);
+        assemble_single_layer(s, sample_group,
+                              [&](std::size_t i, std::size_t j, double w) { system(i, j) = w; });
+        for (std::size_t c = 0; c < s.curve_count(); ++c) {
+            for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j) {
+                system(j, n + sample_group[j]) = 1.0;
+                system(n + sample_group[j], j) = 2.0 * pi / static_cast<double>(s.count(c));
+            }
+        }
+        if (n <= direct_solve_limit) {
+            f.lu.emplace(system);
+            return;
+        }
+        f.product.emplace(size, [&system](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+            parallel_for(static_cast<std::size_t>(system.rows()), [&](std::size_t i) {
+                const auto r = static_cast<Eigen::Index>(i);
+                y(r) = system.row(r).dot(x);
+            });
+        });
+        f.gmres.emplace(*f.product);
+        preconditioner().set_up(
+            s, sample_group, groups,
+            [&](std::size_t c) {
+                const auto m = static_cast<Eigen::Index>(s.count(c));
+                const auto first = static_cast<Eigen::Index>(s.offsets[c]);
+                return Eigen::MatrixXd(system.block(first, first, m, m));
+            },
+            [&](std::size_t c, std::size_t d, const auto& unit) {
+                const auto m = static_cast<Eigen::Index>(s.count(c));
+                const auto first = static_cast<Eigen::Index>(s.offsets[c]);
+                const auto md = static_cast<Eigen::Index>(s.count(d));
+                const auto first_d = static_cast<Eigen::Index>(s.offsets[d]);
+                return (system.block(first, first_d, m, md) * unit).mean();
+            });
+        f.gmres->setTolerance(dense_tolerance);
     }
+    f.gmres->set_restart(300);
+    f.gmres->setMaxIterations(3000);
 }
 
 SingleLayerSystem::~SingleLayerSystem() = default;
+
+bool SingleLayerSystem::sums_fast() const { return factored_->fast.has_value(); }
 
 std::vector<SingleLayerSolution> SingleLayerSystem::solve(
     std::span<const std::vector<double>> fs) const {
@@ -629,18 +807,26 @@ SingleLayerSolution solve_single_layer(const SmoothCurves& s, std::span<const do
 }
 
 std::vector<double> adjoint_double_layer(const SmoothCurves& s, std::span<const double> density,
-                                         std::span<const std::size_t> group) {
+                                         std::span<const std::size_t> group, Summation how) {
     const std::size_t n = s.x.size();
     const std::vector<std::size_t> sample_group = sample_groups(s, group).first;
     std::vector<double> phi(n), out(n);
     for (std::size_t c = 0; c < s.curve_count(); ++c)
         for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
             phi[j] = density[j] * s.speed[j] * 2.0 * pi / static_cast<double>(s.count(c));
+    // ∂G/∂N(x_i) = −(1/2π) (x_i − y)·N_i / |x_i − y|²; its limit on the diagonal, C_i/4π.
+    if (fast_for(how, n)) {
+        std::vector<Vec2> field(n);
+        detail::LogSum(s.x, sample_group).sum(phi, {}, field);
+        for (std::size_t i = 0; i < n; ++i)
+            out[i] =
+                -dot(field[i], s.normal[i]) / (2.0 * pi) + s.curvature[i] / (4.0 * pi) * phi[i];
+        return out;
+    }
     parallel_for(n, [&](std::size_t i) {
         double sum = 0.0;
         for (std::size_t j = 0; j < n; ++j) {
             if (sample_group[j] != sample_group[i]) continue;
-            // ∂G/∂N(x_i) = −(1/2π) (x_i − y)·N_i / |x_i − y|²; its limit on the diagonal, C_i/4π.
             const Vec2 d = s.x[i] - s.x[j];
             const double kernel =
                 j == i ? s.curvature[i] / (4.0 * pi) : -dot(d, s.normal[i]) / (2.0 * pi * norm2(d));

@@ -66,7 +66,7 @@ std::vector<double> MullinsSekerka::flux_jump(const SmoothCurves& s,
     std::vector<double> v(mu.size());
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = -0.5 * (d_out_ + d_in_) * mu[i];
     if (d_out_ != d_in_) {
-        const std::vector<double> kmu = adjoint_double_layer(s, mu);
+        const std::vector<double> kmu = adjoint_double_layer(s, mu, {}, summation_);
         for (std::size_t i = 0; i < v.size(); ++i) v[i] += (d_out_ - d_in_) * kmu[i];
     }
     return v;
@@ -75,7 +75,7 @@ std::vector<double> MullinsSekerka::flux_jump(const SmoothCurves& s,
 std::vector<double> MullinsSekerka::normal_speeds(const SmoothCurves& s, double k) const {
     std::vector<double> f(s.x.size());
     for (std::size_t i = 0; i < f.size(); ++i) f[i] = -sigma_ * s.curvature[i];
-    const SingleLayerSystem system(s);
+    const SingleLayerSystem system(s, {}, summation_);
     const std::vector<double> f_all[] = {std::move(f)};
     std::vector<double> v = flux_jump(s, system.solve(f_all).front().density);
     if (k > 0.0) limit_vanishing(s, system, k, v);
@@ -185,9 +185,10 @@ std::vector<double> HeleShaw::normal_speeds(const Interface& curves, const Smoot
         }
     }
     const std::vector<double> f_all[] = {std::move(f)};
-    const std::vector<double> mu = SingleLayerSystem(s, region).solve(f_all).front().density;
+    const std::vector<double> mu =
+        SingleLayerSystem(s, region, summation_).solve(f_all).front().density;
     // V = −∂p/∂N = −(K'μ + μ/2) − ∂G_s/∂N.
-    const std::vector<double> kmu = adjoint_double_layer(s, mu, region);
+    const std::vector<double> kmu = adjoint_double_layer(s, mu, region, summation_);
     std::vector<double> v(mu.size());
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = -(kmu[i] + 0.5 * mu[i]) + source_flux[i];
     return vertex_speeds(s, std::move(v), k * sigma_);

@@ -77,15 +77,23 @@ struct SingleLayerSolution {
     int iterations = 0;             ///< GMRES iterations, or 0 for the direct solve
 };
 
-/// The single-layer system of curves s, assembled and factored once, for as many boundary values
-/// f as wanted: Sμ + u∞ = f at the samples with ∫μ ds = 0, to a relative residual of 1e−13
-/// (a direct LU solve up to 600 samples, Eigen's GMRES beyond). group: the group of each curve
-/// (0, 1, …), curves of different groups not seen by each other; empty: one group. O(M²) memory;
-/// O(M³) to build up to 600 samples, O(M²) per GMRES iteration beyond. Throws NumericalFailure
-/// beyond 10,000 samples (a dense matrix of 800 MB). s must outlive the system.
+/// How the single-layer and adjoint double-layer operators are summed: as dense matrices
+/// (O(M²) memory and work), by the fast summation (a treecode of the logarithm and, on each curve,
+/// Kress's correction to the trapezoidal rule by FFT: O(M) memory, O(M log M) work, products
+/// accurate to about 1e−14 relative), or dense up to 3,000 samples and fast beyond (automatic).
+enum class Summation { automatic, dense, fast };
+
+/// The single-layer system of curves s, set up once for as many boundary values f as wanted:
+/// Sμ + u∞ = f at the samples with ∫μ ds = 0. Dense: a direct LU solve up to 600 samples, Eigen's
+/// GMRES beyond to a relative residual of 1e−13, O(M²) memory, refused (NumericalFailure) beyond
+/// 10,000 samples (800 MB). Fast: GMRES to 1e−12 over the fast summation. GMRES is preconditioned
+/// by each curve's own block (O(Σ M_c³) to set up) and the curves' charges. group: the group of
+/// each curve (0, 1, …), curves of different groups not seen by each other; empty: one group.
+/// s must outlive the system.
 class SingleLayerSystem {
 public:
-    explicit SingleLayerSystem(const SmoothCurves& s, std::span<const std::size_t> group = {});
+    explicit SingleLayerSystem(const SmoothCurves& s, std::span<const std::size_t> group = {},
+                               Summation how = Summation::automatic);
     ~SingleLayerSystem();
     SingleLayerSystem(const SingleLayerSystem&) = delete;
     SingleLayerSystem& operator=(const SingleLayerSystem&) = delete;
@@ -93,6 +101,9 @@ public:
     /// One solution per f (f.size() == s.x.size()). Throws NumericalFailure when GMRES does not
     /// converge.
     std::vector<SingleLayerSolution> solve(std::span<const std::vector<double>> fs) const;
+
+    /// Whether the system is summed fast.
+    bool sums_fast() const;
 
 private:
     struct Factored;
@@ -114,12 +125,17 @@ std::optional<std::vector<double>> solve_dense(std::span<const double> a,
 /// For tests and for the solver.
 std::vector<double> single_layer_matrix(const SmoothCurves& s);
 
+/// The single-layer operator's product with φ (φ_j = μ_j |γ'(τ_j)|) by the fast summation: the
+/// product of single_layer_matrix(s) with φ to about 1e−14 relative. O(M log M).
+std::vector<double> apply_single_layer(const SmoothCurves& s, std::span<const double> phi);
+
 /// K'μ at the samples: the adjoint double layer ∫ ∂G(x_i, y)/∂N(x_i) μ(y) ds_y of the density μ
 /// (trapezoidal rule; its kernel is smooth, C(x)/4π on the diagonal). The normal derivatives of
-/// u = Sμ are ∂u_out/∂N = K'μ − μ/2 and ∂u_in/∂N = K'μ + μ/2. O(M²).
+/// u = Sμ are ∂u_out/∂N = K'μ − μ/2 and ∂u_in/∂N = K'μ + μ/2. O(M²) dense, O(M log M) fast.
 /// group: as SingleLayerSystem's, curves of other groups not seen; empty: one group.
 std::vector<double> adjoint_double_layer(const SmoothCurves& s, std::span<const double> density,
-                                         std::span<const std::size_t> group = {});
+                                         std::span<const std::size_t> group = {},
+                                         Summation how = Summation::automatic);
 
 /// Multiplies each Fourier mode m of the periodic samples g of curve c by filter(ξ), ξ = 2π|m|/L_c
 /// the mode's wavenumber in arc length. O(M_c log M_c).

@@ -14,12 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "slc/potential/boundary_integral.hpp"
 #include "slc/velocity/velocity.hpp"
 
 namespace slc {
-
-struct SmoothCurves;
-class SingleLayerSystem;
 
 /// `mullins-sekerka`: two-phase Mullins–Sekerka (coarsening by diffusion, Ostwald ripening).
 /// Δu = 0 inside and outside the curves, u = −σC on them, u bounded at infinity; the normal
@@ -48,6 +46,9 @@ public:
                                  const VertexGeometry& geometry) const override;
     /// V at the vertices, the law's normal speed, for a step of size k (0: none).
     std::vector<double> normal_speeds(const Interface& curves, double k) const;
+    /// How the boundary integral operators are summed (dense up to 3,000 samples and fast
+    /// beyond unless set): for benchmarks and tests of the summation.
+    void set_summation(Summation how) { summation_ = how; }
 
 private:
     std::vector<double> normal_speeds(const SmoothCurves& s, double k) const;
@@ -59,6 +60,7 @@ private:
                          std::vector<double>& v) const;
 
     double sigma_, d_in_, d_out_;
+    Summation summation_ = Summation::automatic;
 };
 
 /// `hele-shaw`: one-phase Hele-Shaw flow with surface tension (a viscous drop between two close
@@ -87,6 +89,9 @@ public:
     /// V at the vertices, the law's normal speed, for a step of size k (0: none). Throws
     /// InvalidInput when Q ≠ 0 and the source lies in no region or on a curve.
     std::vector<double> normal_speeds(const Interface& curves, double k) const;
+    /// How the boundary integral operators are summed (dense up to 3,000 samples and fast
+    /// beyond unless set): for benchmarks and tests of the summation.
+    void set_summation(Summation how) { summation_ = how; }
 
 private:
     std::vector<double> normal_speeds(const Interface& curves, const SmoothCurves& s,
@@ -94,6 +99,7 @@ private:
 
     double sigma_, q_;
     Vec2 source_;
+    Summation summation_ = Summation::automatic;
 };
 
 }  // namespace slc
