@@ -408,6 +408,22 @@ double own_curve_weight(const SmoothCurves& s, const KressTables& kress, std::si
     return -(kress.weights[c][d] + (2.0 * pi / static_cast<double>(m)) * smooth) / (4.0 * pi);
 }
 
+/// The single-layer operator's weight of φ_j in (Sμ)(x_i) for samples i, j of different curves,
+/// j on curve cj: −(1/2π) log|x_i − x_j| times the trapezoidal weight 2π/M of curve cj.
+double other_curve_weight(const SmoothCurves& s, std::size_t i, std::size_t j, std::size_t cj) {
+    return -std::log(norm(s.x[i] - s.x[j])) / static_cast<double>(s.count(cj));
+}
+
+/// Calls f(j, g, w) for every sample j, of group g: the augmented system's constant of group g
+/// enters row j with weight 1, and φ_j enters group g's charge row, ∫μ ds = Σ w φ_j, with the
+/// trapezoidal weight w = 2π/M of its curve.
+template <class F>
+void for_each_constraint(const SmoothCurves& s, std::span<const std::size_t> sample_group, F&& f) {
+    for (std::size_t c = 0; c < s.curve_count(); ++c)
+        for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j)
+            f(j, sample_group[j], 2.0 * pi / static_cast<double>(s.count(c)));
+}
+
 /// Calls write(i, j, A_ij) for every pair of samples of one group: the single-layer operator's
 /// weight of φ_j in (Sμ)(x_i), Kress's quadrature on a sample's own curve, the trapezoidal rule
 /// on others. Rows in parallel, each written by one thread.
@@ -421,10 +437,8 @@ void assemble_single_layer(const SmoothCurves& s, std::span<const std::size_t> s
         for (std::size_t j = 0; j < n; ++j) {
             if (sample_group[j] != sample_group[i]) continue;
             const std::size_t cj = kress.curve_of[j];
-            // −(1/2π) log|x_i − x_j| times the trapezoidal weight 2π/M of curve cj.
             const double w =
-                cj != ci ? -std::log(norm(s.x[i] - s.x[j])) / static_cast<double>(s.count(cj))
-                         : own_curve_weight(s, kress, ci, i, j);
+                cj != ci ? other_curve_weight(s, i, j, cj) : own_curve_weight(s, kress, ci, i, j);
             write(i, j, w);
         }
     });
@@ -669,17 +683,13 @@ SingleLayerSystem::SingleLayerSystem(const SmoothCurves& s, std::span<const std:
         f.product.emplace(
             size, [this, n, sample_group](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
                 factored_->fast->apply(std::span(x.data(), n), std::span(y.data(), n));
-                const SmoothCurves& c = s_;
                 for (std::size_t g = 0; g < groups_; ++g) y(static_cast<Eigen::Index>(n + g)) = 0.0;
-                for (std::size_t k = 0; k < c.curve_count(); ++k) {
-                    for (std::size_t j = c.offsets[k]; j < c.offsets[k + 1]; ++j) {
-                        const std::size_t g = sample_group[j];
-                        y(static_cast<Eigen::Index>(j)) += x(static_cast<Eigen::Index>(n + g));
-                        y(static_cast<Eigen::Index>(n + g)) += 2.0 * pi /
-                                                               static_cast<double>(c.count(k)) *
-                                                               x(static_cast<Eigen::Index>(j));
-                    }
-                }
+                for_each_constraint(s_, sample_group, [&](std::size_t j, std::size_t g, double w) {
+                    const auto row = static_cast<Eigen::Index>(j);
+                    const auto charge = static_cast<Eigen::Index>(n + g);
+                    y(row) += x(charge);
+                    y(charge) += w * x(row);
+                });
             });
         f.gmres.emplace(*f.product);
         // Curves far apart (centroids more than 4 times their radii's sum apart) see each other's
@@ -700,9 +710,9 @@ SingleLayerSystem::SingleLayerSystem(const SmoothCurves& s, std::span<const std:
                 double sum = 0.0;
                 for (std::size_t i = s.offsets[c]; i < s.offsets[c + 1]; ++i)
                     for (std::size_t j = s.offsets[d]; j < s.offsets[d + 1]; ++j)
-                        sum -= std::log(norm(s.x[i] - s.x[j])) *
+                        sum += other_curve_weight(s, i, j, d) *
                                unit(static_cast<Eigen::Index>(j - s.offsets[d]));
-                return sum / static_cast<double>(s.count(d) * s.count(c));
+                return sum / static_cast<double>(s.count(c));
             });
         f.gmres->setTolerance(fast_tolerance);
     } else {
@@ -716,12 +726,10 @@ SingleLayerSystem::SingleLayerSystem(const SmoothCurves& s, std::span<const std:
         system = RowMajorMatrix::Zero(size, size);
         assemble_single_layer(s, sample_group,
                               [&](std::size_t i, std::size_t j, double w) { system(i, j) = w; });
-        for (std::size_t c = 0; c < s.curve_count(); ++c) {
-            for (std::size_t j = s.offsets[c]; j < s.offsets[c + 1]; ++j) {
-                system(j, n + sample_group[j]) = 1.0;
-                system(n + sample_group[j], j) = 2.0 * pi / static_cast<double>(s.count(c));
-            }
-        }
+        for_each_constraint(s, sample_group, [&](std::size_t j, std::size_t g, double w) {
+            system(j, n + g) = 1.0;
+            system(n + g, j) = w;
+        });
         if (n <= direct_solve_limit) {
             f.lu.emplace(system);
             return;

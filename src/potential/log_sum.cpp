@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <numeric>
 
 #include "slc/core/parallel.hpp"
@@ -84,8 +85,13 @@ LogSum::LogSum(std::span<const Vec2> points, std::span<const std::size_t> group,
     far_.resize(nodes_.size());
     near_.resize(nodes_.size());
     for (const std::size_t root : roots) interact(root, root);
+}
+
+void LogSum::take_near_logs() const {
+    const std::size_t n = points_.size();
     // log|z_i − z_k| for every point i and every point k ≠ i of the leaves near i's, in the
-    // order the sums take them: each sum's near part reads them instead of taking the logs.
+    // order the sums take them: each sum of potentials reads them instead of taking the logs (a
+    // sum of fields alone, as K′'s, never needs them).
     near_log_offset_.assign(n + 1, 0);
     for (const std::size_t leaf : leaves_) {
         std::size_t pairs = 0;
@@ -186,6 +192,7 @@ void LogSum::sum(std::span<const double> q_in, std::span<double> potential,
                  std::span<Vec2> field) const {
     const std::size_t n = points_.size(), p = terms_, stride = p + 1, width = 2 * p + 1;
     const auto binomial = [&](std::size_t a, std::size_t b) { return binomial_[a * width + b]; };
+    if (!potential.empty()) std::call_once(near_logs_taken_, [this] { take_near_logs(); });
     std::vector<double> q(n);
     for (std::size_t k = 0; k < n; ++k) q[k] = q_in[order_[k]];
     // Multipoles: [0] = Q = Σ q_j, [k] = a_k = −Σ q_j ((z_j − c)/r)^k / k.

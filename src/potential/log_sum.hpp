@@ -5,6 +5,7 @@
 
 #include <complex>
 #include <cstddef>
+#include <mutex>
 #include <span>
 #include <vector>
 
@@ -22,9 +23,10 @@ namespace slc::detail {
 /// centre c (r its radius, bounding its points); two boxes whose radii sum to ρ ≤ 1/2 of the
 /// distance between their centres interact through their expansions, truncated after the p terms
 /// that bring ρ^{p+1}/(1 − ρ) below `tolerance` (relative to the charges' Σ|q|); other pairs of
-/// leaves directly. The lists are built once, O(M log M), with the logarithms of the near pairs
-/// (about 500 a point on curves: 4 kB); a sum is O(M (p²/64 + 500)), and each point's value is
-/// summed in one order whatever the number of threads.
+/// leaves directly. The lists are built once, O(M log M), and the logarithms of the near pairs
+/// at the first sum of potentials (about 500 a point on curves: 4 kB); a sum is
+/// O(M (p²/64 + 500)), and each point's value is summed in one order whatever the number of
+/// threads. One sum at a time.
 class LogSum {
 public:
     /// group: the group of each point (0, 1, …), or empty for one group.
@@ -34,9 +36,6 @@ public:
     /// The potential and the field at every point of the charges q (q.size() == points).
     /// Either output may be empty, and is then not computed.
     void sum(std::span<const double> q, std::span<double> potential, std::span<Vec2> field) const;
-
-    /// The number of points.
-    std::size_t size() const { return points_.size(); }
 
 private:
     struct Node {
@@ -59,8 +58,12 @@ private:
     std::vector<std::vector<std::size_t>> far_;     // each node's sources through expansions
     std::vector<std::vector<std::size_t>> near_;    // each leaf's leaves summed directly
     std::vector<std::size_t> leaves_;
-    std::vector<double> near_log_;              // log|z_i − z_k| over each point's near leaves
-    std::vector<std::size_t> near_log_offset_;  // where point i's begin (tree order)
+    // log|z_i − z_k| over each point's near leaves, and where point i's begin (tree order):
+    // taken at the first sum of potentials.
+    void take_near_logs() const;
+    mutable std::once_flag near_logs_taken_;
+    mutable std::vector<double> near_log_;
+    mutable std::vector<std::size_t> near_log_offset_;
     double tolerance_;
     std::size_t terms_;             // p, the most terms a pair takes
     std::vector<double> binomial_;  // C(n, k) at n·(2p + 1) + k, n, k ≤ 2p
