@@ -166,15 +166,7 @@ std::unique_ptr<BasicVelocityLaw<dim>> python_law(const LawSpec& spec,
 }  // namespace
 
 GeometryModule geometry_module(const std::string& name) {
-    static const std::map<std::string, GeometryModule> names = {
-        {"intrinsic", GeometryModule::intrinsic},
-        {"embedded", GeometryModule::embedded},
-        {"arclength", GeometryModule::arclength}};
-    const auto it = names.find(name);
-    if (it == names.end())
-        throw InvalidInput("geometry must be one of arclength, embedded, intrinsic, got '" + name +
-                           "'");
-    return it->second;
+    return value_named<GeometryModule>(geometry_module_names, name, "geometry");
 }
 
 std::unique_ptr<VelocityLaw> make_law(const LawSpec& spec) {

@@ -22,13 +22,6 @@
 namespace slc::python {
 namespace {
 
-/// The extension a name (nearest, whitney, direct) gives; ValueError for another.
-Extension extension_of(const std::string& name) {
-    for (const Extension e : {Extension::nearest_point, Extension::whitney, Extension::direct})
-        if (name == to_string(e)) return e;
-    throw InvalidInput("extension must be one of nearest, whitney, direct, got '" + name + "'");
-}
-
 /// The history of a run of curves: t, area, length, components, segments, cpu_s per row.
 History curve_history() {
     return History(
@@ -205,7 +198,10 @@ void add_run_functions(py::module_& m) {
                 return q.extension ? std::optional(to_string(*q.extension)) : std::nullopt;
             },
             [](RunOverrides& q, const std::optional<std::string>& name) {
-                q.extension = name ? std::optional(extension_of(*name)) : std::nullopt;
+                q.extension =
+                    name
+                        ? std::optional(value_named<Extension>(extension_names, *name, "extension"))
+                        : std::nullopt;
             })
         .def_readwrite("arcs", &RunOverrides::arcs)
         .def_readwrite("area_correction", &RunOverrides::area_correction)

@@ -210,12 +210,11 @@ SurfaceRunOptions surface_run_options(const SurfaceProblem& p, bool named, doubl
 }
 
 int depth_for_domain(int dim, double domain_width, double default_width) {
-    constexpr int base = 5;
     if (!(domain_width > default_width) || !std::isfinite(domain_width / default_width))
-        return base;
+        return default_depth;
     // A domain a rounding error wider than the default is the default.
     const int more = static_cast<int>(std::ceil(std::log2(domain_width / default_width) - 1e-9));
-    return std::min(base + more, setting_range::depth(dim).hi);
+    return std::min(default_depth + more, setting_range::depth(dim).hi);
 }
 
 bool sets_contour(const RunOverrides& q) {

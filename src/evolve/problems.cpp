@@ -225,19 +225,34 @@ Problem embedded_averaged(Problem p) {
 
 using Params = std::map<std::string, double>;
 
+/// A problem's parameter by name, or its default when not given.
+double value_or(const Params& params, const std::string& name, double fallback) {
+    const auto it = params.find(name);
+    return it == params.end() ? fallback : it->second;
+}
+
+/// A problem of rigid rotation by omega about c, with its exact solution.
+Problem rigid_rotation(std::string name, std::string description, Curves initial, Box domain,
+                       double t_end, Vec2 c, double omega) {
+    Problem p = base(std::move(name), std::move(description), std::move(initial), domain, t_end,
+                     "rotation");
+    p.velocity_params = {{"omega", omega}, {"cx", c.x}, {"cy", c.y}};
+    p.exact = rotation_exact(p, c, omega);
+    return p;
+}
+
 Problem propeller_rotation(const Params&) {
-    Problem p = base(
+    Problem p = rigid_rotation(
         "propeller-rotation",
         "three-bladed propeller under rigid rotation, two periods (§4.4, Fig. 12, Table 5)",
-        {shapes::propeller(1024, {}, 1.0, 0.5)}, Box::centered_square(2.0), 4 * pi, "rotation");
+        {shapes::propeller(1024, {}, 1.0, 0.5)}, Box::centered_square(2.0), 4 * pi, {0, 0}, 1.0);
     set_run(p, 160, 0, 5, 2, 1e-5);
     p.study.paper_table = "table5_rotation";
-    p.exact = rotation_exact(p, {}, 1.0);
     return p;
 }
 
 Problem triangle_normal(const Params& params) {
-    const double tilt = params.count("tilt") ? params.at("tilt") : 0.0;
+    const double tilt = value_or(params, "tilt", 0.0);
     Problem p =
         base("triangle-normal",
              "equilateral triangle moving with unit normal speed, growing (speed 1) or shrinking "
@@ -247,7 +262,7 @@ Problem triangle_normal(const Params& params) {
     set_run(p, 80, 0, 5, 2, 1e-5);
     // Growing, the offset of a convex shape is F0 − s t (make_problem). Shrinking, it is the
     // triangle whose sides moved in by |s| t, with sharp corners: circumradius 1 − 2 |s| t.
-    const double speed = params.count("speed") ? params.at("speed") : 1.0;
+    const double speed = value_or(params, "speed", 1.0);
     if (speed < 0.0)
         p.exact = [tilt, speed](std::span<const Vec2> xs,
                                 double t) -> std::optional<std::vector<double>> {
@@ -272,7 +287,7 @@ Problem merging_circles(const Params& params) {
                       shapes::circle(discs[2].centre, discs[2].radius, 384)},
                      Box::centered_square(2.0), 0.5, "unit-normal");
     set_run(p, 160, 0, 5, 2, 1e-5);
-    p.exact = growing_discs_exact(discs, params.count("speed") ? params.at("speed") : 1.0);
+    p.exact = growing_discs_exact(discs, value_or(params, "speed", 1.0));
     p.study.paper_table = "table6_merging";
     return p;
 }
@@ -288,7 +303,7 @@ Problem wulff(const Params&) {
 }
 
 Problem circle_curvature(const Params& params) {
-    const double r0 = params.count("R0") ? params.at("R0") : std::sqrt(5.0);
+    const double r0 = value_or(params, "R0", std::sqrt(5.0));
     if (!(r0 > 0.0) || !(r0 < 3.8))
         throw InvalidInput(
             fmt::format("R0 must be in (0, 3.8) to fit the domain [-4, 4]^2, got {}", r0));
@@ -312,7 +327,7 @@ Problem circle_curvature(const Params& params) {
 }
 
 Problem polygon_curvature(const Params& params) {
-    const double tilt = params.count("tilt") ? params.at("tilt") : 10.0;
+    const double tilt = value_or(params, "tilt", 10.0);
     Problem p = base("polygon-curvature",
                      "tilted non-convex polygon shrinking under curvature to a round point and "
                      "extinction (§4.6.2, Fig. 17)",
@@ -324,7 +339,7 @@ Problem polygon_curvature(const Params& params) {
 }
 
 Problem spiral_nonlocal(const Params& params) {
-    const double tilt = params.count("tilt") ? params.at("tilt") : 20.0;
+    const double tilt = value_or(params, "tilt", 20.0);
     Problem p = base("spiral-nonlocal",
                      "tilted square spiral unwinding under area-preserving curvature flow (§4.7, "
                      "Eq. 13, Fig. 18)",
@@ -384,19 +399,17 @@ Problem coarsening(const Params& params) {
 }
 
 Problem zalesak(const Params&) {
-    Problem p = base("zalesak",
-                     "Zalesak's slotted disk (centre (0.5, 0.75), R = 0.15, slot 0.05 wide up to y "
-                     "= 0.85), one turn about (0.5, 0.5) in t = 1",
-                     {slotted_disk({0.5, 0.75}, 0.15, 0.05, 0.85, 1024)}, Box{{0, 0}, {1, 1}}, 1.0,
-                     "rotation");
-    p.velocity_params = {{"omega", 2 * pi}, {"cx", 0.5}, {"cy", 0.5}};
+    Problem p = rigid_rotation("zalesak",
+                               "Zalesak's slotted disk (centre (0.5, 0.75), R = 0.15, slot 0.05 "
+                               "wide up to y = 0.85), one turn about (0.5, 0.5) in t = 1",
+                               {slotted_disk({0.5, 0.75}, 0.15, 0.05, 0.85, 1024)},
+                               Box{{0, 0}, {1, 1}}, 1.0, {0.5, 0.5}, 2 * pi);
     set_run(p, 100, 0, 7, 2, 1e-6);
-    p.exact = rotation_exact(p, {0.5, 0.5}, 2 * pi);
     return p;
 }
 
 Problem vortex(const Params& params) {
-    const double period = params.count("period") ? params.at("period") : 8.0;
+    const double period = value_or(params, "period", 8.0);
     Problem p =
         base("vortex",
              "circle R = 0.15 at (0.5, 0.75) in LeVeque's single vortex of period T, stretched "

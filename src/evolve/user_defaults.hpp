@@ -39,9 +39,9 @@ Options user_run_options(double t_start, double t_end, double length_scale, int 
     o.t_end = t_end;
     o.steps = steps;
     o.max_domain_doublings = 10;
-    o.step.contour.depth = 5;
+    o.step.contour.depth = default_depth;
     o.step.contour.eps = eps_for_depth(dim, o.step.contour.depth, length_scale);
-    o.step.contour.eta = 1e-10 * length_scale;
+    o.step.contour.eta = ContourOptions::default_eta * length_scale;
     o.step.contour.thin_depth = default_thin_depth(dim);
     return o;
 }

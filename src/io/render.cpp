@@ -68,14 +68,19 @@ void draw_field(cairo_t* cr, const Page& page, const FieldLayer& field) {
     cairo_restore(cr);
 }
 
+/// Strokes the current path with the pen's colour and width.
+void stroke(cairo_t* cr, const Pen& pen) {
+    set_color(cr, pen.color);
+    cairo_set_line_width(cr, pen.width);
+    cairo_stroke(cr);
+}
+
 void draw_boxes(cairo_t* cr, const Page& page, const BoxesLayer& layer) {
     for (const Box& b : layer.boxes) {
         const Vec2 p = page.to_page({b.lo.x, b.hi.y});
         cairo_rectangle(cr, p.x, p.y, b.width() * page.scale(), b.height() * page.scale());
     }
-    set_color(cr, layer.color);
-    cairo_set_line_width(cr, layer.line_width);
-    cairo_stroke(cr);
+    stroke(cr, layer.pen);
 }
 
 void draw_triangles(cairo_t* cr, const Page& page, const TrianglesLayer& layer) {
@@ -86,10 +91,8 @@ void draw_triangles(cairo_t* cr, const Page& page, const TrianglesLayer& layer) 
         }
         cairo_close_path(cr);
     }
-    set_color(cr, layer.color);
-    cairo_set_line_width(cr, layer.line_width);
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-    cairo_stroke(cr);
+    stroke(cr, layer.pen);
 }
 
 void draw_curves(cairo_t* cr, const Page& page, const CurvesLayer& layer) {
@@ -103,11 +106,9 @@ void draw_curves(cairo_t* cr, const Page& page, const CurvesLayer& layer) {
         }
         if (!first && layer.closed) cairo_close_path(cr);
     }
-    set_color(cr, layer.color);
-    cairo_set_line_width(cr, layer.line_width);
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-    cairo_stroke(cr);
+    stroke(cr, layer.pen);
 }
 
 void draw_points(cairo_t* cr, const Page& page, const PointsLayer& layer) {
@@ -162,9 +163,7 @@ void draw_arrows(cairo_t* cr, const Page& page, const ArrowsLayer& layer) {
         cairo_move_to(cr, tail.x, tail.y);
         cairo_line_to(cr, base.x + 0.3 * h * dir.x, base.y + 0.3 * h * dir.y);
     }
-    set_color(cr, layer.color);
-    cairo_set_line_width(cr, 1.0);
-    cairo_stroke(cr);
+    stroke(cr, {layer.color, 1.0});
     for (const auto& [a, b, c] : heads) {
         cairo_move_to(cr, a.x, a.y);
         cairo_line_to(cr, b.x, b.y);
@@ -253,10 +252,8 @@ void draw_legend(cairo_t* cr, const Page& page, const Layers& layers) {
         const double x = page.side_x + legend_pad;
         cairo_move_to(cr, x, y);
         cairo_line_to(cr, x + legend_sample, y);
-        set_color(cr, entries[i]->color);
-        cairo_set_line_width(cr, entries[i]->line_width);
         cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-        cairo_stroke(cr);
+        stroke(cr, entries[i]->pen);
         cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
         draw_text(cr, entries[i]->label, x + legend_sample + legend_pad, y, 0.0, 0.5);
     }
@@ -436,7 +433,7 @@ void Figure::add_field(const ScalarGrid& field, const std::string& label, bool d
 void Figure::add_boxes(std::span<const Box> boxes, Color color, double line_width) {
     check_positive(line_width, "line width");
     layers_.push_back(std::make_shared<Layer>(
-        Layer{BoxesLayer{{boxes.begin(), boxes.end()}, color, line_width}}));
+        Layer{BoxesLayer{{boxes.begin(), boxes.end()}, {color, line_width}}}));
 }
 
 void Figure::add_triangles(std::span<const Vec2> vertices,
@@ -454,22 +451,21 @@ void Figure::add_triangles(std::span<const Vec2> vertices,
     layers_.push_back(
         std::make_shared<Layer>(Layer{TrianglesLayer{{vertices.begin(), vertices.end()},
                                                      {triangles.begin(), triangles.end()},
-                                                     color,
-                                                     line_width}}));
+                                                     {color, line_width}}}));
 }
 
 void Figure::add_curves(const Interface& curves, const std::string& label, Color color,
                         double line_width) {
     check_positive(line_width, "line width");
     layers_.push_back(std::make_shared<Layer>(
-        Layer{CurvesLayer{curves.curves(), label, color, line_width, true}}));
+        Layer{CurvesLayer{curves.curves(), label, {color, line_width}, true}}));
 }
 
 void Figure::add_polyline(std::span<const Vec2> points, const std::string& label, Color color,
                           double line_width) {
     check_positive(line_width, "line width");
     layers_.push_back(std::make_shared<Layer>(Layer{CurvesLayer{
-        {std::vector<Vec2>(points.begin(), points.end())}, label, color, line_width, false}}));
+        {std::vector<Vec2>(points.begin(), points.end())}, label, {color, line_width}, false}}));
 }
 
 void Figure::add_curve_values(const Interface& curves, std::span<const double> values,

@@ -52,22 +52,24 @@ struct FieldLayer {
     std::string label;
     bool diverging = false;
 };
+/// How a layer's lines are stroked.
+struct Pen {
+    Color color;
+    double width = 0.0;
+};
 struct BoxesLayer {
     std::vector<Box> boxes;
-    Color color;
-    double line_width = 0.0;
+    Pen pen;
 };
 struct TrianglesLayer {
     std::vector<Vec2> vertices;
     std::vector<std::array<std::uint32_t, 3>> triangles;
-    Color color;
-    double line_width = 0.0;
+    Pen pen;
 };
 struct CurvesLayer {
     std::vector<std::vector<Vec2>> paths;
     std::string label;
-    Color color;
-    double line_width = 0.0;
+    Pen pen;
     bool closed = true;
 };
 struct PointsLayer {

@@ -14,18 +14,6 @@
 
 namespace slc {
 
-const char* to_string(Extension extension) {
-    switch (extension) {
-        case Extension::nearest_point:
-            return "nearest";
-        case Extension::whitney:
-            return "whitney";
-        case Extension::direct:
-            return "direct";
-    }
-    return "nearest";
-}
-
 double peak_rss_mib() {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);

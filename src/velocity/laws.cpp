@@ -57,11 +57,6 @@ void SingleVortex::sample(double t, std::span<const Vec2> points, std::span<Vec2
     });
 }
 
-void NormalSpeed::normal_speeds(double, std::span<const Vec2> points, std::span<const Vec2>,
-                                std::span<double> out) const {
-    std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(points.size()), speed_);
-}
-
 void AnisotropicNormalSpeed::normal_speeds(double, std::span<const Vec2> points,
                                            std::span<const Vec2> normals,
                                            std::span<double> out) const {

@@ -38,11 +38,6 @@ void EnrightField::sample(double t, std::span<const Vec3> points, std::span<Vec3
     });
 }
 
-void SurfaceNormalSpeed::normal_speeds(double, std::span<const Vec3> points, std::span<const Vec3>,
-                                       std::span<double> out) const {
-    std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(points.size()), speed_);
-}
-
 void SurfaceAnisotropicNormalSpeed::normal_speeds(double, std::span<const Vec3> points,
                                                   std::span<const Vec3> normals,
                                                   std::span<double> out) const {

@@ -246,6 +246,36 @@ std::optional<double> number(const std::string& text) {
 
 }  // namespace
 
+namespace default_rule {
+
+std::string depth() {
+    return fmt::format(
+        "{}, a level deeper for each doubling of --domain or --box beyond the default domain",
+        default_depth);
+}
+
+std::string eps() {
+    return fmt::format(
+        "the shape's half-width times 10^-K for curves (not below {:g}) and {:g} 4^({}-K) for "
+        "surfaces; at least two ulps of the domain's largest coordinate",
+        eps_for_depth(2, 100, 1.0), eps_for_depth(3, default_depth, 1.0), default_depth);
+}
+
+std::string eta() {
+    return fmt::format(
+        "{:g} times the shape's half-width; for curves lowered to eps/10 when eps is below it, for "
+        "a refined surface raised to eps/100; at least two ulps of the domain's largest "
+        "coordinate, below which doubles cannot place a root",
+        ContourOptions::default_eta);
+}
+
+std::string thin_depth() {
+    return fmt::format("{} for curves, {} for a surface", default_thin_depth(2),
+                       default_thin_depth(3));
+}
+
+}  // namespace default_rule
+
 CLI::Validator positive_number() {
     return CLI::Validator(
         [](std::string& text) {

@@ -153,6 +153,16 @@ void warn_broken(const RunTotals& r);
 /// to show; an interrupted run leaves its frames to --resume. For curves and surfaces alike.
 bool ends_frames_where_stopped(const RunTotals& r, bool empty, bool last_frame_there);
 
+/// The rules by which slc run and slc contour choose the contour settings of a user's shape when
+/// none are given, in words for their --help (with the library's numbers), so that the two
+/// commands describe the same rules: K from the domain, eps from K, eta, and the thin depth.
+namespace default_rule {
+std::string depth();
+std::string eps();
+std::string eta();
+std::string thin_depth();
+}  // namespace default_rule
+
 /// CLI11 checks with one-line messages naming the value: a positive finite number; a finite
 /// number >= 0; an integer in [lo, hi]; a number in [0, 1).
 CLI::Validator positive_number();

@@ -188,15 +188,15 @@ void add_contour_command(CLI::App& app) {
         "--function", o->function,
         "Instead of --initial, a built-in implicit surface in [-1, 1]^3: sphere, torus, cassini");
     cmd->add_option("-K,--depth", o->depth,
-                    "Depth K of the contouring tree (default as slc run takes for a shape of your "
-                    "own: 5, one level deeper for each doubling of --domain or --box beyond the "
-                    "default domain; for --function, beyond [-1, 1]^3)")
+                    fmt::format("Depth K of the contouring tree (default as slc run takes for a "
+                                "shape of your own: {}; for --function, beyond [-1, 1]^3)",
+                                default_rule::depth()))
         ->check(integer_in(0, 20));
     cmd->add_option("--eps", o->eps,
-                    "Tolerance eps of refinement on |G| at segment midpoints (for a surface: "
-                    "edge midpoints and triangle centroids); default the rule of slc run: the "
-                    "shape's half-width (1 for --function) times 10^-K for curves, 1e-3 4^(5-K) "
-                    "for surfaces; at least two ulps of the domain's largest coordinate")
+                    fmt::format("Tolerance eps of refinement on |G| at segment midpoints (for a "
+                                "surface: edge midpoints and triangle centroids); default as slc "
+                                "run takes it, with half-width 1 for --function: {}",
+                                default_rule::eps()))
         ->check(positive_number());
     auto* refine =
         cmd->add_option("--refine", o->refine,
@@ -207,13 +207,14 @@ void add_contour_command(CLI::App& app) {
                         "exit status 3")
             ->check(integer_in(0, 1000000));
     cmd->add_option("--eta", o->eta,
-                    "Root-finding tolerance eta: |G| <= eta at every vertex (default 1e-10 times "
-                    "the shape's half-width; for curves at most eps/10, for a surface refined to "
-                    "eps at least eps/100)")
+                    fmt::format("Root-finding tolerance eta: |G| <= eta at every vertex "
+                                "(default {})",
+                                default_rule::eta()))
         ->check(positive_number());
     cmd->add_option("--thin-depth", o->thin_depth,
-                    "Levels beyond K for cells where the zero set's two sides, or a sharp turn, "
-                    "lie within one cell (default 6 for curves, 2 for a surface; 0 for --function)")
+                    fmt::format("Levels beyond K for cells where the zero set's two sides, or a "
+                                "sharp turn, lie within one cell (default {}; 0 for --function)",
+                                default_rule::thin_depth()))
         ->check(integer_in(setting_range::thin_depth));
     cmd->add_option("--rho", o->rho, "Pruning ratio rho in [0, 1) (default 0.1)")
         ->check(fraction_below_one());

@@ -12,21 +12,6 @@
 #include "slc/evolve/surface_problems.hpp"
 
 namespace slc::cli {
-namespace {
-
-/// The --extension spellings, also used in summary.json.
-const std::map<std::string, Extension> extension_names = {{"nearest", Extension::nearest_point},
-                                                          {"whitney", Extension::whitney},
-                                                          {"direct", Extension::direct}};
-
-/// The --geometry spellings.
-const std::map<std::string, GeometryModule> geometry_names = {
-    {"intrinsic", GeometryModule::intrinsic},
-    {"embedded", GeometryModule::embedded},
-    {"arclength", GeometryModule::arclength}};
-
-}  // namespace
-
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
     cmd.add_option("-N,--steps", o.settings.steps,
                    "N: time steps on [0, a] (a problem's own; for --initial 40 for curves and 20 "
@@ -35,11 +20,11 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
         ->check(integer_in(setting_range::steps));
     cmd.add_option(
            "-K,--depth", o.settings.depth,
-           fmt::format("K: depth of the contouring tree (a problem's own; 5 for --initial, a "
-                       "level deeper for each doubling of --domain or --box beyond the "
-                       "default; {} to {} for curves, {} to {} for surfaces)",
-                       setting_range::curve_depth.lo, setting_range::curve_depth.hi,
-                       setting_range::surface_depth.lo, setting_range::surface_depth.hi))
+           fmt::format("K: depth of the contouring tree (a problem's own; for --initial {}; "
+                       "{} to {} for curves, {} to {} for surfaces)",
+                       default_rule::depth(), setting_range::curve_depth.lo,
+                       setting_range::curve_depth.hi, setting_range::surface_depth.lo,
+                       setting_range::surface_depth.hi))
         ->check(
             integer_in(setting_range::curve_depth.lo,
                        std::max(setting_range::curve_depth.hi, setting_range::surface_depth.hi)));
@@ -61,22 +46,23 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
             },
             "in [0, 64] or converged"));
     cmd.add_option("--eps", o.settings.eps,
-                   "epsilon: midpoint tolerance of refinement (a problem's own; with -K, or for "
-                   "--initial at its K, the rule of the dimension times the shape's half-width "
-                   "(1 for a problem): 10^-K for curves, not below 1e-13, and 1e-3 4^(5-K) for "
-                   "surfaces; at least two ulps of the domain's largest coordinate)")
+                   fmt::format("epsilon: midpoint tolerance of refinement (a problem's own; with "
+                               "-K, or for --initial at its K, the rule of the dimension, with "
+                               "half-width 1 for a problem: {})",
+                               default_rule::eps()))
         ->check(positive_number());
     cmd.add_option("--eta", o.settings.eta,
-                   "eta: root-finding tolerance (default 1e-10, times the shape's half-width for "
-                   "--initial; for curves lowered to eps/10 when eps is below it; raised to two "
-                   "ulps of the domain's largest coordinate, below which doubles cannot place a "
-                   "root)")
+                   fmt::format("eta: root-finding tolerance (the half-width is 1 for a "
+                               "problem; default {})",
+                               default_rule::eta()))
         ->check(positive_number());
     cmd.add_option(
            "--thin-depth", o.settings.thin_depth,
-           "Levels beyond K for cells where the zero set's two sides, or a sharp turn, lie "
-           "within one cell (a problem's own: 0, but 2 for enright and box-normal; for "
-           "--initial 6 for curves, 2 under a speed that depends on the normal, 2 for a surface)")
+           fmt::format("Levels beyond K for cells where the zero set's two sides, or a sharp "
+                       "turn, lie within one cell (a problem's own: 0, but 2 for enright and "
+                       "box-normal; for --initial {}; 2 for curves under a speed that "
+                       "depends on the normal)",
+                       default_rule::thin_depth()))
         ->check(integer_in(setting_range::thin_depth));
     cmd.add_option("--rho", o.settings.rho, "rho: pruning ratio in [0, 1) (default 0.1)")
         ->check(fraction_below_one());
@@ -99,12 +85,12 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                    "normal law with the normal of the distance field, so corners move exactly). "
                    "Default: direct for flow fields and normal laws, nearest otherwise; a named "
                    "problem's own (nearest)")
-        ->check(CLI::IsMember(extension_names));
+        ->check(CLI::IsMember(names_of<Extension>(extension_names)));
     cmd.add_option("--geometry", o.geometry,
                    "Geometry module for normals and curvature: intrinsic, embedded, or arclength "
                    "(circumcircle curvature averaged over --arc-width; the law's default "
                    "otherwise)")
-        ->check(CLI::IsMember(geometry_names));
+        ->check(CLI::IsMember(names_of<GeometryModule>(geometry_module_names)));
     // A flag function, called only when given: a flag bound to the optional would set it always.
     cmd.add_flag_function(
         "--arcs,!--no-arcs", [&o](std::int64_t count) { o.settings.arcs = count > 0; },
@@ -129,12 +115,13 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
 
 std::optional<GeometryModule> geometry_module(const MethodOptions& method) {
     if (method.geometry.empty()) return std::nullopt;
-    return geometry_names.at(method.geometry);
+    return value_named<GeometryModule>(geometry_module_names, method.geometry, "--geometry");
 }
 
 RunOverrides overrides_of(const MethodOptions& m) {
     RunOverrides q = m.settings;
-    if (m.extension) q.extension = extension_names.at(*m.extension);
+    if (m.extension)
+        q.extension = value_named<Extension>(extension_names, *m.extension, "--extension");
     return q;
 }
 

@@ -46,10 +46,13 @@ constexpr IntRange depth(int dim) { return dim == 2 ? curve_depth : surface_dept
 /// Enright's 2).
 constexpr int default_thin_depth(int dim) { return dim == 2 ? 6 : 2; }
 
+/// K of a user's shape in its default domain (1.5 times the shape's box): cells 1/32 of it.
+inline constexpr int default_depth = 5;
+
 /// K for a user's shape in a domain `domain_width` wide whose default domain (1.5 times the
-/// shape's box) is `default_width` wide: 5, and one level more for each doubling of the domain
-/// beyond the default, so that the finest cell stays the default's (--domain 150 around a unit
-/// circle takes K = 12, cells of 0.073, where K = 5 made them 9.4); within K's range for dim.
+/// shape's box) is `default_width` wide: default_depth, and one level more for each doubling of the
+/// domain beyond the default, so that the finest cell stays the default's (--domain 150 around a
+/// unit circle takes K = 12, cells of 0.073, where K = 5 made them 9.4); within K's range for dim.
 int depth_for_domain(int dim, double domain_width, double default_width);
 
 /// ε that K sets when ε is not given, in both dimensions the rule a user's own shape defaults to

@@ -18,6 +18,7 @@
 
 #include "slc/contour/contour.hpp"
 #include "slc/core/box.hpp"
+#include "slc/core/names.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry_modules/arclength.hpp"
 #include "slc/geometry_modules/embedded.hpp"
@@ -37,6 +38,13 @@ enum class Extension {
     /// corner rounds off and a shrinking one stays sharp, as in the exact (viscosity) solution.
     direct,
 };
+
+/// The extensions' names, as --extension, Python and summary.json spell them.
+inline constexpr Named<Extension> extension_names[] = {{"nearest", Extension::nearest_point},
+                                                       {"whitney", Extension::whitney},
+                                                       {"direct", Extension::direct}};
+/// The extension's name.
+inline const char* to_string(Extension e) { return name_of<Extension>(extension_names, e); }
 
 /// The parameters of a step (paper Table 4).
 struct StepOptions {

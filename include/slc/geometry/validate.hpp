@@ -13,11 +13,14 @@
 
 namespace slc {
 
-/// Two segments of an interface that meet where they should not.
-struct Crossing {
-    std::size_t first = 0;   ///< segment index (the smaller one)
-    std::size_t second = 0;  ///< segment index
+/// Two elements of a user's input (segments of curves, triangles of a surface) that meet where
+/// they should not, by index, the smaller first.
+struct ElementPair {
+    std::size_t first = 0;
+    std::size_t second = 0;
 };
+/// Two segments of an interface that meet where they should not.
+using Crossing = ElementPair;
 
 /// Finds a pair of segments that intersect, other than consecutive segments of one curve meeting
 /// at their shared vertex, in O(N log N) by a sweep line (Shamos–Hoey) with exact predicates.

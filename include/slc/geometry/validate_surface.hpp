@@ -10,14 +10,12 @@
 #include <vector>
 
 #include "slc/geometry/surface.hpp"
+#include "slc/geometry/validate.hpp"
 
 namespace slc {
 
 /// Two triangles of a surface that meet where they should not.
-struct TriangleContact {
-    std::uint32_t first = 0;   ///< triangle index (the smaller one)
-    std::uint32_t second = 0;  ///< triangle index
-};
+using TriangleContact = ElementPair;
 
 /// Finds the pair of triangles (least first, then least second) that meet other than in the
 /// corners and edge they share, with a bounding-volume hierarchy for the candidate pairs (O(N log

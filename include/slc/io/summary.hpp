@@ -13,9 +13,6 @@
 
 namespace slc {
 
-/// An extension's spelling in summary.json and on the command line: nearest, whitney, direct.
-const char* to_string(Extension extension);
-
 /// P as summary.json writes it: the number of passes, or "converged".
 std::string refine_name(int passes);
 

@@ -84,27 +84,35 @@ public:
     void sample(double t, std::span<const Vec2> points, std::span<Vec2> out) const override;
 };
 
-/// `unit-normal`: constant normal speed, u = s·N (§4.5.1–4.5.2); s > 0 grows the curve.
-/// A normal law: at the vertices with the intrinsic module's normals unless told otherwise (the
-/// paper's choice for first-order geometric laws), off the curve with the distance field's.
-class NormalSpeed final : public NormalLaw {
+/// `unit-normal`: constant normal speed, u = s·N (§4.5.1–4.5.2); s > 0 grows the curve or
+/// surface. A normal law: for curves at the vertices with the intrinsic module's normals unless
+/// told otherwise (the paper's choice for first-order geometric laws); off the interface with the
+/// distance field's.
+template <int dim>
+class BasicNormalSpeed final : public BasicNormalLaw<dim> {
 public:
-    /// speed: s, length per unit time (negative shrinks the curve); module: where vertex normals
+    using Point = PointOf<dim>;
+    /// speed: s, length per unit time (negative shrinks); module: where a curve's vertex normals
     /// come from.
-    explicit NormalSpeed(double speed = 1.0, std::optional<GeometryModule> module = std::nullopt)
-        : NormalLaw(module), speed_(speed) {}
+    explicit BasicNormalSpeed(double speed = 1.0,
+                              std::optional<GeometryModule> module = std::nullopt)
+        : BasicNormalLaw<dim>(module), speed_(speed) {}
     std::string name() const override { return "unit-normal"; }
-    /// No motion at speed 0; a growing curve at speed > 0, a shrinking one below.
-    Invariants invariants() const override { return constant_speed_invariants<2>(speed_); }
-    /// The normal speed at each point with its normal, as the base's normal_speeds().
-    void normal_speeds(double t, std::span<const Vec2> points, std::span<const Vec2> normals,
-                       std::span<double> out) const override;
+    /// No motion at speed 0; growing at speed > 0 (the area or volume changing at s times the
+    /// length or area), shrinking below.
+    Invariants invariants() const override { return constant_speed_invariants<dim>(speed_); }
+    /// s at each point, as the base's normal_speeds().
+    void normal_speeds(double, std::span<const Point> points, std::span<const Point>,
+                       std::span<double> out) const override {
+        std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(points.size()), speed_);
+    }
     std::optional<double> speed_bound() const override { return std::abs(speed_); }
     std::optional<double> constant_speed() const override { return speed_; }
 
 private:
     double speed_;
 };
+using NormalSpeed = BasicNormalSpeed<2>;
 
 /// `anisotropic`: u = v(θ)·N with v = R + ε cos(m(θ − α)), θ the normal angle,
 /// N = (cos θ, sin θ), α the tilt of the anisotropy's axes (§4.5.3, Equation 12, with α = 0;

@@ -49,23 +49,8 @@ public:
     void sample(double t, std::span<const Vec3> points, std::span<Vec3> out) const override;
 };
 
-/// `unit-normal`: constant normal speed u = s·N; s > 0 grows the surface.
-class SurfaceNormalSpeed final : public SurfaceNormalLaw {
-public:
-    /// speed: s, length per unit time.
-    explicit SurfaceNormalSpeed(double speed = 1.0) : speed_(speed) {}
-    std::string name() const override { return "unit-normal"; }
-    /// No motion at speed 0; a growing surface at speed > 0; the volume changing at s·A.
-    Invariants invariants() const override { return constant_speed_invariants<3>(speed_); }
-    /// The normal speed at each point with its normal, as the base's normal_speeds().
-    void normal_speeds(double t, std::span<const Vec3> points, std::span<const Vec3> normals,
-                       std::span<double> out) const override;
-    std::optional<double> speed_bound() const override { return std::abs(speed_); }
-    std::optional<double> constant_speed() const override { return speed_; }
-
-private:
-    double speed_;
-};
+/// `unit-normal`: constant normal speed u = s·N (laws.hpp).
+using SurfaceNormalSpeed = BasicNormalSpeed<3>;
 
 /// `anisotropic`: u = v(N)·N with v = R + ε (n_x⁴ + n_y⁴ + n_z⁴ − 3/5), a cubic anisotropy
 /// whose mean over directions is R: fastest along the axes for ε > 0.

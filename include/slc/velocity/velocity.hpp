@@ -17,6 +17,7 @@
 
 #include "slc/core/box.hpp"
 #include "slc/core/box3.hpp"
+#include "slc/core/names.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/core/space.hpp"
 #include "slc/distance/distance_tree.hpp"
@@ -40,6 +41,11 @@ inline std::span<const Vec3> vertex_points(const Surface& surface) { return surf
 /// needs a distance tree), or arclength (circumcircle curvature averaged along the curve; no
 /// mesh). Surfaces have one module (surface_geometry()), and a law on surfaces leaves it unset.
 enum class GeometryModule { intrinsic, embedded, arclength };
+/// The modules' names, as --geometry and Python spell them.
+inline constexpr Named<GeometryModule> geometry_module_names[] = {
+    {"intrinsic", GeometryModule::intrinsic},
+    {"embedded", GeometryModule::embedded},
+    {"arclength", GeometryModule::arclength}};
 
 /// What a law needs at the vertices besides their positions.
 struct GeometryNeeds {
