@@ -148,8 +148,9 @@ bool SegmentGrid::crosses(Segment s, std::span<const std::uint32_t> skip) const 
     });
 }
 
-double SegmentGrid::first_hit(Vec2 o, Vec2 d, double reach, std::uint32_t skip) const {
-    double best = std::numeric_limits<double>::infinity();
+std::pair<double, std::uint32_t> SegmentGrid::first_hit_segment(Vec2 o, Vec2 d, double reach,
+                                                                std::uint32_t skip) const {
+    std::pair<double, std::uint32_t> best{std::numeric_limits<double>::infinity(), none};
     if (!(reach > 0.0) || !std::isfinite(reach)) return best;
     any_in_cells(bounding_box(Segment{o, o + reach * d}), [&](std::uint32_t u) {
         if (u == skip) return false;
@@ -159,7 +160,7 @@ double SegmentGrid::first_hit(Vec2 o, Vec2 d, double reach, std::uint32_t skip) 
         const double den = cross(d, e);
         if (den == 0.0) return false;
         const double t = cross(w, e) / den, r = cross(w, d) / den;
-        if (t > 0.0 && t <= reach && r >= 0.0 && r <= 1.0) best = std::min(best, t);
+        if (t > 0.0 && t <= reach && r >= 0.0 && r <= 1.0 && t < best.first) best = {t, u};
         return false;
     });
     return best;

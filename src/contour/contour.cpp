@@ -114,6 +114,7 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
     stats.splits = refined.splits;
     stats.rejected = refined.rejected;
     stats.pruned = refined.pruned;
+    stats.parted = refined.parted;
     stats.max_midpoint_value = refined.max_midpoint_value;
     stats.g_evals = evaluations;
 

@@ -1,13 +1,16 @@
 // Joining curves that the piecewise-linear interpolant parted where G does not: a thin tip of a
 // region, narrower than a cell at its neck, whose tree vertices the triangulation does not link
-// to its body's, comes out of marching as an island beside the body. G itself, sampled between
-// them, says whether they are one region.
+// to its body's, comes out of marching as an island beside the body. And the converse, parting
+// what it joined where G does not: two regions a gap narrower than a cell apart, linked by a strip
+// of triangles whose corners lie in both. G itself, sampled between them, says which it is.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <numeric>
 #include <optional>
+#include <set>
+#include <utility>
 
 #include "slc/geometry/predicates.hpp"
 #include "stages.hpp"
@@ -160,6 +163,129 @@ std::size_t join_necks(Chain& chain, BatchFunctionRef g, const Topology& topo,
         ++joined;
     }
     return joined;
+}
+
+std::size_t part_bridges(Chain& chain, BatchFunctionRef g, const Topology& topo,
+                         std::span<const std::uint32_t> rootless, const ContourOptions& options) {
+    if (rootless.empty()) return 0;
+    const double eta = options.resolved_eta();
+    const double finest = topo.tree.edge(topo.tree.depth());
+    SegmentGrid segments(chain, finest);
+    auto longest_edge = [&](std::uint32_t t) {
+        const auto& tri = topo.mesh.triangles[t];
+        const auto& v = topo.mesh.vertices;
+        return std::max({distance(v[tri[0]], v[tri[1]]), distance(v[tri[1]], v[tri[2]]),
+                         distance(v[tri[2]], v[tri[0]])});
+    };
+    // The polygon of the vertices from a to b (along next), closed from b back to a: twice its
+    // signed area, and whether it has three vertices or more and is at least a quarter of a
+    // K-level cell thick (2|A|/L, a disc's radius), a part the uniform tree resolves.
+    const double thick = 0.25 * topo.tree.edge(std::min(options.depth, topo.tree.depth()));
+    struct Loop {
+        double twice_area = 0.0;
+        bool resolved = false;
+    };
+    auto loop = [&](std::uint32_t a, std::uint32_t b) {
+        Loop l;
+        std::size_t count = 1;
+        double perimeter = distance(chain.points[b], chain.points[a]);
+        for (std::uint32_t x = a; x != b;) {
+            const std::uint32_t y = chain.next[x];
+            l.twice_area += cross(chain.points[x], chain.points[y]);
+            perimeter += chain.length(x);
+            ++count;
+            x = y;
+        }
+        l.twice_area += cross(chain.points[b], chain.points[a]);
+        l.resolved = count >= 3 && std::abs(l.twice_area) >= thick * perimeter;
+        return l;
+    };
+    auto tangent = [&](std::uint32_t u) {
+        return (chain.points[chain.next[u]] - chain.points[u]) / chain.length(u);
+    };
+    // The pairs (u, v), u < v, each with the centre of its four ends.
+    std::set<std::pair<std::uint32_t, std::uint32_t>> seen;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    std::vector<Vec2> probes;
+    for (const std::uint32_t u : rootless) {
+        const double gu = chain.mid_value[u];
+        if (!chain.alive[u] || !(std::abs(gu) > eta)) continue;
+        // The bracket's direction: where G should change sign, towards the strip.
+        const Vec2 t = tangent(u);
+        const Vec2 right{t.y, -t.x};
+        const Vec2 towards = gu > 0.0 ? -1.0 * right : right;
+        const Vec2 mid = 0.5 * (chain.points[u] + chain.points[chain.next[u]]);
+        const double h = longest_edge(chain.home[u]);
+        const auto [hit, v] = segments.first_hit_segment(mid, towards, h, u);
+        if (v == SegmentGrid::none || v == chain.next[u] || v == chain.prev[u] ||
+            chain.curve[v] != chain.curve[u])
+            continue;
+        const double gv = chain.mid_value[v];
+        // v's midpoint may not be known yet (made by the last pass): then G at the centre decides.
+        if (gv * gu < 0.0 || !(dot(tangent(v), t) < 0.0)) continue;
+        const auto key = std::minmax(u, v);
+        if (!seen.insert(key).second) continue;
+        pairs.push_back(key);
+        probes.push_back(0.25 * (chain.points[u] + chain.points[chain.next[u]] + chain.points[v] +
+                                 chain.points[chain.next[v]]));
+    }
+    if (probes.empty()) return 0;
+    std::vector<double> values(probes.size());
+    g(probes, values);
+
+    std::size_t parted = 0;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const auto [u, v] = pairs[k];
+        // The strip between u and v has the other sign than their midpoints' G by the
+        // interpolant; G at its centre decides.
+        if (!(values[k] * chain.mid_value[u] > 0.0) || !(std::abs(values[k]) > eta)) continue;
+        const std::uint32_t nu = chain.next[u], nv = chain.next[v];
+        // An earlier parting may have used one of these segments.
+        if (!chain.alive[u] || !chain.alive[v] || nu == v || nv == u) continue;
+        const Segment one{chain.points[u], chain.points[nv]};
+        const Segment two{chain.points[v], chain.points[nu]};
+        const std::array<std::uint32_t, 4> skip_one{chain.prev[u], u, v, nv};
+        const std::array<std::uint32_t, 4> skip_two{chain.prev[v], v, u, nu};
+        if (segments_intersect(one, two) || segments.crosses(one, skip_one) ||
+            segments.crosses(two, skip_two))
+            continue;
+        // The curve parts into two loops, nv … u and nu … v: two parts side by side, each
+        // oriented as the curve was and at least a quarter of a K-level cell thick. A loop
+        // inside the other (a hole, where a strip of the outside crossed a wall thinner than a
+        // cell) and a loop thinner than that (such as a lobe G makes at the corner of a
+        // non-convex Wulff shape) are left as the interpolant gave them, for the time loop's
+        // deeper thin cells to decide; so are strips between two curves.
+        const std::uint32_t c = chain.curve[u];
+        if (chain.curve[v] != c) continue;
+        const Loop one_side = loop(nv, u), other = loop(nu, v);
+        if (!one_side.resolved || !other.resolved ||
+            (one_side.twice_area > 0.0) != (other.twice_area > 0.0))
+            continue;
+        chain.next[u] = nv;
+        chain.prev[nv] = u;
+        chain.next[v] = nu;
+        chain.prev[nu] = v;
+        for (std::uint32_t x : {u, v}) {
+            chain.lengths[x] = distance(chain.points[x], chain.points[chain.next[x]]);
+            chain.mid_value[x] = std::numeric_limits<double>::quiet_NaN();
+            chain.frozen[x] = 0;
+            chain.unbound[x] = 1;
+            segments.insert(x);
+        }
+        // v's loop takes a new number.
+        const auto fresh = static_cast<std::uint32_t>(chain.curve_size.size());
+        std::size_t size = 0;
+        std::uint32_t x = v;
+        do {
+            chain.curve[x] = fresh;
+            ++size;
+            x = chain.next[x];
+        } while (x != v);
+        chain.curve_size.push_back(size);
+        chain.curve_size[c] -= size;
+        ++parted;
+    }
+    return parted;
 }
 
 }  // namespace slc::contouring

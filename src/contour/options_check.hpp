@@ -53,9 +53,10 @@ void check_options(const BasicContourOptions<dim>& o, int max_depth) {
     if constexpr (dim == 2) {
         if (o.creases) throw InvalidInput("creases are followed by the contours of surfaces only");
     } else {
-        if (o.rho != Options{}.rho || !o.triangle_safeguard) {
+        if (o.rho != Options{}.rho || !o.triangle_safeguard || !o.part_bridges) {
             throw InvalidInput(
-                "rho and the triangle safeguard apply to the contours of curves only");
+                "rho, the triangle safeguard and parting bridges apply to the contours of curves "
+                "only");
         }
     }
 }

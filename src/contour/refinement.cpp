@@ -113,8 +113,12 @@ public:
             bracket(candidates);
             solve(candidates);
             const std::size_t changed = accept(candidates) + prune();
+            const std::size_t parted =
+                options_.part_bridges ? part_bridges(chain_, g_, topo_, rootless_, options_) : 0;
+            rootless_.clear();
+            report_.parted += parted;
             ++report_.passes;
-            if (changed == 0) break;
+            if (changed + parted == 0) break;
         }
         report_.max_midpoint_value = max_midpoint_value();
         return report_;
@@ -332,6 +336,7 @@ private:
             const Candidate& c = candidates[i];
             if (!allowed[i] || !split_is_safe(c.u, c.root)) {
                 chain_.frozen[c.u] = 1;
+                if (!c.has_root) rootless_.push_back(c.u);
                 ++report_.rejected;
                 continue;
             }
@@ -447,6 +452,9 @@ private:
     double eps_;
     std::optional<SegmentGrid> grid_;
     std::vector<std::uint8_t> corners_;  ///< vertices placed at a corner (corner_of), by number
+    /// Segments of this pass whose split was refused with no zero in their bracket: the
+    /// candidates of part_bridges.
+    std::vector<std::uint32_t> rootless_;
     RefineReport report_;
 };
 

@@ -101,10 +101,15 @@ public:
     bool crosses(Segment s, std::span<const std::uint32_t> skip) const;
     /// Distance from o along the unit direction d to the first current segment other than
     /// segment skip that the ray meets within reach; infinity if none.
-    double first_hit(Vec2 o, Vec2 d, double reach, std::uint32_t skip) const;
+    double first_hit(Vec2 o, Vec2 d, double reach, std::uint32_t skip) const {
+        return first_hit_segment(o, d, reach, skip).first;
+    }
+    /// The same distance and the segment hit (none when nothing is).
+    std::pair<double, std::uint32_t> first_hit_segment(Vec2 o, Vec2 d, double reach,
+                                                       std::uint32_t skip) const;
+    static constexpr std::uint32_t none = 0xffffffffu;
 
 private:
-    static constexpr std::uint32_t none = 0xffffffffu;
     /// Segment u → next[u] as registered, in the cell with the given key.
     struct Entry {
         std::uint64_t key;
@@ -149,6 +154,7 @@ struct RefineReport {
     std::size_t splits = 0;
     std::size_t rejected = 0;
     std::size_t pruned = 0;
+    std::size_t parted = 0;  ///< bridges parted (part_bridges)
     std::optional<double> max_midpoint_value;
 };
 
@@ -159,6 +165,21 @@ struct RefineReport {
 /// Returns the number of joins.
 std::size_t join_necks(Chain& chain, BatchFunctionRef g, const Topology& topo,
                        const ContourOptions& options);
+
+/// Parts what the interpolant joined where G does not, the converse of join_necks: two parts a
+/// gap narrower than a cell apart whose triangles the interpolant links across the gap by a strip
+/// of their own sign, so that one curve goes round both. Offered are the segments in `rootless`,
+/// whose midpoint missed ε and whose bracket found no zero: for each, the first segment of its
+/// curve that its bracket's ray meets within its home triangle's longest edge, when that one
+/// runs the opposite way with its midpoint's G not of the other sign; G at the centre of the two
+/// segments' four ends, one batch. Where G there has the sign of the midpoints (the strip between
+/// them is G's other side, not the interpolant's) and |G| > η, the two segments u → next u and
+/// v → next v become u → next v and v → next u, when these cross no segment and each other not,
+/// and the curve parts into two loops side by side, each oriented as it was and at least a
+/// quarter of a K-level cell thick (2|A|/L). A hole (a strip crossing a wall) or a thinner loop
+/// is left for the time loop's deeper thin cells. Returns the number parted.
+std::size_t part_bridges(Chain& chain, BatchFunctionRef g, const Topology& topo,
+                         std::span<const std::uint32_t> rootless, const ContourOptions& options);
 
 /// P passes of split, bracket, root-find, safeguard and prune (§2.2) on the chain.
 RefineReport refine(Chain& chain, BatchFunctionRef g, const Topology& topo, const Box& domain,

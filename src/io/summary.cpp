@@ -286,7 +286,7 @@ nlohmann::json estimate_json(const std::string& coarse, RunStatus status,
 // The counts each dimension adds to BasicContourStats, as summary.json names them (a
 // ContourStats' max_midpoint_value, optional, apart).
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ContourStats, triangles, curves, segments, mean_segment_length,
-                                   pruned, joined, slivers)
+                                   pruned, joined, parted, slivers)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SurfaceContourStats, tetrahedra, triangles, collapses, flips,
                                    residual)
 

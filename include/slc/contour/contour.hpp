@@ -43,6 +43,10 @@ struct ContourStats : BasicContourStats<2> {
     /// Pairs of the interpolant's curves that refinement started from as one, G between them
     /// having the sign they enclose (a tip parted from its body at a neck narrower than a cell).
     std::size_t joined = 0;
+    /// Strips that refinement removed where the interpolant linked two parts across a gap
+    /// narrower than a cell, G between them having the other sign (part_bridges: two particles
+    /// a sub-cell gap apart kept two, a wall thinner than a cell kept whole).
+    std::size_t parted = 0;
     /// Closed polygons dropped as slivers: mean width 2|A|/L below η, the sign of G flickering
     /// along a line where G jumps across zero, not a component.
     std::size_t slivers = 0;

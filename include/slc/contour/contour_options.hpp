@@ -68,6 +68,11 @@ struct BasicContourOptions {
     /// and apart: refinement then finds the corners of the zero set that the tree's triangles cut
     /// off.
     bool triangle_safeguard = true;
+    /// Curves: refinement parts what the safeguards would keep joined where G says the parts are
+    /// two: two parts a gap narrower than a cell apart that the interpolant links across the gap
+    /// (docs/algorithms/contour.md, "Parting what the interpolant joined"). Off, the refined
+    /// contour keeps the interpolant's topology, as the paper's safeguards do (its Fig. 8).
+    bool part_bridges = true;
     /// Surfaces: refinement follows creases, for G the distance of a surface of flat facets (a
     /// user's mesh). An edge whose midpoint lies off the zero set by more than L/64 and whose
     /// profile along the normal at its quarters and midpoint is two lines (a fold of the surface)

@@ -357,6 +357,52 @@ TEST(Contour, ATipPartedByTheInterpolantIsJoinedToItsBody) {
     expect_simple(r.curves);
 }
 
+/// The signed distance to two discs outside them (their union's zero set), and their union's
+/// inside.
+auto two_discs(Vec2 c1, double r1, Vec2 c2, double r2) {
+    return [=](Vec2 p) { return std::min(distance(p, c1) - r1, distance(p, c2) - r2); };
+}
+
+// Two discs a gap narrower than a cell apart, whose triangles the interpolant links across the
+// gap at K = 4 (cells 0.125): the paper's refinement keeps the bridge (its safeguards refuse the
+// splits that would cross it), and slc's parts it where G between its sides is positive
+// (ContourOptions::part_bridges). Three of the 65 of 92 such pairs of a seeded sweep that come out
+// two; each disc then keeps its area to the chords' sagitta.
+TEST(Contour, TwoDiscsTheInterpolantJoinsArePartedWhereGSaysTheyAreTwo) {
+    struct Pair {
+        Vec2 c1;
+        double r1;
+        Vec2 c2;
+        double r2;
+    };
+    for (const Pair& d : {Pair{{-0.1827, -0.1866}, 0.3666, {-0.3569, 0.4529}, 0.2169},
+                          Pair{{-0.0677, -0.1495}, 0.2987, {-0.5786, -0.3900}, 0.2373},
+                          Pair{{0.0632, 0.1827}, 0.3168, {-0.0810, -0.3434}, 0.1556}}) {
+        SCOPED_TRACE(::testing::Message() << "discs at " << d.c1.x << ", " << d.c1.y);
+        const auto g = pointwise(two_discs(d.c1, d.r1, d.c2, d.r2));
+        EXPECT_EQ(contour(g, unit_domain, options(4, 0)).curves.curve_count(), 1u);
+        ContourOptions paper = options(4, 2);
+        paper.part_bridges = false;
+        const ContourResult kept = contour(g, unit_domain, paper);
+        EXPECT_EQ(kept.curves.curve_count(), 1u);
+        EXPECT_EQ(kept.stats.parted, 0u);
+        const ContourResult r = contour(g, unit_domain, options(4, 2));
+        ASSERT_EQ(r.curves.curve_count(), 2u);
+        EXPECT_GE(r.stats.parted, 1u);
+        expect_simple(r.curves);
+        EXPECT_LE(residuals(r.curves, g).vertices, eta);
+        // Each curve counterclockwise about one disc, enclosing its area less the chords'
+        // segments: K = 4 and two passes leave chords of at most about 0.04, whose segments
+        // take under 1% of these discs' areas.
+        std::vector<double> areas;
+        for (std::size_t c = 0; c < 2; ++c) areas.push_back(signed_area(r.curves.curve(c)));
+        std::sort(areas.begin(), areas.end());
+        const double small = std::min(d.r1, d.r2), large = std::max(d.r1, d.r2);
+        EXPECT_NEAR(areas[0] / (pi * small * small), 1.0, 1e-2);
+        EXPECT_NEAR(areas[1] / (pi * large * large), 1.0, 1e-2);
+    }
+}
+
 // Below two ulps of the domain's coordinates no root can be found: a given ε there is refused
 // (every split would be rejected, silently), η and the default ε are raised to it.
 TEST(Contour, ToleranceBelowRoundingIsRefusedOrRaised) {
