@@ -35,6 +35,37 @@ struct Sets {
     }
 };
 
+/// Whether segments u → next u and v → next v may become u → next v and v → next u: the new
+/// segments cross no segment of the chain and each other not (exact predicates).
+bool reconnectable(const Chain& chain, const SegmentGrid& segments, std::uint32_t u,
+                   std::uint32_t v) {
+    const std::uint32_t nu = chain.next[u], nv = chain.next[v];
+    const Segment one{chain.points[u], chain.points[nv]};
+    const Segment two{chain.points[v], chain.points[nu]};
+    const std::array<std::uint32_t, 4> skip_one{chain.prev[u], u, v, nv};
+    const std::array<std::uint32_t, 4> skip_two{chain.prev[v], v, u, nu};
+    return !segments_intersect(one, two) && !segments.crosses(one, skip_one) &&
+           !segments.crosses(two, skip_two);
+}
+
+/// Replaces segments u → next u and v → next v by u → next v and v → next u, which refinement
+/// evaluates afresh and does not hold to a home triangle (they cross the interpolant's gap or
+/// strip), and registers them in segments.
+void reconnect(Chain& chain, SegmentGrid& segments, std::uint32_t u, std::uint32_t v) {
+    const std::uint32_t nu = chain.next[u], nv = chain.next[v];
+    chain.next[u] = nv;
+    chain.prev[nv] = u;
+    chain.next[v] = nu;
+    chain.prev[nu] = v;
+    for (std::uint32_t x : {u, v}) {
+        chain.lengths[x] = distance(chain.points[x], chain.points[chain.next[x]]);
+        chain.mid_value[x] = std::numeric_limits<double>::quiet_NaN();
+        chain.frozen[x] = 0;
+        chain.unbound[x] = 1;
+        segments.insert(x);
+    }
+}
+
 }  // namespace
 
 std::size_t join_necks(Chain& chain, BatchFunctionRef g, const Topology& topo,
@@ -86,15 +117,7 @@ std::size_t join_necks(Chain& chain, BatchFunctionRef g, const Topology& topo,
     struct Way {
         std::uint32_t u, v;
     };
-    auto bridgeable = [&](const Way& w) {
-        const std::uint32_t nu = chain.next[w.u], nv = chain.next[w.v];
-        const Segment one{chain.points[w.u], chain.points[nv]};
-        const Segment two{chain.points[w.v], chain.points[nu]};
-        const std::array<std::uint32_t, 4> skip_one{chain.prev[w.u], w.u, w.v, nv};
-        const std::array<std::uint32_t, 4> skip_two{chain.prev[w.v], w.v, w.u, nu};
-        return !segments_intersect(one, two) && !segments.crosses(one, skip_one) &&
-               !segments.crosses(two, skip_two);
-    };
+    auto bridgeable = [&](const Way& w) { return reconnectable(chain, segments, w.u, w.v); };
     auto bridge_length = [&](const Way& w) {
         return distance(chain.points[w.u], chain.points[chain.next[w.v]]) +
                distance(chain.points[w.v], chain.points[chain.next[w.u]]);
@@ -137,18 +160,8 @@ std::size_t join_necks(Chain& chain, BatchFunctionRef g, const Topology& topo,
         // An earlier join may have used one of these segments or laid a bridge across.
         if (chain.next[c.way.u] != c.nu || chain.next[c.way.v] != c.nv || !bridgeable(c.way))
             continue;
-        const std::uint32_t u = c.way.u, v = c.way.v, nu = c.nu, nv = c.nv;
-        chain.next[u] = nv;
-        chain.prev[nv] = u;
-        chain.next[v] = nu;
-        chain.prev[nu] = v;
-        for (std::uint32_t x : {u, v}) {
-            chain.lengths[x] = distance(chain.points[x], chain.points[chain.next[x]]);
-            chain.mid_value[x] = std::numeric_limits<double>::quiet_NaN();
-            chain.unbound[x] = 1;
-        }
-        segments.insert(u);
-        segments.insert(v);
+        const std::uint32_t u = c.way.u, v = c.way.v;
+        reconnect(chain, segments, u, v);
         // The joined curve takes the lower number.
         const std::uint32_t keep = std::min(chain.curve[u], chain.curve[v]);
         const std::uint32_t gone = std::max(chain.curve[u], chain.curve[v]);
@@ -242,13 +255,7 @@ std::size_t part_bridges(Chain& chain, BatchFunctionRef g, const Topology& topo,
         const std::uint32_t nu = chain.next[u], nv = chain.next[v];
         // An earlier parting may have used one of these segments.
         if (!chain.alive[u] || !chain.alive[v] || nu == v || nv == u) continue;
-        const Segment one{chain.points[u], chain.points[nv]};
-        const Segment two{chain.points[v], chain.points[nu]};
-        const std::array<std::uint32_t, 4> skip_one{chain.prev[u], u, v, nv};
-        const std::array<std::uint32_t, 4> skip_two{chain.prev[v], v, u, nu};
-        if (segments_intersect(one, two) || segments.crosses(one, skip_one) ||
-            segments.crosses(two, skip_two))
-            continue;
+        if (!reconnectable(chain, segments, u, v)) continue;
         // The curve parts into two loops, nv … u and nu … v: two parts side by side, each
         // oriented as the curve was and at least a quarter of a K-level cell thick. A loop
         // inside the other (a hole, where a strip of the outside crossed a wall thinner than a
@@ -261,17 +268,7 @@ std::size_t part_bridges(Chain& chain, BatchFunctionRef g, const Topology& topo,
         if (!one_side.resolved || !other.resolved ||
             (one_side.twice_area > 0.0) != (other.twice_area > 0.0))
             continue;
-        chain.next[u] = nv;
-        chain.prev[nv] = u;
-        chain.next[v] = nu;
-        chain.prev[nu] = v;
-        for (std::uint32_t x : {u, v}) {
-            chain.lengths[x] = distance(chain.points[x], chain.points[chain.next[x]]);
-            chain.mid_value[x] = std::numeric_limits<double>::quiet_NaN();
-            chain.frozen[x] = 0;
-            chain.unbound[x] = 1;
-            segments.insert(x);
-        }
+        reconnect(chain, segments, u, v);
         // v's loop takes a new number.
         const auto fresh = static_cast<std::uint32_t>(chain.curve_size.size());
         std::size_t size = 0;
