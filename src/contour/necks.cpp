@@ -202,7 +202,10 @@ std::size_t part_bridges(Chain& chain, BatchFunctionRef g, const Topology& topo,
         Loop l;
         std::size_t count = 1;
         double perimeter = distance(chain.points[b], chain.points[a]);
+        // a and b lie on one curve: b comes within its vertices (the bound only guards the walk).
+        const std::size_t most = chain.curve_size[chain.curve[a]];
         for (std::uint32_t x = a; x != b;) {
+            if (count > most) return Loop{};
             const std::uint32_t y = chain.next[x];
             l.twice_area += cross(chain.points[x], chain.points[y]);
             perimeter += chain.length(x);

@@ -37,7 +37,7 @@ template <class Enum>
 const char* name_of(std::span<const Named<Enum>> names, Enum value) {
     for (const Named<Enum>& n : names)
         if (n.value == value) return n.name;
-    throw InvalidInput("a value with no name");
+    throw InvalidInput("no name for the value " + std::to_string(static_cast<long long>(value)));
 }
 
 /// The names, in the order listed.
