@@ -237,6 +237,24 @@ def test_contour_splits_thin_cells_where_asked_in_both_dimensions():
         slc.contour_surface(shell, 1, 5, thin_depth=1.5)
 
 
+def test_contour_parts_two_discs_the_triangles_join_across_a_gap():
+    # Two discs 0.05 apart, the gap under half a cell at K = 4 in [-1, 1]^2: the linear contour
+    # joins them, refinement parts them where f in the gap is positive (the library's
+    # Contour.TwoDiscsTheInterpolantJoinsArePartedWhereGSaysTheyAreTwo, through the package).
+    c1, r1, c2, r2 = (-0.1827, -0.1866), 0.3666, (-0.3569, 0.4529), 0.2169
+
+    def discs(p):
+        return np.minimum(np.hypot(p[:, 0] - c1[0], p[:, 1] - c1[1]) - r1,
+                          np.hypot(p[:, 0] - c2[0], p[:, 1] - c2[1]) - r2)
+
+    assert len(slc.contour(discs, 1, 4)) == 1
+    curves, stats = slc.contour(discs, 1, 4, refine=2, stats=True)
+    assert len(curves) == 2 and stats["parted"] >= 1
+    areas = sorted(abs(slc.Interface([c]).area) for c in curves.curves)
+    assert areas[0] == pytest.approx(math.pi * r2 ** 2, rel=1e-2)
+    assert areas[1] == pytest.approx(math.pi * r1 ** 2, rel=1e-2)
+
+
 def test_a_step_that_tears_a_wall_is_taken_again_deeper():
     # A ring whose wall shrinks to 0.01 in one step at K = 4 with one level of thin cells: torn
     # into pieces there, the ring again at five levels, and the run says so, as the command
