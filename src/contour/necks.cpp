@@ -178,12 +178,11 @@ std::size_t join_necks(Chain& chain, BatchFunctionRef g, const Topology& topo,
     return joined;
 }
 
-std::size_t part_bridges(Chain& chain, BatchFunctionRef g, const Topology& topo,
-                         std::span<const std::uint32_t> rootless, const ContourOptions& options) {
+std::size_t part_bridges(Chain& chain, SegmentGrid& segments, BatchFunctionRef g,
+                         const Topology& topo, std::span<const std::uint32_t> rootless,
+                         const ContourOptions& options) {
     if (rootless.empty()) return 0;
     const double eta = options.resolved_eta();
-    const double finest = topo.tree.edge(topo.tree.depth());
-    SegmentGrid segments(chain, finest);
     auto longest_edge = [&](std::uint32_t t) {
         const auto& tri = topo.mesh.triangles[t];
         const auto& v = topo.mesh.vertices;

@@ -114,7 +114,8 @@ public:
             solve(candidates);
             const std::size_t changed = accept(candidates) + prune();
             const std::size_t parted =
-                options_.part_bridges ? part_bridges(chain_, g_, topo_, rootless_, options_) : 0;
+                options_.part_bridges ? part_bridges(chain_, *grid_, g_, topo_, rootless_, options_)
+                                      : 0;
             rootless_.clear();
             report_.parted += parted;
             ++report_.passes;

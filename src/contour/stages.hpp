@@ -177,9 +177,11 @@ std::size_t join_necks(Chain& chain, BatchFunctionRef g, const Topology& topo,
 /// v → next v become u → next v and v → next u, when these cross no segment and each other not,
 /// and the curve parts into two loops side by side, each oriented as it was and at least a
 /// quarter of a K-level cell thick (2|A|/L). A hole (a strip crossing a wall) or a thinner loop
-/// is left for the time loop's deeper thin cells. Returns the number parted.
-std::size_t part_bridges(Chain& chain, BatchFunctionRef g, const Topology& topo,
-                         std::span<const std::uint32_t> rootless, const ContourOptions& options);
+/// is left for the time loop's deeper thin cells. `segments` is refinement's grid of the chain,
+/// kept current. Returns the number parted.
+std::size_t part_bridges(Chain& chain, SegmentGrid& segments, BatchFunctionRef g,
+                         const Topology& topo, std::span<const std::uint32_t> rootless,
+                         const ContourOptions& options);
 
 /// P passes of split, bracket, root-find, safeguard and prune (§2.2) on the chain.
 RefineReport refine(Chain& chain, BatchFunctionRef g, const Topology& topo, const Box& domain,

@@ -116,7 +116,7 @@ Checker apply_shared(const RunOverrides& q, SettingNames names, int dim, Options
 }  // namespace
 
 double eps_for_depth(int dim, int depth, double length_scale) {
-    if (dim == 2) return std::max(std::pow(10.0, -depth), 1e-13) * length_scale;
+    if (dim == 2) return std::max(std::pow(10.0, -depth), min_curve_eps) * length_scale;
     return 1e-3 * std::pow(4.0, 5 - depth) * length_scale;
 }
 

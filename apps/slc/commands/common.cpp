@@ -258,7 +258,7 @@ std::string eps() {
     return fmt::format(
         "the shape's half-width times 10^-K for curves (not below {:g}) and {:g} 4^({}-K) for "
         "surfaces; at least two ulps of the domain's largest coordinate",
-        eps_for_depth(2, 100, 1.0), eps_for_depth(3, default_depth, 1.0), default_depth);
+        min_curve_eps, eps_for_depth(3, default_depth, 1.0), default_depth);
 }
 
 std::string eta() {

@@ -61,6 +61,8 @@ int depth_for_domain(int dim, double domain_width, double default_width);
 /// for surfaces, the default 10^−3 ℓ at K = 5 scaled as h², since a surface refined to ε takes
 /// about 1/ε triangles where a curve takes 1/√ε segments. dim is 2 or 3.
 double eps_for_depth(int dim, int depth, double length_scale);
+/// The least ε that eps_for_depth gives curves, times ℓ.
+inline constexpr double min_curve_eps = 1e-13;
 
 /// ε and η of one contour.
 struct ContourTolerances {
