@@ -62,12 +62,11 @@ bool is_sliver(std::span<const Vec2> curve, double eta) {
     return 2.0 * std::abs(signed_area(curve)) < eta * length(curve);
 }
 
-/// Whether a curve is below what cells `size` wide resolve (contouring::below_resolution, the
-/// rule of the surfaces' drop_specks).
+/// Whether a curve is less than `size` across (the larger side of its box): the rule of the
+/// surfaces' drop_specks, for curves.
 bool is_speck(std::span<const Vec2> curve, double size) {
     const Box b = bounding_box(curve);
-    return contouring::below_resolution(std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y),
-                                        2.0 * std::abs(signed_area(curve)) / length(curve), size);
+    return std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y) < size;
 }
 
 /// contour() with or without bounds on G.
@@ -122,10 +121,9 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
     const double eta = options.resolved_eta();
     Interface curves = drop_curves(
         chain.to_interface(), [&](auto curve) { return is_sliver(curve, eta); }, stats.slivers);
-    // As for surfaces: where cells went beyond K, a closed curve less than a finest cell across,
-    // or thinner than half of one, is below what the mesh resolves (a loop of G at the corner of
-    // a non-convex Wulff shape, which the thin cells of a user's curves would otherwise keep as
-    // a hole the law forbids; a fleck off a sharp tip).
+    // As for surfaces: where cells went beyond K, a closed curve less than a finest cell across
+    // is below what the mesh resolves (a loop of G at the corner of a non-convex Wulff shape,
+    // which the thin cells of a user's curves would otherwise keep as a hole the law forbids).
     if (stats.thin_cells > 0) {
         const double finest = stats.finest_cell;
         curves = drop_curves(

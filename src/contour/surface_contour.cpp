@@ -39,9 +39,8 @@ void validate(const SurfaceContourOptions& o, const Box3& domain) {
     }
 }
 
-/// Drops the closed components of s below what cells `size` wide resolve
-/// (contouring::below_resolution: less than a cell across, or thinner than half of one), and the
-/// vertices only they used. Returns the components dropped.
+/// Drops the closed components of s smaller than `size` across (the largest extent of their
+/// box), and the vertices only they used. Returns the components dropped.
 std::size_t drop_specks(Surface& s, double size) {
     if (s.triangles.empty()) return 0;
     const std::vector<std::uint32_t> label = component_labels(s);
@@ -49,23 +48,11 @@ std::size_t drop_specks(Surface& s, double size) {
     std::vector<Box3> boxes(count, Box3::empty());
     for (std::size_t t = 0; t < s.size(); ++t)
         boxes[label[t]] = unite(boxes[label[t]], bounding_box(s.triangle(t)));
-    // Each component's area and volume, the volume from a corner of its box (a closed
-    // component's volume is the same from any origin, and rounds least from one beside it).
-    std::vector<double> areas(count, 0.0), volumes(count, 0.0);
-    for (std::size_t t = 0; t < s.size(); ++t) {
-        const Triangle3 tri = s.triangle(t);
-        const Vec3 o = boxes[label[t]].lo;
-        const Vec3 a = tri.a - o, b = tri.b - o, c = tri.c - o;
-        areas[label[t]] += 0.5 * norm(cross(b - a, c - a));
-        volumes[label[t]] += dot(a, cross(b, c)) / 6.0;
-    }
     std::vector<std::uint8_t> speck(count, 0);
     std::size_t dropped = 0;
     for (std::size_t c = 0; c < count; ++c) {
         const Vec3 extent = boxes[c].hi - boxes[c].lo;
-        const double width = areas[c] > 0.0 ? 3.0 * std::abs(volumes[c]) / areas[c] : 0.0;
-        const double across = std::max({extent.x, extent.y, extent.z});
-        speck[c] = contouring::below_resolution(across, width, size) ? 1 : 0;
+        speck[c] = std::max({extent.x, extent.y, extent.z}) < size ? 1 : 0;
         dropped += speck[c];
     }
     if (dropped == 0) return 0;
@@ -230,9 +217,8 @@ SurfaceContour contour_surface_with(SpaceFunctionRef g, const Box3& domain,
     out.surface.triangles = std::move(linear.triangles);
     // Beside a convex corner, where thin cells are finer than their neighbours, a mesh vertex
     // just inside the corner can have no neighbour inside: the linear zero set closes a speck
-    // around it, apart from the rest of the corner; off a sharp rim the mesh's vertices catch
-    // flecks of it. A component less than a finest cell across, or thinner than half of one, is
-    // below what the mesh resolves: dropped (only where cells went beyond K).
+    // around it, apart from the rest of the corner. A component less than a finest cell across
+    // is below what the mesh resolves: dropped (only where cells went beyond K).
     if (stats.thin_cells > 0)
         stats.specks = drop_specks(out.surface, topo.tree.edge(topo.tree.depth()));
     if (options.refine_passes != 0 && !out.surface.triangles.empty())

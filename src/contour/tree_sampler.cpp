@@ -165,12 +165,7 @@ std::pair<std::uint32_t, bool> TreeSampler<dim>::child_point(std::uint32_t c, co
     }
     const CellSamples& parent = cell_samples_[cell.parent];
     if (halves == 0) return {parent[corner], false};
-    if (halves == dim) {
-        // The parent's centre, a corner of its children from now on: the table holds the
-        // corners of every cell, which bends() looks up along grid lines.
-        if constexpr (!centres_in_table) index_.try_emplace(keys.k[j], parent[Tree::children]);
-        return {parent[Tree::children], false};
-    }
+    if (halves == dim) return {parent[Tree::children], false};
     return add_point(keys, j);
 }
 

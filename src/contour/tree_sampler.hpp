@@ -284,16 +284,6 @@ inline constexpr std::size_t thin_cell_budget = 2;
 template <int dim>
 ThinSplit split_thin(Orthtree<dim>& tree, TreeSampler<dim>& sampler, double gamma);
 
-/// Whether a closed component of a contour whose finest cells are `cell` wide is below what they
-/// resolve: less than a cell across (its box's largest side), or thinner than half a cell on the
-/// mean (its mean width, 2|A|/L of a curve, 3|V|/A of a surface: a circle's or a ball's radius,
-/// so that the two rules drop the same round specks). The second is a fleck off a part that
-/// tapers to nothing, a sharp tip or a lens's rim, which the mesh's vertices caught there and
-/// missed beside it: no part of the shape, and one that comes and goes from step to step.
-inline bool below_resolution(double extent, double mean_width, double cell) {
-    return extent < cell || mean_width < 0.5 * cell;
-}
-
 /// The centre of the first of the tree's deepest leaves: where its finest cells are.
 template <int dim>
 PointOf<dim> deepest_place(const Orthtree<dim>& tree) {

@@ -551,45 +551,4 @@ TEST(Contour, SameContourForOneAndTwoThreads) {
 }
 
 }  // namespace
-// A lens (two arcs of radius 20 meeting at tips 5.7° wide, chord 2; and of radius 80, tips 1.4°
-// wide) at the users' thin depth comes out one curve at every orientation, its area kept. Where it
-// crossed a cell beside a corner that had been its parent's centre, the grid-line test of thin
-// cells once missed it (that corner was not in the table of keys) and the contour cut the lens in
-// two where nine finest cells thick; and the flecks the mesh's vertices catch off a tip, thinner
-// than half a finest cell, were kept as curves of their own.
-TEST(Contour, ASharpLensIsOneCurveAtEveryOrientation) {
-    constexpr double half_chord = 1.0;
-    for (const double radius : {20.0, 80.0}) {
-        const double offset = std::sqrt(radius * radius - half_chord * half_chord);
-        const double exact =
-            2.0 * (radius * radius * std::asin(half_chord / radius) - offset * half_chord);
-        for (int i = 0; i < 48; ++i) {
-            const double angle = 0.37 + pi * i / 48.0;
-            SCOPED_TRACE(::testing::Message() << "radius " << radius << ", lens at " << angle);
-            const Vec2 u{std::cos(angle), std::sin(angle)}, n{-u.y, u.x};  // chord, normal
-            const auto g = pointwise([=](Vec2 p) {
-                // The exact signed distance: inside, to the nearer arc; outside, to the nearest
-                // of the arcs' points (each disc's nearest, where it lies in the other) and tips.
-                const Vec2 c[2] = {-offset * n, offset * n};
-                const double inside = std::max(norm(p - c[0]), norm(p - c[1])) - radius;
-                if (inside <= 0.0) return inside;
-                double d = std::min(norm(p - half_chord * u), norm(p + half_chord * u));
-                for (int k = 0; k < 2; ++k) {
-                    const Vec2 q = c[k] + (radius / norm(p - c[k])) * (p - c[k]);
-                    if (norm(q - c[1 - k]) <= radius) d = std::min(d, norm(p - q));
-                }
-                return d;
-            });
-            ContourOptions o = options(5, 1000);
-            o.thin_depth = 6;
-            const ContourResult r = contour(g, Box::centered_square(1.2), o);
-            ASSERT_EQ(r.curves.curve_count(), 1u);
-            expect_simple(r.curves);
-            // The tips are cut where thinner than the mesh resolves: 4e-4 of the area at 5.7°,
-            // 3e-3 at 1.4°.
-            EXPECT_NEAR(area(r.curves) / exact, 1.0, radius < 50.0 ? 1e-3 : 5e-3);
-        }
-    }
-}
-
 }  // namespace slc

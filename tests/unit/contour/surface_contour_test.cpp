@@ -199,30 +199,6 @@ TEST(SurfaceContour, ATiltedCubeWithThinCellsStaysOnePiece) {
     }
 }
 
-TEST(SurfaceContour, FlecksOffASharpRimAreDropped) {
-    // A lens (two balls of radius 20 meeting at a rim 6° wide, 0.05 thick at its centre) turned
-    // off the axes: along the rim, where it is thinner than the finest cells, the mesh's vertices
-    // catch flecks of it, components thinner than half a finest cell (3V/A), which are dropped.
-    // (What they leave of the rim is one piece, but not yet always without handles: the thin
-    // part tapers below every depth.)
-    constexpr double radius = 20.0;
-    const double offset = std::sqrt(radius * radius - 1.0);
-    const Vec3 n = Vec3{0.3, -0.5, 0.8} / std::sqrt(0.98);
-    const auto g = pointwise<Vec3>([=](Vec3 p) {
-        return std::max(norm(p + offset * n) - radius, norm(p - offset * n) - radius);
-    });
-    const SurfaceContour got =
-        contour_surface(g, Box3::cube({0.0, 0.0, 0.0}, 1.5), {.depth = 5, .thin_depth = 2});
-    EXPECT_GT(got.stats.specks, 0u);
-    EXPECT_EQ(component_count(got.surface), 1u);
-    EXPECT_TRUE(closed_and_oriented(got.surface));
-    const double cap = radius - offset;  // the height of each of the lens's two caps
-    const double exact = 2.0 * std::numbers::pi * cap * cap * (3.0 * radius - cap) / 3.0;
-    // The linear contour (P = 0) holds the lens less the rim where it is thinner than the
-    // cells: 3.4% of its volume.
-    EXPECT_NEAR(volume(got.surface) / exact, 1.0, 0.05);
-}
-
 TEST(SurfaceContour, MeshVerticesOnAFlatFaceAreMovedOffItWithACoarseEta) {
     // ε = 1e−2 makes η = ε/100 = 1e−4, a fair part of the finest cell (0.02 at K 5 with thin
     // cells): the six doubling displacements of a mesh vertex within η of a face of this cube
