@@ -52,3 +52,18 @@ for r in ("5e-9", "1e-60"):
 PY
 expect_error "missing file" "nope.json" -- contour --initial nope.json -K 4 --out x
 finish
+
+# Curves of the user's whose contour tears a part thinner than its cells say so: a ring whose
+# wall is 0.01 wide at K = 4 (cells 0.094) comes apart without thin cells, and the note names the
+# counts and the setting; at the default thin depth its two curves are kept.
+awk 'BEGIN { pi = atan2(0, -1); printf "{\"curves\": [{\"points\": [";
+    for (i = 0; i < 256; i++) printf "%s[%.17g, %.17g]", (i ? ", " : ""), 0.5 * cos(2 * pi * i / 256), 0.5 * sin(2 * pi * i / 256);
+    printf "]}, {\"points\": [";
+    for (i = 0; i < 256; i++) printf "%s[%.17g, %.17g]", (i ? ", " : ""), 0.49 * cos(-2 * pi * i / 256), 0.49 * sin(-2 * pi * i / 256);
+    print "]}]}" }' >ring.json
+expect_ok "a thin wall torn without thin cells" -- contour --initial ring.json -K 4 --thin-depth 0 --out ring0
+check "the tear is noted" grep -q "slc: note: the contour has .* where the input has 2 curves with 1 hole: a part is thinner than its cells resolve (--thin-depth 0); raise --thin-depth or -K" err.txt
+check "summary: the topology not kept" test "$(json ring0/summary.json 's["kept_topology"]')" = False
+expect_ok "a thin wall kept by thin cells" -- contour --initial ring.json -K 4 --out ring6
+check "summary: the topology kept" test "$(json ring6/summary.json 's["kept_topology"], s["curves"]')" = "True 2"
+check "no note" test ! -s err.txt

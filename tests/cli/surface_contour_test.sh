@@ -112,3 +112,29 @@ for r in ("5e-9", "5e-91"):
 PY
 
 finish
+
+# A surface of the user's whose contour tears a part thinner than its cells says so: a box with a
+# wall 0.03 thick (a cavity 0.87 x 0.8 x 0.8 in a unit cube), cells 0.047 at K = 5. Without thin
+# cells the wall is pierced (one surface with 288 handles) and the note names the counts and the
+# setting; at the default thin depth the two surfaces are kept.
+python3 - <<'PY' >wallbox.obj
+boxes = [((-.5, -.5, -.5), (.5, .5, .5), False), ((-.47, -.4, -.4), (.4, .4, .4), True)]
+faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1), (2, 3, 7), (2, 7, 6),
+         (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
+out = []
+for n, (lo, hi, inward) in enumerate(boxes):
+    for x in (lo[0], hi[0]):
+        for y in (lo[1], hi[1]):
+            for z in (lo[2], hi[2]):
+                print(f"v {x} {y} {z}")
+    for a, b, c in faces:  # vertex i has x, y, z from bits 4, 2, 1; outward, or inward (a cavity)
+        out.append(tuple(8 * n + i + 1 for i in ((a, c, b) if inward else (a, b, c))))
+for t in out:
+    print("f %d %d %d" % t)
+PY
+expect_ok "a thin wall torn without thin cells" -- contour --initial wallbox.obj --thin-depth 0 --out wall0
+check "the tear is noted" grep -q "slc: note: the contour has 1 component with 288 handles where the input has 2 components with 0 handles: a part is thinner than its cells resolve (--thin-depth 0); raise --thin-depth or -K" err.txt
+check "summary: the topology not kept" test "$(json wall0/summary.json 's["kept_topology"]')" = False
+expect_ok "a thin wall kept by thin cells" -- contour --initial wallbox.obj --out wall2
+check "summary: the topology kept" test "$(json wall2/summary.json 's["kept_topology"], s["components"], s["genus"]')" = "True 2 0"
+check "no note" test ! -s err.txt

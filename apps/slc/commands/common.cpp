@@ -13,6 +13,7 @@
 #include "slc/core/parallel.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/evolve/defaults.hpp"
+#include "slc/evolve/guards.hpp"
 #include "slc/evolve/surface_problems.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/geometry/validate_surface.hpp"
@@ -373,6 +374,32 @@ void print_estimate(const nlohmann::json& estimate) {
         fmt::print("error estimate: {:.3g} (the distance to the run {} at half resolution)\n",
                    estimate["estimate"].get<double>(), estimate["coarse"].get<std::string>());
     }
+}
+
+ShapeCounts shape_counts(const Interface& curves) {
+    return {curves.curve_count(), static_cast<long long>(region_parts(curves).holes)};
+}
+
+ShapeCounts shape_counts(const Surface& surface) {
+    if (surface.triangles.empty()) return {};
+    return {component_count(surface), genus(surface)};
+}
+
+std::optional<std::string> topology_note(const ShapeCounts& given, const ShapeCounts& contour,
+                                         int dim, int thin_depth) {
+    if (given == contour) return std::nullopt;
+    const auto describe = [dim](const ShapeCounts& c) {
+        const char* parts = dim == 2 ? (c.components == 1 ? "curve" : "curves")
+                                     : (c.components == 1 ? "component" : "components");
+        const char* holes =
+            dim == 2 ? (c.holes == 1 ? "hole" : "holes") : (c.holes == 1 ? "handle" : "handles");
+        return fmt::format("{} {} with {} {}", c.components, parts, c.holes, holes);
+    };
+    return fmt::format(
+        "the contour has {} where the input has {}: a part is thinner than its cells resolve "
+        "(--thin-depth {}); raise --thin-depth or -K (a part that tapers to an edge of no "
+        "thickness is thinner at every depth)",
+        describe(contour), describe(given), thin_depth);
 }
 
 }  // namespace slc::cli

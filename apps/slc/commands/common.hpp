@@ -163,6 +163,21 @@ std::string eta();
 std::string thin_depth();
 }  // namespace default_rule
 
+/// A shape's topology as slc contour compares it with its contour's: curves and holes (clockwise
+/// curves), or a surface's closed components and handles (its genus).
+struct ShapeCounts {
+    std::size_t components = 0;
+    long long holes = 0;
+    bool operator==(const ShapeCounts&) const = default;
+};
+ShapeCounts shape_counts(const Interface& curves);
+ShapeCounts shape_counts(const Surface& surface);
+/// The note slc contour gives when the contour of a user's shape does not keep its topology: a
+/// part thinner than the cells resolve (at the thin depth given) was torn or joined. Nothing when
+/// it is kept.
+std::optional<std::string> topology_note(const ShapeCounts& given, const ShapeCounts& contour,
+                                         int dim, int thin_depth);
+
 /// CLI11 checks with one-line messages naming the value: a positive finite number; a finite
 /// number >= 0; an integer in [lo, hi]; a number in [0, 1).
 CLI::Validator positive_number();

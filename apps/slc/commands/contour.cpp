@@ -139,10 +139,15 @@ void write_results(const ContourCommandOptions& o, const ContourOptions& options
     summary["error_midpoints"] = e.midpoints;
     summary["area"] = area(r.curves);
     summary["length"] = length(r.curves);
+    const std::optional<std::string> torn =
+        topology_note(shape_counts(in.curves), shape_counts(r.curves), 2, options.thin_depth);
+    summary["kept_topology"] = !torn;
+    if (torn) summary["note"] = *torn;
     write_file_atomic(dir / "final.json", interface_json(r.curves, in.time));
     draw(r, in.curves, in.domain, picture_title(o, options, r, error), dir);
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     folder.commit();
+    if (torn) fmt::print(stderr, "slc: note: {}\n", *torn);
     fmt::print(
         "{} cells, {} segments, error {:.3g}, {} G evaluations ({:.2f} per vertex), {:.3g} s; "
         "wrote {}\n",

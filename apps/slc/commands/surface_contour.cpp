@@ -146,6 +146,13 @@ void run_surface_contour(const SurfaceContourRequest& r) {
                     {"genus", s.triangles.empty() ? 0 : genus(s)},
                     {"area", area(s)},
                     {"volume", volume(s)}});
+    // A surface of the user's: whether the contour kept its components and handles.
+    std::optional<std::string> torn;
+    if (source.surface) {
+        torn = topology_note(shape_counts(*source.surface), shape_counts(s), 3, r.thin_depth);
+        summary["kept_topology"] = !torn;
+        if (torn) summary["note"] = *torn;
+    }
     // Whether refinement met ε, when refinement was asked for.
     if (r.refine != 0) summary["converged"] = st.converged;
     std::optional<double> error;
@@ -181,6 +188,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     if (unconverged) summary["status"] = "unconverged";
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     folder.commit();
+    if (torn) fmt::print(stderr, "slc: note: {}\n", *torn);
     if (unconverged) {
         throw NumericalFailure(fmt::format(
             "refinement stopped after {} passes with |G| above eps = {:g}{} at a midpoint or "
