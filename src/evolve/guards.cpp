@@ -41,6 +41,20 @@ RegionParts region_parts(const Surface& surface) {
     return r;
 }
 
+ShapeTopology shape_topology(const Interface& curves) {
+    return {curves.curve_count(), static_cast<long long>(region_parts(curves).holes)};
+}
+
+ShapeTopology shape_topology(const Surface& surface) {
+    return {component_count(surface), genus(surface)};
+}
+
+std::string describe(const ShapeTopology& t, int dim) {
+    return fmt::format(
+        "{} {} with {} {}", t.components, t.components == 1 ? "component" : "components", t.holes,
+        dim == 2 ? (t.holes == 1 ? "hole" : "holes") : (t.holes == 1 ? "handle" : "handles"));
+}
+
 std::optional<std::string> region_parts_violation(const Invariants& law, RegionParts before,
                                                   RegionParts after) {
     if (law.cannot_vanish && after.parts > before.parts) {

@@ -29,30 +29,12 @@
 
 namespace slc::detail {
 
-/// Components, and holes (curves: the clockwise ones) or handles (a surface's genus).
-struct ShapeTopology {
-    std::size_t components = 0;
-    long long holes = 0;
-    bool operator==(const ShapeTopology&) const = default;
-};
-
-inline ShapeTopology shape_topology(const Interface& curves) {
-    return {curves.curve_count(), static_cast<long long>(region_parts(curves).holes)};
-}
-inline ShapeTopology shape_topology(const Surface& s) { return {component_count(s), genus(s)}; }
-
 /// The area the curves enclose, or the volume the surface does.
 inline double shape_measure(const Interface& curves) { return area(curves); }
 inline double shape_measure(const Surface& s) { return volume(s); }
 
 inline std::span<const Vec2> shape_vertices(const Interface& curves) { return curves.points(); }
 inline std::span<const Vec3> shape_vertices(const Surface& s) { return s.vertices; }
-
-inline std::string describe(const ShapeTopology& t, int dim) {
-    return fmt::format(
-        "{} {} with {} {}", t.components, t.components == 1 ? "component" : "components", t.holes,
-        dim == 2 ? (t.holes == 1 ? "hole" : "holes") : (t.holes == 1 ? "handle" : "handles"));
-}
 
 /// What the start must keep of the given shape beyond its topology: no vertex of it farther
 /// than `cell` (the finest cell at K) from the contour, and the area (curves) or volume

@@ -13,7 +13,6 @@
 #include "slc/core/parallel.hpp"
 #include "slc/core/tolerances.hpp"
 #include "slc/evolve/defaults.hpp"
-#include "slc/evolve/guards.hpp"
 #include "slc/evolve/surface_problems.hpp"
 #include "slc/geometry/validate.hpp"
 #include "slc/geometry/validate_surface.hpp"
@@ -376,30 +375,14 @@ void print_estimate(const nlohmann::json& estimate) {
     }
 }
 
-ShapeCounts shape_counts(const Interface& curves) {
-    return {curves.curve_count(), static_cast<long long>(region_parts(curves).holes)};
-}
-
-ShapeCounts shape_counts(const Surface& surface) {
-    if (surface.triangles.empty()) return {};
-    return {component_count(surface), genus(surface)};
-}
-
-std::optional<std::string> topology_note(const ShapeCounts& given, const ShapeCounts& contour,
+std::optional<std::string> topology_note(const ShapeTopology& given, const ShapeTopology& contour,
                                          int dim, int thin_depth) {
     if (given == contour) return std::nullopt;
-    const auto describe = [dim](const ShapeCounts& c) {
-        const char* parts = dim == 2 ? (c.components == 1 ? "curve" : "curves")
-                                     : (c.components == 1 ? "component" : "components");
-        const char* holes =
-            dim == 2 ? (c.holes == 1 ? "hole" : "holes") : (c.holes == 1 ? "handle" : "handles");
-        return fmt::format("{} {} with {} {}", c.components, parts, c.holes, holes);
-    };
     return fmt::format(
         "the contour has {} where the input has {}: a part is thinner than its cells resolve "
         "(--thin-depth {}); raise --thin-depth or -K (a part that tapers to an edge of no "
         "thickness is thinner at every depth)",
-        describe(contour), describe(given), thin_depth);
+        describe(contour, dim), describe(given, dim), thin_depth);
 }
 
 }  // namespace slc::cli

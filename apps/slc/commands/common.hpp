@@ -18,6 +18,7 @@
 #include "slc/core/box.hpp"
 #include "slc/core/box3.hpp"
 #include "slc/core/error.hpp"
+#include "slc/evolve/guards.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/evolve/run.hpp"
 #include "slc/geometry/interface.hpp"
@@ -163,19 +164,10 @@ std::string eta();
 std::string thin_depth();
 }  // namespace default_rule
 
-/// A shape's topology as slc contour compares it with its contour's: curves and holes (clockwise
-/// curves), or a surface's closed components and handles (its genus).
-struct ShapeCounts {
-    std::size_t components = 0;
-    long long holes = 0;
-    bool operator==(const ShapeCounts&) const = default;
-};
-ShapeCounts shape_counts(const Interface& curves);
-ShapeCounts shape_counts(const Surface& surface);
 /// The note slc contour gives when the contour of a user's shape does not keep its topology: a
 /// part thinner than the cells resolve (at the thin depth given) was torn or joined. Nothing when
 /// it is kept.
-std::optional<std::string> topology_note(const ShapeCounts& given, const ShapeCounts& contour,
+std::optional<std::string> topology_note(const ShapeTopology& given, const ShapeTopology& contour,
                                          int dim, int thin_depth);
 
 /// CLI11 checks with one-line messages naming the value: a positive finite number; a finite

@@ -140,7 +140,7 @@ void write_results(const ContourCommandOptions& o, const ContourOptions& options
     summary["area"] = area(r.curves);
     summary["length"] = length(r.curves);
     const std::optional<std::string> torn =
-        topology_note(shape_counts(in.curves), shape_counts(r.curves), 2, options.thin_depth);
+        topology_note(shape_topology(in.curves), shape_topology(r.curves), 2, options.thin_depth);
     summary["kept_topology"] = !torn;
     if (torn) summary["note"] = *torn;
     write_file_atomic(dir / "final.json", interface_json(r.curves, in.time));

@@ -149,7 +149,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     // A surface of the user's: whether the contour kept its components and handles.
     std::optional<std::string> torn;
     if (source.surface) {
-        torn = topology_note(shape_counts(*source.surface), shape_counts(s), 3, r.thin_depth);
+        torn = topology_note(shape_topology(*source.surface), shape_topology(s), 3, r.thin_depth);
         summary["kept_topology"] = !torn;
         if (torn) summary["note"] = *torn;
     }

@@ -96,6 +96,18 @@ RegionParts region_parts(const Interface& curves);
 /// The region enclosed by a valid surface (each component's orientation from its volume).
 RegionParts region_parts(const Surface& surface);
 
+/// A shape's topology as the runs' checks and slc contour compare it: its components (curves, or
+/// a surface's closed components) and its holes (clockwise curves) or handles (a surface's genus).
+struct ShapeTopology {
+    std::size_t components = 0;
+    long long holes = 0;
+    bool operator==(const ShapeTopology&) const = default;
+};
+ShapeTopology shape_topology(const Interface& curves);
+ShapeTopology shape_topology(const Surface& surface);
+/// "2 components with 1 hole" (curves), "1 component with 3 handles" (a surface: dim = 3).
+std::string describe(const ShapeTopology& t, int dim);
+
 /// Why a step from a region with parts `before` to one with `after` cannot be the law's, in one
 /// line, or nothing. A region that only grows (Invariants::cannot_vanish) keeps its parts apart
 /// or merges them: more parts after a step means a part tore. One that only shrinks
