@@ -305,6 +305,8 @@ def contour_surface(f, box, depth: int, eps: float | None = None,
         vertices, triangles, stats = _slc.contour_surface(
             f, box, int(depth), eps, _refine(refine), None if slack is None else float(slack),
             eta, _integer("thin_depth", thin_depth), bool(creases))
+    if "note" in stats:
+        warnings.warn(stats["note"], UserWarning, stacklevel=2)
     if len(triangles) == 0:
         x0, y0, z0, x1, y1, z1 = stats["domain"]
         _warn_no_zero(f"[{x0:g}, {x1:g}]x[{y0:g}, {y1:g}]x[{z0:g}, {z1:g}]", depth)

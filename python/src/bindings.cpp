@@ -32,6 +32,7 @@
 #include "slc/distance/distance_tree.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/evolve/defaults.hpp"
+#include "slc/evolve/guards.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/validate.hpp"
@@ -231,7 +232,15 @@ py::tuple contour_surface_mesh(const Array& vertices, const IndexArray& triangle
                             expensive_grain),
             domain, options);
     });
-    return surface_contour_answer(result, options, domain);
+    py::tuple answer = surface_contour_answer(result, options, domain);
+    // Whether the contour kept the surface's components and handles, as slc contour says.
+    const std::optional<std::string> lost =
+        lost_topology_note(shape_topology(surface), shape_topology(result.surface), 3,
+                           fmt::format("raise thin_depth (now {}) or depth", thin_depth));
+    py::dict stats = answer[2];
+    stats["kept_topology"] = !lost;
+    if (lost) stats["note"] = *lost;
+    return answer;
 }
 
 py::list velocity_names() {

@@ -330,6 +330,25 @@ def test_contour_surface_follows_the_creases_of_a_mesh():
     assert not plain_stats["converged"] and len(triangles) < len(plain)
 
 
+def test_contour_surface_of_a_surface_says_when_it_tears_a_thin_wall():
+    # A box with a wall 0.03 thick (a cavity 0.87 x 0.8 x 0.8 in a unit cube) at K = 5: without
+    # thin cells the wall is pierced, which the stats and a warning say, as slc contour's note.
+    corners = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+    faces = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+                      [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
+    outer = -0.5 + corners
+    inner = np.array([-0.47, -0.4, -0.4]) + corners * [0.87, 0.8, 0.8]
+    box = slc.Surface(np.vstack([outer, inner]), np.vstack([faces, 8 + faces[:, [0, 2, 1]]]))
+    with pytest.warns(UserWarning, match=r"the contour has 1 component with 288 handles where "
+                      r"the input has 2 components with 0 handles: .*raise thin_depth \(now 0\)"):
+        _, _, torn = slc.contour_surface(box, 0.75, 5)
+    assert torn["kept_topology"] is False
+    vertices, triangles, kept = slc.contour_surface(box, 0.75, 5, thin_depth=2)
+    assert kept["kept_topology"] is True and "note" not in kept
+    s = slc.Surface(vertices, triangles)
+    assert s.genus == 0 and abs(s.volume - (1 - 0.87 * 0.64)) < 1e-4
+
+
 def test_contour_surface_of_a_torus_is_closed_and_within_eps():
     eps = 1e-3
 

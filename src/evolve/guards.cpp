@@ -55,6 +55,16 @@ std::string describe(const ShapeTopology& t, int dim) {
         dim == 2 ? (t.holes == 1 ? "hole" : "holes") : (t.holes == 1 ? "handle" : "handles"));
 }
 
+std::optional<std::string> lost_topology_note(const ShapeTopology& given,
+                                              const ShapeTopology& contour, int dim,
+                                              const std::string& advice) {
+    if (given == contour) return std::nullopt;
+    return fmt::format(
+        "the contour has {} where the input has {}: a part is thinner than its cells resolve; {} "
+        "(a part that tapers to an edge of no thickness is thinner at every depth)",
+        describe(contour, dim), describe(given, dim), advice);
+}
+
 std::optional<std::string> region_parts_violation(const Invariants& law, RegionParts before,
                                                   RegionParts after) {
     if (law.cannot_vanish && after.parts > before.parts) {

@@ -62,7 +62,7 @@ awk 'BEGIN { pi = atan2(0, -1); printf "{\"curves\": [{\"points\": [";
     for (i = 0; i < 256; i++) printf "%s[%.17g, %.17g]", (i ? ", " : ""), 0.49 * cos(-2 * pi * i / 256), 0.49 * sin(-2 * pi * i / 256);
     print "]}]}" }' >ring.json
 expect_ok "a thin wall torn without thin cells" -- contour --initial ring.json -K 4 --thin-depth 0 --out ring0
-check "the tear is noted" grep -q "slc: note: the contour has .* where the input has 2 components with 1 hole: a part is thinner than its cells resolve (--thin-depth 0); raise --thin-depth or -K" err.txt
+check "the tear is noted" grep -q "slc: note: the contour has .* where the input has 2 components with 1 hole: a part is thinner than its cells resolve; raise --thin-depth (now 0) or -K" err.txt
 check "summary: the topology not kept" test "$(json ring0/summary.json 's["kept_topology"]')" = False
 expect_ok "a thin wall kept by thin cells" -- contour --initial ring.json -K 4 --out ring6
 check "summary: the topology kept" test "$(json ring6/summary.json 's["kept_topology"], s["curves"]')" = "True 2"

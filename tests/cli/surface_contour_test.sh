@@ -133,7 +133,7 @@ for t in out:
     print("f %d %d %d" % t)
 PY
 expect_ok "a thin wall torn without thin cells" -- contour --initial wallbox.obj --thin-depth 0 --out wall0
-check "the tear is noted" grep -q "slc: note: the contour has 1 component with 288 handles where the input has 2 components with 0 handles: a part is thinner than its cells resolve (--thin-depth 0); raise --thin-depth or -K" err.txt
+check "the tear is noted" grep -q "slc: note: the contour has 1 component with 288 handles where the input has 2 components with 0 handles: a part is thinner than its cells resolve; raise --thin-depth (now 0) or -K" err.txt
 check "summary: the topology not kept" test "$(json wall0/summary.json 's["kept_topology"]')" = False
 expect_ok "a thin wall kept by thin cells" -- contour --initial wallbox.obj --out wall2
 check "summary: the topology kept" test "$(json wall2/summary.json 's["kept_topology"], s["components"], s["genus"]')" = "True 2 0"

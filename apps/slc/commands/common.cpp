@@ -377,12 +377,8 @@ void print_estimate(const nlohmann::json& estimate) {
 
 std::optional<std::string> topology_note(const ShapeTopology& given, const ShapeTopology& contour,
                                          int dim, int thin_depth) {
-    if (given == contour) return std::nullopt;
-    return fmt::format(
-        "the contour has {} where the input has {}: a part is thinner than its cells resolve "
-        "(--thin-depth {}); raise --thin-depth or -K (a part that tapers to an edge of no "
-        "thickness is thinner at every depth)",
-        describe(contour, dim), describe(given, dim), thin_depth);
+    return lost_topology_note(given, contour, dim,
+                              fmt::format("raise --thin-depth (now {}) or -K", thin_depth));
 }
 
 }  // namespace slc::cli

@@ -107,6 +107,12 @@ ShapeTopology shape_topology(const Interface& curves);
 ShapeTopology shape_topology(const Surface& surface);
 /// "2 components with 1 hole" (curves), "1 component with 3 handles" (a surface: dim = 3).
 std::string describe(const ShapeTopology& t, int dim);
+/// What a contour of a given shape says when it does not keep its topology: both counts, that a
+/// part was thinner than the cells resolve, and `advice` (the settings to raise, as the caller
+/// names them); nothing when it is kept.
+std::optional<std::string> lost_topology_note(const ShapeTopology& given,
+                                              const ShapeTopology& contour, int dim,
+                                              const std::string& advice);
 
 /// Why a step from a region with parts `before` to one with `after` cannot be the law's, in one
 /// line, or nothing. A region that only grows (Invariants::cannot_vanish) keeps its parts apart
