@@ -142,14 +142,15 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     summary["status"] = "ok";
     summary["params"]["gamma"] = st.gamma;
     summary.update(contour_stats_json(st));
-    summary.update({{"components", component_count(s)},
-                    {"genus", s.triangles.empty() ? 0 : genus(s)},
+    const ShapeTopology got = shape_topology(s);
+    summary.update({{"components", got.components},
+                    {"genus", got.holes},
                     {"area", area(s)},
                     {"volume", volume(s)}});
     // A surface of the user's: whether the contour kept its components and handles.
     std::optional<std::string> torn;
     if (source.surface) {
-        torn = topology_note(shape_topology(*source.surface), shape_topology(s), 3, r.thin_depth);
+        torn = topology_note(shape_topology(*source.surface), got, 3, r.thin_depth);
         summary["kept_topology"] = !torn;
         if (torn) summary["note"] = *torn;
     }
