@@ -243,7 +243,7 @@ def _run_end(out: dict, stacklevel: int) -> dict[str, Any]:
     if "thin_deeper" in summary:
         d = summary["thin_deeper"]
         warnings.warn(f"{d['why']}: a part thinner than the contours resolved, kept by deeper "
-                      f"thin cells; the run went on with them {d['depth']} levels deep",
+                      f"thin cells, up to {d['depth']} levels deep, in {d['steps']} of the run's steps",
                       stacklevel=stacklevel)
     if out["status"] == "broken":
         warnings.warn(f"guards=False: {out['message']}", stacklevel=stacklevel)

@@ -260,7 +260,7 @@ def test_a_step_that_tears_a_wall_is_taken_again_deeper():
     # into pieces there, the ring again at five levels, and the run says so, as the command
     # line's note.
     ring = slc.Interface([circle(0.5, 256), circle(0.44, 256)[::-1]])
-    with pytest.warns(UserWarning, match="kept by deeper thin cells; the run went on with them 5"):
+    with pytest.warns(UserWarning, match="kept by deeper thin cells, up to 5 levels deep, in 1 of"):
         r = slc.run(ring, "unit-normal", 0.025, speed=-1, steps=1, depth=4, thin_depth=1)
     assert r.status == "ok" and len(r.interface) == 2
     assert r.summary["thin_deeper"]["depth"] == 5

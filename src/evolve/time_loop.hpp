@@ -225,8 +225,9 @@ inline std::string levels(int n) { return fmt::format("{} {}", n, n == 1 ? "leve
 /// and holes or handles), checked against the same sub-step with thin cells two levels deeper:
 /// the same topology there confirms the change (a part the law split off, joined, opened or made
 /// vanish), and the deeper sub-step is kept; another says the coarser contours tore or joined a
-/// part thinner than they resolve, and the run goes on at the deeper thin depth (options',
-/// r.thin_depth, r.deeper_at), checked again the same way. At the deepest thin cells
+/// part thinner than they resolve, and the rest of the step goes on at the deeper thin depth
+/// (options', r.deepest_thin_depth, r.deeper_at), checked again the same way; time_loop starts
+/// the next step from the run's own depth. At the deepest thin cells
 /// (setting_range::thin_depth) the change is checked against two levels shallower instead. A
 /// change two depths do not agree on, or thin cells at their budget (which split no deeper where
 /// it ran out, and give the same contours at any depth), is unresolved: why, naming the thin
@@ -274,7 +275,7 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
             }
             return {std::move(deeper), std::nullopt};
         }
-        // The coarser contours tore or joined what the deeper keep: the run goes on deeper.
+        // The coarser contours tore or joined what the deeper keep: the step goes on deeper.
         if (std::isnan(r.deeper_at)) {
             r.deeper_at = t;
             r.deeper_why = fmt::format(
@@ -283,7 +284,7 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
                 levels(o.step.contour.thin_depth), describe(there, dim));
         }
         thin = o.step.contour.thin_depth;
-        r.thin_depth = thin;
+        r.deepest_thin_depth = std::max(r.deepest_thin_depth, thin);
         s = std::move(deeper);
         now = there;
     }
@@ -523,6 +524,7 @@ typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result&
     typename H::Options options = given;
     int& thin = options.step.contour.thin_depth;
     thin = std::max(thin, from.thin_depth);
+    const int asked_thin = thin;
     const H hooks(law, domain, options);
     typename H::Result r = from;
     r.thin_depth = thin;
@@ -542,7 +544,11 @@ typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result&
         typename H::StepResult step;
         const std::int64_t step_cpu_start = process_cpu_ns();
         try {
+            // Each step starts from the thin cells the run asked (or its start needed); the
+            // deeper ones a step took for a part thinner than those resolve are that step's.
+            thin = asked_thin;
             step = guarded_step<dim>(r, t_next, hooks, law, domain, options);
+            if (thin > asked_thin) ++r.deeper_steps;
         } catch (const NumericalFailure& e) {
             r.status = RunStatus::error;
             r.message = H::step_failed(n, r.t, e.what());

@@ -44,7 +44,10 @@ void put_resolution(nlohmann::json& s, const RunTotals& r) {
         s["finest_cell"] = {{"width", r.finest_cell}, {"at_t", r.finest_t}, {"at", r.finest_at}};
     if (!std::isnan(r.thin_budget_at)) s["thin_budget_reached_at_t"] = r.thin_budget_at;
     if (!std::isnan(r.deeper_at))
-        s["thin_deeper"] = {{"at_t", r.deeper_at}, {"why", r.deeper_why}, {"depth", r.thin_depth}};
+        s["thin_deeper"] = {{"at_t", r.deeper_at},
+                            {"why", r.deeper_why},
+                            {"depth", r.deepest_thin_depth},
+                            {"steps", r.deeper_steps}};
     if (const ThinSplit& t = r.thin_split; !std::isnan(t.at)) {
         s["thin_split"] = {
             {"at_t", t.at}, {"thickness", t.thickness}, {"cell", t.cell}, {"near", t.near}};

@@ -130,7 +130,10 @@ void put_totals(Json& json, const RunTotals& s) {
     if (!std::isnan(s.thin_budget_at)) json["thin_budget_at"] = s.thin_budget_at;
     json["thin_depth"] = s.thin_depth;
     if (!std::isnan(s.deeper_at))
-        json["thin_deeper"] = {{"at_t", s.deeper_at}, {"why", s.deeper_why}};
+        json["thin_deeper"] = {{"at_t", s.deeper_at},
+                               {"why", s.deeper_why},
+                               {"depth", s.deepest_thin_depth},
+                               {"steps", s.deeper_steps}};
     if (const ThinSplit& t = s.thin_split; !std::isnan(t.at)) {
         json["thin_split"] = {
             {"at_t", t.at}, {"thickness", t.thickness}, {"cell", t.cell}, {"near", t.near}};
@@ -166,6 +169,8 @@ void get_totals(const Json& json, RunTotals& s) {
     if (json.contains("thin_deeper")) {
         s.deeper_at = json.at("thin_deeper").at("at_t").get<double>();
         s.deeper_why = json.at("thin_deeper").at("why").get<std::string>();
+        s.deepest_thin_depth = json.at("thin_deeper").value("depth", s.thin_depth);
+        s.deeper_steps = json.at("thin_deeper").value("steps", 1);
     }
     s.broken = json.value("broken", std::string());
 }

@@ -359,10 +359,11 @@ void note_deeper(std::string_view what, int asked, int start, const RunTotals& r
                    what, asked, start);
     }
     if (!std::isnan(r.deeper_at)) {
-        fmt::print(stderr,
-                   "slc: note: {}: a part thinner than the contours resolved, kept by deeper thin "
-                   "cells; the run went on with them {} levels deep (summary.json: thin_deeper)\n",
-                   r.deeper_why, r.thin_depth);
+        fmt::print(
+            stderr,
+            "slc: note: {}: a part thinner than the contours resolved, kept by deeper thin "
+            "cells, up to {} levels deep, in {} of the run's steps (summary.json: thin_deeper)\n",
+            r.deeper_why, r.deepest_thin_depth, r.deeper_steps);
     }
 }
 

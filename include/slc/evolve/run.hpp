@@ -65,15 +65,20 @@ struct RunTotals {
     /// The time at the end of the first step whose contours left cells that bend whole, thin
     /// cells having reached their budget (contouring::thin_cell_budget); NaN if none.
     double thin_budget_at = std::numeric_limits<double>::quiet_NaN();
-    /// The levels of thin cells the run's contours take: the options' own, or more where the
-    /// start of a user's shape needed them to keep it (RunOptions::check_start,
-    /// surface_as_read) or a step did (deeper_at); −1 when the run did not say (a resume takes
-    /// the options').
+    /// The levels of thin cells each step of the run starts from: the options' own, or more
+    /// where the start of a user's shape needed them to keep it (RunOptions::check_start,
+    /// surface_as_read); −1 when the run did not say (a resume takes the options'). A step
+    /// takes more where its contours tear a part (deeper_at).
     int thin_depth = -1;
+    /// The most levels of thin cells a step took (deeper_at), each step starting from
+    /// thin_depth; −1 when none went deeper.
+    int deepest_thin_depth = -1;
+    /// The steps that took deeper thin cells than thin_depth (deeper_at).
+    int deeper_steps = 0;
     /// The time at the start of the first step that changed the topology where the contours may
     /// have torn a part thinner than they resolve, and was taken again with deeper thin cells
-    /// (thin_depth then the depth the run went on with), and what that step did: a part split
-    /// off, and where, or the invariant it broke; NaN and empty when no step did.
+    /// (deepest_thin_depth), and what that step did: a part split off, and where, or the
+    /// invariant it broke; NaN and empty when no step did.
     double deeper_at = std::numeric_limits<double>::quiet_NaN();
     std::string deeper_why;  ///< (see deeper_at)
     /// With no thin cells asked (thin_depth 0, the paper's uniform trees): the first step that

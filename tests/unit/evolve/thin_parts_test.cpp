@@ -1,6 +1,7 @@
 // A step that changes the topology, one rule for curves and surfaces (time_loop.hpp,
 // thin_parts.hpp): the change is confirmed by the same step with thin cells two levels deeper, or
-// the run goes on deeper where the coarser contours tore a wall; a change the deepest cannot
+// the step is taken deeper where the coarser contours tore a wall, the next step starting again
+// from the run's own depth; a change the deepest cannot
 // confirm ends the run unstable, naming the place. The parts a step split off are measured by
 // their thickness, a disc's or a ball's radius.
 #include "thin_parts.hpp"
@@ -68,12 +69,14 @@ RunResult shrunk_ring(double t, int steps = 1, const Observer& observer = {}) {
 
 TEST(TopologyChange, ATornWallIsTakenAgainDeeper) {
     // The wall 0.01 wide: one level of thin cells (0.047) tears it into pieces, three join it
-    // into one curve, five keep the ring; the run goes on at five.
+    // into one curve, five keep the ring; the step is taken at five, the run's own depth staying
+    // one.
     const RunResult r = shrunk_ring(0.025);
     ASSERT_EQ(r.status, RunStatus::ok) << r.message;
     EXPECT_EQ(r.curves.curve_count(), 2U);
     EXPECT_EQ(region_parts(r.curves).holes, 1U);
-    EXPECT_EQ(r.thin_depth, 5);
+    EXPECT_EQ(r.thin_depth, 1);
+    EXPECT_EQ(r.deepest_thin_depth, 5);
     EXPECT_EQ(r.deeper_at, 0.0);
     EXPECT_NE(r.deeper_why.find("thin cells 1 level deep made "), std::string::npos)
         << r.deeper_why;
@@ -95,9 +98,10 @@ TEST(TopologyChange, AChangeTheDeepestCannotConfirmIsUnstable) {
     EXPECT_NE(r.message.find("of 2 components with 1 hole near ("), std::string::npos) << r.message;
 }
 
-TEST(TopologyChange, AResumedRunGoesOnAtTheDepthItReached) {
-    // The first of two steps to t = 0.024 tears the wall at one level of thin cells and keeps
-    // it at three; the run resumed after it goes on at three, as the whole run does.
+TEST(TopologyChange, EachStepStartsFromTheRunsOwnThinDepth) {
+    // Two steps to t = 0.024: each tears the wall at one level of thin cells and keeps it at
+    // three, and each is taken at three, the run's own depth staying one; a run resumed after
+    // the first steps as the whole run does, to the bit.
     std::optional<RunResult> after_first;
     const RunResult whole = shrunk_ring(0.024, 2, [&](const StepReport& s) {
         if (s.step == 1) after_first = *s.run;
@@ -105,12 +109,18 @@ TEST(TopologyChange, AResumedRunGoesOnAtTheDepthItReached) {
     });
     ASSERT_EQ(whole.status, RunStatus::ok) << whole.message;
     ASSERT_TRUE(after_first);
-    EXPECT_EQ(after_first->thin_depth, 3);
+    EXPECT_EQ(after_first->thin_depth, 1);
+    EXPECT_EQ(after_first->deepest_thin_depth, 3);
+    EXPECT_EQ(after_first->deeper_steps, 1);
     EXPECT_EQ(after_first->deeper_at, 0.0);
+    EXPECT_EQ(whole.thin_depth, 1);
+    EXPECT_EQ(whole.deeper_steps, 2);
     const RunResult rest = resume(*after_first, NormalSpeed(-1.0), default_domain(ring().curves()),
                                   ring_options(0.024, 2));
     ASSERT_EQ(rest.status, RunStatus::ok) << rest.message;
     EXPECT_EQ(rest.thin_depth, whole.thin_depth);
+    EXPECT_EQ(rest.deepest_thin_depth, whole.deepest_thin_depth);
+    EXPECT_EQ(rest.deeper_steps, whole.deeper_steps);
     EXPECT_EQ(rest.deeper_why, whole.deeper_why);
     ASSERT_EQ(rest.curves.size(), whole.curves.size());
     for (std::size_t i = 0; i < rest.curves.size(); ++i) {
@@ -152,7 +162,8 @@ TEST(TopologyChange, SurfacesFollowTheSameRule) {
     ASSERT_EQ(r.status, RunStatus::ok) << r.message;
     EXPECT_EQ(component_count(r.surface), 1U);
     EXPECT_EQ(genus(r.surface), 1);
-    EXPECT_EQ(r.thin_depth, 3);
+    EXPECT_EQ(r.thin_depth, 1);
+    EXPECT_EQ(r.deepest_thin_depth, 3);
     EXPECT_NE(r.deeper_why.find("of 1 component with 1 handle"), std::string::npos) << r.deeper_why;
     const double exact = 2.0 * std::numbers::pi * std::numbers::pi * 0.55 * 0.02 * 0.02;
     EXPECT_NEAR(volume(r.surface) / exact, 1.0, 0.03);
