@@ -243,8 +243,8 @@ def _run_end(out: dict, stacklevel: int) -> dict[str, Any]:
     if "thin_deeper" in summary:
         d = summary["thin_deeper"]
         warnings.warn(f"{d['why']}: a part thinner than the contours resolved, kept by deeper "
-                      f"thin cells, up to {d['depth']} levels deep, in {d['steps']} of the run's steps",
-                      stacklevel=stacklevel)
+                      f"thin cells, up to {d['depth']} levels deep, in {d['steps']} of the "
+                      "run's steps", stacklevel=stacklevel)
     if out["status"] == "broken":
         warnings.warn(f"guards=False: {out['message']}", stacklevel=stacklevel)
     return {k: out[k] for k in ("status", "t", "history", "summary", "message")}

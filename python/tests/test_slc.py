@@ -263,7 +263,7 @@ def test_a_step_that_tears_a_wall_is_taken_again_deeper():
     with pytest.warns(UserWarning, match="kept by deeper thin cells, up to 5 levels deep, in 1 of"):
         r = slc.run(ring, "unit-normal", 0.025, speed=-1, steps=1, depth=4, thin_depth=1)
     assert r.status == "ok" and len(r.interface) == 2
-    assert r.summary["thin_deeper"]["depth"] == 5
+    assert r.summary["thin_deeper"]["depth"] == 5 and r.summary["thin_deeper"]["steps"] == 1
     exact = math.pi * (0.475 ** 2 - 0.465 ** 2)
     assert abs(r.interface.area - exact) < 2e-3 * exact
 
