@@ -71,14 +71,19 @@ def samples(v, f, n, rng):
     return out
 
 
-def farthest(slc, surface, points, folder):
-    """The largest |distance| from the points to the surface."""
+def distances(slc, surface, points, folder):
+    """The signed distances from the points to the surface, by `slc distance`."""
     csv = folder / "points.csv"
     csv.write_text("\n".join(f"{x!r},{y!r},{z!r}" for x, y, z in points) + "\n")
     out = subprocess.run([slc, "distance", "--initial", str(surface), "--points", str(csv)],
                          check=True, capture_output=True, text=True).stdout
     rows = out.splitlines()[1:]  # after the header
-    return max(abs(float(line.split(",")[3])) for line in rows if line.strip())
+    return [float(line.split(",")[3]) for line in rows if line.strip()]
+
+
+def farthest(slc, surface, points, folder):
+    """The largest |distance| from the points to the surface."""
+    return max(abs(d) for d in distances(slc, surface, points, folder))
 
 
 def offset_volume(t):
@@ -96,13 +101,9 @@ def offset_volume(t):
 
 
 def offset_error(slc, given, final, t, folder):
-    """The largest | |d(x) − t| | over the vertices x of `final`, d the given box's distance."""
+    """The largest |d(x) − t| over the vertices x of `final`, d the given box's distance."""
     v, _ = read_obj(final)
-    csv = folder / "vertices.csv"
-    csv.write_text("\n".join(f"{x!r},{y!r},{z!r}" for x, y, z in v) + "\n")
-    out = subprocess.run([slc, "distance", "--initial", str(given), "--points", str(csv)],
-                         check=True, capture_output=True, text=True).stdout
-    return max(abs(float(line.split(",")[3]) - t) for line in out.splitlines()[1:] if line.strip())
+    return max(abs(d - t) for d in distances(slc, given, v, folder))
 
 
 def main():

@@ -350,13 +350,13 @@ bool ends_frames_where_stopped(const RunTotals& r, bool empty, bool last_frame_t
     return !last_frame_there && !empty && r.status != RunStatus::interrupted;
 }
 
-void note_deeper(std::string_view what, int asked, int start, const RunTotals& r) {
-    if (start > asked) {
+void note_deeper(std::string_view what, int asked, const RunTotals& r) {
+    if (r.thin_depth > asked) {
         fmt::print(stderr,
                    "slc: note: a part of the {} is thinner than the contours resolve at "
                    "--thin-depth {}; the thin cells went {} levels deep to keep it (summary.json: "
                    "thin_depth)\n",
-                   what, asked, start);
+                   what, asked, r.thin_depth);
     }
     if (!std::isnan(r.deeper_at)) {
         fmt::print(

@@ -272,11 +272,7 @@ void run_command(const RunCommand& o, const std::vector<GivenOption>& given, con
     const bool finished = r.status == RunStatus::ok || r.status == RunStatus::vanished ||
                           r.status == RunStatus::interrupted || r.status == RunStatus::broken;
     warn_broken(r);
-    // The depth the start needed, and the deepest a step took (its note says it).
-    if (finished) {
-        const int asked = options.step.contour.thin_depth;
-        note_deeper("curves", asked, r.thin_depth, r);
-    }
+    if (finished) note_deeper("curves", options.step.contour.thin_depth, r);
     if (finished && r.domain_doublings > 0) {
         const Box d = doubled_domain(p.domain, r.domain_doublings);
         fmt::print(

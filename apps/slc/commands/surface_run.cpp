@@ -307,7 +307,7 @@ void run_surface(const SurfaceRunRequest& r, OutputFolder& folder) {
     warn_broken(result);
     if (finished && summary.contains("note"))
         fmt::print(stderr, "slc: note: {}\n", summary["note"].get<std::string>());
-    if (finished) note_deeper("surface", thin_asked, options.step.contour.thin_depth, result);
+    if (finished) note_deeper("surface", thin_asked, result);
     if (finished && result.domain_doublings > 0) {
         const Box3 d = doubled_domain(p.domain, result.domain_doublings);
         fmt::print(stderr,
