@@ -81,10 +81,14 @@ HalfEdgeBuckets half_edges_by_lower_vertex(const Surface& s) {
 }
 
 std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s) {
+    return triangle_neighbours(s, half_edges_by_lower_vertex(s));
+}
+
+std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s,
+                                                              const HalfEdgeBuckets& buckets) {
     // The two half-edges of each edge lie side by side in their bucket: O(N + V) where a global
     // sort would be O(N log N). Each bucket on its own, on all threads: it writes only the
     // slots of its half-edges.
-    const HalfEdgeBuckets buckets = half_edges_by_lower_vertex(s);
     std::vector<std::array<std::uint32_t, 3>> out(s.size());
     parallel_for(s.vertices.size(), [&](std::size_t v) {
         const auto first = buckets.halves.begin() + buckets.start[v],
@@ -122,7 +126,11 @@ VertexCorners vertex_corners(const Surface& s) {
 }
 
 std::vector<std::uint32_t> component_labels(const Surface& s) {
-    const auto neighbours = triangle_neighbours(s);
+    return component_labels(s, triangle_neighbours(s));
+}
+
+std::vector<std::uint32_t> component_labels(
+    const Surface& s, const std::vector<std::array<std::uint32_t, 3>>& neighbours) {
     constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
     std::vector<std::uint32_t> label(s.size(), none);
     std::uint32_t next = 0;

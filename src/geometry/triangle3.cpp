@@ -184,7 +184,14 @@ bool triangles_intersect(const Triangle3& s, const Triangle3& t) {
 bool triangles_overlap(const Triangle3& s, const Triangle3& t, int shared) {
     if (shared == 0) return triangles_intersect(s, t);
     if (shared == 1) {
-        // Common corner v = s[0] = t[0]. The common part is convex and holds v; if it holds
+        // Common corner v = s[0] = t[0]. A triangle whose other corners lie strictly on one
+        // side of the other's plane meets that plane only at v (on a smooth surface, nearly
+        // every pair of triangles around a vertex): two predicates decide it.
+        const int tb = orientation(s.a, s.b, s.c, t.b);
+        if (tb != 0 && tb == orientation(s.a, s.b, s.c, t.c)) return false;
+        const int sb = orientation(t.a, t.b, t.c, s.b);
+        if (sb != 0 && sb == orientation(t.a, t.b, t.c, s.c)) return false;
+        // Otherwise the common part is convex and holds v; if it holds
         // more, its far end lies on an edge opposite v (which then meets the other triangle), or
         // the common part runs along an edge at v lying in the other triangle's angle at v.
         if (segment_meets_triangle(s.b, s.c, t) || segment_meets_triangle(t.b, t.c, s)) return true;

@@ -41,6 +41,28 @@ std::uint64_t spread_by_three(std::uint64_t v) {
 
 }  // namespace
 
+std::vector<TriangleHierarchy::NodePair> TriangleHierarchy::pair_tasks() const {
+    // Split level by level (a deterministic list, though the answer does not depend on it)
+    // until there are 64 tasks a thread or nothing is left to split.
+    const std::size_t enough = 64 * static_cast<std::size_t>(std::max(1, thread_count()));
+    std::vector<NodePair> tasks{{0, 0}}, next;
+    while (tasks.size() < enough) {
+        next.clear();
+        bool split = false;
+        for (const NodePair& p : tasks) {
+            if (is_leaf_pair(p)) {
+                next.push_back(p);
+            } else {
+                split_pair(p, next);
+                split = true;
+            }
+        }
+        tasks.swap(next);
+        if (!split) break;
+    }
+    return tasks;
+}
+
 TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles, Bounds bounds) {
     const auto n = static_cast<std::uint32_t>(triangles.size());
     if (n == 0) return;

@@ -5,10 +5,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
 #include <utility>
+#include <vector>
 
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
@@ -46,56 +48,43 @@ void check_coordinates(const Surface& s) {
     }
 }
 
-/// Every edge in exactly two triangles, traversed in opposite directions.
-void check_edges(const Surface& s) {
-    struct Half {
-        std::uint64_t key;    // the undirected edge
-        std::uint32_t from;   // the directed edge's first vertex
-        std::uint32_t owner;  // its triangle
-        auto operator<=>(const Half&) const = default;
-    };
-    std::vector<Half> halves;
-    halves.reserve(3 * s.size());
-    for (std::size_t t = 0; t < s.size(); ++t) {
-        for (int k = 0; k < 3; ++k) {
-            const std::uint64_t u = s.triangles[t][k], v = s.triangles[t][(k + 1) % 3];
-            halves.push_back({(std::min(u, v) << 32) | std::max(u, v),
-                              static_cast<std::uint32_t>(u), static_cast<std::uint32_t>(t)});
+/// Every edge in exactly two triangles, traversed in opposite directions. The buckets hold the
+/// edges in the order of their (lower, higher) vertices and each edge's half-edges in the order
+/// of their triangles, so the first fault reported is the least edge's.
+void check_edges(const Surface& s, const HalfEdgeBuckets& buckets) {
+    const auto& halves = buckets.halves;
+    for (std::uint32_t u = 0; u + 1 < buckets.start.size(); ++u) {
+        for (std::uint32_t i = buckets.start[u]; i < buckets.start[u + 1];) {
+            const std::uint32_t v = halves[i].first;
+            std::uint32_t j = i;
+            while (j < buckets.start[u + 1] && halves[j].first == v) ++j;
+            const std::uint32_t h = halves[i].second;
+            if (j - i == 1) {
+                throw InvalidInput(fmt::format(
+                    "triangle {} has an open edge (between vertices {} and {}): the surface is "
+                    "not closed",
+                    h / 3, u, v));
+            }
+            if (j - i > 2) {
+                throw InvalidInput(fmt::format(
+                    "edge between vertices {} and {} is non-manifold: triangles {}, {} and {} "
+                    "share it",
+                    u, v, h / 3, halves[i + 1].second / 3, halves[i + 2].second / 3));
+            }
+            const std::uint32_t g = halves[i + 1].second;
+            if (s.triangles[h / 3][h % 3] == s.triangles[g / 3][g % 3]) {
+                throw InvalidInput(fmt::format(
+                    "triangles {} and {} are oriented inconsistently across their edge between "
+                    "vertices {} and {}",
+                    h / 3, g / 3, u, v));
+            }
+            i = j;
         }
-    }
-    std::sort(halves.begin(), halves.end(), [](const Half& a, const Half& b) {
-        return std::tie(a.key, a.owner) < std::tie(b.key, b.owner);
-    });
-    for (std::size_t i = 0; i < halves.size();) {
-        std::size_t j = i;
-        while (j < halves.size() && halves[j].key == halves[i].key) ++j;
-        const auto u = static_cast<std::uint32_t>(halves[i].key >> 32);
-        const auto v = static_cast<std::uint32_t>(halves[i].key & 0xffffffffu);
-        if (j - i == 1) {
-            throw InvalidInput(fmt::format(
-                "triangle {} has an open edge (between vertices {} and {}): the surface is not "
-                "closed",
-                halves[i].owner, u, v));
-        }
-        if (j - i > 2) {
-            throw InvalidInput(
-                fmt::format("edge between vertices {} and {} is non-manifold: triangles {}, {} "
-                            "and {} share it",
-                            u, v, halves[i].owner, halves[i + 1].owner, halves[i + 2].owner));
-        }
-        if (halves[i].from == halves[i + 1].from) {
-            throw InvalidInput(fmt::format(
-                "triangles {} and {} are oriented inconsistently across their edge between "
-                "vertices {} and {}",
-                halves[i].owner, halves[i + 1].owner, u, v));
-        }
-        i = j;
     }
 }
 
 /// The triangles around each vertex form one fan (edges already manifold and consistent).
-void check_vertices(const Surface& s) {
-    const auto neighbours = triangle_neighbours(s);
+void check_vertices(const Surface& s, const std::vector<std::array<std::uint32_t, 3>>& neighbours) {
     std::vector<std::uint32_t> corners(s.vertices.size(), 0);
     constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
     std::vector<std::uint32_t> first(s.vertices.size(), none);
@@ -146,8 +135,9 @@ int arrange_shared(const Surface& s, std::uint32_t i, std::uint32_t j, Triangle3
 }
 
 /// Reverses components whose orientation disagrees with their nesting; returns the notes.
-std::vector<std::string> orient_components(Surface& s) {
-    const auto label = component_labels(s);
+std::vector<std::string> orient_components(
+    Surface& s, const std::vector<std::array<std::uint32_t, 3>>& neighbours) {
+    const auto label = component_labels(s, neighbours);
     const std::size_t count = *std::max_element(label.begin(), label.end()) + 1;
     // Each component as a surface of its own over the same vertices (moved in and out of one
     // scratch surface, so that the vertices are never copied).
@@ -221,27 +211,34 @@ std::vector<TriangleContact> find_self_intersections(const Surface& s,
     constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
     std::vector<std::atomic<std::uint32_t>> partner(n);
     for (auto& p : partner) p.store(none, std::memory_order_relaxed);
-    parallel_for(
-        n,
-        [&](std::size_t i) {
-            const auto u = static_cast<std::uint32_t>(i);
-            const Triangle3 mine = s.triangle(u);
-            hierarchy.for_each_overlapping(bounding_box(mine), [&](std::uint32_t k) {
-                const std::uint32_t v = flagged[k];
-                if (v == u || (changed[u] && v < u)) return;
-                const std::uint32_t lo = std::min(u, v), hi = std::max(u, v);
-                std::atomic<std::uint32_t>& slot = partner[lo];
-                std::uint32_t least = slot.load(std::memory_order_relaxed);
-                if (hi >= least) return;
-                Triangle3 a, b;
-                const int shared = arrange_shared(s, lo, hi, a, b);
-                if (!triangles_overlap(a, b, shared)) return;
-                while (hi < least &&
-                       !slot.compare_exchange_weak(least, hi, std::memory_order_relaxed)) {
-                }
-            });
-        },
-        expensive_grain);
+    // Triangles u < v whose boxes meet: lowers partner[u] to v when they overlap.
+    auto test = [&](std::uint32_t u, std::uint32_t v) {
+        std::atomic<std::uint32_t>& slot = partner[u];
+        std::uint32_t least = slot.load(std::memory_order_relaxed);
+        if (v >= least) return;
+        Triangle3 a, b;
+        const int shared = arrange_shared(s, u, v, a, b);
+        if (!triangles_overlap(a, b, shared)) return;
+        while (v < least && !slot.compare_exchange_weak(least, v, std::memory_order_relaxed)) {
+        }
+    };
+    if (flagged.size() == n) {
+        // Every triangle flagged: the hierarchy against itself gives each pair once.
+        hierarchy.for_each_overlapping_pair(
+            [&](std::uint32_t u, std::uint32_t v) { test(std::min(u, v), std::max(u, v)); });
+    } else {
+        parallel_for(
+            n,
+            [&](std::size_t i) {
+                const auto u = static_cast<std::uint32_t>(i);
+                hierarchy.for_each_overlapping(bounding_box(s.triangle(u)), [&](std::uint32_t k) {
+                    const std::uint32_t v = flagged[k];
+                    if (v == u || (changed[u] && v < u)) return;
+                    test(std::min(u, v), std::max(u, v));
+                });
+            },
+            expensive_grain);
+    }
     std::vector<TriangleContact> out;
     for (std::uint32_t i = 0; i < n; ++i) {
         const std::uint32_t p = partner[i].load(std::memory_order_relaxed);
@@ -259,14 +256,16 @@ std::optional<TriangleContact> find_self_intersection(const Surface& s,
 
 PreparedSurface prepare_surface(Surface raw) {
     check_coordinates(raw);
-    check_edges(raw);
-    check_vertices(raw);
+    const HalfEdgeBuckets buckets = half_edges_by_lower_vertex(raw);
+    check_edges(raw, buckets);
+    const auto neighbours = triangle_neighbours(raw, buckets);
+    check_vertices(raw, neighbours);
     if (const auto contact = find_self_intersection(raw)) {
         throw InvalidInput(
             fmt::format("triangles {} and {} intersect", contact->first, contact->second));
     }
     PreparedSurface out;
-    out.notes = orient_components(raw);
+    out.notes = orient_components(raw, neighbours);
     out.surface = std::move(raw);
     return out;
 }

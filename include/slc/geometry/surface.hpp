@@ -68,6 +68,9 @@ HalfEdgeBuckets half_edges_by_lower_vertex(const Surface& s);
 /// that edge. Precondition: every edge is shared by exactly two triangles (a valid surface).
 /// O(N + V) for V vertices.
 std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s);
+/// The same from s's half-edges already bucketed (half_edges_by_lower_vertex(s)).
+std::vector<std::array<std::uint32_t, 3>> triangle_neighbours(const Surface& s,
+                                                              const HalfEdgeBuckets& buckets);
 
 /// The corners at each vertex, in triangle order: vertex v's corners 3t + k (corner k of
 /// triangle t) are corners[start[v]] to corners[start[v + 1] − 1]. O(N + V).
@@ -84,6 +87,9 @@ void drop_unused_vertices(Surface& s);
 /// The component of each triangle, numbered 0, 1, ... in order of first triangle.
 /// Precondition: as triangle_neighbours. O(N + V).
 std::vector<std::uint32_t> component_labels(const Surface& s);
+/// The same from s's triangle_neighbours.
+std::vector<std::uint32_t> component_labels(
+    const Surface& s, const std::vector<std::array<std::uint32_t, 3>>& neighbours);
 /// Number of connected components. Precondition: as triangle_neighbours.
 std::size_t component_count(const Surface& s);
 /// Euler characteristic V − E + F, V counting the vertices used by triangles (2 for a sphere,

@@ -10,9 +10,11 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "slc/core/box3.hpp"
+#include "slc/core/parallel.hpp"
 #include "slc/geometry/surface.hpp"
 #include "slc/geometry/triangle3.hpp"
 
@@ -63,6 +65,19 @@ public:
         }
     }
 
+    /// Calls f(t, u) once for each pair of distinct triangles t, u whose bounding boxes meet, in
+    /// no fixed order, on the threads of parallel_for: f must be safe to call concurrently. One
+    /// descent of the hierarchy against itself (node pairs whose boxes meet), where a query for
+    /// each triangle would descend N times and find every pair twice. O(N + pairs) for
+    /// well-shaped surfaces.
+    template <class F>
+    void for_each_overlapping_pair(F&& f) const {
+        if (nodes_.empty()) return;
+        const std::vector<NodePair> tasks = pair_tasks();
+        parallel_for(
+            tasks.size(), [&](std::size_t i) { pairs_below(tasks[i], f); }, 1);
+    }
+
     /// Calls f(t) for triangles t whose bounding box passes enter(box), in a fixed order (depth
     /// first), until f returns true; returns whether it did. enter must pass a box whenever it
     /// passes a box inside it, so that nodes it fails are skipped whole. O(log N + triangles
@@ -106,6 +121,69 @@ public:
     bool plain() const { return plain_; }
 
 private:
+    /// Two nodes (the same node twice: the pairs within it).
+    using NodePair = std::pair<std::uint32_t, std::uint32_t>;
+    /// The node pairs below the root whose boxes meet, split until there are enough to share
+    /// among the threads (each a task of for_each_overlapping_pair).
+    std::vector<NodePair> pair_tasks() const;
+    /// Whether a pair is split no further: two leaves.
+    bool is_leaf_pair(NodePair p) const {
+        return nodes_[p.first].count > 0 && nodes_[p.second].count > 0;
+    }
+    /// Appends the pairs of p's children whose boxes meet: a node with itself gives its two
+    /// children each with itself and with each other; two nodes split the one with the larger
+    /// box (the inner one, when the other is a leaf).
+    void split_pair(NodePair p, std::vector<NodePair>& out) const {
+        const auto [a, b] = p;
+        const Node& na = nodes_[a];
+        const Node& nb = nodes_[b];
+        auto add = [&](std::uint32_t x, std::uint32_t y) {
+            if (x == y || nodes_[x].box.overlaps(nodes_[y].box)) out.emplace_back(x, y);
+        };
+        if (a == b) {
+            add(na.first, na.first);
+            add(na.first + 1, na.first + 1);
+            add(na.first, na.first + 1);
+            return;
+        }
+        const bool split_a =
+            nb.count > 0 || (na.count == 0 && diagonal2(na.box) >= diagonal2(nb.box));
+        if (split_a) {
+            add(na.first, b);
+            add(na.first + 1, b);
+        } else {
+            add(a, nb.first);
+            add(a, nb.first + 1);
+        }
+    }
+    static double diagonal2(const Box3& b) {
+        const Vec3 d = b.hi - b.lo;
+        return d.x * d.x + d.y * d.y + d.z * d.z;
+    }
+    /// for_each_overlapping_pair below one node pair, on the calling thread.
+    template <class F>
+    void pairs_below(NodePair start, F& f) const {
+        std::vector<NodePair> stack{start};
+        while (!stack.empty()) {
+            const NodePair p = stack.back();
+            stack.pop_back();
+            if (!is_leaf_pair(p)) {
+                split_pair(p, stack);
+                continue;
+            }
+            const Node& na = nodes_[p.first];
+            const Node& nb = nodes_[p.second];
+            for (std::uint32_t i = na.first; i < na.first + na.count; ++i) {
+                const std::uint32_t t = order_[i];
+                const Box3& bt = boxes_[t];
+                for (std::uint32_t k = p.first == p.second ? i + 1 : nb.first;
+                     k < nb.first + nb.count; ++k) {
+                    if (bt.overlaps(boxes_[order_[k]])) f(t, order_[k]);
+                }
+            }
+        }
+    }
+
     /// A leaf (count > 0) holds order_[first, first + count); an inner node has children
     /// nodes_[first] and nodes_[first + 1]. Its triangles lie in the box and in the slab
     /// lo ≤ axis · p ≤ hi across their mean normal (a unit axis; lo and hi widened by rounding):

@@ -1,13 +1,18 @@
-// Tests of the triangle hierarchy's nearest-triangle search against a scan of every triangle:
-// the same triangle and distance, to the bit, wherever the point is.
+// Tests of the triangle hierarchy against scans of every triangle: the nearest-triangle search
+// (the same triangle and distance, to the bit, wherever the point is) and the pairs of triangles
+// whose boxes meet (each once, on one thread or two).
 #include "slc/geometry/triangle_hierarchy.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <mutex>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "slc/core/parallel.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 
 namespace slc {
@@ -67,6 +72,43 @@ TEST(TriangleHierarchy, NearestIsTheScansEverywhereAndDeepInsideClosedSurfaces) 
                 ASSERT_EQ(fast.distance2, slow.distance2);
             }
         }
+    }
+}
+
+TEST(TriangleHierarchy, OverlappingPairsAreTheScansEachOnce) {
+    // A surface (boxes meeting their neighbours'), the same with triangles scattered among it,
+    // and a heap of triangles in one spot (boxes meeting nearly all).
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    auto scattered = [&](std::vector<Triangle3> ts, int count, double size) {
+        for (int k = 0; k < count; ++k) {
+            const Vec3 c{u(rng), u(rng), u(rng)};
+            ts.push_back({c, c + size * Vec3{u(rng), u(rng), u(rng)},
+                          c + size * Vec3{u(rng), u(rng), u(rng)}});
+        }
+        return ts;
+    };
+    const std::vector<Triangle3> sphere_triangles = corners_of(sphere({0.1, 0, 0}, 0.8, 3));
+    for (const auto& triangles :
+         {sphere_triangles, scattered(sphere_triangles, 300, 0.3), scattered({}, 200, 0.02)}) {
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> want;
+        for (std::uint32_t i = 0; i < triangles.size(); ++i)
+            for (std::uint32_t j = i + 1; j < triangles.size(); ++j)
+                if (bounding_box(triangles[i]).overlaps(bounding_box(triangles[j])))
+                    want.emplace_back(i, j);
+        const TriangleHierarchy h(triangles);
+        for (int threads : {1, 2}) {
+            set_thread_count(threads);
+            std::mutex m;
+            std::vector<std::pair<std::uint32_t, std::uint32_t>> got;
+            h.for_each_overlapping_pair([&](std::uint32_t a, std::uint32_t b) {
+                const std::lock_guard lock(m);
+                got.emplace_back(std::min(a, b), std::max(a, b));
+            });
+            std::sort(got.begin(), got.end());
+            EXPECT_EQ(got, want) << threads << " threads, " << triangles.size() << " triangles";
+        }
+        set_thread_count(0);
     }
 }
 
