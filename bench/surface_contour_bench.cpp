@@ -1,20 +1,35 @@
 // Benchmarks of contouring in space (paper §2 with d = 3, Tables 2 and 3 in 3D): the exact
 // signed distance of a torus (smooth, non-convex, genus one) contoured linearly at K = 3..8 and
 // adaptively to convergence with K/ε = 3/1e−2 ... 6/1e−5, on one thread. Writes
-// docs/tables/table2_3d.md and table3_3d.md itself.
+// docs/tables/table2_3d.md and table3_3d.md itself. When OpenVDB is found at configure time, the
+// same distance sampled in a narrow band and meshed by OpenVDB's volumeToMesh at voxels 1/32 to
+// 1/256, beside slc's contours of the same accuracy: the region `contour-openvdb` of the page
+// (docs/performance.md).
 //
-// Usage: surface_contour_bench [--tables DIR] [google-benchmark flags]
+// Usage: surface_contour_bench [--tables DIR] [--page PATH] [--check-page]
+//                              [google-benchmark flags]
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "bench_support.hpp"
+#include "doc_regions.hpp"
 #include "slc/contour/surface_contour.hpp"
+#include "slc/core/memory.hpp"
 #include "slc/core/parallel.hpp"
+
+#ifdef SLC_HAVE_OPENVDB
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/SignedFloodFill.h>
+#include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/global_control.h>
+#endif
 
 namespace {
 
@@ -43,6 +58,17 @@ double surface_error(const Surface& s) {
     return worst;
 }
 
+/// The largest |F| over the centroids of the triangles: the measure both sides of the
+/// comparison with OpenVDB share (OpenVDB's vertices are not on the surface, slc's are).
+double centroid_error(const Surface& s) {
+    double worst = 0.0;
+    for (std::size_t t = 0; t < s.size(); ++t) {
+        const Triangle3 tri = s.triangle(t);
+        worst = std::max(worst, std::abs(torus_distance((tri.a + tri.b + tri.c) / 3.0)));
+    }
+    return worst;
+}
+
 void run(benchmark::State& state, const SurfaceContourOptions& o) {
     const auto g = pointwise<Vec3>(torus_distance);
     SurfaceContour result;
@@ -55,6 +81,7 @@ void run(benchmark::State& state, const SurfaceContourOptions& o) {
     state.counters["tetrahedra"] = static_cast<double>(s.tetrahedra);
     state.counters["triangles"] = static_cast<double>(s.triangles);
     state.counters["error"] = surface_error(result.surface);
+    state.counters["centroid_error"] = centroid_error(result.surface);
     state.counters["evals_per_vertex"] = s.g_evals_per_vertex;
     state.counters["passes"] = s.passes;
     state.counters["converged"] = s.converged ? 1.0 : 0.0;
@@ -87,6 +114,112 @@ BENCHMARK(BM_LinearSurface)
 BENCHMARK(BM_AdaptiveSurface)
     ->ArgsProduct({benchmark::CreateDenseRange(3, 6, 1), {0, 1, 2}})
     ->Unit(benchmark::kMillisecond);
+
+#ifdef SLC_HAVE_OPENVDB
+/// The torus's exact distance sampled by OpenVDB's rules for a level set (a narrow band of
+/// ±3 voxels, the rest of the grid its sign by flood fill) at voxel 1/range(0), and meshed by
+/// volumeToMesh (isovalue 0, adaptivity 0), all timed. The band is found block by block: a
+/// block of 8³ voxels whose centre lies farther from the torus than the band and the block's
+/// half-diagonal is skipped whole, so the sampling costs about the band's voxels.
+void BM_OpenVdbSurface(benchmark::State& state) {
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    const double h = 1.0 / static_cast<double>(state.range(0));
+    constexpr double band = 3.0;
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec3I> triangles;
+    std::vector<openvdb::Vec4I> quads;
+    for (auto _ : state) {
+        auto grid = openvdb::FloatGrid::create(static_cast<float>(band * h));
+        grid->setTransform(openvdb::math::Transform::createLinearTransform(h));
+        grid->setGridClass(openvdb::GRID_LEVEL_SET);
+        auto acc = grid->getAccessor();
+        // The torus's box and the band, in voxels, rounded out to whole blocks.
+        const Vec3 reach{major_radius + minor_radius + band * h,
+                         major_radius + minor_radius + band * h, minor_radius + band * h};
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = static_cast<int>(std::floor((centre[a] - reach[a]) / h / 8.0)) * 8;
+            hi[a] = static_cast<int>(std::ceil((centre[a] + reach[a]) / h / 8.0)) * 8;
+        }
+        const double skip = band * h + 8.0 * h * std::sqrt(3.0) / 2.0;
+        for (int bi = lo[0]; bi < hi[0]; bi += 8)
+            for (int bj = lo[1]; bj < hi[1]; bj += 8)
+                for (int bk = lo[2]; bk < hi[2]; bk += 8) {
+                    const Vec3 middle{(bi + 3.5) * h, (bj + 3.5) * h, (bk + 3.5) * h};
+                    if (std::abs(torus_distance(middle)) > skip) continue;
+                    for (int i = bi; i < bi + 8; ++i)
+                        for (int j = bj; j < bj + 8; ++j)
+                            for (int k = bk; k < bk + 8; ++k) {
+                                const double d = torus_distance({i * h, j * h, k * h});
+                                if (std::abs(d) < band * h)
+                                    acc.setValue(openvdb::Coord(i, j, k), static_cast<float>(d));
+                            }
+                }
+        openvdb::tools::signedFloodFill(grid->tree());
+        points.clear();
+        triangles.clear();
+        quads.clear();
+        openvdb::tools::volumeToMesh(*grid, points, triangles, quads, 0.0, 0.0);
+        benchmark::DoNotOptimize(points.data());
+    }
+    // As a surface of triangles: each quad cut along a diagonal.
+    Surface s;
+    for (const auto& p : points) s.vertices.push_back({p.x(), p.y(), p.z()});
+    for (const auto& t : triangles) s.triangles.push_back({t.x(), t.y(), t.z()});
+    for (const auto& q : quads) {
+        s.triangles.push_back({q.x(), q.y(), q.z()});
+        s.triangles.push_back({q.x(), q.z(), q.w()});
+    }
+    state.counters["triangles"] = static_cast<double>(s.size());
+    state.counters["centroid_error"] = centroid_error(s);
+}
+BENCHMARK(BM_OpenVdbSurface)->RangeMultiplier(2)->Range(32, 256)->Unit(benchmark::kMillisecond);
+constexpr bool have_openvdb = true;
+#else
+constexpr bool have_openvdb = false;
+#endif
+
+/// slc's contours beside OpenVDB's: each slc row (linear at K = 5..8 and refined at K = 5,
+/// ε = 1e−4, with δ = 0 as `slc contour --function torus` takes a distance) against OpenVDB's
+/// voxel whose centroid error is nearest in ratio.
+std::string openvdb_region(const Recorder& rec) {
+    if (!have_openvdb)
+        return "OpenVDB was not found when this benchmark was built (`apt-get install "
+               "libopenvdb-dev`, or `scripts/bench`): nothing measured.\n";
+    struct Peer {
+        int voxels;
+        double triangles, error, seconds;
+    };
+    std::vector<Peer> peers;
+    for (int r = 32; r <= 256; r *= 2) {
+        const auto& run = rec.results.at(fmt::format("BM_OpenVdbSurface/{}", r));
+        peers.push_back({r, run.counters.at("triangles").value,
+                         run.counters.at("centroid_error").value, seconds(run)});
+    }
+    std::string md =
+        "| slc | triangles | centroid error | CPU ms | OpenVDB voxel | triangles | centroid error "
+        "| CPU ms | slc ÷ OpenVDB, time | slc ÷ OpenVDB, triangles |\n"
+        "|---|---:|---:|---:|---|---:|---:|---:|---:|---:|\n";
+    auto ms = [](double s) {
+        return s < 0.1 ? fmt::format("{:.3g}", s * 1e3) : fmt::format("{:.0f}", s * 1e3);
+    };
+    auto row = [&](const std::string& label, const std::string& name) {
+        const auto& run = rec.results.at(name);
+        const double error = run.counters.at("centroid_error").value;
+        const double triangles = run.counters.at("triangles").value;
+        const Peer& p = *std::min_element(peers.begin(), peers.end(), [&](auto& a, auto& b) {
+            return std::abs(std::log(a.error / error)) < std::abs(std::log(b.error / error));
+        });
+        md += fmt::format(
+            "| {} | {:.0f} | {:.3g} | {} | 1/{} | {:.0f} | {:.3g} | {} | {:.2f} | {:.2f} |\n",
+            label, triangles, error, ms(seconds(run)), p.voxels, p.triangles, p.error,
+            ms(p.seconds), seconds(run) / p.seconds, triangles / p.triangles);
+    };
+    for (int k = 5; k <= 8; ++k)
+        row(fmt::format("K {}", k), fmt::format("BM_LinearSurface/{}/1", k));
+    row("K 5, ε 1e−4", "BM_AdaptiveSurface/5/1");
+    return md;
+}
 
 const std::string setup =
     "The exact signed distance of a torus about the z axis (radii 0.55 and 0.2, centre (0.013, "
@@ -184,7 +317,18 @@ void write_table3(const Recorder& rec, const std::string& path) {
 
 int main(int argc, char** argv) {
     const std::string tables = take_flag(argc, argv, "--tables", "docs/tables");
+    const std::string page = take_flag(argc, argv, "--page", "docs/performance.md");
+    if (take_switch(argc, argv, "--check-page")) {
+        check_regions(page, {"contour-openvdb"});
+        fmt::print(stderr, "{} holds every region this program writes\n", page);
+        return 0;
+    }
+    require_regions(page, {"contour-openvdb"});  // before the measurements, not after
     slc::set_thread_count(1);
+    slc::keep_freed_memory();  // as the slc tool does: the timings are the tool's
+#ifdef SLC_HAVE_OPENVDB
+    openvdb::initialize();
+#endif
     benchmark::Initialize(&argc, argv);
     Recorder recorder;
     benchmark::RunSpecifiedBenchmarks(&recorder);
@@ -193,6 +337,9 @@ int main(int argc, char** argv) {
         write_table2(recorder, tables + "/table2_3d.md");
     if (r.count("BM_AdaptiveSurface/3/0") != 0 && r.count("BM_AdaptiveSurface/6/2") != 0)
         write_table3(recorder, tables + "/table3_3d.md");
+    if (r.count("BM_LinearSurface/8/1") != 0 && r.count("BM_AdaptiveSurface/5/1") != 0 &&
+        (!have_openvdb || r.count("BM_OpenVdbSurface/256") != 0))
+        write_regions(page, {{"contour-openvdb", openvdb_region(recorder)}});
     benchmark::Shutdown();
     return 0;
 }
