@@ -72,7 +72,9 @@ constexpr int others[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 /// where G changes sign, and in each crossing tetrahedron a triangle, or a quadrilateral to split
 /// once its vertices are known; both face G > 0.
 struct LinearSurface {
-    std::vector<Bracket3> brackets;  ///< per surface vertex: its edge, lower vertex number first
+    /// Per surface vertex: its edge, from its end lower in the grid's order (x, then y, then
+    /// z), so that a root does not depend on how the mesh numbers its vertices.
+    std::vector<Bracket3> brackets;
     std::vector<TriangleIndices> triangles;
     std::vector<std::array<std::uint32_t, 4>> quads;  ///< around their boundary, facing G > 0
 };
@@ -88,8 +90,10 @@ LinearSurface march(const SurfaceTopology& topo) {
         if (a > b) std::swap(a, b);
         const auto [vertex, fresh] = on_edge.try_emplace(
             (std::uint64_t{a} << 32) | b, static_cast<std::uint32_t>(out.brackets.size()));
-        if (fresh)
+        if (fresh) {
+            if (mesh.grid[b] < mesh.grid[a]) std::swap(a, b);
             out.brackets.push_back({mesh.vertices[a], mesh.vertices[b], values[a], values[b]});
+        }
         return *vertex;
     };
     for (const std::uint32_t tet : topo.crossing) {

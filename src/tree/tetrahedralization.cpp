@@ -146,11 +146,13 @@ std::size_t bucket_of(std::uint64_t key, int bits) {
 
 }  // namespace
 
-Tetrahedralization tetrahedralize(const Octree& tree) {
+Tetrahedralization tetrahedralize(const Octree& tree, std::span<const std::uint8_t> wanted) {
     if (tree.max_depth() > max_tetrahedralized_depth) {
         throw InvalidInput(fmt::format("tetrahedralize: octree depth {} exceeds {}",
                                        tree.max_depth(), max_tetrahedralized_depth));
     }
+    if (!wanted.empty() && wanted.size() != tree.size())
+        throw InvalidInput("tetrahedralize: one flag a cell is wanted");
     const std::size_t cells = tree.size();
     const int shift = tree.max_depth() + 1;
     CornerSet corners(cells);
@@ -170,7 +172,7 @@ Tetrahedralization tetrahedralize(const Octree& tree) {
         [&](std::size_t b) {
             LeafTetrahedra& out = made[b];
             for (std::size_t c = b * block; c < std::min(cells, (b + 1) * block); ++c) {
-                if (!tree.is_leaf(c)) continue;
+                if (!tree.is_leaf(c) || (!wanted.empty() && !wanted[c])) continue;
                 thread_local LeafTetrahedra leaf;
                 leaf.keys.clear();
                 leaf.tetrahedra.clear();

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "slc/core/vec3.hpp"
@@ -48,8 +49,11 @@ static_assert(max_tetrahedralized_depth + 1 < 21, "grid coordinates must fit 21 
 /// Tetrahedralizes a balanced octree: 24 to 96 tetrahedra a leaf (24 when all six neighbours are
 /// leaves of its size). Cost O(leaves · depth), on all worker threads: each leaf's cones over its
 /// own list of vertices, then the vertices numbered by first use through keys sorted into
-/// buckets, so the mesh is the same for any number of threads. Throws InvalidInput if the tree
-/// is not 2:1 balanced or deeper than max_tetrahedralized_depth.
-Tetrahedralization tetrahedralize(const Octree& tree);
+/// buckets, so the mesh is the same for any number of threads. wanted: one flag a cell, or
+/// empty for every leaf; a leaf not flagged gets no tetrahedra (its ranges are empty) and its
+/// vertices are numbered only where a flagged leaf uses them. The flagged leaves' tetrahedra
+/// are those of the whole mesh. Throws InvalidInput if the tree is not 2:1 balanced or deeper
+/// than max_tetrahedralized_depth.
+Tetrahedralization tetrahedralize(const Octree& tree, std::span<const std::uint8_t> wanted = {});
 
 }  // namespace slc

@@ -527,7 +527,7 @@ TEST(SurfaceContour, DistanceSlackSkipsFarPointsAndChangesNothing) {
     // Functions with |G(x) − G(y)| ≤ |x − y| + δ: exact distances (δ = 0) — a sphere, a torus,
     // two spheres, a box surface's distance from the tree — and a distance plus a ripple of
     // amplitude a (δ = 2a). With the slack the surface is the same to the last bit, from fewer
-    // evaluations of G.
+    // evaluations of G and fewer tetrahedra.
     const Surface box = box_surface({-0.5, -0.4, -0.3}, {0.45, 0.35, 0.5}, 4);
     const SurfaceDistanceTree tree(box, Box3::centered_cube(1.0), {.depth = 4});
     struct Case {
@@ -567,8 +567,11 @@ TEST(SurfaceContour, DistanceSlackSkipsFarPointsAndChangesNothing) {
         EXPECT_EQ(all.stats.settled, 0u);
         EXPECT_GT(some.stats.settled, 0u) << c.name;
         EXPECT_LT(some.stats.g_evals_tree, all.stats.g_evals_tree) << c.name;
-        std::printf("%s: tree evaluations %zu -> %zu, %zu settled\n", c.name,
-                    all.stats.g_evals_tree, some.stats.g_evals_tree, some.stats.settled);
+        // And the leaves the zero set cannot meet get no tetrahedra.
+        EXPECT_LT(some.stats.tetrahedra, all.stats.tetrahedra) << c.name;
+        std::printf("%s: tree evaluations %zu -> %zu, %zu settled, tetrahedra %zu -> %zu\n",
+                    c.name, all.stats.g_evals_tree, some.stats.g_evals_tree, some.stats.settled,
+                    all.stats.tetrahedra, some.stats.tetrahedra);
     }
 }
 

@@ -156,6 +156,57 @@ TEST(Tetrahedralization, VerticesAreNumberedByFirstUseTheSameOnAnyThreadCount) {
     EXPECT_EQ(std::count(met.begin(), met.end(), 0), 0);
 }
 
+TEST(Tetrahedralization, WantedLeavesGetTheWholeMeshsTetrahedraAndNoOthers) {
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Octree tree(Box3::centered_cube(1.0), 5);
+    for (std::size_t c = 0; c < tree.size(); ++c) {
+        const int level = tree.cell(c).level;
+        if (level < 5 && u(rng) < (level < 2 ? 0.95 : 0.3)) tree.split(c);
+    }
+    tree.balance();
+    const Tetrahedralization whole = tetrahedralize(tree);
+    std::vector<std::uint8_t> wanted(tree.size(), 0);
+    for (auto& w : wanted) w = u(rng) < 0.3 ? 1 : 0;
+    const Tetrahedralization some = tetrahedralize(tree, wanted);
+    // Each tetrahedron as its four corners' grid points, in order.
+    using Corners = std::array<std::array<std::uint32_t, 3>, 4>;
+    auto corners = [](const Tetrahedralization& m, std::uint32_t t) {
+        Corners out;
+        for (int k = 0; k < 4; ++k) out[k] = m.grid[m.tetrahedra[t][k]];
+        return out;
+    };
+    std::size_t made = 0;
+    for (std::size_t c = 0; c < tree.size(); ++c) {
+        const std::uint32_t first = some.cell_offsets[c], last = some.cell_offsets[c + 1];
+        if (!tree.is_leaf(c) || !wanted[c]) {
+            EXPECT_EQ(first, last);
+            EXPECT_EQ(some.vertex_offsets[c], some.vertex_offsets[c + 1]);
+            continue;
+        }
+        ASSERT_EQ(last - first, whole.cell_offsets[c + 1] - whole.cell_offsets[c]);
+        for (std::uint32_t k = 0; k < last - first; ++k)
+            ASSERT_EQ(corners(some, first + k), corners(whole, whole.cell_offsets[c] + k));
+        made += last - first;
+    }
+    EXPECT_EQ(some.tetrahedra.size(), made);
+    EXPECT_GT(made, 0u);
+    EXPECT_LT(made, whole.tetrahedra.size());
+    // Only the vertices the wanted leaves use, each once, where the whole mesh has them.
+    std::vector<std::uint8_t> used(some.vertices.size(), 0);
+    for (const auto& t : some.tetrahedra)
+        for (const std::uint32_t v : t) used[v] = 1;
+    EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0);
+    std::map<std::array<std::uint32_t, 3>, Vec3> where;
+    for (std::size_t v = 0; v < whole.vertices.size(); ++v)
+        where[whole.grid[v]] = whole.vertices[v];
+    std::map<std::array<std::uint32_t, 3>, int> seen;
+    for (std::size_t v = 0; v < some.vertices.size(); ++v) {
+        EXPECT_EQ(++seen[some.grid[v]], 1);
+        EXPECT_EQ(some.vertices[v], where.at(some.grid[v]));
+    }
+}
+
 TEST(Tetrahedralization, RefusesAnUnbalancedTree) {
     Octree tree(Box3::centered_cube(1.0), 4);
     const std::uint32_t low = tree.split(0);      // cells 1..8 at level 1
