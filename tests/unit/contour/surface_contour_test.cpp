@@ -569,8 +569,8 @@ TEST(SurfaceContour, DistanceSlackSkipsFarPointsAndChangesNothing) {
         EXPECT_LT(some.stats.g_evals_tree, all.stats.g_evals_tree) << c.name;
         // And the leaves the zero set cannot meet get no tetrahedra.
         EXPECT_LT(some.stats.tetrahedra, all.stats.tetrahedra) << c.name;
-        std::printf("%s: tree evaluations %zu -> %zu, %zu settled, tetrahedra %zu -> %zu\n",
-                    c.name, all.stats.g_evals_tree, some.stats.g_evals_tree, some.stats.settled,
+        std::printf("%s: tree evaluations %zu -> %zu, %zu settled, tetrahedra %zu -> %zu\n", c.name,
+                    all.stats.g_evals_tree, some.stats.g_evals_tree, some.stats.settled,
                     all.stats.tetrahedra, some.stats.tetrahedra);
     }
 }

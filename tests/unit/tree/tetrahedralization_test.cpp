@@ -53,6 +53,20 @@ void expect_conforming(const Octree& tree, const Tetrahedralization& mesh) {
     }
 }
 
+/// A balanced octree of [−1, 1]³ to the given depth, split at random: nearly every cell of the
+/// coarse half of the levels, a third of the others.
+Octree random_balanced_tree(unsigned seed, int depth) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Octree tree(Box3::centered_cube(1.0), depth);
+    for (std::size_t c = 0; c < tree.size(); ++c) {
+        const int level = tree.cell(c).level;
+        if (level < depth && u(rng) < (level < depth / 2 ? 0.95 : 0.3)) tree.split(c);
+    }
+    tree.balance();
+    return tree;
+}
+
 TEST(Tetrahedralization, UniformTreeIs24TetrahedraPerLeafFillingTheBox) {
     Octree tree(Box3::centered_cube(1.0), 2);
     tree.split(0);
@@ -115,14 +129,7 @@ TEST(Tetrahedralization, GridCoordinatesNameTheVertices) {
 }
 
 TEST(Tetrahedralization, VerticesAreNumberedByFirstUseTheSameOnAnyThreadCount) {
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    Octree tree(Box3::centered_cube(1.0), 6);
-    for (std::size_t c = 0; c < tree.size(); ++c) {
-        const int level = tree.cell(c).level;
-        if (level < 6 && u(rng) < (level < 3 ? 0.95 : 0.3)) tree.split(c);
-    }
-    tree.balance();
+    const Octree tree = random_balanced_tree(11, 6);
     set_thread_count(1);
     const Tetrahedralization one = tetrahedralize(tree);
     set_thread_count(2);
@@ -157,15 +164,10 @@ TEST(Tetrahedralization, VerticesAreNumberedByFirstUseTheSameOnAnyThreadCount) {
 }
 
 TEST(Tetrahedralization, WantedLeavesGetTheWholeMeshsTetrahedraAndNoOthers) {
+    const Octree tree = random_balanced_tree(13, 5);
+    const Tetrahedralization whole = tetrahedralize(tree);
     std::mt19937 rng(13);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    Octree tree(Box3::centered_cube(1.0), 5);
-    for (std::size_t c = 0; c < tree.size(); ++c) {
-        const int level = tree.cell(c).level;
-        if (level < 5 && u(rng) < (level < 2 ? 0.95 : 0.3)) tree.split(c);
-    }
-    tree.balance();
-    const Tetrahedralization whole = tetrahedralize(tree);
     std::vector<std::uint8_t> wanted(tree.size(), 0);
     for (auto& w : wanted) w = u(rng) < 0.3 ? 1 : 0;
     const Tetrahedralization some = tetrahedralize(tree, wanted);
