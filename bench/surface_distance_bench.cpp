@@ -245,7 +245,7 @@ void write_table(const Recorder& rec, const std::string& path) {
         "Written by `bench/surface_distance_bench.cpp` (run `scripts/bench`); do not edit by "
         "hand.\n\n"
         "Icospheres of radius 0.5 near the origin with N = 20·4^k triangles in the domain "
-        "[−1, 1]³, the tree at its default depth (cells two to four mean edges wide). CPU time "
+        "[−1, 1]³, the tree at its default depth (cells four to eight mean edges wide). CPU time "
         "on one thread, the least of the repetitions. Build: everything a query needs — the "
         "pseudo-normals, the triangle hierarchy, the octree and its cells' triangle lists "
         "(ours); the AABB tree, by `build()` (which CGAL would otherwise defer to the first "

@@ -327,12 +327,13 @@ int SurfaceDistanceTree::default_depth(const Surface& surface, const Box3& domai
         total += distance(tri.a, tri.b) + distance(tri.b, tri.c) + distance(tri.c, tri.a);
     }
     const double mean = total / (3.0 * static_cast<double>(surface.size()));
-    // Cells two to four mean edges wide. A level deeper (cells one to two edges wide) builds in
-    // about 1.5 to 2 times the time and answers queries near the surface no faster, random or
-    // in lattice order: its lists are mostly too long to keep, and a query that would scan one
-    // does as well in the hierarchy (bench/surface_distance_bench.cpp).
+    // Cells four to eight mean edges wide. Near the surface a cell's triple then meets far more
+    // triangles than a list may hold, so queries there finish in the triangle hierarchy, as
+    // they did a level deeper (cells two to four edges wide, triples of 100 to 400 triangles):
+    // that level built in 1.2 to 1.9 times the time and answered no faster
+    // (bench/surface_distance_bench.cpp; docs/notes/performance.md).
     const int level =
-        static_cast<int>(std::ceil(std::log2(domain.width() / std::max(4.0 * mean, 1e-300))));
+        static_cast<int>(std::ceil(std::log2(domain.width() / std::max(8.0 * mean, 1e-300))));
     const int deepest = Octree::max_resolvable_depth(domain);
     return std::clamp(level, std::min(2, deepest), std::min(10, deepest));
 }

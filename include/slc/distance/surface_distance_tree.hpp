@@ -71,8 +71,8 @@ public:
     /// Cost O(N log N) time and memory for N triangles of similar size.
     SurfaceDistanceTree(const Surface& surface, Box3 domain, Options options);
 
-    /// A depth for surface in domain when none is given: the level whose cells are two to four
-    /// mean edges wide, between 2 and 10 (and within what doubles resolve there).
+    /// A depth for surface in domain when none is given: the level whose cells are four to
+    /// eight mean edges wide, between 2 and 10 (and within what doubles resolve there).
     /// Only the cost of a query depends on it. Precondition: surface is not empty.
     static int default_depth(const Surface& surface, const Box3& domain);
 
