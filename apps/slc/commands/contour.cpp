@@ -226,7 +226,7 @@ void add_contour_command(CLI::App& app) {
     add_domain_options(*cmd, o->domain);
     cmd->add_option("-L,--tree-depth", o->tree_depth,
                     "Depth L of the distance tree that evaluates F (default: cells about one mean "
-                    "segment, or two to four mean edges of a surface, wide; it sets the speed, "
+                    "segment, or four to eight mean edges of a surface, wide; it sets the speed, "
                     "not the error)")
         ->check(integer_in(0, 30));
     cmd->add_option("--out", o->out, "Output folder")->required();
