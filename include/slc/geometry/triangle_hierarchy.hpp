@@ -146,8 +146,8 @@ private:
             add(na.first, na.first + 1);
             return;
         }
-        const bool split_a =
-            nb.count > 0 || (na.count == 0 && diagonal2(na.box) >= diagonal2(nb.box));
+        const bool split_a = nb.count > 0 || (na.count == 0 && norm2(na.box.hi - na.box.lo) >=
+                                                                   norm2(nb.box.hi - nb.box.lo));
         if (split_a) {
             add(na.first, b);
             add(na.first + 1, b);
@@ -155,10 +155,6 @@ private:
             add(a, nb.first);
             add(a, nb.first + 1);
         }
-    }
-    static double diagonal2(const Box3& b) {
-        const Vec3 d = b.hi - b.lo;
-        return d.x * d.x + d.y * d.y + d.z * d.z;
     }
     /// for_each_overlapping_pair below one node pair, on the calling thread.
     template <class F>
