@@ -214,16 +214,20 @@ void TriangleHierarchy::nearest(std::span<const Triangle3> triangles, Vec3 x, Ne
     if (hint < triangles.size())
         best.offer(hint, plain ? closest_point_in_range(triangles[hint], x)
                                : closest_point(triangles[hint], x));
+    // Nodes to visit with their boxes' squared distances, computed once, when their parent is.
     std::uint32_t stack[64];
+    double stack_d2[64];
     int top = 0;
-    stack[top++] = 0;
+    stack[top] = 0;
+    stack_d2[top++] = distance2(nodes_[0].box, x);
     while (top > 0) {
-        const Node& n = nodes_[stack[--top]];
+        --top;
         // A box or slab farther than the best so far holds nothing nearer; one as far (to
         // rounding) may hold a tie with a smaller index, so only clearly farther ones are
         // skipped. The box first: it is cheaper, and settles most nodes near the surface.
         const double limit = best.distance2 * prune_slack;
-        if (distance2(n.box, x) > limit) continue;
+        if (stack_d2[top] > limit) continue;
+        const Node& n = nodes_[stack[top]];
         if (slabs_) {
             const double along = dot(n.axis, x);
             const double gap = std::max(n.lo - along, along - n.hi) - slack;
@@ -241,13 +245,11 @@ void TriangleHierarchy::nearest(std::span<const Triangle3> triangles, Vec3 x, Ne
         // Nearer child last on the stack, so it is searched first.
         const double d0 = distance2(nodes_[n.first].box, x);
         const double d1 = distance2(nodes_[n.first + 1].box, x);
-        if (d0 <= d1) {
-            stack[top++] = n.first + 1;
-            stack[top++] = n.first;
-        } else {
-            stack[top++] = n.first;
-            stack[top++] = n.first + 1;
-        }
+        const bool first_nearer = d0 <= d1;
+        stack[top] = first_nearer ? n.first + 1 : n.first;
+        stack_d2[top++] = first_nearer ? d1 : d0;
+        stack[top] = first_nearer ? n.first : n.first + 1;
+        stack_d2[top++] = first_nearer ? d0 : d1;
     }
 }
 
