@@ -39,9 +39,8 @@ constexpr double min_title_size = 10.0;
 /// Share of the light that reaches every front face whatever its slope, so that faces turned
 /// away from the light still show the colour.
 constexpr double ambient = 0.25;
-/// Each face is also stroked in its own colour this wide (pixels), over the hairline cracks that
-/// antialiasing leaves between neighbours (the background shows through at every shared edge
-/// where two partly covering triangles are composited one over the other).
+/// A face drawn without its edge is grown by half this width (pixels) on every side, over the
+/// hairline cracks that antialiasing leaves between neighbours (paint).
 constexpr double seam_width = 1.0;
 /// Edges, when drawn, are this wide (pixels) and this fraction of the face's brightness.
 constexpr double edge_width = 0.6;
@@ -242,17 +241,47 @@ Scene scene(std::span<const Surface> surfaces, const PageMap& map, const Surface
     return sc;
 }
 
-/// Paints the faces in order: each filled and stroked in its shade (or stroked with its edge),
+/// The triangle p grown by `by` (pixels) on every side: each corner moved to where its two
+/// edges, shifted outward, meet, and no farther than 2·by from where it was (a sliver's sharp
+/// corner would otherwise reach far beyond it, as a mitred join would).
+std::array<Vec2, 3> grown(const std::array<Vec2, 3>& p, double by) {
+    const double orientation = cross(p[1] - p[0], p[2] - p[0]) >= 0.0 ? 1.0 : -1.0;
+    std::array<Vec2, 3> outward{};  // of edge i, from p[i] to p[i + 1]
+    for (int i = 0; i < 3; ++i) {
+        const Vec2 e = p[(i + 1) % 3] - p[i];
+        const double length = norm(e);
+        if (length > 0.0) outward[i] = (orientation / length) * Vec2{e.y, -e.x};
+    }
+    std::array<Vec2, 3> out{};
+    for (int i = 0; i < 3; ++i) {
+        const Vec2 a = outward[(i + 2) % 3], b = outward[i];  // the edges meeting at p[i]
+        const double meet = 1.0 + dot(a, b);
+        Vec2 move = meet > 0.0 ? (by / meet) * (a + b) : Vec2{};
+        const double length = norm(move);
+        if (length > 2.0 * by) move = (2.0 * by / length) * move;
+        out[i] = p[i] + move;
+    }
+    return out;
+}
+
+/// Paints the faces in order, each in its shade. A face of a surface drawn without edges is
+/// filled grown by half a pixel, which covers the hairline cracks that antialiasing leaves
+/// between neighbours (the background shows through at every shared edge where two partly
+/// covering triangles are composited one over the other) as a stroke around it would, at a
+/// fraction of a stroke's cost. A face with its edge drawn is filled and stroked with the edge,
 /// the fill left out when the stroke covers the whole face anyway (in-radius below half the
-/// stroke's width), as it does for most faces of a fine mesh.
+/// stroke's width).
 void paint(cairo_t* cr, const Scene& sc, std::span<const Facet> facets, const Camera& camera) {
     // Bevelled joins: a mitred join at a sliver's sharp corner would stick out far beyond it.
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_BEVEL);
+    cairo_set_line_width(cr, edge_width);
     for (const Facet& f : facets) {
         const Surface& s = sc.surfaces[f.surface];
         const TriangleIndices& tri = s.triangles[f.triangle];
         const std::vector<Vec2>& page = sc.page[f.surface];
-        const std::array<Vec2, 3> p = {page[tri[0]], page[tri[1]], page[tri[2]]};
+        const bool edged = sc.edged[f.surface];
+        const std::array<Vec2, 3> corners = {page[tri[0]], page[tri[1]], page[tri[2]]};
+        const std::array<Vec2, 3> p = edged ? corners : grown(corners, 0.5 * seam_width);
         cairo_move_to(cr, p[0].x, p[0].y);
         cairo_line_to(cr, p[1].x, p[1].y);
         cairo_line_to(cr, p[2].x, p[2].y);
@@ -260,15 +289,16 @@ void paint(cairo_t* cr, const Scene& sc, std::span<const Facet> facets, const Ca
 
         const Triangle3 t = s.triangle(f.triangle);
         const double shade = brightness(cross(t.b - t.a, t.c - t.a), camera);
-        const bool edged = sc.edged[f.surface];
-        const double width = edged ? edge_width : seam_width;
-        const double twice_area = std::abs(cross(p[1] - p[0], p[2] - p[0]));
-        const double perimeter = norm(p[1] - p[0]) + norm(p[2] - p[1]) + norm(p[0] - p[2]);
         const Color color = sc.color(f.surface, f.triangle);
         set_rgb(cr, color, shade);
-        if (2.0 * twice_area >= width * perimeter) cairo_fill_preserve(cr);
-        if (edged) set_rgb(cr, color, edge_brightness * shade);
-        cairo_set_line_width(cr, width);
+        if (!edged) {
+            cairo_fill(cr);
+            continue;
+        }
+        const double twice_area = std::abs(cross(p[1] - p[0], p[2] - p[0]));
+        const double perimeter = norm(p[1] - p[0]) + norm(p[2] - p[1]) + norm(p[0] - p[2]);
+        if (2.0 * twice_area >= edge_width * perimeter) cairo_fill_preserve(cr);
+        set_rgb(cr, color, edge_brightness * shade);
         cairo_stroke(cr);
     }
 }

@@ -2,8 +2,8 @@
 // is brighter on the lit side; a torus seen from above shows the background in its hole; +z is up
 // (or the up axis asked for) and the nearer of two surfaces hides the farther; the guides (axis
 // triad, scale bar) and a colour bar sit in the band below; the up axis chosen from extents; a
-// quantity colours the surface; SVG is written too; the same input gives the same bytes; bad
-// input is InvalidInput and writes nothing.
+// quantity colours the surface; SVG is written too; the same input gives the same bytes; faces
+// leave no crack between them; bad input is InvalidInput and writes nothing.
 #include "slc/io/surface_picture.hpp"
 
 #include <cairo.h>
@@ -385,6 +385,32 @@ TEST(SurfacePicture, EdgesAreDrawnOnlyOnSurfacesOfAtMostTwentyThousandTriangles)
     };
     EXPECT_TRUE(differ(sphere({0.0, 0.0, 0.0}, 1.0, 2)));   // 320 triangles
     EXPECT_FALSE(differ(sphere({0.0, 0.0, 0.0}, 1.0, 6)));  // 81920 triangles
+}
+
+TEST(SurfacePicture, NeighbouringFacesLeaveNoCrackBetweenThem) {
+    // Antialiased triangles composited one over the other let the background show through at
+    // every shared edge unless each face is drawn a little wider than itself. A crack is a pixel
+    // paler than any face can be: faces are their colour, 0x4e79a7, times a brightness ≤ 1.
+    const TempDir dir;
+    SurfaceView plain = without_guides();
+    plain.edges = false;
+    save_surface_picture(sphere({0.0, 0.0, 0.0}, 0.5, 3), dir.path() / "sphere.png", plain);
+    const ImagePtr image = read_png(dir.path() / "sphere.png");
+    int radius = 0;  // of the sphere's disc, along the middle row
+    while (!pixel(image.get(), side / 2 + radius, side / 2).is_background()) ++radius;
+    ASSERT_GT(radius, side / 4);
+    int cracks = 0, inside = 0;
+    const int r = 9 * radius / 10;
+    for (int y = side / 2 - r; y <= side / 2 + r; ++y) {
+        for (int x = side / 2 - r; x <= side / 2 + r; ++x) {
+            if ((x - side / 2) * (x - side / 2) + (y - side / 2) * (y - side / 2) > r * r) continue;
+            const Rgb c = pixel(image.get(), x, y);
+            ++inside;
+            if (c.r > 0x4e + 1 || c.g > 0x79 + 1 || c.b > 0xa7 + 1) ++cracks;
+        }
+    }
+    EXPECT_GT(inside, 50000);
+    EXPECT_EQ(cracks, 0);
 }
 
 TEST(SurfacePicture, RejectsBadInputAndWritesNothing) {
