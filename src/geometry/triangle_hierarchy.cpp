@@ -205,6 +205,31 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles, Bound
     });
 }
 
+double TriangleHierarchy::slab_and_box(const Node& n, Vec3 x, double along, double gap) {
+    // For x beyond the slab's top face h (below its bottom: mirrored), every point y of the
+    // node's triangles lies in the box with a·y ≤ h, so |x − y|² ≥ |x − y|² + 2μ (a·y − h) for
+    // any μ ≥ 0; the least of the right side over the box is taken coordinate by coordinate, at
+    // y = clamp(x − μa) (Lagrangian duality). With μ the gap it is gap² + s² for a flat patch,
+    // s the distance from x's foot on the patch's plane to the box, where the box and the slab
+    // tested apart give only the larger of gap² and the box's distance: a tilted patch's box
+    // reaches towards x. The right side is at least gap² + (h − a·y)² where a·y < h (the gap
+    // and that depth add in |x − y|), so its terms cancel by at most a factor of two; a·y's
+    // rounding (a few units in the last place of y's coordinates, the slab's widening covers
+    // those of the corners) is taken off, and the relative rounding stays far below the slack
+    // of the comparison.
+    const double sign = along > n.hi ? 1.0 : -1.0;
+    const double face = along > n.hi ? n.hi : n.lo;
+    double bound = 0.0, depth = 0.0, scale = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const double y = std::clamp(x[i] - sign * gap * n.axis[i], n.box.lo[i], n.box.hi[i]);
+        bound += (x[i] - y) * (x[i] - y);
+        depth += n.axis[i] * y;
+        scale = std::max(scale, std::abs(y));
+    }
+    bound += 2.0 * gap * (sign * (depth - face) - rounding * scale);
+    return bound * (1.0 - 1e-13);
+}
+
 void TriangleHierarchy::nearest(std::span<const Triangle3> triangles, Vec3 x, NearestFacet& best,
                                 std::uint32_t hint) const {
     if (nodes_.empty()) return;
@@ -231,7 +256,8 @@ void TriangleHierarchy::nearest(std::span<const Triangle3> triangles, Vec3 x, Ne
         if (slabs_) {
             const double along = dot(n.axis, x);
             const double gap = std::max(n.lo - along, along - n.hi) - slack;
-            if (gap > 0.0 && gap * gap > limit) continue;
+            if (gap > 0.0 && (gap * gap > limit || slab_and_box(n, x, along, gap) > limit))
+                continue;
         }
         if (n.count > 0) {
             for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {

@@ -192,6 +192,10 @@ private:
         std::uint32_t first = 0;
         std::uint32_t count = 0;
     };
+    /// A lower bound on the squared distance from x to the part of node n's box within its slab,
+    /// for x beyond the slab by gap > 0 (along its axis at `along`).
+    static double slab_and_box(const Node& n, Vec3 x, double along, double gap);
+
     std::vector<Node> nodes_;
     bool slabs_ = false;                ///< whether the nodes' slabs are set
     std::vector<std::uint32_t> order_;  ///< triangle indices, grouped by leaf

@@ -1,5 +1,6 @@
 // Tests of the triangle hierarchy against scans of every triangle: the nearest-triangle search
-// (the same triangle and distance, to the bit, wherever the point is) and the pairs of triangles
+// (the same triangle and distance, to the bit, wherever the point is: deep inside closed
+// surfaces, far from tilted flat faces and right at them) and the pairs of triangles
 // whose boxes meet (each once, on one thread or two).
 #include "slc/geometry/triangle_hierarchy.hpp"
 
@@ -72,6 +73,45 @@ TEST(TriangleHierarchy, NearestIsTheScansEverywhereAndDeepInsideClosedSurfaces) 
                 ASSERT_EQ(fast.distance2, slow.distance2);
             }
         }
+    }
+}
+
+TEST(TriangleHierarchy, NearestIsTheScansBesideAndFarFromTiltedFlatFaces) {
+    // A flat face turned off the axes: its patches' boxes reach towards a point seen from afar,
+    // and the bound from each node's box and slab together prunes them. It must still keep the
+    // nearest triangle and a tie's least index: points far off and right at the faces, on
+    // edges and corners (ties), and a hair's breadth off them on both sides.
+    Surface s = box_surface({-0.5, -0.4, -0.3}, {0.6, 0.5, 0.4}, 8);
+    const double c = std::cos(0.7), d = std::sin(0.7), e = std::cos(0.4), f = std::sin(0.4);
+    for (Vec3& v : s.vertices) {
+        v = Vec3{c * v.x - d * v.y, d * v.x + c * v.y, v.z};
+        v = Vec3{v.x, e * v.y - f * v.z, f * v.y + e * v.z};
+    }
+    const std::vector<Triangle3> triangles = corners_of(s);
+    const TriangleHierarchy slabs(triangles, TriangleHierarchy::Bounds::boxes_and_slabs);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), w(0.0, 1.0);
+    std::vector<Vec3> points;
+    for (int k = 0; k < 300; ++k) {
+        const Vec3 dir{u(rng), u(rng), u(rng)};
+        points.push_back((2.0 + 30.0 * w(rng)) * dir);  // far off
+    }
+    for (std::size_t t = 0; t < triangles.size(); t += 7) {
+        const Triangle3& tri = triangles[t];
+        const Vec3 n = cross(tri.b - tri.a, tri.c - tri.a);
+        const Vec3 unit_n = (1.0 / norm(n)) * n;
+        const double a = w(rng), b = w(rng) * (1.0 - a);
+        const Vec3 on = tri.a + a * (tri.b - tri.a) + b * (tri.c - tri.a);
+        for (const Vec3 x : {on, tri.a, 0.5 * (tri.a + tri.b)})
+            for (const double h : {0.0, 1e-13, -1e-13, 1e-9, -1e-9, 0.3, -0.2})
+                points.push_back(x + h * unit_n);
+    }
+    for (const Vec3 x : points) {
+        const NearestFacet slow = scan(triangles, x);
+        NearestFacet fast;
+        slabs.nearest(triangles, x, fast);
+        ASSERT_EQ(fast.triangle, slow.triangle) << x.x << " " << x.y << " " << x.z;
+        ASSERT_EQ(fast.distance2, slow.distance2);
     }
 }
 
