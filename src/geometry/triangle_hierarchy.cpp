@@ -197,9 +197,7 @@ TriangleHierarchy::TriangleHierarchy(std::span<const Triangle3> triangles, Bound
         }
         // Widened by the dot products' rounding, a few units in the last place of the corners'
         // coordinates (the query's are allowed for in nearest()).
-        double scale = 0.0;
-        for (int a = 0; a < 3; ++a)
-            scale = std::max({scale, std::abs(node.box.lo[a]), std::abs(node.box.hi[a])});
+        const double scale = node.box.largest_magnitude();
         node.lo = lo - rounding * scale;
         node.hi = hi + rounding * scale;
     });
@@ -214,19 +212,19 @@ double TriangleHierarchy::slab_and_box(const Node& n, Vec3 x, double along, doub
     // tested apart give only the larger of gap² and the box's distance: a tilted patch's box
     // reaches towards x. The right side is at least gap² + (h − a·y)² where a·y < h (the gap
     // and that depth add in |x − y|), so its terms cancel by at most a factor of two; a·y's
-    // rounding (a few units in the last place of y's coordinates, the slab's widening covers
-    // those of the corners) is taken off, and the relative rounding stays far below the slack
-    // of the comparison.
-    const double sign = along > n.hi ? 1.0 : -1.0;
-    const double face = along > n.hi ? n.hi : n.lo;
-    double bound = 0.0, depth = 0.0, scale = 0.0;
+    // rounding (a few units in the last place of the box's coordinates, as the slab's widening
+    // covers those of the corners) is taken off, and the relative rounding stays far below the
+    // slack of the comparison.
+    const bool above = along > n.hi;
+    const double sign = above ? 1.0 : -1.0;
+    const double face = above ? n.hi : n.lo;
+    double bound = 0.0, depth = 0.0;
     for (int i = 0; i < 3; ++i) {
         const double y = std::clamp(x[i] - sign * gap * n.axis[i], n.box.lo[i], n.box.hi[i]);
         bound += (x[i] - y) * (x[i] - y);
         depth += n.axis[i] * y;
-        scale = std::max(scale, std::abs(y));
     }
-    bound += 2.0 * gap * (sign * (depth - face) - rounding * scale);
+    bound += 2.0 * gap * (sign * (depth - face) - rounding * n.box.largest_magnitude());
     return bound * (1.0 - 1e-13);
 }
 
