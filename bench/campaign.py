@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Seeded randomized campaigns of `slc run` on curves: two sets, each a small size for the tests
-and a large one for scripts/bench, each writing its table into docs/errors.md (--doc).
+"""Seeded randomized campaigns of `slc run` on curves: two sets, each a small size (the tests run
+the defaults' one) and a large one for scripts/bench, each writing its table into docs/errors.md
+(--doc).
 
 Every run must end one of the honest ways: exit 0 with a result its law allows (status ok or
 vanished), exit 2 (bad input, refused) or exit 3 (a numerical failure, `failed`, or an unstable
@@ -66,9 +67,9 @@ its steps; the number of curves is read at every step of history.csv):
   and unit-normal, 1% of the change of area under curvature flow, 1e-3 of A0 kept under
   volume-preserving curvature) are counted apart ("beyond target"), not as defects.
 
-  campaign.py --slc build/bin/slc --size small --check                  (the tests: 30 runs)
+  campaign.py --slc build/bin/slc --size small --check                  (30 runs)
   campaign.py --slc build/bin/slc --set defaults --size small --check   (the tests: 7 runs)
-  campaign.py --slc build/bin/slc --size large --doc docs/errors.md     (scripts/bench: 400)
+  campaign.py --slc build/bin/slc --size large --doc docs/errors.md --check   (scripts/bench: 400)
   campaign.py --slc build/bin/slc --set defaults --size large --doc docs/errors.md   (200)
 
 --only I runs case I alone and --keep DIR keeps its files (caseI.json, outI/) to reproduce it.
