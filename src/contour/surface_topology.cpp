@@ -42,6 +42,31 @@ public:
         const std::uint32_t* id = index_.find(key);
         return id ? &samples_[*id] : nullptr;
     }
+    /// The sample at mesh vertex q of leaf c, or nullptr: c's own corners and centre are read
+    /// from c, and a centre of a face that no finer cell touches (sides: c's finer_sides()) is
+    /// no sample; other points are looked up.
+    const Sample* at_vertex(std::uint32_t c, const std::array<std::uint32_t, 3>& q,
+                            std::uint32_t sides) const {
+        const auto& cell = tree_.cell(c);
+        const std::uint64_t half = grid_.units(cell.level) / 2;
+        // Where q lies in c, in half edges along each axis (0, 1 or 2), when it is on that grid;
+        // on how many of c's sides (0 or 2 along an axis), and the last of them.
+        std::array<std::uint64_t, 3> place{};
+        int on_sides = 0, side = 0;
+        for (int i = 0; i < 3; ++i) {
+            const std::uint64_t offset = q[i] - cell.coords[i] * 2 * half;
+            if (offset % half != 0) return at(Tetrahedralization::key(q[0], q[1], q[2]));
+            place[i] = offset / half;
+            if (place[i] != 1) ++on_sides, side = 2 * i + static_cast<int>(place[i] / 2);
+        }
+        if (on_sides == 3) {  // corner j of c: bit i of j high along axis i
+            return &samples_[cell_samples_[c]
+                                          [place[0] / 2 + 2 * (place[1] / 2) + 4 * (place[2] / 2)]];
+        }
+        if (on_sides == 0) return &samples_[cell_samples_[c][cell_points - 1]];
+        if (on_sides == 1 && (sides >> side & 1u) == 0) return nullptr;
+        return at(Tetrahedralization::key(q[0], q[1], q[2]));
+    }
     /// A stand-in for G at x from the samples of leaf c, when they give its sign.
     std::optional<Sample> stand_in(Vec3 x, std::uint32_t c) const {
         return from_donors(x, cell_samples_[c]);
@@ -49,29 +74,17 @@ public:
     /// True when leaf c's tetrahedra are certain to hold no zero of G's interpolant and no
     /// vertex within η of zero, so that the contour needs none of them: c lies off the root
     /// box's boundary; its samples have one sign and |G| > η (a stand-in always has); no finer
-    /// cell's corner lies on its edges or faces, so its tetrahedra's vertices are its corners,
-    /// its centre and its face centres; and c's samples give each face centre a stand-in of
-    /// their sign. Without a distance slack (no stand-ins from samples), never.
-    bool clear_of_zero(std::uint32_t c, double eta) const {
-        if (min_abs(c) <= eta || changes_sign(c)) return false;
+    /// cell touches its edges or faces (sides: its finer_sides()), so its tetrahedra's vertices
+    /// are its corners, its centre and its face centres; and c's samples give each face centre
+    /// a stand-in of their sign. Without a distance slack (no stand-ins from samples), never.
+    bool clear_of_zero(std::uint32_t c, double eta, std::uint32_t sides) const {
+        if (sides != 0 || min_abs(c) <= eta || changes_sign(c)) return false;
         const auto& cell = tree_.cell(c);
         const std::uint64_t u = grid_.units(cell.level);
         SampleGrid<3>::Coords lo;
         for (int i = 0; i < 3; ++i) {
             lo[i] = cell.coords[i] * u;
             if (lo[i] == 0 || lo[i] + u == grid_.extent()) return false;
-        }
-        // The midpoints of its twelve edges (along axis a) and the centres of its six faces
-        // (across axis a): a finer cell's corner on an edge or a face makes one of them a
-        // sample (a corner inside an edge makes its midpoint a corner too).
-        for (int a = 0; a < 3; ++a) {
-            for (int k = 0; k < 4; ++k) {
-                SampleGrid<3>::Coords p = lo;
-                p[a] += u / 2;
-                p[(a + 1) % 3] += (k & 1) * u;
-                p[(a + 2) % 3] += (k >> 1) * u;
-                if (index_.find(SampleGrid<3>::key(p))) return false;
-            }
         }
         const bool positive = samples_[cell_samples_[c][0]].value > 0.0;
         for (int d = 0; d < 6; ++d) {
@@ -80,7 +93,6 @@ public:
             p[a] += (d & 1) * u;
             p[(a + 1) % 3] += u / 2;
             p[(a + 2) % 3] += u / 2;
-            if (index_.find(SampleGrid<3>::key(p))) return false;
             const std::optional<Sample> s = stand_in(grid_.point(p), c);
             if (!s || (s->value > 0.0) != positive) return false;
         }
@@ -125,7 +137,8 @@ void evaluate_at(SurfaceTopology& topo, const Evaluator& g, std::vector<std::uin
 
 /// G at the mesh's vertices: the tree's samples, stand-ins from a leaf's samples for the face
 /// centres whose sign they give, and one batch for the other face centres.
-void mesh_values(SurfaceTopology& topo, const SurfaceSampler& sampler, const Evaluator& g) {
+void mesh_values(SurfaceTopology& topo, const SurfaceSampler& sampler, const Evaluator& g,
+                 std::span<const std::uint32_t> sides) {
     const auto& mesh = topo.mesh;
     const std::size_t n = mesh.vertices.size();
     topo.values.assign(n, 0.0);
@@ -136,8 +149,7 @@ void mesh_values(SurfaceTopology& topo, const SurfaceSampler& sampler, const Eva
     parallel_for(leaves.size(), [&](std::size_t i) {
         const std::uint32_t c = leaves[i];
         for (std::uint32_t v = mesh.vertex_offsets[c]; v < mesh.vertex_offsets[c + 1]; ++v) {
-            const auto& q = mesh.grid[v];
-            const Sample* s = sampler.at(Tetrahedralization::key(q[0], q[1], q[2]));
+            const Sample* s = sampler.at_vertex(c, mesh.grid[v], sides[c]);
             const std::optional<Sample> guess =
                 s ? std::optional(*s) : sampler.stand_in(mesh.vertices[v], c);
             if (!guess) continue;
@@ -248,13 +260,14 @@ SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& do
     // has many leaves (about four in five of a torus's at K = 7), none of whose tetrahedra the
     // contour needs. The crossing tetrahedra, their vertices and values are the same as over
     // every leaf.
+    const std::vector<std::uint32_t> sides = finer_sides(topo.tree);
     std::vector<std::uint8_t> wanted(topo.tree.size(), 0);
     parallel_for(topo.tree.size(), [&](std::size_t c) {
         const auto cell = static_cast<std::uint32_t>(c);
-        wanted[c] = topo.tree.is_leaf(cell) && !sampler.clear_of_zero(cell, eta) ? 1 : 0;
+        wanted[c] = topo.tree.is_leaf(cell) && !sampler.clear_of_zero(cell, eta, sides[c]) ? 1 : 0;
     });
-    topo.mesh = tetrahedralize(topo.tree, wanted);
-    mesh_values(topo, sampler, g);
+    topo.mesh = tetrahedralize(topo.tree, wanted, sides);
+    mesh_values(topo, sampler, g, sides);
     check_boundary(topo, eta);
     topo.perturbed = perturb(topo, g, eta);
     topo.crossing = crossing_tetrahedra(topo);

@@ -90,9 +90,21 @@ struct LeafTetrahedra {
     }
 };
 
+/// Whether the edge p → q of a leaf (low corner lo, edge u) may hold corners of finer leaves:
+/// whether its bit is set among the leaf's finer_sides().
+bool edge_touched(std::uint32_t sides, const GridPoint& lo, std::uint64_t u, const GridPoint& p,
+                  const GridPoint& q) {
+    int a = 0;
+    while (p[a] == q[a]) ++a;
+    const int b = (a + 1) % 3, e = (a + 2) % 3;
+    const int k = static_cast<int>((p[b] - lo[b]) / u + 2 * ((p[e] - lo[e]) / u));
+    return (sides >> edge_side(a, k) & 1u) != 0;
+}
+
 /// Appends leaf c's cones to out: for each face (or quarter, where the neighbour is finer) a fan
-/// from its centre over its ring, each cone from the leaf's centre.
-void cones_of_leaf(const Octree& tree, const CornerSet& corners, std::size_t c,
+/// from its centre over its ring, each cone from the leaf's centre. sides: c's finer_sides(),
+/// which spare the search of the edges no finer cell touches.
+void cones_of_leaf(const Octree& tree, const CornerSet& corners, std::size_t c, std::uint32_t sides,
                    LeafTetrahedra& out) {
     const auto [lo, u] = low_corner(tree, c);
     const GridPoint centre{lo[0] + u / 2, lo[1] + u / 2, lo[2] + u / 2};
@@ -118,7 +130,9 @@ void cones_of_leaf(const Octree& tree, const CornerSet& corners, std::size_t c,
                 ring.clear();
                 for (int k = 0; k < 4; ++k) {
                     ring.push_back(square[k]);
-                    collect_edge(corners, square[k], square[(k + 1) % 4], ring);
+                    const GridPoint& next = square[(k + 1) % 4];
+                    if (w < u || edge_touched(sides, lo, u, square[k], next))
+                        collect_edge(corners, square[k], next, ring);
                 }
                 const GridPoint face = midpoint(square[0], square[2]);
                 const std::uint16_t f = out.at(face);
@@ -146,7 +160,42 @@ std::size_t bucket_of(std::uint64_t key, int bits) {
 
 }  // namespace
 
-Tetrahedralization tetrahedralize(const Octree& tree, std::span<const std::uint8_t> wanted) {
+std::vector<std::uint32_t> finer_sides(const Octree& tree) {
+    std::vector<std::uint32_t> sides(tree.size(), 0);
+    auto mark = [&](std::uint32_t n, int level, int side) {
+        if (n != Octree::no_cell && tree.cell(n).level == level && tree.is_leaf(n))
+            sides[n] |= std::uint32_t{1} << side;
+    };
+    // Each split cell p marks the leaves of its level across its faces, and around its edges:
+    // the two across the faces that meet there and the one diagonally across.
+    for (std::size_t p = 0; p < tree.size(); ++p) {
+        if (tree.is_leaf(p)) continue;
+        const int level = tree.cell(p).level;
+        std::array<std::uint32_t, 6> across{};
+        for (int d = 0; d < 6; ++d) {
+            across[d] = tree.neighbour(p, d);
+            mark(across[d], level, d ^ 1);
+        }
+        for (int a = 0; a < 3; ++a) {
+            const int b = (a + 1) % 3, e = (a + 2) % 3;
+            for (int k = 0; k < 4; ++k) {
+                const int high_b = k & 1, high_e = k >> 1;
+                const std::uint32_t qb = across[2 * b + high_b], qe = across[2 * e + high_e];
+                mark(qb, level, edge_side(a, k ^ 1));
+                mark(qe, level, edge_side(a, k ^ 2));
+                // Balanced, the tree has the cells of p's level across p's faces (p's children
+                // would otherwise border a leaf two levels coarser), unless they lie beyond the
+                // root box, where the diagonal does too.
+                if (qb != Octree::no_cell && tree.cell(qb).level == level)
+                    mark(tree.neighbour(qb, 2 * e + high_e), level, edge_side(a, k ^ 3));
+            }
+        }
+    }
+    return sides;
+}
+
+Tetrahedralization tetrahedralize(const Octree& tree, std::span<const std::uint8_t> wanted,
+                                  std::span<const std::uint32_t> sides) {
     if (tree.max_depth() > max_tetrahedralized_depth) {
         throw InvalidInput(fmt::format("tetrahedralize: octree depth {} exceeds {}",
                                        tree.max_depth(), max_tetrahedralized_depth));
@@ -154,6 +203,13 @@ Tetrahedralization tetrahedralize(const Octree& tree, std::span<const std::uint8
     if (!wanted.empty() && wanted.size() != tree.size())
         throw InvalidInput("tetrahedralize: one flag a cell is wanted");
     const std::size_t cells = tree.size();
+    if (!sides.empty() && sides.size() != cells)
+        throw InvalidInput("tetrahedralize: one set of finer sides a cell");
+    std::vector<std::uint32_t> own_sides;
+    if (sides.empty()) {
+        own_sides = finer_sides(tree);
+        sides = own_sides;
+    }
     const int shift = tree.max_depth() + 1;
     CornerSet corners(cells);
     for (std::size_t c = 0; c < cells; ++c) {
@@ -176,7 +232,7 @@ Tetrahedralization tetrahedralize(const Octree& tree, std::span<const std::uint8
                 thread_local LeafTetrahedra leaf;
                 leaf.keys.clear();
                 leaf.tetrahedra.clear();
-                cones_of_leaf(tree, corners, c, leaf);
+                cones_of_leaf(tree, corners, c, sides[c], leaf);
                 key_count[c + 1] = static_cast<std::uint32_t>(leaf.keys.size());
                 tetrahedron_count[c + 1] = static_cast<std::uint32_t>(leaf.tetrahedra.size());
                 out.keys.insert(out.keys.end(), leaf.keys.begin(), leaf.keys.end());

@@ -7,13 +7,57 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
+#include <new>
 #include <utility>
 #include <vector>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include "slc/core/error.hpp"
 
 namespace slc {
+
+namespace detail {
+
+/// The allocator of KeyMap's slots. A table of millions of entries is read at random, each
+/// lookup on a page of its own: at 4 KiB a page, nearly every lookup also misses the TLB.
+/// Arrays of 2 MiB or more are aligned to 2 MiB and offered to the kernel as huge pages (Linux's
+/// madvise; elsewhere, and where the kernel declines, plain pages), which a few TLB entries
+/// cover.
+template <class T>
+struct HugePageAllocator {
+    using value_type = T;
+    static constexpr std::size_t huge_page = std::size_t{2} << 20;
+
+    HugePageAllocator() = default;
+    template <class U>
+    explicit HugePageAllocator(const HugePageAllocator<U>&) noexcept {}
+
+    T* allocate(std::size_t n) {
+        const std::size_t bytes = n * sizeof(T);
+        if (bytes < huge_page) return static_cast<T*>(::operator new(bytes));
+        const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
+        void* p = std::aligned_alloc(huge_page, rounded);
+        if (p == nullptr) throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+        madvise(p, rounded, MADV_HUGEPAGE);  // a hint: refused, the pages stay small
+#endif
+        return static_cast<T*>(p);
+    }
+    void deallocate(T* p, std::size_t n) noexcept {
+        if (n * sizeof(T) < huge_page)
+            ::operator delete(p);
+        else
+            std::free(p);
+    }
+    friend bool operator==(const HugePageAllocator&, const HugePageAllocator&) { return true; }
+};
+
+}  // namespace detail
 
 /// Entries are only added or changed, never erased. Any key but KeyMap::no_key. The order of the
 /// entries is never observed, so results cannot depend on it.
@@ -79,7 +123,7 @@ private:
         return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
     }
     void rehash(std::size_t capacity) {
-        std::vector<Slot> old(capacity);
+        std::vector<Slot, detail::HugePageAllocator<Slot>> old(capacity);
         old.swap(slots_);
         mask_ = capacity - 1;
         shift_ = 64 - std::countr_zero(capacity);
@@ -93,7 +137,7 @@ private:
         std::uint64_t key = no_key;
         Value value{};
     };
-    std::vector<Slot> slots_;
+    std::vector<Slot, detail::HugePageAllocator<Slot>> slots_;
     std::size_t mask_ = 0;
     int shift_ = 64;
     std::size_t size_ = 0;

@@ -46,14 +46,28 @@ struct Tetrahedralization {
 inline constexpr int max_tetrahedralized_depth = 19;
 static_assert(max_tetrahedralized_depth + 1 < 21, "grid coordinates must fit 21 bits");
 
+/// Where finer cells touch each leaf of a 2:1 balanced octree: bit d (0 .. 5, the faces as
+/// Orthtree::neighbour numbers them) when the cell of the leaf's level across face d is split,
+/// and bit edge_side(a, k) when a cell of its level sharing its edge along axis a (k below) is
+/// split. Exactly where corners of finer leaves lie inside the leaf's faces or edges (a corner
+/// inside an edge makes the edge's midpoint a corner too); 0 for inner cells. One pass over the
+/// split cells, O(cells).
+std::vector<std::uint32_t> finer_sides(const Octree& tree);
+
+/// The bit of finer_sides() for a cell's edge along axis a whose other coordinates are the
+/// cell's high ones along axis (a + 1) % 3 when bit 0 of k is set, and along (a + 2) % 3 when
+/// bit 1 is.
+constexpr int edge_side(int a, int k) { return 6 + 4 * a + k; }
+
 /// Tetrahedralizes a balanced octree: 24 to 96 tetrahedra a leaf (24 when all six neighbours are
 /// leaves of its size). Cost O(leaves · depth), on all worker threads: each leaf's cones over its
 /// own list of vertices, then the vertices numbered by first use through keys sorted into
 /// buckets, so the mesh is the same for any number of threads. wanted: one flag a cell, or
 /// empty for every leaf; a leaf not flagged gets no tetrahedra (its ranges are empty) and its
 /// vertices are numbered only where a flagged leaf uses them. The flagged leaves' tetrahedra
-/// are those of the whole mesh. Throws InvalidInput if the tree is not 2:1 balanced or deeper
-/// than max_tetrahedralized_depth.
-Tetrahedralization tetrahedralize(const Octree& tree, std::span<const std::uint8_t> wanted = {});
+/// are those of the whole mesh. sides: finer_sides(tree), or empty to have them worked out. Throws
+/// InvalidInput if the tree is not 2:1 balanced or deeper than max_tetrahedralized_depth.
+Tetrahedralization tetrahedralize(const Octree& tree, std::span<const std::uint8_t> wanted = {},
+                                  std::span<const std::uint32_t> sides = {});
 
 }  // namespace slc

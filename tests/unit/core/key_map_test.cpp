@@ -39,6 +39,25 @@ TEST(KeyMap, AgreesWithStdUnorderedMapThroughGrowth) {
     }
 }
 
+TEST(KeyMap, TablesOfManyMegabytesKeepEveryEntry) {
+    // Past 2 MiB of slots the table takes huge pages: grown from its smallest size to 16 MiB
+    // of slots, and built at that size from the start, it holds the same entries.
+    std::mt19937_64 rng(9);
+    std::vector<std::uint64_t> keys(500'000);
+    for (auto& k : keys) k = rng() >> 1;
+    KeyMap<std::uint32_t> grown, reserved(keys.size());
+    for (std::uint32_t i = 0; i < keys.size(); ++i) {
+        grown.try_emplace(keys[i], i);
+        reserved.try_emplace(keys[i], i);
+    }
+    ASSERT_EQ(grown.size(), keys.size());  // 2^63 keys: no two alike among these
+    for (std::uint32_t i = 0; i < keys.size(); ++i) {
+        ASSERT_EQ(grown.at(keys[i]), i);
+        ASSERT_EQ(reserved.at(keys[i]), i);
+    }
+    for (int i = 0; i < 1000; ++i) EXPECT_EQ(grown.find(rng() >> 1), nullptr);
+}
+
 TEST(KeyMap, ValuesCanBeChangedInPlace) {
     KeyMap<double> map(1);
     map.try_emplace(7, 1.0);

@@ -209,6 +209,82 @@ TEST(Tetrahedralization, WantedLeavesGetTheWholeMeshsTetrahedraAndNoOthers) {
     }
 }
 
+TEST(Tetrahedralization, FinerSidesAreWhereCornersOfFinerLeavesLie) {
+    // Brute force: every leaf corner on the grid of half the finest edge, then every grid point
+    // strictly inside each leaf's faces and edges looked up.
+    std::size_t diagonal_only = 0, marked = 0;
+    for (unsigned seed : {3u, 17u, 29u}) {
+        const Octree tree = random_balanced_tree(seed, 5);
+        const std::vector<std::uint32_t> sides = finer_sides(tree);
+        ASSERT_EQ(sides.size(), tree.size());
+        const std::uint64_t top = std::uint64_t{1} << (tree.max_depth() + 1);
+        std::vector<std::uint8_t> corner((top + 1) * (top + 1) * (top + 1), 0);
+        auto index = [&](std::uint64_t x, std::uint64_t y, std::uint64_t z) {
+            return (x * (top + 1) + y) * (top + 1) + z;
+        };
+        std::vector<std::uint32_t> leaves;
+        for (std::size_t c = 0; c < tree.size(); ++c) {
+            if (!tree.is_leaf(c)) {
+                EXPECT_EQ(sides[c], 0u);
+                continue;
+            }
+            leaves.push_back(static_cast<std::uint32_t>(c));
+            const auto& cell = tree.cell(c);
+            const std::uint64_t u = top >> cell.level;
+            for (int k = 0; k < 8; ++k) {
+                corner[index(cell.coords[0] * u + (k & 1) * u,
+                             cell.coords[1] * u + (k >> 1 & 1) * u,
+                             cell.coords[2] * u + (k >> 2) * u)] = 1;
+            }
+        }
+        for (const std::uint32_t c : leaves) {
+            const auto& cell = tree.cell(c);
+            const std::uint64_t u = top >> cell.level;
+            std::uint32_t expected = 0;
+            // Face d across axis a, strictly inside.
+            for (int d = 0; d < 6; ++d) {
+                const int a = d / 2, b = (a + 1) % 3, e = (a + 2) % 3;
+                for (std::uint64_t i = 1; i < u; ++i) {
+                    for (std::uint64_t j = 1; j < u; ++j) {
+                        std::array<std::uint64_t, 3> p{cell.coords[0] * u, cell.coords[1] * u,
+                                                       cell.coords[2] * u};
+                        p[a] += (d & 1) * u;
+                        p[b] += i;
+                        p[e] += j;
+                        if (corner[index(p[0], p[1], p[2])]) expected |= 1u << d;
+                    }
+                }
+            }
+            // Edge k along axis a, strictly inside.
+            for (int a = 0; a < 3; ++a) {
+                for (int k = 0; k < 4; ++k) {
+                    for (std::uint64_t i = 1; i < u; ++i) {
+                        std::array<std::uint64_t, 3> p{cell.coords[0] * u, cell.coords[1] * u,
+                                                       cell.coords[2] * u};
+                        p[a] += i;
+                        p[(a + 1) % 3] += (k & 1) * u;
+                        p[(a + 2) % 3] += (k >> 1) * u;
+                        if (corner[index(p[0], p[1], p[2])]) expected |= 1u << edge_side(a, k);
+                    }
+                }
+            }
+            ASSERT_EQ(sides[c], expected) << "leaf " << c << ", seed " << seed;
+            marked += expected != 0;
+            // An edge touched by a cell diagonally across it alone: neither face beside it is.
+            for (int a = 0; a < 3; ++a) {
+                for (int k = 0; k < 4; ++k) {
+                    const int faces =
+                        1 << (2 * ((a + 1) % 3) + (k & 1)) | 1 << (2 * ((a + 2) % 3) + (k >> 1));
+                    if ((expected >> edge_side(a, k) & 1u) && (expected & faces) == 0)
+                        ++diagonal_only;
+                }
+            }
+        }
+    }
+    EXPECT_GT(marked, 100u);
+    EXPECT_GT(diagonal_only, 10u);
+}
+
 TEST(Tetrahedralization, RefusesAnUnbalancedTree) {
     Octree tree(Box3::centered_cube(1.0), 4);
     const std::uint32_t low = tree.split(0);      // cells 1..8 at level 1
