@@ -195,15 +195,12 @@ std::optional<Sample> TreeSampler<dim>::from_donors(Point x,
     for (const std::uint32_t id : ids) {
         const Sample& donor = samples_[id];
         if (std::isnan(donor.value)) continue;  // pending: not known yet
-        // |r| to within an ulp, which the slack covers: √(r·r) in the plane, std::hypot in space.
+        // |r| to within two ulps, which the slack covers; std::hypot where r·r would lose digits
+        // to underflow (in a root box some 1e-146 across). Overflow (a box 1e154 across) makes
+        // the reach infinite: no bound, as safe.
         const Point r = x - points_[id];
-        double length;
-        if constexpr (dim == 2) {
-            length = std::sqrt(dot(r, r));
-        } else {
-            length = norm(r);
-        }
-        const double reach = length + *slack_;
+        const double rr = dot(r, r);
+        const double reach = (rr > 1e-290 ? std::sqrt(rr) : norm(r)) + *slack_;
         const double b = std::abs(donor.value) - reach;
         if (b > lower) {
             lower = b;
