@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <limits>
 #include <utility>
 
@@ -17,22 +18,25 @@ namespace {
 
 using GridPoint = std::array<std::uint64_t, 3>;
 
-/// The set of the leaves' corners, by grid point.
-class CornerSet {
-public:
-    explicit CornerSet(std::size_t cells) : corners_(2 * cells) {}
-    /// Records p as a corner of a leaf.
-    void add(const GridPoint& p) {
-        corners_.try_emplace(Tetrahedralization::key(p[0], p[1], p[2]), 1);
+/// Whether grid point p is a corner of a leaf, read from the tree. p is a corner of cells of
+/// every level whose lattice holds it, from the coarsest, ℓ, on; it is a leaf's corner when one
+/// of the (up to eight) cells of level ℓ around it is in the tree: that cell's descendants down
+/// to a leaf keep p as a corner, and a leaf with corner p has such an ancestor. O(8 ℓ), the
+/// top of the tree read again each time (it stays in cache).
+bool is_leaf_corner(const Octree& tree, const GridPoint& p) {
+    const int shift = tree.max_depth() + 1;  // a cell of level ℓ is 2^(shift − ℓ) grid units
+    const int zeros = std::countr_zero(p[0] | p[1] | p[2] | (std::uint64_t{1} << shift));
+    const int level = shift - zeros;
+    if (level > tree.max_depth()) return false;  // odd: a cell's centre, no corner
+    for (int k = 0; k < 8; ++k) {
+        std::array<std::int64_t, 3> at{};
+        for (int i = 0; i < 3; ++i)
+            at[i] = static_cast<std::int64_t>(p[i] >> zeros) - ((k >> i) & 1);
+        const std::uint32_t c = tree.find(level, at);
+        if (c != Octree::no_cell && tree.cell(c).level == level) return true;
     }
-    /// True when p is a corner of some leaf. Safe to call from several threads at once.
-    bool contains(const GridPoint& p) const {
-        return corners_.contains(Tetrahedralization::key(p[0], p[1], p[2]));
-    }
-
-private:
-    KeyMap<std::uint8_t> corners_;
-};
+    return false;
+}
 
 GridPoint midpoint(const GridPoint& p, const GridPoint& q) {
     return {(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2};
@@ -41,13 +45,13 @@ GridPoint midpoint(const GridPoint& p, const GridPoint& q) {
 /// Appends to ring the leaf corners strictly inside the edge p → q, in order from p. A corner
 /// inside an edge makes its midpoint a corner too (the cell of the next level holding it is
 /// split, and its children meet at the midpoint), so the search descends only through corners.
-void collect_edge(const CornerSet& corners, const GridPoint& p, const GridPoint& q,
+void collect_edge(const Octree& tree, const GridPoint& p, const GridPoint& q,
                   std::vector<GridPoint>& ring) {
     const GridPoint m = midpoint(p, q);
-    if (m == p || !corners.contains(m)) return;  // p == m: the edge is one unit long
-    collect_edge(corners, p, m, ring);
+    if (m == p || !is_leaf_corner(tree, m)) return;  // p == m: the edge is one unit long
+    collect_edge(tree, p, m, ring);
     ring.push_back(m);
-    collect_edge(corners, m, q, ring);
+    collect_edge(tree, m, q, ring);
 }
 
 /// The sign of (b − a) · ((c − a) × (d − a)) for grid points: differences are exact in doubles,
@@ -101,12 +105,14 @@ bool edge_touched(std::uint32_t sides, const GridPoint& lo, std::uint64_t u, con
     return (sides >> edge_side(a, k) & 1u) != 0;
 }
 
-/// Appends leaf c's cones to out: for each face (or quarter, where the neighbour is finer) a fan
-/// from its centre over its ring, each cone from the leaf's centre. sides: c's finer_sides(),
-/// which spare the search of the edges no finer cell touches.
-void cones_of_leaf(const Octree& tree, const CornerSet& corners, std::size_t c, std::uint32_t sides,
-                   LeafTetrahedra& out) {
-    const auto [lo, u] = low_corner(tree, c);
+/// Appends the cones of the leaf with low corner lo and edge u to out: for each face (or
+/// quarter, where finer(d) says the neighbour across face d is finer) a fan from its centre over
+/// its ring, each cone from the leaf's centre. The ring holds the square's corners and what
+/// collect(p, q, quarter, ring) appends of the leaf corners inside its edge p → q (quarter: the
+/// square is a quarter of the face).
+template <class Finer, class Collect>
+void cones(const GridPoint& lo, std::uint64_t u, Finer&& finer, Collect&& collect,
+           LeafTetrahedra& out) {
     const GridPoint centre{lo[0] + u / 2, lo[1] + u / 2, lo[2] + u / 2};
     const std::uint16_t apex = out.at(centre);
     thread_local std::vector<GridPoint> ring;
@@ -115,7 +121,7 @@ void cones_of_leaf(const Octree& tree, const CornerSet& corners, std::size_t c, 
     // two other axes b and e.
     for (int d = 0; d < 6; ++d) {
         const int a = d / 2, b = (a + 1) % 3, e = (a + 2) % 3;
-        const std::uint64_t w = has_finer_neighbour(tree, c, d, unbalanced) ? u / 2 : u;
+        const std::uint64_t w = finer(d) ? u / 2 : u;
         for (std::uint64_t sb = 0; sb < u; sb += w) {
             for (std::uint64_t se = 0; se < u; se += w) {
                 // The square [sb, sb + w] × [se, se + w] of the face, its corners in turn.
@@ -130,9 +136,7 @@ void cones_of_leaf(const Octree& tree, const CornerSet& corners, std::size_t c, 
                 ring.clear();
                 for (int k = 0; k < 4; ++k) {
                     ring.push_back(square[k]);
-                    const GridPoint& next = square[(k + 1) % 4];
-                    if (w < u || edge_touched(sides, lo, u, square[k], next))
-                        collect_edge(corners, square[k], next, ring);
+                    collect(square[k], square[(k + 1) % 4], w < u, ring);
                 }
                 const GridPoint face = midpoint(square[0], square[2]);
                 const std::uint16_t f = out.at(face);
@@ -148,6 +152,48 @@ void cones_of_leaf(const Octree& tree, const CornerSet& corners, std::size_t c, 
         }
     }
 }
+
+/// Appends leaf c's cones to out. sides: c's finer_sides(), which spare the search of the edges
+/// no finer cell touches.
+void cones_of_leaf(const Octree& tree, std::size_t c, std::uint32_t sides, LeafTetrahedra& out) {
+    const auto [lo, u] = low_corner(tree, c);
+    cones(
+        lo, u, [&](int d) { return has_finer_neighbour(tree, c, d, unbalanced); },
+        [&](const GridPoint& p, const GridPoint& q, bool quarter, std::vector<GridPoint>& ring) {
+            if (quarter || edge_touched(sides, lo, u, p, q)) collect_edge(tree, p, q, ring);
+        },
+        out);
+}
+
+/// The cones of a leaf that no finer cell touches (finer_sides() 0), which are those of every
+/// such leaf moved and scaled: 15 vertices and 24 tetrahedra, from cones() on the leaf of edge 2
+/// at the grid's origin. A leaf's vertices are its low corner plus these offsets times half its
+/// edge.
+struct UntouchedLeaf {
+    std::vector<GridPoint> offsets;
+    std::vector<std::array<std::uint16_t, 4>> tetrahedra;
+
+    UntouchedLeaf() {
+        LeafTetrahedra unit;
+        cones(
+            GridPoint{0, 0, 0}, 2, [](int) { return false; },
+            [](const GridPoint&, const GridPoint&, bool, std::vector<GridPoint>&) {}, unit);
+        constexpr std::uint64_t mask = (std::uint64_t{1} << 21) - 1;
+        for (const std::uint64_t k : unit.keys)
+            offsets.push_back({k >> 42, k >> 21 & mask, k & mask});
+        tetrahedra = std::move(unit.tetrahedra);
+    }
+    /// Appends leaf c's cones to out, as cones_of_leaf() would.
+    void append(const Octree& tree, std::size_t c, LeafTetrahedra& out) const {
+        const auto [lo, u] = low_corner(tree, c);
+        const std::uint64_t half = u / 2;
+        for (const GridPoint& o : offsets) {
+            out.keys.push_back(Tetrahedralization::key(lo[0] + o[0] * half, lo[1] + o[1] * half,
+                                                       lo[2] + o[2] * half));
+        }
+        out.tetrahedra.insert(out.tetrahedra.end(), tetrahedra.begin(), tetrahedra.end());
+    }
+};
 
 /// A hash of a key for sorting keys into buckets, unlike KeyMap's (the top bits of the key
 /// times 2^64/φ), so that each bucket's own KeyMap spreads its keys.
@@ -202,6 +248,9 @@ Tetrahedralization tetrahedralize(const Octree& tree, std::span<const std::uint8
     }
     if (!wanted.empty() && wanted.size() != tree.size())
         throw InvalidInput("tetrahedralize: one flag a cell is wanted");
+    // (Leaves that no finer cell touches take their cones from UntouchedLeaf, which sees no
+    // neighbour: the balance is checked here for all.)
+    if (!tree.is_balanced()) throw InvalidInput(unbalanced);
     const std::size_t cells = tree.size();
     if (!sides.empty() && sides.size() != cells)
         throw InvalidInput("tetrahedralize: one set of finer sides a cell");
@@ -211,14 +260,8 @@ Tetrahedralization tetrahedralize(const Octree& tree, std::span<const std::uint8
         sides = own_sides;
     }
     const int shift = tree.max_depth() + 1;
-    CornerSet corners(cells);
-    for (std::size_t c = 0; c < cells; ++c) {
-        if (!tree.is_leaf(c)) continue;
-        const auto [lo, u] = low_corner(tree, c);
-        for (std::uint64_t k = 0; k < 8; ++k)
-            corners.add({lo[0] + (k & 1) * u, lo[1] + (k >> 1 & 1) * u, lo[2] + (k >> 2) * u});
-    }
     // Each leaf's cones over its own vertices, on all threads, in blocks of cells.
+    static const UntouchedLeaf untouched;
     constexpr std::size_t block = 64;
     const std::size_t blocks = (cells + block - 1) / block;
     std::vector<LeafTetrahedra> made(blocks);
@@ -232,7 +275,10 @@ Tetrahedralization tetrahedralize(const Octree& tree, std::span<const std::uint8
                 thread_local LeafTetrahedra leaf;
                 leaf.keys.clear();
                 leaf.tetrahedra.clear();
-                cones_of_leaf(tree, corners, c, sides[c], leaf);
+                if (sides[c] == 0)
+                    untouched.append(tree, c, leaf);
+                else
+                    cones_of_leaf(tree, c, sides[c], leaf);
                 key_count[c + 1] = static_cast<std::uint32_t>(leaf.keys.size());
                 tetrahedron_count[c + 1] = static_cast<std::uint32_t>(leaf.tetrahedra.size());
                 out.keys.insert(out.keys.end(), leaf.keys.begin(), leaf.keys.end());
