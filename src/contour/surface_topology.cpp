@@ -67,6 +67,14 @@ public:
         if (on_sides == 1 && (sides >> side & 1u) == 0) return nullptr;
         return at(Tetrahedralization::key(q[0], q[1], q[2]));
     }
+    /// Whether the samples of leaf c give G's sign at x, its centre tried first (the nearest to
+    /// the points asked of it, the centres of c's faces).
+    bool signed_by_donors(Vec3 x, std::uint32_t c) const {
+        const CellSamples& ids = cell_samples_[c];
+        const std::array<std::uint32_t, cell_points> centre_first{
+            ids[8], ids[0], ids[1], ids[2], ids[3], ids[4], ids[5], ids[6], ids[7]};
+        return TreeSampler<3>::signed_by_donors(x, centre_first);
+    }
     /// A stand-in for G at x from the samples of leaf c, when they give its sign.
     std::optional<Sample> stand_in(Vec3 x, std::uint32_t c) const {
         return from_donors(x, cell_samples_[c]);
@@ -86,15 +94,15 @@ public:
             lo[i] = cell.coords[i] * u;
             if (lo[i] == 0 || lo[i] + u == grid_.extent()) return false;
         }
-        const bool positive = samples_[cell_samples_[c][0]].value > 0.0;
+        // c's samples have one sign, so a stand-in from them has it too: each face centre
+        // needs one sample whose bound gives the sign, the nearest (the centre) tried first.
         for (int d = 0; d < 6; ++d) {
             const int a = d / 2;
             SampleGrid<3>::Coords p = lo;
             p[a] += (d & 1) * u;
             p[(a + 1) % 3] += u / 2;
             p[(a + 2) % 3] += u / 2;
-            const std::optional<Sample> s = stand_in(grid_.point(p), c);
-            if (!s || (s->value > 0.0) != positive) return false;
+            if (!signed_by_donors(grid_.point(p), c)) return false;
         }
         return true;
     }

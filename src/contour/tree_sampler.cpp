@@ -188,6 +188,16 @@ void TreeSampler<dim>::for_needed_stand_ins(std::span<const std::uint32_t> touch
 }
 
 template <int dim>
+double TreeSampler<dim>::reach(Point x, std::uint32_t id) const {
+    // |r| to within two ulps, which the slack covers; std::hypot where r·r would lose digits to
+    // underflow (in a root box some 1e-146 across). Overflow (a box 1e154 across) makes the
+    // reach infinite: no bound, as safe.
+    const Point r = x - points_[id];
+    const double rr = dot(r, r);
+    return (rr > 1e-290 ? std::sqrt(rr) : norm(r)) + *slack_;
+}
+
+template <int dim>
 std::optional<Sample> TreeSampler<dim>::from_donors(Point x,
                                                     std::span<const std::uint32_t> ids) const {
     if (!slack_) return std::nullopt;
@@ -195,21 +205,28 @@ std::optional<Sample> TreeSampler<dim>::from_donors(Point x,
     for (const std::uint32_t id : ids) {
         const Sample& donor = samples_[id];
         if (std::isnan(donor.value)) continue;  // pending: not known yet
-        // |r| to within two ulps, which the slack covers; std::hypot where r·r would lose digits
-        // to underflow (in a root box some 1e-146 across). Overflow (a box 1e154 across) makes
-        // the reach infinite: no bound, as safe.
-        const Point r = x - points_[id];
-        const double rr = dot(r, r);
-        const double reach = (rr > 1e-290 ? std::sqrt(rr) : norm(r)) + *slack_;
-        const double b = std::abs(donor.value) - reach;
+        const double r = reach(x, id);
+        const double b = std::abs(donor.value) - r;
         if (b > lower) {
             lower = b;
             sign = donor.value;
         }
-        upper = std::min(upper, donor.upper + reach);
+        upper = std::min(upper, donor.upper + r);
     }
     if (!certain(lower)) return std::nullopt;
     return Sample{std::copysign(lower, sign), upper, Source::parents};
+}
+
+template <int dim>
+bool TreeSampler<dim>::signed_by_donors(Point x, std::span<const std::uint32_t> ids) const {
+    if (!slack_) return false;
+    // from_donors' lower bound is the largest of 0 and the donors' bounds, certain above η.
+    for (const std::uint32_t id : ids) {
+        const double value = samples_[id].value;
+        if (!std::isnan(value) && certain(std::max(0.0, std::abs(value) - reach(x, id))))
+            return true;
+    }
+    return false;
 }
 
 template <int dim>

@@ -204,6 +204,9 @@ protected:
     /// The bounds that the known samples among ids (the donors) give on G at x: a stand-in when
     /// they give its sign. None without a distance slack.
     std::optional<Sample> from_donors(Point x, std::span<const std::uint32_t> ids) const;
+    /// Whether from_donors(x, ids) gives a stand-in: whether one of the donors' bounds gives G's
+    /// sign at x (tried in the order given, to the first that does).
+    bool signed_by_donors(Point x, std::span<const std::uint32_t> ids) const;
     /// The bounds at the samples ids (one batch; none without bounds), widened by the rounding
     /// allowance, tighten their stand-ins, or make stand-ins of the points pending for G whose
     /// sign they give. Returns the samples still pending.
@@ -240,6 +243,8 @@ private:
     /// A lower bound of |G| gives G's sign, and a stand-in, when it exceeds η (so that the point
     /// is never a perturbation candidate).
     bool certain(double lower) const { return lower > eta_; }
+    /// How far a donor's bound reaches to x: |x − y| + δ for the donor at y.
+    double reach(Point x, std::uint32_t id) const;
     std::vector<Point> points_of(std::span<const std::uint32_t> ids) const;
 
     /// Samples the arrays have room for before they first grow.
