@@ -171,6 +171,14 @@ bool segment_meets_triangle(Vec3 p, Vec3 q, const Triangle3& t) {
 
 bool triangles_intersect(const Triangle3& s, const Triangle3& t) {
     if (!bounding_box(s).overlaps(bounding_box(t))) return false;
+    // A triangle strictly on one side of the other's plane meets nothing of it (three
+    // predicates, where the edges' tests below would take twelve or more to say so).
+    auto beyond_plane = [](const Triangle3& u, const Triangle3& v) {
+        const int a = orientation(u.a, u.b, u.c, v.a);
+        return a != 0 && a == orientation(u.a, u.b, u.c, v.b) &&
+               a == orientation(u.a, u.b, u.c, v.c);
+    };
+    if (beyond_plane(s, t) || beyond_plane(t, s)) return false;
     // Two closed triangles meet iff an edge of one meets the other: the ends of their common
     // part (a segment on the line where their planes cross, or a convex polygon when coplanar)
     // lie on edges.

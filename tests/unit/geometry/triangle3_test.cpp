@@ -175,6 +175,31 @@ TEST(Triangle3, TrianglesIntersectCases) {
     EXPECT_TRUE(triangles_intersect(base, {{0.1, 0.1, 0}, {0.2, 0.1, 0}, {0.1, 0.2, 0}}));
 }
 
+TEST(Triangle3, TrianglesIntersectIsAnEdgeOfOneMeetingTheOther) {
+    // Corners on a small grid, so that touching, coplanar and collinear cases are common: the
+    // answer, with its early test of each triangle against the other's plane, is the edges'.
+    std::mt19937 rng(21);
+    std::uniform_int_distribution<int> coordinate(0, 3);
+    auto corner = [&] {
+        return Vec3{static_cast<double>(coordinate(rng)), static_cast<double>(coordinate(rng)),
+                    static_cast<double>(coordinate(rng))};
+    };
+    int met = 0, apart = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const Triangle3 s{corner(), corner(), corner()}, t{corner(), corner(), corner()};
+        if (is_degenerate(s) || is_degenerate(t)) continue;
+        bool edges = false;
+        for (int e = 0; e < 3; ++e) {
+            edges = edges || segment_meets_triangle(s[e], s[(e + 1) % 3], t) ||
+                    segment_meets_triangle(t[e], t[(e + 1) % 3], s);
+        }
+        ASSERT_EQ(triangles_intersect(s, t), edges) << "case " << k;
+        (edges ? met : apart) += 1;
+    }
+    EXPECT_GT(met, 1000);
+    EXPECT_GT(apart, 1000);
+}
+
 TEST(Triangle3, OverlapOfTrianglesSharingACorner) {
     // Two faces of a tetrahedron meet only at their corner... (the shared corner comes first)
     EXPECT_FALSE(triangles_overlap(base, {{0, 0, 0}, {0, 0, 2}, {-1, 1, 0}}, 1));

@@ -119,10 +119,12 @@ TEST(FindSelfIntersection, AgreesWithAllPairsOnJitteredSpheres) {
         for (std::size_t t = 0; t < s.size(); ++t) degenerate |= is_degenerate(s.triangle(t));
         if (degenerate) continue;
         // For each triangle i, the least j > i it meets among the pairs with a triangle flagged
-        // (all, then a random third), by testing every pair.
-        std::vector<std::uint8_t> all(s.size(), 1), some(s.size(), 0);
-        std::bernoulli_distribution third(1.0 / 3.0);
+        // (all, a random third, three quarters: a search for each triangle below half, the
+        // hierarchy against itself above), by testing every pair.
+        std::vector<std::uint8_t> all(s.size(), 1), some(s.size(), 0), most(s.size(), 0);
+        std::bernoulli_distribution third(1.0 / 3.0), three_quarters(0.75);
         for (auto& f : some) f = third(rng) ? 1 : 0;
+        for (auto& f : most) f = three_quarters(rng) ? 1 : 0;
         bool fan_met = false;
         auto contacts = [&](const std::vector<std::uint8_t>& flags) {
             std::vector<TriangleContact> want;
@@ -151,7 +153,7 @@ TEST(FindSelfIntersection, AgreesWithAllPairsOnJitteredSpheres) {
             }
             return want;
         };
-        for (const auto* flags : {&all, &some}) {
+        for (const auto* flags : {&all, &some, &most}) {
             const std::vector<TriangleContact> want = contacts(*flags);
             const std::vector<TriangleContact> got = find_self_intersections(s, *flags);
             ASSERT_EQ(got.size(), want.size());
