@@ -72,7 +72,7 @@ public:
     bool signed_by_donors(Vec3 x, std::uint32_t c) const {
         const CellSamples& ids = cell_samples_[c];
         const std::array<std::uint32_t, cell_points> centre_first{
-            ids[8], ids[0], ids[1], ids[2], ids[3], ids[4], ids[5], ids[6], ids[7]};
+            ids[cell_points - 1], ids[0], ids[1], ids[2], ids[3], ids[4], ids[5], ids[6], ids[7]};
         return TreeSampler<3>::signed_by_donors(x, centre_first);
     }
     /// A stand-in for G at x from the samples of leaf c, when they give its sign.

@@ -285,6 +285,24 @@ TEST(Tetrahedralization, FinerSidesAreWhereCornersOfFinerLeavesLie) {
     EXPECT_GT(diagonal_only, 10u);
 }
 
+TEST(Tetrahedralization, TheTemplateLeafGivesWhatTheSearchOfEveryLeafGives) {
+    // Sides claiming that finer cells touch every leaf send every leaf through the search of
+    // its faces and edges; with the true sides, most take the template leaf. The same mesh.
+    const Octree tree = random_balanced_tree(23, 5);
+    const std::vector<std::uint32_t> sides = finer_sides(tree);
+    std::size_t untouched = 0;
+    for (std::size_t c = 0; c < tree.size(); ++c) untouched += tree.is_leaf(c) && sides[c] == 0;
+    ASSERT_GT(untouched, 100u);
+    const std::vector<std::uint32_t> all_touched(tree.size(), ~0u);
+    const Tetrahedralization fast = tetrahedralize(tree, {}, sides);
+    const Tetrahedralization searched = tetrahedralize(tree, {}, all_touched);
+    EXPECT_EQ(fast.grid, searched.grid);
+    EXPECT_EQ(fast.vertices, searched.vertices);
+    EXPECT_EQ(fast.tetrahedra, searched.tetrahedra);
+    EXPECT_EQ(fast.cell_offsets, searched.cell_offsets);
+    EXPECT_EQ(fast.vertex_offsets, searched.vertex_offsets);
+}
+
 TEST(Tetrahedralization, RefusesAnUnbalancedTree) {
     Octree tree(Box3::centered_cube(1.0), 4);
     const std::uint32_t low = tree.split(0);      // cells 1..8 at level 1
