@@ -455,11 +455,13 @@ std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
 /// (δ near 0, or both triangles degenerate).
 bool angles_beyond_pi(const Surface& s, const TriangleIndices& t, int k, const TriangleIndices& u,
                       int l) {
+    // (√(x·x) rather than std::hypot: a few ulps more rounding, far below the margin of 1e-5.)
     auto sin_cos = [&](const TriangleIndices& tri, int c) {
         const Vec3 a = s.vertices[tri[c]];
         const Vec3 p = s.vertices[tri[(c + 1) % 3]] - a, q = s.vertices[tri[(c + 2) % 3]] - a;
-        const double lengths = norm(p) * norm(q);  // 0 for a repeated vertex: NaN below
-        return std::pair{norm(cross(p, q)) / lengths, dot(p, q) / lengths};
+        const Vec3 pq = cross(p, q);
+        const double lengths = std::sqrt(dot(p, p) * dot(q, q));  // 0 for a repeated vertex: NaN
+        return std::pair{std::sqrt(dot(pq, pq)) / lengths, dot(p, q) / lengths};
     };
     const auto [sin_a, cos_a] = sin_cos(t, k);
     const auto [sin_b, cos_b] = sin_cos(u, l);
