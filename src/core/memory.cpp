@@ -2,9 +2,13 @@
 #include "slc/core/memory.hpp"
 
 #include <cstdlib>  // any C library header: glibc's defines __GLIBC__, tested below
+#include <new>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
+#endif
+#if defined(__linux__)
+#include <sys/mman.h>
 #endif
 
 namespace slc {
@@ -22,5 +26,17 @@ bool keep_freed_memory() {
     return false;
 #endif
 }
+
+void* allocate_huge(std::size_t bytes) {
+    const std::size_t rounded = (bytes + huge_page_size - 1) / huge_page_size * huge_page_size;
+    void* block = std::aligned_alloc(huge_page_size, rounded);
+    if (block == nullptr) throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    madvise(block, rounded, MADV_HUGEPAGE);  // a hint: refused, the pages stay small
+#endif
+    return block;
+}
+
+void free_huge(void* block) noexcept { std::free(block); }
 
 }  // namespace slc

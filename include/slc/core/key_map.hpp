@@ -7,17 +7,13 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
-#include <cstdlib>
 #include <limits>
 #include <new>
 #include <utility>
 #include <vector>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
 #include "slc/core/error.hpp"
+#include "slc/core/memory.hpp"
 
 namespace slc {
 
@@ -25,13 +21,11 @@ namespace detail {
 
 /// The allocator of KeyMap's slots. A table of millions of entries is read at random, each
 /// lookup on a page of its own: at 4 KiB a page, nearly every lookup also misses the TLB.
-/// Arrays of 2 MiB or more are aligned to 2 MiB and offered to the kernel as huge pages (Linux's
-/// madvise; elsewhere, and where the kernel declines, plain pages), which a few TLB entries
+/// Arrays of huge_page_size or more are on huge pages (allocate_huge), which a few TLB entries
 /// cover.
 template <class T>
 struct HugePageAllocator {
     using value_type = T;
-    static constexpr std::size_t huge_page = std::size_t{2} << 20;
 
     HugePageAllocator() = default;
     template <class U>
@@ -39,20 +33,14 @@ struct HugePageAllocator {
 
     T* allocate(std::size_t n) {
         const std::size_t bytes = n * sizeof(T);
-        if (bytes < huge_page) return static_cast<T*>(::operator new(bytes));
-        const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
-        void* p = std::aligned_alloc(huge_page, rounded);
-        if (p == nullptr) throw std::bad_alloc();
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-        madvise(p, rounded, MADV_HUGEPAGE);  // a hint: refused, the pages stay small
-#endif
-        return static_cast<T*>(p);
+        return static_cast<T*>(bytes < huge_page_size ? ::operator new(bytes)
+                                                      : allocate_huge(bytes));
     }
     void deallocate(T* p, std::size_t n) noexcept {
-        if (n * sizeof(T) < huge_page)
+        if (n * sizeof(T) < huge_page_size)
             ::operator delete(p);
         else
-            std::free(p);
+            free_huge(p);
     }
     friend bool operator==(const HugePageAllocator&, const HugePageAllocator&) { return true; }
 };
