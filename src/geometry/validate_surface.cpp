@@ -197,11 +197,12 @@ std::vector<TriangleContact> find_self_intersections(const Surface& s,
                                                      std::span<const std::uint8_t> changed) {
     SLC_ASSERT(changed.size() == s.size(), "one flag a triangle");
     const auto n = static_cast<std::uint32_t>(s.size());
-    // The flagged triangles get a hierarchy of their own, and every triangle u looks in it for
-    // the flagged triangles v its box meets: the cost of the flagged triangles' pairs, and no
-    // hierarchy of the whole surface when few changed. A pair of two flagged triangles is tested
-    // from the smaller. A contact lowers partner[] of its smaller triangle to the larger; the
-    // least is kept whatever the order the threads find them in.
+    // Up to half the triangles flagged, the flagged ones get a hierarchy of their own, and every
+    // triangle u looks in it for the flagged triangles v its box meets: the cost of the flagged
+    // triangles' pairs, and no hierarchy of the whole surface when few changed (a pair of two
+    // flagged triangles is tested from the smaller). Beyond, a hierarchy of all (below). A
+    // contact lowers partner[] of its smaller triangle to the larger; the least is kept whatever
+    // the order the threads find them in.
     std::vector<std::uint32_t> flagged;
     for (std::uint32_t t = 0; t < n; ++t)
         if (changed[t]) flagged.push_back(t);

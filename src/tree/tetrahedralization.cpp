@@ -66,7 +66,8 @@ bool positively_oriented(const GridPoint& a, const GridPoint& b, const GridPoint
     return dot(diff(b), cross(diff(c), diff(d))) > 0.0;
 }
 
-/// What tetrahedralize() throws for an octree that is not 2:1 balanced (has_finer_neighbour).
+/// What tetrahedralize() throws for an octree that is not 2:1 balanced (Octree::is_balanced,
+/// checked once before any leaf; has_finer_neighbour checks it again where it looks).
 constexpr const char* unbalanced = "tetrahedralize: the octree is not 2:1 balanced";
 
 /// The low corner of cell c on the grid of half the finest edge, and its edge there.
