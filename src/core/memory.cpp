@@ -16,12 +16,12 @@ namespace slc {
 bool keep_freed_memory() {
 #if defined(__GLIBC__)
     // By default glibc maps blocks above a threshold (128 KiB, raised to the largest block freed
-    // so far) one by one and unmaps them when freed, and trims the heap once its free top
-    // exceeds twice that threshold: every step then faults its arrays in afresh.
-    constexpr int mapped_above = 32 << 20;
-    constexpr int trimmed_above = 256 << 20;
-    return mallopt(M_MMAP_THRESHOLD, mapped_above) == 1 &&
-           mallopt(M_TRIM_THRESHOLD, trimmed_above) == 1;
+    // so far, at most 32 MiB) one by one and unmaps them when freed, and trims the heap once its
+    // free top exceeds twice that threshold: every step then faults its arrays in afresh. No
+    // block is mapped on its own (the largest arrays of a fine contour are hundreds of MiB), and
+    // up to 2 GiB of free heap is kept.
+    constexpr int trimmed_above = 2000 << 20;
+    return mallopt(M_MMAP_MAX, 0) == 1 && mallopt(M_TRIM_THRESHOLD, trimmed_above) == 1;
 #else
     return false;
 #endif
