@@ -194,7 +194,7 @@ Result advance_extended(const Shape& shape, double t, double k, const Law& law,
         [&](Point x) {
             const Point foot = x - k * finite(now.velocity(x), t, x);
             const Point w_foot = finite(now.velocity(foot), t, foot);
-            const Point w_next = finite(next.velocity(x), t + k, x);
+            const Point w_next = finite(next.velocity(x, w_foot), t + k, x);
             return now.distance(x - (0.5 * k) * (w_foot + w_next));
         },
         expensive_grain);

@@ -167,6 +167,31 @@ public:
         if (extension_ == Extension::whitney) return (*whitney_)(x);
         return velocity(x, tree_.nearest_point(x));
     }
+    /// W(x) for the corrector's end of the characteristic through x, which brought `arriving`
+    /// from the level before: where x is nearest a shock corner or one of its two sides, the
+    /// side whose velocity is nearer `arriving`. A point on a shock's bisector (within rounding
+    /// of it) is equally near both sides, and each level may name the other one: the mean of
+    /// the two sides' velocities would then move the corner by three quarters of a step where
+    /// the characteristic keeps to one side, a jump of G along the bisector that refinement
+    /// cannot cross to place the corner.
+    Vec2 velocity(Vec2 x, Vec2 arriving) const {
+        if (extension_ != Extension::nearest_point || sides_.empty()) return velocity(x);
+        const ClosestPoint p = tree_.nearest_point(x);
+        const Interface& curves = tree_.curves();
+        const auto nearer = [arriving](Vec2 a, Vec2 b) {
+            return norm2(a - arriving) <= norm2(b - arriving) ? a : b;
+        };
+        if (p.t == 0.0 || p.t == 1.0) {
+            const std::size_t v = p.t == 0.0 ? p.segment : curves.next(p.segment);
+            return shock_[v] ? nearer(sides_[v].first, sides_[v].second) : u_[v];
+        }
+        const std::size_t a = p.segment, b = curves.next(a);
+        if (shock_[a] && norm2(sides_[a].first - arriving) < norm2(sides_[a].second - arriving))
+            return sides_[a].first;
+        if (shock_[b] && norm2(sides_[b].second - arriving) < norm2(sides_[b].first - arriving))
+            return sides_[b].second;
+        return velocity(x, p);
+    }
     /// The signed distance to this level's Γ: exact to its chords, or to its arcs with
     /// StepOptions::arcs.
     double distance(Vec2 x) const { return distance(tree_.closest_point(x)); }

@@ -159,6 +159,10 @@ public:
     Vec3 velocity(Vec3 x) const {
         return nearest_point_extension<Vec3>(surface_, u_, tree_.nearest_point(x));
     }
+    /// W(x) for the corrector's end of the characteristic that brought `arriving`: W(x), since
+    /// the nearest-point extension of surfaces keeps no sides of shocks apart (the step of
+    /// curves does, step.cpp).
+    Vec3 velocity(Vec3 x, Vec3 /*arriving*/) const { return velocity(x); }
     /// The closest point of this level's triangles and W(x), from one closest-point query.
     std::pair<SurfacePoint, Vec3> closest_point_and_velocity(Vec3 x) const {
         const SurfacePoint p = tree_.closest_point(x);
