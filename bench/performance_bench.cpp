@@ -2,7 +2,8 @@
 // segments, the speed-up from threads, and runs beside the programs users would pick instead.
 // Writes its tables and summaries into their regions of docs/performance.md, a page written by
 // hand (doc_regions.hpp), and one line into docs/notes/performance.md; with --check-pages it only
-// checks that both pages hold those regions.
+// checks that both pages hold those regions, and with --only zalesak (or curve-shortening) it
+// writes that region alone.
 //
 // For every cell of Tables 5-7 it runs the first steps (at most --prefix, same k as the full run)
 // on one thread and on all threads, then measures, on the interface reached, one step against its
@@ -488,7 +489,7 @@ std::string zalesak_table(const std::filesystem::path& figures) {
                        .arcs = extension == Extension::direct};
     };
     const std::vector<PeerRun> zalesak = {
-        zalesak_run("N/K/P/ε = 100/7/2/1e-6, nearest-point extension (default)", 100, 7, 2, 1e-6,
+        zalesak_run("N/K/P/ε = 100/7/4/1e-6, nearest-point extension (default)", 100, 7, 4, 1e-6,
                     Extension::nearest_point),
         zalesak_run("4/7/2/1e-6, direct velocity, arcs", 4, 7, 2, 1e-6, Extension::direct),
         zalesak_run("16/7/2/1e-6, direct velocity, arcs", 16, 7, 2, 1e-6, Extension::direct),
@@ -664,6 +665,23 @@ int run_bench(int argc, char** argv) {
     if (rounds < 1) {
         fmt::print(stderr, "performance_bench: --rounds must be at least 1, got {}\n", rounds);
         return 2;
+    }
+    // --only zalesak|curve-shortening: that region alone, in seconds.
+    const std::string only = take_flag(argc, argv, "--only", "");
+    if (!only.empty()) {
+        const auto figures = std::filesystem::path(out).parent_path() / "figures";
+        if (only == "zalesak") {
+            bench::write_regions(out, {{"zalesak", zalesak_table(figures)}});
+        } else if (only == "curve-shortening") {
+            bench::write_regions(out, {{"curve-shortening", shortening_table(figures)}});
+        } else {
+            fmt::print(stderr,
+                       "performance_bench: --only takes zalesak or curve-shortening, got {}\n",
+                       only);
+            return 2;
+        }
+        fmt::print(stderr, "wrote {}\n", out);
+        return 0;
     }
     // Before two hours of measurements, not after.
     bench::require_regions(out, page_regions());
