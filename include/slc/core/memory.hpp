@@ -10,10 +10,10 @@ namespace slc {
 
 /// Keeps memory a step frees in the process for the next step, instead of returning it to the
 /// system and taking it back a page fault at a time: with glibc, every block comes from the heap
-/// (none is mapped on its own) and up to 2 GiB of free heap is kept. Call once, at the start of a program that
-/// runs many steps; it changes how much memory the process holds, never a result. Does nothing
-/// with other C libraries, or under AddressSanitizer's allocator. Returns whether the settings
-/// were taken.
+/// (none is mapped on its own) and up to 2 GiB of free heap is kept. Call once, at the start of a
+/// program that runs many steps; it changes how much memory the process holds, never a result. Does
+/// nothing with other C libraries, or under AddressSanitizer's allocator. Returns whether the
+/// settings were taken.
 bool keep_freed_memory();
 
 /// The size from which allocate_huge() asks for huge pages: 2 MiB.
