@@ -721,13 +721,17 @@ def test_an_observer_returns_true_false_or_none():
 
 
 def test_ctrl_c_stops_a_run_between_steps():
-    # SIGINT from another thread while the run is in C++: the run stops after the step.
+    # SIGINT from another thread while the run is in C++: the run stops after the step. Python's
+    # own handler is put in place first: a test run started in the background by a shell
+    # without job control inherits SIGINT ignored, and the run would go on for all its steps.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
     timer.start()
     try:
         r = slc.run(slc.Interface(circle()), "unit-normal", 0.5, steps=100000)
     finally:
         timer.cancel()
+        signal.signal(signal.SIGINT, previous)
     assert r.status == "interrupted" and 0 < r.summary["steps_done"] < 100000
 
 
