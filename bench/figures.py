@@ -53,30 +53,6 @@ def from_its_circle(out):
     return max(abs(math.hypot(x - cx, y - cy) - radius) for x, y in points)
 
 
-def largest_corner_cut(out, tilt=0.0):
-    """Fig. 13 shrinking: the largest distance from a corner of the exact triangle (circumradius
-    1 − 2t, its apex at 90° + tilt) to the curves, over every frame of the run."""
-    def to_segment(p, a, b):
-        dx, dy = b[0] - a[0], b[1] - a[1]
-        length2 = dx * dx + dy * dy
-        s = 0.0 if length2 == 0 else max(0.0, min(1.0, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy)
-                                                  / length2))
-        return math.hypot(a[0] + s * dx - p[0], a[1] + s * dy - p[1])
-    worst = 0.0
-    folder = os.path.join(out, "frames")
-    for name in sorted(os.listdir(folder)):
-        with open(os.path.join(folder, name)) as f:
-            frame = json.load(f)
-        radius = 1.0 - 2.0 * frame["time"]
-        curves = [c["points"] for c in frame["curves"]]
-        for j in range(3):
-            a = math.radians(90.0 + 120.0 * j + tilt)
-            corner = (radius * math.cos(a), radius * math.sin(a))
-            worst = max(worst, min(to_segment(corner, c[i], c[(i + 1) % len(c)])
-                                   for c in curves for i in range(len(c))))
-    return worst
-
-
 def components_range(out):
     counts = [int(r["components"]) for r in history(out)]
     return min(counts), max(counts)
@@ -116,6 +92,22 @@ def one_way(slc, work, curves, points, box):
                           capture_output=True, text=True, check=True)
     lines = done.stdout.strip().splitlines()[1:]
     return max(abs(float(line.split(",")[2])) for line in lines)
+
+
+def largest_corner_cut(slc, work, out, box, tilt=0.0):
+    """Fig. 13 shrinking: the largest distance from a corner of the exact triangle (circumradius
+    1 − 2t, its apex at 90° + tilt) to the curves, over every frame of the run."""
+    worst = 0.0
+    folder = os.path.join(out, "frames")
+    for name in sorted(os.listdir(folder)):
+        with open(os.path.join(folder, name)) as f:
+            frame = json.load(f)
+        radius = 1.0 - 2.0 * frame["time"]
+        corners = [(radius * math.cos(math.radians(90.0 + 120.0 * j + tilt)),
+                    radius * math.sin(math.radians(90.0 + 120.0 * j + tilt))) for j in range(3)]
+        curves = [c["points"] for c in frame["curves"]]
+        worst = max(worst, one_way(slc, work, curves, corners, box))
+    return worst
 
 
 def hausdorff(slc, work, a, b, box):
@@ -226,7 +218,8 @@ G is the exact offset of the polygon (docs/algorithms/evolve.md).
                 counts = [components_range(self.out(f"{tag}-{k}")) for k in runs]
                 lo, hi = min(c[0] for c in counts), max(c[1] for c in counts)
                 cuts = "—" if speed > 0 else ", ".join(
-                    fmt(largest_corner_cut(self.out(f"{tag}-{k}"))) for k in ("coarse", "fine"))
+                    fmt(largest_corner_cut(self.slc, self.work, self.out(f"{tag}-{k}"), box))
+                    for k in ("coarse", "fine"))
                 self.write(
                     f"| {motion} | {extension} | {fmt(s['coarse']['e_inf'])} | "
                     f"{fmt(s['fine']['e_inf'])} | "

@@ -666,10 +666,10 @@ int run_bench(int argc, char** argv) {
         fmt::print(stderr, "performance_bench: --rounds must be at least 1, got {}\n", rounds);
         return 2;
     }
+    const auto figures = std::filesystem::path(out).parent_path() / "figures";
     // --only zalesak|curve-shortening: that region alone, in seconds.
     const std::string only = take_flag(argc, argv, "--only", "");
     if (!only.empty()) {
-        const auto figures = std::filesystem::path(out).parent_path() / "figures";
         if (only == "zalesak") {
             bench::write_regions(out, {{"zalesak", zalesak_table(figures)}});
         } else if (only == "curve-shortening") {
@@ -710,7 +710,6 @@ int run_bench(int argc, char** argv) {
                           cell_table(tables[t], rows, paper, studies[t], times[t], totals));
     page[1].second = cells_summary(totals);
     page.emplace_back("scaling", scaling_table(max_segments, rounds));
-    const auto figures = std::filesystem::path(out).parent_path() / "figures";
     page.emplace_back("zalesak", zalesak_table(figures));
     page.emplace_back("curve-shortening", shortening_table(figures));
     bench::write_regions(out, page);
