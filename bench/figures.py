@@ -445,13 +445,14 @@ S = 1) they are gone and the run lies nearer b; the picture draws run a so.
                 "d": ["-N", "2560", "-S", "4", "-K", "8", "-P", "4", "--eps", "1e-6"]}
         meshes = {"a64": ("a", 64), "a": ("a", 128), "b": ("b", 128), "c": ("c", 256),
                   "d": ("d", 512)}
+        per_unit = 10  # frames a unit of time: 130 over the problem's t = 0 to 13
         for name, (paper_run, mesh) in meshes.items():
             args = runs[paper_run]
             s = self.run(f"polygon-{name}", ["--problem", "polygon-curvature", *args,
-                                             "--mesh", str(mesh), "--frames", "130"])
+                                             "--mesh", str(mesh), "--frames", str(13 * per_unit)])
+            zigzag = largest_zigzag(self.out(f"polygon-{name}"), 1.6, 3.3)
             self.write(f"| {paper_run}: {'/'.join(args[1::2])} | {mesh} | {s['status']} | "
-                       f"{fmt(s['t'], 4)} | {fmt(largest_zigzag(self.out(f'polygon-{name}'), 1.6, 3.3))}"
-                       f" | {fmt(s['wall_s'], 3)} |\n")
+                       f"{fmt(s['t'], 4)} | {fmt(zigzag)} | {fmt(s['wall_s'], 3)} |\n")
         box = [-8.0, -8.0, 8.0, 8.0]
         times = (1, 2, 4, 8)
         self.write("\n| t ≈ | " + " | ".join(str(t) for t in times) + " |\n|---|"
@@ -459,7 +460,7 @@ S = 1) they are gone and the run lies nearer b; the picture draws run a so.
         for a, b, label in (("a64", "b", "a (M 64) vs b"), ("a", "b", "a (M 128) vs b"),
                             ("b", "c", "b vs c"), ("c", "d", "c vs d")):
             self.write(f"| {label} | " + " | ".join(
-                fmt(self.distance(f"polygon-{a}", f"polygon-{b}", box, j=10 * t))
+                fmt(self.distance(f"polygon-{a}", f"polygon-{b}", box, j=per_unit * t))
                 for t in times) + " |\n")
         self.write("\nThe four runs overlaid at t ≈ 0, 1, 2, 4 and 8 (the frame nearest each; run a "
                    "with M = 128):\n\n" + self.panels([(n, f"polygon-{n}") for n in runs],
