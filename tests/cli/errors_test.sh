@@ -130,6 +130,8 @@ reject "t-end infinite" "t-end must be finite and after the start time 0, got in
 reject "t-end before the start" "t-end must be finite and after the start time 0, got -1" -- run --problem vortex --t-end -1 --out x
 reject "a motion beyond the coordinate limit (t-end)" "velocity 'unit-normal' at speed up to 1 moves the curves by up to 1e\+308 .* beyond the coordinate limit ±1e\+100, where the arithmetic overflows: lower the speed or t-end" -- run --initial square.json --velocity unit-normal --t-end 1e308 --out x
 reject "a motion beyond the coordinate limit (speed)" "at speed up to 1e\+200 moves the curves by up to 1e\+200 .* overflows" -- run --initial square.json --velocity unit-normal --param speed=1e200 --t-end 1 --out x
+reject "a speed that is not a number" "velocity 'speed = sqrt\(-1\)' has a speed of nan, not a finite number" -- run --initial square.json --speed "sqrt(-1)" --t-end 0.1 --out x
+reject "an infinite speed" "velocity 'speed = 1/0' has a speed of inf, not a finite number" -- run --initial square.json --speed "1/0" --t-end 0.1 --out x
 reject "backward curvature flow" "speed 'a - C' falls as the curvature C grows \(dv/dC = -1 at .*\): motion backward in curvature is ill-posed" -- run --initial square.json --speed "a - C" --param a=1 --t-end 0.1 --out x
 reject "box of three numbers" "--box must be four numbers x0,y0,x1,y1, got '0,0,1'" -- run --problem vortex --box 0,0,1 --out x
 reject "box NaN" "--box must have x0 < x1 and y0 < y1, all finite" -- run --problem vortex --box 0,0,nan,nan --out x
