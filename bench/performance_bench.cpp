@@ -72,6 +72,31 @@ Least least_of_repeats(const std::function<void()>& f, double seconds = 0.5, int
     return least;
 }
 
+/// Wall time on one thread over wall time on all, for square roots summed in as many parts as
+/// threads (each part's sum its own): what the machine's threads give where nothing is shared,
+/// which bounds the speed-ups measured for the steps.
+double free_speedup() {
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<double> sums(cores);
+    const auto work = [&] {
+        parallel_for(
+            cores,
+            [&](std::size_t part) {
+                double sum = 0.0;
+                for (int i = 1; i <= 20'000'000; ++i)
+                    sum += std::sqrt(i + static_cast<double>(part));
+                sums[part] = sum;
+            },
+            1);
+    };
+    set_thread_count(1);
+    const Least one = least_of_repeats(work, 0.5, 5);
+    set_thread_count(static_cast<int>(cores));
+    const Least all = least_of_repeats(work, 0.5, 5);
+    set_thread_count(1);
+    return one.wall / all.wall;
+}
+
 /// Least CPU seconds of calls of f: three, then more until a fifth of a second of wall time has
 /// passed (at most a hundred).
 double best_cpu(const std::function<void()>& f) { return least_of_repeats(f, 0.2, 100).cpu; }
@@ -694,16 +719,27 @@ int run_bench(int argc, char** argv) {
     for (std::size_t t = 0; t < std::size(tables); ++t)
         studies[t] = read_study(fmt::format("{}/{}/table.json", study_dir, tables[t].problem));
     std::vector<CellTimes> times[std::size(tables)];
-    for (int round = 0; round < rounds; ++round)
+    double free_least = std::numeric_limits<double>::infinity(), free_most = 0.0;
+    for (int round = 0; round < rounds; ++round) {
+        const double free = free_speedup();
+        free_least = std::min(free_least, free);
+        free_most = std::max(free_most, free);
         for (std::size_t t = 0; t < std::size(tables); ++t)
             time_cells(tables[t], rows, prefix, studies[t], round, times[t]);
+    }
     std::vector<bench::Region> page;
     page.emplace_back(
         "cells-settings",
-        fmt::format("Machine: {} hardware threads. *T first steps* over the first {} steps of "
-                    "each cell; every cell, and every row of the scaling table, timed in {} "
-                    "rounds minutes apart.",
-                    std::thread::hardware_concurrency(), prefix, rounds));
+        fmt::format("Machine: {} hardware threads, which gave {} over one on a loop that shares "
+                    "nothing (square roots summed, a sum a thread), measured before each round: "
+                    "the most any speed-up below can reach. *T first steps* over the first {} "
+                    "steps of each cell; every cell, and every row of the scaling table, timed in "
+                    "{} rounds minutes apart.",
+                    std::thread::hardware_concurrency(),
+                    fmt::format("{:.2f}×", free_least) == fmt::format("{:.2f}×", free_most)
+                        ? fmt::format("{:.2f}×", free_least)
+                        : fmt::format("{:.2f}× to {:.2f}×", free_least, free_most),
+                    prefix, rounds));
     page.emplace_back("cells-summary", "");  // once every table has added to the totals
     for (std::size_t t = 0; t < std::size(tables); ++t)
         page.emplace_back(tables[t].region,
