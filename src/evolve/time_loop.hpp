@@ -486,8 +486,8 @@ void check_resume(const typename LoopHooks<dim>::Result& from, const BasicVeloci
     // coordinate limit, its arithmetic would overflow (and the interface vanish from sight).
     if (const std::optional<double> s = law.speed_bound()) {
         if (!std::isfinite(*s)) {
-            throw InvalidInput(fmt::format(
-                "velocity '{}' has a speed of {:g}, not a finite number", law.name(), *s));
+            throw InvalidInput(fmt::format("velocity '{}' has a speed of {:g}, not a finite number",
+                                           law.name(), *s));
         }
         const double reach = *s * (options.t_end - options.t_start);
         if (!(reach <= tolerance::max_coordinate)) {
