@@ -721,12 +721,14 @@ int run_bench(int argc, char** argv) {
     std::vector<CellTimes> times[std::size(tables)];
     double free_least = std::numeric_limits<double>::infinity(), free_most = 0.0;
     for (int round = 0; round < rounds; ++round) {
-        const double free = free_speedup();
-        free_least = std::min(free_least, free);
-        free_most = std::max(free_most, free);
+        const double speedup = free_speedup();
+        free_least = std::min(free_least, speedup);
+        free_most = std::max(free_most, speedup);
         for (std::size_t t = 0; t < std::size(tables); ++t)
             time_cells(tables[t], rows, prefix, studies[t], round, times[t]);
     }
+    const std::string free_low = fmt::format("{:.2f}×", free_least),
+                      free_high = fmt::format("{:.2f}×", free_most);
     std::vector<bench::Region> page;
     page.emplace_back(
         "cells-settings",
@@ -736,10 +738,8 @@ int run_bench(int argc, char** argv) {
                     "steps of each cell; every cell, and every row of the scaling table, timed in "
                     "{} rounds minutes apart.",
                     std::thread::hardware_concurrency(),
-                    fmt::format("{:.2f}×", free_least) == fmt::format("{:.2f}×", free_most)
-                        ? fmt::format("{:.2f}×", free_least)
-                        : fmt::format("{:.2f}× to {:.2f}×", free_least, free_most),
-                    prefix, rounds));
+                    free_low == free_high ? free_low : free_low + " to " + free_high, prefix,
+                    rounds));
     page.emplace_back("cells-summary", "");  // once every table has added to the totals
     for (std::size_t t = 0; t < std::size(tables); ++t)
         page.emplace_back(tables[t].region,
