@@ -403,6 +403,13 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
             }
             // A law's own invariant names the break better (and smaller steps may keep it).
             const typename H::Attempt before = attempt;  // what a failed sub-step leaves
+            if (!failed && unresolved && law.invariants().rigid) {
+                // A rigid motion keeps the topology over any step: contours that no thin depth
+                // resolves are the shape's, and every shorter sub-step would meet them again.
+                throw Unstable{*unresolved +
+                               "; a rigid motion keeps the topology at any step, so shorter steps "
+                               "cannot mend it"};
+            }
             if (!failed) {
                 if (auto v = hooks.record(attempt, H::shape(out), s, t, k, r)) {
                     violation = std::move(*v);

@@ -98,6 +98,40 @@ TEST(TopologyChange, AChangeTheDeepestCannotConfirmIsUnstable) {
     EXPECT_NE(r.message.find("of 2 components with 1 hole near ("), std::string::npos) << r.message;
 }
 
+/// A lens 2 long between two arcs of radius 20 (0.05 thick, its tips 5.7° wide), turned by phi
+/// about the origin and moved to (0.2, 0.1): thinner at its tips than cells of any depth.
+Interface lens(double phi) {
+    const double r = 20.0, half = std::asin(1.0 / r), c = std::sqrt(r * r - 1.0);
+    std::vector<Vec2> points;
+    for (const double side : {1.0, -1.0}) {
+        for (int i = 0; i < 100; ++i) {
+            const double a = side * std::numbers::pi / 2 - half + 2.0 * half * i / 100.0;
+            const Vec2 p{r * std::cos(a), -side * c + r * std::sin(a)};
+            points.push_back(Vec2{0.2 + std::cos(phi) * p.x - std::sin(phi) * p.y,
+                                  0.1 + std::sin(phi) * p.x + std::cos(phi) * p.y});
+        }
+    }
+    return Interface({points});
+}
+
+TEST(TopologyChange, ARigidMotionThatNoThinDepthResolvesStopsWithoutShorterSteps) {
+    // The first step's contours cut the lens near a tip, and thin cells 6 levels deep do not
+    // confirm it: a rigid motion keeps the topology at any step, so the run stops there, naming
+    // the place, rather than taking the step again in halves down to 1/256 of it.
+    const Interface given = lens(2.0 * std::numbers::pi * 3.0 / 12.0 * 0.37 + 0.3);
+    const Rotation law;
+    const RunResult r = run(given, law, default_domain(given.curves()),
+                            default_run_options(given, law, 0.0, 2.0 * std::numbers::pi));
+    EXPECT_EQ(r.status, RunStatus::unstable);
+    EXPECT_EQ(r.steps_done, 0);
+    EXPECT_NE(r.message.find("do not confirm it: a part is thinner than they resolve"),
+              std::string::npos)
+        << r.message;
+    EXPECT_NE(r.message.find(" near ("), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("so shorter steps cannot mend it"), std::string::npos) << r.message;
+    EXPECT_EQ(r.split_steps, 0);
+}
+
 TEST(TopologyChange, EachStepStartsFromTheRunsOwnThinDepth) {
     // Two steps to t = 0.024: each tears the wall at one level of thin cells and keeps it at
     // three, and each is taken at three, the run's own depth staying one; a run resumed after
