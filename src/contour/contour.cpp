@@ -12,6 +12,7 @@
 #include "options_check.hpp"
 #include "rounding.hpp"
 #include "slc/core/error.hpp"
+#include "slc/geometry/segment.hpp"
 #include "stages.hpp"
 #include "tree_sampler.hpp"
 
@@ -67,6 +68,45 @@ bool is_sliver(std::span<const Vec2> curve, double eta) {
 bool is_speck(std::span<const Vec2> curve, double size) {
     const Box b = bounding_box(curve);
     return std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y) < size;
+}
+
+/// Which curves are flecks: thinner than half the finest cell on the mean (2|A|/L), within two
+/// finest cells of a curve of their orientation that is not. The linear contour cuts such a piece
+/// off a sharp tip, along which the part is thinner than the cells at any depth; a part that
+/// thin a flow split off lies farther from what it left.
+std::vector<std::uint8_t> flecks(const Interface& curves, double finest) {
+    const std::size_t n = curves.curve_count();
+    const double reach = 2.0 * finest;
+    std::vector<double> area(n);
+    std::vector<Box> box(n);
+    std::vector<std::uint8_t> thin(n), fleck(n, 0);
+    for (std::size_t c = 0; c < n; ++c) {
+        area[c] = signed_area(curves.curve(c));
+        box[c] = bounding_box(curves.curve(c));
+        thin[c] = 4.0 * std::abs(area[c]) < finest * length(curves.curve(c));
+    }
+    const auto apart = [&](const Box& a, const Box& b) {
+        return a.lo.x > b.hi.x + reach || b.lo.x > a.hi.x + reach || a.lo.y > b.hi.y + reach ||
+               b.lo.y > a.hi.y + reach;
+    };
+    for (std::size_t c = 0; c < n; ++c) {
+        if (!thin[c]) continue;
+        for (std::size_t d = 0; d < n && !fleck[c]; ++d) {
+            if (thin[d] || (area[d] > 0.0) != (area[c] > 0.0) || apart(box[c], box[d])) continue;
+            for (std::size_t i = curves.offsets()[d]; i < curves.offsets()[d + 1] && !fleck[c];
+                 ++i) {
+                const Segment s = curves.segment(i);
+                if (apart(box[c], bounding_box(s))) continue;
+                for (const Vec2 p : curves.curve(c)) {
+                    if (closest_point(s, p).distance2 < reach * reach) {
+                        fleck[c] = 1;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    return fleck;
 }
 
 /// contour() with or without bounds on G.
@@ -128,6 +168,10 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
         const double finest = stats.finest_cell;
         curves = drop_curves(
             std::move(curves), [&](auto curve) { return is_speck(curve, finest); }, stats.specks);
+        const std::vector<std::uint8_t> fleck = flecks(curves, finest);
+        std::size_t c = 0;
+        curves = drop_curves(
+            std::move(curves), [&](auto) { return fleck[c++] != 0; }, stats.specks);
     }
     count_output(curves, stats);
     return {std::move(curves), std::move(topo.tree), stats};

@@ -27,7 +27,9 @@ public:
     CurveSampler(BatchFunctionRef g, std::optional<BatchBoundsRef> bounds, const Quadtree& tree,
                  const ContourOptions& options, double rounding)
         : TreeSampler<2>(tree, g, bounds, options.distance_slack, rounding, options.resolved_eta(),
-                         options.depth) {}
+                         options.depth) {
+        enter_centres_as_corners(options.bends_through_centres);
+    }
 
     /// Centres of the leaves at the depth limit, in one batch. A leaf whose corners share one sign
     /// with |G| > γ h/√2 holds no zero if |∇G| ≤ γ (every point is within h/√2 of a corner), and

@@ -165,7 +165,11 @@ std::pair<std::uint32_t, bool> TreeSampler<dim>::child_point(std::uint32_t c, co
     }
     const CellSamples& parent = cell_samples_[cell.parent];
     if (halves == 0) return {parent[corner], false};
-    if (halves == dim) return {parent[Tree::children], false};
+    if (halves == dim) {
+        if constexpr (!centres_in_table)
+            if (centres_as_corners_) index_.try_emplace(keys.k[j], parent[Tree::children]);
+        return {parent[Tree::children], false};
+    }
     return add_point(keys, j);
 }
 

@@ -128,6 +128,10 @@ public:
     /// Whether centres are in the table of keys: in space the tetrahedra's vertices are looked
     /// up there (SurfaceSampler::at); in the plane a centre is reached through its cell.
     static constexpr bool centres_in_table = dim == 3;
+    /// In the plane: whether a cell's centre is entered in the table when it becomes its
+    /// children's corner, for the test of where G bends to find on the grid lines through
+    /// corners (BasicContourOptions::bends_through_centres). In space it is there already.
+    void enter_centres_as_corners(bool on) { centres_as_corners_ = on; }
 
     /// Samples tree's cells; G by g, bounds on it by bounds (optional); distance_slack δ as
     /// above (unset: no stand-ins from donors), widened by rounding, the allowance for rounding
@@ -225,6 +229,7 @@ protected:
     KeyMap<std::uint32_t> index_;
     /// Per cell, the ids of its corners (in sample_keys() order) and centre.
     std::vector<CellSamples> cell_samples_;
+    bool centres_as_corners_ = false;  ///< (enter_centres_as_corners)
 
 private:
     /// The id of sample j of keys, and whether it is new (then pending for G).

@@ -420,15 +420,17 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
     const auto make_level = [&](const Interface& c, double time) {
         return Level(c, time, k, law, domain, options);
     };
-    if (extension == Extension::direct && law.is_normal_law()) {
-        return detail::advance_normal_law<StepResult>(curves, t, k, domain, options.contour,
-                                                      make_level);
-    }
+    // G is a distance carried by the flow only in a flow field's direct step
+    // (bends_through_centres).
+    ContourOptions looped = options.contour;
+    looped.bends_through_centres = false;
+    if (extension == Extension::direct && law.is_normal_law())
+        return detail::advance_normal_law<StepResult>(curves, t, k, domain, looped, make_level);
     Level now(curves, t, k, law, domain, options);
     if (extension == Extension::direct)
         return detail::advance_flow<StepResult>(curves, t, k, law, domain, options.contour, now);
     return detail::advance_extended<StepResult>(
-        curves, t, k, law, domain, options.contour, now, make_level,
+        curves, t, k, law, domain, looped, now, make_level,
         [&](const Interface& c) { return step_area_and_length(c, law, options, domain); });
 }
 

@@ -50,6 +50,13 @@ struct BasicContourOptions {
     /// would otherwise miss or cut across. 0 (the default) keeps every leaf at depth K or above;
     /// Enright's test, whose sheet thins below a cell, takes 2 (docs/surfaces.md).
     int thin_depth = 0;
+    /// Curves: whether that test also reads the grid lines through the centres of coarser cells,
+    /// as a surface's always does. It finds a part thinner than a cell that crosses a cell beside
+    /// a corner, where no diagonal dips: a sharp tip, cut across without it. On for a distance and
+    /// for a flow field's step, whose G is a distance carried by the flow; the steps of normal and
+    /// curvature laws turn it off, since their G keeps loops smaller than a cell beyond sharp
+    /// tips, which these lines would find and resolve as parts the law forbids.
+    bool bends_through_centres = true;
     /// Curves: ρ in [0, 1): prune segments shorter than ρ times both neighbours; 0 disables
     /// pruning.
     double rho = 0.1;

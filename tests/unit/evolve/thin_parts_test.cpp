@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "slc/evolve/defaults.hpp"
+#include "slc/evolve/self_convergence.hpp"
 #include "slc/evolve/surface_problems.hpp"
 #include "slc/evolve/surface_run.hpp"
 #include "slc/geometry/shapes.hpp"
@@ -98,10 +99,10 @@ TEST(TopologyChange, AChangeTheDeepestCannotConfirmIsUnstable) {
     EXPECT_NE(r.message.find("of 2 components with 1 hole near ("), std::string::npos) << r.message;
 }
 
-/// A lens 2 long between two arcs of radius 20 (0.05 thick, its tips 5.7° wide), turned by phi
-/// about the origin and moved to (0.2, 0.1): thinner at its tips than cells of any depth.
-Interface lens(double phi) {
-    const double r = 20.0, half = std::asin(1.0 / r), c = std::sqrt(r * r - 1.0);
+/// A lens 2 long between two arcs of radius r (0.05 thick for r = 20, its tips 5.7° wide; 0.0125
+/// and 1.4° for r = 80), turned by phi about the origin and moved to (0.2, 0.1).
+Interface lens(double r, double phi) {
+    const double half = std::asin(1.0 / r), c = std::sqrt(r * r - 1.0);
     std::vector<Vec2> points;
     for (const double side : {1.0, -1.0}) {
         for (int i = 0; i < 100; ++i) {
@@ -114,14 +115,19 @@ Interface lens(double phi) {
     return Interface({points});
 }
 
-TEST(TopologyChange, ARigidMotionThatNoThinDepthResolvesStopsWithoutShorterSteps) {
-    // The first step's contours cut the lens near a tip, and thin cells 6 levels deep do not
-    // confirm it: a rigid motion keeps the topology at any step, so the run stops there, naming
-    // the place, rather than taking the step again in halves down to 1/256 of it.
-    const Interface given = lens(2.0 * std::numbers::pi * 3.0 / 12.0 * 0.37 + 0.3);
+/// The run of a full turn of `given` about the origin at the defaults.
+RunResult full_turn(const Interface& given) {
     const Rotation law;
-    const RunResult r = run(given, law, default_domain(given.curves()),
-                            default_run_options(given, law, 0.0, 2.0 * std::numbers::pi));
+    return run(given, law, default_domain(given.curves()),
+               default_run_options(given, law, 0.0, 2.0 * std::numbers::pi));
+}
+
+TEST(TopologyChange, ARigidMotionThatNoThinDepthResolvesStopsWithoutShorterSteps) {
+    // A lens 0.0125 thick whose tips are thinner than cells 6 or 8 levels deep over 0.009 of
+    // their length: the first step's contours cut one off, and thin cells two levels deeper do
+    // not confirm it. A rigid motion keeps the topology at any step, so the run stops there,
+    // naming the place, rather than taking the step again in halves down to 1/256 of it.
+    const RunResult r = full_turn(lens(80.0, 2.0 * std::numbers::pi * 8.0 / 12.0 * 0.37 + 0.8));
     EXPECT_EQ(r.status, RunStatus::unstable);
     EXPECT_EQ(r.steps_done, 0);
     EXPECT_NE(r.message.find("do not confirm it: a part is thinner than they resolve"),
@@ -130,6 +136,22 @@ TEST(TopologyChange, ARigidMotionThatNoThinDepthResolvesStopsWithoutShorterSteps
     EXPECT_NE(r.message.find(" near ("), std::string::npos) << r.message;
     EXPECT_NE(r.message.find("so shorter steps cannot mend it"), std::string::npos) << r.message;
     EXPECT_EQ(r.split_steps, 0);
+}
+
+TEST(TopologyChange, ALensWithSharpTipsTurnsAFullTurnAtTheDefaults) {
+    // Lenses 0.05 thick with tips 5.7° wide (r = 20) in two orientations whose first steps cut a
+    // tip off or left a fleck beside it: the thin cells' test now reads the grid lines through
+    // the centres of coarser cells, and pieces of a tip thinner than half a finest cell beside it
+    // are dropped. Each turns a full turn as one curve, its area kept, back where it started.
+    for (const double phi : {2.0 * std::numbers::pi * 3.0 / 12.0 * 0.37 + 0.3,
+                             2.0 * std::numbers::pi * 2.0 / 12.0 * 0.37 + 0.2}) {
+        const Interface given = lens(20.0, phi);
+        const RunResult r = full_turn(given);
+        ASSERT_EQ(r.status, RunStatus::ok) << r.message;
+        EXPECT_EQ(r.curves.curve_count(), 1U);
+        EXPECT_NEAR(area(r.curves) / area(given), 1.0, 2e-3);
+        EXPECT_LT(interface_distance(r.curves, given), 0.02);
+    }
 }
 
 TEST(TopologyChange, EachStepStartsFromTheRunsOwnThinDepth) {
