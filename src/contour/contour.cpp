@@ -72,8 +72,8 @@ bool is_speck(std::span<const Vec2> curve, double size) {
 
 /// Which curves are flecks: thinner than half the finest cell on the mean (2|A|/L), within two
 /// finest cells of a curve of their orientation that is not. The linear contour cuts such a piece
-/// off a sharp tip, along which the part is thinner than the cells at any depth; a part that
-/// thin a flow split off lies farther from what it left.
+/// off a sharp tip, along which the part is thinner than the cells at any depth; whatever made
+/// it, a piece that thin that near is below what the cells resolve.
 std::vector<std::uint8_t> flecks(const Interface& curves, double finest) {
     const std::size_t n = curves.curve_count();
     const double reach = 2.0 * finest;
