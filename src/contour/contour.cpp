@@ -40,19 +40,17 @@ void count_output(const Interface& curves, ContourStats& s) {
         curves.empty() ? 0.0 : static_cast<double>(s.g_evals) / static_cast<double>(curves.size());
 }
 
-/// The curves but those `drop` is true of, counted in `dropped`.
+/// The curves but those `drop(c, curve)` is true of (c the curve's index), added to `dropped`.
 template <class Drop>
 Interface drop_curves(Interface curves, Drop drop, std::size_t& dropped) {
     std::vector<std::vector<Vec2>> kept;
     for (std::size_t c = 0; c < curves.curve_count(); ++c) {
         const auto curve = curves.curve(c);
-        if (drop(curve)) {
-            ++dropped;
-            continue;
-        }
-        kept.emplace_back(curve.begin(), curve.end());
+        if (!drop(c, curve)) kept.emplace_back(curve.begin(), curve.end());
     }
-    return dropped == 0 ? curves : Interface(kept);
+    if (kept.size() == curves.curve_count()) return curves;
+    dropped += curves.curve_count() - kept.size();
+    return Interface(kept);
 }
 
 /// Whether a curve's mean width 2|A|/L is below the root tolerance η: a loop that thin is not a
@@ -160,18 +158,19 @@ ContourResult contour_with(BatchFunctionRef g, const Box& domain, const ContourO
 
     const double eta = options.resolved_eta();
     Interface curves = drop_curves(
-        chain.to_interface(), [&](auto curve) { return is_sliver(curve, eta); }, stats.slivers);
+        chain.to_interface(), [&](std::size_t, auto curve) { return is_sliver(curve, eta); },
+        stats.slivers);
     // As for surfaces: where cells went beyond K, a closed curve less than a finest cell across
     // is below what the mesh resolves (a loop of G at the corner of a non-convex Wulff shape,
     // which the thin cells of a user's curves would otherwise keep as a hole the law forbids).
     if (stats.thin_cells > 0) {
         const double finest = stats.finest_cell;
         curves = drop_curves(
-            std::move(curves), [&](auto curve) { return is_speck(curve, finest); }, stats.specks);
+            std::move(curves), [&](std::size_t, auto curve) { return is_speck(curve, finest); },
+            stats.specks);
         const std::vector<std::uint8_t> fleck = flecks(curves, finest);
-        std::size_t c = 0;
         curves = drop_curves(
-            std::move(curves), [&](auto) { return fleck[c++] != 0; }, stats.specks);
+            std::move(curves), [&](std::size_t c, auto) { return fleck[c] != 0; }, stats.specks);
     }
     count_output(curves, stats);
     return {std::move(curves), std::move(topo.tree), stats};
