@@ -136,11 +136,10 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
         const Vec3 c{0.35, 0.35, 0.35};
         p.domain = unit_cube;
         p.t_end = 3.0;
-        // At K = 6 the sheet, thinner than a cell of K = 7 by t = 1.5, is pierced near t = 1
-        // (a hole opens, which the genus guard stops) even with thin cells; at K = 7 it holds.
-        // The feet are traced to ε/10 at any step, so a step's error is its contour's: ten
-        // steps at ε = 5e−5 come back nearer the sphere than thirty at 1e−4, in 0.6 the time
-        // (docs/tables/enright.md).
+        // The sheet thins below a cell of K = 7 by t = 1.5; thin cells two levels deep keep it
+        // whole (at K = 6 too, farther from the sphere at the end). The feet are traced to ε/10
+        // at any step, so a step's error is its contour's: ten steps at ε = 5e−5 come back
+        // nearer the sphere than thirty at 1e−4, in 0.6 the time (docs/tables/enright.md).
         p.steps = 10;
         p.depth = 7;
         p.eps = 5e-5;
