@@ -13,6 +13,7 @@
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/core/point_text.hpp"
+#include "slc/evolve/step.hpp"
 #include "slc/velocity/velocity.hpp"
 
 namespace slc::detail {
@@ -55,6 +56,15 @@ std::vector<PointOf<dim>> runge_kutta_feet(const BasicVelocityLaw<dim>& law, dou
 /// The feet of a flow field's characteristics are traced to this fraction of the contour's ε
 /// (departure_substeps): the contour then carries the flow's error, not the time step's.
 constexpr double departure_tolerance = 0.1;
+
+/// Whether a run steps its flow field directly: each step traces its feet to
+/// departure_tolerance ε whatever its length, so a step's error is its contour's, and a run that
+/// breaks its law does better in fewer steps, not more (a sphere turned by 6 rad at K = 3 without
+/// refinement drifts by 1% of its volume by t = 3.9 in 40 steps, by 0.09% over the run in 10).
+template <class Law, class StepOptions>
+bool flows_directly(const Law& law, const StepOptions& step) {
+    return law.is_field() && step.resolved_extension(law) == Extension::direct;
+}
 
 /// Most substeps a step's feet take: a field whose feet do not settle by then (a discontinuous
 /// one) keeps them.

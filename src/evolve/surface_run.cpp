@@ -59,6 +59,9 @@ public:
     LoopHooks(const SurfaceVelocityLaw& law, const Box3&, const SurfaceRunOptions& options)
         : options_(options),
           invariants_(law.invariants()),
+          steps_(flows_directly(law, options.step)
+                     ? "take fewer steps (-N: a flow field's steps add their contours' errors)"
+                     : "take more steps (-N)"),
           eps_(options.step.contour.resolved_eps()),
           until_converged_(options.step.contour.refine_passes ==
                            SurfaceContourOptions::until_converged) {}
@@ -97,11 +100,11 @@ public:
         if (from.surface.empty()) throw InvalidInput("the surface to resume has no triangles");
     }
 
-    static std::string unstable_after_splits(const std::string& violation, int pieces, double t0) {
+    std::string unstable_after_splits(const std::string& violation, int pieces, double t0) const {
         return fmt::format(
-            "at t = {:.6g}: {} (also in {} sub-steps); refine the time step (-N) or the contours "
+            "at t = {:.6g}: {} (also in {} sub-steps); {} or refine the contours "
             "(-K, --eps)",
-            t0, violation, pieces);
+            t0, violation, pieces, steps_);
     }
     static std::string at_step(int, double, const std::string& why) { return why; }
     static std::string step_failed(int, double t, const char* what) {
@@ -111,6 +114,8 @@ public:
 private:
     const SurfaceRunOptions& options_;
     Invariants invariants_;
+    /// What to do with the steps when the law breaks (flows_directly).
+    const char* steps_;
     double eps_;
     bool until_converged_;
 };
@@ -129,9 +134,8 @@ std::optional<std::string> LoopHooks<3>::record(Attempt& a, const Surface& befor
     auto v = surface_invariant_violation(invariants_, before, s.surface, k, eps_);
     if (!v || options_.guards) return v;
     // Without guards the step is kept whole: noted, not split.
-    note_broken(r, fmt::format("at t = {:.6g}: {}; refine the time step (-N) or the contours (-K, "
-                               "--eps)",
-                               t, *v));
+    note_broken(
+        r, fmt::format("at t = {:.6g}: {}; {} or refine the contours (-K, --eps)", t, *v, steps_));
     return std::nullopt;
 }
 
@@ -143,9 +147,9 @@ std::optional<BudgetBreach> LoopHooks<3>::run_budget(Attempt&, const Surface& su
         if (std::abs(drift) > options_.volume_drift) {
             why = fmt::format(
                 "at t = {:.6g}: the volume drifted by {:.3g}% since the start under a law that "
-                "keeps it (more than {:.3g}%); take more steps (-N), refine the contours (-K, "
-                "--eps) or allow more drift (--volume-drift)",
-                t_next, 100.0 * drift, 100.0 * options_.volume_drift);
+                "keeps it (more than {:.3g}%); {}, refine the contours (-K, --eps) or allow "
+                "more drift (--volume-drift)",
+                t_next, 100.0 * drift, 100.0 * options_.volume_drift, steps_);
             if (options_.guards) return BudgetBreach{*why};
         }
     }
