@@ -163,9 +163,8 @@ public:
     std::string unstable_after_splits(const std::string& violation, int pieces, double) const {
         if (flows_directly(law_, options_.step)) {
             return fmt::format(
-                "{}, also in {} sub-steps: raise the depth K, or take fewer steps N (a flow "
-                "field's steps add their contours' errors)",
-                violation, pieces);
+                "{}, also in {} sub-steps: raise the depth K, or take fewer steps N ({})",
+                violation, pieces, fewer_steps_reason);
         }
         const bool extended = options_.step.resolved_extension(law_) != Extension::direct &&
                               (law_.is_normal_law() || law_.is_field());

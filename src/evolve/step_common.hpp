@@ -66,6 +66,9 @@ bool flows_directly(const Law& law, const StepOptions& step) {
     return law.is_field() && step.resolved_extension(law) == Extension::direct;
 }
 
+/// Why such a run asks for fewer steps, in its messages.
+inline constexpr const char* fewer_steps_reason = "a flow field's steps add their contours' errors";
+
 /// Most substeps a step's feet take: a field whose feet do not settle by then (a discontinuous
 /// one) keeps them.
 constexpr int max_departure_substeps = 64;

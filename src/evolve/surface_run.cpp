@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "slc/core/error.hpp"
 #include "slc/tree/tetrahedralization.hpp"
@@ -60,7 +61,7 @@ public:
         : options_(options),
           invariants_(law.invariants()),
           steps_(flows_directly(law, options.step)
-                     ? "take fewer steps (-N: a flow field's steps add their contours' errors)"
+                     ? fmt::format("take fewer steps (-N: {})", fewer_steps_reason)
                      : "take more steps (-N)"),
           eps_(options.step.contour.resolved_eps()),
           until_converged_(options.step.contour.refine_passes ==
@@ -115,7 +116,7 @@ private:
     const SurfaceRunOptions& options_;
     Invariants invariants_;
     /// What to do with the steps when the law breaks (flows_directly).
-    const char* steps_;
+    std::string steps_;
     double eps_;
     bool until_converged_;
 };
