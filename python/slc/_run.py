@@ -352,7 +352,8 @@ def run(interface, velocity=None, t_end: float | None = None, *, steps: int | No
     (eps follows as 10^-K times the curves' half-width unless given), refine P (passes or
     "converged"), eps, eta, smoothing S; geometry "intrinsic", "embedded" or "arclength";
     extension "nearest", "whitney" or "direct"; arcs; area_correction. frames: keep this many
-    frames besides the initial one. observer(step) after each step returns True or None to go
+    frames besides the initial one, at evenly spaced times (a run of your own without steps
+    takes a multiple of them; a named problem keeps its steps). observer(step) after each step returns True or None to go
     on, False to stop the run (status "interrupted"), as Ctrl-C does in the tool; anything else
     is a TypeError. threads: worker threads (None or 0: OMP_NUM_THREADS when set, else every
     available core; never more than the cores), as the tool's --threads; results do not depend

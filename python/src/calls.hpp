@@ -13,6 +13,7 @@
 #include "arrays.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/evolve/overrides.hpp"
 #include "slc/evolve/run.hpp"
 #include "slc/evolve/self_convergence.hpp"
 #include "slc/evolve/surface_run.hpp"
@@ -83,6 +84,13 @@ auto observer_calling(const pybind11::object& on_each, DictOf dict_of) {
 /// ValueError unless frames (the frames a run returns besides its start) is 0 or more.
 inline void check_frames(int frames) {
     if (frames < 0) throw InvalidInput(fmt::format("frames must be 0 or more, got {}", frames));
+}
+
+/// q with the frames a run keeps (RunOverrides::frames: a user's run whose steps are not given
+/// takes at least a step a frame).
+inline RunOverrides with_frames(RunOverrides q, int frames) {
+    if (frames > 0) q.frames = frames;
+    return q;
 }
 
 /// Whether step (1..steps) is one of the `frames` kept, evenly spread, the last among them.

@@ -50,7 +50,7 @@ py::dict run_problem(const Problem& p, const std::optional<LawSpec>& spec, const
     const ThreadScope thread_scope(threads);
     const std::unique_ptr<VelocityLaw> law = law_of(p, spec);
     const Interface initial = initial_of(p);
-    const RunOptions options = run_options(p, q);
+    const RunOptions options = run_options(p, with_frames(q, frames));
     // The run at half resolution, resolved first: one it cannot have is bad input before
     // anything runs.
     if (estimate) require_half_resolution(options.steps, options.step.contour.depth, "estimate");

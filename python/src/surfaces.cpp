@@ -193,8 +193,8 @@ py::dict run_surface_problem(const SurfaceSubject& subject, const RunOverrides& 
     // thread_count()) have the run's threads.
     const ThreadScope thread_scope(threads);
     // (Not const: surface_as_read may deepen its thin cells.)
-    SurfaceRunOptions options =
-        surface_run_options(subject.problem, subject.named, subject.t_start, q);
+    SurfaceRunOptions options = surface_run_options(subject.problem, subject.named, subject.t_start,
+                                                    with_frames(q, frames));
     if (estimate) require_half_resolution(options.steps, options.step.contour.depth, "estimate");
     const std::optional<SurfaceRunOptions> coarse =
         estimate ? std::optional(surface_resolution_options(options, -1)) : std::nullopt;

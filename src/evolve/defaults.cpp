@@ -52,7 +52,7 @@ double sharpest_turn(const Interface& curves) {
 /// ellipse 0.8 × 0.4 under Hele-Shaw keeps corners at its tips, 0.017 from the circle it relaxes
 /// to at t = 0.5, in 40 steps; 1e−4 in 250), up to 2,000.
 int default_steps(const Interface& curves, const VelocityLaw& law, double t_start, double t_end) {
-    constexpr int fewest = 40, most = 2000;
+    constexpr int fewest = detail::user_steps(2), most = 2000;
     const double wanted = 4.0 * (t_end - t_start) * law.stiffness(sharpest_turn(curves));
     if (!(wanted > fewest)) return fewest;
     return wanted >= most ? most : static_cast<int>(std::ceil(wanted));
@@ -64,7 +64,7 @@ RunOptions default_run_options(const Interface& curves, const VelocityLaw& law, 
                                double t_end) {
     if (curves.empty()) throw InvalidInput("no curves: the interface is empty");
     RunOptions o = detail::user_run_options<2, RunOptions>(
-        t_start, t_end, length_scale(curves), default_steps(curves, law, t_start, t_end));
+        law, t_start, t_end, length_scale(curves), default_steps(curves, law, t_start, t_end));
     ContourOptions& c = o.step.contour;
     // A law known only at the vertices (the curvature laws, a law of their velocities) is
     // extended off the curve from its nearest point, whose kinks refinement to convergence would
@@ -109,6 +109,8 @@ Problem curve_problem(std::string name, const Interface& curves, const Box& doma
     p.velocity = std::move(velocity);
     p.velocity_params = std::move(params);
     p.length_scale = length_scale(curves);
+    p.named = false;
+    p.flow_field = law.is_field();
     p.run = defaults;
     ContourOptions& c = p.run.step.contour;
     c.depth = depth_for_domain(2, domain.width(), default_domain(curves.curves()).width());

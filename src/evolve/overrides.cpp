@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "slc/core/error.hpp"
 #include "slc/evolve/surface_problems.hpp"
 #include "slc/geometry_modules/embedded.hpp"
+#include "user_defaults.hpp"
 
 namespace slc {
 namespace {
@@ -196,17 +198,39 @@ SurfaceRunOptions named_surface_run_options(const SurfaceProblem& p) {
     return o;
 }
 
+namespace {
+
+/// o with N the least multiple of the frames q asks at or above its N, for a user's run whose N
+/// q does not give, so that the frames fall at evenly spaced times (a named problem keeps its
+/// N, and writes at most a frame a step).
+template <class Options>
+Options with_a_step_a_frame(Options o, const RunOverrides& q, bool named) {
+    if (named || q.steps || !q.frames || *q.frames <= 0) return o;
+    const std::int64_t f = *q.frames, steps = (o.steps + f - 1) / f * f;
+    o.steps = static_cast<int>(std::min<std::int64_t>(steps, setting_range::steps.hi / f * f));
+    return o;
+}
+
+}  // namespace
+
 RunOptions run_options(const Problem& p, const RunOverrides& q, SettingNames names) {
-    return apply_overrides(q, problem_run_options(p), p.length_scale, names);
+    RunOptions o = apply_overrides(q, problem_run_options(p), p.length_scale, names);
+    // A user's flow field given another extension than its own (direct) has a time error in
+    // each step: the steps of the other laws.
+    if (p.flow_field && !p.named && !q.steps && q.extension) {
+        o.steps =
+            *q.extension == Extension::direct ? detail::flow_field_steps : detail::user_steps(2);
+    }
+    return with_a_step_a_frame(o, q, p.named);
 }
 
 SurfaceRunOptions surface_run_options(const SurfaceProblem& p, bool named, double t_start,
                                       const RunOverrides& q, SettingNames names) {
     if (named) return apply_overrides(q, named_surface_run_options(p), 1.0, names);
-    SurfaceRunOptions o = default_surface_run_options(p.initial, t_start, p.t_end);
+    SurfaceRunOptions o = default_surface_run_options(p.initial, *p.law, t_start, p.t_end);
     o.step.contour.depth =
         depth_for_domain(3, p.domain.width(), default_domain(bounding_box(p.initial)).width());
-    return apply_overrides(q, o, length_scale(p.initial), names);
+    return with_a_step_a_frame(apply_overrides(q, o, length_scale(p.initial), names), q, false);
 }
 
 int depth_for_domain(int dim, double domain_width, double default_width) {

@@ -266,11 +266,11 @@ double length_scale(const Surface& surface) {
     return 0.5 * std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z});
 }
 
-SurfaceRunOptions default_surface_run_options(const Surface& surface, double t_start,
-                                              double t_end) {
+SurfaceRunOptions default_surface_run_options(const Surface& surface, const SurfaceVelocityLaw& law,
+                                              double t_start, double t_end) {
     if (surface.empty()) throw InvalidInput("the initial surface has no triangles");
-    SurfaceRunOptions o =
-        detail::user_run_options<3, SurfaceRunOptions>(t_start, t_end, length_scale(surface), 20);
+    SurfaceRunOptions o = detail::user_run_options<3, SurfaceRunOptions>(
+        law, t_start, t_end, length_scale(surface), detail::user_steps(3));
     o.step.contour.refine_passes = SurfaceContourOptions::until_converged;
     return o;
 }

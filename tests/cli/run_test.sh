@@ -74,6 +74,18 @@ expect_ok "user curve and law" -- run --initial square.json --velocity rotation 
     -N 4 -K 4 -P 0 --domain 2 --out user --quiet
 check "user run writes final.json" test -s user/final.json
 check "user run has no exact solution" grep -q '"e_inf": null' user/summary.json
+# A user's flow field takes 10 steps unless -N is given; --frames 4 raises them to 12, so that the
+# frames fall at t = 0.125, 0.25, 0.375 and 0.5.
+expect_ok "a flow field's frames" -- run --initial square.json --velocity rotation --t-end 0.5 \
+    -K 3 -P 0 --domain 2 --frames 4 --out userframes --quiet
+check "12 steps" test "$(json userframes/summary.json 's["params"]["N"]')" = 12
+check "frames at evenly spaced times" test "$(python3 -c '
+import json
+ts = [json.load(open(f"userframes/frames/frame_{i:04d}.json"))["time"] for i in range(5)]
+print(all(abs(t - 0.125 * i) < 1e-12 for i, t in enumerate(ts)))')" = True
+expect_ok "a flow field's own steps" -- run --initial square.json --velocity rotation --t-end 0.5 \
+    -K 3 -P 0 --domain 2 --out userten --quiet
+check "10 steps" test "$(json userten/summary.json 's["params"]["N"]')" = 10
 
 # A file's "time" is where the run starts; --t-end is where it ends.
 echo '{"time": 0.5, "curves": [{"points": [[-1, -1], [1, -1], [1, 1], [-1, 1]]}]}' >late.json

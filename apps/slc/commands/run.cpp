@@ -179,9 +179,11 @@ void check_run_memory(const RunOptions& options, const Interface& initial, const
                       distance_bytes_per_cell);
 }
 
-/// The settings of a run: the method options, the guards and (a surface's) the volume drift.
+/// The settings of a run: the method options, the guards, the frames (a user's run takes at
+/// least a step a frame) and (a surface's) the volume drift.
 RunOverrides run_settings(const RunCommand& o) {
     RunOverrides q = overrides_of(o.method);
+    if (o.frames > 0) q.frames = o.frames;
     q.volume_drift = o.volume_drift;
     if (o.no_guards) q.guards = false;
     if (o.until_components) q.until_components = static_cast<std::size_t>(*o.until_components);
@@ -340,7 +342,9 @@ void add_run_options(CLI::App* cmd, RunCommand* o) {
            "--frames", o->frames,
            "Write this many frames (plus the initial one, and where the run stopped if it "
            "stopped early) to DIR/frames/ and draw them overlaid in DIR/frames.svg/.png (at most "
-           "64: every n-th and the last)")
+           "64: every n-th and the last). A run of --initial without -N takes a multiple of them, "
+           "so that they fall at evenly spaced times; a named problem keeps its N and writes at "
+           "most a frame a step")
         ->check(integer_in(0, 100000));
     cmd->add_option("--view", o->view,
                     "For a surface: the direction its pictures look from, AZ,EL in degrees (about "

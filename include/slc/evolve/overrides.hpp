@@ -107,6 +107,11 @@ struct RunOverrides {
     std::optional<bool> guards = std::nullopt;  ///< RunOptions::guards, SurfaceRunOptions::guards
     /// Curves: StepOptions::area_correction; surfaces: SurfaceStepOptions::volume_correction.
     std::optional<bool> area_correction = std::nullopt;
+    /// The frames the front end writes (`--frames`, `frames=`): a user's run whose N is not
+    /// given takes the least multiple of them at or above its default N, so that they fall at
+    /// evenly spaced times (run_options, surface_run_options); a named problem keeps its N and
+    /// writes at most a frame a step.
+    std::optional<int> frames = std::nullopt;
 };
 
 /// How a front end names the settings in its messages.
@@ -133,13 +138,15 @@ SurfaceRunOptions apply_overrides(const RunOverrides& overrides, SurfaceRunOptio
 SurfaceRunOptions named_surface_run_options(const SurfaceProblem& problem);
 
 /// A problem of curves' run options: overrides over problem_run_options(problem), ℓ its length
-/// scale. Throws as apply_overrides.
+/// scale, and for a user's curves a whole number of steps a frame (RunOverrides::frames). Throws as
+/// apply_overrides.
 RunOptions run_options(const Problem& problem, const RunOverrides& overrides,
                        SettingNames names = SettingNames::python);
 
 /// A problem of surfaces' run options: overrides over named_surface_run_options (a named
 /// problem, ℓ = 1) or over default_surface_run_options from t_start (a user's surface, ℓ its
-/// length_scale). Throws as apply_overrides and default_surface_run_options.
+/// length_scale; a whole number of steps a frame, RunOverrides::frames). Throws as apply_overrides
+/// and default_surface_run_options.
 SurfaceRunOptions surface_run_options(const SurfaceProblem& problem, bool named, double t_start,
                                       const RunOverrides& overrides,
                                       SettingNames names = SettingNames::python);

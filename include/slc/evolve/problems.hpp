@@ -68,6 +68,11 @@ struct Problem {
     StudyPlan study;                           ///< the settings of `slc study`
     /// The exact signed distance to Γ(t) at points, when known at time t (else nullopt).
     std::function<std::optional<std::vector<double>>(std::span<const Vec2>, double)> exact;
+    /// A named problem (make_problem); false for a user's curves (curve_problem).
+    bool named = true;
+    /// A user's curves under a flow field: unless N is given, 10 steps evaluated directly (its
+    /// default), 40 with another extension, whose steps have a time error (run_options).
+    bool flow_field = false;
 };
 
 /// One line per problem, in a fixed order, for --help and errors.

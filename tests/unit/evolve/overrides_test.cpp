@@ -13,6 +13,7 @@
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/velocity/laws.hpp"
 #include "slc/velocity/potential_laws.hpp"
+#include "slc/velocity/surface_laws.hpp"
 
 namespace slc {
 namespace {
@@ -42,7 +43,7 @@ TEST(EpsForDepth, FollowsEachDimensionsRuleAndItsDefaults) {
     const RunOptions c = default_run_options(curves, NormalSpeed(1.0), 0.0, 1.0);
     EXPECT_EQ(*c.step.contour.eps, eps_for_depth(2, c.step.contour.depth, length_scale(curves)));
     const Surface ball = sphere({0.0, 0.0, 0.0}, 2.0, 2);
-    const SurfaceRunOptions s = default_surface_run_options(ball, 0.0, 1.0);
+    const SurfaceRunOptions s = default_surface_run_options(ball, SurfaceNormalSpeed(), 0.0, 1.0);
     EXPECT_EQ(*s.step.contour.eps, eps_for_depth(3, s.step.contour.depth, length_scale(ball)));
 }
 
@@ -61,6 +62,46 @@ TEST(DefaultSteps, AStiffLawTakesAsManyAsTheSharpestTurnNeeds) {
     EXPECT_EQ(default_run_options(oval, NormalSpeed(1.0), 0.0, 0.5).steps, 40);
     const Interface speck(std::vector<std::vector<Vec2>>{shapes::circle({0.0, 0.0}, 0.01, 64)});
     EXPECT_EQ(default_run_options(speck, HeleShaw(), 0.0, 1.0).steps, 2000);
+}
+
+TEST(DefaultSteps, AFlowFieldTakesTenInBothDimensions) {
+    // A flow field stepped directly adds its contour's error each step, whatever the step's
+    // length: ten steps, where the other laws take 40 (curves) or 20 (a surface).
+    const Interface curves(std::vector<std::vector<Vec2>>{shapes::circle({0.5, 0.0}, 1.0, 64)});
+    EXPECT_EQ(default_run_options(curves, Rotation(), 0.0, 6.0).steps, 10);
+    EXPECT_EQ(default_run_options(curves, NormalSpeed(1.0), 0.0, 6.0).steps, 40);
+    const Surface ball = sphere({0.5, 0.0, 0.0}, 1.0, 2);
+    EXPECT_EQ(default_surface_run_options(ball, SurfaceRotation(), 0.0, 6.0).steps, 10);
+    EXPECT_EQ(default_surface_run_options(ball, SurfaceNormalSpeed(), 0.0, 6.0).steps, 20);
+}
+
+TEST(RunOptions, AUsersRunTakesAWholeNumberOfStepsAFrame) {
+    const Interface curves(std::vector<std::vector<Vec2>>{shapes::circle({0.0, 0.0}, 1.0, 64)});
+    const Box domain = default_domain(curves.curves());
+    const Problem users = curve_problem("c", curves, domain, 0.0, 6.0, Rotation(), "rotation", {});
+    EXPECT_EQ(run_options(users, {}).steps, 10);
+    EXPECT_EQ(run_options(users, {.frames = 5}).steps, 10);
+    EXPECT_EQ(run_options(users, {.frames = 4}).steps, 12);  // frames at evenly spaced times
+    EXPECT_EQ(run_options(users, {.frames = 30}).steps, 30);
+    EXPECT_EQ(run_options(users, {.steps = 4, .frames = 30}).steps, 4);  // N given: kept
+    // Evaluated otherwise than directly, a flow field's steps have a time error: 40.
+    EXPECT_EQ(run_options(users, {.extension = Extension::nearest_point}).steps, 40);
+    EXPECT_EQ(run_options(users, {.extension = Extension::direct}).steps, 10);
+    // A named problem keeps the paper's N, however many frames.
+    const Problem named = make_problem("zalesak");
+    EXPECT_EQ(run_options(named, {.frames = 100'000}).steps, problem_run_options(named).steps);
+
+    SurfaceProblem surface;
+    surface.initial = sphere({0.0, 0.0, 0.0}, 1.0, 2);
+    surface.law = std::make_unique<SurfaceRotation>();
+    surface.domain = default_domain(bounding_box(surface.initial));
+    surface.t_end = 6.0;
+    EXPECT_EQ(surface_run_options(surface, false, 0.0, {}).steps, 10);
+    EXPECT_EQ(surface_run_options(surface, false, 0.0, {.frames = 25}).steps, 25);
+    EXPECT_EQ(surface_run_options(surface, false, 0.0, {.frames = 3}).steps, 12);
+    EXPECT_EQ(surface_run_options(surface, false, 0.0, {.steps = 3, .frames = 25}).steps, 3);
+    const SurfaceProblem enright = make_surface_problem("enright");
+    EXPECT_EQ(surface_run_options(enright, true, 0.0, {.frames = 100}).steps, enright.steps);
 }
 
 TEST(ApplyOverrides, DepthSetsEpsInBothDimensions) {

@@ -142,7 +142,7 @@ TEST(SurfaceRun, ATinySphereGrowsAsALargeOne) {
     for (const double r : {0.5, 0x1p-300}) {  // 2^-300: 4.9e-91
         const Surface ball = prepare_surface(sphere({}, r, 1)).surface;
         const Box3 box = default_domain(bounding_box(ball));
-        SurfaceRunOptions o = default_surface_run_options(ball, 0.0, 0.1 * r);
+        SurfaceRunOptions o = default_surface_run_options(ball, SurfaceNormalSpeed(), 0.0, 0.1 * r);
         o.steps = 2;
         o.step.contour.depth = 3;
         o.step.contour.eps = 4e-2 * r;

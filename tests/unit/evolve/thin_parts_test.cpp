@@ -209,7 +209,7 @@ TEST(TopologyChange, SurfacesFollowTheSameRule) {
     // three levels.
     const Surface tube = slc::torus({}, 0.55, 0.2, 96, 48);
     const SurfaceNormalSpeed law(-1.0);
-    SurfaceRunOptions o = default_surface_run_options(tube, 0.0, 0.18);
+    SurfaceRunOptions o = default_surface_run_options(tube, law, 0.0, 0.18);
     o.steps = 1;
     o.step.contour.depth = 4;
     o.step.contour.eps = 2e-3;
