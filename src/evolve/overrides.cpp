@@ -219,7 +219,7 @@ RunOptions run_options(const Problem& p, const RunOverrides& q, SettingNames nam
     // each step: the steps of the other laws.
     if (p.flow_field && !p.named && !q.steps && q.extension) {
         o.steps =
-            *q.extension == Extension::direct ? detail::flow_field_steps : detail::user_steps(2);
+            *q.extension == Extension::direct ? detail::flow_field_steps(2) : detail::user_steps(2);
     }
     return with_a_step_a_frame(o, q, p.named);
 }

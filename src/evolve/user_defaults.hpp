@@ -25,24 +25,25 @@ bool normal_speed_varies(const BasicVelocityLaw<dim>& law) {
     return law.is_normal_law() && !law.constant_speed();
 }
 
-/// The steps of a user's run of a flow field stepped directly (flows_directly): its step traces
-/// the feet to a tenth of ε whatever its length, so each step adds its contour's error and fewer
-/// steps add fewer. A spindle (tips of 23°) turned a full turn at the defaults: −0.27% of its
-/// volume and 0.0104 from the start in 20 steps (10 s), −0.135% and 0.0077 in 10 (5.9 s); a
-/// sphere in Enright's field back at t = 3 at K 7, ε 5e−5: 0.0235% of shape error in 30 steps
-/// (195 s), 0.0225% in 10 (101 s). Curves keep their error at any count (a five-lobed curve turned
-/// a full turn: 2.7e−4 from the start in 40, 10 and 5 steps), and take the same. Ten rather than
-/// fewer, so that a run's history and its guards see the motion.
-inline constexpr int flow_field_steps = 10;
-
-/// The steps of a user's run under any other law that is not stiff: 40 for curves, 20 for a
-/// surface (whose step costs seconds).
+/// The steps of a user's run under a law that is not stiff: 40 for curves, 20 for a surface
+/// (whose step costs seconds).
 constexpr int user_steps(int dim) { return dim == 2 ? 40 : 20; }
 
+/// The steps of a user's run of a flow field stepped directly (flows_directly): its step traces
+/// the feet to a tenth of ε whatever its length, so each step adds its contour's error and fewer
+/// steps add fewer. Curves take 10 (a star turned a full turn: 3.1e−4 of its size from the
+/// start in 40 steps, 3.2e−5 in 10, in a quarter of the time), so that a run's history and its
+/// guards still see the motion. A surface keeps its 20: fewer would also help a smooth one (a
+/// spindle with tips of 23° turned a full turn: −0.27% of its volume and 0.0104 from the start
+/// in 20 steps, 10 s; −0.135% and 0.0077 in 10, 5.9 s), but a unit box with a wall 0.03 thick,
+/// turned in 10, is refused at t = π, where the contours at its corners hold 1, 11 and 34 handles
+/// at 2, 4 and 6 levels of thin cells (docs/notes/thin-gaps.md).
+constexpr int flow_field_steps(int dim) { return dim == 2 ? 10 : user_steps(3); }
+
 /// RunOptions (dim 2) or SurfaceRunOptions (dim 3) for a shape of length scale ℓ from t_start to
-/// t_end under law: N = flow_field_steps for a flow field stepped directly, else `steps` (the
-/// dimension's own); K = 5, ε = eps_for_depth(dim, 5, ℓ), η = 1e−10 ℓ, up to ten doublings of the
-/// domain (a drop 1e−3 across carried round LeVeque's vortex needs eight). Throws InvalidInput
+/// t_end under law: N = flow_field_steps(dim) for a flow field stepped directly, else `steps`
+/// (the dimension's own); K = 5, ε = eps_for_depth(dim, 5, ℓ), η = 1e−10 ℓ, up to ten doublings of
+/// the domain (a drop 1e−3 across carried round LeVeque's vortex needs eight). Throws InvalidInput
 /// unless t_start and t_end are finite with t_end after t_start.
 template <int dim, class Options>
 Options user_run_options(const BasicVelocityLaw<dim>& law, double t_start, double t_end,
@@ -54,7 +55,7 @@ Options user_run_options(const BasicVelocityLaw<dim>& law, double t_start, doubl
     Options o;
     o.t_start = t_start;
     o.t_end = t_end;
-    o.steps = flows_directly(law, o.step) ? flow_field_steps : steps;
+    o.steps = flows_directly(law, o.step) ? flow_field_steps(dim) : steps;
     o.max_domain_doublings = 10;
     o.step.contour.depth = default_depth;
     o.step.contour.eps = eps_for_depth(dim, o.step.contour.depth, length_scale);

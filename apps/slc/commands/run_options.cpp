@@ -13,11 +13,12 @@
 
 namespace slc::cli {
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
-    cmd.add_option("-N,--steps", o.settings.steps,
-                   "N: time steps on [0, a] (a problem's own; for --initial 40 for curves and 20 "
-                   "for a surface, 10 under a flow field evaluated directly, raised to a multiple "
-                   "of --frames; under the stiff mullins-sekerka and hele-shaw, as many as the "
-                   "start's sharpest turn needs, up to 2000)")
+    cmd.add_option(
+           "-N,--steps", o.settings.steps,
+           "N: time steps on [0, a] (a problem's own; for --initial 40 for curves and 20 "
+           "for a surface, 10 for curves under a flow field evaluated directly, raised to a "
+           "multiple of --frames; under the stiff mullins-sekerka and hele-shaw, as many as the "
+           "start's sharpest turn needs, up to 2000)")
         ->check(integer_in(setting_range::steps));
     cmd.add_option(
            "-K,--depth", o.settings.depth,

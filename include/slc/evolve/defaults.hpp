@@ -23,9 +23,10 @@ Box default_domain(const std::vector<std::vector<Vec2>>& curves);
 double length_scale(const Interface& curves);
 
 /// The run options for curves (valid, not empty) moved by law from t_start to t_end:
-/// - N = 40 steps (10 for a flow field evaluated directly, as for a surface; more for a stiff
-///   law, VelocityLaw::stiffness), K = 5 (the finest cell 1/32 of the domain, which doubles, K one
-///   level deeper, up to 10 times when the curves near its edge: RunOptions::max_domain_doublings);
+/// - N = 40 steps (10 for a flow field evaluated directly, whose steps each add their
+///   contour's error; more for a stiff law, VelocityLaw::stiffness), K = 5 (the finest cell 1/32 of
+///   the domain, which doubles, K one level deeper, up to 10 times when the curves near its edge:
+///   RunOptions::max_domain_doublings);
 /// - lengths relative to the curves' half-width ℓ: ε = 1e−5 ℓ (eps_for_depth, the rule -K
 ///   follows), η = 1e−10 ℓ, so that a curve scaled by any factor runs alike;
 /// - a law known only at the vertices (the curvature laws, with their module's default,

@@ -80,8 +80,7 @@ Box3 default_domain(const Box3& bounds);
 double length_scale(const Surface& surface);
 
 /// The run options for a user's surface (valid, not empty) from t_start to t_end under law,
-/// lengths relative to ℓ = length_scale(surface): N = 20 steps (10 for a flow field evaluated
-/// directly, the law's own extension), K = 5 (the finest cell 1/32 of the
+/// lengths relative to ℓ = length_scale(surface): N = 20 steps, K = 5 (the finest cell 1/32 of the
 /// domain), refinement until converged with ε = 1e−3 ℓ (eps_for_depth, the rule -K follows)
 /// (triangles grow as 1/ε: a sphere takes about 20,000), η = 1e−10 ℓ; the law's own extension, and
 /// the curvature smoothed over √k. Throws InvalidInput for an empty surface or t_end not after

@@ -64,14 +64,14 @@ TEST(DefaultSteps, AStiffLawTakesAsManyAsTheSharpestTurnNeeds) {
     EXPECT_EQ(default_run_options(speck, HeleShaw(), 0.0, 1.0).steps, 2000);
 }
 
-TEST(DefaultSteps, AFlowFieldTakesTenInBothDimensions) {
+TEST(DefaultSteps, AFlowFieldOfCurvesTakesTen) {
     // A flow field stepped directly adds its contour's error each step, whatever the step's
-    // length: ten steps, where the other laws take 40 (curves) or 20 (a surface).
+    // length: curves take ten steps, where the other laws take 40; a surface keeps its 20.
     const Interface curves(std::vector<std::vector<Vec2>>{shapes::circle({0.5, 0.0}, 1.0, 64)});
     EXPECT_EQ(default_run_options(curves, Rotation(), 0.0, 6.0).steps, 10);
     EXPECT_EQ(default_run_options(curves, NormalSpeed(1.0), 0.0, 6.0).steps, 40);
     const Surface ball = sphere({0.5, 0.0, 0.0}, 1.0, 2);
-    EXPECT_EQ(default_surface_run_options(ball, SurfaceRotation(), 0.0, 6.0).steps, 10);
+    EXPECT_EQ(default_surface_run_options(ball, SurfaceRotation(), 0.0, 6.0).steps, 20);
     EXPECT_EQ(default_surface_run_options(ball, SurfaceNormalSpeed(), 0.0, 6.0).steps, 20);
 }
 
@@ -96,9 +96,9 @@ TEST(RunOptions, AUsersRunTakesAWholeNumberOfStepsAFrame) {
     surface.law = std::make_unique<SurfaceRotation>();
     surface.domain = default_domain(bounding_box(surface.initial));
     surface.t_end = 6.0;
-    EXPECT_EQ(surface_run_options(surface, false, 0.0, {}).steps, 10);
+    EXPECT_EQ(surface_run_options(surface, false, 0.0, {}).steps, 20);
     EXPECT_EQ(surface_run_options(surface, false, 0.0, {.frames = 25}).steps, 25);
-    EXPECT_EQ(surface_run_options(surface, false, 0.0, {.frames = 3}).steps, 12);
+    EXPECT_EQ(surface_run_options(surface, false, 0.0, {.frames = 3}).steps, 21);
     EXPECT_EQ(surface_run_options(surface, false, 0.0, {.steps = 3, .frames = 25}).steps, 3);
     const SurfaceProblem enright = make_surface_problem("enright");
     EXPECT_EQ(surface_run_options(enright, true, 0.0, {.frames = 100}).steps, enright.steps);
