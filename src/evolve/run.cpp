@@ -161,10 +161,10 @@ public:
     /// jumps across the normals at the polygon's corners, where the direct extension's is the
     /// law's own.
     std::string unstable_after_splits(const std::string& violation, int pieces, double) const {
-        if (flows_directly(law_, options_.step)) {  // split only where a sub-step failed
-            return fmt::format("{}{}: raise the depth K, or take fewer steps N ({})", violation,
-                               pieces > 1 ? fmt::format(", also in {} sub-steps", pieces) : "",
-                               fewer_steps_reason);
+        if (flows_directly(law_, options_.step)) {
+            return fmt::format(
+                "{}, also in {} sub-steps: raise the depth K, or take fewer steps N ({})",
+                violation, pieces, fewer_steps_reason);
         }
         const bool extended = options_.step.resolved_extension(law_) != Extension::direct &&
                               (law_.is_normal_law() || law_.is_field());

@@ -103,8 +103,9 @@ public:
 
     std::string unstable_after_splits(const std::string& violation, int pieces, double t0) const {
         return fmt::format(
-            "at t = {:.6g}: {}{}; {} or refine the contours (-K, --eps)", t0, violation,
-            pieces > 1 ? fmt::format(" (also in {} sub-steps)", pieces) : "", steps_);
+            "at t = {:.6g}: {} (also in {} sub-steps); {} or refine the contours "
+            "(-K, --eps)",
+            t0, violation, pieces, steps_);
     }
     static std::string at_step(int, double, const std::string& why) { return why; }
     static std::string step_failed(int, double t, const char* what) {

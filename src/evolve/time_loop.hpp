@@ -309,12 +309,6 @@ std::string thin_cells_hint(const BasicVelocityLaw<dim>& law, int thin_depth) {
 /// after the step (LoopHooks::run_budget), and add what the kept sub-steps did to r
 /// (LoopHooks::commit).
 ///
-/// A flow field stepped directly (flows_directly) is not split where it breaks the law: its
-/// feet are traced to ε/10 whatever the step's length, so the shape a step reaches is the same
-/// in sub-steps, which only add their contours' errors (a vortex at K = 4 that breaks in 4 steps
-/// broke in all 256 sub-steps of one, and keeps one curve in 1 step); it is split only where a
-/// sub-step fails (NumericalFailure).
-///
 /// With the guards and thin cells (thin_depth > 0), a sub-step that changes the topology is
 /// confirmed by deeper thin cells first (confirm_topology); one the deepest do not confirm is
 /// split as a step that breaks an invariant, and a break of the law's own invariants, which
@@ -331,8 +325,6 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
                                                  typename LoopHooks<dim>::Options& options) {
     using H = LoopHooks<dim>;
     const int halvings = options.guards ? options.max_substep_halvings : 0;
-    // How far a break of the law's guards is split (a failure is split to `halvings`).
-    const int break_halvings = flows_directly(law, options.step) ? 0 : halvings;
     const int& thin = options.step.contour.thin_depth;
     const typename H::Start start = hooks.start(H::shape(r));
     std::string violation, torn;  // the law's last break; a change the contours cannot confirm
@@ -361,7 +353,6 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
     // step lets a corner's first rounding roughen the curve unseen). Where the whole step broke
     // the run's budget, a pass starts over one level finer than the finest the last one took.
     for (int least = 0, finest = 0; least <= halvings; least = finest + 1) {
-        bool broke = false;  // a sub-step of this pass broke the guards (not a failure)
         typename H::StepResult out{H::shape(r), {}};
         typename H::Attempt attempt{start};
         double t = r.t;
@@ -422,18 +413,18 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
             if (!failed) {
                 if (auto v = hooks.record(attempt, H::shape(out), s, t, k, r)) {
                     violation = std::move(*v);
-                    failed = broke = true;
+                    failed = true;
                 } else if (unresolved) {
                     if (violation.empty()) torn = std::move(*unresolved);
-                    failed = broke = true;
+                    failed = true;
                 }
             }
             if (failed) {
                 attempt = before;
-                if (level >= (broke ? break_halvings : halvings)) {
+                if (level == halvings) {
                     if (best) return keep_best();
                     throw Unstable{hooks.unstable_after_splits(violation.empty() ? torn : violation,
-                                                               1 << level, r.t) +
+                                                               1 << halvings, r.t) +
                                    thin_cells_hint(law, thin)};
                 }
                 finest = std::max(finest, ++level);
@@ -453,7 +444,7 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
             const double excess = over_budget->excess;
             over_budget.reset();
             if (!best || excess < 0.75 * best->excess) {
-                if (finest < break_halvings) {
+                if (finest < halvings) {
                     best = Pass{std::move(out), attempt, taken, excess};
                     continue;
                 }
@@ -471,7 +462,7 @@ typename LoopHooks<dim>::StepResult guarded_step(typename LoopHooks<dim>::Result
         // one beyond only a share falls back to that one.
         if (over_budget) {
             if (best) return keep_best();
-            if (over_budget->split && finest < break_halvings) {
+            if (over_budget->split && finest < halvings) {
                 violation = std::move(over_budget->message);
                 continue;
             }
