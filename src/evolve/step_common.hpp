@@ -19,8 +19,8 @@
 namespace slc::detail {
 
 /// The classical fourth-order Runge–Kutta rule for dy/dt = u(y, t), integrated backward from xs
-/// at t + k to t in `substeps` equal steps, each stage one batch (a law written in Python, say,
-/// sees whole arrays).
+/// at t + k to t in `substeps` equal steps (forward from t + k for a negative k), each stage one
+/// batch (a law written in Python, say, sees whole arrays).
 template <int dim>
 std::vector<PointOf<dim>> runge_kutta_feet(const BasicVelocityLaw<dim>& law, double t, double k,
                                            std::span<const PointOf<dim>> xs, int substeps) {
