@@ -204,7 +204,7 @@ namespace {
 /// q does not give, so that the frames fall at evenly spaced times (a named problem keeps its
 /// N, and writes at most a frame a step).
 template <class Options>
-Options with_a_step_a_frame(Options o, const RunOverrides& q, bool named) {
+Options with_steps_a_multiple_of_frames(Options o, const RunOverrides& q, bool named) {
     if (named || q.steps || !q.frames || *q.frames <= 0) return o;
     const std::int64_t f = *q.frames, steps = (o.steps + f - 1) / f * f;
     o.steps = static_cast<int>(std::min<std::int64_t>(steps, setting_range::steps.hi / f * f));
@@ -221,7 +221,7 @@ RunOptions run_options(const Problem& p, const RunOverrides& q, SettingNames nam
         o.steps =
             *q.extension == Extension::direct ? detail::flow_field_steps(2) : detail::user_steps(2);
     }
-    return with_a_step_a_frame(o, q, p.named);
+    return with_steps_a_multiple_of_frames(o, q, p.named);
 }
 
 SurfaceRunOptions surface_run_options(const SurfaceProblem& p, bool named, double t_start,
@@ -230,7 +230,8 @@ SurfaceRunOptions surface_run_options(const SurfaceProblem& p, bool named, doubl
     SurfaceRunOptions o = default_surface_run_options(p.initial, *p.law, t_start, p.t_end);
     o.step.contour.depth =
         depth_for_domain(3, p.domain.width(), default_domain(bounding_box(p.initial)).width());
-    return with_a_step_a_frame(apply_overrides(q, o, length_scale(p.initial), names), q, false);
+    return with_steps_a_multiple_of_frames(apply_overrides(q, o, length_scale(p.initial), names), q,
+                                           false);
 }
 
 int depth_for_domain(int dim, double domain_width, double default_width) {

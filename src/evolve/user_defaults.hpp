@@ -36,8 +36,9 @@ constexpr int user_steps(int dim) { return dim == 2 ? 40 : 20; }
 /// guards still see the motion. A surface keeps its 20: fewer would also help a smooth one (a
 /// spindle with tips of 23° turned a full turn: −0.27% of its volume and 0.0104 from the start
 /// in 20 steps, 10 s; −0.135% and 0.0077 in 10, 5.9 s), but a unit box with a wall 0.03 thick,
-/// turned in 10, is refused at t = π, where the contours at its corners hold 1, 11 and 34 handles
-/// at 2, 4 and 6 levels of thin cells (docs/notes/thin-gaps.md).
+/// turned in 10, is refused at t = π, where the contours hold 1, 11 and 34 handles at 2, 4 and 6
+/// levels of thin cells along the cavity's chamfered edges beside the wall
+/// (docs/notes/thin-gaps.md).
 constexpr int flow_field_steps(int dim) { return dim == 2 ? 10 : user_steps(3); }
 
 /// RunOptions (dim 2) or SurfaceRunOptions (dim 3) for a shape of length scale ℓ from t_start to
