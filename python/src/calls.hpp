@@ -87,7 +87,7 @@ inline void check_frames(int frames) {
 }
 
 /// q with the frames a run keeps (RunOverrides::frames: a user's run whose steps are not given
-/// takes at least a step a frame).
+/// takes a multiple of them).
 inline RunOverrides with_frames(RunOverrides q, int frames) {
     if (frames > 0) q.frames = frames;
     return q;

@@ -217,7 +217,7 @@ RunOptions run_options(const Problem& p, const RunOverrides& q, SettingNames nam
     RunOptions o = apply_overrides(q, problem_run_options(p), p.length_scale, names);
     // A user's flow field given another extension than its own (direct) has a time error in
     // each step: the steps of the other laws.
-    if (p.flow_field && !p.named && !q.steps && q.extension) {
+    if (p.flow_field && !q.steps && q.extension) {  // (only a user's curves have flow_field)
         o.steps =
             *q.extension == Extension::direct ? detail::flow_field_steps(2) : detail::user_steps(2);
     }

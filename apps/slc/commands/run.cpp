@@ -179,8 +179,8 @@ void check_run_memory(const RunOptions& options, const Interface& initial, const
                       distance_bytes_per_cell);
 }
 
-/// The settings of a run: the method options, the guards, the frames (a user's run takes at
-/// least a step a frame) and (a surface's) the volume drift.
+/// The settings of a run: the method options, the guards, the frames (a user's run without -N
+/// takes a multiple of them) and (a surface's) the volume drift.
 RunOverrides run_settings(const RunCommand& o) {
     RunOverrides q = overrides_of(o.method);
     if (o.frames > 0) q.frames = o.frames;
