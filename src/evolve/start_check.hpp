@@ -139,10 +139,13 @@ std::pair<int, ShapeOf<dim>> start_as_given(const ShapeOf<dim>& given, const Reg
         if (mismatch->measure_only) {
             advice = "refinement did not bring the contours within eps of it: raise -K";
         } else if (same) {
+            // Deeper thin cells changed nothing: the part is thinner than any of them, as a part
+            // that tapers to an edge or a point of no thickness is at every depth.
             advice = fmt::format(
-                "a part is thinner than they resolve: raise -K (thin cells {} levels deep split "
-                "no more than {} did)",
-                thin, thin - 2);
+                "a part is thinner than they resolve at any depth (thin cells {} levels deep split "
+                "no more than {} did), as where it tapers to an edge or a point of no thickness: "
+                "give it a thickness of at least {:.3g} there (the finest thin cell) or raise -K",
+                thin, thin - 2, std::ldexp(keep.cell, -thin));
         } else {
             advice = "a part is thinner than they resolve: " +
                      (thin < setting_range::thin_depth.hi

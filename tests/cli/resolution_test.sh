@@ -117,4 +117,35 @@ check "K 12 for the wide domain" test "$(python3 -c "import json; print(json.loa
 wide=$(offset_error wide circle.json -0.5)
 near=$(offset_error near circle.json -0.5)
 check "as accurate either way ($wide and $near)" python3 -c "import sys; sys.exit(not $wide <= 1.01 * $near)"
+
+# A wing whose trailing edge closes to no thickness (NACA 0012, chord 1, span 0.6, tilted off the
+# axes) is thinner than the cells at every depth there: refused at the start, naming a taper and
+# the thickness to give it, not "raise --thin-depth".
+python3 - <<'PY'
+import math
+def half(x):
+    return 0.6 * (0.2969 * math.sqrt(x) - 0.1260 * x - 0.3516 * x**2 + 0.2843 * x**3 - 0.1036 * x**4)
+xs = [0.5 * (1 - math.cos(math.pi * i / 30)) for i in range(31)]
+ring = ([(1.0, 0.0)] + [(x, half(x)) for x in reversed(xs[1:-1])] + [(0.0, 0.0)]
+        + [(x, -half(x)) for x in xs[1:-1]])
+n, m = len(ring), 6
+v = [(x - 0.5, y, -0.3 + 0.6 * j / m) for j in range(m + 1) for x, y in ring]
+f = [t for j in range(m) for i in range(n) for t in
+     ((j * n + i, j * n + (i + 1) % n, (j + 1) * n + (i + 1) % n),
+      (j * n + i, (j + 1) * n + (i + 1) % n, (j + 1) * n + i))]
+for j, z in ((0, -0.3), (m, 0.3)):
+    v.append((-0.2, 0.0, z))
+    c = len(v) - 1
+    f += [(c, j * n + (i + 1) % n, j * n + i) if j == 0 else (c, j * n + i, j * n + (i + 1) % n)
+          for i in range(n)]
+c, s, c2, s2 = math.cos(0.3), math.sin(0.3), math.cos(0.2), math.sin(0.2)
+with open("wing.obj", "w") as out:
+    for x, y, z in v:
+        x, y = c * x - s * y, s * x + c * y
+        out.write(f"v {x!r} {c2 * y - s2 * z!r} {s2 * y + c2 * z!r}\n")
+    out.writelines(f"f {a + 1} {b + 1} {d + 1}\n" for a, b, d in f)
+PY
+expect_status "a wing with a knife-edged trailing edge" 3 -- run --initial wing.obj \
+    --velocity rotation --t-end 1 -K 4 --out wing --quiet
+check "the wing: refused naming a taper and a thickness" grep -q "thinner than they resolve at any depth (thin cells 6 levels deep split no more than 4 did), as where it tapers to an edge or a point of no thickness: give it a thickness of at least 0.0014 there" err.txt
 finish
