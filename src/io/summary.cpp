@@ -174,6 +174,11 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
     const SurfaceContourOptions& c = options.step.contour;
     const Surface& s = r.surface;
     const double volume0 = volume(initial), area0 = area(initial);
+    // The volumes as the steps read the surfaces, curved patches included: the triangles of a
+    // finer or coarser mesh fall short of that surface by other amounts (Enright's sphere at
+    // K 7: its 95,568 triangles hold 0.0245% less than the sphere, their patches 2.6e−8 less).
+    const double read0 = initial.empty() ? 0.0 : step_volume(initial, options.step);
+    const double read = s.empty() ? 0.0 : step_volume(s, options.step);
     const std::optional<double> e = surface_error(p, r.t, s);
     nlohmann::json summary = {
         {"problem", p.name},
@@ -209,6 +214,8 @@ nlohmann::json surface_run_summary(const SurfaceProblem& p, const Surface& initi
         {"volume_initial", volume0},
         {"area_initial", area0},
         {"volume_change", volume0 != 0.0 ? (volume(s) - volume0) / volume0 : 0.0},
+        {"volume_read", read},
+        {"volume_read_change", read0 != 0.0 ? (read - read0) / read0 : 0.0},
         {"e_inf", e ? nlohmann::json(*e) : nlohmann::json(nullptr)},
         {"g_evals", r.g_evals},
         {"split_steps", r.split_steps},

@@ -48,9 +48,11 @@ nlohmann::json run_summary(const Problem& problem, const RunOptions& options,
 /// summary.json of a run of a surface (`slc run` on a surface, Python's `slc.run` on a
 /// Surface): problem, velocity, dimension 3, domain, t_end, params (N, k, K, P, ε, η, threads),
 /// status, t, steps, steps_done, triangles, vertices, components, genus, volume, area,
-/// volume_initial, area_initial, volume_change, e_inf (surface_error at the end, null where the
-/// exact surface is not known), g_evals, split_steps, most_substeps, cpu_s, wall_s; message
-/// for an error or an unstable run. initial: the surface the run started from.
+/// volume_initial, area_initial, volume_change, volume_read and volume_read_change (the volume
+/// as the steps read the surface, its curved patches included: step_volume), e_inf
+/// (surface_error at the end, null where the exact surface is not known), g_evals, split_steps,
+/// most_substeps, cpu_s, wall_s; message for an error or an unstable run. initial: the surface
+/// the run started from.
 nlohmann::json surface_run_summary(const SurfaceProblem& problem, const Surface& initial,
                                    const SurfaceRunOptions& options,
                                    const SurfaceRunResult& result);
