@@ -63,6 +63,7 @@ check "eps alone: until converged, within eps" test "$(json eps_alone/summary.js
 # settings to change; P passes spent before eps is reached end the same way.
 expect_status "refinement short of eps" 3 -- contour --initial box.obj -K 3 --refine 100 --eps 1e-3 --out coarse
 check "one line naming -K and --eps" grep -q "^slc: error: refinement stopped .* raise -K or --eps" err.txt
+check "and the place, by a sharp edge or corner of the input" grep -Eq "near \(.*\) by a sharp (edge|corner) of the input, which the contours chamfer" err.txt
 check "summary says unconverged" test "$(json coarse/summary.json 's["status"], s["converged"]')" = "unconverged False"
 check "its files are written" test -s coarse/final.obj -a -s coarse/final.png
 expect_status "one pass short of eps" 3 -- contour --function torus -K 4 --refine 1 --eps 1e-4 --out short

@@ -5,9 +5,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <numbers>
+#include <optional>
 
 #include "commands/memory_budget.hpp"
 #include "commands/output_folder.hpp"
@@ -15,9 +18,11 @@
 #include "slc/contour/surface_contour.hpp"
 #include "slc/core/error.hpp"
 #include "slc/core/parallel.hpp"
+#include "slc/core/point_text.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/evolve/surface_problems.hpp"
+#include "slc/geometry/triangle3.hpp"
 #include "slc/io/interface_json.hpp"
 #include "slc/io/summary.hpp"
 #include "slc/io/surface_files.hpp"
@@ -27,11 +32,13 @@
 namespace slc::cli {
 namespace {
 
-/// Largest |F| over the vertices, the edge midpoints and the centroids of the triangles.
+/// Largest |F| over the vertices, the edge midpoints and the centroids of the triangles, and
+/// where the largest of all is.
 struct SurfaceError {
     double vertices = 0.0;
     double midpoints = 0.0;
     double centroids = 0.0;
+    Vec3 worst{};  ///< a point where |F| is largest
 };
 
 SurfaceError measure_error(const Surface& s, const std::function<double(Vec3)>& exact) {
@@ -39,19 +46,72 @@ SurfaceError measure_error(const Surface& s, const std::function<double(Vec3)>& 
     parallel_for(
         s.vertices.size(), [&](std::size_t i) { v[i] = std::abs(exact(s.vertices[i])); },
         expensive_grain);
+    auto midpoint = [&](std::size_t i) {
+        const Triangle3 tri = s.triangle(i / 3);
+        const int k = static_cast<int>(i % 3);
+        return 0.5 * (tri[k] + tri[(k + 1) % 3]);
+    };
+    auto centroid = [&](std::size_t t) {
+        const Triangle3 tri = s.triangle(t);
+        return (tri.a + tri.b + tri.c) / 3.0;
+    };
     parallel_for(
         s.size(),
         [&](std::size_t t) {
-            const Triangle3 tri = s.triangle(t);
-            for (int k = 0; k < 3; ++k)
-                m[3 * t + k] = std::abs(exact(0.5 * (tri[k] + tri[(k + 1) % 3])));
-            c[t] = std::abs(exact((tri.a + tri.b + tri.c) / 3.0));
+            for (std::size_t k = 0; k < 3; ++k) m[3 * t + k] = std::abs(exact(midpoint(3 * t + k)));
+            c[t] = std::abs(exact(centroid(t)));
         },
         expensive_grain);
     auto largest = [](const std::vector<double>& x) {
-        return x.empty() ? 0.0 : *std::max_element(x.begin(), x.end());
+        return x.empty() ? x.end() : std::max_element(x.begin(), x.end());
     };
-    return {largest(v), largest(m), largest(c)};
+    SurfaceError e;
+    double most = -1.0;
+    if (const auto i = largest(v); i != v.end()) {
+        e.vertices = *i, most = *i;
+        e.worst = s.vertices[static_cast<std::size_t>(i - v.begin())];
+    }
+    if (const auto i = largest(m); i != m.end()) {
+        e.midpoints = *i;
+        if (*i > most) most = *i, e.worst = midpoint(static_cast<std::size_t>(i - m.begin()));
+    }
+    if (const auto i = largest(c); i != c.end()) {
+        e.centroids = *i;
+        if (*i > most) e.worst = centroid(static_cast<std::size_t>(i - c.begin()));
+    }
+    return e;
+}
+
+/// " by a sharp edge of the input" or " by a sharp corner of the input" when one (its triangles
+/// turning by more than 30°) of the triangle nearest x lies within four times x's distance of
+/// it: refinement does not follow such edges off the octree's axes, and the contour chamfers
+/// them. Empty elsewhere.
+std::string sharp_feature_near(const Surface& surface, const SurfaceDistanceTree& tree, Vec3 x) {
+    const SurfacePoint p = tree.closest_point(x);
+    const double reach = 4.0 * std::abs(p.distance);
+    const TriangleIndices& t = surface.triangles[p.triangle];
+    const Vec3 n = unit_normal(surface.triangle(p.triangle));
+    // Whether a triangle with corner a (and b, when b is given) turns from t by more than 30°.
+    auto sharp = [&](std::uint32_t a, std::optional<std::uint32_t> b) {
+        for (std::uint32_t u = 0; u < surface.size(); ++u) {
+            const TriangleIndices& o = surface.triangles[u];
+            auto has = [&](std::uint32_t v) { return o[0] == v || o[1] == v || o[2] == v; };
+            if (has(a) && (!b || has(*b)) &&
+                dot(n, unit_normal(surface.triangle(u))) < std::cos(std::numbers::pi / 6.0))
+                return true;
+        }
+        return false;
+    };
+    for (int k = 0; k < 3; ++k)
+        if (distance(x, surface.vertices[t[k]]) <= reach && sharp(t[k], std::nullopt))
+            return " by a sharp corner of the input";
+    for (int k = 0; k < 3; ++k) {
+        const Vec3 a = surface.vertices[t[k]], b = surface.vertices[t[(k + 1) % 3]];
+        const double along = std::clamp(dot(x - a, b - a) / norm2(b - a), 0.0, 1.0);
+        if (distance(x, a + along * (b - a)) <= reach && sharp(t[k], t[(k + 1) % 3]))
+            return " by a sharp edge of the input";
+    }
+    return "";
 }
 
 /// The contoured function, its exact distance where known, the domain and a name for it.
@@ -157,9 +217,11 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     // Whether refinement met ε, when refinement was asked for.
     if (r.refine != 0) summary["converged"] = st.converged;
     std::optional<double> error;
+    Vec3 worst{};
     if (source.exact && !s.triangles.empty()) {
         const SurfaceError e = measure_error(s, source.exact);
         error = std::max({e.vertices, e.midpoints, e.centroids});
+        worst = e.worst;
         summary["error"] = *error;
         summary["error_vertices"] = e.vertices;
         summary["error_midpoints"] = e.midpoints;
@@ -191,11 +253,19 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     folder.commit();
     if (torn) fmt::print(stderr, "slc: note: {}\n", *torn);
     if (unconverged) {
+        // Where the contour is farthest, and whether a sharp edge or corner of the input is
+        // there: refinement does not follow those off the octree's axes, and a larger K only
+        // narrows the chamfer.
+        const std::string sharp = error && source.surface
+                                      ? sharp_feature_near(*source.surface, *tree, worst)
+                                      : std::string();
         throw NumericalFailure(fmt::format(
             "refinement stopped after {} passes with |G| above eps = {:g}{} at a midpoint or "
-            "centroid; raise -K or --eps{} (results written to {})",
+            "centroid{}{}; raise -K or --eps{} (results written to {})",
             st.passes, options.resolved_eps(),
             error ? fmt::format(" (largest {:.3g})", *error) : std::string(),
+            error ? " near " + point_text(worst, 6) : std::string(),
+            sharp.empty() ? std::string() : sharp + ", which the contours chamfer",
             st.passes >= r.refine ? " or --refine" : "", r.out));
     }
     fmt::print(
