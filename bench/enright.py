@@ -152,31 +152,27 @@ def comparison(rows):
                        f"{r['wall']:.3g} s (volume {percent(r['change'])}, shape error "
                        f"{100 * r['shape']:.3g}%), {v['wall'] / r['wall']:.3g}× "
                        + ("faster." if r["wall"] < v["wall"] else "the time."))
-    goal = [r for r in rows if finished(r) and abs(r["change"]) < 1e-5
-            and r["distance"] is not None and r["distance"] <= 1e-3]
-    if goal:
-        r = min(goal, key=lambda r: r["wall"])
-        out.append(f"- Goal (under 0.001% of the volume lost, within 1e−3 of the sphere): "
-                   f"{r['method']}, {percent(r['change'])} and {r['distance']:.3g} in "
-                   f"{r['wall']:.3g} s.")
-    else:
-        out.append("- Goal (under 0.001% of the volume lost, within 1e−3 of the sphere): no "
-                   "row here meets it.")
-    read = [r for r in rows if finished(r) and r["read"] is not None and abs(r["read"]) < 1e-5
-            and r["shape"] < 2e-4 and r["wall"] < 120]
-    if read:
-        r = min(read, key=lambda r: r["wall"])
-        out.append(f"- Goal (the volume as the steps read it within 0.001%, the shape error "
-                   f"within 0.02%, under 120 s): {r['method']}, {percent(r['read'])} and "
-                   f"{100 * r['shape']:.3g}% in {r['wall']:.3g} s.")
-    else:
-        best = [r for r in rows if finished(r) and r["read"] is not None and r["wall"] < 120]
-        out.append("- Goal (the volume as the steps read it within 0.001%, the shape error within "
-                   "0.02%, under 120 s): no row here meets it"
-                   + ("; nearest: " + ", ".join(
-                       f"{r['method']}, {percent(r['read'])} and {100 * r['shape']:.3g}% in "
-                       f"{r['wall']:.3g} s" for r in sorted(best, key=lambda r: r["shape"])[:2])
-                      if best else "") + ".")
+    def goal(name, meets, said, near=None):
+        """The goal's line: the fastest row that meets it, or the nearest rows (by `near`)."""
+        met = [r for r in rows if finished(r) and meets(r)]
+        if met:
+            return f"- Goal ({name}): {said(min(met, key=lambda r: r['wall']))}."
+        nearest = sorted((r for r in rows if finished(r)), key=near)[:2] if near else []
+        return (f"- Goal ({name}): no row here meets it"
+                + ("; nearest: " + ", ".join(said(r) for r in nearest) if nearest else "") + ".")
+
+    out.append(goal("under 0.001% of the volume lost, within 1e−3 of the sphere",
+                    lambda r: abs(r["change"]) < 1e-5 and r["distance"] is not None
+                    and r["distance"] <= 1e-3,
+                    lambda r: f"{r['method']}, {percent(r['change'])} and {r['distance']:.3g} in "
+                              f"{r['wall']:.3g} s"))
+    out.append(goal("the volume as the steps read it within 0.001%, the shape error within 0.02%, "
+                    "under 120 s",
+                    lambda r: r["read"] is not None and abs(r["read"]) < 1e-5
+                    and r["shape"] < 2e-4 and r["wall"] < 120,
+                    lambda r: f"{r['method']}, {percent(r['read'])} and {100 * r['shape']:.3g}% "
+                              f"in {r['wall']:.3g} s",
+                    near=lambda r: (r["wall"] >= 120, r["shape"])))
     return ["At least as accurate in volume and shape, and faster:", ""] + out
 
 
