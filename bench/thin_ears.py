@@ -20,6 +20,7 @@ import slc
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python" / "tests"))
+from campaign3d import read_obj, write_obj  # noqa: E402
 from shapes3d import head_with_ears  # noqa: E402
 from thin_cost import write_region  # noqa: E402
 
@@ -29,12 +30,6 @@ def run(binary, given, folder, name, args):
     subprocess.run([binary, "run", "--initial", str(given), *args, "--threads", "2", "--out",
                     str(out), "--quiet"], check=True)
     return out, json.loads((out / "summary.json").read_text())
-
-
-def read_obj(path):
-    vertices = [[float(x) for x in line.split()[1:4]]
-                for line in path.read_text().splitlines() if line.startswith("v ")]
-    return np.array(vertices)
 
 
 def main():
@@ -50,14 +45,12 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         given = folder / "head.obj"
-        with open(given, "w") as f:
-            f.writelines(f"v {p[0]!r} {p[1]!r} {p[2]!r}\n" for p in head.vertices)
-            f.writelines(f"f {t[0] + 1} {t[1] + 1} {t[2] + 1}\n" for t in head.triangles)
+        write_obj(given, head.vertices.tolist(), head.triangles.tolist())
         for name, speed in (("grown (the ears 0.12 thick)", 1), ("shrunk (the ears 0.08 thick)", -1)):
             out, s = run(a.slc, given, folder, f"speed{speed}",
                          ["--velocity", "unit-normal", "--param", f"speed={speed}",
                           "--t-end", "0.01"])
-            d, _ = slc.distance(head, read_obj(out / "final.obj"))
+            d, _ = slc.distance(head, np.array(read_obj(out / "final.obj")[0]))
             error = float(np.abs(d - 0.01 * speed).max()) / size
             lines.append(f"| {name} | {s['status']} | {s['components']}, {s['genus']} | "
                          f"{100 * error:.2g}% | {s['wall_s']:.0f} |")
