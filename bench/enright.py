@@ -190,7 +190,7 @@ def main():
                         default=["3:15:1e-2::2:free", "4:10:1e-2::2:free", "4:30:1e-3:1",
                                  "5:30:5e-4:1", "6:30:1e-4", "6:30:1e-4::3", "7:15:5e-4",
                                  "7:60:1e-4", "7:30:5e-5", "7:30:1e-4", "7:10:5e-5", "7:8:3e-5",
-                                 "7:10:2e-5"],
+                                 "7:8:2.5e-5", "7:10:2e-5"],
                         help="slc settings K:N:eps, K:N:eps:DRIFT with --volume-drift DRIFT, "
                              "K:N:eps:DRIFT:THIN (DRIFT may be empty) with --thin-depth THIN, "
                              "K:N:eps:DRIFT:THIN:free with --no-guards")

@@ -13,6 +13,11 @@ PROBLEMS = ["sphere-rotation", "sphere-curvature", "merging-spheres", "box-norma
             "box-normal:speed=-1", "peanut-volume", "zalesak-sphere", "enright"]
 
 
+def eps_text(eps):
+    """1e-04, 2.5e-05: two digits where the second is not 0."""
+    return f"{eps:.1e}".replace(".0e", "e")
+
+
 def fmt(x, spec):
     return "" if x is None else format(x, spec)
 
@@ -51,7 +56,7 @@ def main():
     for s in rows:
         p = s["params"]
         lines.append(
-            f"| {s['row']} | {p['N']} | {p['K']} | {p['eps']:.0e} | {s['status']} "
+            f"| {s['row']} | {p['N']} | {p['K']} | {eps_text(p['eps'])} | {s['status']} "
             f"| {s['triangles']:,} | {s['components']} | {s['genus']} | {fmt(s['e_inf'], '.2e')} "
             f"| {100 * s['volume_change']:+.3f}% | {s.get('unconverged_steps', 0)} "
             f"| {fmt(s.get('largest_residual'), '.2e')} | {s['g_evals']:,} | {s['wall_s']:.1f} "

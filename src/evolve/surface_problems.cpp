@@ -138,11 +138,13 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
         p.t_end = 3.0;
         // The sheet thins below a cell of K = 7 by t = 1.5; thin cells two levels deep keep it
         // whole (at K = 6 too, farther from the sphere at the end). The feet are traced to ε/10
-        // at any step, so a step's error is its contour's: ten steps at ε = 5e−5 come back
-        // nearer the sphere than thirty at 1e−4, in 0.6 the time (docs/tables/enright.md).
-        p.steps = 10;
+        // at any step, so a step's error is its contour's: eight steps at ε = 2.5e−5 come back
+        // with the volume within 0.001% and the shape within 0.02% of the sphere's in under two
+        // minutes on two cores, where thirty at 1e−4 are off by 0.0015% and 0.027% in 170 s
+        // (docs/tables/enright.md).
+        p.steps = 8;
         p.depth = 7;
-        p.eps = 5e-5;
+        p.eps = 2.5e-5;
         p.thin_depth = 2;
         p.law = std::make_unique<EnrightField>(3.0);
         p.exact = [c](double t, Vec3 x) {
