@@ -140,7 +140,7 @@ SurfaceProblem make_surface_problem(const std::string& name, const VelocityParam
         // whole (at K = 6 too, farther from the sphere at the end). The feet are traced to ε/10
         // at any step, so a step's error is its contour's: eight steps at ε = 2.5e−5 come back
         // with the volume within 0.001% and the shape within 0.02% of the sphere's in under two
-        // minutes on two cores, where thirty at 1e−4 are off by 0.0015% and 0.027% in 170 s
+        // minutes on two cores, where thirty at 1e−4 are off by 0.0022% and 0.028% in 157 s
         // (docs/tables/enright.md).
         p.steps = 8;
         p.depth = 7;
