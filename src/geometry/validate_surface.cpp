@@ -138,8 +138,9 @@ int arrange_shared(const Surface& s, std::uint32_t i, std::uint32_t j, Triangle3
 /// det(d, e, f) = d · (e × f) in floating point, and a bound on its error when e and f are
 /// differences of input points rounded once: sixteen units of rounding of the terms' absolute
 /// sum, twice the bound of Shewchuk's orient3d filter, which rounds its differences the same
-/// way. Nothing (0 as the bound's stand-in) when the terms are too small for a bound that does
-/// not underflow.
+/// way. The bound is infinite (nothing settled) when the terms are too small for a bound that
+/// does not underflow; a value that overflows compares false with its bound, and settles nothing
+/// either.
 std::pair<double, double> det_and_bound(Vec3 d, Vec3 e, Vec3 f) {
     const double x = e.y * f.z - e.z * f.y, y = e.z * f.x - e.x * f.z, z = e.x * f.y - e.y * f.x;
     const double det = d.x * x + d.y * y + d.z * z;
