@@ -253,13 +253,21 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
     int& thin = options.step.contour.thin_depth;
     const ShapeTopology was = shape_topology(before);
     ShapeTopology now = shape_topology(H::shape(s));
-    // Why the change is not confirmed: `at`'s contours against those `depth` levels deep.
+    // Why the change is not confirmed: `at`'s contours against those `depth` levels deep. Where
+    // parts meet and the holes or handles rise, the edge between them narrows to nothing, which
+    // thin cells resolve unevenly along it and pinch (two meshed spheres growing into each
+    // other: hundreds of handles at every thin depth and K, none at thin depths 0 and 1).
     const auto unconfirmed = [&](const typename H::StepResult& at, int depth) {
+        const bool pinched = now.holes > was.holes && now.components <= was.components;
         return fmt::format(
             "at t = {:.6g}: the step's contours made {} of {}{}, and thin cells {} deep{} do not "
-            "confirm it: a part is thinner than they resolve; raise -K",
+            "confirm it: a part is thinner than they resolve; raise -K{}",
             t + k, describe(now, dim), describe(was, dim), finest_place(at), levels(depth),
-            at_budget(at) ? ", at their budget of cells," : "");
+            at_budget(at) ? ", at their budget of cells," : "",
+            pinched ? fmt::format(", or, where parts meet, lower --thin-depth: thin cells can "
+                                  "pinch the narrowing edge between them into {}",
+                                  dim == 2 ? "holes" : "handles")
+                    : "");
     };
     while (now != was) {
         if (thin >= setting_range::thin_depth.hi) {

@@ -67,4 +67,30 @@ check "merging spheres: the last frame is where it stopped" \
     grep -q "timestep=\"$(json merge1/summary.json 's["t"]')\".*frame_0001.vtp" merge1/frames.pvd
 check "merging spheres: no frame beyond it" test ! -e merge1/frames/frame_0002.vtp
 
+# Two meshed spheres of one's own (0.3 and 0.25 across, 0.13 apart, one turned) growing into
+# each other at K 4: where they meet, thin cells pinch the edge narrowing between them into
+# handles at every thin depth; such a run either merges them or ends unstable naming
+# --thin-depth, and without thin cells it merges them into one component of genus 0.
+"$SLC" contour --function sphere -K 3 --out sphere >/dev/null 2>&1
+awk 'BEGIN { c = cos(0.7); s = sin(0.7) }
+    /^v / { n++; x[n] = $2; y[n] = $3; z[n] = $4 }
+    /^f / { m++; f[m] = $2 " " $3 " " $4 }
+    END {
+        for (i = 1; i <= n; i++) printf "v %.17g %.17g %.17g\n", 0.5 * x[i] - 0.32, 0.5 * y[i], 0.5 * z[i]
+        for (i = 1; i <= n; i++)
+            printf "v %.17g %.17g %.17g\n", 0.42 * (c * x[i] - s * y[i]) + 0.36,
+                0.42 * (s * x[i] + c * y[i]) + 0.03, 0.42 * z[i] + 0.01
+        for (j = 1; j <= m; j++) print "f " f[j]
+        for (j = 1; j <= m; j++) { split(f[j], a, " "); printf "f %d %d %d\n", a[1] + n, a[2] + n, a[3] + n }
+    }' sphere/final.obj >pair.obj
+"$SLC" run --initial pair.obj --velocity unit-normal --t-end 0.1 -K 4 --out pair --quiet 2>err.txt
+if [ $? -eq 3 ]; then
+    check "meshed spheres meeting: unstable naming --thin-depth" grep -q "where parts meet, lower --thin-depth" err.txt
+else
+    check "meshed spheres meeting: merged" test "$(json pair/summary.json 's["components"], s["genus"]')" = "1 0"
+fi
+expect_ok "meshed spheres meeting without thin cells" -- run --initial pair.obj --velocity unit-normal \
+    --t-end 0.1 -K 4 --thin-depth 0 --out pair0 --quiet
+check "meshed spheres: one component of genus 0" test "$(json pair0/summary.json 's["components"], s["genus"]')" = "1 0"
+
 finish
