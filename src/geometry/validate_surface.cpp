@@ -162,34 +162,26 @@ std::pair<double, double> det_and_bound(Vec3 d, Vec3 e, Vec3 f) {
 /// triangle flagged in `changed`. O(N), on all threads.
 std::vector<std::uint8_t> certified_fans(const Surface& s, std::span<const std::uint8_t> changed) {
     const std::size_t nv = s.vertices.size();
-    // Each vertex's triangles (a counting sort of the corners).
-    std::vector<std::uint32_t> start(nv + 1, 0);
-    for (const TriangleIndices& t : s.triangles)
-        for (const std::uint32_t v : t) ++start[v + 1];
-    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), around(start[nv]);
-    for (std::uint32_t t = 0; t < s.size(); ++t)
-        for (const std::uint32_t v : s.triangles[t]) around[fill[v]++] = t;
+    const VertexCorners around = vertex_corners(s);
     std::vector<std::uint8_t> certified(nv, 0);
-    parallel_for(nv, [&](std::size_t vi) {
-        const auto v = static_cast<std::uint32_t>(vi);
-        const std::uint32_t first = start[v], count = start[v + 1] - first;
+    parallel_for(nv, [&](std::size_t v) {
+        const std::uint32_t first = around.start[v], count = around.start[v + 1] - first;
         if (count < 3 || count > 64) return;
         bool any_changed = false;
+        for (std::uint32_t k = 0; k < count; ++k)
+            any_changed = any_changed || changed[around.corners[first + k] / 3];
+        if (!any_changed) return;
         // Each triangle's corners after v, in its order: v → a → b.
         std::array<std::uint32_t, 64> out{}, in{};
         Vec3 d{};
         const Vec3 p = s.vertices[v];
         for (std::uint32_t k = 0; k < count; ++k) {
-            const std::uint32_t t = around[first + k];
-            any_changed = any_changed || changed[t];
-            const TriangleIndices& tri = s.triangles[t];
-            const int c = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
-            out[k] = tri[(c + 1) % 3];
-            in[k] = tri[(c + 2) % 3];
+            const std::uint32_t corner = around.corners[first + k];
+            const TriangleIndices& tri = s.triangles[corner / 3];
+            out[k] = tri[(corner + 1) % 3];
+            in[k] = tri[(corner + 2) % 3];
             d += cross(s.vertices[out[k]] - p, s.vertices[in[k]] - p);
         }
-        if (!any_changed) return;
         // One closed fan: from each triangle's b to the one triangle whose a it is, round all.
         std::uint32_t k = 0;
         for (std::uint32_t step = 0; step < count; ++step) {
