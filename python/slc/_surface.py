@@ -235,8 +235,8 @@ def _run_end(out: dict, stacklevel: int) -> dict[str, Any]:
     """How a run ended, from the module's answer: status, t, history, summary and message, as a
     RunResult and a SurfaceRunResult take them. Warns (UserWarning) what the command line notes
     on stderr: the summary's note (contours left beyond eps, a part split off thinner than the
-    cells without thin cells), a step taken again with deeper thin cells (thin_deeper), and with
-    guards=False the first break; stacklevel: as warnings.warn's, the caller's frame being 2."""
+    cells without thin cells), a step taken again with deeper thin cells (thin_deeper) or kept
+    at shallower ones where parts met (thin_shallower), and with guards=False the first break; stacklevel: as warnings.warn's, the caller's frame being 2."""
     summary = out["summary"]
     if "note" in summary:
         warnings.warn(summary["note"], stacklevel=stacklevel)
@@ -245,6 +245,12 @@ def _run_end(out: dict, stacklevel: int) -> dict[str, Any]:
         warnings.warn(f"{d['why']}: a part thinner than the contours resolved, kept by deeper "
                       f"thin cells, up to {d['depth']} levels deep, in {d['steps']} of the "
                       "run's steps", stacklevel=stacklevel)
+    if "thin_shallower" in summary:
+        d = summary["thin_shallower"]
+        warnings.warn(f"{d['why']}: deeper thin cells made holes or handles that neither the "
+                      f"step's start nor shallower cells had (as where parts meet), and "
+                      f"{d['steps']} of the run's steps kept shallower ones, down to "
+                      f"{d['depth']} levels", stacklevel=stacklevel)
     if out["status"] == "broken":
         warnings.warn(f"guards=False: {out['message']}", stacklevel=stacklevel)
     return {k: out[k] for k in ("status", "t", "history", "summary", "message")}

@@ -69,9 +69,10 @@ bool is_speck(std::span<const Vec2> curve, double size) {
 }
 
 /// Which curves are flecks: thinner than half the finest cell on the mean (2|A|/L), within two
-/// finest cells of a curve of their orientation that is not. The linear contour cuts such a piece
-/// off a sharp tip, along which the part is thinner than the cells at any depth; whatever made
-/// it, a piece that thin that near is below what the cells resolve.
+/// finest cells of a curve that is not. The linear contour cuts such a piece off a sharp tip,
+/// along which the part is thinner than the cells at any depth, or off the gap narrowing to
+/// nothing where two parts meet (a hole beside the curve that bridges them); whatever made it, a
+/// piece that thin that near is below what the cells resolve.
 std::vector<std::uint8_t> flecks(const Interface& curves, double finest) {
     const std::size_t n = curves.curve_count();
     const double reach = 2.0 * finest;
@@ -90,7 +91,7 @@ std::vector<std::uint8_t> flecks(const Interface& curves, double finest) {
     for (std::size_t c = 0; c < n; ++c) {
         if (!thin[c]) continue;
         for (std::size_t d = 0; d < n && !fleck[c]; ++d) {
-            if (thin[d] || (area[d] > 0.0) != (area[c] > 0.0) || apart(box[c], box[d])) continue;
+            if (thin[d] || apart(box[c], box[d])) continue;
             for (std::size_t i = curves.offsets()[d]; i < curves.offsets()[d + 1] && !fleck[c];
                  ++i) {
                 const Segment s = curves.segment(i);

@@ -242,7 +242,8 @@ inline std::string levels(int n) { return fmt::format("{} {}", n, n == 1 ? "leve
 /// (setting_range::thin_depth) the change is checked against two levels shallower instead. A
 /// change two depths do not agree on, or thin cells at their budget (which split no deeper where
 /// it ran out, and give the same contours at any depth), is unresolved: why, naming the thin
-/// depths, the topologies they give and the place.
+/// depths, the topologies they give and the place. Where parts meet and deeper cells make more
+/// holes or handles of the same parts, the shallower depths are tried first (r.shallower_at).
 template <int dim>
 Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const ShapeOf<dim>& before,
                                 double t, double k, const BasicVelocityLaw<dim>& law,
@@ -269,6 +270,54 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
                                   dim == 2 ? "holes" : "handles")
                     : "");
     };
+    // Where parts meet, the gap between them narrows to nothing, and deeper thin cells make
+    // holes or handles of it that come and go with the depth, more the deeper (two meshed
+    // spheres growing into each other at K 4, meeting: 2, 0, 9, 19, 42, 47, 89, 221 and 413
+    // handles at thin depths 0 to 8; two circles: a hole and a part at depth 8 where 6 merged
+    // them), which no two depths confirm. Where deeper cells make holes or handles that neither
+    // the step's start nor the shallower cells have, the step keeps the deepest depth, from the
+    // one it was entered at down, whose contours have no more parts, holes or handles than the
+    // start (r.shallower_at); the next step starts again from the run's own.
+    const int entered = thin;
+    // What going deeper recorded before this step tried (kept where it ends shallower).
+    const double deeper_at = r.deeper_at;
+    const std::string deeper_why = r.deeper_why;
+    const int deepest = r.deepest_thin_depth;
+    std::optional<typename H::StepResult> first;
+    if (now != was) first = s;
+    bool tried = false, first_counted = false;  // first_counted: in r.g_evals as not kept
+    const auto shallower = [&](const ShapeTopology& deeper_made,
+                               int deeper_depth) -> std::optional<typename H::StepResult> {
+        if (tried || !first) return std::nullopt;
+        tried = true;
+        for (int d = entered; d >= 0; --d) {
+            typename H::Options o = options;
+            o.step.contour.thin_depth = d;
+            typename H::StepResult here =
+                d == entered ? *first
+                             : step_in_growing_domain<dim>(before, t, k, law, domain, o, r);
+            const ShapeTopology got = shape_topology(H::shape(here));
+            if (got.components >= 1 && got.components <= was.components && got.holes <= was.holes &&
+                !at_budget(here)) {
+                if (std::isnan(r.shallower_at)) {
+                    r.shallower_at = t;
+                    r.shallower_why = fmt::format(
+                        "at t = {:.6g} thin cells {} deep made {} of {}{}, and {} deep {}", t + k,
+                        levels(deeper_depth), describe(deeper_made, dim), describe(was, dim),
+                        finest_place(*first), levels(d), describe(got, dim));
+                }
+                if (d == entered && first_counted) r.g_evals -= here.stats.g_evals();
+                thin = d;
+                r.shallowest_thin_depth = std::min(r.shallowest_thin_depth, d);
+                r.deeper_at = deeper_at;
+                r.deeper_why = deeper_why;
+                r.deepest_thin_depth = deepest;
+                return here;
+            }
+            if (d != entered || !first_counted) r.g_evals += here.stats.g_evals();  // not kept
+        }
+        return std::nullopt;
+    };
     while (now != was) {
         if (thin >= setting_range::thin_depth.hi) {
             typename H::Options o = options;
@@ -278,6 +327,11 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
             r.g_evals += coarser.stats.g_evals();  // a confirmation, not kept
             if (shape_topology(H::shape(coarser)) == now && !at_budget(s))
                 return {std::move(s), std::nullopt};
+            if (now.holes > was.holes) {
+                if (thin != entered) r.g_evals += s.stats.g_evals();  // not kept
+                if (auto kept = shallower(now, thin)) return {std::move(*kept), std::nullopt};
+                if (thin != entered) r.g_evals -= s.stats.g_evals();
+            }
             std::string why = unconfirmed(s, thin - 2);
             return {std::move(s), std::move(why)};
         }
@@ -287,12 +341,20 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
             step_in_growing_domain<dim>(before, t, k, law, domain, o, r);
         const ShapeTopology there = shape_topology(H::shape(deeper));
         r.g_evals += s.stats.g_evals();  // the coarser sub-step, not kept
+        if (thin == entered) first_counted = true;
         if (there == now) {
             if (at_budget(deeper)) {
                 std::string why = unconfirmed(deeper, o.step.contour.thin_depth);
                 return {std::move(deeper), std::move(why)};
             }
             return {std::move(deeper), std::nullopt};
+        }
+        if (there.holes > std::max(now.holes, was.holes)) {
+            // Deeper cells make holes or handles that neither the start nor these have.
+            if (auto kept = shallower(there, o.step.contour.thin_depth)) {
+                r.g_evals += deeper.stats.g_evals();  // not kept
+                return {std::move(*kept), std::nullopt};
+            }
         }
         // The coarser contours tore or joined what the deeper keep: the step goes on deeper.
         if (std::isnan(r.deeper_at)) {
@@ -575,10 +637,12 @@ typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result&
         const std::int64_t step_cpu_start = process_cpu_ns();
         try {
             // Each step starts from the thin cells the run asked (or its start needed); the
-            // deeper ones a step took for a part thinner than those resolve are that step's.
+            // deeper ones a step took for a part thinner than those resolve, and the shallower
+            // ones it kept where parts meet, are that step's.
             thin = asked_thin;
             step = guarded_step<dim>(r, t_next, hooks, law, domain, options);
             if (thin > asked_thin) ++r.deeper_steps;
+            if (thin < asked_thin) ++r.shallower_steps;
         } catch (const NumericalFailure& e) {
             r.status = RunStatus::error;
             r.message = H::step_failed(n, r.t, e.what());

@@ -48,6 +48,11 @@ void put_resolution(nlohmann::json& s, const RunTotals& r) {
                             {"why", r.deeper_why},
                             {"depth", r.deepest_thin_depth},
                             {"steps", r.deeper_steps}};
+    if (!std::isnan(r.shallower_at))
+        s["thin_shallower"] = {{"at_t", r.shallower_at},
+                               {"why", r.shallower_why},
+                               {"depth", r.shallowest_thin_depth},
+                               {"steps", r.shallower_steps}};
     if (const ThinSplit& t = r.thin_split; !std::isnan(t.at)) {
         s["thin_split"] = {
             {"at_t", t.at}, {"thickness", t.thickness}, {"cell", t.cell}, {"near", t.near}};

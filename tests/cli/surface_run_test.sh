@@ -68,9 +68,9 @@ check "merging spheres: the last frame is where it stopped" \
 check "merging spheres: no frame beyond it" test ! -e merge1/frames/frame_0002.vtp
 
 # Two meshed spheres of one's own (0.3 and 0.25 across, 0.13 apart, one turned) growing into
-# each other at K 4: where they meet, thin cells pinch the edge narrowing between them into
-# handles at every thin depth; such a run either merges them or ends unstable naming
-# --thin-depth, and without thin cells it merges them into one component of genus 0.
+# each other at K 4: where they meet, deeper thin cells make handles of the gap narrowing between
+# them, no two depths alike, and the step keeps the shallower cells that make none: one component
+# of genus 0, as without thin cells.
 "$SLC" contour --function sphere -K 3 --out sphere >/dev/null 2>&1
 awk 'BEGIN { c = cos(0.7); s = sin(0.7) }
     /^v / { n++; x[n] = $2; y[n] = $3; z[n] = $4 }
@@ -83,12 +83,12 @@ awk 'BEGIN { c = cos(0.7); s = sin(0.7) }
         for (j = 1; j <= m; j++) print "f " f[j]
         for (j = 1; j <= m; j++) { split(f[j], a, " "); printf "f %d %d %d\n", a[1] + n, a[2] + n, a[3] + n }
     }' sphere/final.obj >pair.obj
-"$SLC" run --initial pair.obj --velocity unit-normal --t-end 0.1 -K 4 --out pair --quiet 2>err.txt
-if [ $? -eq 3 ]; then
-    check "meshed spheres meeting: unstable naming --thin-depth" grep -q "where parts meet, lower --thin-depth" err.txt
-else
-    check "meshed spheres meeting: merged" test "$(json pair/summary.json 's["components"], s["genus"]')" = "1 0"
-fi
+expect_ok "meshed spheres meeting" -- run --initial pair.obj --velocity unit-normal --t-end 0.1 -K 4 \
+    --out pair --quiet
+check "meshed spheres meeting: merged" test "$(json pair/summary.json 's["components"], s["genus"]')" = "1 0"
+check "meshed spheres meeting: shallower thin cells kept" \
+    test "$(json pair/summary.json 's["thin_shallower"]["depth"] < 2')" = True
+check "meshed spheres meeting: the note" grep -q "kept shallower ones, down to .* levels (summary.json: thin_shallower)" err.txt
 expect_ok "meshed spheres meeting without thin cells" -- run --initial pair.obj --velocity unit-normal \
     --t-end 0.1 -K 4 --thin-depth 0 --out pair0 --quiet
 check "meshed spheres: one component of genus 0" test "$(json pair0/summary.json 's["components"], s["genus"]')" = "1 0"

@@ -134,6 +134,11 @@ void put_totals(Json& json, const RunTotals& s) {
                                {"why", s.deeper_why},
                                {"depth", s.deepest_thin_depth},
                                {"steps", s.deeper_steps}};
+    if (!std::isnan(s.shallower_at))
+        json["thin_shallower"] = {{"at_t", s.shallower_at},
+                                  {"why", s.shallower_why},
+                                  {"depth", s.shallowest_thin_depth},
+                                  {"steps", s.shallower_steps}};
     if (const ThinSplit& t = s.thin_split; !std::isnan(t.at)) {
         json["thin_split"] = {
             {"at_t", t.at}, {"thickness", t.thickness}, {"cell", t.cell}, {"near", t.near}};
@@ -171,6 +176,13 @@ void get_totals(const Json& json, RunTotals& s) {
         s.deeper_why = json.at("thin_deeper").at("why").get<std::string>();
         s.deepest_thin_depth = json.at("thin_deeper").value("depth", s.thin_depth);
         s.deeper_steps = json.at("thin_deeper").value("steps", 1);
+    }
+    if (json.contains("thin_shallower")) {
+        const Json& d = json.at("thin_shallower");
+        s.shallower_at = d.at("at_t").get<double>();
+        s.shallower_why = d.at("why").get<std::string>();
+        s.shallowest_thin_depth = d.at("depth").get<int>();
+        s.shallower_steps = d.at("steps").get<int>();
     }
     s.broken = json.value("broken", std::string());
 }

@@ -365,6 +365,14 @@ void note_deeper(std::string_view what, int asked, const RunTotals& r) {
             "cells, up to {} levels deep, in {} of the run's steps (summary.json: thin_deeper)\n",
             r.deeper_why, r.deepest_thin_depth, r.deeper_steps);
     }
+    if (!std::isnan(r.shallower_at)) {
+        fmt::print(stderr,
+                   "slc: note: {}: deeper thin cells made holes or handles that neither the "
+                   "step's start nor shallower cells had (as where parts meet), and {} of the "
+                   "run's steps kept shallower ones, down to {} levels (summary.json: "
+                   "thin_shallower)\n",
+                   r.shallower_why, r.shallower_steps, r.shallowest_thin_depth);
+    }
 }
 
 void print_estimate(const nlohmann::json& estimate) {
