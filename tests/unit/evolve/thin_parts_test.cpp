@@ -234,16 +234,16 @@ TEST(TopologyChange, TwoCirclesOfOnesOwnMergeAtTheDefaults) {
     const Vec2 a{-0.3, 0.0}, b{0.33, 0.03};
     const Interface pair({shapes::circle(a, 0.3, 200, 0.1), shapes::circle(b, 0.25, 120, 0.3)});
     const NormalSpeed law(1.0);
-    const RunResult r = run(pair, law, default_domain(pair.curves()),
-                            default_run_options(pair, law, 0.0, 0.1));
+    const RunResult r =
+        run(pair, law, default_domain(pair.curves()), default_run_options(pair, law, 0.0, 0.1));
     ASSERT_EQ(r.status, RunStatus::ok) << r.message;
     EXPECT_EQ(r.curves.curve_count(), 1U);
     EXPECT_EQ(region_parts(r.curves).holes, 0U);
     double farthest = 0.0;
     for (std::size_t c = 0; c < r.curves.curve_count(); ++c)
         for (const Vec2 x : r.curves.curve(c))
-            farthest = std::max(farthest,
-                                std::abs(std::min(distance(x, a) - 0.4, distance(x, b) - 0.35)));
+            farthest =
+                std::max(farthest, std::abs(std::min(distance(x, a) - 0.4, distance(x, b) - 0.35)));
     EXPECT_LT(farthest, 1e-4);
 }
 
@@ -276,8 +276,8 @@ TEST(TopologyChange, PartsThatMeetKeepTheShallowerDepthThatAddsNoHandle) {
     // concave edge between them is filled in.
     double farthest = 0.0;
     for (const Vec3& x : r.surface.vertices)
-        farthest = std::max(farthest,
-                            std::abs(std::min(distance(x, a) - 0.4, distance(x, b) - 0.35)));
+        farthest =
+            std::max(farthest, std::abs(std::min(distance(x, a) - 0.4, distance(x, b) - 0.35)));
     EXPECT_LT(farthest, 0.012);
 }
 
