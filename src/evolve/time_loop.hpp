@@ -309,6 +309,7 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
                 if (d == entered && first_counted) r.g_evals -= here.stats.g_evals();
                 thin = d;
                 r.shallowest_thin_depth = std::min(r.shallowest_thin_depth, d);
+                ++r.shallower_substeps;
                 r.deeper_at = deeper_at;
                 r.deeper_why = deeper_why;
                 r.deepest_thin_depth = deepest;
@@ -642,7 +643,6 @@ typename LoopHooks<dim>::Result time_loop(const typename LoopHooks<dim>::Result&
             thin = asked_thin;
             step = guarded_step<dim>(r, t_next, hooks, law, domain, options);
             if (thin > asked_thin) ++r.deeper_steps;
-            if (thin < asked_thin) ++r.shallower_steps;
         } catch (const NumericalFailure& e) {
             r.status = RunStatus::error;
             r.message = H::step_failed(n, r.t, e.what());

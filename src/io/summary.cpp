@@ -52,7 +52,7 @@ void put_resolution(nlohmann::json& s, const RunTotals& r) {
         s["thin_shallower"] = {{"at_t", r.shallower_at},
                                {"why", r.shallower_why},
                                {"depth", r.shallowest_thin_depth},
-                               {"steps", r.shallower_steps}};
+                               {"substeps", r.shallower_substeps}};
     if (const ThinSplit& t = r.thin_split; !std::isnan(t.at)) {
         s["thin_split"] = {
             {"at_t", t.at}, {"thickness", t.thickness}, {"cell", t.cell}, {"near", t.near}};

@@ -138,7 +138,7 @@ void put_totals(Json& json, const RunTotals& s) {
         json["thin_shallower"] = {{"at_t", s.shallower_at},
                                   {"why", s.shallower_why},
                                   {"depth", s.shallowest_thin_depth},
-                                  {"steps", s.shallower_steps}};
+                                  {"substeps", s.shallower_substeps}};
     if (const ThinSplit& t = s.thin_split; !std::isnan(t.at)) {
         json["thin_split"] = {
             {"at_t", t.at}, {"thickness", t.thickness}, {"cell", t.cell}, {"near", t.near}};
@@ -182,7 +182,7 @@ void get_totals(const Json& json, RunTotals& s) {
         s.shallower_at = d.at("at_t").get<double>();
         s.shallower_why = d.at("why").get<std::string>();
         s.shallowest_thin_depth = d.at("depth").get<int>();
-        s.shallower_steps = d.at("steps").get<int>();
+        s.shallower_substeps = d.at("substeps").get<int>();
     }
     s.broken = json.value("broken", std::string());
 }

@@ -368,10 +368,10 @@ void note_deeper(std::string_view what, int asked, const RunTotals& r) {
     if (!std::isnan(r.shallower_at)) {
         fmt::print(stderr,
                    "slc: note: {}: deeper thin cells made holes or handles that neither the "
-                   "step's start nor shallower cells had (as where parts meet), and {} of the "
-                   "run's steps kept shallower ones, down to {} levels (summary.json: "
+                   "step's start nor shallower cells had (as where parts meet), and {} sub-steps "
+                   "kept the shallower cells that made none, down to {} levels (summary.json: "
                    "thin_shallower)\n",
-                   r.shallower_why, r.shallower_steps, r.shallowest_thin_depth);
+                   r.shallower_why, r.shallower_substeps, r.shallowest_thin_depth);
     }
 }
 

@@ -85,12 +85,12 @@ struct RunTotals {
     /// that neither its start nor the shallower cells had (the gap narrowing to nothing where
     /// parts meet), and which kept the deepest depth from its own down that added no part, hole
     /// or handle (the least such depth of the run: shallowest_thin_depth), and what the depths
-    /// gave; NaN and empty when no step did. shallower_steps counts the steps that ended at
-    /// fewer levels of thin cells than they started from.
+    /// gave; NaN and empty when no step did. shallower_substeps counts the sub-steps that
+    /// kept such a depth.
     double shallower_at = std::numeric_limits<double>::quiet_NaN();
     std::string shallower_why;                                    ///< (see shallower_at)
     int shallowest_thin_depth = std::numeric_limits<int>::max();  ///< (see shallower_at)
-    int shallower_steps = 0;                                      ///< (see shallower_at)
+    int shallower_substeps = 0;                                   ///< (see shallower_at)
     /// With no thin cells asked (thin_depth 0, the paper's uniform trees): the first step that
     /// split off a part thinner than the finest cell, which the contours may have torn; noted,
     /// as the paper's method at that depth gives it (a user's default thin cells take such a

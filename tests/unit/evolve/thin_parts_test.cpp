@@ -266,7 +266,7 @@ TEST(TopologyChange, PartsThatMeetKeepTheShallowerDepthThatAddsNoHandle) {
     EXPECT_EQ(r.thin_depth, 2);
     EXPECT_FALSE(std::isnan(r.shallower_at));
     EXPECT_LT(r.shallowest_thin_depth, 2);
-    EXPECT_GT(r.shallower_steps, 0);
+    EXPECT_GT(r.shallower_substeps, 0);
     EXPECT_NE(r.shallower_why.find(" of 1 component with 0 handles near ("), std::string::npos)
         << r.shallower_why;
     EXPECT_NE(r.shallower_why.find(" deep 1 component with 0 handles"), std::string::npos)
