@@ -242,8 +242,10 @@ inline std::string levels(int n) { return fmt::format("{} {}", n, n == 1 ? "leve
 /// (setting_range::thin_depth) the change is checked against two levels shallower instead. A
 /// change two depths do not agree on, or thin cells at their budget (which split no deeper where
 /// it ran out, and give the same contours at any depth), is unresolved: why, naming the thin
-/// depths, the topologies they give and the place. Where parts meet and deeper cells make more
-/// holes or handles of the same parts, the shallower depths are tried first (r.shallower_at).
+/// depths, the topologies they give and the place. Where deeper cells make holes or handles
+/// that neither the step's start nor the depth in hand have (the gap narrowing to nothing where
+/// parts meet), the step keeps the deepest depth from the one in hand down that adds no part,
+/// hole or handle (r.shallower_at).
 template <int dim>
 Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const ShapeOf<dim>& before,
                                 double t, double k, const BasicVelocityLaw<dim>& law,
@@ -275,27 +277,28 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
     // spheres growing into each other at K 4, meeting: 2, 0, 9, 19, 42, 47, 89, 221 and 413
     // handles at thin depths 0 to 8; two circles: a hole and a part at depth 8 where 6 merged
     // them), which no two depths confirm. Where deeper cells make holes or handles that neither
-    // the step's start nor the shallower cells have, the step keeps the deepest depth, from the
-    // one it was entered at down, whose contours have no more parts, holes or handles than the
-    // start (r.shallower_at); the next step starts again from the run's own.
+    // the step's start nor the depth in hand have, the step keeps the deepest depth, from the one
+    // in hand (`at`, its sub-step `s`) down, whose contours have no more parts, holes or handles
+    // than the start (r.shallower_at); the next step starts again from the run's own.
     const int entered = thin;
-    // What going deeper recorded before this step tried (kept where it ends shallower).
+    // What going deeper recorded before this step tried (restored where it ends no deeper).
     const double deeper_at = r.deeper_at;
     const std::string deeper_why = r.deeper_why;
     const int deepest = r.deepest_thin_depth;
-    std::optional<typename H::StepResult> first;
-    if (now != was) first = s;
-    bool tried = false, first_counted = false;  // first_counted: in r.g_evals as not kept
-    const auto shallower = [&](const ShapeTopology& deeper_made,
+    bool tried = false;
+    // s_counted: s is in r.g_evals as not kept. s is given back when no depth is kept.
+    const auto shallower = [&](bool s_counted, const ShapeTopology& deeper_made,
                                int deeper_depth) -> std::optional<typename H::StepResult> {
-        if (tried || !first) return std::nullopt;
+        if (tried) return std::nullopt;
         tried = true;
-        for (int d = entered; d >= 0; --d) {
+        const int at = thin;
+        const std::string place = finest_place(s);
+        for (int d = at; d >= 0; --d) {
             typename H::Options o = options;
             o.step.contour.thin_depth = d;
             typename H::StepResult here =
-                d == entered ? *first
-                             : step_in_growing_domain<dim>(before, t, k, law, domain, o, r);
+                d == at ? std::move(s)
+                        : step_in_growing_domain<dim>(before, t, k, law, domain, o, r);
             const ShapeTopology got = shape_topology(H::shape(here));
             if (got.components >= 1 && got.components <= was.components && got.holes <= was.holes &&
                 !at_budget(here)) {
@@ -303,19 +306,24 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
                     r.shallower_at = t;
                     r.shallower_why = fmt::format(
                         "at t = {:.6g} thin cells {} deep made {} of {}{}, and {} deep {}", t + k,
-                        levels(deeper_depth), describe(deeper_made, dim), describe(was, dim),
-                        finest_place(*first), levels(d), describe(got, dim));
+                        levels(deeper_depth), describe(deeper_made, dim), describe(was, dim), place,
+                        levels(d), describe(got, dim));
                 }
-                if (d == entered && first_counted) r.g_evals -= here.stats.g_evals();
+                if (d == at && s_counted) r.g_evals -= here.stats.g_evals();
                 thin = d;
                 r.shallowest_thin_depth = std::min(r.shallowest_thin_depth, d);
                 ++r.shallower_substeps;
-                r.deeper_at = deeper_at;
-                r.deeper_why = deeper_why;
-                r.deepest_thin_depth = deepest;
+                if (d <= entered) {
+                    r.deeper_at = deeper_at;
+                    r.deeper_why = deeper_why;
+                    r.deepest_thin_depth = deepest;
+                }
                 return here;
             }
-            if (d != entered || !first_counted) r.g_evals += here.stats.g_evals();  // not kept
+            if (d == at)
+                s = std::move(here);
+            else
+                r.g_evals += here.stats.g_evals();  // not kept
         }
         return std::nullopt;
     };
@@ -328,10 +336,11 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
             r.g_evals += coarser.stats.g_evals();  // a confirmation, not kept
             if (shape_topology(H::shape(coarser)) == now && !at_budget(s))
                 return {std::move(s), std::nullopt};
-            if (now.holes > was.holes) {
-                if (thin != entered) r.g_evals += s.stats.g_evals();  // not kept
-                if (auto kept = shallower(now, thin)) return {std::move(*kept), std::nullopt};
-                if (thin != entered) r.g_evals -= s.stats.g_evals();
+            if (const int at = thin; now.holes > was.holes) {
+                if (auto kept = shallower(false, now, thin)) {
+                    if (thin < at) r.g_evals += s.stats.g_evals();  // not kept
+                    return {std::move(*kept), std::nullopt};
+                }
             }
             std::string why = unconfirmed(s, thin - 2);
             return {std::move(s), std::move(why)};
@@ -342,7 +351,6 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
             step_in_growing_domain<dim>(before, t, k, law, domain, o, r);
         const ShapeTopology there = shape_topology(H::shape(deeper));
         r.g_evals += s.stats.g_evals();  // the coarser sub-step, not kept
-        if (thin == entered) first_counted = true;
         if (there == now) {
             if (at_budget(deeper)) {
                 std::string why = unconfirmed(deeper, o.step.contour.thin_depth);
@@ -352,7 +360,7 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
         }
         if (there.holes > std::max(now.holes, was.holes)) {
             // Deeper cells make holes or handles that neither the start nor these have.
-            if (auto kept = shallower(there, o.step.contour.thin_depth)) {
+            if (auto kept = shallower(true, there, o.step.contour.thin_depth)) {
                 r.g_evals += deeper.stats.g_evals();  // not kept
                 return {std::move(*kept), std::nullopt};
             }

@@ -83,7 +83,7 @@ struct RunTotals {
     std::string deeper_why;  ///< (see deeper_at)
     /// The time at the start of the first step whose deeper thin cells made holes or handles
     /// that neither its start nor the shallower cells had (the gap narrowing to nothing where
-    /// parts meet), and which kept the deepest depth from its own down that added no part, hole
+    /// parts meet), and which kept the deepest depth from the one in hand down that added no part, hole
     /// or handle (the least such depth of the run: shallowest_thin_depth), and what the depths
     /// gave; NaN and empty when no step did. shallower_substeps counts the sub-steps that
     /// kept such a depth.
