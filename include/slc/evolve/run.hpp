@@ -82,11 +82,11 @@ struct RunTotals {
     double deeper_at = std::numeric_limits<double>::quiet_NaN();
     std::string deeper_why;  ///< (see deeper_at)
     /// The time at the start of the first step whose deeper thin cells made holes or handles
-    /// that neither its start nor the shallower cells had (the gap narrowing to nothing where
-    /// parts meet), and which kept the deepest depth from the one in hand down that added no part, hole
-    /// or handle (the least such depth of the run: shallowest_thin_depth), and what the depths
-    /// gave; NaN and empty when no step did. shallower_substeps counts the sub-steps that
-    /// kept such a depth.
+    /// that neither its start nor the depth in hand had (the gap narrowing to nothing where
+    /// parts meet), and which kept the deepest depth from the one in hand down that added no
+    /// part, hole or handle (the least such depth of the run: shallowest_thin_depth), and what
+    /// the depths gave; NaN and empty when no step did. shallower_substeps counts the sub-steps
+    /// that kept such a depth.
     double shallower_at = std::numeric_limits<double>::quiet_NaN();
     std::string shallower_why;                                    ///< (see shallower_at)
     int shallowest_thin_depth = std::numeric_limits<int>::max();  ///< (see shallower_at)
