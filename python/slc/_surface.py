@@ -249,8 +249,9 @@ def _run_end(out: dict, stacklevel: int) -> dict[str, Any]:
         d = summary["thin_shallower"]
         warnings.warn(f"{d['why']}: deeper thin cells made holes or handles that neither the "
                       f"step's start nor shallower cells had (as where parts meet), and "
-                      f"{d['substeps']} sub-steps kept the shallower cells that made none, down "
-                      f"to {d['depth']} levels", stacklevel=stacklevel)
+                      f"{d['substeps']} sub-step{'' if d['substeps'] == 1 else 's'} kept the "
+                      f"shallower cells that made none, down to {d['depth']} "
+                      f"level{'' if d['depth'] == 1 else 's'}", stacklevel=stacklevel)
     if out["status"] == "broken":
         warnings.warn(f"guards=False: {out['message']}", stacklevel=stacklevel)
     return {k: out[k] for k in ("status", "t", "history", "summary", "message")}

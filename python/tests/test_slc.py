@@ -281,7 +281,7 @@ def test_circles_that_meet_keep_shallower_thin_cells_and_merge():
         return np.c_[cx + r * np.cos(th), cy + r * np.sin(th)]
 
     pair = slc.Interface([polygon(r1, 181, 0.2693), polygon(r2, 174, 0.5480, bx, by)])
-    with pytest.warns(UserWarning, match="sub-steps kept the shallower cells that made none"):
+    with pytest.warns(UserWarning, match="kept the shallower cells that made none, down to"):
         r = slc.run(pair, "unit-normal", 0.1)
     assert r.status == "ok" and len(r.interface) == 1
     assert "8 levels deep made" in r.summary["thin_shallower"]["why"]

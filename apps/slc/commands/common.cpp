@@ -368,10 +368,14 @@ void note_deeper(std::string_view what, int asked, const RunTotals& r) {
     if (!std::isnan(r.shallower_at)) {
         fmt::print(stderr,
                    "slc: note: {}: deeper thin cells made holes or handles that neither the "
-                   "step's start nor shallower cells had (as where parts meet), and {} sub-steps "
-                   "kept the shallower cells that made none, down to {} levels (summary.json: "
+                   "step's start nor shallower cells had (as where parts meet), and {} {} kept "
+                   "the shallower cells that made none, down to {} (summary.json: "
                    "thin_shallower)\n",
-                   r.shallower_why, r.shallower_substeps, r.shallowest_thin_depth);
+                   r.shallower_why, r.shallower_substeps,
+                   r.shallower_substeps == 1 ? "sub-step" : "sub-steps",
+                   r.shallowest_thin_depth == 1
+                       ? std::string("1 level")
+                       : fmt::format("{} levels", r.shallowest_thin_depth));
     }
 }
 
