@@ -236,7 +236,8 @@ def _run_end(out: dict, stacklevel: int) -> dict[str, Any]:
     RunResult and a SurfaceRunResult take them. Warns (UserWarning) what the command line notes
     on stderr: the summary's note (contours left beyond eps, a part split off thinner than the
     cells without thin cells), a step taken again with deeper thin cells (thin_deeper) or kept
-    at shallower ones where parts met (thin_shallower), and with guards=False the first break; stacklevel: as warnings.warn's, the caller's frame being 2."""
+    at shallower ones where parts met (thin_shallower), and with guards=False the first break;
+    stacklevel: as warnings.warn's, the caller's frame being 2."""
     summary = out["summary"]
     if "note" in summary:
         warnings.warn(summary["note"], stacklevel=stacklevel)

@@ -286,7 +286,8 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
     const std::string deeper_why = r.deeper_why;
     const int deepest = r.deepest_thin_depth;
     bool tried = false;
-    // s_counted: s is in r.g_evals as not kept. s is given back when no depth is kept.
+    // s (whose topology is `now`) is the sub-step at the depth in hand; s_counted: it is in
+    // r.g_evals as not kept. s is given back when no depth is kept.
     const auto shallower = [&](bool s_counted, const ShapeTopology& deeper_made,
                                int deeper_depth) -> std::optional<typename H::StepResult> {
         if (tried) return std::nullopt;
@@ -299,7 +300,7 @@ Confirmed<dim> confirm_topology(typename LoopHooks<dim>::StepResult s, const Sha
             typename H::StepResult here =
                 d == at ? std::move(s)
                         : step_in_growing_domain<dim>(before, t, k, law, domain, o, r);
-            const ShapeTopology got = shape_topology(H::shape(here));
+            const ShapeTopology got = d == at ? now : shape_topology(H::shape(here));
             if (got.components >= 1 && got.components <= was.components && got.holes <= was.holes &&
                 !at_budget(here)) {
                 if (std::isnan(r.shallower_at)) {
