@@ -19,6 +19,51 @@
 #include "surface_stages.hpp"
 
 namespace slc::contouring {
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+    if (a > b) std::swap(a, b);
+    return (std::uint64_t{a} << 32) | b;
+}
+
+// The triangles that replace t = (v0, v1, v2) when the edges flagged in `split` (bit k: edge
+// from corner k to corner k + 1) get the vertices w[k], oriented as t.
+void split_children(const Surface& s, const TriangleIndices& t, unsigned split,
+                    const std::array<std::uint32_t, 3>& w, std::vector<TriangleIndices>& out,
+                    bool other_diagonal) {
+    const int count = std::popcount(split);
+    if (count == 0) {
+        out.push_back(t);
+        return;
+    }
+    if (count == 3) {
+        out.push_back({t[0], w[0], w[2]});
+        out.push_back({w[0], t[1], w[1]});
+        out.push_back({w[2], w[1], t[2]});
+        out.push_back({w[0], w[1], w[2]});
+        return;
+    }
+    if (count == 1) {
+        const int k = std::countr_zero(split);
+        out.push_back({t[k], w[k], t[(k + 2) % 3]});
+        out.push_back({w[k], t[(k + 1) % 3], t[(k + 2) % 3]});
+        return;
+    }
+    // Two: edges k and k + 1 split, edge k + 2 whole. The corner at k + 1 is cut off, and the
+    // quadrilateral left is split along its shorter diagonal (or the other).
+    const int k = (split & 1u) == 0 ? 1 : ((split & 2u) == 0 ? 2 : 0);
+    const std::uint32_t a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+    const std::uint32_t p = w[k], q = w[(k + 1) % 3];
+    out.push_back({p, b, q});
+    const auto& x = s.vertices;
+    if ((distance(x[a], x[q]) <= distance(x[p], x[c])) != other_diagonal) {
+        out.push_back({a, p, q});
+        out.push_back({a, q, c});
+    } else {
+        out.push_back({a, p, c});
+        out.push_back({p, q, c});
+    }
+}
+
 namespace {
 
 /// A child triangle may turn at most this far from its parent (cos 60°).
@@ -29,11 +74,6 @@ constexpr double bracket_reach[] = {0.5, 1.0, 2.0};
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 /// The first index of a triangle a collapse removed, until improve() drops it.
 constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
-
-std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t{a} << 32) | b;
-}
 
 Vec3 area_normal(const Surface& s, const TriangleIndices& t) {
     const Vec3 a = s.vertices[t[0]];
@@ -101,44 +141,6 @@ std::uint64_t opposite_key(const Surface& s, const Edges& edges, std::uint32_t e
     };
     const auto [t0, t1] = edges.triangles[e];
     return edge_key(opposite(t0), opposite(t1));
-}
-
-/// The triangles that replace t = (v0, v1, v2) when the edges flagged in `split` (bit k: edge
-/// from corner k to corner k + 1) get the vertices w[k], oriented as t.
-void children(const Surface& s, const TriangleIndices& t, unsigned split,
-              const std::array<std::uint32_t, 3>& w, std::vector<TriangleIndices>& out) {
-    const int count = std::popcount(split);
-    if (count == 0) {
-        out.push_back(t);
-        return;
-    }
-    if (count == 3) {
-        out.push_back({t[0], w[0], w[2]});
-        out.push_back({w[0], t[1], w[1]});
-        out.push_back({w[2], w[1], t[2]});
-        out.push_back({w[0], w[1], w[2]});
-        return;
-    }
-    if (count == 1) {
-        const int k = std::countr_zero(split);
-        out.push_back({t[k], w[k], t[(k + 2) % 3]});
-        out.push_back({w[k], t[(k + 1) % 3], t[(k + 2) % 3]});
-        return;
-    }
-    // Two: edges k and k + 1 split, edge k + 2 whole. The corner at k + 1 is cut off, and the
-    // quadrilateral left is split along its shorter diagonal.
-    const int k = (split & 1u) == 0 ? 1 : ((split & 2u) == 0 ? 2 : 0);
-    const std::uint32_t a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
-    const std::uint32_t p = w[k], q = w[(k + 1) % 3];
-    out.push_back({p, b, q});
-    const auto& x = s.vertices;
-    if (distance(x[a], x[q]) <= distance(x[p], x[c])) {
-        out.push_back({a, p, q});
-        out.push_back({a, q, c});
-    } else {
-        out.push_back({a, p, c});
-        out.push_back({p, q, c});
-    }
 }
 
 /// The normal of the surface around triangle t: the area-weighted normals of t and of its three
@@ -852,11 +854,13 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
     // Triangles changed since the last crossing check; the linear contour is embedded.
     std::vector<std::uint8_t> dirty(s.size(), 0);
     const int limit = passes < 0 ? max_passes : std::min(passes, max_passes);
+    CreasePlanes planes;  // following creases: the zero set's planes at the vertices
+    int cut_rounds = 0;
     for (int pass = 0; pass < limit; ++pass) {
         check_stop();
         // Needles come from the linear contour, where a root falls near a mesh vertex; splits
-        // make none, and collapsing what splits made could undo them pass after pass.
-        improve(s, centroid_value, dirty, pass == 0, result);
+        // and cuts make none, and collapsing what they made could undo them pass after pass.
+        improve(s, centroid_value, dirty, pass == 0 && cut_rounds == 0, result);
         const Edges edges(s);
         const std::size_t m = edges.size();
         auto is_frozen = [&](std::uint32_t e) {
@@ -940,6 +944,43 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         std::vector<std::uint32_t> candidates;
         for (std::uint32_t e = 0; e < m; ++e)
             if (wanted[e]) candidates.push_back(e);
+        // Following creases, the triangles beyond ε whose corners lie on different planes are
+        // cut where the planes meet (cut_creases): a pass of its own, not two in a row while
+        // splits are wanted, so that what cuts leave is split.
+        if (creases && any_beyond && cut_rounds < max_passes) {
+            std::vector<std::uint32_t> beyond;
+            for (std::uint32_t t = 0; t < s.size(); ++t) {
+                bool out = std::abs(centroid_value[t]) > eps;
+                for (const std::uint32_t e : edges.of_triangle[t])
+                    out = out || std::abs(mid[e]) > eps;
+                if (out) beyond.push_back(t);
+            }
+            const std::size_t cut = beyond.empty() ? 0
+                                                   : cut_creases(s, g, roots.eta, beyond, planes,
+                                                                 centroid_value, dirty);
+            // G is known no more about the vertices moved onto their planes.
+            if (!planes.moved.empty()) {
+                std::vector<std::uint8_t> moved(s.vertices.size(), 0);
+                for (const std::uint32_t v : planes.moved) moved[v] = 1;
+                planes.moved.clear();
+                for (std::uint32_t t = 0; t < s.size(); ++t) {
+                    const TriangleIndices& v = s.triangles[t];
+                    if (!moved[v[0]] && !moved[v[1]] && !moved[v[2]]) continue;
+                    centroid_value[t] = nan;
+                    dirty[t] = 1;
+                    for (int k = 0; k < 3; ++k) {
+                        if (moved[v[k]] || moved[v[(k + 1) % 3]])
+                            midpoint_value.assign(edge_key(v[k], v[(k + 1) % 3]), nan);
+                    }
+                }
+            }
+            if (cut != 0) {
+                ++cut_rounds;
+                result.splits += cut;
+                --pass;
+                continue;
+            }
+        }
         if (!any_beyond) result.converged = 1;
         if (candidates.empty()) break;
         if (s.vertices.size() + candidates.size() > max_vertices) {
@@ -1000,7 +1041,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         auto sound = [&](std::uint32_t t, unsigned mask, const std::array<std::uint32_t, 3>& w,
                          std::vector<TriangleIndices>& kids) {
             kids.clear();
-            children(s, s.triangles[t], mask, w, kids);
+            split_children(s, s.triangles[t], mask, w, kids);
             const std::array<std::uint32_t, 3>& sides = edges.of_triangle[t];
             const bool crease = std::any_of(sides.begin(), sides.end(), [&](std::uint32_t e) {
                 return split[e] && on_crease[e];
@@ -1047,7 +1088,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
                 const auto [mask, w] = mask_of(t);
                 thread_local std::vector<TriangleIndices> made;
                 made.clear();
-                children(s, s.triangles[t], mask, w, made);
+                split_children(s, s.triangles[t], mask, w, made);
                 for (std::size_t k = 0; k < made.size(); ++k) {
                     const std::size_t c = first_child[t] + k;
                     next.triangles[c] = made[k];

@@ -4,6 +4,7 @@
 // surface_refinement.cpp).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -52,6 +53,59 @@ SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& do
                                          const SurfaceContourOptions& options,
                                          std::optional<SpaceBoundsRef> bounds);
 
+/// The key of the edge between vertices a and b, either way round.
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b);
+
+/// The triangles that replace t = (v0, v1, v2) when the edges flagged in `split` (bit k: edge
+/// from corner k to corner k + 1) get the vertices w[k], oriented as t: one edge, two triangles;
+/// two, the corner between them cut off and the quadrilateral left split along its shorter
+/// diagonal (the longer with `other_diagonal`); three, four.
+void split_children(const Surface& s, const TriangleIndices& t, unsigned split,
+                    const std::array<std::uint32_t, 3>& w, std::vector<TriangleIndices>& out,
+                    bool other_diagonal = false);
+
+/// A plane n · x = c of the zero set (n a unit vector, G's gradient).
+struct CreasePlane {
+    Vec3 n;
+    double c = 0.0;
+};
+
+/// The planes of the zero set at the vertices of a contour, for cut_creases(): one where G is a
+/// plane's distance about the vertex, two at a vertex on a crease, three or four at a corner.
+/// Indexed by vertex; vertices never move.
+struct CreasePlanes {
+    std::vector<std::array<CreasePlane, 4>> planes;
+    std::vector<std::uint8_t> count;     ///< planes known at the vertex
+    std::vector<std::uint8_t> measured;  ///< 1 once asked (count 0: G is not flat there)
+    /// Vertices moved onto their planes (within their distance from them), since the caller
+    /// last cleared it.
+    std::vector<std::uint32_t> moved;
+
+    void resize(std::size_t vertices) {
+        planes.resize(vertices);
+        count.resize(vertices, 0);
+        measured.resize(vertices, 0);
+    }
+};
+
+/// Cuts the triangles in `beyond` (those some midpoint or centroid puts beyond ε) where the
+/// zero set of G folds between their corners (surface_creases.cpp). At each corner G's gradient
+/// by central differences, kept as the plane of the zero set there where the one-sided
+/// differences agree (a corner within the step of a crease takes its neighbours' planes it lies
+/// on and is moved onto them). In a triangle over one crease, an edge whose ends lie on its two
+/// planes is split where it crosses their line (seen along their mean normal; an end it crosses
+/// beside is moved onto the line instead), and a triangle whose corners lie on three planes gets
+/// the point where they meet as a centre; a point is kept only where |G| ≤ η, so a smooth
+/// surface, whose tangent planes meet off it, is never cut. Every child then lies in one plane.
+/// The cuts of a triangle whose children would fold, lose their area or meet the rest of the
+/// surface are withdrawn. Where no cut is left, patches of triangles folded across a crease or
+/// about a corner are triangulated again in its planes. centroid_value and dirty follow the
+/// triangles (NaN and 1 for the children of a cut triangle); planes.moved lists the vertices
+/// moved. Returns the vertices added, moved and patches replaced (0: the surface is unchanged).
+std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
+                        std::span<const std::uint32_t> beyond, CreasePlanes& planes,
+                        std::vector<double>& centroid_value, std::vector<std::uint8_t>& dirty);
+
 /// What refinement did.
 struct SurfaceRefinement {
     int passes = 0;             ///< passes that split something
@@ -75,9 +129,10 @@ struct SurfaceRefinement {
 /// split, for good, when no root is found within reach, when a triangle it makes turns more than
 /// 60° from its parent or loses its area, or when the triangles it makes meet the rest of the
 /// surface; the surface stays closed, manifold and oriented. Throws LimitExceeded naming ε when the
-/// vertices would pass max_vertices. With `creases` (SurfaceContourOptions::creases), an edge
-/// across a crease is split on it, a flat triangle beside a fold may be split in its plane, and
-/// a refused edge is tried again once a split beside it changed its triangles.
+/// vertices would pass max_vertices. With `creases` (SurfaceContourOptions::creases), each
+/// splitting pass is preceded by cut_creases() while it changes the surface, an edge across a
+/// crease is split on it, a flat triangle beside a fold may be split in its plane, and a refused
+/// edge is tried again once a split beside it changed its triangles.
 SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps,
                                  const RootOptions& roots, int passes, int max_passes,
                                  std::size_t max_vertices, bool creases);

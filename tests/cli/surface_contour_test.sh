@@ -58,10 +58,25 @@ expect_ok "refined final.obj reads back" -- distance --initial refined/final.obj
 # --eps alone refines until converged, as slc.contour_surface(..., eps=e) does.
 expect_ok "eps alone" -- contour --function torus -K 4 --eps 1e-3 --out eps_alone
 check "eps alone: until converged, within eps" test "$(json eps_alone/summary.json 's["params"]["P"] == 1000 and s["converged"] and s["error"] <= 1e-3')" = True
-# Refinement that cannot reach eps (the box's edges at K = 3 and 1e-3: splits that would fold
-# them are refused) writes everything, says "unconverged" and exits with status 3 naming the
-# settings to change; P passes spent before eps is reached end the same way.
-expect_status "refinement short of eps" 3 -- contour --initial box.obj -K 3 --refine 100 --eps 1e-3 --out coarse
+# A mesh's flat faces meet at creases and corners, where refinement cuts its triangles: the box
+# at K = 3 meets eps = 1e-3, its volume exact.
+expect_ok "a box's edges and corners cut to eps" -- contour --initial box.obj -K 3 --refine 100 --eps 1e-3 --out cut
+check "converged within eps, the volume exact" test "$(json cut/summary.json 's["converged"] and s["error"] <= 1e-3 and abs(s["volume"] / (0.95 * 0.75 * 0.8) - 1) < 1e-6')" = True
+# Refinement that cannot reach eps writes everything, says "unconverged" and exits with status
+# 3 naming the settings to change: a pyramid of twelve faces at K = 3, whose cells hold several
+# of the corners where its faces meet its base. P passes spent before eps end the same way.
+python3 - <<'PY' >pyramid.obj
+import math
+n = 12
+for k in range(n):
+    a = 2 * math.pi * k / n + 0.1
+    print("v", 0.45 * math.cos(a), 0.45 * math.sin(a), -0.3)
+print("v 0.05 0.02 0.45\nv 0 0 -0.3")
+for k in range(n):
+    print("f", k + 1, (k + 1) % n + 1, n + 1)
+    print("f", (k + 1) % n + 1, k + 1, n + 2)
+PY
+expect_status "refinement short of eps" 3 -- contour --initial pyramid.obj -K 3 --refine 100 --eps 1e-3 --out coarse
 check "one line naming -K and --eps" grep -q "^slc: error: refinement stopped .* raise -K or --eps" err.txt
 check "and the place, by a sharp edge or corner of the input" grep -Eq "near \(.*\) by a sharp (edge|corner) of the input, which the contours chamfer" err.txt
 check "summary says unconverged" test "$(json coarse/summary.json 's["status"], s["converged"]')" = "unconverged False"

@@ -254,8 +254,8 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     if (torn) fmt::print(stderr, "slc: note: {}\n", *torn);
     if (unconverged) {
         // Where the contour is farthest, and whether a sharp edge or corner of the input is
-        // there: refinement does not follow those off the octree's axes, and a larger K only
-        // narrows the chamfer.
+        // there: refinement that cannot cut the contour there (corners closer together than the
+        // cells) leaves it chamfered, and a larger K narrows the chamfer.
         const std::string sharp = error && source.surface
                                       ? sharp_feature_near(*source.surface, *tree, worst)
                                       : std::string();

@@ -80,15 +80,14 @@ struct BasicContourOptions {
     /// (docs/algorithms/contour.md, "Parting what the interpolant joined"). Off, the refined
     /// contour keeps the interpolant's topology, as the paper's safeguards do (its Fig. 8).
     bool part_bridges = true;
-    /// Surfaces: refinement follows creases, for G the distance of a surface of flat facets (a
-    /// user's mesh). An edge whose midpoint lies off the zero set by more than L/64 and whose
-    /// profile along the normal at its quarters and midpoint is two lines (a fold of the surface)
-    /// is split where the lines meet, on the crease, and the children of the triangles across it
-    /// lie on its two sides, where halving edges that cross a crease only halves their error. A
-    /// split refused is tried again once a split beside it changed its triangles. Should that
-    /// leave a part beyond ε (slivers about a vertex where several creases meet), plain
-    /// refinement of the linear contour is kept instead if it comes nearer. Off (the default) for
-    /// the steps of a run, whose G rounds what a crease would sharpen (docs/surfaces.md).
+    /// Surfaces: refinement follows creases and corners, for G the distance of a surface of flat
+    /// facets (a user's mesh). Before each splitting pass, the triangles beyond ε are cut where
+    /// the zero set's planes at their corners meet (G's gradient by differences), so that each
+    /// child lies in one plane; folds of the linear contour across a crease are triangulated
+    /// again in its planes; an edge whose profile along the normal is two lines is split where
+    /// they meet. Should that leave a part beyond ε, plain refinement of the linear contour is
+    /// kept instead if it comes nearer. Off (the default) for the steps of a run, whose G rounds
+    /// what a crease would sharpen (docs/surfaces.md).
     bool creases = false;
     /// How brackets are shrunk: Brent (default), Illinois, or the paper's bisection.
     RootMethod root_method = RootMethod::brent;
