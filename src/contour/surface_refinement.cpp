@@ -945,8 +945,8 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         for (std::uint32_t e = 0; e < m; ++e)
             if (wanted[e]) candidates.push_back(e);
         // Following creases, the triangles beyond ε whose corners lie on different planes are
-        // cut where the planes meet (cut_creases): a pass of its own, not two in a row while
-        // splits are wanted, so that what cuts leave is split.
+        // first cut where the planes meet (cut_creases), round after round while that changes
+        // the surface (each round counted in `splits`, not in `passes`), then split.
         if (creases && any_beyond && cut_rounds < max_passes) {
             std::vector<std::uint32_t> beyond;
             for (std::uint32_t t = 0; t < s.size(); ++t) {
