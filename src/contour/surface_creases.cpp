@@ -60,6 +60,27 @@ std::span<const CreasePlane> planes_of(const CreasePlanes& p, std::uint32_t v) {
     return {p.planes[v].data(), p.count[v]};
 }
 
+/// Distinct planes, in the order met: those of up to three corners of four planes each.
+struct PlaneSet {
+    std::array<CreasePlane, 12> planes;
+    int size = 0;
+
+    /// Adds p unless a plane already in is the same, and unless `most` are in.
+    void add(const CreasePlane& p, int most = 12) {
+        for (int i = 0; i < size; ++i)
+            if (same_plane(planes[i], p)) return;
+        if (size < most) planes[size++] = p;
+    }
+    /// Adds the planes of vertex v.
+    void add_corner(const CreasePlanes& all, std::uint32_t v) {
+        for (const CreasePlane& p : planes_of(all, v)) add(p);
+    }
+    /// The first four.
+    std::array<CreasePlane, 4> first_four() const {
+        return {planes[0], planes[1], planes[2], planes[3]};
+    }
+};
+
 /// Where an edge crosses a crease: the point on the crease, and the fraction of the edge's
 /// length from its first end.
 struct Crossing {
@@ -114,11 +135,6 @@ bool inside(Vec3 x, Vec3 a, Vec3 b, Vec3 c, Vec3 n) {
     return ab > 0.0 && bc > 0.0 && ca > 0.0;
 }
 
-Vec3 area_of(const Surface& s, const TriangleIndices& t) {
-    const Vec3 a = s.vertices[t[0]];
-    return cross(s.vertices[t[1]] - a, s.vertices[t[2]] - a);
-}
-
 /// Whether the triangle with corners a, b, c has area beyond rounding: twice its area above
 /// 1e−9 times its longest edge squared (a needle or a cap of coincident corners has not).
 bool has_area(Vec3 a, Vec3 b, Vec3 c) {
@@ -143,25 +159,18 @@ std::optional<CreasePlane> common_plane(const CreasePlanes& planes, const Triang
 /// The number of distinct planes at the corners of triangle t (5 when more than four, or a
 /// corner has none).
 int plane_count(const CreasePlanes& planes, const TriangleIndices& t) {
-    std::array<CreasePlane, 4> distinct;
-    int found = 0;
+    PlaneSet set;
     for (const std::uint32_t u : t) {
         if (planes.count[u] == 0) return 5;
-        for (const CreasePlane& p : planes_of(planes, u)) {
-            bool seen = false;
-            for (int i = 0; i < found; ++i) seen = seen || same_plane(distinct[i], p);
-            if (seen) continue;
-            if (found == 4) return 5;
-            distinct[found++] = p;
-        }
+        set.add_corner(planes, u);
     }
-    return found;
+    return std::min(set.size, 5);
 }
 
 /// Whether triangle t has area, lies in a plane of its three corners and faces as it does.
 bool on_its_plane(const Surface& s, const CreasePlanes& planes, const TriangleIndices& t) {
     const std::optional<CreasePlane> p = common_plane(planes, t);
-    const Vec3 n = area_of(s, t);
+    const Vec3 n = area_normal(s, t);
     return p && has_area(s.vertices[t[0]], s.vertices[t[1]], s.vertices[t[2]]) &&
            dot(n, p->n) >= min_plane_cosine * norm(n);
 }
@@ -170,19 +179,14 @@ bool on_its_plane(const Surface& s, const CreasePlanes& planes, const TriangleIn
 /// normals' mean (a triangle across a crease, toward the crease's bisector), where every corner
 /// has a plane. A fold of the contour stands across the crease or faces against it.
 bool facing(const Surface& s, const CreasePlanes& planes, const TriangleIndices& t) {
-    std::array<CreasePlane, 12> distinct;
-    int found = 0;
+    PlaneSet set;
     for (const std::uint32_t u : t) {
         if (planes.count[u] == 0) return true;  // unknown: not judged
-        for (const CreasePlane& p : planes_of(planes, u)) {
-            bool seen = false;
-            for (int i = 0; i < found; ++i) seen = seen || same_plane(distinct[i], p);
-            if (!seen) distinct[found++] = p;
-        }
+        set.add_corner(planes, u);
     }
     Vec3 mean{0, 0, 0};
-    for (int i = 0; i < found; ++i) mean = mean + distinct[i].n;
-    const Vec3 n = area_of(s, t);
+    for (int i = 0; i < set.size; ++i) mean = mean + set.planes[i].n;
+    const Vec3 n = area_normal(s, t);
     return norm(n) > 0.0 && dot(n, mean) >= 0.5 * norm(n) * norm(mean);
 }
 
@@ -414,18 +418,14 @@ std::optional<Remeshed> across_creases(const Surface& s, const CreasePlanes& pla
 
     // The two planes, and each boundary corner's side: +1 on the first only, −1 on the second
     // only, 0 on both.
-    std::array<CreasePlane, 4> two;
-    int found = 0;
+    PlaneSet set;
     for (const std::uint32_t v : loop) {
         if (planes.count[v] == 0) return std::nullopt;
-        for (const CreasePlane& p : planes_of(planes, v)) {
-            bool known = false;
-            for (int i = 0; i < found; ++i) known = known || same_plane(two[i], p);
-            if (known) continue;
-            if (found == 4) return std::nullopt;
-            two[found++] = p;
-        }
+        set.add_corner(planes, v);
+        if (set.size > 4) return std::nullopt;
     }
+    const int found = set.size;
+    const std::array<CreasePlane, 4> two = set.first_four();
     if (found < 2) return std::nullopt;
     if (found > 2) return around_corner(s, planes, loop, two, found);
     std::vector<int> side(loop.size());
@@ -541,17 +541,11 @@ std::size_t remesh_folds(Surface& s, const SpaceEvaluator& g, double eta, Crease
         // The triangles across a crease connected to t0 through their corners, a layer at a
         // time (their corners' planes asked first), up to max_fold triangles on at most four
         // planes (more: a curved surface's facets, not a crease or corner).
-        std::array<CreasePlane, 4> seen_planes;
-        int seen = 0;
+        PlaneSet seen;
         auto few_planes = [&](std::uint32_t t) {
             for (const std::uint32_t v : s.triangles[t]) {
-                for (const CreasePlane& p : planes_of(planes, v)) {
-                    bool known = false;
-                    for (int i = 0; i < seen; ++i) known = known || same_plane(seen_planes[i], p);
-                    if (known) continue;
-                    if (seen == 4) return false;
-                    seen_planes[seen++] = p;
-                }
+                seen.add_corner(planes, v);
+                if (seen.size > 4) return false;
             }
             return true;
         };
@@ -787,8 +781,7 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
         }
         // A corner within its step of a crease takes the planes of its neighbours it lies on
         // (within |G| there and twice the step): one, two on a crease, three at a corner.
-        std::vector<std::array<CreasePlane, 4>> near(todo.size());
-        std::vector<std::uint8_t> near_count(todo.size(), 0);
+        std::vector<PlaneSet> near(todo.size());
         for (const std::uint32_t t : triangles) {
             const TriangleIndices& v = s.triangles[t];
             for (int k = 0; k < 3; ++k) {
@@ -802,29 +795,23 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
                     if (planes.count[u] != 1) continue;
                     const CreasePlane& p = planes.planes[u][0];
                     if (!(std::abs(dot(p.n, x) - p.c) <= tolerance)) continue;
-                    bool seen = false;
-                    for (int m = 0; m < near_count[i]; ++m)
-                        seen = seen || same_plane(near[i][m], p);
-                    if (!seen && near_count[i] < 4) near[i][near_count[i]++] = p;
+                    near[i].add(p, 4);
                 }
             }
         }
         // Such a corner is moved onto its planes (their crease, or where three meet), where the
         // zero set is; the caller forgets what it knew of G about it.
         for (std::size_t i = 0; i < todo.size(); ++i) {
-            if (near_count[i] == 0) continue;
+            const int count = near[i].size;
+            if (count == 0) continue;
             const std::uint32_t u = todo[i];
             const Vec3 x = s.vertices[u];
             std::optional<Vec3> to;
-            const auto& p = near[i];
-            if (near_count[i] == 1) {
+            const auto& p = near[i].planes;
+            if (count == 1) {
                 to = x - (dot(p[0].n, x) - p[0].c) * p[0].n;
-            } else if (near_count[i] == 2) {
-                const Vec3 d = cross(p[0].n, p[1].n);
-                if (norm2(d) > 1e-12) {
-                    const double ca = p[0].c - dot(p[0].n, x), cb = p[1].c - dot(p[1].n, x);
-                    to = x + (ca * cross(p[1].n, d) + cb * cross(d, p[0].n)) / norm2(d);
-                }
+            } else if (count == 2) {
+                if (norm2(cross(p[0].n, p[1].n)) > 1e-12) to = onto_crease(x, p[0], p[1]);
             } else {
                 to = corner({p[0], p[1], p[2]}, x);
             }
@@ -832,8 +819,8 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
             moved_from.emplace_back(u, x);
             s.vertices[u] = *to;
             planes.moved.push_back(u);
-            planes.planes[u] = near[i];
-            planes.count[u] = near_count[i];
+            planes.planes[u] = near[i].first_four();
+            planes.count[u] = static_cast<std::uint8_t>(count);
         }
         check_moves();
     };
@@ -903,23 +890,14 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
                 cuts.push_back(
                     {.key = key, .point = c->point, .a = lower ? a : b, .b = lower ? b : a});
             }
-            std::array<CreasePlane, 3> distinct;
-            int found = 0;
+            PlaneSet set;
             bool known = true;
             for (const std::uint32_t u : v) {
                 known = known && planes.count[u] > 0;
-                for (const CreasePlane& p : planes_of(planes, u)) {
-                    bool seen = false;
-                    for (int i = 0; i < found; ++i) seen = seen || same_plane(distinct[i], p);
-                    if (seen) continue;
-                    if (found == 3) {
-                        known = false;
-                        break;
-                    }
-                    distinct[found++] = p;
-                }
+                set.add_corner(planes, u);
             }
-            if (!known || found != 3) continue;
+            if (!known || set.size != 3) continue;
+            const std::array<CreasePlane, 3> distinct{set.planes[0], set.planes[1], set.planes[2]};
             const Triangle3 tri = s.triangle(t);
             const Vec3 centroid = (tri.a + tri.b + tri.c) / 3.0;
             const std::optional<Vec3> q = corner(distinct, centroid);
@@ -1017,9 +995,9 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
     // none (a triangle still across the crease) turns at most 60° from its parent and faces as
     // its corners' planes do.
     auto sound = [&](std::uint32_t t, const std::vector<TriangleIndices>& kids) {
-        const Vec3 parent = area_of(s, s.triangles[t]);
+        const Vec3 parent = area_normal(s, s.triangles[t]);
         for (const TriangleIndices& kid : kids) {
-            const Vec3 n = area_of(s, kid);
+            const Vec3 n = area_normal(s, kid);
             const double length = norm(n);
             if (!has_area(s.vertices[kid[0]], s.vertices[kid[1]], s.vertices[kid[2]])) return false;
             const std::optional<CreasePlane> plane = common_plane(planes, kid);

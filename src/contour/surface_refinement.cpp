@@ -25,6 +25,11 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
     return (std::uint64_t{a} << 32) | b;
 }
 
+Vec3 area_normal(const Surface& s, const TriangleIndices& t) {
+    const Vec3 a = s.vertices[t[0]];
+    return cross(s.vertices[t[1]] - a, s.vertices[t[2]] - a);
+}
+
 // The triangles that replace t = (v0, v1, v2) when the edges flagged in `split` (bit k: edge
 // from corner k to corner k + 1) get the vertices w[k], oriented as t.
 void split_children(const Surface& s, const TriangleIndices& t, unsigned split,
@@ -74,11 +79,6 @@ constexpr double bracket_reach[] = {0.5, 1.0, 2.0};
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 /// The first index of a triangle a collapse removed, until improve() drops it.
 constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
-
-Vec3 area_normal(const Surface& s, const TriangleIndices& t) {
-    const Vec3 a = s.vertices[t[0]];
-    return cross(s.vertices[t[1]] - a, s.vertices[t[2]] - a);
-}
 
 /// The edges of a closed surface: their ends (lower vertex first), their two triangles, and each
 /// triangle's edges (edge k from corner k to corner k + 1). The half-edges are bucketed by their

@@ -56,6 +56,9 @@ SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& do
 /// The key of the edge between vertices a and b, either way round.
 std::uint64_t edge_key(std::uint32_t a, std::uint32_t b);
 
+/// Twice the area of triangle t times its unit normal (by the right-hand rule).
+Vec3 area_normal(const Surface& s, const TriangleIndices& t);
+
 /// The triangles that replace t = (v0, v1, v2) when the edges flagged in `split` (bit k: edge
 /// from corner k to corner k + 1) get the vertices w[k], oriented as t: one edge, two triangles;
 /// two, the corner between them cut off and the quadrilateral left split along its shorter
