@@ -180,6 +180,10 @@ Surface surface_as_read(const Surface& s, const Box3& domain, SurfaceRunOptions&
     const auto read = [&](int thin) {
         SurfaceStepOptions o = options.step;
         o.contour.thin_depth = thin;
+        // The given surface read at rest is flat where the reading finds a corner: its creases
+        // are the input's, and the start keeps them sharp to ε (the steps' contours do not cut
+        // them: docs/surfaces.md, "Sharp edges in a run's steps").
+        o.contour.creases = true;
         Surface contour = advance(s, options.t_start, 1.0, rest, domain, o).surface;
         if (contour.empty() && !s.empty()) {
             const Box3 b = bounding_box(s);

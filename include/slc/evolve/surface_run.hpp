@@ -92,7 +92,9 @@ struct SurfaceRunResult : RunTotals {
 /// motion at rest returns. Runs of users' surfaces start from it, as a named problem's start from
 /// its own contour: the first step from a coarse polyhedron would otherwise jump to the smooth
 /// surface its vertex normals describe (an icosphere of 320 triangles gains 3.4% of its volume),
-/// which the guards would take for a broken law. Where the contour does not keep the surface as
+/// which the guards would take for a broken law. Its refinement follows the creases where the
+/// reading is flat (SurfaceContourOptions::creases), so that a polyhedron's start is within ε of
+/// it, edges and corners too. Where the contour does not keep the surface as
 /// given (its components, handles, and every vertex within a cell at K), the thin cells go two
 /// levels deeper at a time, up to setting_range::thin_depth's most, and options' thin_depth is
 /// set to the depth that keeps it, for the run to go on with. Throws as advance() does,
