@@ -200,6 +200,8 @@ constexpr double needle_ratio = 0.25;
 constexpr double cluster_ratio = 1.0 / 32.0;
 /// Rounds of collapses and flips before each pass.
 constexpr int improve_rounds = 8;
+/// Times refinement collapses the needles about parts beyond ε whose splits were all refused.
+constexpr int max_recoveries = 8;
 
 /// The angle at corner k of triangle t.
 double corner_angle(const Surface& s, const TriangleIndices& t, int k) {
@@ -214,7 +216,8 @@ double corner_angle(const Surface& s, const TriangleIndices& t, int k) {
 /// vertices as neighbours) and no triangle around the removed vertex turns more than 30°. Each
 /// triangle takes part in one move a round. Dead triangles are marked by a first index of
 /// `dead`. Returns the collapses.
-std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
+std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed,
+                             std::span<const std::uint8_t> near) {
     const Edges edges(s);
     // Triangles around each vertex, in order: its corners' triangles.
     VertexCorners around = vertex_corners(s);
@@ -258,6 +261,7 @@ std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
         if (!needle[e]) continue;
         const auto [t0, t1] = edges.triangles[e];
         const std::uint32_t a = edges.ends[e][0], b = edges.ends[e][1];
+        if (!near.empty() && !(near[a] && near[b])) continue;
         bool free = true;
         for (const std::uint32_t t : ring(a)) free &= !touched[t];
         for (const std::uint32_t t : ring(b)) free &= !touched[t];
@@ -312,7 +316,8 @@ std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed) {
 /// triangle kept turns more than 30° from the surface around it. Each triangle takes part in
 /// one collapse a round; collapsed triangles are marked by a first index of `dead`. Returns the
 /// vertices removed.
-std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
+std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed,
+                              std::span<const std::uint8_t> near) {
     const Edges edges(s);
     const std::size_t vertices = s.vertices.size();
     std::vector<double> length(edges.size()), longest(vertices, 0.0);
@@ -359,6 +364,9 @@ std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed) {
         const std::span<const std::uint32_t> cluster(members.data() + start[c],
                                                      start[c + 1] - start[c]);
         if (cluster.size() < 2) continue;
+        if (!near.empty() &&
+            std::any_of(cluster.begin(), cluster.end(), [&](std::uint32_t v) { return !near[v]; }))
+            continue;
         // The triangles around the cluster, once each.
         ring.clear();
         for (const std::uint32_t v : cluster)
@@ -476,8 +484,13 @@ bool angles_beyond_pi(const Surface& s, const TriangleIndices& t, int k, const T
 /// One round of edge flips: edge (a, b) between triangles (a, b, c) and (b, a, d) becomes
 /// (c, d) when the angles at c and d sum beyond π (the Delaunay rule, on the surface), the edge
 /// (c, d) is new, and neither new triangle turns more than 30° from the surface around the two.
-/// Each triangle takes part in one flip a round. Returns the flips.
-std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
+/// Each triangle takes part in one flip a round. Returns the flips, each as its two triangles'
+/// places and what they held before.
+struct Flip {
+    std::uint32_t t0, t1;
+    TriangleIndices before0, before1;
+};
+std::vector<Flip> flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
     const Edges edges(s);
     KeyMap<std::uint8_t> added;  // the edges this round's flips made
     // The edge (a, b) of triangles t0 = (a, b, c) and t1 = (b, a, d), with i and j the places of
@@ -512,7 +525,7 @@ std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
                 : 0;
     });
     std::vector<std::uint8_t> touched(s.size(), 0);
-    std::size_t flips = 0;
+    std::vector<Flip> flips;
     for (std::uint32_t e = 0; e < edges.size(); ++e) {
         const auto [t0, t1] = edges.triangles[e];
         if (!breaks[e] || touched[t0] || touched[t1]) continue;
@@ -522,23 +535,24 @@ std::size_t flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
         const Vec3 n = normal_around(s, edges, t0) + normal_around(s, edges, t1);
         if (!along(s, n, u, improve_normal_cosine) || !along(s, n, v, improve_normal_cosine))
             continue;
+        flips.push_back({t0, t1, s.triangles[t0], s.triangles[t1]});
         s.triangles[t0] = u;
         s.triangles[t1] = v;
         added.assign(edge_key(f.c, f.d), 1);
         touched[t0] = touched[t1] = 1;
         changed[t0] = changed[t1] = 1;
-        ++flips;
     }
     return flips;
 }
 
 /// Collapses needles and flips edges, in rounds, until a round changes nothing. Triangles that
 /// changed lose their cached centroid value and are marked dirty (their crossings unchecked);
-/// collapsed ones are removed (vertices stay, unused). A round whose changes make triangles meet
-/// (a flip or collapse across a thin gap, decided by exact predicates among the changed
-/// triangles) is undone, and improvement ends for this pass.
+/// collapsed ones are removed (vertices stay, unused). Where a round's changes make triangles
+/// meet (a flip or collapse across a thin gap, decided by exact predicates among the changed
+/// triangles), the flips of the triangles that meet are undone, until none meet; where a collapse
+/// is among them, the whole round is undone and improvement ends for this pass.
 void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::uint8_t>& dirty,
-             bool collapse, SurfaceRefinement& result) {
+             bool collapse, SurfaceRefinement& result, std::span<const std::uint8_t> near = {}) {
     for (int round = 0; round < improve_rounds; ++round) {
         const std::vector<TriangleIndices> triangles_before = s.triangles;
         const std::vector<double> centroids_before = centroid_value;
@@ -561,17 +575,48 @@ void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::u
         };
         std::size_t collapses = 0;
         if (collapse) {
-            if (const std::size_t merged = collapse_clusters(s, changed); merged > 0) {
+            if (const std::size_t merged = collapse_clusters(s, changed, near); merged > 0) {
                 collapses += merged;
                 drop_dead();
             }
-            if (const std::size_t needles = collapse_needles(s, changed); needles > 0) {
+            if (const std::size_t needles = collapse_needles(s, changed, near); needles > 0) {
                 collapses += needles;
                 drop_dead();
             }
         }
-        const std::size_t flips = flip_edges(s, changed);
-        if (collapses + flips > 0 && !find_self_intersections(s, changed).empty()) {
+        const std::vector<Flip> flipped = flip_edges(s, changed);
+        std::size_t flips = flipped.size();
+        bool meets = false;
+        if (collapses + flips > 0) {
+            // The flip of each triangle, by its place; a flip undone leaves its two triangles
+            // as they were, still marked changed (checked again, their centroids forgotten).
+            constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+            std::vector<std::uint32_t> flip_of(flipped.empty() ? 0 : s.size(), none);
+            for (std::uint32_t i = 0; i < flipped.size(); ++i)
+                flip_of[flipped[i].t0] = flip_of[flipped[i].t1] = i;
+            for (;;) {
+                const std::vector<TriangleContact> contacts = find_self_intersections(s, changed);
+                if (contacts.empty()) break;
+                bool undone = false;
+                for (const TriangleContact& c : contacts) {
+                    for (const std::uint32_t t : {c.first, c.second}) {
+                        const std::uint32_t i = flip_of.empty() ? none : flip_of[t];
+                        if (i == none) continue;
+                        const Flip& f = flipped[i];
+                        s.triangles[f.t0] = f.before0;
+                        s.triangles[f.t1] = f.before1;
+                        flip_of[f.t0] = flip_of[f.t1] = none;
+                        --flips;
+                        undone = true;
+                    }
+                }
+                if (!undone) {
+                    meets = true;
+                    break;
+                }
+            }
+        }
+        if (meets) {
             s.triangles = triangles_before;
             centroid_value = centroids_before;
             dirty = dirty_before;
@@ -856,11 +901,42 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
     const int limit = passes < 0 ? max_passes : std::min(passes, max_passes);
     CreasePlanes planes;  // following creases: the zero set's planes at the vertices
     int cut_rounds = 0;
+    int recoveries = 0;
+    std::vector<std::uint8_t> stalled;  // about the parts beyond ε no split could refine
+    // Where every split left beyond ε was refused, the needles and clusters about them (the
+    // splits' and cuts' own, which improve() collapses only before the first pass) are collapsed
+    // before the next pass, at most max_recoveries times.
+    auto stall = [&](std::span<const double> mid, const Edges& edges) {
+        if (recoveries >= max_recoveries) return false;
+        ++recoveries;
+        stalled.assign(s.vertices.size(), 0);
+        for (std::uint32_t t = 0; t < s.size(); ++t) {
+            bool out = std::abs(centroid_value[t]) > eps;
+            for (const std::uint32_t e : edges.of_triangle[t]) out = out || std::abs(mid[e]) > eps;
+            if (out)
+                for (const std::uint32_t v : s.triangles[t]) stalled[v] = 1;
+        }
+        // Grown by two rings.
+        for (int ring = 0; ring < 2; ++ring) {
+            std::vector<std::uint8_t> grown = stalled;
+            for (const TriangleIndices& t : s.triangles)
+                if (stalled[t[0]] || stalled[t[1]] || stalled[t[2]])
+                    grown[t[0]] = grown[t[1]] = grown[t[2]] = 1;
+            stalled = std::move(grown);
+        }
+        return true;
+    };
     for (int pass = 0; pass < limit; ++pass) {
         check_stop();
         // Needles come from the linear contour, where a root falls near a mesh vertex; splits
-        // and cuts make none, and collapsing what they made could undo them pass after pass.
-        improve(s, centroid_value, dirty, pass == 0 && cut_rounds == 0, result);
+        // and cuts make few, and collapsing what they made could undo them pass after pass: they
+        // are collapsed only about a part that refinement stalled at (stall).
+        if (stalled.empty()) {
+            improve(s, centroid_value, dirty, pass == 0 && cut_rounds == 0, result);
+        } else {
+            improve(s, centroid_value, dirty, true, result, stalled);
+            stalled.clear();
+        }
         const Edges edges(s);
         const std::size_t m = edges.size();
         auto is_frozen = [&](std::uint32_t e) {
@@ -982,7 +1058,10 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
             }
         }
         if (!any_beyond) result.converged = 1;
-        if (candidates.empty()) break;
+        if (candidates.empty()) {
+            if (any_beyond && stall(mid, edges)) continue;
+            break;
+        }
         if (s.vertices.size() + candidates.size() > max_vertices) {
             throw LimitExceeded(fmt::format(
                 "refining the surface to eps {:.3g} needs more than {} vertices (it has {} and "
@@ -1135,7 +1214,10 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         s.triangles = std::move(next.triangles);
         centroid_value = std::move(next_centroid);
         dirty.assign(s.triangles.size(), 0);
-        if (splits == 0) break;
+        if (splits == 0) {
+            if (stall(mid, edges)) continue;
+            break;
+        }
         result.splits += splits;
         ++result.passes;
     }
