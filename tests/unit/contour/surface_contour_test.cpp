@@ -15,6 +15,7 @@
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/geometry/validate_surface.hpp"
+#include "turned.hpp"
 
 namespace slc {
 namespace {
@@ -174,16 +175,11 @@ TEST(SurfaceContour, RefinementFollowsTheCreasesOfAMesh) {
 /// 0.3 about z and 0.2 about x, off the octree's axes.
 Surface turned_polyhedron(std::vector<Vec3> corners,
                           const std::vector<std::vector<std::uint32_t>>& faces) {
-    const double cz = std::cos(0.3), sz = std::sin(0.3), cx = std::cos(0.2), sx = std::sin(0.2);
-    for (Vec3& v : corners) {
-        v = {cz * v.x - sz * v.y, sz * v.x + cz * v.y, v.z};
-        v = {v.x, cx * v.y - sx * v.z, sx * v.y + cx * v.z};
-    }
     Surface s{.vertices = std::move(corners), .triangles = {}};
     for (const auto& f : faces)
         for (std::size_t k = 1; k + 1 < f.size(); ++k)
             s.triangles.push_back({f[0], f[k], f[k + 1]});
-    return s;
+    return test_support::turned(std::move(s), 0.3, 0.2);
 }
 
 TEST(SurfaceContour, RefinementCutsTheCreasesAndCornersOfPolyhedraOffTheAxes) {
@@ -284,12 +280,8 @@ TEST(SurfaceContour, ATiltedCubeWithThinCellsStaysOnePiece) {
     // mesh vertex just inside the corner with no neighbour inside, and the linear zero set a
     // speck around it: specks less than a finest cell across are dropped. With the corners and
     // edges split along the grid lines too, none is left.
-    Surface cube = box_surface({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}, 1);
-    for (Vec3& v : cube.vertices) {
-        const double cz = std::cos(0.4), sz = std::sin(0.4), cx = std::cos(0.3), sx = std::sin(0.3);
-        v = {cz * v.x - sz * v.y, sz * v.x + cz * v.y, v.z};
-        v = {v.x, cx * v.y - sx * v.z, sx * v.y + cx * v.z};
-    }
+    const Surface cube =
+        test_support::turned(box_surface({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}, 1), 0.4, 0.3);
     // The domain slc contour takes: the cube around the bounding box, 1.5 times its half-side.
     const Box3 b = bounding_box(cube);
     const double half = 0.5 * std::max({b.extent(0), b.extent(1), b.extent(2)});

@@ -17,6 +17,7 @@
 #include "slc/geometry/surface_shapes.hpp"
 #include "slc/geometry/validate_surface.hpp"
 #include "slc/velocity/surface_laws.hpp"
+#include "turned.hpp"
 
 namespace slc {
 namespace {
@@ -241,13 +242,10 @@ TEST(SurfaceRun, ABoxIsReadWithItsEdgesAndCornersSharp) {
     // A user's box turned off the axes, at the default settings: the start a run moves is within
     // ε of the box, its edges and corners too, and holds its volume. (Read with the steps' plain
     // refinement, the edges were chamfered by 3.4e−3 against ε = 5.7e−4.)
-    Surface box = box_surface({-0.4, -0.4, -0.4}, {0.4, 0.4, 0.4}, 1);
-    for (Vec3& v : box.vertices) {
-        const double cz = std::cos(0.3), sz = std::sin(0.3), cx = std::cos(0.2), sx = std::sin(0.2);
-        v = {cz * v.x - sz * v.y, sz * v.x + cz * v.y, v.z};
-        v = {v.x, cx * v.y - sx * v.z, sx * v.y + cx * v.z};
-    }
-    box = prepare_surface(box).surface;
+    const Surface box =
+        prepare_surface(
+            test_support::turned(box_surface({-0.4, -0.4, -0.4}, {0.4, 0.4, 0.4}, 1), 0.3, 0.2))
+            .surface;
     const Box3 around = default_domain(bounding_box(box));
     SurfaceRunOptions o = default_surface_run_options(box, SurfaceRotation(), 0.0, 1.0);
     const double eps = o.step.contour.resolved_eps();
