@@ -214,8 +214,8 @@ double corner_angle(const Surface& s, const TriangleIndices& t, int k) {
 /// triangles is collapsed onto its first vertex (both ends lie on the zero set), when the
 /// surface's topology allows it (the link condition: the two ends share exactly the two opposite
 /// vertices as neighbours) and no triangle around the removed vertex turns more than 30°. Each
-/// triangle takes part in one move a round. Dead triangles are marked by a first index of
-/// `dead`. Returns the collapses.
+/// triangle takes part in one move a round; with `near` not empty, only edges both of whose
+/// ends it marks. Dead triangles are marked by a first index of `dead`. Returns the collapses.
 std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed,
                              std::span<const std::uint8_t> near) {
     const Edges edges(s);
@@ -314,8 +314,8 @@ std::size_t collapse_needles(Surface& s, std::vector<std::uint8_t>& changed,
 /// one closed fan (the surface stays a manifold of the same Euler characteristic), no vertex
 /// moves a quarter of the way from that vertex to its nearest neighbour outside, and no
 /// triangle kept turns more than 30° from the surface around it. Each triangle takes part in
-/// one collapse a round; collapsed triangles are marked by a first index of `dead`. Returns the
-/// vertices removed.
+/// one collapse a round; with `near` not empty, only clusters all of whose vertices it marks.
+/// Collapsed triangles are marked by a first index of `dead`. Returns the vertices removed.
 std::size_t collapse_clusters(Surface& s, std::vector<std::uint8_t>& changed,
                               std::span<const std::uint8_t> near) {
     const Edges edges(s);
@@ -481,15 +481,16 @@ bool angles_beyond_pi(const Surface& s, const TriangleIndices& t, int k, const T
     return corner_angle(s, t, k) + corner_angle(s, u, l) > std::numbers::pi * (1.0 + 1e-6);
 }
 
-/// One round of edge flips: edge (a, b) between triangles (a, b, c) and (b, a, d) becomes
-/// (c, d) when the angles at c and d sum beyond π (the Delaunay rule, on the surface), the edge
-/// (c, d) is new, and neither new triangle turns more than 30° from the surface around the two.
-/// Each triangle takes part in one flip a round. Returns the flips, each as its two triangles'
-/// places and what they held before.
+/// A flip: the places of its two triangles and what they held before.
 struct Flip {
     std::uint32_t t0, t1;
     TriangleIndices before0, before1;
 };
+
+/// One round of edge flips: edge (a, b) between triangles (a, b, c) and (b, a, d) becomes
+/// (c, d) when the angles at c and d sum beyond π (the Delaunay rule, on the surface), the edge
+/// (c, d) is new, and neither new triangle turns more than 30° from the surface around the two.
+/// Each triangle takes part in one flip a round. Returns the flips made.
 std::vector<Flip> flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
     const Edges edges(s);
     KeyMap<std::uint8_t> added;  // the edges this round's flips made

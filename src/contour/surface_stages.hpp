@@ -131,7 +131,9 @@ struct SurfaceRefinement {
 /// were a distance, then a secant step, then brackets out to two edge lengths. Safeguards refuse a
 /// split, for good, when no root is found within reach, when a triangle it makes turns more than
 /// 60° from its parent or loses its area, or when the triangles it makes meet the rest of the
-/// surface; the surface stays closed, manifold and oriented. Throws LimitExceeded naming ε when the
+/// surface; the surface stays closed, manifold and oriented. Where every split left beyond ε is
+/// refused, the needles and clusters within two rings of those triangles are collapsed before
+/// another pass, up to max_recoveries times. Throws LimitExceeded naming ε when the
 /// vertices would pass max_vertices. With `creases` (SurfaceContourOptions::creases), each
 /// splitting pass is preceded by cut_creases() while it changes the surface, an edge across a
 /// crease is split on it, a flat triangle beside a fold may be split in its plane, and a refused
