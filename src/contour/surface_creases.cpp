@@ -832,16 +832,7 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
     std::vector<Cut> cuts;
     KeyMap<std::uint32_t> cut_of;  // edge key → its index in cuts
     std::vector<Centre> centres;
-    KeyMap<std::uint64_t> sides;  // edge key → its two triangles, the first in the high bits
-    sides.reserve(3 * s.size() / 2);
-    for (std::uint32_t t = 0; t < s.size(); ++t) {
-        const TriangleIndices& v = s.triangles[t];
-        for (int k = 0; k < 3; ++k) {
-            const auto [pair, fresh] =
-                sides.try_emplace(edge_key(v[k], v[(k + 1) % 3]), std::uint64_t{t} << 32 | none);
-            if (!fresh) *pair = (*pair & ~std::uint64_t{none}) | t;
-        }
-    }
+    const Edges edges(s);  // the triangles on each side of an edge cut
     std::vector<std::uint8_t> scanned(s.size(), 0);
     std::vector<std::uint32_t> scan(beyond.begin(), beyond.end());
     for (const std::uint32_t t : scan) scanned[t] = 1;
@@ -907,11 +898,13 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
         }
         std::vector<std::uint32_t> across;
         for (std::size_t i = first_cut; i < cuts.size(); ++i) {
-            const std::uint64_t pair = sides.at(cuts[i].key);
-            for (const std::uint64_t t : {pair >> 32, pair & none}) {
-                if (t == none || scanned[t]) continue;
+            const std::uint64_t key = cuts[i].key;
+            const std::uint32_t e =
+                *edges.find(static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key));
+            for (const std::uint32_t t : edges.triangles[e]) {
+                if (scanned[t]) continue;
                 scanned[t] = 1;
-                across.push_back(static_cast<std::uint32_t>(t));
+                across.push_back(t);
             }
         }
         std::sort(across.begin(), across.end());

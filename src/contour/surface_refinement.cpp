@@ -25,6 +25,47 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
     return (std::uint64_t{a} << 32) | b;
 }
 
+Edges::Edges(const Surface& s) {
+    const HalfEdgeBuckets buckets = half_edges_by_lower_vertex(s);
+    const std::size_t vertices = s.vertices.size();
+    // The edges of a closed surface pair its half-edges, so vertex v numbers
+    // (start[v + 1] − start[v]) / 2 edges, from first_of[v].
+    first_of.assign(vertices + 1, 0);
+    for (std::size_t v = 0; v < vertices; ++v) {
+        const std::uint32_t halves = buckets.start[v + 1] - buckets.start[v];
+        SLC_ASSERT(halves % 2 == 0, "every edge of a closed surface has two triangles");
+        first_of[v + 1] = first_of[v] + halves / 2;
+    }
+    of_triangle.resize(s.size());
+    ends.resize(first_of[vertices]);
+    triangles.resize(first_of[vertices]);
+    // Each vertex's edges in order of their other end, on all threads: the same numbering
+    // as one thread gives.
+    parallel_for(vertices, [&](std::size_t v) {
+        const auto first = buckets.halves.begin() + buckets.start[v],
+                   last = buckets.halves.begin() + buckets.start[v + 1];
+        std::uint32_t e = first_of[v];
+        for (auto it = first; it != last; it += 2, ++e) {
+            SLC_ASSERT(it->first == (it + 1)->first,
+                       "every edge of a closed surface has two triangles");
+            const std::uint32_t h = it->second, k = (it + 1)->second;
+            ends[e] = {static_cast<std::uint32_t>(v), it->first};
+            triangles[e] = {h / 3, k / 3};
+            of_triangle[h / 3][h % 3] = e;
+            of_triangle[k / 3][k % 3] = e;
+        }
+    });
+}
+
+std::optional<std::uint32_t> Edges::find(std::uint32_t a, std::uint32_t b) const {
+    if (a > b) std::swap(a, b);
+    const auto begin = ends.begin() + first_of[a], end = ends.begin() + first_of[a + 1];
+    const auto at =
+        std::lower_bound(begin, end, b, [](const auto& ab, std::uint32_t x) { return ab[1] < x; });
+    if (at == end || (*at)[1] != b) return std::nullopt;
+    return static_cast<std::uint32_t>(at - ends.begin());
+}
+
 Vec3 area_normal(const Surface& s, const TriangleIndices& t) {
     const Vec3 a = s.vertices[t[0]];
     return cross(s.vertices[t[1]] - a, s.vertices[t[2]] - a);
@@ -79,58 +120,6 @@ constexpr double bracket_reach[] = {0.5, 1.0, 2.0};
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 /// The first index of a triangle a collapse removed, until improve() drops it.
 constexpr std::uint32_t dead = std::numeric_limits<std::uint32_t>::max();
-
-/// The edges of a closed surface: their ends (lower vertex first), their two triangles, and each
-/// triangle's edges (edge k from corner k to corner k + 1). The half-edges are bucketed by their
-/// lower vertex (a counting sort) and paired within each bucket: O(N + V), no hashing.
-struct Edges {
-    std::vector<std::array<std::uint32_t, 2>> ends;
-    std::vector<std::array<std::uint32_t, 2>> triangles;
-    std::vector<std::array<std::uint32_t, 3>> of_triangle;
-    /// Vertex v's edges to higher vertices are first_of[v] to first_of[v + 1], by their other end.
-    std::vector<std::uint32_t> first_of;
-
-    explicit Edges(const Surface& s) {
-        const HalfEdgeBuckets buckets = half_edges_by_lower_vertex(s);
-        const std::size_t vertices = s.vertices.size();
-        // The edges of a closed surface pair its half-edges, so vertex v numbers
-        // (start[v + 1] − start[v]) / 2 edges, from first_of[v].
-        first_of.assign(vertices + 1, 0);
-        for (std::size_t v = 0; v < vertices; ++v) {
-            const std::uint32_t halves = buckets.start[v + 1] - buckets.start[v];
-            SLC_ASSERT(halves % 2 == 0, "every edge of a closed surface has two triangles");
-            first_of[v + 1] = first_of[v] + halves / 2;
-        }
-        of_triangle.resize(s.size());
-        ends.resize(first_of[vertices]);
-        triangles.resize(first_of[vertices]);
-        // Each vertex's edges in order of their other end, on all threads: the same numbering
-        // as one thread gives.
-        parallel_for(vertices, [&](std::size_t v) {
-            const auto first = buckets.halves.begin() + buckets.start[v],
-                       last = buckets.halves.begin() + buckets.start[v + 1];
-            std::uint32_t e = first_of[v];
-            for (auto it = first; it != last; it += 2, ++e) {
-                SLC_ASSERT(it->first == (it + 1)->first,
-                           "every edge of a closed surface has two triangles");
-                const std::uint32_t h = it->second, k = (it + 1)->second;
-                ends[e] = {static_cast<std::uint32_t>(v), it->first};
-                triangles[e] = {h / 3, k / 3};
-                of_triangle[h / 3][h % 3] = e;
-                of_triangle[k / 3][k % 3] = e;
-            }
-        });
-    }
-    std::size_t size() const { return ends.size(); }
-    /// Whether a and b are the ends of an edge: a binary search among the lower one's edges.
-    bool contains(std::uint32_t a, std::uint32_t b) const {
-        if (a > b) std::swap(a, b);
-        const auto begin = ends.begin() + first_of[a], end = ends.begin() + first_of[a + 1];
-        const auto at = std::lower_bound(begin, end, b,
-                                         [](const auto& ab, std::uint32_t x) { return ab[1] < x; });
-        return at != end && (*at)[1] == b;
-    }
-};
 
 /// The vertices opposite edge e in its two triangles, as one key.
 std::uint64_t opposite_key(const Surface& s, const Edges& edges, std::uint32_t e) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -55,6 +56,25 @@ SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& do
 
 /// The key of the edge between vertices a and b, either way round.
 std::uint64_t edge_key(std::uint32_t a, std::uint32_t b);
+
+/// The edges of a closed surface: their ends (lower vertex first), their two triangles, and each
+/// triangle's edges (edge k from corner k to corner k + 1). The half-edges are bucketed by their
+/// lower vertex (a counting sort) and paired within each bucket: O(N + V), no hashing.
+struct Edges {
+    std::vector<std::array<std::uint32_t, 2>> ends;
+    std::vector<std::array<std::uint32_t, 2>> triangles;
+    std::vector<std::array<std::uint32_t, 3>> of_triangle;
+    /// Vertex v's edges to higher vertices are first_of[v] to first_of[v + 1], by their other end.
+    std::vector<std::uint32_t> first_of;
+
+    explicit Edges(const Surface& s);
+    std::size_t size() const { return ends.size(); }
+    /// The edge whose ends are a and b, either way round: a binary search among the lower one's
+    /// edges.
+    std::optional<std::uint32_t> find(std::uint32_t a, std::uint32_t b) const;
+    /// Whether a and b are the ends of an edge.
+    bool contains(std::uint32_t a, std::uint32_t b) const { return find(a, b).has_value(); }
+};
 
 /// Twice the area of triangle t times its unit normal (by the right-hand rule).
 Vec3 area_normal(const Surface& s, const TriangleIndices& t);
