@@ -144,6 +144,17 @@ TEST(SurfaceContour, ContoursTheExactDistanceOfABoxSurface) {
     EXPECT_NEAR(volume(finer.surface), exact, 0.03 * exact);
 }
 
+/// A mesh's distance contoured at K = 4 until converged to eps, following its creases, with
+/// two levels of thin cells and no distance slack.
+SurfaceContourOptions following_creases_to(double eps) {
+    return {.depth = 4,
+            .refine_passes = SurfaceContourOptions::until_converged,
+            .eps = eps,
+            .thin_depth = 2,
+            .creases = true,
+            .distance_slack = 0.0};
+}
+
 TEST(SurfaceContour, RefinementFollowsTheCreasesOfAMesh) {
     // A torus of 24 × 12 flat quads (576 triangles): its distance folds along every edge of the
     // mesh, where halving the contour's edges only halves their error. Refinement that follows
@@ -154,13 +165,8 @@ TEST(SurfaceContour, RefinementFollowsTheCreasesOfAMesh) {
     const Box3 domain = Box3::centered_cube(1.0);
     const SurfaceDistanceTree tree(mesh, domain, {.depth = 4});
     const auto distance = [&](Vec3 x) { return tree.closest_point(x).distance; };
-    const SurfaceContourOptions options{.depth = 4,
-                                        .refine_passes = SurfaceContourOptions::until_converged,
-                                        .eps = 1e-5,
-                                        .thin_depth = 2,
-                                        .creases = true,
-                                        .distance_slack = 0.0};
-    const SurfaceContour got = contour_surface(pointwise<Vec3>(distance), domain, options);
+    const SurfaceContour got =
+        contour_surface(pointwise<Vec3>(distance), domain, following_creases_to(1e-5));
     EXPECT_TRUE(got.stats.converged);
     EXPECT_LE(largest_error(got.surface, distance), 1e-5);
     EXPECT_LT(got.surface.size(), 150'000u);
@@ -256,13 +262,8 @@ TEST(SurfaceContour, RefinementCutsTheCreasesAndCornersOfPolyhedraOffTheAxes) {
             Box3::cube(b.center(), 0.75 * std::max({b.extent(0), b.extent(1), b.extent(2)}));
         const SurfaceDistanceTree tree(c.surface, domain, {.depth = 4});
         const auto distance = [&](Vec3 x) { return tree.closest_point(x).distance; };
-        const SurfaceContourOptions options{.depth = 4,
-                                            .refine_passes = SurfaceContourOptions::until_converged,
-                                            .eps = 1e-5,
-                                            .thin_depth = 2,
-                                            .creases = true,
-                                            .distance_slack = 0.0};
-        const SurfaceContour got = contour_surface(pointwise<Vec3>(distance), domain, options);
+        const SurfaceContour got =
+            contour_surface(pointwise<Vec3>(distance), domain, following_creases_to(1e-5));
         EXPECT_TRUE(got.stats.converged) << c.name << ": " << got.stats.residual;
         EXPECT_LE(largest_error(got.surface, distance), 1e-5) << c.name;
         for (const Vec3 v : got.surface.vertices) ASSERT_LE(std::abs(distance(v)), 1e-7) << c.name;
