@@ -45,8 +45,10 @@ constexpr double min_corner_determinant = 1e-3;
 constexpr double min_plane_cosine = 0.9;
 /// A patch re-triangulated across a crease holds at most this many triangles that lie across it.
 constexpr std::size_t max_fold = 512;
-/// ... grown by at most this many rings of triangles around it.
+/// ... grown by at most this many rings of triangles around it, or about a corner in as many
+/// balls, each 1.5 times as wide, up to this many triangles.
 constexpr int max_rings = 6;
+constexpr std::size_t max_corner_patch = 16 * max_fold;
 /// A child that lies in no one plane turns at most 60° from its parent.
 constexpr double min_parent_cosine = 0.5;
 
@@ -55,29 +57,32 @@ bool same_plane(const CreasePlane& a, const CreasePlane& b) {
            std::abs(a.c - b.c) <= same_offset * (1.0 + std::max(std::abs(a.c), std::abs(b.c)));
 }
 
-/// The planes of a vertex, as a span.
-std::span<const CreasePlane> planes_of(const CreasePlanes& p, std::uint32_t v) {
-    return {p.planes[v].data(), p.count[v]};
-}
+constexpr int max_planes = CreasePlanes::max_planes;
 
-/// Distinct planes, in the order met: those of up to three corners of four planes each.
+/// The planes of a vertex, as a span.
+std::span<const CreasePlane> planes_of(const CreasePlanes& p, std::uint32_t v) { return p.of(v); }
+
+/// Distinct planes, in the order met, up to max_planes; `size` is one more when more were met.
 struct PlaneSet {
-    std::array<CreasePlane, 12> planes;
+    std::array<CreasePlane, max_planes> planes;
     int size = 0;
 
-    /// Adds p unless a plane already in is the same, and unless `most` are in.
-    void add(const CreasePlane& p, int most = 12) {
-        for (int i = 0; i < size; ++i)
+    /// Adds p unless a plane already in is the same.
+    void add(const CreasePlane& p) {
+        for (int i = 0; i < std::min(size, max_planes); ++i)
             if (same_plane(planes[i], p)) return;
-        if (size < most) planes[size++] = p;
+        if (size < max_planes)
+            planes[size++] = p;
+        else
+            size = max_planes + 1;
     }
     /// Adds the planes of vertex v.
     void add_corner(const CreasePlanes& all, std::uint32_t v) {
         for (const CreasePlane& p : planes_of(all, v)) add(p);
     }
-    /// The first four.
-    std::array<CreasePlane, 4> first_four() const {
-        return {planes[0], planes[1], planes[2], planes[3]};
+    /// The planes, when no more than max_planes were met.
+    std::span<const CreasePlane> list() const {
+        return {planes.data(), static_cast<std::size_t>(std::min(size, max_planes))};
     }
 };
 
@@ -128,6 +133,23 @@ std::optional<Vec3> corner(const std::array<CreasePlane, 3>& p, Vec3 near) {
     return near + (c0 * bc + c1 * ca + c2 * ab) / det;
 }
 
+/// Where the planes of `list` (three or more) all meet, when they meet at a point: that of the
+/// first three of them that meet at one, if the others pass through it.
+std::optional<Vec3> meeting_point(std::span<const CreasePlane> list, Vec3 near) {
+    const std::size_t n = list.size();
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j)
+            for (std::size_t k = j + 1; k < n; ++k) {
+                const std::optional<Vec3> q = corner({list[i], list[j], list[k]}, near);
+                if (!q) continue;
+                for (const CreasePlane& p : list)
+                    if (!(std::abs(dot(p.n, *q) - p.c) <= same_offset * (1.0 + std::abs(p.c))))
+                        return std::nullopt;
+                return q;
+            }
+    return std::nullopt;
+}
+
 /// Whether x, projected along n onto the plane of triangle (a, b, c), lies inside it.
 bool inside(Vec3 x, Vec3 a, Vec3 b, Vec3 c, Vec3 n) {
     const double ab = dot(cross(b - a, x - a), n), bc = dot(cross(c - b, x - b), n),
@@ -156,15 +178,15 @@ std::optional<CreasePlane> common_plane(const CreasePlanes& planes, const Triang
     return std::nullopt;
 }
 
-/// The number of distinct planes at the corners of triangle t (5 when more than four, or a
+/// The number of distinct planes at the corners of triangle t (max_planes + 1 when more, or a
 /// corner has none).
 int plane_count(const CreasePlanes& planes, const TriangleIndices& t) {
     PlaneSet set;
     for (const std::uint32_t u : t) {
-        if (planes.count[u] == 0) return 5;
+        if (planes.count[u] == 0) return max_planes + 1;
         set.add_corner(planes, u);
     }
-    return std::min(set.size, 5);
+    return set.size;
 }
 
 /// Whether triangle t has area, lies in a plane of its three corners and faces as it does.
@@ -219,26 +241,39 @@ std::optional<std::vector<std::array<std::uint32_t, 3>>> ear_clip(std::span<cons
     auto area = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
         return cross(p[b] - p[a], p[c] - p[a]);
     };
+    // Whether b turns by less than a sine of 1e−9 from a to c (a straight angle, or a corner
+    // folded back on itself).
+    auto straight = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        return !(std::abs(area(a, b, c)) >
+                 std::max(tiny, 1e-9 * std::sqrt(norm2(p[b] - p[a]) * norm2(p[c] - p[b]))));
+    };
     std::vector<std::array<std::uint32_t, 3>> out;
     while (left.size() > 3) {
         bool found = false;
         const std::size_t m = left.size();
-        for (std::size_t i = 0; i < m && !found; ++i) {
-            const std::uint32_t a = left[(i + m - 1) % m], b = left[i], c = left[(i + 1) % m];
-            // Convex, and not a straight angle (sine above 1e−9).
-            if (!(area(a, b, c) >
-                  std::max(tiny, 1e-9 * std::sqrt(norm2(p[b] - p[a]) * norm2(p[c] - p[b])))))
-                continue;
-            bool empty = true;
-            for (const std::uint32_t v : left) {
-                if (v == a || v == b || v == c) continue;
-                empty = empty &&
-                        !(area(a, b, v) >= 0.0 && area(b, c, v) >= 0.0 && area(c, a, v) >= 0.0);
+        auto at = [&](std::size_t i) { return left[i % m]; };
+        // An ear beside a straight corner first: one clipped elsewhere could leave the straight
+        // corner and its two neighbours as a triangle of no area.
+        for (int pass = 0; pass < 2 && !found; ++pass) {
+            for (std::size_t i = 0; i < m && !found; ++i) {
+                const std::uint32_t a = at(i + m - 1), b = at(i), c = at(i + 1);
+                if (pass == 0 && !straight(at(i + m - 2), a, b) && !straight(b, c, at(i + 2)))
+                    continue;
+                // Convex, and not a straight angle (sine above 1e−9).
+                if (!(area(a, b, c) >
+                      std::max(tiny, 1e-9 * std::sqrt(norm2(p[b] - p[a]) * norm2(p[c] - p[b])))))
+                    continue;
+                bool empty = true;
+                for (const std::uint32_t v : left) {
+                    if (v == a || v == b || v == c) continue;
+                    empty = empty &&
+                            !(area(a, b, v) >= 0.0 && area(b, c, v) >= 0.0 && area(c, a, v) >= 0.0);
+                }
+                if (!empty) continue;
+                out.push_back({a, b, c});
+                left.erase(left.begin() + static_cast<std::ptrdiff_t>(i));
+                found = true;
             }
-            if (!empty) continue;
-            out.push_back({a, b, c});
-            left.erase(left.begin() + static_cast<std::ptrdiff_t>(i));
-            found = true;
         }
         if (!found) return std::nullopt;
     }
@@ -253,111 +288,143 @@ std::optional<std::vector<std::array<std::uint32_t, 3>>> ear_clip(std::span<cons
 /// its boundary then splits at those two corners into a polygon on each plane, sharing the
 /// segment of the crease between them, and each is triangulated in its plane.
 /// A patch re-triangulated: its triangles, where `corner_vertex` stands for the corner the
-/// planes meet at when they are more than two (`corner`, a new vertex on all of them).
+/// planes meet at when they are more than two (`corner`, a new vertex on all of them) and
+/// cut_vertex(k) for the point of `cuts[k]`: a boundary edge cut where it crosses a crease,
+/// whose triangle outside the patch is split there too.
+struct BoundaryCut {
+    std::uint32_t from, to;  ///< the edge, as the patch's boundary runs
+    Vec3 point;
+    CreasePlane a, b;
+};
 struct Remeshed {
     std::vector<TriangleIndices> triangles;
     std::optional<Vec3> corner;
-    std::array<CreasePlane, 4> planes;
-    int count = 0;
+    std::vector<CreasePlane> planes;
+    std::vector<BoundaryCut> cuts;
 };
 constexpr std::uint32_t corner_vertex = none - 1;
+constexpr std::uint32_t cut_vertex(std::size_t k) {
+    return corner_vertex - 1 - static_cast<std::uint32_t>(k);
+}
 
-/// across_creases() where three or four planes meet at a corner: seen along their mean normal,
-/// the boundary runs once around the corner, on each plane in turn, from one corner on a crease
-/// to the next; each run and the corner are triangulated in the run's plane.
+/// across_creases() where three or more planes (up to max_planes) meet at a corner: the
+/// boundary runs once around the corner, on each plane in turn, from one corner on a crease to
+/// the next; each run and the corner are triangulated in the run's plane, seen along its normal.
+/// A boundary edge that crosses a crease (left uncut where its triangles are within ε) is cut
+/// there, and the triangle beyond it too.
 std::optional<Remeshed> around_corner(const Surface& s, const CreasePlanes& planes,
-                                      std::span<const std::uint32_t> loop,
-                                      const std::array<CreasePlane, 4>& list, int found) {
-    const std::optional<Vec3> q = corner({list[0], list[1], list[2]}, s.vertices[loop[0]]);
+                                      std::span<const std::uint32_t> boundary,
+                                      std::span<const CreasePlane> list) {
+    const int found = static_cast<int>(list.size());
+    const std::optional<Vec3> q = meeting_point(list, s.vertices[boundary[0]]);
     if (!q) return std::nullopt;
-    for (int i = 3; i < found; ++i) {
-        if (!(std::abs(dot(list[i].n, *q) - list[i].c) <=
-              same_offset * (1.0 + std::abs(list[i].c))))
-            return std::nullopt;
+    Remeshed out{.triangles = {}, .corner = q, .planes = {list.begin(), list.end()}, .cuts = {}};
+    std::vector<unsigned> on(boundary.size(), 0);  // the planes of each corner, as bits
+    for (std::size_t i = 0; i < boundary.size(); ++i) {
+        for (const CreasePlane& p : planes_of(planes, boundary[i]))
+            for (int j = 0; j < found; ++j)
+                if (same_plane(p, list[j])) on[i] |= 1u << j;
+        if (std::popcount(on[i]) > 2) return std::nullopt;
+    }
+    // The boundary with a corner put where an edge between two planes crosses their crease
+    // (creases leaving the corner are left uncut where their triangles are within ε).
+    std::vector<std::uint32_t> loop;
+    std::vector<unsigned> mask;
+    std::vector<Vec3> where;
+    for (std::size_t i = 0; i < boundary.size(); ++i) {
+        const std::size_t j = (i + 1) % boundary.size();
+        loop.push_back(boundary[i]);
+        mask.push_back(on[i]);
+        where.push_back(s.vertices[boundary[i]]);
+        if ((on[i] & on[j]) != 0) continue;
+        // Of the planes of its ends, the two whose crease the edge crosses nearest its line.
+        const std::uint32_t u = boundary[i], w = boundary[j];
+        std::optional<Crossing> c;
+        unsigned pair = 0;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (unsigned from = on[i]; from != 0; from &= from - 1) {
+            for (unsigned to = on[j]; to != 0; to &= to - 1) {
+                const CreasePlane &a = list[std::countr_zero(from)],
+                                  &b = list[std::countr_zero(to)];
+                // Computed from the lower vertex, as cut_creases does.
+                const std::optional<Crossing> here =
+                    u < w ? crossing(s.vertices[u], s.vertices[w], a, b)
+                          : crossing(s.vertices[w], s.vertices[u], b, a);
+                if (!here) continue;
+                const Vec3 e = s.vertices[w] - s.vertices[u];
+                const double off =
+                    norm(cross(here->point - s.vertices[u], e)) / std::max(norm(e), 1e-300);
+                if (off < nearest) {
+                    nearest = off, c = here;
+                    pair = (from & -from) | (to & -to);
+                }
+            }
+        }
+        if (!c) return std::nullopt;
+        const CreasePlane &a = list[std::countr_zero(pair)], &b = list[31 - std::countl_zero(pair)];
+        loop.push_back(cut_vertex(out.cuts.size()));
+        mask.push_back(pair);
+        where.push_back(c->point);
+        out.cuts.push_back({.from = u, .to = w, .point = c->point, .a = a, .b = b});
     }
     const std::size_t m = loop.size();
-    std::vector<unsigned> mask(m, 0);
+    // Points of a plane in its own coordinates about the corner, counterclockwise seen from
+    // the side its normal points to.
+    auto flat_in = [&](const CreasePlane& p) {
+        const Vec3 e1 =
+            std::abs(p.n.x) < 0.9 ? cross(p.n, Vec3{1, 0, 0}) : cross(p.n, Vec3{0, 1, 0});
+        const Vec3 u = e1 / norm(e1), v = cross(p.n, u);
+        return [u, v, q = *q](Vec3 x) { return Vec2{dot(x - q, u), dot(x - q, v)}; };
+    };
+    // Each boundary edge lies on the plane of both its ends; one along a crease (both ends on
+    // the same two planes) is given to the plane on the side it runs to: a run of them along a
+    // crease away from the corner belongs to the plane after it, towards the corner to the
+    // plane before it (either way, its piece with the corner stays simple).
+    std::vector<int> plane_of(m, -1);  // edge i, from loop[i] to loop[i + 1]
     for (std::size_t i = 0; i < m; ++i) {
-        for (const CreasePlane& p : planes_of(planes, loop[i]))
-            for (int j = 0; j < found; ++j)
-                if (same_plane(p, list[j])) mask[i] |= 1u << j;
-        if (std::popcount(mask[i]) > 2) return std::nullopt;
+        const unsigned common = mask[i] & mask[(i + 1) % m];
+        if (common == 0) return std::nullopt;
+        if (std::popcount(common) == 1) plane_of[i] = std::countr_zero(common);
     }
-    for (std::size_t i = 0; i < m; ++i)
-        if ((mask[i] & mask[(i + 1) % m]) == 0) return std::nullopt;
-    auto single = [&](std::size_t i) {
-        return std::popcount(mask[i]) == 1 ? std::countr_zero(mask[i]) : -1;
-    };
-    Vec3 mean{0, 0, 0};
-    for (int j = 0; j < found; ++j) mean = mean + list[j].n;
-    if (norm2(mean) < 1e-12) return std::nullopt;
-    const Vec3 axis = mean / norm(mean);
-    const Vec3 e1 =
-        std::abs(axis.x) < 0.9 ? cross(axis, Vec3{1, 0, 0}) : cross(axis, Vec3{0, 1, 0});
-    const Vec3 u = e1 / norm(e1), v = cross(axis, u);
-    auto flat = [&](Vec3 x) { return Vec2{dot(x - *q, u), dot(x - *q, v)}; };
-    // The corners on one plane only, in boundary order, grouped by plane: each plane once. A
-    // group runs from its first such corner to its last (corners on a crease of that plane may
-    // lie between); between two groups lie corners on the crease of their two planes only.
-    std::size_t begin = m;  // a corner on one plane that starts its group
-    for (std::size_t i = 0; i < m && begin == m; ++i) {
-        if (single(i) < 0) continue;
-        std::size_t k = (i + m - 1) % m;
-        while (single(k) < 0 && k != i) k = (k + m - 1) % m;
-        if (single(k) != single(i)) begin = i;
-    }
-    if (begin == m) return std::nullopt;
-    struct Group {
-        int plane;
-        std::size_t first, last;  // loop indices of its first and last corners on one plane
-    };
-    std::vector<Group> groups;
-    for (std::size_t step = 0; step < m; ++step) {
-        const std::size_t i = (begin + step) % m;
-        const int p = single(i);
-        if (p < 0) continue;
-        if (groups.empty() || groups.back().plane != p)
-            groups.push_back({p, i, i});
-        else
-            groups.back().last = i;
-    }
-    if (static_cast<int>(groups.size()) != found) return std::nullopt;
-    unsigned used = 0;
-    for (const Group& gr : groups) {
-        if ((used >> gr.plane) & 1u) return std::nullopt;
-        used |= 1u << gr.plane;
-        for (std::size_t i = gr.first; i != gr.last; i = (i + 1) % m)
-            if (!((mask[i] >> gr.plane) & 1u)) return std::nullopt;
-    }
-    // Where the boundary passes from group to group: a corner on their crease; of a run of them
-    // along the crease, the one where the run's edges pass to the group on their left (moving
-    // away from the corner, the next group's side).
-    const std::size_t g_count = groups.size();
-    std::vector<std::size_t> split(g_count);  // between group k and k + 1
-    for (std::size_t k = 0; k < g_count; ++k) {
-        const Group &a = groups[k], &b = groups[(k + 1) % g_count];
-        const unsigned both = (1u << a.plane) | (1u << b.plane);
-        const std::size_t from = (a.last + 1) % m, to = (b.first + m - 1) % m;
-        std::size_t length = 1;
-        for (std::size_t i = from;; i = (i + 1) % m) {
-            if (mask[i] != both) return std::nullopt;
-            if (i == to) break;
-            ++length;
+    std::size_t start = m;  // an edge on one plane
+    for (std::size_t i = 0; i < m && start == m; ++i)
+        if (plane_of[i] >= 0) start = i;
+    if (start == m) return std::nullopt;
+    for (std::size_t step = 1; step < m; ++step) {
+        const std::size_t i = (start + step) % m;
+        if (plane_of[i] >= 0) continue;
+        std::size_t end = i;  // the run of edges along the crease: [i, end]
+        while (plane_of[(end + 1) % m] < 0) end = (end + 1) % m;
+        const int before = plane_of[(i + m - 1) % m], after = plane_of[(end + 1) % m];
+        const unsigned crease = mask[i] & mask[(i + 1) % m];
+        const bool outward = distance(where[(end + 1) % m], *q) > distance(where[i], *q);
+        const int to = outward ? after : before;
+        if (!((crease >> to) & 1u)) return std::nullopt;
+        for (std::size_t k = i;; k = (k + 1) % m) {
+            plane_of[k] = to;
+            if (k == end) break;
         }
-        const bool outward =
-            norm2(flat(s.vertices[loop[to]])) > norm2(flat(s.vertices[loop[from]]));
-        split[k] = length == 1 || outward ? from : to;
     }
-    Remeshed out{.triangles = {}, .corner = q, .planes = list, .count = found};
-    for (std::size_t k = 0; k < g_count; ++k) {
-        const int plane = groups[k].plane;
-        std::vector<std::uint32_t> piece;
-        for (std::size_t i = split[(k + g_count - 1) % g_count];; i = (i + 1) % m) {
-            piece.push_back(loop[i]);
-            if (i == split[k]) break;
+    // The runs of edges on one plane, each plane's one run, each triangulated with the corner
+    // in its plane.
+    std::size_t first = m;  // the first edge of a run
+    for (std::size_t i = 0; i < m && first == m; ++i)
+        if (plane_of[i] != plane_of[(i + m - 1) % m]) first = i;
+    if (first == m) return std::nullopt;
+    unsigned used = 0;
+    for (std::size_t step = 0; step < m;) {
+        const std::size_t begin = (first + step) % m;
+        const int plane = plane_of[begin];
+        if ((used >> plane) & 1u) return std::nullopt;
+        used |= 1u << plane;
+        std::vector<std::size_t> piece{begin};  // places in loop
+        while (step < m && plane_of[(first + step) % m] == plane) {
+            piece.push_back((first + step + 1) % m);
+            ++step;
         }
         std::vector<Vec2> points;
-        for (const std::uint32_t w : piece) points.push_back(flat(s.vertices[w]));
+        const auto flat = flat_in(list[plane]);
+        for (const std::size_t i : piece) points.push_back(flat(where[i]));
         points.push_back(Vec2{0, 0});
         const auto triangles = ear_clip(points);
         if (!triangles) return std::nullopt;
@@ -366,8 +433,8 @@ std::optional<Remeshed> around_corner(const Surface& s, const CreasePlanes& plan
             TriangleIndices made;
             for (int c = 0; c < 3; ++c) {
                 const bool apex = t[c] == piece.size();
-                made[c] = apex ? corner_vertex : piece[t[c]];
-                x[c] = apex ? *q : s.vertices[piece[t[c]]];
+                made[c] = apex ? corner_vertex : loop[piece[t[c]]];
+                x[c] = apex ? *q : where[piece[t[c]]];
             }
             const Vec3 n = cross(x[1] - x[0], x[2] - x[0]);
             if (!(has_area(x[0], x[1], x[2]) &&
@@ -422,12 +489,12 @@ std::optional<Remeshed> across_creases(const Surface& s, const CreasePlanes& pla
     for (const std::uint32_t v : loop) {
         if (planes.count[v] == 0) return std::nullopt;
         set.add_corner(planes, v);
-        if (set.size > 4) return std::nullopt;
+        if (set.size > max_planes) return std::nullopt;
     }
     const int found = set.size;
-    const std::array<CreasePlane, 4> two = set.first_four();
     if (found < 2) return std::nullopt;
-    if (found > 2) return around_corner(s, planes, loop, two, found);
+    if (found > 2) return around_corner(s, planes, loop, set.list());
+    const std::span<const CreasePlane> two = set.list();
     std::vector<int> side(loop.size());
     for (std::size_t i = 0; i < loop.size(); ++i) {
         bool first = false, second = false;
@@ -503,7 +570,10 @@ std::optional<Remeshed> across_creases(const Surface& s, const CreasePlanes& pla
             out.push_back(made);
         }
     }
-    return Remeshed{.triangles = std::move(out), .corner = std::nullopt, .planes = two, .count = 2};
+    return Remeshed{.triangles = std::move(out),
+                    .corner = std::nullopt,
+                    .planes = {two.begin(), two.end()},
+                    .cuts = {}};
 }
 
 /// Re-triangulates, in the planes of their crease, the patches of the contour where triangles
@@ -533,19 +603,42 @@ std::size_t remesh_folds(Surface& s, const SpaceEvaluator& g, double eta, Crease
         std::vector<std::uint32_t> removed;
         Remeshed made;
         std::uint32_t corner = none;  // the corner's vertex, once added
+        /// The triangles outside the patch on its boundary's cut edges, and their children.
+        std::vector<std::uint32_t> outside;
+        std::vector<TriangleIndices> outside_children;
+    };
+    // The triangle with the directed edge from a to b.
+    auto with_edge = [&](std::uint32_t a, std::uint32_t b) {
+        for (std::uint32_t j = first[a]; j < first[a + 1]; ++j) {
+            const TriangleIndices& v = s.triangles[around[j]];
+            for (int k = 0; k < 3; ++k)
+                if (v[k] == a && v[(k + 1) % 3] == b) return around[j];
+        }
+        return none;
     };
     std::vector<Patch> patches;
+    // Whether the corner and the cuts of a patch re-triangulated lie on the zero set (a crease
+    // of two planes that do not meet on it is no crease).
+    auto on_zero_set = [&](const Remeshed& made) {
+        std::vector<Vec3> points;
+        if (made.corner) points.push_back(*made.corner);
+        for (const BoundaryCut& c : made.cuts) points.push_back(c.point);
+        std::vector<double> values(points.size());
+        g(points, values);
+        return std::all_of(values.begin(), values.end(),
+                           [&](double v) { return std::abs(v) <= eta; });
+    };
     for (const std::uint32_t t0 : beyond) {
         if (taken[t0] || !bad[t0]) continue;
         ++stamps;
         // The triangles across a crease connected to t0 through their corners, a layer at a
-        // time (their corners' planes asked first), up to max_fold triangles on at most four
-        // planes (more: a curved surface's facets, not a crease or corner).
+        // time (their corners' planes asked first), up to max_fold triangles on at most
+        // max_planes planes (more: a curved surface's facets, not a crease or corner).
         PlaneSet seen;
         auto few_planes = [&](std::uint32_t t) {
             for (const std::uint32_t v : s.triangles[t]) {
                 seen.add_corner(planes, v);
-                if (seen.size > 4) return false;
+                if (seen.size > max_planes) return false;
             }
             return true;
         };
@@ -567,7 +660,21 @@ std::size_t remesh_folds(Surface& s, const SpaceEvaluator& g, double eta, Crease
             return out;
         };
         bool few = few_planes(t0);
-        for (std::size_t done = 0; few && done < patch.size() && patch.size() <= max_fold;) {
+        // Once three or more of the planes met meet at a point of the zero set, the patch is
+        // about that corner instead: grown no further along the creases that leave it.
+        std::optional<Vec3> q;
+        int tried = 0;  // the planes met when a corner was last looked for
+        auto find_corner = [&] {
+            if (!few || seen.size < 3 || seen.size == tried) return;
+            tried = seen.size;
+            q = meeting_point(seen.list(), s.vertices[s.triangles[t0][0]]);
+            if (!q) return;
+            double value = nan;
+            g(std::span<const Vec3>(&*q, 1), std::span<double>(&value, 1));
+            if (!(std::abs(value) <= eta)) q.reset();
+        };
+        find_corner();
+        for (std::size_t done = 0; few && !q && done < patch.size() && patch.size() <= max_fold;) {
             const std::size_t end = patch.size();
             const std::vector<std::uint32_t> layer = ring(done, end);
             done = end;
@@ -578,48 +685,118 @@ std::size_t remesh_folds(Surface& s, const SpaceEvaluator& g, double eta, Crease
                 else
                     stamp[t] = 0;
             }
+            find_corner();
         }
-        if (!few || patch.size() > max_fold) {
+        if (!q && (!few || patch.size() > max_fold)) {
             for (const std::uint32_t t : patch) taken[t] = 1;
             continue;
         }
+        // About a corner: the triangles within a distance of it connected to the patch, from
+        // the patch's farthest corner out.
+        double radius = 0.0;
+        if (q) {
+            for (const std::uint32_t t : patch)
+                for (const std::uint32_t v : s.triangles[t])
+                    radius = std::max(radius, distance(s.vertices[v], *q));
+        }
+        auto ball = [&] {
+            ++stamps;
+            for (const std::uint32_t t : patch) stamp[t] = stamps;
+            for (std::size_t i = 0; i < patch.size(); ++i) {
+                for (const std::uint32_t v : s.triangles[patch[i]]) {
+                    for (std::uint32_t j = first[v]; j < first[v + 1]; ++j) {
+                        const std::uint32_t t = around[j];
+                        if (stamp[t] == stamps || taken[t]) continue;
+                        stamp[t] = stamps;
+                        if (closest_point(s.triangle(t), *q).distance2 <= radius * radius)
+                            patch.push_back(t);
+                    }
+                }
+            }
+        };
         std::optional<Remeshed> made;
         for (int rings = 0; rings < max_rings && !made; ++rings) {
-            const std::vector<std::uint32_t> more = ring(0, patch.size());
-            patch.insert(patch.end(), more.begin(), more.end());
+            if (q) {
+                radius *= rings == 0 ? 1.0 : 1.5;
+                ball();
+                if (patch.size() > max_corner_patch) break;
+            } else {
+                const std::vector<std::uint32_t> more = ring(0, patch.size());
+                patch.insert(patch.end(), more.begin(), more.end());
+            }
             measure(std::span<const std::uint32_t>(patch));
             made = across_creases(s, planes, patch);
+            if (made && !on_zero_set(*made)) made.reset();
         }
         for (const std::uint32_t t : patch) taken[t] = 1;
-        if (made) patches.push_back({.removed = patch, .made = std::move(*made)});
+        // The triangles beyond its cut edges are split too: none may be another patch's.
+        std::vector<std::uint32_t> outside;
+        if (made) {
+            for (const BoundaryCut& c : made->cuts) {
+                const std::uint32_t t = with_edge(c.to, c.from);
+                if (t == none || taken[t]) {
+                    made.reset();
+                    break;
+                }
+                if (std::find(outside.begin(), outside.end(), t) == outside.end())
+                    outside.push_back(t);
+            }
+        }
+        if (made)
+            for (const std::uint32_t t : outside) taken[t] = 1;
+        if (made) {
+            patches.push_back({.removed = patch,
+                               .made = std::move(*made),
+                               .outside = std::move(outside),
+                               .outside_children = {}});
+        }
     }
-    // A corner is kept on the zero set only; it is a new vertex on all its planes.
+    // The corners and cuts of boundaries: new vertices on all their planes.
     std::vector<std::uint8_t> keep(patches.size(), 1);
     {
-        std::vector<Vec3> points;
-        std::vector<std::uint32_t> which;
         for (std::uint32_t i = 0; i < patches.size(); ++i) {
-            if (!patches[i].made.corner) continue;
-            points.push_back(*patches[i].made.corner);
-            which.push_back(i);
-        }
-        std::vector<double> values(points.size());
-        g(points, values);
-        for (std::size_t k = 0; k < which.size(); ++k) {
-            Patch& p = patches[which[k]];
-            if (!(std::abs(values[k]) <= eta)) {
-                keep[which[k]] = 0;
-                continue;
+            Patch& p = patches[i];
+            if (!p.made.corner && p.made.cuts.empty()) continue;
+            std::vector<std::uint32_t> cut_at(p.made.cuts.size());
+            if (p.made.corner) {
+                p.corner = static_cast<std::uint32_t>(s.vertices.size());
+                s.vertices.push_back(*p.made.corner);
             }
-            p.corner = static_cast<std::uint32_t>(s.vertices.size());
-            s.vertices.push_back(points[k]);
+            for (std::size_t k = 0; k < p.made.cuts.size(); ++k) {
+                cut_at[k] = static_cast<std::uint32_t>(s.vertices.size());
+                s.vertices.push_back(p.made.cuts[k].point);
+            }
             planes.resize(s.vertices.size());
-            planes.planes[p.corner] = p.made.planes;
-            planes.count[p.corner] = static_cast<std::uint8_t>(p.made.count);
-            planes.measured[p.corner] = 1;
-            for (TriangleIndices& t : p.made.triangles)
-                for (std::uint32_t& v : t)
-                    if (v == corner_vertex) v = p.corner;
+            if (p.made.corner) {
+                planes.set(p.corner, p.made.planes);
+                planes.measured[p.corner] = 1;
+            }
+            for (std::size_t k = 0; k < p.made.cuts.size(); ++k) {
+                const std::array<CreasePlane, 2> both{p.made.cuts[k].a, p.made.cuts[k].b};
+                planes.set(cut_at[k], both);
+                planes.measured[cut_at[k]] = 1;
+            }
+            for (TriangleIndices& t : p.made.triangles) {
+                for (std::uint32_t& v : t) {
+                    if (v == corner_vertex)
+                        v = p.corner;
+                    else if (v > corner_vertex - 1 - p.made.cuts.size())
+                        v = cut_at[corner_vertex - 1 - v];
+                }
+            }
+            // Each triangle outside, split on its edges cut.
+            for (const std::uint32_t t : p.outside) {
+                const TriangleIndices& v = s.triangles[t];
+                unsigned mask = 0;
+                std::array<std::uint32_t, 3> w{none, none, none};
+                for (std::size_t k = 0; k < p.made.cuts.size(); ++k) {
+                    const BoundaryCut& c = p.made.cuts[k];
+                    for (int e = 0; e < 3; ++e)
+                        if (v[e] == c.to && v[(e + 1) % 3] == c.from)
+                            mask |= 1u << e, w[e] = cut_at[k];
+                }
+                split_children(s, v, mask, w, p.outside_children);
+            }
         }
     }
     // The surface with every patch replaced; a patch whose triangles meet the rest is put back.
@@ -628,8 +805,10 @@ std::size_t remesh_folds(Surface& s, const SpaceEvaluator& g, double eta, Crease
         next.vertices = s.vertices;
         std::vector<std::uint8_t> removed(n, 0);
         for (std::size_t i = 0; i < patches.size(); ++i)
-            if (keep[i])
+            if (keep[i]) {
                 for (const std::uint32_t t : patches[i].removed) removed[t] = 1;
+                for (const std::uint32_t t : patches[i].outside) removed[t] = 1;
+            }
         std::vector<double> next_centroid;
         std::vector<std::uint8_t> next_dirty;
         std::vector<std::uint32_t> owner;  // the patch of each new triangle
@@ -644,11 +823,13 @@ std::size_t remesh_folds(Surface& s, const SpaceEvaluator& g, double eta, Crease
         for (std::uint32_t i = 0; i < patches.size(); ++i) {
             if (!keep[i]) continue;
             ++kept;
-            for (const TriangleIndices& t : patches[i].made.triangles) {
-                next.triangles.push_back(t);
-                next_centroid.push_back(nan);
-                next_dirty.push_back(1);
-                owner.push_back(i);
+            for (const auto* list : {&patches[i].made.triangles, &patches[i].outside_children}) {
+                for (const TriangleIndices& t : *list) {
+                    next.triangles.push_back(t);
+                    next_centroid.push_back(nan);
+                    next_dirty.push_back(1);
+                    owner.push_back(i);
+                }
             }
         }
         if (kept == 0) return 0;
@@ -776,8 +957,8 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
             const std::uint32_t u = todo[i];
             const Vec3 unit = n / norm(n);
             // G = n · x − c about the vertex, G(x) = at.
-            planes.planes[u][0] = {unit, dot(unit, s.vertices[u]) - at / norm(n)};
-            planes.count[u] = 1;
+            const CreasePlane plane{unit, dot(unit, s.vertices[u]) - at / norm(n)};
+            planes.set(u, {&plane, 1});
         }
         // A corner within its step of a crease takes the planes of its neighbours it lies on
         // (within |G| there and twice the step): one, two on a crease, three at a corner.
@@ -792,10 +973,8 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
                 const double tolerance = std::abs(values[7 * i]) + 2.0 * steps[i];
                 for (const int j : {1, 2}) {
                     const std::uint32_t u = v[(k + j) % 3];
-                    if (planes.count[u] != 1) continue;
-                    const CreasePlane& p = planes.planes[u][0];
-                    if (!(std::abs(dot(p.n, x) - p.c) <= tolerance)) continue;
-                    near[i].add(p, 4);
+                    for (const CreasePlane& p : planes.of(u))
+                        if (std::abs(dot(p.n, x) - p.c) <= tolerance) near[i].add(p);
                 }
             }
         }
@@ -803,7 +982,7 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
         // zero set is; the caller forgets what it knew of G about it.
         for (std::size_t i = 0; i < todo.size(); ++i) {
             const int count = near[i].size;
-            if (count == 0) continue;
+            if (count == 0 || count > max_planes) continue;
             const std::uint32_t u = todo[i];
             const Vec3 x = s.vertices[u];
             std::optional<Vec3> to;
@@ -819,8 +998,7 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
             moved_from.emplace_back(u, x);
             s.vertices[u] = *to;
             planes.moved.push_back(u);
-            planes.planes[u] = near[i].first_four();
-            planes.count[u] = static_cast<std::uint8_t>(count);
+            planes.set(u, near[i].list());
         }
         check_moves();
     };
@@ -845,7 +1023,7 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
             for (int k = 0; k < 3; ++k) {
                 const std::uint32_t u = v[k], w = v[(k + 1) % 3];
                 if (planes.count[u] != 1 || planes.count[w] != 1) continue;
-                const CreasePlane a = planes.planes[u][0], b = planes.planes[w][0];
+                const CreasePlane a = planes.of(u)[0], b = planes.of(w)[0];
                 if (same_plane(a, b)) continue;
                 const std::optional<Crossing> c = crossing(s.vertices[u], s.vertices[w], a, b);
                 if (!c || (c->s >= snap_fraction && c->s <= 1.0 - snap_fraction)) continue;
@@ -854,8 +1032,8 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
                 moved_from.emplace_back(end, s.vertices[end]);
                 s.vertices[end] = to;
                 planes.moved.push_back(end);
-                planes.planes[end] = {a, b, CreasePlane{}, CreasePlane{}};
-                planes.count[end] = 2;
+                const std::array<CreasePlane, 2> both{a, b};
+                planes.set(end, both);
             }
         }
         check_moves();
@@ -867,7 +1045,7 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
             for (int k = 0; k < 3 && plane_count(planes, v) == 2; ++k) {
                 const std::uint32_t u = v[k], w = v[(k + 1) % 3];
                 if (planes.count[u] != 1 || planes.count[w] != 1) continue;
-                const CreasePlane &a = planes.planes[u][0], &b = planes.planes[w][0];
+                const CreasePlane a = planes.of(u)[0], b = planes.of(w)[0];
                 if (same_plane(a, b)) continue;
                 const std::uint64_t key = edge_key(u, w);
                 if (cut_of.find(key)) continue;
@@ -944,14 +1122,13 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
     planes.resize(s.vertices.size());
     for (const Cut& c : cuts) {
         if (!c.alive) continue;
-        planes.planes[c.vertex] = {c.a, c.b, CreasePlane{}, CreasePlane{}};
-        planes.count[c.vertex] = 2;
+        const std::array<CreasePlane, 2> both{c.a, c.b};
+        planes.set(c.vertex, both);
         planes.measured[c.vertex] = 1;
     }
     for (const Centre& c : centres) {
         if (!c.alive) continue;
-        planes.planes[c.vertex] = {c.planes[0], c.planes[1], c.planes[2], CreasePlane{}};
-        planes.count[c.vertex] = 3;
+        planes.set(c.vertex, c.planes);
         planes.measured[c.vertex] = 1;
     }
 

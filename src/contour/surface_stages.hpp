@@ -94,10 +94,15 @@ struct CreasePlane {
 };
 
 /// The planes of the zero set at the vertices of a contour, for cut_creases(): one where G is a
-/// plane's distance about the vertex, two at a vertex on a crease, three or four at a corner.
-/// Indexed by vertex; vertices never move.
+/// plane's distance about the vertex, two at a vertex on a crease, three or more at a corner (up
+/// to max_planes: the apex of a pyramid of that many faces). Indexed by vertex; vertices never
+/// move. A vertex's planes are set whole; they are kept one after another in `pool`, so that a
+/// vertex asked holds only the planes it has.
 struct CreasePlanes {
-    std::vector<std::array<CreasePlane, 4>> planes;
+    static constexpr int max_planes = 16;
+
+    std::vector<CreasePlane> pool;
+    std::vector<std::uint32_t> first;    ///< where a vertex's planes start in pool
     std::vector<std::uint8_t> count;     ///< planes known at the vertex
     std::vector<std::uint8_t> measured;  ///< 1 once asked (count 0: G is not flat there)
     /// Vertices moved onto their planes (within their distance from them), since the caller
@@ -105,9 +110,18 @@ struct CreasePlanes {
     std::vector<std::uint32_t> moved;
 
     void resize(std::size_t vertices) {
-        planes.resize(vertices);
+        first.resize(vertices, 0);
         count.resize(vertices, 0);
         measured.resize(vertices, 0);
+    }
+    std::span<const CreasePlane> of(std::uint32_t v) const {
+        return {pool.data() + first[v], count[v]};
+    }
+    /// Sets the planes of vertex v (at most max_planes).
+    void set(std::uint32_t v, std::span<const CreasePlane> planes) {
+        first[v] = static_cast<std::uint32_t>(pool.size());
+        count[v] = static_cast<std::uint8_t>(planes.size());
+        pool.insert(pool.end(), planes.begin(), planes.end());
     }
 };
 

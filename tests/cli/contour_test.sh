@@ -51,7 +51,6 @@ for r in ("5e-9", "1e-60"):
     assert abs(s[r]["params"]["eta"] / float(r) - s["1"]["params"]["eta"]) <= 1e-12, r
 PY
 expect_error "missing file" "nope.json" -- contour --initial nope.json -K 4 --out x
-finish
 
 # Curves of the user's whose contour tears a part thinner than its cells say so: a ring whose
 # wall is 0.01 wide at K = 4 (cells 0.094) comes apart without thin cells, and the note names the
@@ -67,3 +66,4 @@ check "summary: the topology not kept" test "$(json ring0/summary.json 's["kept_
 expect_ok "a thin wall kept by thin cells" -- contour --initial ring.json -K 4 --out ring6
 check "summary: the topology kept" test "$(json ring6/summary.json 's["kept_topology"], s["curves"]')" = "True 2"
 check "no note" test ! -s err.txt
+finish

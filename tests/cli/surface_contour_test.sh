@@ -63,20 +63,22 @@ check "eps alone: until converged, within eps" test "$(json eps_alone/summary.js
 expect_ok "a box's edges and corners cut to eps" -- contour --initial box.obj -K 3 --refine 100 --eps 1e-3 --out cut
 check "converged within eps, the volume exact" test "$(json cut/summary.json 's["converged"] and s["error"] <= 1e-3 and abs(s["volume"] / (0.95 * 0.75 * 0.8) - 1) < 1e-6')" = True
 # Refinement that cannot reach eps writes everything, says "unconverged" and exits with status
-# 3 naming the settings to change: a pyramid of twelve faces at K = 3, whose cells hold several
-# of the corners where its faces meet its base. P passes spent before eps end the same way.
+# 3 naming the settings to change: a pyramid of eight faces at K = 3 without thin cells, whose
+# cells of 0.18 hold several of its corners. P passes spent before eps end the same way.
 python3 - <<'PY' >pyramid.obj
 import math
-n = 12
-for k in range(n):
-    a = 2 * math.pi * k / n + 0.1
-    print("v", 0.45 * math.cos(a), 0.45 * math.sin(a), -0.3)
-print("v 0.05 0.02 0.45\nv 0 0 -0.3")
-for k in range(n):
-    print("f", k + 1, (k + 1) % n + 1, n + 1)
-    print("f", (k + 1) % n + 1, k + 1, n + 2)
+corners = [(0.5 * math.cos(k * math.pi / 4), 0.5 * math.sin(k * math.pi / 4), -0.3) for k in range(8)]
+for x, y, z in corners + [(0, 0, 0.5)]:
+    c, s = math.cos(0.3), math.sin(0.3)
+    x, y = c * x - s * y, s * x + c * y
+    c, s = math.cos(0.2), math.sin(0.2)
+    print("v %.17g %.17g %.17g" % (x, c * y - s * z, s * y + c * z))
+for k in range(8):
+    print("f", k + 1, (k + 1) % 8 + 1, 9)
+for k in range(1, 7):
+    print("f", 1, k + 2, k + 1)
 PY
-expect_status "refinement short of eps" 3 -- contour --initial pyramid.obj -K 3 --refine 100 --eps 1e-3 --out coarse
+expect_status "refinement short of eps" 3 -- contour --initial pyramid.obj -K 3 --thin-depth 0 --refine 100 --eps 1e-3 --out coarse
 check "one line naming -K and --eps" grep -q "^slc: error: refinement stopped .* raise -K or --eps" err.txt
 check "and the place, by a sharp edge or corner of the input" grep -Eq "near \(.*\) by a sharp (edge|corner) of the input, which the contours chamfer" err.txt
 check "summary says unconverged" test "$(json coarse/summary.json 's["status"], s["converged"]')" = "unconverged False"
@@ -127,8 +129,6 @@ for r in ("5e-9", "5e-91"):
     assert abs(relative - s["0.5"]["error"] / 0.5) <= 1e-6 * relative, r
 PY
 
-finish
-
 # A surface of the user's whose contour tears a part thinner than its cells says so: a box with a
 # wall 0.03 thick (a cavity 0.87 x 0.8 x 0.8 in a unit cube), cells 0.047 at K = 5. Without thin
 # cells the wall is pierced (one surface with 288 handles) and the note names the counts and the
@@ -154,3 +154,4 @@ check "summary: the topology not kept" test "$(json wall0/summary.json 's["kept_
 expect_ok "a thin wall kept by thin cells" -- contour --initial wallbox.obj --out wall2
 check "summary: the topology kept" test "$(json wall2/summary.json 's["kept_topology"], s["components"], s["genus"]')" = "True 2 0"
 check "no note" test ! -s err.txt
+finish
