@@ -111,25 +111,39 @@ std::optional<StartMismatch> start_mismatch(const ShapeOf<dim>& given, const Sha
 }
 
 /// The start of a user's run: the contour at rest of `given` (read(thin), at depth K with thin
-/// levels of thin cells) that keeps it (start_mismatch), at the options' thin depth or, where a
-/// part is thinner than that resolves, two levels deeper at a time up to setting_range's most
-/// (no deeper once the thin cells change nothing). Returns the depth and the contour; throws
-/// NumericalFailure naming the part and the settings when the deepest does not keep it either.
+/// levels of thin cells) that keeps it (start_mismatch), at the options' thin depth or else the
+/// deepest shallower one that does (thin cells follow a sharp edge or point of the shape, which
+/// is thinner than any cell near it, and their corners catch it unevenly: a convex pyramid in a
+/// general turn gets handles beside its edges and specks at its apex at thin depths 1 to 8, none
+/// at 0), or, where a part is thinner than that resolves, two levels deeper at a time up to
+/// setting_range's most (no deeper once the thin cells change nothing). Returns the depth and
+/// the contour; throws NumericalFailure naming the part and the settings when the deepest does
+/// not keep it either.
 template <int dim, class Read>
 std::pair<int, ShapeOf<dim>> start_as_given(const ShapeOf<dim>& given, const RegionOf<dim>& domain,
                                             int depth, int thin_depth, const StartTolerance& keep,
                                             Read read) {
+    std::optional<StartMismatch> mismatch;
+    {
+        ShapeOf<dim> contour = read(thin_depth);
+        mismatch = start_mismatch<dim>(given, contour, domain, keep);
+        if (!mismatch) return {thin_depth, std::move(contour)};
+    }
+    for (int shallower = thin_depth - 1; shallower >= 0; --shallower) {
+        ShapeOf<dim> contour = read(shallower);
+        if (!start_mismatch<dim>(given, contour, domain, keep))
+            return {shallower, std::move(contour)};
+    }
     int thin = thin_depth;
     std::optional<double> before;  // the measure one depth up
     for (;;) {
-        ShapeOf<dim> contour = read(thin);
-        const std::optional<StartMismatch> mismatch =
-            start_mismatch<dim>(given, contour, domain, keep);
-        if (!mismatch) return {thin, std::move(contour)};
         const bool same = before && *before == mismatch->measure;
         before = mismatch->measure;
         if (thin < setting_range::thin_depth.hi && thin_depth > 0 && !same) {
             thin = std::min(thin + 2, setting_range::thin_depth.hi);
+            ShapeOf<dim> contour = read(thin);
+            mismatch = start_mismatch<dim>(given, contour, domain, keep);
+            if (!mismatch) return {thin, std::move(contour)};
             continue;
         }
         const std::string cells = thin > 0 ? fmt::format("cells {:.3g}, thin cells down to {:.3g}",

@@ -351,6 +351,13 @@ bool ends_frames_where_stopped(const RunTotals& r, bool empty, bool last_frame_t
 }
 
 void note_deeper(std::string_view what, int asked, const RunTotals& r) {
+    if (r.thin_depth >= 0 && r.thin_depth < asked) {
+        fmt::print(stderr,
+                   "slc: note: the contours of the {} at --thin-depth {} have parts, holes or "
+                   "handles it does not have (thin cells following a sharp edge or point catch it "
+                   "unevenly); the run keeps {} (summary.json: thin_depth)\n",
+                   what, asked, r.thin_depth);
+    }
     if (r.thin_depth > asked) {
         fmt::print(stderr,
                    "slc: note: a part of the {} is thinner than the contours resolve at "

@@ -140,9 +140,9 @@ void print_estimate(const nlohmann::json& estimate);
 /// closing line of slc run.
 std::string finest_cell_text(const nlohmann::json& summary);
 
-/// Prints to stderr the notes of thin cells deeper than asked: the start's, r.thin_depth levels
-/// where `asked` were asked, and the steps' that were taken again deeper (RunTotals::deeper_at);
-/// `what`: "curves" or "surface".
+/// Prints to stderr the notes of thin cells other than asked: the start's, r.thin_depth levels
+/// where `asked` were asked (fewer where thin cells broke a sharp edge or point), and the steps'
+/// that were taken again deeper (RunTotals::deeper_at); `what`: "curves" or "surface".
 void note_deeper(std::string_view what, int asked, const RunTotals& r);
 
 /// Prints to stderr the warning of a run with its guards off that broke what its law keeps

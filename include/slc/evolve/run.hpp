@@ -65,8 +65,8 @@ struct RunTotals {
     /// The time at the end of the first step whose contours left cells that bend whole, thin
     /// cells having reached their budget (contouring::thin_cell_budget); NaN if none.
     double thin_budget_at = std::numeric_limits<double>::quiet_NaN();
-    /// The levels of thin cells each step of the run starts from: the options' own, or more
-    /// where the start of a user's shape needed them to keep it (RunOptions::check_start,
+    /// The levels of thin cells each step of the run starts from: the options' own, or fewer or
+    /// more where the start of a user's shape needed them to keep it (RunOptions::check_start,
     /// surface_as_read); −1 when the run did not say (a resume takes the options'). A step
     /// takes more where its contours tear a part (deeper_at).
     int thin_depth = -1;

@@ -95,11 +95,13 @@ struct SurfaceRunResult : RunTotals {
 /// which the guards would take for a broken law. Its refinement follows the creases where the
 /// reading is flat (SurfaceContourOptions::creases), so that a polyhedron's start is within ε of
 /// it, edges and corners too. Where the contour does not keep the surface as
-/// given (its components, handles, and every vertex within a cell at K), the thin cells go two
-/// levels deeper at a time, up to setting_range::thin_depth's most, and options' thin_depth is
-/// set to the depth that keeps it, for the run to go on with. Throws as advance() does,
-/// NumericalFailure naming the part when the deepest does not keep it, and InvalidInput when the
-/// contour misses a surface that is not empty (smaller than the contours resolve).
+/// given (its components, handles, and every vertex within a cell at K), a shallower thin depth
+/// that keeps it is taken (thin cells following a sharp edge or point can catch it unevenly),
+/// else the thin cells go two levels deeper at a time, up to setting_range::thin_depth's most;
+/// options' thin_depth is set to the depth that keeps it, for the run to go on with. Throws as
+/// advance() does, NumericalFailure naming the part when the deepest does not keep it, and
+/// InvalidInput when the contour misses a surface that is not empty (smaller than the contours
+/// resolve).
 Surface surface_as_read(const Surface& s, const Box3& domain, SurfaceRunOptions& options);
 
 /// The least thickness 3V/A (V the volume, A the area; a sphere's radius) of the components of

@@ -262,6 +262,38 @@ TEST(SurfaceRun, ABoxIsReadWithItsEdgesAndCornersSharp) {
     EXPECT_EQ(euler_characteristic(read), 2);
 }
 
+TEST(SurfaceRun, APyramidInAGeneralTurnStartsWhole) {
+    // A hexagonal pyramid (apex 0.8 above a base of radius 0.5) in a general turn, at the default
+    // settings: thin cells follow its 60° base edges and its apex, thinner than any cell near
+    // them, and their corners catch them unevenly, giving the contour a handle beside a base edge
+    // at thin depths 1 and 2 (and 5 components with 10 handles at 8, where the start refused
+    // it). The start keeps the shallower depth that keeps the pyramid: one component, genus 0,
+    // its volume within what ε allows.
+    constexpr int n = 6;
+    Surface pyramid;
+    for (int k = 0; k < n; ++k) {
+        const double a = 2 * std::numbers::pi * k / n;
+        pyramid.vertices.push_back({0.5 * std::cos(a), 0.5 * std::sin(a), -0.3});
+        pyramid.triangles.push_back({static_cast<std::uint32_t>(k),
+                                     static_cast<std::uint32_t>((k + 1) % n), std::uint32_t{n}});
+    }
+    pyramid.vertices.push_back({0, 0, 0.5});
+    for (std::uint32_t k = 1; k + 1 < n; ++k) pyramid.triangles.push_back({0, k + 1, k});
+    pyramid = prepare_surface(test_support::turned(test_support::turned(pyramid, 0.8442354444173306,
+                                                                        5.324583204732311),
+                                                   4.798937463950548, 0.0))
+                  .surface;
+    const double exact = 0.5 * n * 0.25 * std::sin(2 * std::numbers::pi / n) * 0.8 / 3;
+    const Box3 around = default_domain(bounding_box(pyramid));
+    SurfaceRunOptions o = default_surface_run_options(pyramid, SurfaceNormalSpeed(1.0), 0.0, 0.01);
+    const int thin = o.step.contour.thin_depth;
+    const Surface read = surface_as_read(pyramid, around, o);
+    EXPECT_EQ(component_count(read), 1u);
+    EXPECT_EQ(genus(read), 0);
+    EXPECT_NEAR(volume(read), exact, 2 * o.step.contour.resolved_eps() * area(pyramid));
+    EXPECT_LT(o.step.contour.thin_depth, thin);
+}
+
 /// A law that grows the surface while claiming to keep its volume.
 class FalseClaim final : public SurfaceNormalLaw {
 public:
