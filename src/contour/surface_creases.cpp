@@ -59,9 +59,6 @@ bool same_plane(const CreasePlane& a, const CreasePlane& b) {
 
 constexpr int max_planes = CreasePlanes::max_planes;
 
-/// The planes of a vertex, as a span.
-std::span<const CreasePlane> planes_of(const CreasePlanes& p, std::uint32_t v) { return p.of(v); }
-
 /// Distinct planes, in the order met, up to max_planes; `size` is one more when more were met.
 struct PlaneSet {
     std::array<CreasePlane, max_planes> planes;
@@ -78,7 +75,7 @@ struct PlaneSet {
     }
     /// Adds the planes of vertex v.
     void add_corner(const CreasePlanes& all, std::uint32_t v) {
-        for (const CreasePlane& p : planes_of(all, v)) add(p);
+        for (const CreasePlane& p : all.of(v)) add(p);
     }
     /// The planes, when no more than max_planes were met.
     std::span<const CreasePlane> list() const {
@@ -166,11 +163,11 @@ bool has_area(Vec3 a, Vec3 b, Vec3 c) {
 
 /// The plane that all three corners of triangle t lie on, if any.
 std::optional<CreasePlane> common_plane(const CreasePlanes& planes, const TriangleIndices& t) {
-    for (const CreasePlane& p : planes_of(planes, t[0])) {
+    for (const CreasePlane& p : planes.of(t[0])) {
         bool shared = true;
         for (int k = 1; k < 3 && shared; ++k) {
             bool on = false;
-            for (const CreasePlane& q : planes_of(planes, t[k])) on = on || same_plane(p, q);
+            for (const CreasePlane& q : planes.of(t[k])) on = on || same_plane(p, q);
             shared = on;
         }
         if (shared) return p;
@@ -321,7 +318,7 @@ std::optional<Remeshed> around_corner(const Surface& s, const CreasePlanes& plan
     Remeshed out{.triangles = {}, .corner = q, .planes = {list.begin(), list.end()}, .cuts = {}};
     std::vector<unsigned> on(boundary.size(), 0);  // the planes of each corner, as bits
     for (std::size_t i = 0; i < boundary.size(); ++i) {
-        for (const CreasePlane& p : planes_of(planes, boundary[i]))
+        for (const CreasePlane& p : planes.of(boundary[i]))
             for (int j = 0; j < found; ++j)
                 if (same_plane(p, list[j])) on[i] |= 1u << j;
         if (std::popcount(on[i]) > 2) return std::nullopt;
@@ -498,7 +495,7 @@ std::optional<Remeshed> across_creases(const Surface& s, const CreasePlanes& pla
     std::vector<int> side(loop.size());
     for (std::size_t i = 0; i < loop.size(); ++i) {
         bool first = false, second = false;
-        for (const CreasePlane& p : planes_of(planes, loop[i])) {
+        for (const CreasePlane& p : planes.of(loop[i])) {
             first = first || same_plane(p, two[0]);
             second = second || same_plane(p, two[1]);
         }
