@@ -279,11 +279,6 @@ std::optional<std::vector<std::array<std::uint32_t, 3>>> ear_clip(std::span<cons
     return out;
 }
 
-/// The triangles that replace a patch of triangles across one crease, or nothing. The patch
-/// must be a disk whose boundary corners all lie on the crease's two planes, crossing from one
-/// to the other only at corners on both (on the crease); seen along the planes' mean normal,
-/// its boundary then splits at those two corners into a polygon on each plane, sharing the
-/// segment of the crease between them, and each is triangulated in its plane.
 /// A patch re-triangulated: its triangles, where `corner_vertex` stands for the corner the
 /// planes meet at when they are more than two (`corner`, a new vertex on all of them) and
 /// cut_vertex(k) for the point of `cuts[k]`: a boundary edge cut where it crosses a crease,
@@ -445,6 +440,12 @@ std::optional<Remeshed> around_corner(const Surface& s, const CreasePlanes& plan
     return out;
 }
 
+/// The triangles that replace a patch of triangles across one crease, or nothing
+/// (around_corner() where more planes meet). The patch must be a disk whose boundary corners all
+/// lie on the crease's two planes, crossing from one to the other only at corners on both (on
+/// the crease); seen along the planes' mean normal, its boundary then splits at those two
+/// corners into a polygon on each plane, sharing the segment of the crease between them, and
+/// each is triangulated in its plane.
 std::optional<Remeshed> across_creases(const Surface& s, const CreasePlanes& planes,
                                        std::span<const std::uint32_t> patch) {
     // The boundary: the patch's directed edges whose reverse is not in it.
