@@ -849,6 +849,32 @@ std::size_t remesh_folds(Surface& s, const SpaceEvaluator& g, double eta, Crease
 
 }  // namespace
 
+bool folds_beyond(const Surface& s, const CreasePlanes& planes, const TriangleIndices& t0,
+                  const TriangleIndices& t1, const TriangleIndices& u, const TriangleIndices& v,
+                  double eps) {
+    auto known = [&](const TriangleIndices& t) {
+        return t[0] < planes.count.size() && t[1] < planes.count.size() &&
+               t[2] < planes.count.size();
+    };
+    if (!known(t0) || !known(t1) || !common_plane(planes, t0) || !common_plane(planes, t1))
+        return false;
+    // The distance of x from the nearest plane of the corners of t.
+    auto off = [&](const TriangleIndices& t, Vec3 x) {
+        double least = std::numeric_limits<double>::infinity();
+        for (const std::uint32_t w : t)
+            for (const CreasePlane& p : planes.of(w))
+                least = std::min(least, std::abs(dot(p.n, x) - p.c));
+        return least;
+    };
+    for (const TriangleIndices* t : {&u, &v}) {
+        if (common_plane(planes, *t)) continue;
+        const Vec3 a = s.vertices[(*t)[0]], b = s.vertices[(*t)[1]], c = s.vertices[(*t)[2]];
+        for (const Vec3 point : {(a + b + c) / 3.0, 0.5 * (a + c)})
+            if (off(*t, point) > eps) return true;
+    }
+    return false;
+}
+
 std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
                         std::span<const std::uint32_t> beyond, CreasePlanes& planes,
                         std::vector<double>& centroid_value, std::vector<std::uint8_t>& dirty) {
@@ -857,8 +883,10 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
 
     std::vector<std::pair<std::uint32_t, Vec3>> moved_from;  // vertices moved, where they were
     std::size_t moves = 0;                                   // of them checked
-    // The moves not yet checked: one whose triangles meet the rest of the surface is undone.
+    // The moves not yet checked: one off the zero set (planes measured beside it that meet
+    // elsewhere than its facets do), or whose triangles meet the rest of the surface, is undone.
     auto check_moves = [&] {
+        bool evaluated = false;
         for (std::size_t first_move = moves; moved_from.size() > first_move;) {
             std::vector<std::uint8_t> moved(s.vertices.size(), 0), around_moved(s.size(), 0);
             for (std::size_t k = first_move; k < moved_from.size(); ++k)
@@ -867,15 +895,30 @@ std::size_t cut_creases(Surface& s, const SpaceEvaluator& g, double eta,
                 const TriangleIndices& v = s.triangles[t];
                 around_moved[t] = moved[v[0]] || moved[v[1]] || moved[v[2]];
             }
-            // A triangle left (nearly) without area, or meeting the rest of the surface.
             std::vector<std::uint8_t> undo(s.vertices.size(), 0);
             bool any = false;
-            for (std::uint32_t t = 0; t < s.size(); ++t) {
-                if (!around_moved[t]) continue;
-                const Triangle3 x = s.triangle(t);
-                if (has_area(x.a, x.b, x.c)) continue;
-                for (const std::uint32_t v : s.triangles[t]) undo[v] = moved[v];
-                any = true;
+            if (!evaluated) {
+                evaluated = true;
+                std::vector<Vec3> at;
+                for (std::size_t k = first_move; k < moved_from.size(); ++k)
+                    at.push_back(s.vertices[moved_from[k].first]);
+                std::vector<double> values(at.size());
+                g(at, values);
+                for (std::size_t k = first_move; k < moved_from.size(); ++k) {
+                    if (std::abs(values[k - first_move]) <= eta) continue;
+                    undo[moved_from[k].first] = 1;
+                    any = true;
+                }
+            }
+            // A triangle left (nearly) without area, or meeting the rest of the surface.
+            if (!any) {
+                for (std::uint32_t t = 0; t < s.size(); ++t) {
+                    if (!around_moved[t]) continue;
+                    const Triangle3 x = s.triangle(t);
+                    if (has_area(x.a, x.b, x.c)) continue;
+                    for (const std::uint32_t v : s.triangles[t]) undo[v] = moved[v];
+                    any = true;
+                }
             }
             if (!any) {
                 const std::vector<TriangleContact> contacts =

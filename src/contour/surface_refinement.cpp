@@ -478,9 +478,11 @@ struct Flip {
 
 /// One round of edge flips: edge (a, b) between triangles (a, b, c) and (b, a, d) becomes
 /// (c, d) when the angles at c and d sum beyond π (the Delaunay rule, on the surface), the edge
-/// (c, d) is new, and neither new triangle turns more than 30° from the surface around the two.
-/// Each triangle takes part in one flip a round. Returns the flips made.
-std::vector<Flip> flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
+/// (c, d) is new, neither new triangle turns more than 30° from the surface around the two, and
+/// (following creases, `planes` given) it does not fold the contour across a crease by more than
+/// eps (folds_beyond). Each triangle takes part in one flip a round. Returns the flips made.
+std::vector<Flip> flip_edges(Surface& s, std::vector<std::uint8_t>& changed,
+                             const CreasePlanes* planes, double eps) {
     const Edges edges(s);
     KeyMap<std::uint8_t> added;  // the edges this round's flips made
     // The edge (a, b) of triangles t0 = (a, b, c) and t1 = (b, a, d), with i and j the places of
@@ -522,6 +524,9 @@ std::vector<Flip> flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
         const Quad f = quad(e);
         if (edges.contains(f.c, f.d) || added.contains(edge_key(f.c, f.d))) continue;
         const TriangleIndices u{f.c, f.a, f.d}, v{f.d, f.b, f.c};
+        if (planes != nullptr &&
+            folds_beyond(s, *planes, s.triangles[t0], s.triangles[t1], u, v, eps))
+            continue;
         const Vec3 n = normal_around(s, edges, t0) + normal_around(s, edges, t1);
         if (!along(s, n, u, improve_normal_cosine) || !along(s, n, v, improve_normal_cosine))
             continue;
@@ -540,9 +545,11 @@ std::vector<Flip> flip_edges(Surface& s, std::vector<std::uint8_t>& changed) {
 /// collapsed ones are removed (vertices stay, unused). Where a round's changes make triangles
 /// meet (a flip or collapse across a thin gap, decided by exact predicates among the changed
 /// triangles), the flips of the triangles that meet are undone, until none meet; where a collapse
-/// is among them, the whole round is undone and improvement ends for this pass.
+/// is among them, the whole round is undone and improvement ends for this pass. Following
+/// creases (`planes`), no flip folds the contour across a crease by more than eps.
 void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::uint8_t>& dirty,
-             bool collapse, SurfaceRefinement& result, std::span<const std::uint8_t> near = {}) {
+             bool collapse, const CreasePlanes* planes, double eps, SurfaceRefinement& result,
+             std::span<const std::uint8_t> near = {}) {
     for (int round = 0; round < improve_rounds; ++round) {
         const std::vector<TriangleIndices> triangles_before = s.triangles;
         const std::vector<double> centroids_before = centroid_value;
@@ -574,7 +581,7 @@ void improve(Surface& s, std::vector<double>& centroid_value, std::vector<std::u
                 drop_dead();
             }
         }
-        const std::vector<Flip> flipped = flip_edges(s, changed);
+        const std::vector<Flip> flipped = flip_edges(s, changed, planes, eps);
         std::size_t flips = flipped.size();
         bool meets = false;
         if (collapses + flips > 0) {
@@ -890,6 +897,7 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
     std::vector<std::uint8_t> dirty(s.size(), 0);
     const int limit = passes < 0 ? max_passes : std::min(passes, max_passes);
     CreasePlanes planes;  // following creases: the zero set's planes at the vertices
+    const CreasePlanes* crease_planes = creases ? &planes : nullptr;
     int cut_rounds = 0;
     int recoveries = 0;
     std::vector<std::uint8_t> stalled;  // about the parts beyond ε no split could refine
@@ -922,9 +930,10 @@ SurfaceRefinement refine_surface(Surface& s, const SpaceEvaluator& g, double eps
         // and cuts make few, and collapsing what they made could undo them pass after pass: they
         // are collapsed only about a part that refinement stalled at (stall).
         if (stalled.empty()) {
-            improve(s, centroid_value, dirty, pass == 0 && cut_rounds == 0, result);
+            improve(s, centroid_value, dirty, pass == 0 && cut_rounds == 0, crease_planes, eps,
+                    result);
         } else {
-            improve(s, centroid_value, dirty, true, result, stalled);
+            improve(s, centroid_value, dirty, true, crease_planes, eps, result, stalled);
             stalled.clear();
         }
         const Edges edges(s);

@@ -125,6 +125,15 @@ struct CreasePlanes {
     }
 };
 
+/// Whether the flip of the edge between triangles t0 and t1 into triangles u and v folds the
+/// contour across a crease by more than eps: t0 and t1 each lie in a plane of their corners, u
+/// or v does not, and a point of u or v (the new edge's midpoint, their centroids) lies beyond
+/// eps from each plane of its corners (near a crease G is the nearer plane's distance).
+/// Vertices beyond those `planes` knows have no planes.
+bool folds_beyond(const Surface& s, const CreasePlanes& planes, const TriangleIndices& t0,
+                  const TriangleIndices& t1, const TriangleIndices& u, const TriangleIndices& v,
+                  double eps);
+
 /// Cuts the triangles in `beyond` (those some midpoint or centroid puts beyond ε) where the
 /// zero set of G folds between their corners (surface_creases.cpp). At each corner G's gradient
 /// by central differences, kept as the plane of the zero set there where the one-sided
