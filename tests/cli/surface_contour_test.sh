@@ -83,6 +83,35 @@ check "one line naming -K and --eps" grep -q "^slc: error: refinement stopped .*
 check "and the place, by a sharp edge or corner of the input" grep -Eq "near \(.*\) by a sharp (edge|corner) of the input, which the contours chamfer" err.txt
 check "summary says unconverged" test "$(json coarse/summary.json 's["status"], s["converged"]')" = "unconverged False"
 check "its files are written" test -s coarse/final.obj -a -s coarse/final.png
+# A hexagonal pyramid in a general turn (bench/creases.py's turn 1): at K = 4 the thin cells
+# following its 60° base edges catch them unevenly and give the linear contour a handle at the
+# default thin depth 2. Left at its default, the thin depth that keeps the pyramid (1) is kept,
+# the note says so, and refinement meets eps; given, it is kept as given, and the note names the
+# handle.
+python3 - <<'PY' >hexagonal.obj
+import math, random
+rng = random.Random(1)
+angles = [rng.uniform(0, 2 * math.pi) for _ in range(3)]
+corners = [(0.5 * math.cos(k * math.pi / 3), 0.5 * math.sin(k * math.pi / 3), -0.3) for k in range(6)]
+for x, y, z in corners + [(0, 0, 0.5)]:
+    for angle, axis in zip(angles, "zxz"):
+        c, s = math.cos(angle), math.sin(angle)
+        if axis == "z":
+            x, y = c * x - s * y, s * x + c * y
+        else:
+            y, z = c * y - s * z, s * y + c * z
+    print("v %.17g %.17g %.17g" % (x, y, z))
+for k in range(6):
+    print("f", k + 1, (k + 1) % 6 + 1, 7)
+for k in range(1, 5):
+    print("f", 1, k + 2, k + 1)
+PY
+expect_ok "a pyramid whose edges the default thin cells tear" -- contour --initial hexagonal.obj -K 4 --eps 1e-3 --out hexagonal
+check "the note names the thin depth kept" grep -q "^slc: note: .* at --thin-depth 2 has parts, holes or handles .* kept --thin-depth 1" err.txt
+check "genus 0, converged, thin depth 1, the volume exact" test "$(json hexagonal/summary.json 's["genus"], s["converged"], s["params"]["thin_depth"], abs(s["volume"] / 0.17320508075688776 - 1) < 1e-5')" = "0 True 1 True"
+expect_ok "its linear contour at --thin-depth 2, as given" -- contour --initial hexagonal.obj -K 4 --thin-depth 2 --out torn
+check "the note names the handle" grep -q "^slc: note: .*1 handle.*raise --thin-depth (now 2)" err.txt
+check "thin depth 2, genus 1" test "$(json torn/summary.json 's["params"]["thin_depth"], s["genus"], s["kept_topology"]')" = "2 1 False"
 expect_status "one pass short of eps" 3 -- contour --function torus -K 4 --refine 1 --eps 1e-4 --out short
 check "names --refine too" grep -q "raise -K or --eps or --refine" err.txt
 expect_error "eps below eta" "eps must be at least eta" -- contour --function torus -K 4 --refine 1 --eps 1e-12 --out x

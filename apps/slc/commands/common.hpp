@@ -170,6 +170,38 @@ std::string thin_depth();
 std::optional<std::string> topology_note(const ShapeTopology& given, const ShapeTopology& contour,
                                          int dim, int thin_depth);
 
+/// A contour of a user's shape at the thin depth that keeps the shape's components and holes,
+/// where one does: `at(thin)` contours at that thin depth and returns (the contour, its
+/// topology). At the thin depth asked for first; when that loses the shape's topology and the
+/// thin depth was left at its default (`may_change`), the shallower ones, deepest first, then
+/// deeper ones two levels at a time up to the most while they change the topology, as a run's
+/// start tries them (thin cells following a sharp edge or point catch it unevenly; a wall
+/// thinner than the cells wants deeper ones). Returns the thin depth kept and its contour: the
+/// first's when none keeps the shape.
+template <class Contour, class At>
+std::pair<int, Contour> keeping_topology(const ShapeTopology& given, int asked, bool may_change,
+                                         At at) {
+    auto [first, topology] = at(asked);
+    if (!may_change || topology == given) return {asked, std::move(first)};
+    for (int shallower = asked - 1; shallower >= 0; --shallower) {
+        auto [contour, got] = at(shallower);
+        if (got == given) return {shallower, std::move(contour)};
+    }
+    ShapeTopology before = topology;
+    for (int deeper = asked + 2; asked > 0 && deeper <= setting_range::thin_depth.hi;
+         deeper += 2) {
+        auto [contour, got] = at(deeper);
+        if (got == given) return {deeper, std::move(contour)};
+        if (got == before) break;  // deeper cells change nothing: thinner than any of them
+        before = got;
+    }
+    return {asked, std::move(first)};
+}
+
+/// The note slc contour gives when it kept another thin depth than the one asked for, to keep
+/// the user's shape; nothing when it kept that one.
+std::optional<std::string> thin_depth_note(std::string_view what, int asked, int kept);
+
 /// CLI11 checks with one-line messages naming the value: a positive finite number; a finite
 /// number >= 0; an integer in [lo, hi]; a number in [0, 1).
 CLI::Validator positive_number();

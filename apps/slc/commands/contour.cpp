@@ -125,10 +125,12 @@ std::string picture_title(const ContourCommandOptions& o, const ContourOptions& 
                        error);
 }
 
-/// final.json, the pictures, then summary.json (last, so that it marks a complete run).
+/// final.json, the pictures, then summary.json (last, so that it marks a complete run); thin_note
+/// says which thin depth was kept, when another than the one asked for.
 void write_results(const ContourCommandOptions& o, const ContourOptions& options,
                    const LoadedInterface& in, const DistanceTree& tree, const ContourResult& r,
-                   nlohmann::json summary, OutputFolder& folder) {
+                   nlohmann::json summary, OutputFolder& folder,
+                   const std::optional<std::string>& thin_note) {
     const std::filesystem::path dir = folder.path();
     const ContourError e = measure_error(tree, r.curves);
     const double error = std::max(e.vertices, e.midpoints);
@@ -143,11 +145,13 @@ void write_results(const ContourCommandOptions& o, const ContourOptions& options
         topology_note(shape_topology(in.curves), shape_topology(r.curves), 2, options.thin_depth);
     summary["kept_topology"] = !torn;
     if (torn) summary["note"] = *torn;
+    if (thin_note) summary["note"] = *thin_note;
     write_file_atomic(dir / "final.json", interface_json(r.curves, in.time));
     draw(r, in.curves, in.domain, picture_title(o, options, r, error), dir);
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     folder.commit();
     if (torn) fmt::print(stderr, "slc: note: {}\n", *torn);
+    if (thin_note) fmt::print(stderr, "slc: note: {}\n", *thin_note);
     fmt::print(
         "{} cells, {} segments, error {:.3g}, {} G evaluations ({:.2f} per vertex), {:.3g} s; "
         "wrote {}\n",
@@ -175,10 +179,31 @@ void run_contour(const ContourCommandOptions& o) {
         const std::vector<double> f = tree.signed_distances(x);
         std::copy(f.begin(), f.end(), v.begin());
     };
-    // cpu_s and wall_s time the contour alone, evaluations of F included.
-    const ContourResult result = timed_contour(summary, folder, fmt::format("at t = {}: ", in.time),
-                                               [&] { return contour(exact, in.domain, options); });
-    write_results(o, options, in, tree, result, std::move(summary), folder);
+    // cpu_s and wall_s time the contour alone, evaluations of F included, at the thin depth that
+    // keeps the curves' components and holes where the default does not (the linear contours
+    // decide it, and the one kept is refined).
+    ContourOptions kept = options;
+    const ContourResult result =
+        timed_contour(summary, folder, fmt::format("at t = {}: ", in.time), [&] {
+            if (!o.thin_depth) {
+                ContourOptions linear = options;
+                linear.refine_passes = 0;
+                auto at = [&](int thin) {
+                    linear.thin_depth = thin;
+                    ContourResult r = contour(exact, in.domain, linear);
+                    const ShapeTopology topology = shape_topology(r.curves);
+                    return std::pair{std::move(r), topology};
+                };
+                auto [thin, r] = keeping_topology<ContourResult>(shape_topology(in.curves),
+                                                                 options.thin_depth, true, at);
+                kept.thin_depth = thin;
+                if (options.refine_passes == 0) return std::move(r);
+            }
+            return contour(exact, in.domain, kept);
+        });
+    summary["params"]["thin_depth"] = kept.thin_depth;
+    write_results(o, kept, in, tree, result, std::move(summary), folder,
+                  thin_depth_note("curves", options.thin_depth, kept.thin_depth));
 }
 
 }  // namespace
@@ -218,7 +243,11 @@ void add_contour_command(CLI::App& app) {
         ->check(positive_number());
     cmd->add_option("--thin-depth", o->thin_depth,
                     fmt::format("Levels beyond K for cells where the zero set's two sides, or a "
-                                "sharp turn, lie within one cell (default {}; 0 for --function)",
+                                "sharp turn, lie within one cell (default {}; 0 for --function); "
+                                "left unset, where the contour at the default loses the input's "
+                                "components or holes, the shallower depths and then deeper ones "
+                                "are tried and the first that keeps them is used (a note says "
+                                "so)",
                                 default_rule::thin_depth()))
         ->check(integer_in(setting_range::thin_depth));
     cmd->add_option("--rho", o->rho, "Pruning ratio rho in [0, 1) (default 0.1)")
@@ -246,7 +275,7 @@ void add_contour_command(CLI::App& app) {
             const int thin =
                 o->thin_depth.value_or(o->function.empty() ? default_thin_depth(3) : 0);
             run_surface_contour({o->initial, o->function, o->depth, o->refine, o->eps, o->eta, thin,
-                                 o->domain, o->tree_depth, o->out});
+                                 o->thin_depth.has_value(), o->domain, o->tree_depth, o->out});
             return;
         }
         run_contour(*o);

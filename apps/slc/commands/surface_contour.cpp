@@ -194,9 +194,32 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     summary["params"]["eps"] = options.resolved_eps();
     summary["params"]["eta"] = options.resolved_eta();
     summary["params"]["creases"] = options.creases;
-    // cpu_s and wall_s time the contour alone, evaluations of G included.
-    const SurfaceContour result = timed_contour(
-        summary, folder, "", [&] { return contour_surface(g, source.domain, options); });
+    // cpu_s and wall_s time the contour alone, evaluations of G included: of a surface file, at
+    // the thin depth that keeps its components and handles, where the default does not (the
+    // linear contours decide it, and the one kept is refined).
+    int thin_kept = r.thin_depth;
+    const SurfaceContour result = timed_contour(summary, folder, "", [&] {
+        SurfaceContourOptions o = options;
+        if (source.surface && !r.thin_depth_given) {
+            o.refine_passes = 0;
+            auto linear = [&](int thin) {
+                o.thin_depth = thin;
+                SurfaceContour c = contour_surface(g, source.domain, o);
+                const ShapeTopology topology = shape_topology(c.surface);
+                return std::pair{std::move(c), topology};
+            };
+            auto [thin, c] = keeping_topology<SurfaceContour>(shape_topology(*source.surface),
+                                                              r.thin_depth, true, linear);
+            thin_kept = thin;
+            if (options.refine_passes == 0) return std::move(c);
+            o = options;
+            o.thin_depth = thin_kept;
+        }
+        return contour_surface(g, source.domain, o);
+    });
+    summary["params"]["thin_depth"] = thin_kept;
+    const std::optional<std::string> thin_note =
+        thin_depth_note("surface", r.thin_depth, thin_kept);
     const Surface& s = result.surface;
     const SurfaceContourStats& st = result.stats;
     summary["status"] = "ok";
@@ -210,9 +233,10 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     // A surface of the user's: whether the contour kept its components and handles.
     std::optional<std::string> torn;
     if (source.surface) {
-        torn = topology_note(shape_topology(*source.surface), got, 3, r.thin_depth);
+        torn = topology_note(shape_topology(*source.surface), got, 3, thin_kept);
         summary["kept_topology"] = !torn;
         if (torn) summary["note"] = *torn;
+        if (thin_note) summary["note"] = *thin_note;
     }
     // Whether refinement met ε, when refinement was asked for.
     if (r.refine != 0) summary["converged"] = st.converged;
@@ -252,6 +276,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
     folder.commit();
     if (torn) fmt::print(stderr, "slc: note: {}\n", *torn);
+    if (thin_note) fmt::print(stderr, "slc: note: {}\n", *thin_note);
     if (unconverged) {
         // Where the contour is farthest, and whether a sharp edge or corner of the input is
         // there: refinement that cannot cut the contour there (corners closer together than the

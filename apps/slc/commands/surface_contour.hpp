@@ -18,6 +18,9 @@ struct SurfaceContourRequest {
     std::optional<double> eps;
     std::optional<double> eta;  ///< unset: contour_tolerances
     int thin_depth = 0;
+    /// Whether --thin-depth was given: else, for a surface file, another thin depth is kept where
+    /// the one asked for loses the surface's components or handles (keeping_topology).
+    bool thin_depth_given = false;
     DomainOptions domain;
     std::optional<int> tree_depth;
     std::string out;
