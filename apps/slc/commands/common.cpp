@@ -400,8 +400,7 @@ std::optional<std::string> thin_depth_note(std::string_view what, int asked, int
         return fmt::format(
             "the contour of the {} at --thin-depth {} has parts, holes or handles it does not "
             "have (thin cells following a sharp edge or point catch it unevenly); kept "
-            "--thin-depth "
-            "{}, which has none (summary.json: params.thin_depth)",
+            "--thin-depth {}, which has none (summary.json: params.thin_depth)",
             what, asked, kept);
     }
     if (kept > asked) {
