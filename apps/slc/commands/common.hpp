@@ -176,24 +176,32 @@ std::optional<std::string> topology_note(const ShapeTopology& given, const Shape
 /// thin depth was left at its default (`may_change`), the shallower ones, deepest first, then
 /// deeper ones two levels at a time up to the most while they change the topology, as a run's
 /// start tries them (thin cells following a sharp edge or point catch it unevenly; a wall
-/// thinner than the cells wants deeper ones). Returns the thin depth kept and its contour: the
-/// first's when none keeps the shape.
+/// thinner than the cells wants deeper ones; one that fails, as where G vanishes along a knife
+/// edge, keeps none). Returns the thin depth kept and its contour: the first's when none keeps
+/// the shape.
 template <class Contour, class At>
 std::pair<int, Contour> keeping_topology(const ShapeTopology& given, int asked, bool may_change,
                                          At at) {
     auto [first, topology] = at(asked);
     if (!may_change || topology == given) return {asked, std::move(first)};
+    auto attempt = [&](int thin) -> std::optional<std::pair<Contour, ShapeTopology>> {
+        try {
+            return at(thin);
+        } catch (const NumericalFailure&) {
+            return std::nullopt;
+        }
+    };
     for (int shallower = asked - 1; shallower >= 0; --shallower) {
-        auto [contour, got] = at(shallower);
-        if (got == given) return {shallower, std::move(contour)};
+        auto other = attempt(shallower);
+        if (other && other->second == given) return {shallower, std::move(other->first)};
     }
     ShapeTopology before = topology;
-    for (int deeper = asked + 2; asked > 0 && deeper <= setting_range::thin_depth.hi;
-         deeper += 2) {
-        auto [contour, got] = at(deeper);
-        if (got == given) return {deeper, std::move(contour)};
-        if (got == before) break;  // deeper cells change nothing: thinner than any of them
-        before = got;
+    for (int deeper = asked + 2; asked > 0 && deeper <= setting_range::thin_depth.hi; deeper += 2) {
+        auto other = attempt(deeper);
+        if (!other) break;
+        if (other->second == given) return {deeper, std::move(other->first)};
+        if (other->second == before) break;  // deeper cells change nothing: thinner than any
+        before = other->second;
     }
     return {asked, std::move(first)};
 }
