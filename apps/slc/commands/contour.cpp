@@ -145,7 +145,7 @@ void write_results(const ContourCommandOptions& o, const ContourOptions& options
         topology_note(shape_topology(in.curves), shape_topology(r.curves), 2, options.thin_depth);
     summary["kept_topology"] = !torn;
     if (torn) summary["note"] = *torn;
-    if (thin_note) summary["note"] = *thin_note;
+    if (thin_note) summary["note"] = torn ? *torn + "; " + *thin_note : *thin_note;
     write_file_atomic(dir / "final.json", interface_json(r.curves, in.time));
     draw(r, in.curves, in.domain, picture_title(o, options, r, error), dir);
     write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");

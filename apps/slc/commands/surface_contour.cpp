@@ -236,7 +236,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         torn = topology_note(shape_topology(*source.surface), got, 3, thin_kept);
         summary["kept_topology"] = !torn;
         if (torn) summary["note"] = *torn;
-        if (thin_note) summary["note"] = *thin_note;
+        if (thin_note) summary["note"] = torn ? *torn + "; " + *thin_note : *thin_note;
     }
     // Whether refinement met ε, when refinement was asked for.
     if (r.refine != 0) summary["converged"] = st.converged;
