@@ -171,20 +171,21 @@ std::optional<std::string> topology_note(const ShapeTopology& given, const Shape
                                          int dim, int thin_depth);
 
 /// A contour of a user's shape at the thin depth that keeps the shape's components and holes,
-/// where one does: `at(thin)` contours at that thin depth and returns (the contour, its
-/// topology). At the thin depth asked for first; when that loses the shape's topology and the
-/// thin depth was left at its default (`may_change`), the shallower ones, deepest first, then
-/// deeper ones two levels at a time up to the most while they change the topology, as a run's
-/// start tries them (thin cells following a sharp edge or point catch it unevenly; a wall
-/// thinner than the cells wants deeper ones; one that fails, as where G vanishes along a knife
-/// edge, keeps none). Returns the thin depth kept and its contour: the first's when none keeps
-/// the shape.
-template <class Contour, class At>
-std::pair<int, Contour> keeping_topology(const ShapeTopology& given, int asked, bool may_change,
-                                         At at) {
-    auto [first, topology] = at(asked);
-    if (!may_change || topology == given) return {asked, std::move(first)};
-    auto attempt = [&](int thin) -> std::optional<std::pair<Contour, ShapeTopology>> {
+/// where one does: `at(thin)` contours at that thin depth, `topology_of` tells a contour's. At the
+/// thin depth asked for first; when that loses the shape's topology and the thin depth was left
+/// at its default (`may_change`), the shallower ones, deepest first, then deeper ones two levels
+/// at a time up to the most while they change the topology, as a run's start tries them (thin
+/// cells following a sharp edge or point catch it unevenly; a wall thinner than the cells wants
+/// deeper ones; one that fails, as where G vanishes along a knife edge, keeps none). Returns the
+/// thin depth kept and its contour: the first's when none keeps the shape.
+template <class At, class TopologyOf>
+auto keeping_topology(const ShapeTopology& given, int asked, bool may_change, At at,
+                      TopologyOf topology_of) {
+    using Contour = decltype(at(asked));
+    Contour first = at(asked);
+    ShapeTopology before = topology_of(first);
+    if (!may_change || before == given) return std::pair{asked, std::move(first)};
+    auto attempt = [&](int thin) -> std::optional<Contour> {
         try {
             return at(thin);
         } catch (const NumericalFailure&) {
@@ -192,18 +193,18 @@ std::pair<int, Contour> keeping_topology(const ShapeTopology& given, int asked, 
         }
     };
     for (int shallower = asked - 1; shallower >= 0; --shallower) {
-        auto other = attempt(shallower);
-        if (other && other->second == given) return {shallower, std::move(other->first)};
+        std::optional<Contour> other = attempt(shallower);
+        if (other && topology_of(*other) == given) return std::pair{shallower, std::move(*other)};
     }
-    ShapeTopology before = topology;
     for (int deeper = asked + 2; asked > 0 && deeper <= setting_range::thin_depth.hi; deeper += 2) {
-        auto other = attempt(deeper);
+        std::optional<Contour> other = attempt(deeper);
         if (!other) break;
-        if (other->second == given) return {deeper, std::move(other->first)};
-        if (other->second == before) break;  // deeper cells change nothing: thinner than any
-        before = other->second;
+        const ShapeTopology got = topology_of(*other);
+        if (got == given) return std::pair{deeper, std::move(*other)};
+        if (got == before) break;  // deeper cells change nothing: thinner than any
+        before = got;
     }
-    return {asked, std::move(first)};
+    return std::pair{asked, std::move(first)};
 }
 
 /// The note slc contour gives when it kept another thin depth than the one asked for, to keep

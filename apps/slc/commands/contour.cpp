@@ -188,14 +188,13 @@ void run_contour(const ContourCommandOptions& o) {
             if (!o.thin_depth) {
                 ContourOptions linear = options;
                 linear.refine_passes = 0;
-                auto at = [&](int thin) {
-                    linear.thin_depth = thin;
-                    ContourResult r = contour(exact, in.domain, linear);
-                    const ShapeTopology topology = shape_topology(r.curves);
-                    return std::pair{std::move(r), topology};
-                };
-                auto [thin, r] = keeping_topology<ContourResult>(shape_topology(in.curves),
-                                                                 options.thin_depth, true, at);
+                auto [thin, r] = keeping_topology(
+                    shape_topology(in.curves), options.thin_depth, true,
+                    [&](int levels) {
+                        linear.thin_depth = levels;
+                        return contour(exact, in.domain, linear);
+                    },
+                    [](const ContourResult& c) { return shape_topology(c.curves); });
                 kept.thin_depth = thin;
                 if (options.refine_passes == 0) return std::move(r);
             }

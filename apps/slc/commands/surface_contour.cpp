@@ -202,14 +202,13 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         SurfaceContourOptions o = options;
         if (source.surface && !r.thin_depth_given) {
             o.refine_passes = 0;
-            auto linear = [&](int thin) {
-                o.thin_depth = thin;
-                SurfaceContour c = contour_surface(g, source.domain, o);
-                const ShapeTopology topology = shape_topology(c.surface);
-                return std::pair{std::move(c), topology};
-            };
-            auto [thin, c] = keeping_topology<SurfaceContour>(shape_topology(*source.surface),
-                                                              r.thin_depth, true, linear);
+            auto [thin, c] = keeping_topology(
+                shape_topology(*source.surface), r.thin_depth, true,
+                [&](int levels) {
+                    o.thin_depth = levels;
+                    return contour_surface(g, source.domain, o);
+                },
+                [](const SurfaceContour& linear) { return shape_topology(linear.surface); });
             thin_kept = thin;
             if (options.refine_passes == 0) return std::move(c);
             o = options;
