@@ -265,7 +265,7 @@ def contour(f: Callable[[np.ndarray], Any], box, depth: int, eps: float | None =
 
 def contour_surface(f, box, depth: int, eps: float | None = None,
                     refine=None, slack: float | None = None, eta: float | None = None,
-                    thin_depth: int = 0, creases: bool | None = None,
+                    thin_depth: int | None = None, creases: bool | None = None,
                     threads: int | None = None):
     """The zero set of f, a vectorised function f((m, 3) array) -> (m,) array, in box, by the
     contouring of space (paper §2 with d = 3): a closed, oriented triangle surface facing f > 0.
@@ -276,7 +276,9 @@ def contour_surface(f, box, depth: int, eps: float | None = None,
     converged when eps is given, none otherwise. slack: δ >= 0 when
     |f(x) - f(y)| <= |x - y| + δ everywhere (0 for a signed distance): points far from the
     surface are then not evaluated, and the surface is the same. eta: η, |f| <= η at every
-    vertex (default 1e-10, or eps/100 when refining). thin_depth: as for contour(). creases:
+    vertex (default 1e-10, or eps/100 when refining). thin_depth: as for contour() (default 0;
+    for a Surface, 2, and where that loses its components or handles the thin depth that keeps
+    them, as ``slc contour`` takes it: stats["thin_depth"], and a warning says so). creases:
     refinement follows the creases where the flat facets of a mesh meet, when f is a mesh's
     distance. f may be a Surface itself: its exact signed distance, computed on ``threads``
     threads without calls into Python, as ``slc contour --initial mesh.obj`` contours it
@@ -299,12 +301,12 @@ def contour_surface(f, box, depth: int, eps: float | None = None,
     if isinstance(f, Surface):
         vertices, triangles, stats = _slc.contour_surface_mesh(
             f.vertices, f.triangles, box, int(depth), eps, _refine(refine), eta,
-            _integer("thin_depth", thin_depth), True if creases is None else bool(creases),
-            _threads(threads))
+            None if thin_depth is None else _integer("thin_depth", thin_depth),
+            True if creases is None else bool(creases), _threads(threads))
     else:
         vertices, triangles, stats = _slc.contour_surface(
             f, box, int(depth), eps, _refine(refine), None if slack is None else float(slack),
-            eta, _integer("thin_depth", thin_depth), bool(creases))
+            eta, 0 if thin_depth is None else _integer("thin_depth", thin_depth), bool(creases))
     if "note" in stats:
         warnings.warn(stats["note"], UserWarning, stacklevel=2)
     if len(triangles) == 0:

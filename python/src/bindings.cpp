@@ -33,6 +33,7 @@
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/evolve/defaults.hpp"
 #include "slc/evolve/guards.hpp"
+#include "slc/evolve/keeping_topology.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/validate.hpp"
@@ -216,30 +217,49 @@ py::tuple contour_surface_function(const py::object& f, const std::vector<double
 /// contour` of a mesh file), on all threads, without calls into Python.
 py::tuple contour_surface_mesh(const Array& vertices, const IndexArray& triangles,
                                const std::vector<double>& box, int depth, std::optional<double> eps,
-                               int refine, std::optional<double> eta, int thin_depth, bool creases,
-                               int threads) {
+                               int refine, std::optional<double> eta, std::optional<int> thin_depth,
+                               bool creases, int threads) {
     const Surface surface = surface_of(vertices, triangles);
     if (surface.empty()) throw InvalidInput("the surface has no triangles");
     const Box3 domain = cube_around_corners(box, "box");
     // A signed distance is 1-Lipschitz: points far from its surface need no value.
-    const SurfaceContourOptions options =
-        surface_contour_options(depth, refine, eps, eta, thin_depth, creases, 0.0);
+    const int asked = thin_depth.value_or(default_thin_depth(3));
+    SurfaceContourOptions options =
+        surface_contour_options(depth, refine, eps, eta, asked, creases, 0.0);
+    // As slc contour: the thin depth left unset, the one that keeps the surface's components and
+    // handles where the default does not (the linear contours decide, the one kept is refined).
     const SurfaceContour result = without_gil(threads, [&] {
         const SurfaceDistanceTree tree(
             surface, domain, {.depth = SurfaceDistanceTree::default_depth(surface, domain)});
-        return contour_surface(
-            pointwise<Vec3>([&](Vec3 x) { return tree.closest_point(x).distance; },
-                            expensive_grain),
-            domain, options);
+        const auto g = pointwise<Vec3>([&](Vec3 x) { return tree.closest_point(x).distance; },
+                                       expensive_grain);
+        if (!thin_depth) {
+            SurfaceContourOptions linear = options;
+            linear.refine_passes = 0;
+            auto [kept, c] = keeping_topology(
+                shape_topology(surface), asked, true,
+                [&](int levels) {
+                    linear.thin_depth = levels;
+                    return contour_surface(g, domain, linear);
+                },
+                [](const SurfaceContour& l) { return shape_topology(l.surface); });
+            options.thin_depth = kept;
+            if (options.refine_passes == 0) return std::move(c);
+        }
+        return contour_surface(g, domain, options);
     });
     py::tuple answer = surface_contour_answer(result, options, domain);
     // Whether the contour kept the surface's components and handles, as slc contour says.
     const std::optional<std::string> lost =
         lost_topology_note(shape_topology(surface), shape_topology(result.surface), 3,
-                           fmt::format("raise thin_depth (now {}) or depth", thin_depth));
+                           fmt::format("raise thin_depth (now {}) or depth", options.thin_depth));
+    const std::optional<std::string> kept_note =
+        thin_depth_note("surface", asked, options.thin_depth, "thin_depth");
     py::dict stats = answer[2];
     stats["kept_topology"] = !lost;
+    stats["thin_depth"] = options.thin_depth;
     if (lost) stats["note"] = *lost;
+    if (kept_note) stats["note"] = lost ? *lost + "; " + *kept_note : *kept_note;
     return answer;
 }
 

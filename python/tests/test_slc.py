@@ -2,6 +2,7 @@
 rotation), the contour of an analytic function, bad input, callbacks and their errors."""
 
 import math
+import random
 import os
 import re
 import subprocess
@@ -322,8 +323,8 @@ def test_contour_of_a_function_without_a_zero_warns_and_is_empty():
 
 def test_contour_surface_follows_the_creases_of_a_mesh():
     # A torus of 24 x 12 flat quads: its distance folds along the mesh's edges. Refinement that
-    # follows the creases meets eps (4,382 triangles); plain refinement stops at 1.37 eps with
-    # 12,204.
+    # follows the creases meets eps (19,156 triangles at the default thin depth 2); plain
+    # refinement stops at 1.36 eps with 24,910.
     n, m = 24, 12
     u, v = np.meshgrid(2 * np.pi * np.arange(n) / n, 2 * np.pi * np.arange(m) / m, indexing="ij")
     r = 0.55 + 0.2 * np.cos(v)
@@ -346,8 +347,10 @@ def test_contour_surface_follows_the_creases_of_a_mesh():
     a, b, c = (vertices[triangles[:, k]] for k in range(3))
     for p in (0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (a + b + c) / 3):
         assert np.abs(g(p)).max() <= eps
-    # Its distance as a Python function, creases asked for: the same contour.
-    v2, t2, s2 = slc.contour_surface(g, 1.0, 3, eps=eps, slack=0.0, creases=True)
+    # Its distance as a Python function, creases and the Surface's thin depth asked for: the
+    # same contour.
+    v2, t2, s2 = slc.contour_surface(g, 1.0, 3, eps=eps, slack=0.0, creases=True,
+                                     thin_depth=stats["thin_depth"])
     assert s2["converged"] and len(t2) == len(triangles)
     # Plain refinement, halving edges across the creases, stops beyond eps with more triangles.
     _, plain, plain_stats = slc.contour_surface(mesh, 1.0, 3, eps=eps, creases=False)
@@ -367,7 +370,8 @@ def test_contour_surface_follows_the_creases_of_a_mesh():
 
 def test_contour_surface_of_a_surface_says_when_it_tears_a_thin_wall():
     # A box with a wall 0.03 thick (a cavity 0.87 x 0.8 x 0.8 in a unit cube) at K = 5: without
-    # thin cells the wall is pierced, which the stats and a warning say, as slc contour's note.
+    # thin cells the wall is pierced, which the stats and a warning say, as slc contour's note;
+    # at the default thin depth (2) it is kept.
     corners = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
     faces = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
                       [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
@@ -376,12 +380,48 @@ def test_contour_surface_of_a_surface_says_when_it_tears_a_thin_wall():
     box = slc.Surface(np.vstack([outer, inner]), np.vstack([faces, 8 + faces[:, [0, 2, 1]]]))
     with pytest.warns(UserWarning, match=r"the contour has 1 component with 288 handles where "
                       r"the input has 2 components with 0 handles: .*raise thin_depth \(now 0\)"):
-        _, _, torn = slc.contour_surface(box, 0.75, 5)
+        _, _, torn = slc.contour_surface(box, 0.75, 5, thin_depth=0)
     assert torn["kept_topology"] is False
-    vertices, triangles, kept = slc.contour_surface(box, 0.75, 5, thin_depth=2)
-    assert kept["kept_topology"] is True and "note" not in kept
+    vertices, triangles, kept = slc.contour_surface(box, 0.75, 5)
+    assert kept["kept_topology"] is True and "note" not in kept and kept["thin_depth"] == 2
     s = slc.Surface(vertices, triangles)
     assert s.genus == 0 and abs(s.volume - (1 - 0.87 * 0.64)) < 1e-4
+
+
+def test_contour_surface_of_a_surface_keeps_the_thin_depth_that_keeps_it():
+    # A hexagonal pyramid in a general turn at K = 4: the default thin cells (2 levels) follow
+    # its 60 degree base edges and catch them unevenly, a handle beside one; left at its default,
+    # the thin depth that has none (1) is kept, as slc contour keeps it, and refinement meets eps
+    # with the volume exact. Given, a thin depth is kept as given.
+    rng = random.Random(1)
+    angles = [rng.uniform(0, 2 * math.pi) for _ in range(3)]
+    corners = [(0.5 * math.cos(k * math.pi / 3), 0.5 * math.sin(k * math.pi / 3), -0.3)
+               for k in range(6)] + [(0.0, 0.0, 0.5)]
+    turned = []
+    for x, y, z in corners:
+        for angle, axis in zip(angles, "zxz"):
+            c, s = math.cos(angle), math.sin(angle)
+            if axis == "z":
+                x, y = c * x - s * y, s * x + c * y
+            else:
+                y, z = c * y - s * z, s * y + c * z
+        turned.append((x, y, z))
+    faces = [(k, (k + 1) % 6, 6) for k in range(6)] + [(0, k + 1, k) for k in range(1, 5)]
+    pyramid = slc.Surface(np.array(turned), np.array(faces))
+    # The domain slc contour takes: the cube around the bounding box, 1.5 times its half-side.
+    lo, hi = pyramid.vertices.min(axis=0), pyramid.vertices.max(axis=0)
+    centre, half = 0.5 * (lo + hi), 0.75 * (hi - lo).max()
+    box = (*(centre - half), *(centre + half))
+    with pytest.warns(UserWarning, match=r"at thin_depth 2 has parts, holes or handles .* kept "
+                      r"thin_depth 1"):
+        vertices, triangles, stats = slc.contour_surface(pyramid, box, 4, eps=1e-3)
+    assert stats["thin_depth"] == 1 and stats["kept_topology"] and stats["converged"]
+    s = slc.Surface(vertices, triangles)
+    exact = 0.5 * 6 * 0.25 * math.sin(math.pi / 3) * 0.8 / 3
+    assert s.genus == 0 and abs(s.volume / exact - 1) < 1e-5
+    with pytest.warns(UserWarning, match=r"1 handle.*raise thin_depth \(now 2\)"):
+        _, _, given = slc.contour_surface(pyramid, box, 4, thin_depth=2)
+    assert given["thin_depth"] == 2 and given["kept_topology"] is False
 
 
 def test_contour_surface_of_a_torus_is_closed_and_within_eps():

@@ -395,23 +395,6 @@ void print_estimate(const nlohmann::json& estimate) {
     }
 }
 
-std::optional<std::string> thin_depth_note(std::string_view what, int asked, int kept) {
-    if (kept < asked) {
-        return fmt::format(
-            "the contour of the {} at --thin-depth {} has parts, holes or handles it does not "
-            "have (thin cells following a sharp edge or point catch it unevenly); kept "
-            "--thin-depth {}, which has none (summary.json: params.thin_depth)",
-            what, asked, kept);
-    }
-    if (kept > asked) {
-        return fmt::format(
-            "a part of the {} is thinner than the contour resolves at --thin-depth {}; the thin "
-            "cells went {} levels deep to keep it (summary.json: params.thin_depth)",
-            what, asked, kept);
-    }
-    return std::nullopt;
-}
-
 std::optional<std::string> topology_note(const ShapeTopology& given, const ShapeTopology& contour,
                                          int dim, int thin_depth) {
     return lost_topology_note(given, contour, dim,

@@ -19,6 +19,7 @@
 #include "slc/core/box3.hpp"
 #include "slc/core/error.hpp"
 #include "slc/evolve/guards.hpp"
+#include "slc/evolve/keeping_topology.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/evolve/run.hpp"
 #include "slc/geometry/interface.hpp"
@@ -169,47 +170,6 @@ std::string thin_depth();
 /// it is kept.
 std::optional<std::string> topology_note(const ShapeTopology& given, const ShapeTopology& contour,
                                          int dim, int thin_depth);
-
-/// A contour of a user's shape at the thin depth that keeps the shape's components and holes,
-/// where one does: `at(thin)` contours at that thin depth, `topology_of` tells a contour's. At the
-/// thin depth asked for first; when that loses the shape's topology and the thin depth was left
-/// at its default (`may_change`), the shallower ones, deepest first, then deeper ones two levels
-/// at a time up to the most while they change the topology, as a run's start tries them (thin
-/// cells following a sharp edge or point catch it unevenly; a wall thinner than the cells wants
-/// deeper ones; one that fails, as where G vanishes along a knife edge, keeps none). Returns the
-/// thin depth kept and its contour: the first's when none keeps the shape.
-template <class At, class TopologyOf>
-auto keeping_topology(const ShapeTopology& given, int asked, bool may_change, At at,
-                      TopologyOf topology_of) {
-    using Contour = decltype(at(asked));
-    Contour first = at(asked);
-    ShapeTopology before = topology_of(first);
-    if (!may_change || before == given) return std::pair{asked, std::move(first)};
-    auto attempt = [&](int thin) -> std::optional<Contour> {
-        try {
-            return at(thin);
-        } catch (const NumericalFailure&) {
-            return std::nullopt;
-        }
-    };
-    for (int shallower = asked - 1; shallower >= 0; --shallower) {
-        std::optional<Contour> other = attempt(shallower);
-        if (other && topology_of(*other) == given) return std::pair{shallower, std::move(*other)};
-    }
-    for (int deeper = asked + 2; asked > 0 && deeper <= setting_range::thin_depth.hi; deeper += 2) {
-        std::optional<Contour> other = attempt(deeper);
-        if (!other) break;
-        const ShapeTopology got = topology_of(*other);
-        if (got == given) return std::pair{deeper, std::move(*other)};
-        if (got == before) break;  // deeper cells change nothing: thinner than any
-        before = got;
-    }
-    return std::pair{asked, std::move(first)};
-}
-
-/// The note slc contour gives when it kept another thin depth than the one asked for, to keep
-/// the user's shape; nothing when it kept that one.
-std::optional<std::string> thin_depth_note(std::string_view what, int asked, int kept);
 
 /// CLI11 checks with one-line messages naming the value: a positive finite number; a finite
 /// number >= 0; an integer in [lo, hi]; a number in [0, 1).

@@ -202,7 +202,7 @@ void run_contour(const ContourCommandOptions& o) {
         });
     summary["params"]["thin_depth"] = kept.thin_depth;
     write_results(o, kept, in, tree, result, std::move(summary), folder,
-                  thin_depth_note("curves", options.thin_depth, kept.thin_depth));
+                  thin_depth_note("curves", options.thin_depth, kept.thin_depth, "--thin-depth"));
 }
 
 }  // namespace

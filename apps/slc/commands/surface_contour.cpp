@@ -218,7 +218,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
     });
     summary["params"]["thin_depth"] = thin_kept;
     const std::optional<std::string> thin_note =
-        thin_depth_note("surface", r.thin_depth, thin_kept);
+        thin_depth_note("surface", r.thin_depth, thin_kept, "--thin-depth");
     const Surface& s = result.surface;
     const SurfaceContourStats& st = result.stats;
     summary["status"] = "ok";
