@@ -237,7 +237,7 @@ py::tuple contour_surface_mesh(const Array& vertices, const IndexArray& triangle
             SurfaceContourOptions linear = options;
             linear.refine_passes = 0;
             auto [kept, c] = keeping_topology(
-                shape_topology(surface), asked, true,
+                shape_topology(surface), asked,
                 [&](int levels) {
                     linear.thin_depth = levels;
                     return contour_surface(g, domain, linear);

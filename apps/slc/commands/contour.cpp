@@ -189,7 +189,7 @@ void run_contour(const ContourCommandOptions& o) {
                 ContourOptions linear = options;
                 linear.refine_passes = 0;
                 auto [thin, r] = keeping_topology(
-                    shape_topology(in.curves), options.thin_depth, true,
+                    shape_topology(in.curves), options.thin_depth,
                     [&](int levels) {
                         linear.thin_depth = levels;
                         return contour(exact, in.domain, linear);

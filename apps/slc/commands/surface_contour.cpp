@@ -203,7 +203,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         if (source.surface && !r.thin_depth_given) {
             o.refine_passes = 0;
             auto [thin, c] = keeping_topology(
-                shape_topology(*source.surface), r.thin_depth, true,
+                shape_topology(*source.surface), r.thin_depth,
                 [&](int levels) {
                     o.thin_depth = levels;
                     return contour_surface(g, source.domain, o);

@@ -16,20 +16,19 @@
 namespace slc {
 
 /// A contour of a user's shape at the thin depth that keeps the shape's components and holes,
-/// where one does: `at(thin)` contours at that thin depth, `topology_of` tells a contour's. At the
-/// thin depth asked for first; when that loses the shape's topology and the thin depth was left
-/// at its default (`may_change`), the shallower ones, deepest first, then deeper ones two levels
-/// at a time up to the most while they change the topology, as a run's start tries them (thin
+/// where one does: `at(thin)` contours at that thin depth, `topology_of` tells a contour's. For a
+/// thin depth left at its default: at the one `asked` first; when that loses the shape's
+/// topology, the shallower ones, deepest first, then deeper ones two levels at a time up to the
+/// most while they change the topology, as a run's start tries them (thin
 /// cells following a sharp edge or point catch it unevenly; a wall thinner than the cells wants
 /// deeper ones; one that fails, as where G vanishes along a knife edge, keeps none). Returns the
 /// thin depth kept and its contour: the first's when none keeps the shape.
 template <class At, class TopologyOf>
-auto keeping_topology(const ShapeTopology& given, int asked, bool may_change, At at,
-                      TopologyOf topology_of) {
+auto keeping_topology(const ShapeTopology& given, int asked, At at, TopologyOf topology_of) {
     using Contour = decltype(at(asked));
     Contour first = at(asked);
     ShapeTopology before = topology_of(first);
-    if (!may_change || before == given) return std::pair{asked, std::move(first)};
+    if (before == given) return std::pair{asked, std::move(first)};
     auto attempt = [&](int thin) -> std::optional<Contour> {
         try {
             return at(thin);
