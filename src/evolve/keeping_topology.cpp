@@ -15,7 +15,7 @@ std::optional<std::string> thin_depth_note(std::string_view what, int asked, int
     }
     if (kept > asked) {
         return fmt::format(
-            "a part of the {} is thinner than the contour resolves at {} {}; the thin cells went "
+            "a part of the {} is thinner than the contours resolve at {} {}; the thin cells went "
             "{} levels deep to keep it",
             what, setting, asked, kept);
     }

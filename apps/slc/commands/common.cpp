@@ -351,19 +351,9 @@ bool ends_frames_where_stopped(const RunTotals& r, bool empty, bool last_frame_t
 }
 
 void note_deeper(std::string_view what, int asked, const RunTotals& r) {
-    if (r.thin_depth >= 0 && r.thin_depth < asked) {
-        fmt::print(stderr,
-                   "slc: note: the contours of the {} at --thin-depth {} have parts, holes or "
-                   "handles it does not have (thin cells following a sharp edge or point catch it "
-                   "unevenly); the run keeps {} (summary.json: thin_depth)\n",
-                   what, asked, r.thin_depth);
-    }
-    if (r.thin_depth > asked) {
-        fmt::print(stderr,
-                   "slc: note: a part of the {} is thinner than the contours resolve at "
-                   "--thin-depth {}; the thin cells went {} levels deep to keep it (summary.json: "
-                   "thin_depth)\n",
-                   what, asked, r.thin_depth);
+    if (r.thin_depth >= 0) {
+        if (const auto kept = thin_depth_note(what, asked, r.thin_depth, "--thin-depth"))
+            fmt::print(stderr, "slc: note: {} (summary.json: thin_depth)\n", *kept);
     }
     if (!std::isnan(r.deeper_at)) {
         fmt::print(
