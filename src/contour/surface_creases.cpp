@@ -442,7 +442,8 @@ std::optional<Remeshed> around_corner(const Surface& s, const CreasePlanes& plan
 
 /// The triangles that replace a patch of triangles across one crease, or nothing
 /// (around_corner() where more planes meet). The patch must be a disk whose boundary corners all
-/// lie on the crease's two planes, crossing from one to the other only at corners on both (on
+/// lie on the crease's two planes (a corner of three or more planes, placed by another patch, on
+/// one of them or both), crossing from one to the other only at corners on both (on
 /// the crease); seen along the planes' mean normal, its boundary then splits at those two
 /// corners into a polygon on each plane, sharing the segment of the crease between them, and
 /// each is triangulated in its plane.
@@ -486,6 +487,7 @@ std::optional<Remeshed> across_creases(const Surface& s, const CreasePlanes& pla
     PlaneSet set;
     for (const std::uint32_t v : loop) {
         if (planes.count[v] == 0) return std::nullopt;
+        if (planes.count[v] >= 3) continue;
         set.add_corner(planes, v);
         if (set.size > max_planes) return std::nullopt;
     }
@@ -500,6 +502,7 @@ std::optional<Remeshed> across_creases(const Surface& s, const CreasePlanes& pla
             first = first || same_plane(p, two[0]);
             second = second || same_plane(p, two[1]);
         }
+        if (!first && !second) return std::nullopt;
         side[i] = first && second ? 0 : (first ? 1 : -1);
     }
     // Seen along the mean normal: x along the crease, y across it (0 on it).

@@ -83,17 +83,16 @@ check "one line naming -K and --eps" grep -q "^slc: error: refinement stopped .*
 check "and the place, by a sharp edge or corner of the input" grep -Eq "near \(.*\) by a sharp (edge|corner) of the input, which the contours chamfer" err.txt
 check "summary says unconverged" test "$(json coarse/summary.json 's["status"], s["converged"]')" = "unconverged False"
 check "its files are written" test -s coarse/final.obj -a -s coarse/final.png
-# A hexagonal pyramid in a general turn (bench/creases.py's turn 1): at K = 4 the thin cells
-# following its 60° base edges catch them unevenly and give the linear contour a handle at the
-# default thin depth 2. Left at its default, the thin depth that keeps the pyramid (1) is kept,
-# the note says so, and refinement meets eps; given, it is kept as given, and the note names the
-# handle.
-python3 - <<'PY' >hexagonal.obj
-import math, random
-rng = random.Random(1)
+# Pyramids in a general turn, written as bench/creases.py writes them: N faces about an apex
+# 0.8 above a regular N-gon of radius 0.5, turned by the random turn of SEED.
+pyramid() {
+    python3 - "$1" "$2" <<'PY'
+import math, random, sys
+n, seed = int(sys.argv[1]), int(sys.argv[2])
+rng = random.Random(seed)
 angles = [rng.uniform(0, 2 * math.pi) for _ in range(3)]
-corners = [(0.5 * math.cos(k * math.pi / 3), 0.5 * math.sin(k * math.pi / 3), -0.3) for k in range(6)]
-for x, y, z in corners + [(0, 0, 0.5)]:
+base = [(0.5 * math.cos(2 * math.pi * k / n), 0.5 * math.sin(2 * math.pi * k / n), -0.3) for k in range(n)]
+for x, y, z in base + [(0, 0, 0.5)]:
     for angle, axis in zip(angles, "zxz"):
         c, s = math.cos(angle), math.sin(angle)
         if axis == "z":
@@ -101,17 +100,27 @@ for x, y, z in corners + [(0, 0, 0.5)]:
         else:
             y, z = c * y - s * z, s * y + c * z
     print("v %.17g %.17g %.17g" % (x, y, z))
-for k in range(6):
-    print("f", k + 1, (k + 1) % 6 + 1, 7)
-for k in range(1, 5):
-    print("f", 1, k + 2, k + 1)
+for face in [tuple(range(n - 1, -1, -1))] + [(k, (k + 1) % n, n) for k in range(n)]:
+    for k in range(1, len(face) - 1):
+        print(f"f {face[0] + 1} {face[k] + 1} {face[k + 1] + 1}")
 PY
+}
+# The hexagonal pyramid of turn 1: at K = 4 the thin cells following its 60° base edges catch
+# them unevenly and give the linear contour a handle at the default thin depth 2. Left at its
+# default, the thin depth that keeps the pyramid (1) is kept, the note says so, and refinement
+# meets eps; given, it is kept as given, and the note names the handle.
+pyramid 6 1 >hexagonal.obj
 expect_ok "a pyramid whose edges the default thin cells tear" -- contour --initial hexagonal.obj -K 4 --eps 1e-3 --out hexagonal
 check "the note names the thin depth kept" grep -q "^slc: note: .* at --thin-depth 2 has parts, holes or handles .* kept --thin-depth 1" err.txt
 check "genus 0, converged, thin depth 1, the volume exact" test "$(json hexagonal/summary.json 's["genus"], s["converged"], s["params"]["thin_depth"], abs(s["volume"] / 0.17320508075688776 - 1) < 1e-5')" = "0 True 1 True"
 expect_ok "its linear contour at --thin-depth 2, as given" -- contour --initial hexagonal.obj -K 4 --thin-depth 2 --out torn
 check "the note names the handle" grep -q "^slc: note: .*1 handle.*raise --thin-depth (now 2)" err.txt
 check "thin depth 2, genus 1" test "$(json torn/summary.json 's["params"]["thin_depth"], s["genus"], s["kept_topology"]')" = "2 1 False"
+# The pyramid of 16 faces of turn 3 at K = 3: a patch across a base edge ends at a base corner
+# that a corner's patch placed (a vertex on three planes); it meets eps.
+pyramid 16 3 >sixteen.obj
+expect_ok "a pyramid of 16 faces" -- contour --initial sixteen.obj -K 3 --eps 1e-3 --out sixteen
+check "16 faces: converged, within eps, the volume within 10 eps^2" test "$(json sixteen/summary.json 's["converged"], s["error"] <= 1e-3, abs(s["volume"] - 0.20409783059471456) < 1e-5')" = "True True True"
 expect_status "one pass short of eps" 3 -- contour --function torus -K 4 --refine 1 --eps 1e-4 --out short
 check "names --refine too" grep -q "raise -K or --eps or --refine" err.txt
 expect_error "eps below eta" "eps must be at least eta" -- contour --function torus -K 4 --refine 1 --eps 1e-12 --out x
