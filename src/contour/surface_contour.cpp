@@ -213,6 +213,7 @@ SurfaceContour contour_surface_with(SpaceFunctionRef g, const Box3& domain,
     stats.bound_evals = topo.bound_evals;
     stats.tetrahedra = topo.mesh.tetrahedra.size();
     stats.perturbed = topo.perturbed;
+    stats.moved_across = topo.moved_across;
 
     LinearSurface linear = march(topo);
     const RootOptions roots{.eta = options.resolved_eta(), .method = options.root_method};

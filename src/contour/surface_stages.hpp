@@ -41,6 +41,7 @@ struct SurfaceTopology {
     std::size_t settled = 0;              ///< tree points with a stand-in instead of G
     std::size_t bound_evals = 0;          ///< evaluations of the bounds
     std::size_t perturbed = 0;            ///< vertices moved off |G| ≤ η
+    std::size_t moved_across = 0;         ///< vertices moved across to keep the shape's topology
 };
 
 /// Builds the K-level octree (γ doubled until balanced, thin cells beyond K), tetrahedralizes

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <optional>
@@ -16,6 +18,7 @@
 
 #include "perturb.hpp"
 #include "slc/core/error.hpp"
+#include "slc/core/key_map.hpp"
 #include "slc/core/parallel.hpp"
 #include "slc/core/point_text.hpp"
 #include "surface_stages.hpp"
@@ -229,6 +232,267 @@ std::vector<std::uint32_t> crossing_tetrahedra(const SurfaceTopology& topo) {
     return list;
 }
 
+constexpr std::uint32_t none_index = std::numeric_limits<std::uint32_t>::max();
+
+/// Tries of move_across at most: each makes the contour's topology again.
+constexpr int max_moves_tried = 64;
+
+/// The components and handles of the linear contour that the signs at the mesh's vertices make
+/// over the crossing tetrahedra (marching tetrahedra: a triangle where one corner differs, two
+/// where two do). A component's vertices are the edges that change sign, and as a closed
+/// surface its edges are half again its triangles: its Euler characteristic is its vertices
+/// less half its triangles.
+ContourTopology linear_topology(const SurfaceTopology& topo,
+                                std::span<const std::uint32_t> crossing) {
+    KeyMap<std::uint32_t> id;
+    id.reserve(2 * crossing.size());
+    std::vector<std::uint32_t> parent;
+    auto vertex = [&](std::uint32_t a, std::uint32_t b) {
+        const auto [v, added] =
+            id.try_emplace(edge_key(a, b), static_cast<std::uint32_t>(parent.size()));
+        if (added) parent.push_back(*v);
+        return *v;
+    };
+    auto root = [&](std::uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    auto join = [&](std::uint32_t a, std::uint32_t b) { parent[root(a)] = root(b); };
+    std::vector<std::uint32_t> triangle_of;  // one vertex of each triangle
+    for (const std::uint32_t k : crossing) {
+        const auto& t = topo.mesh.tetrahedra[k];
+        std::array<std::uint32_t, 4> in{}, out{};
+        int ins = 0, outs = 0;
+        for (const std::uint32_t v : t) {
+            if (topo.values[v] > 0.0)
+                out[outs++] = v;
+            else
+                in[ins++] = v;
+        }
+        if (ins == 1 || outs == 1) {
+            const std::uint32_t lone = ins == 1 ? in[0] : out[0];
+            const auto& rest = ins == 1 ? out : in;
+            const std::uint32_t a = vertex(lone, rest[0]), b = vertex(lone, rest[1]),
+                                c = vertex(lone, rest[2]);
+            join(a, b), join(a, c);
+            triangle_of.push_back(a);
+        } else {
+            const std::uint32_t a = vertex(in[0], out[0]), b = vertex(in[0], out[1]),
+                                c = vertex(in[1], out[1]), d = vertex(in[1], out[0]);
+            join(a, b), join(a, c), join(a, d);
+            triangle_of.push_back(a), triangle_of.push_back(a);
+        }
+    }
+    std::vector<long long> chi(parent.size(), 0);  // twice each component's, at its root
+    for (std::uint32_t v = 0; v < parent.size(); ++v) chi[root(v)] += 2;
+    for (const std::uint32_t v : triangle_of) chi[root(v)] -= 1;
+    ContourTopology out;
+    for (std::uint32_t v = 0; v < parent.size(); ++v) {
+        if (root(v) != v) continue;
+        ++out.components;
+        out.handles += (4 - chi[v]) / 4;  // genus 1 − χ/2, χ = chi[v] / 2
+    }
+    return out;
+}
+
+/// How far a contour's topology is from the shape's: the components and handles it differs by.
+long long topology_gap(const ContourTopology& a, const ContourTopology& b) {
+    return std::llabs(static_cast<long long>(a.components) - static_cast<long long>(b.components)) +
+           std::llabs(a.handles - b.handles);
+}
+
+/// Moves mesh vertices within a sixteenth of the finest cell h of the zero set across it, where
+/// the linear contour's topology differs from `shape` and that brings it nearer (keep_topology
+/// in contour_options.hpp): only vertices that are not simple, those whose side changes the
+/// contour's topology (the vertices of their link on the negative side do not make one disc),
+/// nearest the zero set first, each moved along G's gradient (by differences) to G = ∓h/200
+/// where the tetrahedra about it keep their orientation. All or nothing: returns the vertices
+/// moved once the contour has the shape's topology, else puts them back (a part thinner than
+/// the cells, not a sharp edge) and returns 0.
+std::size_t move_across(SurfaceTopology& topo, const Evaluator& g, double eta,
+                        const ContourTopology& shape) {
+    std::vector<std::uint32_t> crossing = crossing_tetrahedra(topo);
+    ContourTopology now = linear_topology(topo, crossing);
+    if (now == shape) return 0;
+    const double h = topo.tree.edge(topo.tree.depth());
+    // The candidates: exact values within h/16 at the crossing tetrahedra's corners.
+    std::vector<std::uint32_t> candidates;
+    {
+        std::vector<std::uint8_t> seen(topo.values.size(), 0);
+        for (const std::uint32_t k : crossing) {
+            for (const std::uint32_t v : topo.mesh.tetrahedra[k]) {
+                if (seen[v]) continue;
+                seen[v] = 1;
+                if (topo.exact[v] && std::abs(topo.values[v]) <= h / 16.0) candidates.push_back(v);
+            }
+        }
+    }
+    std::sort(candidates.begin(), candidates.end(), [&](std::uint32_t a, std::uint32_t b) {
+        const double x = std::abs(topo.values[a]), y = std::abs(topo.values[b]);
+        return x < y || (x == y && a < b);
+    });
+    if (candidates.empty()) return 0;
+    // The tetrahedra about each candidate.
+    std::vector<std::uint32_t> place(topo.values.size(), none_index);
+    for (std::uint32_t i = 0; i < candidates.size(); ++i) place[candidates[i]] = i;
+    std::vector<std::vector<std::uint32_t>> star(candidates.size());
+    for (std::uint32_t k = 0; k < topo.mesh.tetrahedra.size(); ++k)
+        for (const std::uint32_t v : topo.mesh.tetrahedra[k])
+            if (place[v] != none_index) star[place[v]].push_back(k);
+    // Whether v is simple: the corners of its link on the negative side make one disc (one
+    // component, Euler characteristic 1).
+    auto simple = [&](std::uint32_t i) {
+        const std::uint32_t v = candidates[i];
+        std::vector<std::uint32_t> corners;
+        std::vector<std::array<std::uint32_t, 3>> faces;
+        for (const std::uint32_t k : star[i]) {
+            std::array<std::uint32_t, 3> f{};
+            int n = 0;
+            for (const std::uint32_t u : topo.mesh.tetrahedra[k])
+                if (u != v) f[n++] = u;
+            std::sort(f.begin(), f.end());
+            faces.push_back(f);
+            corners.insert(corners.end(), f.begin(), f.end());
+        }
+        std::sort(corners.begin(), corners.end());
+        corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+        auto negative = [&](std::uint32_t u) { return !(topo.values[u] > 0.0); };
+        std::vector<std::uint32_t> up(corners.size());
+        for (std::uint32_t j = 0; j < up.size(); ++j) up[j] = j;
+        auto at = [&](std::uint32_t u) {
+            return static_cast<std::uint32_t>(std::lower_bound(corners.begin(), corners.end(), u) -
+                                              corners.begin());
+        };
+        auto top = [&](std::uint32_t j) {
+            while (up[j] != j) j = up[j] = up[up[j]];
+            return j;
+        };
+        std::vector<std::uint64_t> edges;
+        long long chi = 0;
+        for (const std::uint32_t u : corners) chi += negative(u) ? 1 : 0;
+        for (const auto& f : faces) {
+            if (negative(f[0]) && negative(f[1]) && negative(f[2])) ++chi;
+            for (int a = 0; a < 3; ++a) {
+                for (int b = a + 1; b < 3; ++b) {
+                    if (!negative(f[a]) || !negative(f[b])) continue;
+                    edges.push_back(edge_key(f[a], f[b]));
+                    up[top(at(f[a]))] = top(at(f[b]));
+                }
+            }
+        }
+        std::sort(edges.begin(), edges.end());
+        chi -= static_cast<long long>(std::unique(edges.begin(), edges.end()) - edges.begin());
+        std::size_t parts = 0;
+        for (std::uint32_t j = 0; j < corners.size(); ++j)
+            if (negative(corners[j]) && top(j) == j) ++parts;
+        return parts == 1 && chi == 1;
+    };
+    // Whether the tetrahedra about candidate i close round it (its link is a closed surface, each
+    // edge in two of its triangles): a vertex beside a leaf left out of the mesh (clear of the
+    // zero set) is not moved, since that leaf's tetrahedra would cross it.
+    auto closed_round = [&](std::uint32_t i) {
+        const std::uint32_t v = candidates[i];
+        std::vector<std::uint64_t> edges;
+        for (const std::uint32_t k : star[i]) {
+            std::array<std::uint32_t, 3> f{};
+            int n = 0;
+            for (const std::uint32_t u : topo.mesh.tetrahedra[k])
+                if (u != v) f[n++] = u;
+            edges.push_back(edge_key(f[0], f[1]));
+            edges.push_back(edge_key(f[1], f[2]));
+            edges.push_back(edge_key(f[0], f[2]));
+        }
+        std::sort(edges.begin(), edges.end());
+        for (std::size_t j = 0; j < edges.size(); j += 2)
+            if (j + 1 >= edges.size() || edges[j] != edges[j + 1] ||
+                (j + 2 < edges.size() && edges[j + 2] == edges[j]))
+                return false;
+        return !edges.empty();
+    };
+    // G's gradient at the candidates, by central differences, one batch.
+    const double step = 1e-3 * h;
+    std::vector<Vec3> points;
+    for (const std::uint32_t v : candidates) {
+        for (int a = 0; a < 3; ++a) {
+            for (const double sign : {1.0, -1.0}) {
+                Vec3 p = topo.mesh.vertices[v];
+                p[a] += sign * step;
+                points.push_back(p);
+            }
+        }
+    }
+    std::vector<double> values(points.size());
+    g(points, values);
+    std::vector<Vec3> target(candidates.size());
+    std::vector<std::uint8_t> can(candidates.size(), 0);
+    for (std::uint32_t i = 0; i < candidates.size(); ++i) {
+        const Vec3 grad{(values[6 * i] - values[6 * i + 1]) / (2 * step),
+                        (values[6 * i + 2] - values[6 * i + 3]) / (2 * step),
+                        (values[6 * i + 4] - values[6 * i + 5]) / (2 * step)};
+        const double n2 = norm2(grad);
+        if (!(n2 > 0.25)) continue;  // G is a distance near its zero set: |∇G| near 1
+        const double x = topo.values[candidates[i]];
+        const double want = (x > 0.0 ? -1.0 : 1.0) * h / 200.0;
+        target[i] = topo.mesh.vertices[candidates[i]] + ((want - x) / n2) * grad;
+        if (distance(target[i], topo.mesh.vertices[candidates[i]]) > h / 10.0 || !closed_round(i))
+            continue;
+        can[i] = 1;
+        for (const std::uint32_t k : star[i]) {
+            std::array<Vec3, 4> q;
+            for (int j = 0; j < 4; ++j) {
+                const std::uint32_t u = topo.mesh.tetrahedra[k][j];
+                q[j] = u == candidates[i] ? target[i] : topo.mesh.vertices[u];
+            }
+            if (!(dot(q[1] - q[0], cross(q[2] - q[0], q[3] - q[0])) > 0.0)) can[i] = 0;
+        }
+    }
+    std::vector<Vec3> at_target;
+    for (std::uint32_t i = 0; i < candidates.size(); ++i)
+        if (can[i]) at_target.push_back(target[i]);
+    std::vector<double> there(at_target.size());
+    g(at_target, there);
+    struct Undo {
+        std::uint32_t vertex;
+        Vec3 point;
+        double value;
+    };
+    std::vector<Undo> undo;
+    std::size_t next = 0;
+    int tried = 0;
+    for (std::uint32_t i = 0; i < candidates.size() && !(now == shape) && tried < max_moves_tried;
+         ++i) {
+        if (!can[i]) continue;
+        const double value = there[next++];
+        const std::uint32_t v = candidates[i];
+        if ((value > 0.0) == (topo.values[v] > 0.0) || !(std::abs(value) > eta) || simple(i))
+            continue;
+        ++tried;
+        const Vec3 was = topo.mesh.vertices[v];
+        const double was_value = topo.values[v];
+        topo.mesh.vertices[v] = target[i];
+        topo.values[v] = value;
+        crossing = crossing_tetrahedra(topo);
+        const ContourTopology after = linear_topology(topo, crossing);
+        if (topology_gap(after, shape) < topology_gap(now, shape)) {
+            now = after;
+            undo.push_back({v, was, was_value});
+        } else {
+            topo.mesh.vertices[v] = was;
+            topo.values[v] = was_value;
+        }
+    }
+    // All or nothing: short of the shape (a wall thinner than the cells, not a sharp edge), the
+    // contour is the signs' own.
+    if (!(now == shape)) {
+        for (auto it = undo.rbegin(); it != undo.rend(); ++it) {
+            topo.mesh.vertices[it->vertex] = it->point;
+            topo.values[it->vertex] = it->value;
+        }
+        return 0;
+    }
+    return undo.size();
+}
+
 /// Stand-ins at the corners of the crossing tetrahedra give way to G, for the roots' brackets;
 /// their signs are G's, so the tetrahedra stay the same.
 void evaluate_crossed_stand_ins(SurfaceTopology& topo, const Evaluator& g) {
@@ -278,6 +542,8 @@ SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& do
     mesh_values(topo, sampler, g, sides);
     check_boundary(topo, eta);
     topo.perturbed = perturb(topo, g, eta);
+    if (options.keep_topology)
+        topo.moved_across = move_across(topo, g, eta, *options.keep_topology);
     topo.crossing = crossing_tetrahedra(topo);
     evaluate_crossed_stand_ins(topo, g);
     return topo;

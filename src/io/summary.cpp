@@ -93,6 +93,7 @@ nlohmann::json basic_stats_json(const BasicContourStats<dim>& s) {
             {"bound_evals", s.bound_evals},
             {"gamma", s.gamma},
             {"perturbed", s.perturbed},
+            {"moved_across", s.moved_across},
             {"unconverged_roots", s.unconverged_roots},
             {"passes", s.passes},
             {"splits", s.splits},

@@ -116,6 +116,11 @@ check "genus 0, converged, thin depth 1, the volume exact" test "$(json hexagona
 expect_ok "its linear contour at --thin-depth 2, as given" -- contour --initial hexagonal.obj -K 4 --thin-depth 2 --out torn
 check "the note names the handle" grep -q "^slc: note: .*1 handle.*raise --thin-depth (now 2)" err.txt
 check "thin depth 2, genus 1" test "$(json torn/summary.json 's["params"]["thin_depth"], s["genus"], s["kept_topology"]')" = "2 1 False"
+# At K = 6 the same pyramid's contours have a speck or handles at every thin depth, each decided
+# by a mesh vertex a hair from the zero set beside an edge or corner; told the input's topology,
+# the contour moves those across it, and keeps the default thin depth.
+expect_ok "the hexagonal pyramid at K = 6" -- contour --initial hexagonal.obj -K 6 --refine 0 --out hexagonal6
+check "K 6: one component of genus 0 at thin depth 2, vertices moved across" test "$(json hexagonal6/summary.json 's["components"], s["genus"], s["params"]["thin_depth"], s["moved_across"] > 0')" = "1 0 2 True"
 # The pyramid of 16 faces of turn 3 at K = 3: a patch across a base edge ends at a base corner
 # that a corner's patch placed (a vertex on three planes); it meets eps.
 pyramid 16 3 >sixteen.obj

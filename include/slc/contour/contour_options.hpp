@@ -16,6 +16,13 @@
 
 namespace slc {
 
+/// The components of a closed surface and its handles (the sum of their genera).
+struct ContourTopology {
+    std::size_t components = 0;
+    long long handles = 0;
+    bool operator==(const ContourTopology&) const = default;
+};
+
 /// The contour options of dimension dim (2 or 3).
 template <int dim>
 struct BasicContourOptions {
@@ -98,6 +105,18 @@ struct BasicContourOptions {
     /// evaluation. The contour is the one exact values give, bit for bit. Unset (the default):
     /// every tree point is evaluated.
     std::optional<double> distance_slack = std::nullopt;
+    /// Surfaces: the components and handles of the shape whose distance G is (a user's mesh),
+    /// when known. Beside a sharp edge or point of the shape, the signs of G at the mesh's
+    /// vertices can cut a speck off a corner or open a handle along an edge that the shape does
+    /// not have, at any depth: a vertex a hair from the zero set (within a sixteenth of the
+    /// finest cell) decides it. Where the linear contour's components or handles differ from
+    /// these, such vertices that are not simple (whose side changes the contour's topology) are
+    /// moved across the zero set, one at a time and by at most a tenth of the finest cell,
+    /// where that brings the contour nearer the shape, until it has the shape's (else none is
+    /// moved: a part thinner than the cells is not a sharp edge). The contour's vertices are
+    /// still roots of G and the mesh stays valid, as in perturbation. Unset (the default) for the
+    /// steps of a run and the named problems.
+    std::optional<ContourTopology> keep_topology = std::nullopt;
 
     /// ε as given, or its default 10^−K.
     double resolved_eps() const { return eps.value_or(std::pow(10.0, -depth)); }

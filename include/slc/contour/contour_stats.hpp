@@ -39,6 +39,9 @@ struct BasicContourStats {
     double gamma = 0.0;           ///< the gradient bound γ at which the tree was balanced
 
     std::size_t perturbed = 0;  ///< mesh vertices moved off |G| ≤ η
+    /// Surfaces: mesh vertices moved across the zero set to keep the shape's topology
+    /// (BasicContourOptions::keep_topology).
+    std::size_t moved_across = 0;
     /// Roots left with |G| > η: G jumps across zero there (a continuous G never does this).
     std::size_t unconverged_roots = 0;
     int passes = 0;            ///< refinement passes that split something

@@ -363,6 +363,59 @@ TEST(SurfaceContour, RefinementPutsTheCornersWhereManyFacesMeet) {
     }
 }
 
+TEST(SurfaceContour, SharpEdgesKeepAShapesTopologyToldToTheContour) {
+    // A hexagonal pyramid in a general turn (bench/creases.py's turn 1), at K = 6 in the domain
+    // slc contour takes. Beside its 62° base edges and its corners the signs of G at the mesh's
+    // vertices cut specks off corners and open handles along edges, at thin depths 0, 1 and 2
+    // alike, and each is decided by a vertex a hair from the zero set. Told the pyramid's
+    // topology, the contour moves such vertices across the zero set: one component of genus 0,
+    // its vertices still roots of G, the volume as near the pyramid's.
+    const Surface pyramid{
+        .vertices = {{-0.0019199229174203837, -0.3335659676518663, -0.47825731475897493},
+                     {0.013448206172922361, 0.15934431502717253, -0.56073927543846236},
+                     {-0.2292296198950324, 0.47168770170174307, -0.25488133204710445},
+                     {-0.48727557505332997, 0.29112080569727489, 0.13345857202374098},
+                     {-0.50264370414367276, -0.2017894769817638, 0.21594053270322852},
+                     {-0.25996587807571786, -0.5141328636563347, -0.089917410688129543},
+                     {0.40766291497562535, 0.035370968295492917, 0.28733228561269492}},
+        .triangles = {{5, 4, 3},
+                      {5, 3, 2},
+                      {5, 2, 1},
+                      {5, 1, 0},
+                      {0, 1, 6},
+                      {1, 2, 6},
+                      {2, 3, 6},
+                      {3, 4, 6},
+                      {4, 5, 6},
+                      {5, 0, 6}}};
+    ASSERT_TRUE(prepare_surface(pyramid).notes.empty());
+    const Box3 b = bounding_box(pyramid);
+    const double half = 0.5 * std::max({b.extent(0), b.extent(1), b.extent(2)});
+    const Box3 domain = Box3::cube(b.center(), 1.5 * half);
+    const SurfaceDistanceTree tree(pyramid, domain,
+                                   {.depth = SurfaceDistanceTree::default_depth(pyramid, domain)});
+    const auto distance = [&](Vec3 x) { return tree.closest_point(x).distance; };
+    const auto g = pointwise<Vec3>(distance);
+    const ContourTopology shape{1, 0};
+    for (const int thin : {0, 1, 2}) {
+        SurfaceContourOptions options{.depth = 6, .thin_depth = thin};
+        const SurfaceContour plain = contour_surface(g, domain, options);
+        EXPECT_NE(contour_topology(plain.surface), shape) << thin;
+        EXPECT_EQ(plain.stats.moved_across, 0u);
+        options.keep_topology = shape;
+        const SurfaceContour kept = contour_surface(g, domain, options);
+        EXPECT_EQ(contour_topology(kept.surface), shape) << thin;
+        EXPECT_GT(kept.stats.moved_across, 0u) << thin;
+        EXPECT_TRUE(prepare_surface(kept.surface).notes.empty()) << thin;
+        for (const Vec3 v : kept.surface.vertices)
+            ASSERT_LE(std::abs(distance(v)), options.resolved_eta()) << thin;
+        EXPECT_NEAR(volume(kept.surface), volume(plain.surface), 1e-3 * volume(pyramid)) << thin;
+        std::printf("thin depth %d: %zu components, %lld handles; told the shape: %zu moved\n",
+                    thin, component_count(plain.surface), genus(plain.surface),
+                    kept.stats.moved_across);
+    }
+}
+
 TEST(SurfaceContour, ATiltedCubeWithThinCellsStaysOnePiece) {
     // Beside a convex corner off the axes, thin cells finer than their neighbours can leave a
     // mesh vertex just inside the corner with no neighbour inside, and the linear zero set a
