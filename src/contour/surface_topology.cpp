@@ -437,15 +437,20 @@ std::size_t move_across(SurfaceTopology& topo, const Evaluator& g, double eta,
         if (distance(target[i], topo.mesh.vertices[candidates[i]]) > h / 10.0 || !closed_round(i))
             continue;
         can[i] = 1;
+    }
+    // Whether the tetrahedra about candidate i keep their orientation with it at its target (and
+    // the vertices moved before it where they are now).
+    auto keeps_orientation = [&](std::uint32_t i) {
         for (const std::uint32_t k : star[i]) {
             std::array<Vec3, 4> q;
             for (int j = 0; j < 4; ++j) {
                 const std::uint32_t u = topo.mesh.tetrahedra[k][j];
                 q[j] = u == candidates[i] ? target[i] : topo.mesh.vertices[u];
             }
-            if (!(dot(q[1] - q[0], cross(q[2] - q[0], q[3] - q[0])) > 0.0)) can[i] = 0;
+            if (!(dot(q[1] - q[0], cross(q[2] - q[0], q[3] - q[0])) > 0.0)) return false;
         }
-    }
+        return true;
+    };
     std::vector<Vec3> at_target;
     for (std::uint32_t i = 0; i < candidates.size(); ++i)
         if (can[i]) at_target.push_back(target[i]);
@@ -464,7 +469,8 @@ std::size_t move_across(SurfaceTopology& topo, const Evaluator& g, double eta,
         if (!can[i]) continue;
         const double value = there[next++];
         const std::uint32_t v = candidates[i];
-        if ((value > 0.0) == (topo.values[v] > 0.0) || !(std::abs(value) > eta) || simple(i))
+        if ((value > 0.0) == (topo.values[v] > 0.0) || !(std::abs(value) > eta) || simple(i) ||
+            !keeps_orientation(i))
             continue;
         ++tried;
         const Vec3 was = topo.mesh.vertices[v];
