@@ -227,7 +227,7 @@ py::tuple contour_surface_mesh(const Array& vertices, const IndexArray& triangle
     SurfaceContourOptions options =
         surface_contour_options(depth, refine, eps, eta, asked, creases, 0.0);
     // The surface's topology is known: the contour keeps it beside its sharp edges and points.
-    options.keep_topology = contour_topology(surface);
+    options.keep_topology = shape_topology(surface);
     // As slc contour: the thin depth left unset, the one that keeps the surface's components and
     // handles where the default does not (the linear contours decide, the one kept is refined).
     const SurfaceContour result = without_gil(threads, [&] {

@@ -242,8 +242,8 @@ constexpr int max_moves_tried = 64;
 /// where two do). A component's vertices are the edges that change sign, and as a closed
 /// surface its edges are half again its triangles: its Euler characteristic is its vertices
 /// less half its triangles.
-ContourTopology linear_topology(const SurfaceTopology& topo,
-                                std::span<const std::uint32_t> crossing) {
+ShapeTopology linear_topology(const SurfaceTopology& topo,
+                              std::span<const std::uint32_t> crossing) {
     KeyMap<std::uint32_t> id;
     id.reserve(2 * crossing.size());
     std::vector<std::uint32_t> parent;
@@ -286,19 +286,19 @@ ContourTopology linear_topology(const SurfaceTopology& topo,
     std::vector<long long> chi(parent.size(), 0);  // twice each component's, at its root
     for (std::uint32_t v = 0; v < parent.size(); ++v) chi[root(v)] += 2;
     for (const std::uint32_t v : triangle_of) chi[root(v)] -= 1;
-    ContourTopology out;
+    ShapeTopology out;
     for (std::uint32_t v = 0; v < parent.size(); ++v) {
         if (root(v) != v) continue;
         ++out.components;
-        out.handles += (4 - chi[v]) / 4;  // genus 1 − χ/2, χ = chi[v] / 2
+        out.holes += (4 - chi[v]) / 4;  // genus 1 − χ/2, χ = chi[v] / 2
     }
     return out;
 }
 
 /// How far a contour's topology is from the shape's: the components and handles it differs by.
-long long topology_gap(const ContourTopology& a, const ContourTopology& b) {
+long long topology_gap(const ShapeTopology& a, const ShapeTopology& b) {
     return std::llabs(static_cast<long long>(a.components) - static_cast<long long>(b.components)) +
-           std::llabs(a.handles - b.handles);
+           std::llabs(a.holes - b.holes);
 }
 
 /// Moves mesh vertices within a sixteenth of the finest cell h of the zero set across it, where
@@ -310,9 +310,9 @@ long long topology_gap(const ContourTopology& a, const ContourTopology& b) {
 /// moved once the contour has the shape's topology, else puts them back (a part thinner than
 /// the cells, not a sharp edge) and returns 0.
 std::size_t move_across(SurfaceTopology& topo, const Evaluator& g, double eta,
-                        const ContourTopology& shape) {
-    std::vector<std::uint32_t> crossing = crossing_tetrahedra(topo);
-    ContourTopology now = linear_topology(topo, crossing);
+                        const ShapeTopology& shape) {
+    std::vector<std::uint32_t>& crossing = topo.crossing;
+    ShapeTopology now = linear_topology(topo, crossing);
     if (now == shape) return 0;
     const double h = topo.tree.edge(topo.tree.depth());
     // The candidates: exact values within h/16 at the crossing tetrahedra's corners.
@@ -339,21 +339,25 @@ std::size_t move_across(SurfaceTopology& topo, const Evaluator& g, double eta,
     for (std::uint32_t k = 0; k < topo.mesh.tetrahedra.size(); ++k)
         for (const std::uint32_t v : topo.mesh.tetrahedra[k])
             if (place[v] != none_index) star[place[v]].push_back(k);
-    // Whether v is simple: the corners of its link on the negative side make one disc (one
-    // component, Euler characteristic 1).
-    auto simple = [&](std::uint32_t i) {
-        const std::uint32_t v = candidates[i];
-        std::vector<std::uint32_t> corners;
+    // The triangles of candidate i's link: each tetrahedron about it less it, corners in order.
+    auto link = [&](std::uint32_t i) {
         std::vector<std::array<std::uint32_t, 3>> faces;
         for (const std::uint32_t k : star[i]) {
             std::array<std::uint32_t, 3> f{};
             int n = 0;
             for (const std::uint32_t u : topo.mesh.tetrahedra[k])
-                if (u != v) f[n++] = u;
+                if (u != candidates[i]) f[n++] = u;
             std::sort(f.begin(), f.end());
             faces.push_back(f);
-            corners.insert(corners.end(), f.begin(), f.end());
         }
+        return faces;
+    };
+    // Whether v is simple: the corners of its link on the negative side make one disc (one
+    // component, Euler characteristic 1).
+    auto simple = [&](std::uint32_t i) {
+        const std::vector<std::array<std::uint32_t, 3>> faces = link(i);
+        std::vector<std::uint32_t> corners;
+        for (const auto& f : faces) corners.insert(corners.end(), f.begin(), f.end());
         std::sort(corners.begin(), corners.end());
         corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
         auto negative = [&](std::uint32_t u) { return !(topo.values[u] > 0.0); };
@@ -391,13 +395,8 @@ std::size_t move_across(SurfaceTopology& topo, const Evaluator& g, double eta,
     // edge in two of its triangles): a vertex beside a leaf left out of the mesh (clear of the
     // zero set) is not moved, since that leaf's tetrahedra would cross it.
     auto closed_round = [&](std::uint32_t i) {
-        const std::uint32_t v = candidates[i];
         std::vector<std::uint64_t> edges;
-        for (const std::uint32_t k : star[i]) {
-            std::array<std::uint32_t, 3> f{};
-            int n = 0;
-            for (const std::uint32_t u : topo.mesh.tetrahedra[k])
-                if (u != v) f[n++] = u;
+        for (const auto& f : link(i)) {
             edges.push_back(edge_key(f[0], f[1]));
             edges.push_back(edge_key(f[1], f[2]));
             edges.push_back(edge_key(f[0], f[2]));
@@ -478,7 +477,7 @@ std::size_t move_across(SurfaceTopology& topo, const Evaluator& g, double eta,
         topo.mesh.vertices[v] = target[i];
         topo.values[v] = value;
         crossing = crossing_tetrahedra(topo);
-        const ContourTopology after = linear_topology(topo, crossing);
+        const ShapeTopology after = linear_topology(topo, crossing);
         if (topology_gap(after, shape) < topology_gap(now, shape)) {
             now = after;
             undo.push_back({v, was, was_value});
@@ -494,8 +493,9 @@ std::size_t move_across(SurfaceTopology& topo, const Evaluator& g, double eta,
             topo.mesh.vertices[it->vertex] = it->point;
             topo.values[it->vertex] = it->value;
         }
-        return 0;
+        undo.clear();
     }
+    if (tried > 0) crossing = crossing_tetrahedra(topo);  // of the vertices as they are now
     return undo.size();
 }
 
@@ -548,9 +548,9 @@ SurfaceTopology resolve_surface_topology(const SpaceEvaluator& g, const Box3& do
     mesh_values(topo, sampler, g, sides);
     check_boundary(topo, eta);
     topo.perturbed = perturb(topo, g, eta);
+    topo.crossing = crossing_tetrahedra(topo);
     if (options.keep_topology)
         topo.moved_across = move_across(topo, g, eta, *options.keep_topology);
-    topo.crossing = crossing_tetrahedra(topo);
     evaluate_crossed_stand_ins(topo, g);
     return topo;
 }

@@ -186,7 +186,7 @@ Surface surface_as_read(const Surface& s, const Box3& domain, SurfaceRunOptions&
         o.contour.creases = true;
         // Its topology is known: the contour keeps it beside sharp edges and points, where the
         // signs of G at vertices a hair from the zero set would cut specks or open handles.
-        o.contour.keep_topology = contour_topology(s);
+        o.contour.keep_topology = shape_topology(s);
         Surface contour = advance(s, options.t_start, 1.0, rest, domain, o).surface;
         if (contour.empty() && !s.empty()) {
             const Box3 b = bounding_box(s);

@@ -193,7 +193,7 @@ void run_surface_contour(const SurfaceContourRequest& r) {
         .distance_slack = source.lipschitz ? std::optional(0.0) : std::nullopt,
         // A mesh's topology is known: the contour keeps it beside its sharp edges and points.
         .keep_topology =
-            source.surface ? std::optional(contour_topology(*source.surface)) : std::nullopt};
+            source.surface ? std::optional(shape_topology(*source.surface)) : std::nullopt};
     summary["params"]["eps"] = options.resolved_eps();
     summary["params"]["eta"] = options.resolved_eta();
     summary["params"]["creases"] = options.creases;

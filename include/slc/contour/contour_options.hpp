@@ -16,11 +16,12 @@
 
 namespace slc {
 
-/// The components of a closed surface and its handles (the sum of their genera).
-struct ContourTopology {
+/// A shape's topology as the runs' checks and slc contour compare it: its components (curves, or
+/// a surface's closed components) and its holes (clockwise curves) or handles (a surface's genus).
+struct ShapeTopology {
     std::size_t components = 0;
-    long long handles = 0;
-    bool operator==(const ContourTopology&) const = default;
+    long long holes = 0;
+    bool operator==(const ShapeTopology&) const = default;
 };
 
 /// The contour options of dimension dim (2 or 3).
@@ -116,7 +117,7 @@ struct BasicContourOptions {
     /// moved: a part thinner than the cells is not a sharp edge). The contour's vertices are
     /// still roots of G and the mesh stays valid, as in perturbation. Unset (the default) for the
     /// steps of a run and the named problems.
-    std::optional<ContourTopology> keep_topology = std::nullopt;
+    std::optional<ShapeTopology> keep_topology = std::nullopt;
 
     /// ε as given, or its default 10^−K.
     double resolved_eps() const { return eps.value_or(std::pow(10.0, -depth)); }

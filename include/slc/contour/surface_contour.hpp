@@ -64,8 +64,4 @@ SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
 SurfaceContour contour_surface(SpaceFunctionRef g, const Box3& domain,
                                const SurfaceContourOptions& options, SpaceBoundsRef bounds);
 
-/// A closed surface's components and handles, as SurfaceContourOptions::keep_topology takes
-/// them. Precondition: s valid.
-inline ContourTopology contour_topology(const Surface& s) { return {component_count(s), genus(s)}; }
-
 }  // namespace slc

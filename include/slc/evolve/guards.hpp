@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "slc/contour/contour_options.hpp"  // ShapeTopology
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/surface.hpp"
 #include "slc/velocity/invariants.hpp"
@@ -96,13 +97,6 @@ RegionParts region_parts(const Interface& curves);
 /// The region enclosed by a valid surface (each component's orientation from its volume).
 RegionParts region_parts(const Surface& surface);
 
-/// A shape's topology as the runs' checks and slc contour compare it: its components (curves, or
-/// a surface's closed components) and its holes (clockwise curves) or handles (a surface's genus).
-struct ShapeTopology {
-    std::size_t components = 0;
-    long long holes = 0;
-    bool operator==(const ShapeTopology&) const = default;
-};
 ShapeTopology shape_topology(const Interface& curves);
 ShapeTopology shape_topology(const Surface& surface);
 /// "2 components with 1 hole" (curves), "1 component with 3 handles" (a surface: dim = 3).
