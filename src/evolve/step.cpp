@@ -431,7 +431,8 @@ StepResult advance_contours(const Interface& curves, double t, double k, const V
         return detail::advance_flow<StepResult>(curves, t, k, law, domain, options.contour, now);
     return detail::advance_extended<StepResult>(
         curves, t, k, law, domain, looped, now, make_level,
-        [&](const Interface& c) { return step_area_and_length(c, law, options, domain); });
+        [&](const Interface& c) { return step_area_and_length(c, law, options, domain); },
+        options.resolved_area_correction(law));
 }
 
 }  // namespace

@@ -260,7 +260,8 @@ SurfaceStepResult advance_contours(const Surface& surface, double t, double k,
     }
     return detail::advance_extended<SurfaceStepResult>(
         surface, t, k, law, domain, options.contour, now, make_level,
-        [](const Surface& s) { return std::pair(volume(s), area(s)); });
+        [](const Surface& s) { return std::pair(volume(s), area(s)); },
+        options.resolved_volume_correction(law));
 }
 
 }  // namespace

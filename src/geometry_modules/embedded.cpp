@@ -33,16 +33,20 @@ void validate(const EmbeddedOptions& o) {
     if (!(o.average >= 0.0) || !std::isfinite(o.average))
         throw InvalidInput(fmt::format(
             "embedded curvature's averaging width must be finite and >= 0, got {}", o.average));
+    if (!(o.eno_bias >= 1.0) || !std::isfinite(o.eno_bias))
+        throw InvalidInput(fmt::format(
+            "ENO bias of the embedded module must be finite and >= 1, got {}", o.eno_bias));
     if (o.smoothing < 0 || o.smoothing > max_smoothing)
         throw InvalidInput(
             fmt::format("smoothing passes S must be in 0..{}, got {}", max_smoothing, o.smoothing));
 }
 
-/// N = ∇F/|∇F| by ENO differences of order E, then S smoothing passes and renormalization.
+/// N = ∇F/|∇F| by ENO differences of order E with the given bias, then S smoothing passes and
+/// renormalization.
 std::vector<Vec2> mesh_normals(const LocalMesh& mesh, std::span<const double> f, int order,
-                               int passes) {
-    std::vector<double> nx = derivative(mesh, f, Axis::x, order);
-    std::vector<double> ny = derivative(mesh, f, Axis::y, order);
+                               double bias, int passes) {
+    std::vector<double> nx = derivative(mesh, f, Axis::x, order, bias);
+    std::vector<double> ny = derivative(mesh, f, Axis::y, order, bias);
     auto normalize = [&](std::size_t k) {
         const double length = std::hypot(nx[k], ny[k]);
         if (length > 0.0) {
@@ -96,7 +100,8 @@ EmbeddedFields embedded_fields(const DistanceTree& tree, const EmbeddedOptions& 
     out.mesh = LocalMesh(tree.curves(), domain.lo + Vec2{0.5 * h, 0.5 * h}, h,
                          options.eno_order + options.smoothing);
     out.distance = tree.signed_distances(out.mesh.points());
-    out.normals = mesh_normals(out.mesh, out.distance, options.eno_order, options.smoothing);
+    out.normals = mesh_normals(out.mesh, out.distance, options.eno_order, options.eno_bias,
+                               options.smoothing);
     out.curvature = mesh_curvature(out.mesh, out.normals, options.eno_order, options.smoothing);
     return out;
 }

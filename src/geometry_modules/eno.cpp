@@ -82,8 +82,11 @@ private:
 };
 
 /// The ENO rule on a precomputed table (see stencil()).
-Stencil grow(const DifferenceTable& table, std::size_t n, std::size_t lo, std::size_t hi,
-             int order) {
+/// The preferred side is the one that brings the stencil nearer its start's centre, and where
+/// both leave it equally far off, the left one (the right one if `lean_right`). It wins ties,
+/// and with a bias (eno::derivative) any difference less than `bias` times the other side's.
+Stencil grow(const DifferenceTable& table, std::size_t n, std::size_t lo, std::size_t hi, int order,
+             double bias = 1.0, bool lean_right = false) {
     const std::size_t centre2 = lo + hi;  // twice the centre of the starting stencil
     int points = static_cast<int>(hi - lo) + 1;
     while (points < order + 1 && hi - lo + 1 < n) {
@@ -94,8 +97,8 @@ Stencil grow(const DifferenceTable& table, std::size_t n, std::size_t lo, std::s
             left = true;
         } else {
             const double dl = table.magnitude(points, lo - 1), dr = table.magnitude(points, lo);
-            // Tie: extend on the side that keeps the stencil balanced about its start.
-            left = dl < dr || (dl == dr && lo + hi >= centre2);
+            const bool prefer_left = lean_right ? lo + hi > centre2 : lo + hi >= centre2;
+            left = prefer_left ? dl <= bias * dr : bias * dl < dr;
         }
         if (left) {
             --lo;
@@ -179,10 +182,12 @@ Stencil stencil(std::span<const double> f, std::size_t lo, std::size_t hi, int o
     return {s.first + first, s.points};
 }
 
-void derivative(std::span<const double> f, double h, int order, std::span<double> out) {
+void derivative(std::span<const double> f, double h, int order, std::span<double> out,
+                double bias) {
     check_order(order);
     SLC_ASSERT(out.size() == f.size(), "one derivative per sample");
     SLC_ASSERT(h > 0.0, "positive spacing");
+    SLC_ASSERT(bias >= 1.0, "a bias of at least 1");
     if (f.size() < 2) {
         std::fill(out.begin(), out.end(), 0.0);
         return;
@@ -190,12 +195,20 @@ void derivative(std::span<const double> f, double h, int order, std::span<double
     const DerivativeTable& weights = derivative_table();
     const DifferenceTable differences(f, order);
     for (std::size_t k = 0; k < f.size(); ++k) {
-        const Stencil s = grow(differences, f.size(), k, k, order);
-        const auto& w = weights[static_cast<std::size_t>(s.points)][k - s.first];
-        double sum = 0.0;
-        for (int m = 0; m < s.points; ++m)
-            sum += w[static_cast<std::size_t>(m)] * f[s.first + static_cast<std::size_t>(m)];
-        out[k] = sum / h;
+        const auto difference = [&](const Stencil& s) {
+            const auto& w = weights[static_cast<std::size_t>(s.points)][k - s.first];
+            double sum = 0.0;
+            for (int m = 0; m < s.points; ++m)
+                sum += w[static_cast<std::size_t>(m)] * f[s.first + static_cast<std::size_t>(m)];
+            return sum / h;
+        };
+        const Stencil s = grow(differences, f.size(), k, k, order, bias);
+        out[k] = difference(s);
+        if (bias > 1.0) {
+            // The same rule leaning right where the stencil is balanced, and the mean of the two.
+            const Stencil r = grow(differences, f.size(), k, k, order, bias, true);
+            if (r.first != s.first || r.points != s.points) out[k] = 0.5 * (out[k] + difference(r));
+        }
     }
 }
 

@@ -211,7 +211,7 @@ std::optional<std::size_t> LocalMesh::find(std::int32_t i, std::int32_t j) const
 }
 
 std::vector<double> derivative(const LocalMesh& mesh, std::span<const double> values, Axis axis,
-                               int order) {
+                               int order, double bias) {
     SLC_ASSERT(values.size() == mesh.size(), "one value per mesh point");
     std::vector<double> out(mesh.size());
     const double h = mesh.spacing();
@@ -220,7 +220,7 @@ std::vector<double> derivative(const LocalMesh& mesh, std::span<const double> va
         parallel_for(rows.size(), [&](std::size_t k) {
             const auto& r = rows[k];
             eno::derivative(values.subspan(r.first, r.size()), h, order,
-                            std::span<double>(out).subspan(r.first, r.size()));
+                            std::span<double>(out).subspan(r.first, r.size()), bias);
         });
         return out;
     }
@@ -230,7 +230,7 @@ std::vector<double> derivative(const LocalMesh& mesh, std::span<const double> va
         const auto& c = columns[k];
         std::vector<double> line(c.size()), result(c.size());
         for (std::size_t m = 0; m < c.size(); ++m) line[m] = values[order_of[c.first + m]];
-        eno::derivative(line, h, order, result);
+        eno::derivative(line, h, order, result, bias);
         for (std::size_t m = 0; m < c.size(); ++m) out[order_of[c.first + m]] = result[m];
     });
     return out;

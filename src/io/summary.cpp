@@ -119,6 +119,7 @@ nlohmann::json run_summary(const Problem& p, const RunOptions& o, const RunResul
         {"guards", o.guards},
         {"M", o.step.embedded.mesh},
         {"E", o.step.embedded.eno_order},
+        {"eno_bias", o.step.embedded.eno_bias},
         {"S", o.step.embedded.smoothing},
         {"embedded_average", o.step.embedded.average},
         {"L", o.step.resolved_tree_depth()},

@@ -24,6 +24,17 @@ struct EmbeddedOptions {
     /// S: passes of cosine smoothing after each differentiation, >= 0 (the paper raises S
     /// logarithmically with M for curvature flows).
     int smoothing = 0;
+    /// The bias, >= 1, of the ENO differences of F (eno::derivative); 1, the default: the
+    /// paper's plain ENO. F is the distance to a polygon, kinked inside it along each vertex's
+    /// bisector by the vertex's small turn: the plain rule steps round such a kink or not as it
+    /// falls between the nodes, so N leaves out part of the turn of vertices far apart (the long
+    /// segments where a contour runs along the tree's lines), and C on the polygon a depth-7
+    /// contour makes of a circle at Fig. 18's settings is off by a four-fold 2.1e−2 (2.0e−3 with
+    /// a bias of 2), which sets the shape that a flow standing still at circles ends in. Over
+    /// Table 7 the plain rule's error partly cancels the smoothing's shift of C, and a bias of 2
+    /// raises 14 of its 25 errors (docs/notes/area-preserving.md): Figs. 18 and 19's problems
+    /// take 2. The differences of N keep the plain rule.
+    double eno_bias = 1.0;
     /// Width, in mesh spacings h, over which the vertex curvature is averaged along Γ (the
     /// arclength module's cubic B-spline weights, standard deviation average · h); 0, the
     /// default: none, the paper's module. The module resolves C to about h, and a polygon's
@@ -51,8 +62,9 @@ struct EmbeddedFields {
 /// (cell-centred: a contour of a depth-K tree over the same domain has its vertices on the tree's
 /// cell edges, which at M = 2^(K+1) would otherwise be lattice lines; see below):
 ///  1. F at every mesh point from the tree (exact);
-///  2. ∇F by ENO differences of order E along rows and columns, N = ∇F/|∇F| (N = 0 where the
-///     differences cancel, which happens only on the medial axis of Γ);
+///  2. ∇F by ENO differences of order E along rows and columns, biased towards the centred
+///     stencil by EmbeddedOptions::eno_bias, N = ∇F/|∇F| (N = 0 where the differences cancel,
+///     which happens only on the medial axis of Γ);
 ///  3. S passes of cosine smoothing of each component of N, then renormalization;
 ///  4. C = −(∂x N_x + ∂y N_y) by ENO differences of order E, then S passes of smoothing.
 /// Every ENO stencil stays inside its interval, which holds at least E + 1 points since R ≥ E.

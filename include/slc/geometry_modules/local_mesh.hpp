@@ -101,9 +101,10 @@ enum class Axis { x, y };
 
 /// ∂f/∂x or ∂f/∂y at every mesh point, by ENO differences of order `order` (1..eno::max_order)
 /// along its x- or y-interval (one-sided near the interval's ends). values.size() == mesh.size().
-/// Error O(h^order) where f is smooth over the stencil. Parallel; independent of thread count.
+/// Error O(h^order) where f is smooth over the stencil. `bias` as for eno::derivative (1: the
+/// plain ENO rule). Parallel; independent of thread count.
 std::vector<double> derivative(const LocalMesh& mesh, std::span<const double> values, Axis axis,
-                               int order);
+                               int order, double bias = 1.0);
 
 /// `passes` passes of cosine smoothing, each one 1-2-1 pass along the x-intervals followed by one
 /// along the y-intervals (the tensor filter (1 2 1)⊗(1 2 1)/16 inside). Interval ends are left
