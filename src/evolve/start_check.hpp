@@ -22,6 +22,7 @@
 #include "slc/distance/distance_tree.hpp"
 #include "slc/distance/surface_distance_tree.hpp"
 #include "slc/evolve/guards.hpp"
+#include "slc/evolve/keeping_topology.hpp"
 #include "slc/evolve/overrides.hpp"
 #include "slc/geometry/interface.hpp"
 #include "slc/geometry/surface.hpp"
@@ -111,65 +112,57 @@ std::optional<StartMismatch> start_mismatch(const ShapeOf<dim>& given, const Sha
 }
 
 /// The start of a user's run: the contour at rest of `given` (read(thin), at depth K with thin
-/// levels of thin cells) that keeps it (start_mismatch), at the options' thin depth or else the
-/// deepest shallower one that does (thin cells follow a sharp edge or point of the shape, which
-/// is thinner than any cell near it, and their corners catch it unevenly: a convex pyramid in a
-/// general turn gets handles beside its edges and specks at its apex at thin depths 1 to 8, none
-/// at 0), or, where a part is thinner than that resolves, two levels deeper at a time up to
-/// setting_range's most (no deeper once the thin cells change nothing). Returns the depth and
-/// the contour; throws NumericalFailure naming the part and the settings when the deepest does
-/// not keep it either.
+/// levels of thin cells) that keeps it (start_mismatch), at the options' thin depth or another in
+/// thin_depth_search's order, going no deeper once a depth's contour misses the shape's measure
+/// by what the depth before missed it (the thin cells change nothing: the part is thinner than
+/// any). Returns the depth and the contour; throws NumericalFailure naming the part and the
+/// settings when none keeps it.
 template <int dim, class Read>
 std::pair<int, ShapeOf<dim>> start_as_given(const ShapeOf<dim>& given, const RegionOf<dim>& domain,
                                             int depth, int thin_depth, const StartTolerance& keep,
                                             Read read) {
-    std::optional<StartMismatch> mismatch;
-    {
-        ShapeOf<dim> contour = read(thin_depth);
-        mismatch = start_mismatch<dim>(given, contour, domain, keep);
-        if (!mismatch) return {thin_depth, std::move(contour)};
-    }
-    for (int shallower = thin_depth - 1; shallower >= 0; --shallower) {
-        ShapeOf<dim> contour = read(shallower);
-        if (!start_mismatch<dim>(given, contour, domain, keep))
-            return {shallower, std::move(contour)};
-    }
+    std::optional<ShapeOf<dim>> kept;
+    std::optional<StartMismatch> mismatch;  // at the deepest depth tried, from thin_depth down
     int thin = thin_depth;
-    std::optional<double> before;  // the measure one depth up
-    for (;;) {
-        const bool same = before && *before == mismatch->measure;
-        before = mismatch->measure;
-        if (thin < setting_range::thin_depth.hi && thin_depth > 0 && !same) {
-            thin = std::min(thin + 2, setting_range::thin_depth.hi);
-            ShapeOf<dim> contour = read(thin);
-            mismatch = start_mismatch<dim>(given, contour, domain, keep);
-            if (!mismatch) return {thin, std::move(contour)};
-            continue;
+    bool same = false;  // that depth's contour missed the measure by what the one before did
+    const auto attempt = [&](int at) {
+        ShapeOf<dim> contour = read(at);
+        std::optional<StartMismatch> missed = start_mismatch<dim>(given, contour, domain, keep);
+        if (!missed) {
+            kept = std::move(contour);
+            return ThinDepthTry::keeps;
         }
-        const std::string cells = thin > 0 ? fmt::format("cells {:.3g}, thin cells down to {:.3g}",
-                                                         keep.cell, std::ldexp(keep.cell, -thin))
-                                           : fmt::format("cells {:.3g}, no thin cells", keep.cell);
-        std::string advice;
-        if (mismatch->measure_only) {
-            advice = "refinement did not bring the contours within eps of it: raise -K";
-        } else if (same) {
-            // Deeper thin cells changed nothing: the part is thinner than any of them, as a part
-            // that tapers to an edge or a point of no thickness is at every depth.
-            advice = fmt::format(
-                "a part is thinner than they resolve at any depth (thin cells {} levels deep split "
-                "no more than {} did), as where it tapers to an edge or a point of no thickness: "
-                "give it a thickness of at least {:.3g} there (the finest thin cell) or raise -K",
-                thin, thin - 2, std::ldexp(keep.cell, -thin));
-        } else {
-            advice = "a part is thinner than they resolve: " +
-                     (thin < setting_range::thin_depth.hi
-                          ? fmt::format("raise --thin-depth (now {}) or -K", thin)
-                          : fmt::format("raise -K (--thin-depth is at its most, {})", thin));
-        }
-        throw NumericalFailure(
-            fmt::format("the contours at K = {} ({}) do not keep the {} as given: {}; {}", depth,
-                        cells, dim == 2 ? "curves" : "surface", mismatch->why, advice));
+        if (at < thin_depth) return ThinDepthTry::differs;
+        same = mismatch && mismatch->measure == missed->measure;
+        thin = at;
+        mismatch = std::move(missed);
+        return same ? ThinDepthTry::stop_deeper : ThinDepthTry::differs;
+    };
+    if (const std::optional<int> found = thin_depth_search(thin_depth, attempt))
+        return {*found, std::move(*kept)};
+    const std::string cells = thin > 0 ? fmt::format("cells {:.3g}, thin cells down to {:.3g}",
+                                                     keep.cell, std::ldexp(keep.cell, -thin))
+                                       : fmt::format("cells {:.3g}, no thin cells", keep.cell);
+    std::string advice;
+    if (mismatch->measure_only) {
+        advice = "refinement did not bring the contours within eps of it: raise -K";
+    } else if (same) {
+        // Deeper thin cells changed nothing: the part is thinner than any of them, as a part
+        // that tapers to an edge or a point of no thickness is at every depth.
+        advice = fmt::format(
+            "a part is thinner than they resolve at any depth (thin cells {} levels deep split "
+            "no more than {} did), as where it tapers to an edge or a point of no thickness: "
+            "give it a thickness of at least {:.3g} there (the finest thin cell) or raise -K",
+            thin, thin - 2, std::ldexp(keep.cell, -thin));
+    } else {
+        advice = "a part is thinner than they resolve: " +
+                 (thin < setting_range::thin_depth.hi
+                      ? fmt::format("raise --thin-depth (now {}) or -K", thin)
+                      : fmt::format("raise -K (--thin-depth is at its most, {})", thin));
     }
+    throw NumericalFailure(
+        fmt::format("the contours at K = {} ({}) do not keep the {} as given: {}; {}", depth, cells,
+                    dim == 2 ? "curves" : "surface", mismatch->why, advice));
 }
 
 }  // namespace slc::detail
