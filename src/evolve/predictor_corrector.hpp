@@ -145,6 +145,13 @@ Result advance_flow(const Shape& shape, double t, double k, const Law& law, cons
     return result;
 }
 
+/// The measure a nonlocal law's step keeps, relative, and the contours of the corrector that
+/// adjust its mean at most (the first shift and three secant steps): with one shift alone the
+/// spiral of Fig. 18 drifted by 1e−4 to 4e−4 in steps where its corners round off, the bubbles
+/// of Fig. 19 where they merge (docs/notes/area-preserving.md).
+inline constexpr double mean_tolerance = 1e-8;
+inline constexpr int mean_rounds = 4;
+
 /// The step with an extension W of the vertex velocities (nearest-point or Whitney).
 ///
 /// Predictor (Eq. 4, with our sign): G̃(x) = F(x − k W(x); Γ(t)). F is 1-Lipschitz, so G̃(x)
@@ -167,13 +174,6 @@ Result advance_flow(const Shape& shape, double t, double k, const Law& law, cons
 /// to mean_tolerance (at most mean_rounds contours in all), each kept only when it comes nearer
 /// the measure with the same components and holes.
 /// measures(shape) gives (enclosed, boundary): area and length, or volume and area.
-/// The measure a nonlocal law's step keeps, relative, and the contours of the corrector that
-/// adjust its mean at most (the first shift and three secant steps): with one shift alone the
-/// spiral of Fig. 18 drifted by 1e−4 to 4e−4 in steps where its corners round off, the bubbles
-/// of Fig. 19 where they merge (docs/notes/area-preserving.md).
-inline constexpr double mean_tolerance = 1e-8;
-inline constexpr int mean_rounds = 4;
-
 template <class Result, class Shape, class Law, class Region, class ContourOptions, class Level,
           class MakeLevel, class Measures>
 Result advance_extended(const Shape& shape, double t, double k, const Law& law,
@@ -232,10 +232,10 @@ Result advance_extended(const Shape& shape, double t, double k, const Law& law,
         evals += corrected.stats.g_evals;
         // Secant steps while they keep the contour's topology and bring its measure nearer the
         // law's (where the step merges or tears a part the measure may jump with s).
-        if (!vanished(shape_of(corrected))) {
+        if (!restored && !vanished(shape_of(corrected))) {
             const ShapeTopology topology = shape_topology(shape_of(corrected));
             double s_before = 0.0, before = first, produced = measures(shape_of(corrected)).first;
-            for (int round = 1; round < (restored ? 1 : mean_rounds); ++round) {
+            for (int round = 1; round < mean_rounds; ++round) {
                 if (miss(produced) <= mean_tolerance * std::abs(target)) break;
                 slope = (produced - before) / (s - s_before);
                 if (!(slope > 0.25 * k * boundary && slope < 4.0 * k * boundary)) break;
